@@ -1,0 +1,182 @@
+//! Forward dynamics by the articulated-body algorithm (Featherstone, *Rigid
+//! Body Dynamics Algorithms*, §7.3): q̈ = M(q)⁻¹(τ − h(q, q̇) − J(q)ᵀF_tip)
+//! in O(n), without forming M. On long chains it keeps far more digits than
+//! a factorisation of M, which is why it is the default forward dynamics.
+
+use super::joint::{joint_transform, motion, project};
+use super::{TipWrench, Workspace};
+use crate::model::Model;
+use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
+use crate::Scalar;
+
+/// A symmetric 6×6 articulated-body inertia `[[A, B], [Bᵀ, C]]` in
+/// (angular; linear) order: the force `(A ω + B v, Bᵀ ω + C v)` answers the
+/// acceleration `(ω, v)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArticulatedInertia<S> {
+    a: Sym3<S>,
+    b: Mat3<S>,
+    c: Sym3<S>,
+}
+
+impl<S: Scalar> ArticulatedInertia<S> {
+    /// Zero.
+    pub fn zero() -> Self {
+        ArticulatedInertia { a: Sym3::zero(), b: Mat3::zero(), c: Sym3::zero() }
+    }
+    /// A rigid body's inertia `[[Ī, [h]], [[h]ᵀ, m·1]]`.
+    #[inline(always)]
+    pub fn from_rigid(i: &Inertia<S>) -> Self {
+        let z = S::zero();
+        ArticulatedInertia { a: i.ibar, b: Mat3::skew(&i.h), c: Sym3([i.mass, i.mass, i.mass, z, z, z]) }
+    }
+    /// `self · m`.
+    #[inline(always)]
+    pub fn mul_motion(&self, m: &Motion<S>) -> Force<S> {
+        Force {
+            ang: self.a.mul_vec(&m.ang) + self.b.mul_vec(&m.lin),
+            lin: self.b.tr_mul_vec(&m.ang) + self.c.mul_vec(&m.lin),
+        }
+    }
+    /// `self − u uᵀ / d`.
+    #[inline(always)]
+    fn sub_outer(&self, u: &Force<S>, d_inv: S) -> Self {
+        let (ua, ul) = (u.ang.scale(d_inv), u.lin);
+        let sym = |s: &Sym3<S>, x: &Vec3<S>, y: &Vec3<S>| {
+            let (x, y) = (x.0, y.0);
+            Sym3([
+                s.0[0] - x[0] * y[0],
+                s.0[1] - x[1] * y[1],
+                s.0[2] - x[2] * y[2],
+                s.0[3] - x[0] * y[1],
+                s.0[4] - x[0] * y[2],
+                s.0[5] - x[1] * y[2],
+            ])
+        };
+        let mut b = self.b;
+        for (r, row) in b.0.iter_mut().enumerate() {
+            for (c, e) in row.iter_mut().enumerate() {
+                *e -= ua.0[r] * ul.0[c];
+            }
+        }
+        ArticulatedInertia { a: sym(&self.a, &ua, &u.ang), b, c: sym(&self.c, &ul.scale(d_inv), &ul) }
+    }
+    /// The same inertia seen from the parent: `Xᵀ · self · X`, where `X`
+    /// maps parent motion to this frame and `x` is this frame's pose in
+    /// the parent.
+    #[inline(always)]
+    fn expressed_in_parent(&self, x: &Transform<S>) -> Self {
+        // Rotate the blocks into the parent's axes, then shift the origin
+        // by r: A' = A₁ − B₁[r] + [r]B₁ᵀ − [r]C₁[r], B' = B₁ + [r]C₁, C' = C₁.
+        let r = &x.rot;
+        let a1 = self.a.rotate(r);
+        let b1 = r.mul_mat(&self.b).mul_mat(&r.transpose());
+        let c1 = self.c.rotate(r);
+        let rx = Mat3::skew(&x.trans);
+        let rc = rx.mul_mat(&c1.to_mat()); // [r]C₁
+        let rb = rx.mul_mat(&b1.transpose()); // [r]B₁ᵀ
+        let rcr = rc.mul_mat(&rx); // [r]C₁[r]
+        let mut a = a1.0;
+        let idx = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
+        for (k, (i, j)) in idx.into_iter().enumerate() {
+            // −B₁[r] = ([r]B₁ᵀ)ᵀ
+            a[k] = a[k] + rb.0[j][i] + rb.0[i][j] - rcr.0[i][j];
+        }
+        let mut b = b1;
+        for i in 0..3 {
+            for j in 0..3 {
+                b.0[i][j] += rc.0[i][j];
+            }
+        }
+        ArticulatedInertia { a: Sym3(a), b, c: c1 }
+    }
+    /// `self + o`.
+    #[inline(always)]
+    fn add(&self, o: &Self) -> Self {
+        let mut b = self.b;
+        for i in 0..3 {
+            for j in 0..3 {
+                b.0[i][j] += o.b.0[i][j];
+            }
+        }
+        ArticulatedInertia { a: self.a + o.a, b, c: self.c + o.c }
+    }
+}
+
+/// Forward dynamics by the articulated-body algorithm.
+///
+/// `tau` are the joint torques/forces, `gravity` is in the base frame
+/// (`None`: no gravity), `tips` are wrenches the robot applies to its
+/// environment; the joint accelerations are written to `qdd`.
+///
+/// # Panics
+/// If a slice's length is not the model's number of joints.
+#[allow(clippy::too_many_arguments)]
+pub fn aba<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    qd: &[S],
+    tau: &[S],
+    gravity: Option<&Vec3<S>>,
+    tips: &[TipWrench<S>],
+    qdd: &mut [S],
+) {
+    let n = model.dof();
+    assert!(
+        q.len() == n && qd.len() == n && tau.len() == n && qdd.len() == n && ws.dof() == n,
+        "aba: slices must have the model's {n} joints"
+    );
+    // Forward: velocities, velocity-product accelerations c, bias forces pA.
+    for (i, body) in model.bodies.iter().enumerate() {
+        let x = joint_transform(&body.joint, q[i]);
+        ws.x[i] = x;
+        let sqd = motion(&body.joint, qd[i]);
+        let inertia = Inertia::<S>::from_f64(&body.inertia);
+        let (v, c) = match body.parent {
+            Some(p) => {
+                let v = x.motion_to_child(&ws.v[p]) + sqd;
+                (v, v.cross_motion(&sqd))
+            }
+            None => (sqd, Motion::zero()),
+        };
+        ws.v[i] = v;
+        ws.a[i] = c; // c_i, kept until the last pass
+        ws.art[i] = ArticulatedInertia::from_rigid(&inertia);
+        ws.f[i] = v.cross_force(&inertia.mul_motion(&v));
+    }
+    for tip in tips {
+        let frame = &model.frames[tip.frame];
+        if let Some(b) = frame.body {
+            ws.f[b] += Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
+        }
+    }
+    // Backward: articulated inertias and bias forces.
+    for (i, body) in model.bodies.iter().enumerate().rev() {
+        let u = ws.art[i].mul_motion(&motion(&body.joint, S::one()));
+        let d_inv = S::one() / project(&body.joint, &u);
+        let ui = tau[i] - project(&body.joint, &ws.f[i]);
+        ws.u6[i] = u;
+        ws.s1[i] = d_inv;
+        ws.s2[i] = ui;
+        if let Some(p) = body.parent {
+            let ia = ws.art[i].sub_outer(&u, d_inv);
+            let pa = ws.f[i] + ia.mul_motion(&ws.a[i]) + u.scale(ui * d_inv);
+            let x = ws.x[i];
+            ws.art[p] = ws.art[p].add(&ia.expressed_in_parent(&x));
+            ws.f[p] += x.force_to_parent(&pa);
+        }
+    }
+    // Forward: accelerations.
+    let a0 = Motion::new(Vec3::zero(), gravity.map_or(Vec3::zero(), |g| -*g));
+    for (i, body) in model.bodies.iter().enumerate() {
+        let a_parent = match body.parent {
+            Some(p) => ws.a[p],
+            None => a0,
+        };
+        let a = ws.x[i].motion_to_child(&a_parent) + ws.a[i];
+        let qddi = (ws.s2[i] - a.dot(&ws.u6[i])) * ws.s1[i];
+        qdd[i] = qddi;
+        ws.a[i] = a + motion(&body.joint, qddi);
+    }
+}

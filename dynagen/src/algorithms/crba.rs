@@ -1,0 +1,63 @@
+//! The mass matrix M(q) by the composite-rigid-body algorithm
+//! (Featherstone, *Rigid Body Dynamics Algorithms*, §6.2), and by the
+//! *Modern Robotics* construction — n inverse dynamics calls with unit
+//! accelerations — kept as an independent check.
+
+use super::joint::{motion, project};
+use super::rnea::{rnea, update_joint_transforms};
+use super::Workspace;
+use crate::model::Model;
+use crate::spatial::Inertia;
+use crate::Scalar;
+
+/// M(q) by the composite-rigid-body algorithm, written row-major into `m`
+/// (n×n). Both triangles are written, each entry computed once.
+///
+/// # Panics
+/// If `q` does not have the model's number of joints or `m` is not n×n.
+pub fn crba<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], m: &mut [S]) {
+    let n = model.dof();
+    assert!(q.len() == n && m.len() == n * n && ws.dof() == n, "crba: slices must fit the model's {n} joints");
+    update_joint_transforms(model, ws, q);
+    // Entries of joints on different branches stay zero.
+    m.fill(S::zero());
+    for (i, b) in model.bodies.iter().enumerate() {
+        ws.inertia[i] = Inertia::from_f64(&b.inertia);
+    }
+    for i in (0..n).rev() {
+        let body = &model.bodies[i];
+        // F = Iᶜ_i S_i, then carried up the chain of ancestors.
+        let mut f = ws.inertia[i].mul_motion(&motion(&body.joint, S::one()));
+        m[i * n + i] = project(&body.joint, &f);
+        let mut j = i;
+        while let Some(p) = model.bodies[j].parent {
+            f = ws.x[j].force_to_parent(&f);
+            j = p;
+            let mij = project(&model.bodies[j].joint, &f);
+            m[i * n + j] = mij;
+            m[j * n + i] = mij;
+        }
+        if let Some(p) = body.parent {
+            let ic = ws.x[i].inertia_to_parent(&ws.inertia[i]);
+            ws.inertia[p] = ws.inertia[p].add(&ic);
+        }
+    }
+}
+
+/// M(q) column by column, as the Modern Robotics library computes it: column
+/// j is the inverse dynamics with q̇ = 0, q̈ = e_j and no gravity. O(n²);
+/// used as a check of [`crba`].
+pub fn mass_matrix_by_unit_accelerations<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], m: &mut [S]) {
+    let n = model.dof();
+    assert!(m.len() == n * n, "mass_matrix_by_unit_accelerations: m must be {n}×{n}");
+    let mut e = vec![S::zero(); n];
+    let mut col = vec![S::zero(); n];
+    for j in 0..n {
+        e[j] = S::one();
+        rnea(model, ws, q, None, Some(&e), None, &[], &mut col);
+        e[j] = S::zero();
+        for i in 0..n {
+            m[i * n + j] = col[i];
+        }
+    }
+}

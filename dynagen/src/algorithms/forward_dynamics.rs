@@ -1,0 +1,41 @@
+//! Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇) − J(q)ᵀF_tip), as *Modern
+//! Robotics* §8.5 writes it: M by the composite-rigid-body algorithm, the
+//! right-hand side by one inverse dynamics call with q̈ = 0, and a sparse
+//! LᵀDL solve. The articulated-body algorithm ([`aba`](super::aba::aba))
+//! computes the same thing and is the default elsewhere, being more accurate
+//! on long chains; this path is kept as its check and for comparison.
+
+use super::crba::crba;
+use super::ldlt;
+use super::rnea::rnea;
+use super::{TipWrench, Workspace};
+use crate::model::Model;
+use crate::spatial::Vec3;
+use crate::Scalar;
+
+/// Forward dynamics through the factorised mass matrix; see the module
+/// documentation. Arguments as [`aba`](super::aba::aba).
+#[allow(clippy::too_many_arguments)]
+pub fn forward_dynamics_ldlt<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    qd: &[S],
+    tau: &[S],
+    gravity: Option<&Vec3<S>>,
+    tips: &[TipWrench<S>],
+    qdd: &mut [S],
+) {
+    let n = model.dof();
+    assert!(tau.len() == n && qdd.len() == n, "forward_dynamics_ldlt: slices must have the model's {n} joints");
+    // h + JᵀF_tip into qdd, then the right-hand side τ − that.
+    rnea(model, ws, q, Some(qd), None, gravity, tips, qdd);
+    for i in 0..n {
+        qdd[i] = tau[i] - qdd[i];
+    }
+    let mut m = std::mem::take(&mut ws.mat);
+    crba(model, ws, q, &mut m);
+    ldlt::factorise(model, &mut m);
+    ldlt::solve(model, &m, qdd);
+    ws.mat = m;
+}

@@ -1,0 +1,2 @@
+//! Time integration of the forward dynamics. Filled in with the
+//! trajectory functions.

@@ -1,0 +1,23 @@
+//! The dynamics algorithms, one per file, each generic over the scalar
+//! ([`Scalar`](crate::Scalar)): run on `f64` or `f32` they are the generic
+//! solver; run on a symbolic scalar they are traced into generated code.
+//!
+//! All of them work in body frames (each body's frame is its joint's frame),
+//! take the model's constants as `f64`, write into caller-provided slices
+//! and allocate nothing: their scratch lives in a [`Workspace`].
+//!
+//! Joint order is the model's: body `i` carries joint `i`.
+
+pub mod aba;
+pub mod bias;
+pub mod crba;
+pub mod energy;
+pub mod forward_dynamics;
+pub mod integrators;
+pub mod joint;
+pub mod kinematics;
+pub mod ldlt;
+pub mod rnea;
+mod workspace;
+
+pub use workspace::{TipWrench, Workspace};

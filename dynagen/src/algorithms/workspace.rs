@@ -1,0 +1,66 @@
+//! Scratch space for the algorithms, allocated once per model.
+
+use crate::model::Model;
+use crate::spatial::{Force, Inertia, Motion, Transform};
+use crate::Scalar;
+
+/// A wrench that a frame of the robot applies to its environment, in that
+/// frame's coordinates: the Modern Robotics library's `Ftip` (m; f).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TipWrench<S> {
+    /// The frame's index in [`Model::frames`].
+    pub frame: usize,
+    /// The wrench (N·m; N).
+    pub wrench: Force<S>,
+}
+
+/// Preallocated scratch for every algorithm on one model. Create it once
+/// (outside a control loop) and pass it to each call.
+#[derive(Clone, Debug)]
+pub struct Workspace<S> {
+    /// Pose of each body in its parent's frame (the base's for a root body).
+    pub(crate) x: Vec<Transform<S>>,
+    /// Twist of each body, in its frame.
+    pub(crate) v: Vec<Motion<S>>,
+    /// Acceleration of each body (including −g), in its frame.
+    pub(crate) a: Vec<Motion<S>>,
+    /// Net wrench transmitted by each joint, in the body's frame.
+    pub(crate) f: Vec<Force<S>>,
+    /// Composite or articulated quantities, per body.
+    pub(crate) inertia: Vec<Inertia<S>>,
+    /// Articulated-body inertias, per body.
+    pub(crate) art: Vec<crate::algorithms::aba::ArticulatedInertia<S>>,
+    /// Per-body 6-vectors of the articulated-body algorithm.
+    pub(crate) u6: Vec<Force<S>>,
+    /// Per-joint scalars.
+    pub(crate) s1: Vec<S>,
+    pub(crate) s2: Vec<S>,
+    /// An n×n matrix, row-major.
+    pub(crate) mat: Vec<S>,
+    /// Pose of each body in the base frame.
+    pub(crate) world: Vec<Transform<S>>,
+}
+
+impl<S: Scalar> Workspace<S> {
+    /// Scratch for `model`.
+    pub fn new(model: &Model) -> Self {
+        let n = model.dof();
+        Workspace {
+            x: vec![Transform::identity(); n],
+            v: vec![Motion::zero(); n],
+            a: vec![Motion::zero(); n],
+            f: vec![Force::zero(); n],
+            inertia: vec![Inertia::zero(); n],
+            art: vec![crate::algorithms::aba::ArticulatedInertia::zero(); n],
+            u6: vec![Force::zero(); n],
+            s1: vec![S::zero(); n],
+            s2: vec![S::zero(); n],
+            mat: vec![S::zero(); n * n],
+            world: vec![Transform::identity(); n],
+        }
+    }
+    /// The number of joints this workspace is for.
+    pub fn dof(&self) -> usize {
+        self.x.len()
+    }
+}

@@ -1,0 +1,61 @@
+//! Describing a robot in Rust.
+
+use super::description::{Inertial, JointDescription, LinkDescription, RobotDescription};
+use super::{BuildOptions, Model, ModelError};
+
+/// Builds a [`Model`] from links and joints written in Rust, with the same
+/// checks as a URDF.
+///
+/// ```
+/// use dynagen::model::{Inertial, JointDescription, RobotBuilder};
+/// let model = RobotBuilder::new("pendulum")
+///     .link("base", None)
+///     .link("arm", Some(Inertial::point_mass(1.0, [0.0, 0.0, -1.0])))
+///     .joint(JointDescription::revolute("hinge", "base", "arm", [0.0, 1.0, 0.0]))
+///     .build()
+///     .unwrap();
+/// assert_eq!(model.dof(), 1);
+/// ```
+#[derive(Clone, Debug, Default)]
+pub struct RobotBuilder {
+    desc: RobotDescription,
+    opts: BuildOptions,
+}
+
+impl RobotBuilder {
+    /// An empty robot with this name.
+    pub fn new(name: &str) -> Self {
+        RobotBuilder {
+            desc: RobotDescription { name: name.to_string(), ..Default::default() },
+            opts: BuildOptions::default(),
+        }
+    }
+    /// Adds a link; `None` is massless.
+    pub fn link(mut self, name: &str, inertial: Option<Inertial>) -> Self {
+        self.desc.links.push(LinkDescription { name: name.to_string(), inertial });
+        self
+    }
+    /// Adds a joint (see [`JointDescription::revolute`] and its siblings).
+    pub fn joint(mut self, joint: JointDescription) -> Self {
+        self.desc.joints.push(joint);
+        self
+    }
+    /// Sets gravity in the base frame (m/s²).
+    pub fn gravity(mut self, g: [f64; 3]) -> Self {
+        self.desc.gravity = Some(g);
+        self
+    }
+    /// Refuse inertias that break the triangle inequality.
+    pub fn strict(mut self, strict: bool) -> Self {
+        self.opts.strict = strict;
+        self
+    }
+    /// The description built so far.
+    pub fn description(&self) -> &RobotDescription {
+        &self.desc
+    }
+    /// Validates and builds the model.
+    pub fn build(&self) -> Result<Model, ModelError> {
+        Model::from_description_with(&self.desc, &self.opts)
+    }
+}

@@ -1,0 +1,173 @@
+//! Errors and warnings of model construction. Every one names the link or
+//! joint it is about.
+
+use std::path::PathBuf;
+
+/// Why a robot description was refused.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ModelError {
+    /// The file could not be read.
+    #[error("cannot read {path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The reason.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The URDF is not well-formed XML or not a URDF document.
+    #[error("malformed URDF: {0}")]
+    Urdf(String),
+    /// The URDF names something a number cannot be read from.
+    #[error("{item}: cannot read {what} from {text:?}")]
+    BadNumber {
+        /// The link or joint, as `link "name"` or `joint "name"`.
+        item: String,
+        /// The attribute.
+        what: String,
+        /// The text found.
+        text: String,
+    },
+    /// The robot has no links.
+    #[error("the robot has no links")]
+    NoLinks,
+    /// Two links share a name.
+    #[error("link \"{0}\" is defined twice")]
+    DuplicateLink(String),
+    /// Two joints share a name.
+    #[error("joint \"{0}\" is defined twice")]
+    DuplicateJoint(String),
+    /// A joint names a link that does not exist.
+    #[error("joint \"{joint}\": its {role} link \"{link}\" does not exist")]
+    MissingLink {
+        /// The joint.
+        joint: String,
+        /// "parent" or "child".
+        role: &'static str,
+        /// The missing link.
+        link: String,
+    },
+    /// A link is the child of two joints.
+    #[error("link \"{link}\" is the child of two joints, \"{first}\" and \"{second}\": the robot is not a tree")]
+    MultipleParents {
+        /// The link.
+        link: String,
+        /// The first joint.
+        first: String,
+        /// The second joint.
+        second: String,
+    },
+    /// More than one link has no parent.
+    #[error("the robot has several root links ({}): a robot must be one tree", .0.join(", "))]
+    MultipleRoots(Vec<String>),
+    /// The joints form a cycle.
+    #[error("the joints form a cycle through link(s) {}", .0.join(", "))]
+    Cycle(Vec<String>),
+    /// A number that must be finite is not.
+    #[error("{item}: {what} is not finite")]
+    NonFinite {
+        /// The link or joint, as `link "name"` or `joint "name"`.
+        item: String,
+        /// What is not finite.
+        what: &'static str,
+    },
+    /// A joint axis is zero.
+    #[error("joint \"{0}\": the axis is zero")]
+    ZeroAxis(String),
+    /// A rotation matrix is not a rotation.
+    #[error("{item}: the {what} rotation is not orthonormal with determinant 1")]
+    NotARotation {
+        /// The link or joint, as `link "name"` or `joint "name"`.
+        item: String,
+        /// Which rotation.
+        what: &'static str,
+    },
+    /// A link has negative mass.
+    #[error("link \"{link}\": negative mass {mass} kg")]
+    NegativeMass {
+        /// The link.
+        link: String,
+        /// The mass.
+        mass: f64,
+    },
+    /// A link's rotational inertia is not positive semi-definite.
+    #[error("link \"{link}\": the inertia is not positive semi-definite (principal moments {moments:?} kg·m²)")]
+    InertiaNotPositive {
+        /// The link.
+        link: String,
+        /// The principal moments.
+        moments: [f64; 3],
+    },
+    /// In strict mode: principal moments that no physical body has.
+    #[error("link \"{link}\": the principal moments {moments:?} kg·m² break the triangle inequality (strict mode)")]
+    TriangleInequality {
+        /// The link.
+        link: String,
+        /// The principal moments.
+        moments: [f64; 3],
+    },
+    /// A joint moves nothing with mass or inertia, so M(q) would be singular.
+    #[error(
+        "joint \"{0}\" moves no mass or inertia (its whole subtree is massless), so the mass matrix would be singular"
+    )]
+    MasslessSubtree(String),
+    /// A feature the model does not handle yet.
+    #[error("joint \"{joint}\": {what} not supported yet")]
+    Unsupported {
+        /// The joint.
+        joint: String,
+        /// The feature.
+        what: String,
+    },
+    /// The Modern Robotics lists do not fit together.
+    #[error("Modern Robotics lists: {0}")]
+    ModernRobotics(String),
+    /// A named frame, link or joint was not found.
+    #[error("no link, joint or frame named \"{0}\"")]
+    UnknownName(String),
+}
+
+/// Something accepted, but worth a look: the model is built all the same.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum ModelWarning {
+    /// Positive semi-definite inertia whose principal moments break the
+    /// triangle inequality (seen in published URDFs of hands and fingers;
+    /// Pinocchio accepts them too).
+    TriangleInequality {
+        /// The link.
+        link: String,
+        /// The principal moments.
+        moments: [f64; 3],
+    },
+    /// A link without mass has a non-zero rotational inertia.
+    InertiaWithoutMass {
+        /// The link.
+        link: String,
+    },
+    /// A URDF joint axis that was not of unit length was normalised.
+    AxisNormalised {
+        /// The joint.
+        joint: String,
+        /// The axis' length in the file.
+        norm: f64,
+    },
+}
+
+impl std::fmt::Display for ModelWarning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ModelWarning::TriangleInequality { link, moments } => write!(
+                f,
+                "link \"{link}\": principal moments {moments:?} kg·m² break the triangle inequality (no physical body has them; accepted, refused in strict mode)"
+            ),
+            ModelWarning::InertiaWithoutMass { link } => {
+                write!(f, "link \"{link}\": zero mass but a non-zero rotational inertia")
+            }
+            ModelWarning::AxisNormalised { joint, norm } => {
+                write!(f, "joint \"{joint}\": axis of length {norm} normalised to unit length")
+            }
+        }
+    }
+}

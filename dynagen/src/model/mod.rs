@@ -1,0 +1,178 @@
+//! The robot: a kinematic tree of rigid bodies, one degree of freedom per
+//! body, in topological order.
+//!
+//! A [`Model`] is built from a [`RobotDescription`] (links and joints, as in a
+//! URDF) by [`Model::from_description`], which validates everything and
+//! merges bodies attached by fixed joints into their parent. The importers
+//! ([`Model::from_urdf_file`], [`Model::from_urdf_str`],
+//! [`Model::from_modern_robotics`]) and [`RobotBuilder`] all produce a
+//! description first, so every path goes through the same checks.
+//!
+//! Conventions: body `i` carries joint `i`; `parent[i] < i`; joint order is
+//! depth-first over the tree, children in the order the description lists
+//! their joints (file order for URDF). A body's frame is its joint's frame.
+
+mod builder;
+mod description;
+mod error;
+mod modern_robotics;
+mod tree;
+mod urdf;
+mod validate;
+
+pub use builder::RobotBuilder;
+pub use description::{Inertial, JointDescription, JointLimits, JointType, LinkDescription, RobotDescription};
+pub use error::{ModelError, ModelWarning};
+pub use modern_robotics::ModernRoboticsLists;
+
+use crate::spatial::{Inertia, Transform, Vec3};
+
+/// How strictly to check a description.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct BuildOptions {
+    /// Refuse inertias that break the triangle inequality instead of
+    /// warning about them.
+    pub strict: bool,
+}
+
+/// The kind of a moving joint.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JointKind {
+    /// Rotation about the axis, with limits.
+    Revolute,
+    /// Rotation about the axis, without limits.
+    Continuous,
+    /// Translation along the axis.
+    Prismatic,
+}
+
+/// A moving joint: it connects a body to its parent.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Joint {
+    /// The joint's name.
+    pub name: String,
+    /// Revolute, continuous or prismatic.
+    pub kind: JointKind,
+    /// The joint's frame in the parent body's frame, at q = 0.
+    pub placement: Transform<f64>,
+    /// The axis in the joint's frame, as given (a revolute joint rotates by
+    /// `|axis|·q` radians about `axis/|axis|`, as the Modern Robotics library
+    /// does with a non-unit screw axis; URDF axes are normalised on import).
+    pub axis: Vec3<f64>,
+    /// Position, velocity and effort limits, when known.
+    pub limits: Option<JointLimits>,
+    /// `axis / |axis|`.
+    pub unit_axis: Vec3<f64>,
+    /// `|axis|`.
+    pub axis_norm: f64,
+}
+
+impl Joint {
+    /// The joint's motion subspace S in its own frame: the twist of the body
+    /// relative to its parent per unit joint velocity, (angular; linear).
+    pub fn motion_subspace(&self) -> [f64; 6] {
+        let a = self.axis.0;
+        match self.kind {
+            JointKind::Revolute | JointKind::Continuous => [a[0], a[1], a[2], 0.0, 0.0, 0.0],
+            JointKind::Prismatic => [0.0, 0.0, 0.0, a[0], a[1], a[2]],
+        }
+    }
+    /// Whether the joint rotates.
+    pub fn is_revolute(&self) -> bool {
+        !matches!(self.kind, JointKind::Prismatic)
+    }
+}
+
+/// A rigid body with the joint that connects it to its parent.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Body {
+    /// The name of the link this body is made of (the child link of its
+    /// joint); links fixed to it are merged in.
+    pub name: String,
+    /// The parent body, or `None` for the fixed base.
+    pub parent: Option<usize>,
+    /// The joint between the parent and this body.
+    pub joint: Joint,
+    /// The spatial inertia of the body and every link fixed to it, in the
+    /// body's (joint's) frame.
+    pub inertia: Inertia<f64>,
+}
+
+/// A named frame rigidly attached to a body (or to the fixed base): every
+/// link of the description is one, and so is a Modern Robotics end-effector.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    /// The frame's name (a link name for URDF).
+    pub name: String,
+    /// The body it is attached to, or `None` for the fixed base.
+    pub body: Option<usize>,
+    /// The frame's pose in the body's frame.
+    pub placement: Transform<f64>,
+}
+
+/// A robot: the constant data every algorithm reads.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Model {
+    /// The robot's name.
+    pub name: String,
+    /// The name of the root link (the fixed base frame).
+    pub root: String,
+    /// The moving bodies in topological order; body `i` carries joint `i`.
+    pub bodies: Vec<Body>,
+    /// Every named frame.
+    pub frames: Vec<Frame>,
+    /// Gravity in the base frame (m/s²); (0, 0, −9.81) unless set otherwise.
+    pub gravity: Vec3<f64>,
+    /// What was accepted with a warning.
+    pub warnings: Vec<ModelWarning>,
+    /// Mass of everything fixed to the base (it never moves, and does not
+    /// enter the dynamics).
+    pub base_mass: f64,
+}
+
+/// The default gravity: (0, 0, −9.81) m/s² in the base frame.
+pub const DEFAULT_GRAVITY: [f64; 3] = [0.0, 0.0, -9.81];
+
+impl Model {
+    /// The number of degrees of freedom (one per body).
+    pub fn dof(&self) -> usize {
+        self.bodies.len()
+    }
+    /// The joint names, in joint order.
+    pub fn joint_names(&self) -> Vec<&str> {
+        self.bodies.iter().map(|b| b.joint.name.as_str()).collect()
+    }
+    /// The index of the joint with this name.
+    pub fn joint_index(&self, name: &str) -> Option<usize> {
+        self.bodies.iter().position(|b| b.joint.name == name)
+    }
+    /// The index of the frame with this name (a link name for URDF).
+    pub fn frame_index(&self, name: &str) -> Option<usize> {
+        self.frames.iter().position(|f| f.name == name)
+    }
+    /// The frame with this name, or an error naming it.
+    pub fn frame(&self, name: &str) -> Result<&Frame, ModelError> {
+        self.frames.iter().find(|f| f.name == name).ok_or_else(|| ModelError::UnknownName(name.to_string()))
+    }
+    /// Whether body `j` is `i` or lies below it.
+    pub fn is_in_subtree(&self, i: usize, mut j: usize) -> bool {
+        loop {
+            if j == i {
+                return true;
+            }
+            match self.bodies[j].parent {
+                Some(p) if p >= i => j = p,
+                _ => return false,
+            }
+        }
+    }
+    /// The total mass of the moving bodies.
+    pub fn total_mass(&self) -> f64 {
+        self.bodies.iter().map(|b| b.inertia.mass).sum()
+    }
+    /// Sets the gravity vector, in the base frame (m/s²).
+    pub fn with_gravity(mut self, g: [f64; 3]) -> Self {
+        self.gravity = Vec3(g);
+        self
+    }
+}

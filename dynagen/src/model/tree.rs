@@ -1,0 +1,151 @@
+//! From a checked description to a [`Model`]: the tree's topology, the
+//! depth-first joint order, and fixed joints merged away.
+
+use super::description::{JointDescription, JointType, RobotDescription};
+use super::{validate, Body, BuildOptions, Frame, Joint, JointKind, Model, ModelError, DEFAULT_GRAVITY};
+use crate::spatial::{Inertia, Transform, Vec3};
+use std::collections::HashMap;
+
+impl Model {
+    /// Validates a description and builds the model, with default options.
+    pub fn from_description(desc: &RobotDescription) -> Result<Model, ModelError> {
+        Self::from_description_with(desc, &BuildOptions::default())
+    }
+
+    /// Validates a description and builds the model.
+    ///
+    /// Links attached by fixed joints are merged into the body they are
+    /// fixed to (mass, centre of mass and inertia combined exactly), and
+    /// every link is kept as a named [`Frame`].
+    pub fn from_description_with(desc: &RobotDescription, opts: &BuildOptions) -> Result<Model, ModelError> {
+        let mut warnings = Vec::new();
+        validate::check(desc, opts, &mut warnings)?;
+
+        let link_index: HashMap<&str, usize> =
+            desc.links.iter().enumerate().map(|(i, l)| (l.name.as_str(), i)).collect();
+        let mut parent_joint: Vec<Option<usize>> = vec![None; desc.links.len()];
+        let mut child_joints: Vec<Vec<usize>> = vec![Vec::new(); desc.links.len()];
+        for (ji, j) in desc.joints.iter().enumerate() {
+            let c = link_index[j.child.as_str()];
+            if let Some(first) = parent_joint[c] {
+                return Err(ModelError::MultipleParents {
+                    link: j.child.clone(),
+                    first: desc.joints[first].name.clone(),
+                    second: j.name.clone(),
+                });
+            }
+            parent_joint[c] = Some(ji);
+            child_joints[link_index[j.parent.as_str()]].push(ji);
+        }
+        let roots: Vec<usize> = (0..desc.links.len()).filter(|&l| parent_joint[l].is_none()).collect();
+        if roots.len() > 1 {
+            return Err(ModelError::MultipleRoots(roots.iter().map(|&r| desc.links[r].name.clone()).collect()));
+        }
+        // No root at all: every link has a parent, so the joints close a cycle.
+        let root =
+            *roots.first().ok_or_else(|| ModelError::Cycle(desc.links.iter().map(|l| l.name.clone()).collect()))?;
+
+        // Depth-first walk from the root with an explicit stack (a long chain
+        // must not overflow the call stack), children in file order. An entry
+        // is (link, body it hangs from, link pose in that body's frame, the
+        // moving joint that starts a new body at this link).
+        let mut bodies: Vec<Body> = Vec::new();
+        let mut frames: Vec<Frame> = Vec::new();
+        let mut base_mass = 0.0;
+        let mut visited = vec![false; desc.links.len()];
+        let mut stack: Vec<WalkEntry> = vec![(root, None, Transform::identity(), None)];
+        while let Some((link, parent_body, pose, moving)) = stack.pop() {
+            visited[link] = true;
+            let (body, pose) = match moving {
+                Some(ji) => {
+                    bodies.push(Body {
+                        name: desc.links[link].name.clone(),
+                        parent: parent_body,
+                        joint: joint_from(&desc.joints[ji], pose),
+                        inertia: Inertia::zero(),
+                    });
+                    (Some(bodies.len() - 1), Transform::identity())
+                }
+                None => (parent_body, pose),
+            };
+            let l = &desc.links[link];
+            frames.push(Frame { name: l.name.clone(), body, placement: pose });
+            if let Some(inertial) = &l.inertial {
+                let at_com = inertial.inertia.rotate(&inertial.origin.rot);
+                let local = Inertia::from_mass_com_inertia(inertial.mass, inertial.origin.trans, at_com);
+                match body {
+                    Some(b) => bodies[b].inertia = bodies[b].inertia.add(&pose.inertia_to_parent(&local)),
+                    None => base_mass += inertial.mass,
+                }
+            }
+            for &ji in child_joints[link].iter().rev() {
+                let j = &desc.joints[ji];
+                let moving = (j.joint_type != JointType::Fixed).then_some(ji);
+                stack.push((link_index[j.child.as_str()], body, pose.compose(&j.origin), moving));
+            }
+        }
+        let unreached: Vec<String> =
+            (0..desc.links.len()).filter(|&l| !visited[l]).map(|l| desc.links[l].name.clone()).collect();
+        if !unreached.is_empty() {
+            return Err(ModelError::Cycle(unreached));
+        }
+
+        let model = Model {
+            name: desc.name.clone(),
+            root: desc.links[root].name.clone(),
+            bodies,
+            frames,
+            gravity: Vec3(desc.gravity.unwrap_or(DEFAULT_GRAVITY)),
+            warnings,
+            base_mass,
+        };
+        check_every_joint_moves_mass(&model)?;
+        Ok(model)
+    }
+}
+
+/// (link, body it hangs from, link pose in that body's frame, the moving
+/// joint that starts a new body at this link)
+type WalkEntry = (usize, Option<usize>, Transform<f64>, Option<usize>);
+
+fn joint_from(desc: &JointDescription, placement: Transform<f64>) -> Joint {
+    let kind = match desc.joint_type {
+        JointType::Revolute => JointKind::Revolute,
+        JointType::Continuous => JointKind::Continuous,
+        _ => JointKind::Prismatic,
+    };
+    let n = desc.axis.norm();
+    Joint {
+        name: desc.name.clone(),
+        kind,
+        placement,
+        axis: desc.axis,
+        limits: desc.limits,
+        unit_axis: desc.axis.scale(1.0 / n),
+        axis_norm: n,
+    }
+}
+
+/// A joint whose subtree has no inertia along its motion gives a zero
+/// diagonal in M(q): refuse it. Checked at q = 0 with the composite
+/// inertia of each subtree.
+fn check_every_joint_moves_mass(model: &Model) -> Result<(), ModelError> {
+    let mut composite: Vec<Inertia<f64>> = model.bodies.iter().map(|b| b.inertia).collect();
+    for i in (0..model.bodies.len()).rev() {
+        let b = &model.bodies[i];
+        let s = b.joint.motion_subspace();
+        let ic = composite[i];
+        let a = Vec3([s[0], s[1], s[2]]);
+        let l = Vec3([s[3], s[4], s[5]]);
+        let f = ic.mul_motion(&crate::spatial::Motion::new(a, l));
+        let diag = a.dot(&f.ang) + l.dot(&f.lin);
+        if diag.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
+            return Err(ModelError::MasslessSubtree(b.joint.name.clone()));
+        }
+        if let Some(p) = b.parent {
+            let moved = b.joint.placement.inertia_to_parent(&ic);
+            composite[p] = composite[p].add(&moved);
+        }
+    }
+    Ok(())
+}

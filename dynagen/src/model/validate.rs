@@ -1,0 +1,136 @@
+//! Checks of a description that do not need the tree: names, numbers,
+//! axes, inertias and unsupported features.
+
+use super::description::{Inertial, JointType, RobotDescription};
+use super::{BuildOptions, ModelError, ModelWarning};
+use crate::spatial::Mat3;
+use std::collections::HashSet;
+
+/// Relative tolerance of the inertia checks: eigenvalues may be this far
+/// below zero relative to the largest one (rounding in a file's printed
+/// digits), and no further.
+const INERTIA_RTOL: f64 = 1e-9;
+
+pub(super) fn check(
+    desc: &RobotDescription,
+    opts: &BuildOptions,
+    warnings: &mut Vec<ModelWarning>,
+) -> Result<(), ModelError> {
+    if desc.links.is_empty() {
+        return Err(ModelError::NoLinks);
+    }
+    let mut names = HashSet::new();
+    for l in &desc.links {
+        if !names.insert(l.name.as_str()) {
+            return Err(ModelError::DuplicateLink(l.name.clone()));
+        }
+    }
+    let mut jnames = HashSet::new();
+    for j in &desc.joints {
+        if !jnames.insert(j.name.as_str()) {
+            return Err(ModelError::DuplicateJoint(j.name.clone()));
+        }
+        for (role, link) in [("parent", &j.parent), ("child", &j.child)] {
+            if !names.contains(link.as_str()) {
+                return Err(ModelError::MissingLink { joint: j.name.clone(), role, link: link.clone() });
+            }
+        }
+        let item = format!("joint \"{}\"", j.name);
+        let unsupported = match j.joint_type {
+            JointType::Floating => Some("floating joints are"),
+            JointType::Planar => Some("planar joints are"),
+            JointType::Spherical => Some("spherical joints are"),
+            _ if j.mimic => Some("mimic joints are"),
+            _ => None,
+        };
+        if let Some(what) = unsupported {
+            return Err(ModelError::Unsupported { joint: j.name.clone(), what: what.to_string() });
+        }
+        if !j.origin.trans.is_finite() {
+            return Err(ModelError::NonFinite { item, what: "origin xyz" });
+        }
+        check_rotation(&j.origin.rot, &item, "origin")?;
+        if j.joint_type != JointType::Fixed {
+            if !j.axis.is_finite() {
+                return Err(ModelError::NonFinite { item, what: "axis" });
+            }
+            if j.axis.norm() == 0.0 {
+                return Err(ModelError::ZeroAxis(j.name.clone()));
+            }
+        }
+        if let Some(l) = &j.limits {
+            if ![l.lower, l.upper, l.velocity, l.effort].iter().all(|x| !x.is_nan()) {
+                return Err(ModelError::NonFinite { item, what: "limit" });
+            }
+        }
+    }
+    for l in &desc.links {
+        if let Some(inertial) = &l.inertial {
+            check_inertial(&l.name, inertial, opts, warnings)?;
+        }
+    }
+    Ok(())
+}
+
+/// Checks that a matrix is a rotation (orthonormal, det +1) to a tolerance
+/// that admits a file's printed digits.
+fn check_rotation(r: &Mat3<f64>, item: &str, what: &'static str) -> Result<(), ModelError> {
+    if !r.is_finite() {
+        return Err(ModelError::NonFinite { item: item.to_string(), what: "origin rotation" });
+    }
+    let rtr = r.transpose().mul_mat(r);
+    let mut off = 0.0f64;
+    for (i, row) in rtr.0.iter().enumerate() {
+        for (j, x) in row.iter().enumerate() {
+            off = off.max((x - if i == j { 1.0 } else { 0.0 }).abs());
+        }
+    }
+    let m = &r.0;
+    let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    if off > 1e-6 || (det - 1.0).abs() > 1e-6 {
+        return Err(ModelError::NotARotation { item: item.to_string(), what });
+    }
+    Ok(())
+}
+
+fn check_inertial(
+    link: &str,
+    i: &Inertial,
+    opts: &BuildOptions,
+    warnings: &mut Vec<ModelWarning>,
+) -> Result<(), ModelError> {
+    let item = format!("link \"{link}\"");
+    if !i.mass.is_finite() {
+        return Err(ModelError::NonFinite { item, what: "mass" });
+    }
+    if !i.origin.trans.is_finite() {
+        return Err(ModelError::NonFinite { item, what: "inertial origin" });
+    }
+    check_rotation(&i.origin.rot, &item, "inertial origin")?;
+    if !i.inertia.is_finite() {
+        return Err(ModelError::NonFinite { item, what: "inertia" });
+    }
+    if i.mass < 0.0 {
+        return Err(ModelError::NegativeMass { link: link.to_string(), mass: i.mass });
+    }
+    let moments = i.inertia.eigenvalues();
+    let scale = moments[2].abs().max(f64::MIN_POSITIVE);
+    if moments[0] < -INERTIA_RTOL * scale {
+        return Err(ModelError::InertiaNotPositive { link: link.to_string(), moments });
+    }
+    if i.mass == 0.0 && moments[2] > 0.0 {
+        warnings.push(ModelWarning::InertiaWithoutMass { link: link.to_string() });
+    }
+    // Σ = tr(I)/2 · 1 − I is the second moment of the mass distribution;
+    // it is positive semi-definite for every physical body, which is the
+    // triangle inequality on the principal moments.
+    let half_trace = 0.5 * (moments[0] + moments[1] + moments[2]);
+    if half_trace - moments[2] < -INERTIA_RTOL * scale {
+        if opts.strict {
+            return Err(ModelError::TriangleInequality { link: link.to_string(), moments });
+        }
+        warnings.push(ModelWarning::TriangleInequality { link: link.to_string(), moments });
+    }
+    Ok(())
+}

@@ -1,0 +1,1 @@
+//! Integration tests across dynagen's crates live in `tests/tests/`.
