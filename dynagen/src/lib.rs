@@ -13,9 +13,12 @@
 pub mod algorithms;
 pub mod model;
 mod robot;
+mod robot_simulate;
 mod scalar;
 pub mod spatial;
 
+pub use algorithms::integrators::Integrator;
 pub use model::{Model, ModelError, ModelWarning, RobotBuilder};
 pub use robot::{InputError, Robot};
+pub use robot_simulate::TipWrenchHistory;
 pub use scalar::Scalar;
