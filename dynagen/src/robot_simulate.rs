@@ -81,7 +81,8 @@ impl Robot {
     /// Advances the state (`q`, `qd`) by one step of `dt` seconds of the
     /// forward dynamics (articulated-body algorithm) with the joint torques
     /// `tau` held constant, under the robot's gravity and tip wrenches, with
-    /// the scheme `integrator` (see [`integrators`]). Allocates nothing.
+    /// the scheme `integrator` (see [`integrators`]). `dt` must be finite and
+    /// positive. Allocates nothing.
     pub fn step(
         &mut self,
         integrator: Integrator,

@@ -289,3 +289,65 @@ fn forward_dynamics_trajectory() {
         );
     }
 }
+
+#[test]
+fn robot_step_is_forward_dynamics_then_euler_step() {
+    // One Robot::step with the Euler scheme is ForwardDynamics then EulerStep:
+    // from the ForwardDynamics example's state and torques, the new state is
+    // θ + dt·θ̇ and θ̇ + dt·θ̈ with the library's θ̈.
+    let qdd = numbers(&example("ForwardDynamics")["output"]);
+    let mut r = loaded_robot();
+    let (mut q, mut qd) = (theta(), dtheta());
+    r.step(Integrator::Euler, &mut q, &mut qd, &dvector![0.5, 0.6, 0.7], 0.01).unwrap();
+    for k in 0..3 {
+        assert!((q[k] - (THETA[k] + 0.01 * DTHETA[k])).abs() < 1e-15);
+        assert!((qd[k] - (DTHETA[k] + 0.01 * qdd[k])).abs() < 1e-10, "{qd} vs {qdd:?}");
+    }
+}
+
+#[test]
+fn trajectory_input_errors() {
+    use dynagen::InputError;
+    let mut r = robot();
+    let (q0, qd0) = (theta(), dtheta());
+    let tau = DMatrix::from_element(4, 3, 0.5);
+    let run = |r: &mut Robot, tau: &DMatrix<f64>, tip: Option<TipWrenchHistory<'_>>, dt, res| {
+        r.forward_dynamics_trajectory(&q0, &qd0, tau, tip, dt, res, Integrator::Rk4).unwrap_err()
+    };
+    let e = run(&mut r, &DMatrix::zeros(4, 2), None, 0.1, 2);
+    assert!(matches!(e, InputError::WrongShape { what: "tau", rows: 4, cols: 2, expected_rows: 4, expected_cols: 3 }));
+    assert_eq!(e.to_string(), "tau is 4×2, but it must be 4×3");
+    let e = run(&mut r, &tau, None, 0.0, 2);
+    assert_eq!(e.to_string(), "dt is 0, but it must be a finite number of seconds above zero");
+    let e = run(&mut r, &tau, None, f64::NAN, 2);
+    assert!(matches!(e, InputError::BadParameter { what: "dt", .. }));
+    let e = run(&mut r, &tau, None, 0.1, 0);
+    assert!(matches!(e, InputError::BadParameter { what: "int_res", .. }));
+    let mut bad = tau.clone();
+    bad[(2, 1)] = f64::INFINITY;
+    let e = run(&mut r, &bad, None, 0.1, 2);
+    assert_eq!(e.to_string(), "row 2: tau[1] (joint \"joint2\") is inf, not a finite number");
+    let f = DMatrix::from_element(3, 6, 1.0);
+    let e = run(&mut r, &tau, Some(TipWrenchHistory { frame: "ee", wrenches: &f }), 0.1, 2);
+    assert_eq!(e.to_string(), "the tip wrench history is 3×6, but it must be 4×6");
+    let mut f = DMatrix::from_element(4, 6, 1.0);
+    let e = run(&mut r, &tau, Some(TipWrenchHistory { frame: "hand", wrenches: &f }), 0.1, 2);
+    assert_eq!(e, InputError::UnknownFrame("hand".into()));
+    f[(1, 4)] = f64::NAN;
+    let e = run(&mut r, &tau, Some(TipWrenchHistory { frame: "ee", wrenches: &f }), 0.1, 2);
+    assert_eq!(e.to_string(), "row 1: tip wrench is not finite");
+    // The initial state is checked like any other.
+    let e =
+        r.forward_dynamics_trajectory(&dvector![0.1, 0.2], &qd0, &tau, None, 0.1, 2, Integrator::Euler).unwrap_err();
+    assert!(matches!(e, InputError::WrongLength { what: "q0", got: 2, expected: 3 }));
+
+    let (q, qd) = (DMatrix::zeros(5, 3), DMatrix::zeros(5, 3));
+    let e = r.inverse_dynamics_trajectory(&q, &qd, &DMatrix::zeros(4, 3), None).unwrap_err();
+    assert_eq!(e.to_string(), "qdd is 4×3, but it must be 5×3");
+    let mut qd_bad = qd.clone();
+    qd_bad[(4, 0)] = f64::NAN;
+    let e = r.inverse_dynamics_trajectory(&q, &qd_bad, &q, None).unwrap_err();
+    assert_eq!(e.to_string(), "row 4: qd[0] (joint \"joint1\") is NaN, not a finite number");
+    let e = r.step(Integrator::Euler, &mut theta(), &mut dtheta(), &dvector![1.0, 2.0, 3.0], -0.1).unwrap_err();
+    assert!(matches!(e, InputError::BadParameter { what: "dt", .. }));
+}

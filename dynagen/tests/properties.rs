@@ -418,10 +418,12 @@ proptest! {
     /// (not of M) with h·Ω = 0.05, Ω the configuration's rate (see [`rate`]),
     /// q̈ from ABA. The function differentiated is a trigonometric polynomial
     /// (and polynomial in prismatic positions) of size ≤ KEmax = ½λmax(M)|q̇|²
-    /// whose k-th derivative is ≲ Ωᵏ·KEmax: truncation ≈ 1e-6·(hΩ)⁶·Ω·KEmax
-    /// ≈ 1e-14·Ω·KEmax and rounding ≈ 3n·eps·KEmax/h ≈ 1e-12·Ω·KEmax. The
-    /// tolerance, 1e-10 of Ω·KEmax plus the magnitudes of the power terms,
-    /// is 100 times the worst of these.
+    /// whose k-th derivative is ≲ Ωᵏ·KEmax: the extrapolation leaves
+    /// 0.0156·h⁶·f⁽⁷⁾/7! ≈ 3e-6·(hΩ)⁶·Ω·KEmax ≈ 5e-14·Ω·KEmax of truncation,
+    /// and rounding (about n·eps·KEmax in each KE, amplified ~3/h) adds
+    /// ≈ 3n·eps·KEmax/h ≈ 2e-13·Ω·KEmax (measured: at most 4e-14 of the
+    /// scale below). The tolerance, 1e-10 of Ω·KEmax plus the magnitudes of
+    /// the power terms, is 500 times the worst of these.
     #[test]
     fn kinetic_energy_rate_is_the_power_of_the_forces((tree, raw, w) in case()) {
         let model = tree.model();
@@ -455,8 +457,9 @@ proptest! {
     /// the twist of (∂T/∂q_j)T⁻¹ and of J_b that of T⁻¹(∂T/∂q_j), by
     /// Richardson-extrapolated central differences with h·|a_j| = 0.05
     /// (exact but for rounding on prismatic joints, where T is linear in q_j).
-    /// Truncation ≈ 1e-14 and rounding ≈ 1e-13 relative to
-    /// |a_j|·(1 + |p|): tolerance 1e-10 of that.
+    /// Relative to |a_j|·(1 + |p|), truncation is ≈ 5e-14 (as in the power
+    /// balance) and rounding, mostly of q_j ± h at |q_j| up to 25, ≈ 1e-13
+    /// (measured: at most 2.5e-13); the tolerance is 1e-10 of it.
     #[test]
     fn jacobians_are_pose_derivatives((tree, raw, w) in case()) {
         let model = tree.model();
