@@ -5,8 +5,9 @@
 //! random placements (translations and rotations), random physically
 //! consistent inertias (principal moments from positive second moments, so
 //! the triangle inequality holds, in a random orientation, about a random
-//! centre of mass), a massive link fixed to one of the bodies (merged into
-//! it) and a massless `tip` frame fixed to another. Half the cases are read
+//! centre of mass; a fifth of the links that carry others are massless), a
+//! massive link fixed to one of the bodies (merged into it) and a massless
+//! `tip` frame fixed to another. Half the cases are read
 //! from a URDF document, which normalises the axes; the other half are
 //! built with `RobotBuilder`, which keeps them: a revolute axis of norm k
 //! then turns its joint by k·q, as the Modern Robotics library does with a
@@ -27,7 +28,7 @@ use dynagen::algorithms::{aba, crba, energy, forward_dynamics, rnea, TipWrench, 
 use dynagen::model::{Inertial, JointDescription};
 use dynagen::spatial::{Force, Mat3, Sym3, Transform, Vec3};
 use dynagen::{Model, Robot, RobotBuilder};
-use nalgebra::{DMatrix, DVector, Matrix3, Matrix4, Matrix6, Vector6};
+use nalgebra::{DMatrix, DVector, Matrix3, Matrix4, Matrix6, Vector3, Vector6};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
 use std::fmt::Write;
@@ -43,6 +44,9 @@ struct Body {
     xyz: [f64; 3],
     rpy: [f64; 3],
     inertial: InertialSpec,
+    /// Leave the link massless (only when it has a child, so that M stays
+    /// positive definite).
+    massless: bool,
 }
 
 #[derive(Clone, Debug)]
@@ -90,67 +94,130 @@ impl Tree {
     fn link(i: Option<usize>) -> String {
         i.map_or("base".to_string(), |i| format!("l{i}"))
     }
+    fn has_child(&self, k: usize) -> bool {
+        (k + 1..self.bodies.len()).any(|c| Self::parent(c, self.bodies[c].parent_pick) == Some(k))
+    }
+    fn inertial(&self, k: usize) -> Option<Inertial> {
+        let b = &self.bodies[k];
+        (!(b.massless && self.has_child(k))).then(|| b.inertial.inertial())
+    }
     fn model(&self) -> Model {
+        if self.via_urdf {
+            self.urdf_model()
+        } else {
+            self.builder(false).build().unwrap()
+        }
+    }
+    /// The tree built with `RobotBuilder`, with the payload as a fixed link,
+    /// or (`merged`) with its inertia added by hand to its parent's.
+    fn builder(&self, merged: bool) -> RobotBuilder {
         let n = self.bodies.len();
         let (tip_parent, payload_parent) = (self.tip.0 % n, self.payload.0 % n);
-        if self.via_urdf {
-            let mut x = String::from("<robot name=\"random\"><link name=\"base\"/>");
-            for (k, b) in self.bodies.iter().enumerate() {
-                let kind = if b.prismatic { "prismatic" } else { "revolute" };
-                let _ = write!(
-                    x,
-                    "<link name=\"l{k}\">{}</link><joint name=\"j{k}\" type=\"{kind}\"><parent link=\"{}\"/>\
-                     <child link=\"l{k}\"/><origin xyz=\"{} {} {}\" rpy=\"{} {} {}\"/><axis xyz=\"{} {} {}\"/>\
-                     <limit lower=\"-100\" upper=\"100\" effort=\"100\" velocity=\"100\"/></joint>",
-                    b.inertial.urdf(),
-                    Self::link(Self::parent(k, b.parent_pick)),
-                    b.xyz[0],
-                    b.xyz[1],
-                    b.xyz[2],
-                    b.rpy[0],
-                    b.rpy[1],
-                    b.rpy[2],
-                    b.axis[0],
-                    b.axis[1],
-                    b.axis[2]
-                );
-            }
-            let fixed = |x: &mut String, name: &str, parent: usize, xyz: [f64; 3], rpy: [f64; 3], body: &str| {
-                let _ = write!(
-                    x,
-                    "<link name=\"{name}\">{body}</link><joint name=\"{name}_joint\" type=\"fixed\">\
-                     <parent link=\"l{parent}\"/><child link=\"{name}\"/>\
-                     <origin xyz=\"{} {} {}\" rpy=\"{} {} {}\"/></joint>",
-                    xyz[0], xyz[1], xyz[2], rpy[0], rpy[1], rpy[2]
-                );
+        let mut rb = RobotBuilder::new("random").link("base", None);
+        for (k, b) in self.bodies.iter().enumerate() {
+            let (parent, child) = (Self::link(Self::parent(k, b.parent_pick)), format!("l{k}"));
+            let j = if b.prismatic {
+                JointDescription::prismatic(&format!("j{k}"), &parent, &child, b.axis)
+            } else {
+                JointDescription::revolute(&format!("j{k}"), &parent, &child, b.axis)
             };
-            fixed(&mut x, "tip", tip_parent, self.tip.1, self.tip.2, "");
-            fixed(&mut x, "payload", payload_parent, self.payload.1, self.payload.2, &self.payload.3.urdf());
-            x.push_str("</robot>");
-            let model = Model::from_urdf_str(&x).unwrap();
-            // The importer normalises every axis.
-            assert!(model.bodies.iter().all(|b| (b.joint.axis.norm() - 1.0).abs() < 1e-15));
-            model
-        } else {
-            let mut rb = RobotBuilder::new("random").link("base", None);
-            for (k, b) in self.bodies.iter().enumerate() {
-                let (parent, child) = (Self::link(Self::parent(k, b.parent_pick)), format!("l{k}"));
-                let j = if b.prismatic {
-                    JointDescription::prismatic(&format!("j{k}"), &parent, &child, b.axis)
-                } else {
-                    JointDescription::revolute(&format!("j{k}"), &parent, &child, b.axis)
-                };
-                rb = rb.link(&child, Some(b.inertial.inertial())).joint(j.origin(b.xyz, b.rpy));
+            let mut inertial = self.inertial(k);
+            if merged && k == payload_parent {
+                let place = Transform::new(
+                    Mat3::from_rpy(self.payload.2[0], self.payload.2[1], self.payload.2[2]),
+                    Vec3(self.payload.1),
+                );
+                inertial = Some(combine(inertial, &place, &self.payload.3.inertial()));
             }
-            rb = rb.link("tip", None).joint(
-                JointDescription::fixed("tip_joint", &format!("l{tip_parent}"), "tip").origin(self.tip.1, self.tip.2),
-            );
+            rb = rb.link(&child, inertial).joint(j.origin(b.xyz, b.rpy));
+        }
+        rb = rb.link("tip", None).joint(
+            JointDescription::fixed("tip_joint", &format!("l{tip_parent}"), "tip").origin(self.tip.1, self.tip.2),
+        );
+        if !merged {
             rb = rb.link("payload", Some(self.payload.3.inertial())).joint(
                 JointDescription::fixed("payload_joint", &format!("l{payload_parent}"), "payload")
                     .origin(self.payload.1, self.payload.2),
             );
-            rb.build().unwrap()
         }
+        rb
+    }
+    fn urdf_model(&self) -> Model {
+        let n = self.bodies.len();
+        let (tip_parent, payload_parent) = (self.tip.0 % n, self.payload.0 % n);
+        let mut x = String::from("<robot name=\"random\"><link name=\"base\"/>");
+        for (k, b) in self.bodies.iter().enumerate() {
+            let kind = if b.prismatic { "prismatic" } else { "revolute" };
+            let _ = write!(
+                x,
+                "<link name=\"l{k}\">{}</link><joint name=\"j{k}\" type=\"{kind}\"><parent link=\"{}\"/>\
+                 <child link=\"l{k}\"/><origin xyz=\"{} {} {}\" rpy=\"{} {} {}\"/><axis xyz=\"{} {} {}\"/>\
+                 <limit lower=\"-100\" upper=\"100\" effort=\"100\" velocity=\"100\"/></joint>",
+                if self.inertial(k).is_some() { b.inertial.urdf() } else { String::new() },
+                Self::link(Self::parent(k, b.parent_pick)),
+                b.xyz[0],
+                b.xyz[1],
+                b.xyz[2],
+                b.rpy[0],
+                b.rpy[1],
+                b.rpy[2],
+                b.axis[0],
+                b.axis[1],
+                b.axis[2]
+            );
+        }
+        let fixed = |x: &mut String, name: &str, parent: usize, xyz: [f64; 3], rpy: [f64; 3], body: &str| {
+            let _ = write!(
+                x,
+                "<link name=\"{name}\">{body}</link><joint name=\"{name}_joint\" type=\"fixed\">\
+                 <parent link=\"l{parent}\"/><child link=\"{name}\"/>\
+                 <origin xyz=\"{} {} {}\" rpy=\"{} {} {}\"/></joint>",
+                xyz[0], xyz[1], xyz[2], rpy[0], rpy[1], rpy[2]
+            );
+        };
+        fixed(&mut x, "tip", tip_parent, self.tip.1, self.tip.2, "");
+        fixed(&mut x, "payload", payload_parent, self.payload.1, self.payload.2, &self.payload.3.urdf());
+        x.push_str("</robot>");
+        let model = Model::from_urdf_str(&x).unwrap();
+        // The importer normalises every axis.
+        assert!(model.bodies.iter().all(|b| (b.joint.axis.norm() - 1.0).abs() < 1e-15));
+        model
+    }
+}
+
+fn na(m: &Mat3<f64>) -> Matrix3<f64> {
+    Matrix3::from_fn(|r, c| m.0[r][c])
+}
+
+/// The inertial of a link plus that of a link fixed to it at `place`,
+/// computed here from the definitions: total mass, mass-weighted centre, and
+/// the inertias about the common centre by the parallel-axis theorem
+/// (I = Σ Rᵢ Īᵢ Rᵢᵀ + mᵢ(|dᵢ|²·1 − dᵢdᵢᵀ), dᵢ = cᵢ − c), in the link's axes.
+fn combine(link: Option<Inertial>, place: &Transform<f64>, fixed: &Inertial) -> Inertial {
+    let rp = na(&place.rot);
+    let parts: Vec<(f64, Vector3<f64>, Matrix3<f64>)> = link
+        .iter()
+        .map(|i| (i.mass, Vector3::from(i.origin.trans.0), na(&i.origin.rot)))
+        .chain(std::iter::once((
+            fixed.mass,
+            rp * Vector3::from(fixed.origin.trans.0) + Vector3::from(place.trans.0),
+            rp * na(&fixed.origin.rot),
+        )))
+        .collect();
+    let inertias: Vec<Matrix3<f64>> =
+        link.iter().chain(std::iter::once(fixed)).map(|i| na(&i.inertia.to_mat())).collect();
+    let mass: f64 = parts.iter().map(|p| p.0).sum();
+    let c = parts.iter().map(|p| p.0 * p.1).sum::<Vector3<f64>>() / mass;
+    let mut total = Matrix3::zeros();
+    for ((m, ci, r), ibar) in parts.iter().zip(&inertias) {
+        let d = ci - c;
+        total += r * ibar * r.transpose() + *m * (d.norm_squared() * Matrix3::identity() - d * d.transpose());
+    }
+    let t = total;
+    Inertial {
+        mass,
+        origin: Transform::translation(Vec3([c.x, c.y, c.z])),
+        inertia: Sym3([t[(0, 0)], t[(1, 1)], t[(2, 2)], t[(0, 1)], t[(0, 2)], t[(1, 2)]]),
     }
 }
 
@@ -180,9 +247,16 @@ fn norm(a: &[f64; 3]) -> f64 {
 }
 
 fn body() -> impl Strategy<Value = Body> {
-    (any::<usize>(), prop::bool::weighted(0.3), axis(), vec3(0.6), angles(), inertial_spec()).prop_map(
-        |(parent_pick, prismatic, axis, xyz, rpy, inertial)| Body { parent_pick, prismatic, axis, xyz, rpy, inertial },
-    )
+    (any::<usize>(), prop::bool::weighted(0.3), axis(), vec3(0.6), angles(), inertial_spec(), prop::bool::weighted(0.2))
+        .prop_map(|(parent_pick, prismatic, axis, xyz, rpy, inertial, massless)| Body {
+            parent_pick,
+            prismatic,
+            axis,
+            xyz,
+            rpy,
+            inertial,
+            massless,
+        })
 }
 
 fn tree() -> impl Strategy<Value = Tree> {
@@ -305,6 +379,22 @@ fn adjoint(t: &Matrix4<f64>) -> Matrix6<f64> {
 
 proptest! {
     #![proptest_config(config(48))]
+
+    /// A link fixed to a body is merged into it: the model with the payload
+    /// as a fixed link and the model with its inertia added by hand to its
+    /// parent link's (see [`combine`]) have the same mass matrix and gravity
+    /// torques, to rounding (1e-12 of their size).
+    #[test]
+    fn fixed_links_merge_into_their_parent((tree, raw, w) in case()) {
+        let (a, b) = (tree.builder(false).build().unwrap(), tree.builder(true).build().unwrap());
+        let s = state(&a, &raw, w);
+        let (mut ra, mut rb) = (Robot::new(a), Robot::new(b));
+        let q = DVector::from_column_slice(&s.q);
+        let (ma, mb) = (ra.mass_matrix(&q).unwrap(), rb.mass_matrix(&q).unwrap());
+        let (ga, gb) = (ra.gravity_torques(&q).unwrap(), rb.gravity_torques(&q).unwrap());
+        prop_assert!((&ma - &mb).amax() <= 1e-12 * ma.amax(), "M: {ma} vs {mb}");
+        prop_assert!((&ga - &gb).amax() <= 1e-12 * ga.amax(), "g: {ga} vs {gb}");
+    }
 
     /// CRBA against the Modern Robotics construction (n inverse dynamics
     /// calls with unit accelerations): two algorithms for the same M, each
