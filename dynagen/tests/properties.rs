@@ -7,7 +7,7 @@
 //! the triangle inequality holds, in a random orientation, about a random
 //! centre of mass; a fifth of the links that carry others are massless), a
 //! massive link fixed to one of the bodies (merged into it) and a massless
-//! `tip` frame fixed to another. Half the cases are read
+//! `tip` frame fixed to another (or, sometimes, to the base). Half the cases are read
 //! from a URDF document, which normalises the axes; the other half are
 //! built with `RobotBuilder`, which keeps them: a revolute axis of norm k
 //! then turns its joint by k·q, as the Modern Robotics library does with a
@@ -80,7 +80,8 @@ impl InertialSpec {
 struct Tree {
     bodies: Vec<Body>,
     via_urdf: bool,
-    /// (raw parent pick, xyz, rpy) of the massless `tip` frame.
+    /// (raw parent pick, xyz, rpy) of the massless `tip` frame (see
+    /// [`Tree::tip_parent`]).
     tip: (usize, [f64; 3], [f64; 3]),
     /// (raw parent pick, xyz, rpy, inertia) of a massive link fixed to a body.
     payload: (usize, [f64; 3], [f64; 3], InertialSpec),
@@ -93,6 +94,11 @@ impl Tree {
     }
     fn link(i: Option<usize>) -> String {
         i.map_or("base".to_string(), |i| format!("l{i}"))
+    }
+    /// The tip hangs from the base in one case in eight (its Jacobian and
+    /// the torques of a wrench on it are then zero), else from a link.
+    fn tip_parent(&self) -> Option<usize> {
+        (self.tip.0 % 8 != 0).then(|| self.tip.0 / 8 % self.bodies.len())
     }
     fn has_child(&self, k: usize) -> bool {
         (k + 1..self.bodies.len()).any(|c| Self::parent(c, self.bodies[c].parent_pick) == Some(k))
@@ -112,7 +118,7 @@ impl Tree {
     /// or (`merged`) with its inertia added by hand to its parent's.
     fn builder(&self, merged: bool) -> RobotBuilder {
         let n = self.bodies.len();
-        let (tip_parent, payload_parent) = (self.tip.0 % n, self.payload.0 % n);
+        let (tip_parent, payload_parent) = (Self::link(self.tip_parent()), self.payload.0 % n);
         let mut rb = RobotBuilder::new("random").link("base", None);
         for (k, b) in self.bodies.iter().enumerate() {
             let (parent, child) = (Self::link(Self::parent(k, b.parent_pick)), format!("l{k}"));
@@ -131,9 +137,9 @@ impl Tree {
             }
             rb = rb.link(&child, inertial).joint(j.origin(b.xyz, b.rpy));
         }
-        rb = rb.link("tip", None).joint(
-            JointDescription::fixed("tip_joint", &format!("l{tip_parent}"), "tip").origin(self.tip.1, self.tip.2),
-        );
+        rb = rb
+            .link("tip", None)
+            .joint(JointDescription::fixed("tip_joint", &tip_parent, "tip").origin(self.tip.1, self.tip.2));
         if !merged {
             rb = rb.link("payload", Some(self.payload.3.inertial())).joint(
                 JointDescription::fixed("payload_joint", &format!("l{payload_parent}"), "payload")
@@ -144,7 +150,7 @@ impl Tree {
     }
     fn urdf_model(&self) -> Model {
         let n = self.bodies.len();
-        let (tip_parent, payload_parent) = (self.tip.0 % n, self.payload.0 % n);
+        let (tip_parent, payload_parent) = (Self::link(self.tip_parent()), self.payload.0 % n);
         let mut x = String::from("<robot name=\"random\"><link name=\"base\"/>");
         for (k, b) in self.bodies.iter().enumerate() {
             let kind = if b.prismatic { "prismatic" } else { "revolute" };
@@ -166,17 +172,17 @@ impl Tree {
                 b.axis[2]
             );
         }
-        let fixed = |x: &mut String, name: &str, parent: usize, xyz: [f64; 3], rpy: [f64; 3], body: &str| {
+        let fixed = |x: &mut String, name: &str, parent: &str, xyz: [f64; 3], rpy: [f64; 3], body: &str| {
             let _ = write!(
                 x,
                 "<link name=\"{name}\">{body}</link><joint name=\"{name}_joint\" type=\"fixed\">\
-                 <parent link=\"l{parent}\"/><child link=\"{name}\"/>\
+                 <parent link=\"{parent}\"/><child link=\"{name}\"/>\
                  <origin xyz=\"{} {} {}\" rpy=\"{} {} {}\"/></joint>",
                 xyz[0], xyz[1], xyz[2], rpy[0], rpy[1], rpy[2]
             );
         };
-        fixed(&mut x, "tip", tip_parent, self.tip.1, self.tip.2, "");
-        fixed(&mut x, "payload", payload_parent, self.payload.1, self.payload.2, &self.payload.3.urdf());
+        fixed(&mut x, "tip", &tip_parent, self.tip.1, self.tip.2, "");
+        fixed(&mut x, "payload", &format!("l{payload_parent}"), self.payload.1, self.payload.2, &self.payload.3.urdf());
         x.push_str("</robot>");
         let model = Model::from_urdf_str(&x).unwrap();
         // The importer normalises every axis.
