@@ -96,3 +96,6 @@ impl Scalar for f32 {
         f32::sin_cos(self)
     }
 }
+
+mod double_double;
+pub use double_double::DoubleDouble;
