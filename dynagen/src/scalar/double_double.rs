@@ -13,6 +13,7 @@
 //! operations, and sin/cos about 60 double-double operations.
 
 use super::Scalar;
+use crate::spatial::{Mat3, Vec3};
 use core::cmp::Ordering;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
@@ -247,6 +248,28 @@ impl Scalar for DoubleDouble {
     }
     fn sin_cos(self) -> (Self, Self) {
         self.sin_cos_dd()
+    }
+    fn rotation_constant(r: &Mat3<f64>) -> Mat3<Self> {
+        // One Newton-Schulz step X ← X(3·1 − XᵀX)/2 squares the distance
+        // to orthonormality: from ~1e-16 to ~1e-32.
+        let x = Mat3::<Self>::from_f64(r);
+        let xtx = x.transpose().mul_mat(&x);
+        let mut k = Mat3::<Self>::zero();
+        for i in 0..3 {
+            for j in 0..3 {
+                let d = if i == j { 3.0 } else { 0.0 };
+                k.0[i][j] = (Self::from(d) - xtx.0[i][j]).mul_f64(0.5);
+            }
+        }
+        x.mul_mat(&k)
+    }
+    fn axis_rotation(axis: &Vec3<f64>, _unit: &Vec3<f64>, s: Self, c: Self) -> Mat3<Self> {
+        let a = Vec3::<Self>::from_f64(axis);
+        let unit = a.scale(Self::ONE / a.norm_squared().sqrt());
+        crate::spatial::rodrigues_generic(&unit, s, c)
+    }
+    fn axis_norm_constant(axis: &Vec3<f64>, _norm: f64) -> Self {
+        Vec3::<Self>::from_f64(axis).norm_squared().sqrt()
     }
 }
 
