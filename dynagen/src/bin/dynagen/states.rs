@@ -149,7 +149,10 @@ fn parse_error(text: &str, e: &serde_json::Error, joint_names: &[String]) -> Str
     } else {
         format!("malformed JSON: {e}")
     };
-    match locate(text, e.line(), e.column()).and_then(|path| describe(&path, joint_names)) {
+    // At the end of the text, serde_json points at the last character read
+    // rather than at an offending one: everything has been read.
+    let path = if e.is_eof() { locate(text, usize::MAX, 0) } else { locate(text, e.line(), e.column()) };
+    match path.and_then(|path| describe(&path, joint_names)) {
         Some(place) => format!("{place}: {what}"),
         None => what,
     }
@@ -164,11 +167,12 @@ enum Step {
 
 /// The path to the value being read at (line, column), both from 1 as
 /// serde_json counts them (column in bytes, pointing at the offending
-/// character), found by scanning the text before that character. The text before an error is valid JSON so far, so tracking
+/// character), found by scanning the text before that character; a line
+/// past the end scans the whole text. The text before an error is valid JSON so far, so tracking
 /// brackets, strings, colons and commas is enough.
 fn locate(text: &str, line: usize, column: usize) -> Option<Vec<Step>> {
     let line_start: usize = text.split_inclusive('\n').take(line.checked_sub(1)?).map(str::len).sum();
-    let end = (line_start + column.saturating_sub(1)).min(text.len());
+    let end = line_start.saturating_add(column.saturating_sub(1)).min(text.len());
     // Each open container: an array with its index, or an object with the
     // key read last (None while a key is expected).
     let mut stack: Vec<(bool, usize, Option<String>)> = Vec::new();
