@@ -127,6 +127,11 @@ fn inspect_a_file_shows_branches_fixed_links_and_base_mass() {
     // Links fixed to a body are listed with it, and the base's mass is shown apart.
     assert!(out.contains("-> left_forearm + left_wrist_mount"), "{out}");
     assert!(out.contains("-> right_hand + right_ee"), "{out}");
+    // Frames: a fixed link's pose in its body's frame, as the file gives it
+    // (joint origins xyz="0 0 -0.09" rpy="0.1 -0.2 0.3" and xyz="0 0 -0.25" rpy="0 0 0.5").
+    let frame = |name: &str| out.lines().find(|l| l.split_whitespace().next() == Some(name)).unwrap();
+    assert!(frame("right_ee").ends_with("6 right_hand       (0, 0, -0.09)  (0.1, -0.2, 0.3)"), "{out}");
+    assert!(frame("left_wrist_mount").ends_with("2 left_forearm     (0, 0, -0.25)  (0, 0, 0.5)"), "{out}");
     // Masses from the file: left_forearm 1.2 kg + left_wrist_mount 0.6 kg
     // fixed to it; 11.8 kg moving in all, and the base link's 5 kg.
     assert!(out.lines().any(|l| l.contains(" left_forearm ") && l.contains(" 1.8 kg ")), "{out}");

@@ -34,7 +34,7 @@ pub struct Args {
     /// The states, as JSON (`-` reads stdin).
     #[arg(long, short, value_name = "STATES.json")]
     pub input: PathBuf,
-    /// Gravity in the base frame, m/s² (default: the URDF's, 0,0,-9.81).
+    /// Gravity in the base frame, m/s² (default: 0,0,-9.81).
     #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
     pub gravity: Option<String>,
 }

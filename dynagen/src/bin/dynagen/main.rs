@@ -24,11 +24,16 @@ use std::process::ExitCode;
 /// Every subcommand takes a URDF file; without one it uses the bundled
 /// UR5 (Universal Robots UR5 with the Modern Robotics inertias).
 #[derive(Parser, Debug)]
-#[command(name = "dynagen", version, about, long_about)]
+#[command(name = "dynagen", version, about, long_about, after_help = EXIT_STATUS)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
 }
+
+const EXIT_STATUS: &str = "\
+Exit status: 0 success; 1 bad input (file, URDF, state, option value), with one
+line on stderr naming the file and the item; 2 bad command line; 3 a subcommand
+not available yet in this version.";
 
 #[derive(Subcommand, Debug)]
 enum Command {
