@@ -21,4 +21,4 @@ pub use algorithms::integrators::Integrator;
 pub use model::{Model, ModelError, ModelWarning, RobotBuilder};
 pub use robot::{InputError, Robot};
 pub use robot_simulate::TipWrenchHistory;
-pub use scalar::Scalar;
+pub use scalar::{DoubleDouble, Scalar};
