@@ -8,6 +8,29 @@
 //! N; time s. Gravity is the robot's ([`Robot::set_gravity`]); the tip
 //! wrenches set with [`Robot::set_tip_wrench`] act at every step, and a
 //! per-row tip wrench history, when given, acts in addition to them.
+//!
+//! ```
+//! use dynagen::model::{Inertial, JointDescription};
+//! use dynagen::{Integrator, Robot, RobotBuilder};
+//! use nalgebra::{dvector, DMatrix};
+//!
+//! // A 1 kg bob on a massless 1 m rod, swinging about y from 0.5 rad.
+//! let model = RobotBuilder::new("pendulum")
+//!     .link("base", None)
+//!     .link("bob", Some(Inertial::point_mass(1.0, [0.0, 0.0, -1.0])))
+//!     .joint(JointDescription::revolute("hinge", "base", "bob", [0.0, 1.0, 0.0]))
+//!     .build()
+//!     .unwrap();
+//! let mut robot = Robot::new(model);
+//! let tau = DMatrix::zeros(21, 1); // no torque, 20 intervals of 0.05 s
+//! let (q, qd) = robot
+//!     .forward_dynamics_trajectory(&dvector![0.5], &dvector![0.0], &tau, None, 0.05, 4, Integrator::Rk4)
+//!     .unwrap();
+//! // Energy ½q̇² − 9.81·cos q (J) is conserved, to the integrator's error.
+//! let energy = |k: usize| 0.5 * qd[(k, 0)].powi(2) - 9.81 * q[(k, 0)].cos();
+//! assert!((energy(20) - energy(0)).abs() < 1e-6);
+//! assert!(q[(20, 0)] < 0.0); // it has swung past the bottom
+//! ```
 
 use crate::algorithms::integrators::{self, Integrator, StepInputs};
 use crate::algorithms::{rnea, TipWrench};
