@@ -548,6 +548,46 @@ proptest! {
         prop_assert!(err <= 1e-10 * scale, "dKE/dt {} vs power {power}: {err:e}, scale {scale:e}", dke_dq + dke_dqd);
     }
 
+    /// The gravity torques are the gradient of the potential energy:
+    /// g_j(q) = ∂PE/∂q_j, with PE = −Σ mᵢ g·cᵢ from `potential_energy` and g
+    /// from the Newton-Euler algorithm, by Richardson-extrapolated central
+    /// differences with h·|a_j| = 0.05 (h = 0.05 m on prismatic joints,
+    /// where PE is linear in q_j). As for the Jacobians, truncation and
+    /// rounding are ≲ 1e-13 of the size of the terms, Σ mᵢ|g|(1 + |cᵢ|)·|a_j|;
+    /// tolerance 1e-10 of it.
+    #[test]
+    fn gravity_torques_are_the_potential_gradient((tree, raw, w) in case()) {
+        let model = tree.model();
+        let s = state(&model, &raw, w);
+        let n = model.dof();
+        let g = model.gravity;
+        let mut ws = Workspace::new(&model);
+        let mut gt = vec![0.0; n];
+        rnea::rnea(&model, &mut ws, &s.q, None, None, Some(&g), &[], &mut gt);
+        dynagen::algorithms::kinematics::forward_kinematics(&model, &mut ws, &s.q);
+        // Σ mᵢ|g|(1 + |cᵢ|), cᵢ = p + R·hᵢ/mᵢ the centre of mass in the base frame
+        let moment: f64 = (0..n)
+            .map(|i| {
+                let x = dynagen::algorithms::kinematics::body_pose(&ws, i);
+                let (m, h) = (model.bodies[i].inertia.mass, model.bodies[i].inertia.h);
+                let mc = x.trans.scale(m) + x.rot.mul_vec(&h);
+                g.norm() * (m + mc.norm())
+            })
+            .sum();
+        for j in 0..n {
+            let a = model.bodies[j].joint.axis.norm();
+            let pe = |h: f64| {
+                let mut q = s.q.clone();
+                q[j] += h;
+                vec![energy::potential_energy(&model, &mut Workspace::new(&model), &q, &g)]
+            };
+            let h = if model.bodies[j].joint.is_revolute() { 0.05 / a } else { 0.05 };
+            let d = derivative(pe, h)[0];
+            let err = (d - gt[j]).abs();
+            prop_assert!(err <= 1e-10 * moment * a, "joint {j}: ∂PE/∂q = {d}, g = {}, error {err:e}", gt[j]);
+        }
+    }
+
     /// The space and body Jacobians of the `tip` frame and of the last
     /// body's frame against derivatives of its pose T(q): column j of J_s is
     /// the twist of (∂T/∂q_j)T⁻¹ and of J_b that of T⁻¹(∂T/∂q_j), by
