@@ -19,9 +19,11 @@
 //! physical identity); tolerances are relative to the size of the
 //! quantities involved and each one says why it is what it is.
 //!
-//! Cases are few (48 per property, 16 for the simulations) and the seed is
-//! fixed, so the file runs in seconds in debug builds and a failure
+//! Cases are few (48 per property, 32 for the RK4 simulations) and the seed
+//! is fixed, so the file runs in seconds in debug builds and a failure
 //! reproduces; proptest's failure persistence is off for the same reason.
+//! (An optimised build of the same code, or a newer proptest, may draw other
+//! cases; the tolerances do not depend on the seed.)
 
 use dynagen::algorithms::integrators::{rk4, IntegratorScratch, StepInputs};
 use dynagen::algorithms::{aba, crba, energy, forward_dynamics, rnea, TipWrench, Workspace};
