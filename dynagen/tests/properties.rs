@@ -22,8 +22,8 @@
 //! Cases are few (48 per property, 32 for the RK4 simulations) and the seed
 //! is fixed, so the file runs in seconds in debug builds and a failure
 //! reproduces; proptest's failure persistence is off for the same reason.
-//! (An optimised build of the same code, or a newer proptest, may draw other
-//! cases; the tolerances do not depend on the seed.)
+//! (Another proptest version may draw other cases; the tolerances are not
+//! tuned to this seed's cases.)
 
 use dynagen::algorithms::integrators::{rk4, IntegratorScratch, StepInputs};
 use dynagen::algorithms::{aba, crba, energy, forward_dynamics, rnea, TipWrench, Workspace};
