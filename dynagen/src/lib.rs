@@ -14,8 +14,10 @@ pub mod algorithms;
 pub mod model;
 mod robot;
 mod scalar;
+pub mod scene;
 pub mod spatial;
 
 pub use model::{Model, ModelError, ModelWarning, RobotBuilder};
 pub use robot::{InputError, Robot};
 pub use scalar::{DoubleDouble, Scalar};
+pub use scene::{Scene, SceneError, SceneModel, SceneRobot};
