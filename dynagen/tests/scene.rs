@@ -668,3 +668,68 @@ fn run_time_inputs_are_checked() {
     assert!(matches!(robot.mass_matrix_with(&q, &stray), Err(SceneInputError::UnexpectedInput(_))));
     assert!(robot.frame_pose("nope", &q).unwrap_err().to_string().contains("nope"));
 }
+
+/// The scene's dynamics are generic over the scalar, as code generation
+/// needs: f32 and the double-double reference agree with f64.
+#[test]
+fn scene_dynamics_run_on_every_scalar() {
+    use dynagen::algorithms::{TipWrench, Workspace};
+    use dynagen::scene::dynamics;
+    use dynagen::spatial::{Force, Vec3};
+    use dynagen::{DoubleDouble, Scalar};
+
+    let scene = Scene::new()
+        .subtree("panda_link1", &["panda_hand"])
+        .lock("panda_joint1", 0.6)
+        .lock("panda_finger_joint1", 0.02)
+        .payload("panda_hand", PayloadInertia::new(0.5, [0.0, 0.0, 0.05], [1e-3, 1e-3, 5e-4, 0.0, 0.0, 0.0]))
+        .armature("panda_joint3", 0.2)
+        .viscous("panda_joint2", 0.7)
+        .coulomb("panda_joint6", 1.5)
+        .tip_wrench("panda_hand")
+        .apply(&model("panda"))
+        .unwrap();
+    let n = scene.dof();
+    assert_eq!(n, 6);
+    let (q, qd, qdd) = (state(n, 7, 2.0), state(n, 8, 1.0), state(n, 9, 3.0));
+    let w = [0.2, -0.1, 0.3, 4.0, -2.0, 6.0];
+    let gravity = scene.gravity_vector(None).unwrap();
+
+    fn run<S: Scalar>(
+        scene: &SceneModel,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        w: [f64; 6],
+        g: Vec3<f64>,
+    ) -> [Vec<f64>; 3] {
+        let n = scene.dof();
+        let c = |x: &[f64]| x.iter().map(|&v| S::from_f64(v)).collect::<Vec<S>>();
+        let (q, qd, qdd) = (c(q), c(qd), c(qdd));
+        let g = Vec3::<S>::from_f64(&g);
+        let tips =
+            [TipWrench { frame: scene.tip_wrench_frame.unwrap(), wrench: Force::from_array(w.map(S::from_f64)) }];
+        let mut ws = Workspace::<S>::new(&scene.model);
+        let (mut tau, mut m, mut qdd2, mut scratch) =
+            (vec![S::zero(); n], vec![S::zero(); n * n], vec![S::zero(); n], vec![S::zero(); n]);
+        dynamics::inverse_dynamics(scene, &mut ws, &q, &qd, &qdd, Some(&g), &tips, &mut tau);
+        dynamics::mass_matrix(scene, &mut ws, &q, &mut m);
+        dynamics::forward_dynamics(scene, &mut ws, &q, &qd, &tau, Some(&g), &tips, &mut scratch, &mut qdd2);
+        let f = |x: &[S]| x.iter().map(|v| v.to_f64().unwrap()).collect::<Vec<f64>>();
+        [f(&tau), f(&m), f(&qdd2)]
+    }
+    let [tau, m, back] = run::<f64>(&scene, q.as_slice(), qd.as_slice(), qdd.as_slice(), w, gravity);
+    assert_close(&back, qdd.as_slice(), 1e-11, "f64 FD(ID)");
+    let [tau32, m32, back32] = run::<f32>(&scene, q.as_slice(), qd.as_slice(), qdd.as_slice(), w, gravity);
+    assert_close(&tau32, &tau, 1e-5, "f32 tau");
+    assert_close(&m32, &m, 1e-5, "f32 M");
+    assert_close(&back32, qdd.as_slice(), 1e-3, "f32 FD(ID)");
+    let [tau_dd, m_dd, back_dd] = run::<DoubleDouble>(&scene, q.as_slice(), qd.as_slice(), qdd.as_slice(), w, gravity);
+    assert_close(&tau, &tau_dd, 1e-13, "f64 tau against double-double");
+    assert_close(&m, &m_dd, 1e-13, "f64 M against double-double");
+    assert_close(&back_dd, qdd.as_slice(), 1e-25, "double-double FD(ID)");
+    // and the numeric API runs the same code
+    let mut robot = SceneRobot::new(scene);
+    let inputs = SceneInputs { tip_wrench: Some(Vector6::from(w)), ..Default::default() };
+    assert_eq!(robot.inverse_dynamics_with(&q, &qd, &qdd, &inputs).unwrap().as_slice(), &tau[..]);
+}

@@ -171,6 +171,11 @@ pub enum SceneWarning {
         /// The link.
         link: String,
     },
+    /// A tip wrench at a link fixed to the (new) base loads no joint.
+    TipWrenchOnBase {
+        /// The link.
+        link: String,
+    },
 }
 
 impl std::fmt::Display for SceneWarning {
@@ -186,6 +191,9 @@ impl std::fmt::Display for SceneWarning {
             }
             SceneWarning::PayloadOnBase { link } => {
                 write!(f, "payload on link \"{link}\": the link is fixed to the base, so the payload moves nothing")
+            }
+            SceneWarning::TipWrenchOnBase { link } => {
+                write!(f, "tip wrench at link \"{link}\": the link is fixed to the base, so the wrench loads no joint")
             }
         }
     }

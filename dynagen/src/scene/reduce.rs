@@ -423,6 +423,11 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
         }
     }
     let tip_wrench_frame = scene.tip_wrench.as_ref().and_then(|t| reduced.frame_index(t));
+    if let (Some(f), Some(link)) = (tip_wrench_frame, &scene.tip_wrench) {
+        if reduced.frames[f].body.is_none() {
+            warnings.push(SceneWarning::TipWrenchOnBase { link: link.clone() });
+        }
+    }
     let per_joint = |k: usize| -> Vec<f64> {
         reduced.bodies.iter().map(|b| model.joint_index(&b.joint.name).map_or(0.0, |i| coef[k][i])).collect()
     };
