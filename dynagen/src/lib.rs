@@ -3,7 +3,9 @@
 //! This crate holds the robot model ([`model`]), scalar-generic spatial
 //! algebra ([`spatial`]), the dynamics algorithms ([`algorithms`]), and a
 //! numeric API on nalgebra types ([`Robot`]) that runs them on `f64` for any
-//! robot at run time.
+//! robot at run time. A [`scene`] says what a controller needs from a robot
+//! (functions, gravity, tip wrench, sub-tree, locked joints, payloads,
+//! armature and friction); [`SceneRobot`] runs it on the generic solver.
 //!
 //! Conventions (see DESIGN.md): spatial vectors are (angular; linear);
 //! joint order is depth-first over the URDF tree, children in file order;

@@ -733,3 +733,42 @@ fn scene_dynamics_run_on_every_scalar() {
     let inputs = SceneInputs { tip_wrench: Some(Vector6::from(w)), ..Default::default() };
     assert_eq!(robot.inverse_dynamics_with(&q, &qd, &qdd, &inputs).unwrap().as_slice(), &tau[..]);
 }
+
+/// The empty scene rebuilds the model through a description: it must give
+/// the same robot, on every bundled robot, on a Modern Robotics chain with a
+/// non-unit screw axis, and on a pendulum of point masses.
+#[test]
+fn the_empty_scene_is_the_robot_itself() {
+    use dynagen::model::{Inertial, JointDescription};
+    use nalgebra::{dmatrix, Matrix4, Matrix6};
+    let mut robots: Vec<(String, Model)> =
+        ["ur5", "panda", "torso_two_arms", "planar_2link"].iter().map(|n| (n.to_string(), model(n))).collect();
+    let m01 = Matrix4::new(1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0.089159, 0., 0., 0., 1.);
+    let m12 = Matrix4::new(0., 0., 1., 0.28, 0., 1., 0., 0.13585, -1., 0., 0., 0., 0., 0., 0., 1.);
+    let m23 = Matrix4::new(1., 0., 0., 0., 0., 1., 0., -0.1197, 0., 0., 1., 0.395, 0., 0., 0., 1.);
+    let m34 = Matrix4::new(1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0.14225, 0., 0., 0., 1.);
+    let g1 = Matrix6::from_diagonal(&Vector6::new(0.010267, 0.010267, 0.00666, 3.7, 3.7, 3.7));
+    let g2 = Matrix6::from_diagonal(&Vector6::new(0.22689, 0.22689, 0.0151074, 8.393, 8.393, 8.393));
+    let g3 = Matrix6::from_diagonal(&Vector6::new(0.0494433, 0.0494433, 0.004095, 2.275, 2.275, 2.275));
+    let slist = dmatrix![1., 0., 0.; 0., 1., 1.; 1., 0., 0.; 0., -0.089, -0.089; 1., 0., 0.; 0., 0., 0.425];
+    robots.push(("mr".into(), Model::from_modern_robotics(&[m01, m12, m23, m34], &[g1, g2, g3], &slist).unwrap()));
+    let pendulum = dynagen::RobotBuilder::new("double_pendulum")
+        .link("base", None)
+        .link("a", Some(Inertial::point_mass(1.0, [0.0, 0.0, -1.0])))
+        .link("b", Some(Inertial::point_mass(0.5, [0.3, 0.0, -0.7])))
+        .joint(JointDescription::revolute("j1", "base", "a", [0.0, 1.0, 0.0]))
+        .joint(JointDescription::revolute("j2", "a", "b", [0.0, 1.0, 0.0]).origin([0.0, 0.0, -1.0], [0.0, 0.0, 0.0]))
+        .build()
+        .unwrap();
+    robots.push(("pendulum".into(), pendulum));
+    for (name, m) in robots {
+        let scene = Scene::new().apply(&m).unwrap();
+        assert_eq!(scene.joint_names(), m.joint_names(), "{name}");
+        assert_eq!(scene.model.frames.len(), m.frames.len(), "{name}: frames");
+        for f in &m.frames {
+            assert!(scene.model.frame_index(&f.name).is_some(), "{name}: frame {} lost", f.name);
+        }
+        let mut full = Robot::new(m);
+        compare_with_full(&scene, &mut full, &[], &[], 11);
+    }
+}
