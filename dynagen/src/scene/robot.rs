@@ -49,7 +49,29 @@ pub enum SceneInputError {
     Payload(#[from] SceneError),
 }
 
-/// A scene with the generic `f64` solver. See the [module docs](self).
+/// A scene with the generic `f64` solver.
+///
+/// The run-time inputs (gravity, tip wrench, payloads) go in a
+/// [`SceneInputs`] to the `*_with` calls, and only when the scene makes them
+/// inputs: an input the scene does not declare is an error, and so is a
+/// declared input missing from a call that uses it. The plain calls are the
+/// `*_with` calls with no inputs, for scenes that have none. Units, joint
+/// order and input checks are those of [`Robot`](crate::Robot); calls
+/// allocate only their result.
+///
+/// ```
+/// use dynagen::scene::{Gravity, Scene, SceneInputs, SceneRobot};
+/// use nalgebra::{DVector, Vector3};
+/// let model = dynagen::Model::from_urdf_file(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/ur5.urdf")).unwrap();
+/// let scene = Scene::new().gravity(Gravity::Input).armature("elbow_joint", 0.2).apply(&model).unwrap();
+/// let mut robot = SceneRobot::new(scene);
+/// let q = DVector::from_element(6, 0.3);
+/// let inputs = SceneInputs { gravity: Some(Vector3::new(0.0, 0.0, -9.81)), ..Default::default() };
+/// let g = robot.gravity_torques_with(&q, &inputs).unwrap();
+/// assert!(robot.gravity_torques(&q).is_err()); // gravity is an input
+/// let m = robot.mass_matrix(&q).unwrap(); // M needs no gravity
+/// assert!(m[(2, 2)] > 0.2 && g.len() == 6);
+/// ```
 #[derive(Clone, Debug)]
 pub struct SceneRobot {
     scene: SceneModel,
