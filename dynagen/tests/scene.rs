@@ -772,3 +772,33 @@ fn the_empty_scene_is_the_robot_itself() {
         compare_with_full(&scene, &mut full, &[], &[], 11);
     }
 }
+
+#[test]
+fn into_calls_match_and_check_their_outputs() {
+    let scene = Scene::new().tip_wrench("ee_link").armature("elbow_joint", 0.2).coulomb("wrist_1_joint", 1.0);
+    let mut robot = SceneRobot::new(scene.apply(&model("ur5")).unwrap());
+    assert_eq!(robot.scene().scene, scene);
+    let w = Vector6::new(1.0, 0.0, -1.0, 3.0, 2.0, -4.0);
+    let inputs = SceneInputs { tip_wrench: Some(w), ..Default::default() };
+    let (q, qd, qdd) = (state(6, 1, 2.0), state(6, 2, 2.0), state(6, 3, 2.0));
+    let mut out = DVector::zeros(6);
+    robot.inverse_dynamics_into(&q, &qd, &qdd, &inputs, &mut out).unwrap();
+    assert_eq!(out, robot.inverse_dynamics_with(&q, &qd, &qdd, &inputs).unwrap());
+    let tau = out.clone();
+    robot.forward_dynamics_into(&q, &qd, &tau, &inputs, &mut out).unwrap();
+    assert_close(out.as_slice(), qdd.as_slice(), 1e-11, "FD into");
+    robot.bias_forces_into(&q, &qd, &inputs, &mut out).unwrap();
+    assert_eq!(out, robot.bias_forces_with(&q, &qd, &inputs).unwrap());
+    robot.gravity_torques_into(&q, &inputs, &mut out).unwrap();
+    assert_eq!(out, robot.gravity_torques(&q).unwrap());
+    robot.coriolis_into(&q, &qd, &inputs, &mut out).unwrap();
+    assert_eq!(out, robot.coriolis(&q, &qd).unwrap());
+    let mut m = DMatrix::zeros(6, 6);
+    robot.mass_matrix_into(&q, &inputs, &mut m).unwrap();
+    assert_eq!(m, robot.mass_matrix(&q).unwrap());
+    let mut short = DVector::zeros(5);
+    let e = robot.inverse_dynamics_into(&q, &qd, &qdd, &inputs, &mut short).unwrap_err();
+    assert!(e.to_string().contains("tau"), "{e}");
+    let mut wrong = DMatrix::zeros(6, 5);
+    assert!(robot.mass_matrix_into(&q, &inputs, &mut wrong).unwrap_err().to_string().contains('M'));
+}

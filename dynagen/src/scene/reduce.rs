@@ -59,6 +59,9 @@ pub struct SceneModel {
     /// `gravity` set to the resolved constant (zero when gravity is none or
     /// an input).
     pub model: Model,
+    /// The scene as given (for a generated file's header,
+    /// [`Scene::to_toml_string`] writes it out).
+    pub scene: Scene,
     /// The generated module's name, if the scene gave one.
     pub name: Option<String>,
     /// The functions to generate, without repeats.
@@ -442,6 +445,7 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
         viscous_friction: per_joint(1),
         coulomb_friction: per_joint(2),
         model: reduced,
+        scene: scene.clone(),
         name: scene.name.clone(),
         functions,
         gravity,

@@ -135,6 +135,14 @@ impl SceneRobot {
         }
     }
 
+    fn check_out(&self, what: &'static str, len: usize) -> Result<(), InputError> {
+        let n = self.dof();
+        if len != n {
+            return Err(InputError::WrongLength { what, got: len, expected: n });
+        }
+        Ok(())
+    }
+
     /// Checks the inputs against the scene, sets the tip wrench and the
     /// payloads, and returns gravity.
     fn prepare(&mut self, inputs: &SceneInputs<'_>, uses: Uses) -> Result<Option<Vec3<f64>>, SceneInputError> {
@@ -217,11 +225,25 @@ impl SceneRobot {
         qdd: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DVector<f64>, SceneInputError> {
+        let mut tau = DVector::zeros(self.dof());
+        self.inverse_dynamics_into(q, qd, qdd, inputs, &mut tau)?;
+        Ok(tau)
+    }
+    /// [`inverse_dynamics_with`](Self::inverse_dynamics_with) into `tau`,
+    /// allocating nothing.
+    pub fn inverse_dynamics_into(
+        &mut self,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+        qdd: &DVector<f64>,
+        inputs: &SceneInputs<'_>,
+        tau: &mut DVector<f64>,
+    ) -> Result<(), SceneInputError> {
         self.check("q", q.as_slice())?;
         self.check("qd", qd.as_slice())?;
         self.check("qdd", qdd.as_slice())?;
+        self.check_out("tau", tau.len())?;
         let g = self.prepare(inputs, Uses { gravity: true, tip: true })?;
-        let mut tau = DVector::zeros(self.dof());
         dynamics::inverse_dynamics(
             &self.scene,
             &mut self.ws,
@@ -232,7 +254,7 @@ impl SceneRobot {
             &self.tips,
             tau.as_mut_slice(),
         );
-        Ok(tau)
+        Ok(())
     }
 
     /// The mass matrix M(q) + diag(armature), for a scene without input
@@ -247,13 +269,28 @@ impl SceneRobot {
         q: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DMatrix<f64>, SceneInputError> {
-        self.check("q", q.as_slice())?;
-        self.prepare(inputs, Uses { gravity: false, tip: false })?;
         let n = self.dof();
         let mut m = DMatrix::zeros(n, n);
+        self.mass_matrix_into(q, inputs, &mut m)?;
+        Ok(m)
+    }
+    /// [`mass_matrix_with`](Self::mass_matrix_with) into `m` (n×n),
+    /// allocating nothing.
+    pub fn mass_matrix_into(
+        &mut self,
+        q: &DVector<f64>,
+        inputs: &SceneInputs<'_>,
+        m: &mut DMatrix<f64>,
+    ) -> Result<(), SceneInputError> {
+        self.check("q", q.as_slice())?;
+        let n = self.dof();
+        if m.nrows() != n || m.ncols() != n {
+            return Err(InputError::WrongLength { what: "M", got: m.len(), expected: n }.into());
+        }
+        self.prepare(inputs, Uses { gravity: false, tip: false })?;
         // M is symmetric, so row-major and nalgebra's column-major agree.
         dynamics::mass_matrix(&self.scene, &mut self.ws, q.as_slice(), m.as_mut_slice());
-        Ok(m)
+        Ok(())
     }
 
     /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q) + friction (no tip
@@ -269,12 +306,25 @@ impl SceneRobot {
         qd: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DVector<f64>, SceneInputError> {
+        let mut h = DVector::zeros(self.dof());
+        self.bias_forces_into(q, qd, inputs, &mut h)?;
+        Ok(h)
+    }
+    /// [`bias_forces_with`](Self::bias_forces_with) into `h`, allocating
+    /// nothing.
+    pub fn bias_forces_into(
+        &mut self,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+        inputs: &SceneInputs<'_>,
+        h: &mut DVector<f64>,
+    ) -> Result<(), SceneInputError> {
         self.check("q", q.as_slice())?;
         self.check("qd", qd.as_slice())?;
+        self.check_out("h", h.len())?;
         let g = self.prepare(inputs, Uses { gravity: true, tip: false })?;
-        let mut h = DVector::zeros(self.dof());
         dynamics::bias_forces(&self.scene, &mut self.ws, q.as_slice(), qd.as_slice(), g.as_ref(), h.as_mut_slice());
-        Ok(h)
+        Ok(())
     }
 
     /// The gravity torques g(q) (zero when the scene has no gravity), for a
@@ -289,11 +339,23 @@ impl SceneRobot {
         q: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DVector<f64>, SceneInputError> {
-        self.check("q", q.as_slice())?;
-        let g = self.prepare(inputs, Uses { gravity: true, tip: false })?;
         let mut out = DVector::zeros(self.dof());
-        dynamics::gravity_torques(&self.scene, &mut self.ws, q.as_slice(), g.as_ref(), out.as_mut_slice());
+        self.gravity_torques_into(q, inputs, &mut out)?;
         Ok(out)
+    }
+    /// [`gravity_torques_with`](Self::gravity_torques_with) into `out`,
+    /// allocating nothing.
+    pub fn gravity_torques_into(
+        &mut self,
+        q: &DVector<f64>,
+        inputs: &SceneInputs<'_>,
+        out: &mut DVector<f64>,
+    ) -> Result<(), SceneInputError> {
+        self.check("q", q.as_slice())?;
+        self.check_out("g", out.len())?;
+        let g = self.prepare(inputs, Uses { gravity: true, tip: false })?;
+        dynamics::gravity_torques(&self.scene, &mut self.ws, q.as_slice(), g.as_ref(), out.as_mut_slice());
+        Ok(())
     }
 
     /// The Coriolis and centripetal torques C(q, q̇)q̇, for a scene without
@@ -309,12 +371,24 @@ impl SceneRobot {
         qd: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DVector<f64>, SceneInputError> {
+        let mut c = DVector::zeros(self.dof());
+        self.coriolis_into(q, qd, inputs, &mut c)?;
+        Ok(c)
+    }
+    /// [`coriolis_with`](Self::coriolis_with) into `c`, allocating nothing.
+    pub fn coriolis_into(
+        &mut self,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+        inputs: &SceneInputs<'_>,
+        c: &mut DVector<f64>,
+    ) -> Result<(), SceneInputError> {
         self.check("q", q.as_slice())?;
         self.check("qd", qd.as_slice())?;
+        self.check_out("C qd", c.len())?;
         self.prepare(inputs, Uses { gravity: false, tip: false })?;
-        let mut c = DVector::zeros(self.dof());
         dynamics::coriolis(&self.scene, &mut self.ws, q.as_slice(), qd.as_slice(), c.as_mut_slice());
-        Ok(c)
+        Ok(())
     }
 
     /// Forward dynamics q̈ = M_s(q)⁻¹(τ − h(q, q̇) − J(q)ᵀF_tip), for a scene
@@ -337,11 +411,25 @@ impl SceneRobot {
         tau: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DVector<f64>, SceneInputError> {
+        let mut qdd = DVector::zeros(self.dof());
+        self.forward_dynamics_into(q, qd, tau, inputs, &mut qdd)?;
+        Ok(qdd)
+    }
+    /// [`forward_dynamics_with`](Self::forward_dynamics_with) into `qdd`,
+    /// allocating nothing.
+    pub fn forward_dynamics_into(
+        &mut self,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+        tau: &DVector<f64>,
+        inputs: &SceneInputs<'_>,
+        qdd: &mut DVector<f64>,
+    ) -> Result<(), SceneInputError> {
         self.check("q", q.as_slice())?;
         self.check("qd", qd.as_slice())?;
         self.check("tau", tau.as_slice())?;
+        self.check_out("qdd", qdd.len())?;
         let g = self.prepare(inputs, Uses { gravity: true, tip: true })?;
-        let mut qdd = DVector::zeros(self.dof());
         dynamics::forward_dynamics(
             &self.scene,
             &mut self.ws,
@@ -353,7 +441,7 @@ impl SceneRobot {
             &mut self.scratch,
             qdd.as_mut_slice(),
         );
-        Ok(qdd)
+        Ok(())
     }
 
     fn frame(&self, frame: &str) -> Result<usize, InputError> {
