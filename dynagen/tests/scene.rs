@@ -802,3 +802,21 @@ fn into_calls_match_and_check_their_outputs() {
     let mut wrong = DMatrix::zeros(6, 5);
     assert!(robot.mass_matrix_into(&q, &inputs, &mut wrong).unwrap_err().to_string().contains('M'));
 }
+
+/// The TOML example of the module documentation is a valid scene for the UR5.
+#[test]
+fn the_documented_toml_example_works() {
+    let src = std::fs::read_to_string(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src/scene/mod.rs")).unwrap();
+    let lines: Vec<&str> = src.lines().map(|l| l.strip_prefix("//!").unwrap_or("")).collect();
+    let start = lines.iter().position(|l| l.trim() == "```toml").expect("a toml example") + 1;
+    let end = start + lines[start..].iter().position(|l| l.trim() == "```").unwrap();
+    let text: String = lines[start..end].iter().map(|l| format!("{}\n", l.strip_prefix(' ').unwrap_or(l))).collect();
+    let scene = Scene::from_toml_str(&text).unwrap();
+    assert_eq!(scene.gravity, Gravity::Constant([0.0, 0.0, -9.81]));
+    assert_eq!(scene.locks, [("wrist_3_joint".to_string(), 0.0)]);
+    assert_eq!(scene.payloads.len(), 2);
+    let applied = scene.apply(&model("ur5")).unwrap();
+    assert_eq!(applied.dof(), 5);
+    assert_eq!(applied.input_payloads.len(), 1);
+    assert_eq!(applied.armature[0], 0.1);
+}
