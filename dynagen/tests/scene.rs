@@ -820,3 +820,18 @@ fn the_documented_toml_example_works() {
     assert_eq!(applied.input_payloads.len(), 1);
     assert_eq!(applied.armature[0], 0.1);
 }
+
+/// The documented way to keep a branch's mass: a tip inside it, its joints
+/// locked. The torso's joint then carries the right arm, rigid.
+#[test]
+fn a_locked_branch_with_a_tip_keeps_its_mass() {
+    let held = [("right_shoulder_joint", 0.4), ("right_elbow_joint", -0.8), ("right_wrist_joint", 0.2)];
+    let mut s = Scene::new().subtree("base", &["left_ee", "right_ee"]);
+    for (j, q) in held {
+        s = s.lock(j, q);
+    }
+    let scene = s.apply(&model("torso_two_arms")).unwrap();
+    assert!(scene.warnings.is_empty());
+    assert_eq!(scene.joint_names(), ["torso_yaw_joint", "left_shoulder_joint", "left_elbow_joint", "left_wrist_joint"]);
+    compare_with_full(&scene, &mut full("torso_two_arms"), &held, &[], 12);
+}

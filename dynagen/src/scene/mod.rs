@@ -48,10 +48,13 @@
 //!   position if the scene locks it and at zero otherwise. Bodies that hang
 //!   off a kept body (or off the root's body) through a joint that is not on
 //!   a path are **dropped**, with a [`SceneWarning::DroppedBranch`]: their
-//!   mass no longer loads the kept joints. This is exact when the dropped
-//!   branches are held still; it is the choice that keeps a controller of one
-//!   arm independent of the other arm's state. Lock a joint of a branch and
-//!   list a tip inside it instead to keep its mass.
+//!   mass no longer loads the kept joints. For a branch off the root this
+//!   changes nothing (the fixed base carries it); for a branch off a moving
+//!   body it is the model of a controller that ignores that branch (one arm
+//!   of a two-armed robot, say), and keeps it independent of the branch's
+//!   state. To keep a branch's mass instead, list a tip inside the branch and
+//!   lock the branch's joints: locked joints on a path are merged, so the
+//!   branch stays, rigid.
 //!
 //!   The root link becomes the fixed base, its frame the base frame. Its
 //!   pose does not matter for a fixed base except for the direction of
