@@ -11,10 +11,12 @@
 //! the wrench the robot applies to its environment, in the tip frame.
 
 pub mod algorithms;
+pub mod codegen;
 pub mod model;
 mod robot;
 mod scalar;
 pub mod spatial;
+pub mod symbolic;
 
 pub use model::{Model, ModelError, ModelWarning, RobotBuilder};
 pub use robot::{InputError, Robot};
