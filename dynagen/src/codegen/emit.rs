@@ -128,8 +128,9 @@ pub(crate) fn emit_function(
     });
     let ret = if kind.is_matrix() { quote!([[#ty; DOF]; DOF]) } else { quote!([#ty; DOF]) };
     let name = Ident::new(kind.fn_name(), Span::call_site());
+    let doc = doc.lines();
     Ok(quote! {
-        #[doc = #doc]
+        #(#[doc = #doc])*
         #[allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal, clippy::too_many_lines)]
         pub fn #name(#(#params),*) -> #ret {
             #(#unused)*

@@ -287,9 +287,10 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
     let mut functions = Vec::new();
     let mut items: Vec<TokenStream> = Vec::new();
     let names = model.joint_names();
+    let n_lit = proc_macro2::Literal::usize_unsuffixed(n);
     items.push(quote! {
         #[doc = " The number of degrees of freedom (joints)."]
-        pub const DOF: usize = #n;
+        pub const DOF: usize = #n_lit;
         #[doc = " The joint names, in the order of every index of the functions below."]
         pub const JOINT_NAMES: [&str; DOF] = [#(#names),*];
     });

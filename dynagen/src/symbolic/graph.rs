@@ -148,6 +148,18 @@ impl Graph {
         if let Some(x) = self.negated(a) {
             return self.sub(b, x);
         }
+        // a + (p − a) = p and (p − b) + b = p: the value of the algebra
+        // (Rodrigues' c + (1 − c) on a joint's own axis is 1).
+        if let Node::Sub(p, q) = self.node(b) {
+            if q == a {
+                return p;
+            }
+        }
+        if let Node::Sub(p, q) = self.node(a) {
+            if q == b {
+                return p;
+            }
+        }
         if self.rewrites.like_terms {
             let ((ca, xa), (cb, xb)) = (self.as_scaled(a), self.as_scaled(b));
             if xa == xb && self.constant_value(xa).is_none() {
@@ -183,13 +195,23 @@ impl Graph {
         if let Some(y) = self.negated(b) {
             return self.add(a, y);
         }
-        // (x + y) − y = x and (x + y) − x = y
+        // (x + y) − y = x, (x + y) − x = y, a − (a − y) = y, (x − y) − x = −y
         if let Node::Add(x, y) = self.node(a) {
             if y == b {
                 return x;
             }
             if x == b {
                 return y;
+            }
+        }
+        if let Node::Sub(x, y) = self.node(b) {
+            if x == a {
+                return y;
+            }
+        }
+        if let Node::Sub(x, y) = self.node(a) {
+            if x == b {
+                return self.neg(y);
             }
         }
         if self.rewrites.like_terms {

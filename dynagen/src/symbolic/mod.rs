@@ -26,7 +26,8 @@
 //!   `c < 0` becomes `−(|c|·x)` (so `2x` and `−2x` share `2x`),
 //!   `x + (−c) → x − c`, likewise for division and for
 //!   `sin_cos(−x) = (−sin x, cos x)`;
-//! - `(x + y) − y → x` (no rounding: the exact value of the algebra, which
+//! - `(x + y) − y → x`, `a + (p − a) → p`, `a − (a − y) → y`,
+//!   `(x − y) − x → −y` (no rounding: the exact value of the algebra, which
 //!   the unsimplified code would only approximate);
 //! - commutative operations order their operands (constants first, then by
 //!   node index), so `a·b` and `b·a` meet;
