@@ -218,3 +218,32 @@ fn an_expression_from_a_finished_trace_is_refused() {
     let _t2 = Tracer::start().unwrap();
     let _ = x + x;
 }
+
+#[test]
+fn factoring_after_the_trace_uses_use_counts() {
+    use dynagen::symbolic::factor;
+    let mut g = Graph::new();
+    let (x, y) = xy(&mut g);
+    let k = g.input("k", 0);
+    let (kx, ky) = (g.mul(k, x), g.mul(k, y));
+    let s = g.add(kx, ky);
+    // k·x + k·y, each product used once: k·(x + y), one multiplication fewer
+    let f = Function::from_ids("f", &g, &[s]);
+    let ff = factor(&f, Rewrites::default());
+    assert_eq!((f.op_count().mul, ff.op_count().mul), (2, 1));
+    let args: [(&str, &[f64]); 2] = [("q", &[0.25, 0.5]), ("k", &[3.0])];
+    assert_eq!(ff.eval(&args).unwrap(), vec![3.0 * (0.25 + 0.5)]);
+    // k·x is also an output: sharing would cost one more, nothing changes
+    let f2 = Function::from_ids("f", &g, &[s, kx]);
+    assert_eq!(factor(&f2, Rewrites::default()).op_count(), f2.op_count());
+    // (−x) − y → −(x + y), whose negation the next subtraction absorbs
+    let nx = g.neg(x);
+    let d = g.sub(nx, y);
+    let e = g.sub(k, d);
+    let f3 = Function::from_ids("f", &g, &[e]);
+    let f3f = factor(&f3, Rewrites::default());
+    assert_eq!((f3.op_count().total(), f3f.op_count().total()), (3, 2));
+    assert_eq!(f3f.eval(&args).unwrap(), vec![3.0 + (0.25 + 0.5)]);
+    // off with exact rewrites
+    assert_eq!(factor(&f, Rewrites::exact()), f);
+}

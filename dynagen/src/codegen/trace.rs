@@ -3,7 +3,7 @@
 use crate::algorithms::{aba, bias, crba, forward_dynamics, rnea, Workspace};
 use crate::model::Model;
 use crate::spatial::Vec3;
-use crate::symbolic::{Expr, Function, Rewrites, TraceActive, Tracer};
+use crate::symbolic::{factor, Expr, Function, Rewrites, TraceActive, Tracer};
 
 /// The functions of the generated-code contract (DESIGN.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -98,5 +98,5 @@ pub fn trace(model: &Model, kind: FunctionKind, rewrites: Rewrites) -> Result<Fu
     }
     drop(ws);
     let graph = tracer.finish();
-    Ok(Function::new(kind.fn_name(), &graph, &out))
+    Ok(factor(&Function::new(kind.fn_name(), &graph, &out), rewrites))
 }

@@ -78,6 +78,16 @@ impl Function {
         let Some(k) = self.input_names.iter().position(|s| s == name) else { return false };
         self.nodes.iter().any(|n| matches!(n, Node::Input { name, .. } if *name as usize == k))
     }
+    pub(crate) fn set_input_names(&mut self, names: &[String]) {
+        // Renumber the inputs to the given name table.
+        let old = std::mem::replace(&mut self.input_names, names.to_vec());
+        for n in &mut self.nodes {
+            if let Node::Input { name, .. } = n {
+                let s = &old[*name as usize];
+                *name = self.input_names.iter().position(|x| x == s).expect("input name kept") as u32;
+            }
+        }
+    }
     /// The operation count.
     pub fn op_count(&self) -> OpCount {
         OpCount::of(&self.nodes)

@@ -51,6 +51,7 @@
 mod count;
 mod eval;
 mod expr;
+mod factor;
 mod function;
 mod graph;
 mod node;
@@ -59,6 +60,7 @@ mod tracer;
 pub use count::OpCount;
 pub use eval::MissingInput;
 pub use expr::Expr;
+pub use factor::factor;
 pub use function::Function;
 pub use graph::{Graph, Rewrites};
 pub use node::{Node, NodeId};
