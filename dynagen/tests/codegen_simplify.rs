@@ -131,6 +131,17 @@ fn value_changing_rewrites_follow_the_options() {
         let (ax, bx) = (g.mul(a, x), g.mul(b, x));
         let s = g.add(ax, bx);
         let ab = g.mul(a, bx);
+        let xa = g.add(x, a);
+        let xab = g.add(xa, b);
+        let xa_b = g.sub(xa, b);
+        if combined {
+            let c = g.constant(0.1 + 0.2);
+            assert_eq!(g.node(xab), Node::Add(x, c), "(x + 0.1) + 0.2 = x + 0.30000000000000004");
+            let c = g.constant(0.2 - 0.1);
+            assert_eq!(g.node(xa_b), Node::Sub(x, c), "(x + 0.1) − 0.2 = x − 0.1");
+        } else {
+            assert_eq!(g.node(xab), Node::Add(b.min(xa), b.max(xa)));
+        }
         if combined {
             let c = g.constant(0.1 + 0.2);
             assert_eq!(g.node(s), Node::Mul(c, x), "0.1x + 0.2x = 0.30000000000000004x");

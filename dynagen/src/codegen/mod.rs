@@ -349,11 +349,12 @@ fn header(
     let r = options.rewrites;
     let _ = writeln!(
         h,
-        "// Options: scalar {scalar}; forward dynamics by the {fd}; rounding snap {} ({} constants); like terms {}, constant products {}.",
+        "// Options: scalar {scalar}; forward dynamics by the {fd}; rounding snap {} ({} constants); like terms {}, constant products {}, constant sums {}.",
         if options.snap_rounding { "on" } else { "off" },
         snapped.len(),
         if r.like_terms { "on" } else { "off" },
         if r.constant_products { "on" } else { "off" },
+        if r.constant_sums { "on" } else { "off" },
     );
     let left_out: Vec<&str> = FunctionKind::ALL
         .iter()

@@ -14,19 +14,22 @@ pub struct Rewrites {
     /// `a·(b·x) → (a·b)·x` for constants `a`, `b`: one multiplication
     /// fewer, the same possible last-bit difference.
     pub constant_products: bool,
+    /// `(x + a) + b → x + (a + b)` (and with subtractions) for constants
+    /// `a`, `b`: one addition fewer, the same possible last-bit difference.
+    pub constant_sums: bool,
 }
 
 impl Default for Rewrites {
     /// Both rewrites on.
     fn default() -> Self {
-        Rewrites { like_terms: true, constant_products: true }
+        Rewrites { like_terms: true, constant_products: true, constant_sums: true }
     }
 }
 
 impl Rewrites {
     /// Only the rewrites that never change a value.
     pub fn exact() -> Self {
-        Rewrites { like_terms: false, constant_products: false }
+        Rewrites { like_terms: false, constant_products: false, constant_sums: false }
     }
 }
 
@@ -107,6 +110,20 @@ impl Graph {
         self.scaled(id).unwrap_or((1.0, id))
     }
 
+    /// `(c, x)` when `id` is `x + c` or `x − c` (then `c` is negated) with
+    /// `c` a constant.
+    fn offset(&self, id: NodeId) -> Option<(f64, NodeId)> {
+        match self.node(id) {
+            Node::Add(a, b) => match (self.constant_value(a), self.constant_value(b)) {
+                (Some(c), None) => Some((c, b)),
+                (None, Some(c)) => Some((c, a)),
+                _ => None,
+            },
+            Node::Sub(a, b) => self.constant_value(b).map(|c| (-c, a)),
+            _ => None,
+        }
+    }
+
     /// A constant. A negative zero becomes zero: the generated code does not
     /// promise signed zeros.
     pub fn constant(&mut self, x: f64) -> NodeId {
@@ -141,6 +158,18 @@ impl Graph {
                 return self.sub(a, c);
             }
             _ => {}
+        }
+        if self.rewrites.constant_sums {
+            let (ca, cb) = (self.constant_value(a), self.constant_value(b));
+            let pair = match (ca, cb) {
+                (Some(c), None) => self.offset(b).map(|(d, x)| (c + d, x)),
+                (None, Some(c)) => self.offset(a).map(|(d, x)| (c + d, x)),
+                _ => None,
+            };
+            if let Some((c, x)) = pair {
+                let c = self.constant(c);
+                return self.add(x, c);
+            }
         }
         if let Some(y) = self.negated(b) {
             return self.sub(a, y);
@@ -191,6 +220,12 @@ impl Graph {
         }
         if a == b {
             return self.constant(0.0);
+        }
+        if self.rewrites.constant_sums {
+            if let (Some(c), Some((d, x))) = (self.constant_value(b), self.offset(a)) {
+                let c = self.constant(d - c);
+                return self.add(x, c);
+            }
         }
         if let Some(y) = self.negated(b) {
             return self.add(a, y);

@@ -35,7 +35,8 @@
 //!
 //! Rewrites that may change the last bit of a value, on by default and off
 //! with [`Rewrites::exact`]: like terms with constant coefficients
-//! (`a·x + b·x → (a+b)·x`) and products of constants (`a·(b·x) → (ab)·x`).
+//! (`a·x + b·x → (a+b)·x`), products of constants (`a·(b·x) → (ab)·x`) and
+//! sums of constants (`(x + a) + b → x + (a + b)`).
 //! General like terms with symbolic coefficients are not combined: whether
 //! `a·x + b·x → (a+b)·x` saves anything depends on whether `a·x` is used
 //! elsewhere, which is not known while the graph is being built.
