@@ -73,6 +73,34 @@ fn interpreter_matches_generic_solver_on_bundled_robots() {
     }
 }
 
+/// A 12-joint chain with skewed placements, full inertias and a prismatic
+/// joint: nothing folds by symmetry.
+fn skewed_chain() -> Model {
+    use dynagen::model::{Inertial, JointDescription, RobotBuilder};
+    let mut b = RobotBuilder::new("skewed").link("l0", None);
+    for i in 1..=12 {
+        let k = i as f64;
+        b = b.link(
+            &format!("l{i}"),
+            Some(Inertial::new(1.0 + 0.1 * k, [0.05, 0.02, 0.2], [0.03, 0.04, 0.02, 0.001, -0.002, 0.003])),
+        );
+        let (p, c) = (format!("l{}", i - 1), format!("l{i}"));
+        let j = match i % 4 {
+            0 => JointDescription::prismatic(&format!("j{i}"), &p, &c, [0.0, 0.6, 0.8]),
+            1 => JointDescription::revolute(&format!("j{i}"), &p, &c, [0.0, 0.0, 1.0]),
+            2 => JointDescription::continuous(&format!("j{i}"), &p, &c, [1.0, 2.0, 2.0]),
+            _ => JointDescription::revolute(&format!("j{i}"), &p, &c, [1.0, 0.0, 0.0]),
+        };
+        b = b.joint(j.origin([0.1, 0.02 * k, 0.3], [0.1 * k, 0.2, -0.3]));
+    }
+    b.build().unwrap()
+}
+
+#[test]
+fn interpreter_matches_generic_solver_on_a_skewed_chain() {
+    check_model(&skewed_chain(), &CodegenOptions::default(), 20, 1e-12);
+}
+
 #[test]
 fn interpreter_matches_without_snap_or_rewrites() {
     let model = Model::from_urdf_file(robot_path("ur5")).unwrap();
