@@ -1,8 +1,6 @@
 //! Float literals that read back as exactly the same number.
 
 use super::ScalarType;
-use proc_macro2::{Literal, TokenStream};
-use quote::quote;
 
 /// The text of a float literal for `x` in `scalar`: Rust's shortest
 /// representation that reads back as the same value (`{:?}`), which always
@@ -20,15 +18,4 @@ pub fn float_literal_text(x: f64, scalar: ScalarType) -> Option<String> {
         ScalarType::F32 => (x as f32).is_finite(),
     };
     finite.then_some(text)
-}
-
-/// The literal as tokens (a `-` and an unsuffixed literal when negative).
-pub(crate) fn float_literal(x: f64, scalar: ScalarType) -> Option<TokenStream> {
-    let text = float_literal_text(x, scalar)?;
-    let (neg, digits) = match text.strip_prefix('-') {
-        Some(d) => (true, d),
-        None => (false, text.as_str()),
-    };
-    let lit: Literal = digits.parse().ok()?;
-    Some(if neg { quote!(-#lit) } else { quote!(#lit) })
 }

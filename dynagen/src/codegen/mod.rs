@@ -66,7 +66,6 @@ pub use trace::{trace, FunctionKind};
 
 use crate::model::Model;
 use crate::symbolic::{Function, OpCount, Rewrites};
-use proc_macro2::TokenStream;
 use quote::quote;
 use std::fmt::Write;
 
@@ -285,15 +284,17 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
         (FunctionKind::ForwardDynamicsLdlt, f.forward_dynamics),
     ];
     let mut functions = Vec::new();
-    let mut items: Vec<TokenStream> = Vec::new();
+    let mut items: Vec<syn::Item> = Vec::new();
     let names = model.joint_names();
     let n_lit = proc_macro2::Literal::usize_unsuffixed(n);
-    items.push(quote! {
+    let consts = quote! {
         #[doc = " The number of degrees of freedom (joints)."]
         pub const DOF: usize = #n_lit;
         #[doc = " The joint names, in the order of every index of the functions below."]
         pub const JOINT_NAMES: [&str; DOF] = [#(#names),*];
-    });
+    };
+    let consts: syn::File = syn::parse2(consts).map_err(|e| CodegenError::Internal(e.to_string()))?;
+    items.extend(consts.items);
     for (kind, on) in wanted {
         if !on {
             continue;
@@ -310,8 +311,7 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
         }
         functions.push(GeneratedFunction { kind, emitted, function, op_count });
     }
-    let tokens = quote!(#(#items)*);
-    let file: syn::File = syn::parse2(tokens).map_err(|e| CodegenError::Internal(e.to_string()))?;
+    let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
     let body = prettyplease::unparse(&file);
     let model_hash = model_hash(model);
     let header = header(model, options, &functions, &snapped, model_hash);
