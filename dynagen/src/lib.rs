@@ -13,12 +13,14 @@
 //! the wrench the robot applies to its environment, in the tip frame.
 
 pub mod algorithms;
+pub mod codegen;
 pub mod model;
 mod robot;
 mod robot_simulate;
 mod scalar;
 pub mod scene;
 pub mod spatial;
+pub mod symbolic;
 
 pub use algorithms::integrators::Integrator;
 pub use model::{Model, ModelError, ModelWarning, RobotBuilder};
