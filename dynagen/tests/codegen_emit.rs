@@ -195,3 +195,29 @@ fn constants_within_rounding_of_zero_or_one() {
     // Masses are never touched.
     assert_eq!(m.bodies[0].inertia.mass, 2.0);
 }
+
+#[test]
+fn the_mass_matrix_is_computed_once_per_pair() {
+    let module = generate(&ur5(), &CodegenOptions::default()).unwrap();
+    let f = module.function(FunctionKind::MassMatrix).unwrap();
+    let n = 6;
+    let out = f.outputs();
+    for i in 0..n {
+        for j in 0..i {
+            assert_eq!(out[i * n + j], out[j * n + i], "M[{i}][{j}] and M[{j}][{i}] are one node");
+        }
+    }
+}
+
+#[test]
+fn a_constant_without_a_literal_is_an_error_naming_the_function() {
+    let mut model = ur5();
+    model.gravity = dynagen::spatial::Vec3([f64::INFINITY, 0.0, 0.0]);
+    let Err(err) = generate(&model, &CodegenOptions::default()) else { panic!("an infinite gravity was accepted") };
+    let msg = err.to_string();
+    assert!(msg.contains("function inverse_dynamics") && msg.contains("inf"), "{msg}");
+    // and a trace already running on the thread is reported, not a panic
+    let _t = dynagen::symbolic::Tracer::start().unwrap();
+    let Err(err) = generate(&ur5(), &CodegenOptions::default()) else { panic!("a nested trace was accepted") };
+    assert!(err.to_string().contains("already active"), "{err}");
+}

@@ -2,7 +2,8 @@
 //!
 //! [`generate`] traces each function of the generated-code contract
 //! (DESIGN.md) by running the generic algorithm on the symbolic scalar
-//! ([`crate::symbolic`]), keeps what the outputs reach, and prints one `let`
+//! ([`crate::symbolic`]), keeps what the outputs reach, factors it
+//! ([`crate::symbolic::factor`]), and prints one `let`
 //! per kept operation with `quote`, formatted by `prettyplease`. The result
 //! ([`GeneratedModule::source`]) is a file of items to `include!` in a
 //! module: `DOF`, `JOINT_NAMES`, `inverse_dynamics`, `mass_matrix`,

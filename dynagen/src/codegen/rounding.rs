@@ -27,6 +27,10 @@ struct Snapper {
 
 impl Snapper {
     fn value(&mut self, x: &mut f64, scale: f64, unit: bool, place: impl Fn() -> String) {
+        if !x.is_finite() || !scale.is_finite() {
+            // Not a rounding matter; the generator reports it.
+            return;
+        }
         let tol = ROUNDING_TOLERANCE * scale;
         let to = if *x != 0.0 && x.abs() <= tol {
             0.0

@@ -19,7 +19,7 @@ use super::function::Function;
 use super::graph::{Graph, Rewrites};
 use super::node::{Node, NodeId};
 
-/// One factoring pass; see the [module documentation](self).
+/// One factoring pass.
 fn pass(f: &Function, rewrites: Rewrites) -> Function {
     let nodes = f.nodes();
     let mut uses = vec![0u32; nodes.len()];
@@ -104,8 +104,8 @@ fn pass(f: &Function, rewrites: Rewrites) -> Function {
     out
 }
 
-/// Factors `f` until its operation count stops falling; see the [module
-/// documentation](self). With `rewrites.like_terms` off, `f` is returned
+/// Factors `f` until its operation count stops falling; see the [symbolic
+/// module](super#after-the-trace). With `rewrites.like_terms` off, `f` is returned
 /// unchanged.
 pub fn factor(f: &Function, rewrites: Rewrites) -> Function {
     if !rewrites.like_terms {

@@ -45,6 +45,14 @@
 //! finite `x`: the generated code promises the generic solver's values for
 //! finite inputs, not its NaN and infinity propagation.
 //!
+//! # After the trace
+//!
+//! [`Function::new`] keeps only what the outputs reach (dead code
+//! elimination) and renumbers the nodes densely; [`factor`] then uses the
+//! now-known use counts to share common factors (`k·u ± k·v → k·(u ± v)`
+//! when both products have no other use) and to move negations out; the
+//! [`OpCount`] of a function counts each kept operation once.
+//!
 //! Constants that are zero or ±1 up to the rounding of the robot file's
 //! numbers (a `cos(π/2)` of `6e-17`) are decided before tracing, on the
 //! model: see [`crate::codegen`].
