@@ -58,11 +58,13 @@ mod emit;
 mod hash;
 mod literal;
 mod rounding;
+mod sin_cos;
 mod trace;
 
 pub use hash::{canonical_text, fnv1a64, model_hash};
 pub use literal::float_literal_text;
 pub use rounding::{snap_rounding, SnappedConstant, ROUNDING_TOLERANCE};
+pub use sin_cos::{sin_cos_batch, sin_cos_kernel};
 pub use trace::{trace, FunctionKind};
 
 use crate::model::Model;
