@@ -7,7 +7,7 @@
 
 use super::literal::float_literal_text;
 use super::trace::FunctionKind;
-use super::{CodegenError, ScalarType};
+use super::{CodegenError, ScalarType, Trig};
 use crate::symbolic::{Function, Node};
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
@@ -66,6 +66,18 @@ fn method(receiver: &Expr, name: &str) -> Expr {
         args: Punctuated::new(),
     })
 }
+fn call(segments: &[&str], arg: &Expr) -> Expr {
+    let path = syn::Path {
+        leading_colon: None,
+        segments: segments.iter().map(|s| syn::PathSegment::from(ident(s))).collect(),
+    };
+    Expr::Call(syn::ExprCall {
+        attrs: vec![],
+        func: Box::new(Expr::Path(syn::ExprPath { attrs: vec![], qself: None, path })),
+        paren_token: Default::default(),
+        args: std::iter::once(arg.clone()).collect(),
+    })
+}
 fn pat(id: Ident) -> Pat {
     Pat::Ident(syn::PatIdent { attrs: vec![], by_ref: None, mutability: None, ident: id, subpat: None })
 }
@@ -83,16 +95,42 @@ fn array(elems: impl IntoIterator<Item = Expr>) -> Expr {
     Expr::Array(syn::ExprArray { attrs: vec![], bracket_token: Default::default(), elems: elems.into_iter().collect() })
 }
 
+/// The name and parameters of an emitted function.
+pub(crate) struct Signature<'a> {
+    /// Which function.
+    pub kind: FunctionKind,
+    /// Its Rust name.
+    pub name: String,
+    /// Its parameters, each `&[T; DOF]`, in order.
+    pub params: Vec<&'a str>,
+}
+
+/// `[T; DOF]`, or `[[T; DOF]; DOF]` for the mass matrix.
+pub(crate) fn return_type(kind: FunctionKind, scalar: ScalarType) -> TokenStream {
+    let ty = scalar_type(scalar);
+    if kind.is_matrix() {
+        quote!([[#ty; DOF]; DOF])
+    } else {
+        quote!([#ty; DOF])
+    }
+}
+
 /// `pub fn name(inputs…) -> output { let …; [outputs] }`: one `let` per kept
 /// operation, named `t{k}` in order (`s{k}`/`c{k}` for a sine and cosine),
 /// constants written in place as literals, inputs read as `q[i]`.
 pub(crate) fn emit_function(
     f: &Function,
-    kind: FunctionKind,
+    signature: &Signature<'_>,
     scalar: ScalarType,
+    trig: Trig,
     n: usize,
     doc: &str,
 ) -> Result<syn::Item, CodegenError> {
+    let kind = signature.kind;
+    let libm_sqrt = match scalar {
+        ScalarType::F64 => "sqrt",
+        ScalarType::F32 => "sqrtf",
+    };
     let nodes = f.nodes();
     // How each node is referred to by its users (for a SinCos node: its
     // sine; the cosine's name is kept in `cos_ref`).
@@ -147,7 +185,13 @@ pub(crate) fn emit_function(
                     Node::Mul(a, b) => binary(r(a), BinOp::Mul(Default::default()), r(b)),
                     Node::Div(a, b) => binary(r(a), BinOp::Div(Default::default()), r(b)),
                     Node::Neg(a) => unary(UnOp::Neg(Default::default()), r(a).clone()),
-                    Node::Sqrt(a) => method(r(a), "sqrt"),
+                    Node::Sqrt(a) => match trig {
+                        Trig::Std => method(r(a), "sqrt"),
+                        Trig::Libm => call(&["libm", libm_sqrt], r(a)),
+                        Trig::Batched | Trig::Inputs => {
+                            return Err(CodegenError::NeedsStd { function: f.name().to_string(), what: "sqrt" })
+                        }
+                    },
                     _ => unreachable!("handled above"),
                 };
                 stmts.push(let_stmt(pat(t.clone()), e));
@@ -163,16 +207,16 @@ pub(crate) fn emit_function(
         array(out)
     };
     let ty = scalar_type(scalar);
-    let params = kind.inputs().iter().map(|name| {
+    let params = signature.params.iter().map(|name| {
         let name = ident(name);
         quote!(#name: &[#ty; DOF])
     });
-    let unused = kind.inputs().iter().filter(|name| !f.uses_input(name)).map(|name| {
+    let unused = signature.params.iter().filter(|name| !f.uses_input(name)).map(|name| {
         let name = ident(name);
         quote!(let _ = #name;)
     });
-    let ret = if kind.is_matrix() { quote!([[#ty; DOF]; DOF]) } else { quote!([#ty; DOF]) };
-    let name = ident(kind.fn_name());
+    let ret = return_type(kind, scalar);
+    let name = ident(&signature.name);
     let doc = doc.lines();
     let shell = quote! {
         #(#[doc = #doc])*

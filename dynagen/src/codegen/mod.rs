@@ -65,7 +65,7 @@ pub use hash::{canonical_text, fnv1a64, model_hash};
 pub use literal::float_literal_text;
 pub use rounding::{snap_rounding, SnappedConstant, ROUNDING_TOLERANCE};
 pub use sin_cos::{sin_cos_batch, sin_cos_kernel};
-pub use trace::{trace, FunctionKind};
+pub use trace::{sin_cos_from_q, trace, trace_sin_cos_inputs, FunctionKind, SinCosTrace};
 
 use crate::model::Model;
 use crate::symbolic::{Function, OpCount, Rewrites};
@@ -93,6 +93,41 @@ pub enum ForwardDynamicsMethod {
     Aba,
     /// M by CRBA, h by RNEA, then a sparse LᵀDL solve.
     Ldlt,
+}
+
+/// Where the generated code gets the sines and cosines of the joint
+/// angles from.
+///
+/// Every function has one body, `NAME_sc(s, c, [q,] …)`, which reads the
+/// sine `s[i]` and cosine `c[i]` of each joint's angle θᵢ = `q[i]` (times
+/// `|axis|` when a revolute joint's axis is not a unit vector; the entries
+/// of prismatic joints are not read) and takes `q` only when the model has
+/// a prismatic joint. Except with [`Trig::Inputs`], the module also has the
+/// contract's `NAME(q, …)`, which computes the sines and cosines and calls
+/// `NAME_sc`. Every module has `sin_cos_all(q)`, the batched sine and
+/// cosine of [`sin_cos_kernel`] (no std, no dependency).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Trig {
+    /// `NAME(q, …)` calls `f64::sin_cos` (or `f32::sin_cos`) per joint:
+    /// needs std.
+    #[default]
+    Std,
+    /// `NAME(q, …)` calls the module's `sin_cos_all`: `#![no_std]`, no
+    /// dependency.
+    Batched,
+    /// `NAME(q, …)` calls `libm::sincos` (`libm::sincosf` for `f32`):
+    /// `#![no_std]`, needs the `libm` crate.
+    Libm,
+    /// Only the `NAME_sc` functions (and `sin_cos_all`): `#![no_std]`, no
+    /// dependency; the caller brings the sines and cosines.
+    Inputs,
+}
+
+impl Trig {
+    /// Whether the module needs std (only [`Trig::Std`] does).
+    pub fn needs_std(self) -> bool {
+        self == Trig::Std
+    }
 }
 
 /// Which functions to generate.
@@ -141,6 +176,8 @@ pub struct CodegenOptions {
     pub rewrites: Rewrites,
     /// Where the model came from (a file name), for the header.
     pub source: Option<String>,
+    /// Where the sines and cosines come from ([`Trig::Std`]).
+    pub trig: Trig,
 }
 
 impl Default for CodegenOptions {
@@ -152,6 +189,7 @@ impl Default for CodegenOptions {
             snap_rounding: true,
             rewrites: Rewrites::default(),
             source: None,
+            trig: Trig::default(),
         }
     }
 }
@@ -182,6 +220,11 @@ impl CodegenOptions {
         self.rewrites = rewrites;
         self
     }
+    /// Sets where the sines and cosines come from.
+    pub fn trig(mut self, trig: Trig) -> Self {
+        self.trig = trig;
+        self
+    }
     /// Names the model's source for the header.
     pub fn source(mut self, source: impl Into<String>) -> Self {
         self.source = Some(source.into());
@@ -204,6 +247,17 @@ pub enum CodegenError {
     /// A symbolic trace was already running on this thread.
     #[error(transparent)]
     TraceActive(#[from] crate::symbolic::TraceActive),
+    /// A function needs an operation that the chosen [`Trig`] has no
+    /// no_std source for.
+    #[error(
+        "function {function} needs {what}, which no_std code without libm does not have; use Trig::Std or Trig::Libm"
+    )]
+    NeedsStd {
+        /// The function.
+        function: String,
+        /// The operation.
+        what: &'static str,
+    },
     /// The generated tokens did not parse as a Rust file (a bug of dynagen).
     #[error("internal error: generated code does not parse: {0}")]
     Internal(String),
@@ -217,9 +271,12 @@ pub struct GeneratedFunction {
     /// Whether it is in the source (the LᵀDL or ABA forward dynamics that
     /// was not chosen is traced and counted only).
     pub emitted: bool,
-    /// The traced, dead-code-eliminated function (evaluate it with
+    /// The traced, dead-code-eliminated function of `q` (evaluate it with
     /// [`Function::eval`]).
     pub function: Function,
+    /// The same function with the sines and cosines as inputs: the body of
+    /// `NAME_sc`.
+    pub sin_cos_inputs: SinCosTrace,
     /// Its operation count.
     pub op_count: OpCount,
 }
@@ -298,11 +355,14 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
     };
     let consts: syn::File = syn::parse2(consts).map_err(|e| CodegenError::Internal(e.to_string()))?;
     items.extend(consts.items);
+    items.push(parse_item(sin_cos::sin_cos_all_item(options.scalar))?);
+    let has_prismatic = m.bodies.iter().any(|b| b.joint.kind == crate::model::JointKind::Prismatic);
     for (kind, on) in wanted {
         if !on {
             continue;
         }
-        let function = trace(m, kind, options.rewrites)?;
+        let sc = trace_sin_cos_inputs(m, kind, options.rewrites).map_err(CodegenError::Internal)?;
+        let function = sin_cos_from_q(&sc, options.rewrites);
         let op_count = function.op_count();
         let emitted = match kind {
             FunctionKind::ForwardDynamicsAba => options.forward_dynamics == ForwardDynamicsMethod::Aba,
@@ -310,15 +370,132 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
             _ => true,
         };
         if emitted {
-            items.push(emit::emit_function(&function, kind, options.scalar, n, &doc_of(kind, model, &op_count))?);
+            let mut params = vec!["s", "c"];
+            if has_prismatic {
+                params.push("q");
+            }
+            params.extend(&kind.inputs()[1..]);
+            let sc_name = format!("{}_sc", kind.fn_name());
+            let signature = emit::Signature { kind, name: sc_name.clone(), params };
+            let doc = format!("{}\n\n{}", doc_of(kind, model, &sc.function.op_count()), sc_doc(has_prismatic));
+            items.push(emit::emit_function(&sc.function, &signature, options.scalar, options.trig, n, &doc)?);
+            if options.trig != Trig::Inputs {
+                let doc = format!(
+                    "{}\n\n The sines and cosines of the joint angles by {}, then [`{sc_name}`].",
+                    doc_of(kind, model, &op_count),
+                    trig_source(options.trig, options.scalar)
+                );
+                items.push(parse_item(wrapper(kind, &sc, has_prismatic, options, &doc))?);
+            }
         }
-        functions.push(GeneratedFunction { kind, emitted, function, op_count });
+        functions.push(GeneratedFunction { kind, emitted, function, sin_cos_inputs: sc, op_count });
     }
     let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
     let body = prettyplease::unparse(&file);
     let model_hash = model_hash(model);
     let header = header(model, options, &functions, &snapped, model_hash);
-    Ok(GeneratedModule { source: format!("{header}\n{body}"), functions, snapped, model_hash })
+    let kernel = sin_cos::KERNEL_SOURCE;
+    Ok(GeneratedModule { source: format!("{header}\n{body}\n{kernel}"), functions, snapped, model_hash })
+}
+
+fn parse_item(tokens: proc_macro2::TokenStream) -> Result<syn::Item, CodegenError> {
+    syn::parse2(tokens).map_err(|e| CodegenError::Internal(e.to_string()))
+}
+
+fn sc_doc(has_prismatic: bool) -> String {
+    let q = if has_prismatic { " `q` is read for the prismatic joints only." } else { "" };
+    format!(
+        " Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a \
+         non-unit axis, see the caller); the entries of prismatic joints are not read.{q}"
+    )
+}
+
+fn trig_source(trig: Trig, scalar: ScalarType) -> &'static str {
+    match (trig, scalar) {
+        (Trig::Std, ScalarType::F64) => "`f64::sin_cos`",
+        (Trig::Std, ScalarType::F32) => "`f32::sin_cos`",
+        (Trig::Batched, _) => "[`sin_cos_all`]",
+        (Trig::Libm, ScalarType::F64) => "`libm::sincos`",
+        (Trig::Libm, ScalarType::F32) => "`libm::sincosf`",
+        (Trig::Inputs, _) => "the caller",
+    }
+}
+
+/// `NAME(q, …)`: the sines and cosines, then `NAME_sc`.
+fn wrapper(
+    kind: FunctionKind,
+    sc: &SinCosTrace,
+    has_prismatic: bool,
+    options: &CodegenOptions,
+    doc: &str,
+) -> proc_macro2::TokenStream {
+    let ty = emit::scalar_type(options.scalar);
+    let ret = emit::return_type(kind, options.scalar);
+    let name = quote::format_ident!("{}", kind.fn_name());
+    let sc_name = quote::format_ident!("{}_sc", kind.fn_name());
+    let params: Vec<proc_macro2::Ident> = kind.inputs().iter().map(|p| quote::format_ident!("{p}")).collect();
+    let rest = &params[1..];
+    let q_arg = if has_prismatic { quote!(q,) } else { quote!() };
+    let angle = |i: usize, k: f64| {
+        let i = proc_macro2::Literal::usize_unsuffixed(i);
+        if k == 1.0 {
+            quote!(q[#i])
+        } else {
+            let k = literal::float_literal_text(k, options.scalar).unwrap_or_else(|| "1.0".into());
+            let k: proc_macro2::TokenStream = k.parse().expect("a float literal");
+            quote!(q[#i] * #k)
+        }
+    };
+    let body = if options.trig == Trig::Batched {
+        let all_unit = sc.angle_scale.iter().all(|k| k.is_none_or(|k| k == 1.0));
+        let theta = if all_unit {
+            quote!(q)
+        } else {
+            let entries = sc.angle_scale.iter().enumerate().map(|(i, k)| angle(i, k.unwrap_or(1.0)));
+            quote!(&[#(#entries),*])
+        };
+        quote! {
+            let (s, c) = sin_cos_all(#theta);
+            #sc_name(&s, &c, #q_arg #(#rest),*)
+        }
+    } else {
+        let mut stmts = Vec::new();
+        let mut s_entries = Vec::new();
+        let mut c_entries = Vec::new();
+        for (i, k) in sc.angle_scale.iter().enumerate() {
+            match k {
+                Some(k) => {
+                    let (si, ci) = (quote::format_ident!("s{i}"), quote::format_ident!("c{i}"));
+                    let a = angle(i, *k);
+                    let call = match (options.trig, options.scalar) {
+                        (Trig::Libm, ScalarType::F64) => quote!(libm::sincos(#a)),
+                        (Trig::Libm, ScalarType::F32) => quote!(libm::sincosf(#a)),
+                        _ if *k == 1.0 => quote!(#a.sin_cos()),
+                        _ => quote!((#a).sin_cos()),
+                    };
+                    stmts.push(quote!(let (#si, #ci) = #call;));
+                    s_entries.push(quote!(#si));
+                    c_entries.push(quote!(#ci));
+                }
+                None => {
+                    s_entries.push(quote!(0.0));
+                    c_entries.push(quote!(1.0));
+                }
+            }
+        }
+        quote! {
+            #(#stmts)*
+            #sc_name(&[#(#s_entries),*], &[#(#c_entries),*], #q_arg #(#rest),*)
+        }
+    };
+    let doc = doc.lines();
+    quote! {
+        #(#[doc = #doc])*
+        #[inline]
+        pub fn #name(#(#params: &[#ty; DOF]),*) -> #ret {
+            #body
+        }
+    }
 }
 
 fn header(
@@ -358,6 +535,20 @@ fn header(
         if r.like_terms { "on" } else { "off" },
         if r.constant_products { "on" } else { "off" },
         if r.constant_sums { "on" } else { "off" },
+    );
+    let trig = match options.trig {
+        Trig::Std => "NAME(q, ...) computes the sines and cosines by std's sin_cos (needs std)",
+        Trig::Batched => "NAME(q, ...) computes the sines and cosines by sin_cos_all (no_std, no dependency)",
+        Trig::Libm => "NAME(q, ...) computes the sines and cosines by libm::sincos (no_std; needs the `libm` crate)",
+        Trig::Inputs => "only NAME_sc(s, c, ...): the caller passes the sines and cosines (no_std, no dependency)",
+    };
+    let _ = writeln!(h, "// Trigonometry: {trig}.");
+    let _ = writeln!(
+        h,
+        "// Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]\n\
+         //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.\n\
+         // sin_cos_all(q): the batched sine and cosine, within 1 ulp for |q| <= 1.6e6 rad, no std{}.",
+        if options.scalar == ScalarType::F32 { " (computed in f64, rounded to f32)" } else { "" }
     );
     let left_out: Vec<&str> = FunctionKind::ALL
         .iter()
