@@ -1,0 +1,23 @@
+//! Generates the benchmarked modules into OUT_DIR: the UR5 and the Panda,
+//! each with std's sin_cos and with the batched `sin_cos_all` (both have the
+//! `NAME_sc` bodies, which take the sines and cosines as inputs).
+
+use dynagen::codegen::{generate, CodegenOptions, Trig};
+use dynagen::Model;
+use std::path::Path;
+
+fn main() {
+    let robots = Path::new(env!("CARGO_MANIFEST_DIR")).join("../dynagen/robots");
+    println!("cargo:rerun-if-changed=build.rs");
+    let out = std::env::var("OUT_DIR").expect("OUT_DIR");
+    for robot in ["ur5", "panda"] {
+        let urdf = robots.join(format!("{robot}.urdf"));
+        println!("cargo:rerun-if-changed={}", urdf.display());
+        let model = Model::from_urdf_file(&urdf).unwrap_or_else(|e| panic!("{}: {e}", urdf.display()));
+        for (suffix, trig) in [("std", Trig::Std), ("batched", Trig::Batched)] {
+            let opts = CodegenOptions::default().trig(trig).source(format!("dynagen/robots/{robot}.urdf"));
+            let module = generate(&model, &opts).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
+            std::fs::write(Path::new(&out).join(format!("{robot}_{suffix}.rs")), module.source).expect("writing");
+        }
+    }
+}

@@ -1,0 +1,23 @@
+//! The generated modules benchmarked by `benches/codegen.rs` (written by
+//! build.rs from the bundled URDFs), and the path of the bundled robots.
+//! See README.md for the results and the command.
+
+macro_rules! generated {
+    ($name:ident, $file:literal, $what:literal) => {
+        #[doc = $what]
+        #[allow(missing_docs)]
+        pub mod $name {
+            include!(concat!(env!("OUT_DIR"), "/", $file));
+        }
+    };
+}
+
+generated!(ur5_std, "ur5_std.rs", "The UR5, `NAME(q, …)` by std's `sin_cos`.");
+generated!(ur5_batched, "ur5_batched.rs", "The UR5, `NAME(q, …)` by `sin_cos_all`.");
+generated!(panda_std, "panda_std.rs", "The Panda, `NAME(q, …)` by std's `sin_cos`.");
+generated!(panda_batched, "panda_batched.rs", "The Panda, `NAME(q, …)` by `sin_cos_all`.");
+
+/// The URDF of a bundled robot.
+pub fn urdf(robot: &str) -> String {
+    format!("{}/../dynagen/robots/{robot}.urdf", env!("CARGO_MANIFEST_DIR"))
+}

@@ -1,0 +1,170 @@
+//! Generated dynamics compiled inside a `#![no_std]` crate: if a generated
+//! module used anything from std, this crate would not build. The modules
+//! are written by `build.rs` (dynagen as a build dependency) for the UR5
+//! and the Panda with each no_std kind of trigonometry:
+//!
+//! - [`ur5_libm`], [`ur5_libm_f32`]: `NAME(q, …)` calls `libm::sincos`;
+//! - [`ur5_inputs`], [`panda_inputs`]: only `NAME_sc(s, c, [q,] …)`, the
+//!   caller passes the sines and cosines (the Panda's prismatic fingers make
+//!   it take `q` as well);
+//! - [`ur5_batched`], [`ur5_batched_f32`]: `NAME(q, …)` calls the module's
+//!   own `sin_cos_all`.
+//!
+//! The tests (which may use std) check every module against the generic
+//! solver, `dynagen::Robot`.
+#![no_std]
+
+macro_rules! generated {
+    ($name:ident, $file:literal, $what:literal) => {
+        #[doc = $what]
+        #[allow(missing_docs)]
+        pub mod $name {
+            include!(concat!(env!("OUT_DIR"), "/", $file));
+        }
+    };
+}
+
+generated!(ur5_libm, "ur5_libm.rs", "The UR5, `f64`, sines and cosines by `libm`.");
+generated!(ur5_libm_f32, "ur5_libm_f32.rs", "The UR5, `f32`, sines and cosines by `libm`.");
+generated!(ur5_inputs, "ur5_inputs.rs", "The UR5, `f64`, sines and cosines as inputs.");
+generated!(ur5_batched, "ur5_batched.rs", "The UR5, `f64`, sines and cosines by the module's `sin_cos_all`.");
+generated!(ur5_batched_f32, "ur5_batched_f32.rs", "The UR5, `f32`, sines and cosines by the module's `sin_cos_all`.");
+generated!(panda_inputs, "panda_inputs.rs", "The Panda (prismatic fingers), `f64`, sines and cosines as inputs.");
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use dynagen::Robot;
+    use nalgebra::DVector;
+    use std::vec::Vec;
+
+    /// xorshift64*, uniform in [-1, 1).
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> f64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            let x = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d);
+            (x >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        }
+        fn array<const N: usize>(&mut self, scale: f64) -> [f64; N] {
+            core::array::from_fn(|_| scale * self.next())
+        }
+    }
+
+    fn robot(name: &str) -> Robot {
+        Robot::from_urdf_file(std::format!("{}/../../dynagen/robots/{name}.urdf", env!("CARGO_MANIFEST_DIR"))).unwrap()
+    }
+
+    /// |got − want| / max(|want|, 1) (Euclidean norms).
+    fn rel_err(got: &[f64], want: &[f64]) -> f64 {
+        let norm = want.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let diff = got.iter().zip(want).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
+        diff / norm.max(1.0)
+    }
+
+    /// What the generic solver gives at one state: τ, M (row-major), h, g, q̈.
+    fn reference(robot: &mut Robot, q: &[f64], qd: &[f64], qdd: &[f64], tau: &[f64]) -> [Vec<f64>; 5] {
+        let v = DVector::from_column_slice;
+        let m = robot.mass_matrix(&v(q)).unwrap();
+        [
+            robot.inverse_dynamics(&v(q), &v(qd), &v(qdd)).unwrap().as_slice().to_vec(),
+            m.transpose().as_slice().to_vec(),
+            robot.bias_forces(&v(q), &v(qd)).unwrap().as_slice().to_vec(),
+            robot.gravity_torques(&v(q)).unwrap().as_slice().to_vec(),
+            robot.forward_dynamics(&v(q), &v(qd), &v(tau)).unwrap().as_slice().to_vec(),
+        ]
+    }
+
+    fn flat<const N: usize>(m: [[f64; N]; N]) -> Vec<f64> {
+        m.iter().flatten().copied().collect()
+    }
+
+    #[test]
+    fn ur5_every_no_std_variant_matches_the_generic_solver() {
+        let mut robot = robot("ur5");
+        let mut rng = Rng(0x1234_5678_9abc_def1);
+        let mut worst = [0.0f64; 4];
+        for _ in 0..200 {
+            let (q, qd, qdd, tau): ([f64; 6], [f64; 6], [f64; 6], [f64; 6]) =
+                (rng.array(3.0), rng.array(2.0), rng.array(5.0), rng.array(30.0));
+            let want = reference(&mut robot, &q, &qd, &qdd, &tau);
+            let (s, c) = (q.map(f64::sin), q.map(f64::cos));
+            let variants: [[Vec<f64>; 5]; 3] = [
+                [
+                    ur5_libm::inverse_dynamics(&q, &qd, &qdd).to_vec(),
+                    flat(ur5_libm::mass_matrix(&q)),
+                    ur5_libm::bias_forces(&q, &qd).to_vec(),
+                    ur5_libm::gravity_torques(&q).to_vec(),
+                    ur5_libm::forward_dynamics(&q, &qd, &tau).to_vec(),
+                ],
+                [
+                    ur5_inputs::inverse_dynamics_sc(&s, &c, &qd, &qdd).to_vec(),
+                    flat(ur5_inputs::mass_matrix_sc(&s, &c)),
+                    ur5_inputs::bias_forces_sc(&s, &c, &qd).to_vec(),
+                    ur5_inputs::gravity_torques_sc(&s, &c).to_vec(),
+                    ur5_inputs::forward_dynamics_sc(&s, &c, &qd, &tau).to_vec(),
+                ],
+                [
+                    ur5_batched::inverse_dynamics(&q, &qd, &qdd).to_vec(),
+                    flat(ur5_batched::mass_matrix(&q)),
+                    ur5_batched::bias_forces(&q, &qd).to_vec(),
+                    ur5_batched::gravity_torques(&q).to_vec(),
+                    ur5_batched::forward_dynamics(&q, &qd, &tau).to_vec(),
+                ],
+            ];
+            for (k, got) in variants.iter().enumerate() {
+                for (g, w) in got.iter().zip(&want) {
+                    worst[k] = worst[k].max(rel_err(g, w));
+                }
+            }
+            // f32: the libm and batched f32 modules agree with f64 to f32 precision.
+            let qf = q.map(|x| x as f32);
+            let (qdf, qddf) = (qd.map(|x| x as f32), qdd.map(|x| x as f32));
+            for got in
+                [ur5_libm_f32::inverse_dynamics(&qf, &qdf, &qddf), ur5_batched_f32::inverse_dynamics(&qf, &qdf, &qddf)]
+            {
+                let got: Vec<f64> = got.iter().map(|&x| f64::from(x)).collect();
+                worst[3] = worst[3].max(rel_err(&got, &want[0]));
+            }
+        }
+        std::eprintln!(
+            "UR5 no_std variants, worst relative error: libm {:.1e}, inputs {:.1e}, batched {:.1e}, f32 {:.1e}",
+            worst[0],
+            worst[1],
+            worst[2],
+            worst[3]
+        );
+        assert!(worst[..3].iter().all(|&e| e < 1e-12), "{worst:?}");
+        assert!(worst[3] < 1e-4, "{worst:?}");
+    }
+
+    #[test]
+    fn panda_with_sines_and_cosines_as_inputs_matches_the_generic_solver() {
+        let mut robot = robot("panda");
+        assert_eq!(panda_inputs::DOF, robot.dof());
+        let mut rng = Rng(0x0bad_cafe_f00d_d00d);
+        for _ in 0..100 {
+            let (q, qd, qdd, tau): ([f64; 9], [f64; 9], [f64; 9], [f64; 9]) =
+                (rng.array(2.0), rng.array(2.0), rng.array(5.0), rng.array(20.0));
+            // The fingers (prismatic) move by centimetres.
+            let mut q = q;
+            q[7] = 0.02 * (q[7] + 1.0);
+            q[8] = 0.02 * (q[8] + 1.0);
+            let want = reference(&mut robot, &q, &qd, &qdd, &tau);
+            let (s, c) = panda_inputs::sin_cos_all(&q);
+            let got = [
+                panda_inputs::inverse_dynamics_sc(&s, &c, &q, &qd, &qdd).to_vec(),
+                flat(panda_inputs::mass_matrix_sc(&s, &c, &q)),
+                panda_inputs::bias_forces_sc(&s, &c, &q, &qd).to_vec(),
+                panda_inputs::gravity_torques_sc(&s, &c, &q).to_vec(),
+                panda_inputs::forward_dynamics_sc(&s, &c, &q, &qd, &tau).to_vec(),
+            ];
+            for (k, (g, w)) in got.iter().zip(&want).enumerate() {
+                assert!(rel_err(g, w) < 1e-11, "function {k}: {g:?} vs {w:?}");
+            }
+        }
+    }
+}
