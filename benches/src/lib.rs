@@ -21,3 +21,9 @@ generated!(panda_batched, "panda_batched.rs", "The Panda, `NAME(q, …)` by `sin
 pub fn urdf(robot: &str) -> String {
     format!("{}/../dynagen/robots/{robot}.urdf", env!("CARGO_MANIFEST_DIR"))
 }
+
+/// `sin_cos_all` of the Panda (9 angles), not inlined: for reading the assembly.
+#[inline(never)]
+pub fn sin_cos_9(q: &[f64; 9]) -> ([f64; 9], [f64; 9]) {
+    panda_batched::sin_cos_all(q)
+}

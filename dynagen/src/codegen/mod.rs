@@ -123,6 +123,18 @@ pub enum Trig {
     Inputs,
 }
 
+impl From<crate::scene::Target> for Trig {
+    /// A scene's target: `Std` → [`Trig::Std`], `NoStdLibm` → [`Trig::Libm`],
+    /// `NoStdSinCos` → [`Trig::Inputs`].
+    fn from(target: crate::scene::Target) -> Self {
+        match target {
+            crate::scene::Target::Std => Trig::Std,
+            crate::scene::Target::NoStdLibm => Trig::Libm,
+            crate::scene::Target::NoStdSinCos => Trig::Inputs,
+        }
+    }
+}
+
 impl Trig {
     /// Whether the module needs std (only [`Trig::Std`] does).
     pub fn needs_std(self) -> bool {

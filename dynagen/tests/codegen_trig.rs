@@ -1,0 +1,104 @@
+//! Where the generated code takes its sines and cosines from (`Trig`): the
+//! functions each kind emits, and that the `NAME_sc` body computes the same
+//! numbers as the function of `q` when given the sines and cosines.
+
+use dynagen::codegen::{generate, CodegenOptions, FunctionKind, ScalarType, Trig};
+use dynagen::model::{Inertial, JointDescription, RobotBuilder};
+use dynagen::Model;
+
+fn ur5() -> Model {
+    Model::from_urdf_file(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/ur5.urdf")).unwrap()
+}
+
+/// A chain with a non-unit revolute axis (turns by 2q) and a prismatic joint.
+fn skewed() -> Model {
+    RobotBuilder::new("skewed")
+        .link("base", None)
+        .link("a", Some(Inertial::point_mass(1.5, [0.1, 0.0, -0.4])))
+        .link("b", Some(Inertial::point_mass(0.7, [0.0, 0.2, -0.3])))
+        .link("c", Some(Inertial::point_mass(0.4, [0.0, 0.0, -0.2])))
+        .joint(JointDescription::revolute("j0", "base", "a", [0.0, 2.0, 0.0]))
+        .joint(JointDescription::prismatic("j1", "a", "b", [0.0, 0.0, 1.0]))
+        .joint(JointDescription::revolute("j2", "b", "c", [1.0, 0.0, 0.0]))
+        .build()
+        .unwrap()
+}
+
+fn source(model: &Model, trig: Trig) -> String {
+    generate(model, &CodegenOptions::default().trig(trig)).unwrap().source
+}
+
+#[test]
+fn each_trig_kind_emits_its_functions() {
+    let model = ur5();
+    let std = source(&model, Trig::Std);
+    assert!(std.contains("let (s1, c1) = q[1].sin_cos();"));
+    assert!(std.contains("// Trigonometry: NAME(q, ...) computes the sines and cosines by std's sin_cos (needs std)."));
+    let libm = source(&model, Trig::Libm);
+    assert!(libm.contains("libm::sincos(q[1])") && !libm.contains(".sin_cos()"));
+    assert!(libm.contains("needs the `libm` crate"));
+    let batched = source(&model, Trig::Batched);
+    assert!(batched.contains("let (s, c) = sin_cos_all(q);") && !batched.contains(".sin_cos()"));
+    let inputs = source(&model, Trig::Inputs);
+    assert!(!inputs.contains("sin_cos()") && !inputs.contains("libm"));
+    for name in ["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "forward_dynamics"] {
+        for src in [&std, &libm, &batched, &inputs] {
+            assert!(src.contains(&format!("pub fn {name}_sc(")), "{name}_sc");
+        }
+        for src in [&std, &libm, &batched] {
+            assert!(src.contains(&format!("pub fn {name}(")), "{name}");
+        }
+        assert!(!inputs.contains(&format!("pub fn {name}(")), "{name} in an Inputs module");
+    }
+    // Without prismatic joints the _sc functions do not take q.
+    assert!(inputs.contains("pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF]"));
+    // f32 with libm calls sincosf.
+    let f32_libm = generate(&model, &CodegenOptions::default().trig(Trig::Libm).scalar(ScalarType::F32)).unwrap();
+    assert!(f32_libm.source.contains("libm::sincosf(q[1])"));
+    assert!(Trig::Std.needs_std() && !Trig::Libm.needs_std() && !Trig::Inputs.needs_std());
+}
+
+#[test]
+fn non_unit_axes_and_prismatic_joints() {
+    let model = skewed();
+    let std = source(&model, Trig::Std);
+    // j0 turns by 2·q[0]: the caller of the body scales the angle.
+    assert!(std.contains("let (s0, c0) = (q[0] * 2.0).sin_cos();"), "{std}");
+    assert!(std.contains("let (s2, c2) = q[2].sin_cos();"));
+    let batched = source(&model, Trig::Batched);
+    assert!(batched.contains("sin_cos_all(&[q[0] * 2.0, q[1], q[2]])"), "{batched}");
+    // A prismatic joint: the bodies take q.
+    assert!(std.contains("pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF], q: &[f64; DOF]) -> [f64; DOF]"));
+}
+
+#[test]
+fn the_body_with_sines_and_cosines_given_computes_the_function_of_q() {
+    for model in [ur5(), skewed()] {
+        let module = generate(&model, &CodegenOptions::default()).unwrap();
+        let n = model.dof();
+        for f in &module.functions {
+            let sc = &f.sin_cos_inputs;
+            for trial in 0..5 {
+                let q: Vec<f64> = (0..n).map(|i| 0.3 + 0.7 * i as f64 - 1.1 * trial as f64).collect();
+                let qd: Vec<f64> = (0..n).map(|i| 0.5 - 0.2 * i as f64 + 0.1 * trial as f64).collect();
+                let third: Vec<f64> = (0..n).map(|i| 1.5 * i as f64 - 2.0).collect();
+                let angle: Vec<f64> = (0..n).map(|i| q[i] * sc.angle_scale[i].unwrap_or(1.0)).collect();
+                let s: Vec<f64> = angle.iter().map(|a| a.sin()).collect();
+                let c: Vec<f64> = angle.iter().map(|a| a.cos()).collect();
+                let third_name = match f.kind {
+                    FunctionKind::InverseDynamics => "qdd",
+                    _ => "tau",
+                };
+                let inputs = [("q", &q[..]), ("qd", &qd[..]), (third_name, &third[..]), ("s", &s[..]), ("c", &c[..])];
+                let want = f.function.eval(&inputs).unwrap();
+                let got = sc.function.eval(&inputs).unwrap();
+                for (a, b) in got.iter().zip(&want) {
+                    assert!((a - b).abs() <= 1e-12 * (1.0 + b.abs()), "{:?} {} vs {}", f.kind, a, b);
+                }
+            }
+            // The sc body has no sine left, and the q function one per joint angle it reads.
+            assert_eq!(sc.function.op_count().sin_cos, 0);
+            assert_eq!(f.op_count.sin_cos, sc.angle_scale.iter().filter(|k| k.is_some()).count());
+        }
+    }
+}
