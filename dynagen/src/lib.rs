@@ -18,4 +18,4 @@ pub mod spatial;
 
 pub use model::{Model, ModelError, ModelWarning, RobotBuilder};
 pub use robot::{InputError, Robot};
-pub use scalar::Scalar;
+pub use scalar::{DoubleDouble, Scalar};

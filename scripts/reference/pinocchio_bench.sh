@@ -11,9 +11,11 @@ prefix="$(python3 -c 'import cmeel, sys; print(cmeel.__path__[0] + ".prefix")' 2
   || python3 -c 'import site; print(site.getsitepackages()[0] + "/cmeel.prefix")')"
 out="${TMPDIR:-/tmp}/pinocchio_bench"
 
-# Not -march=native alone: it changes Eigen's alignment (AVX: 32/64 bytes) and
-# so the layout of Model/Data, which must match the prebuilt parser library
-# (a crash otherwise); EIGEN_MAX_ALIGN_BYTES=16 keeps the layout.
+# No -march=native: it changes Eigen's alignment and vectorisation (AVX-512
+# here) and so the layout of Model/Data, which must match the prebuilt
+# libpinocchio_parsers that builds the model: the program then segfaults
+# (also with -DEIGEN_MAX_ALIGN_BYTES=16).  The algorithms are compiled here
+# with the same baseline ISA as the wheel's libraries.
 CXXFLAGS=${CXXFLAGS:-"-O3 -DNDEBUG"}
 
 # shellcheck disable=SC2086

@@ -2,7 +2,7 @@
 //! of the joint position, and the joint's motion subspace.
 
 use crate::model::{Joint, JointKind};
-use crate::spatial::{linalg_rodrigues, Force, Motion, Transform, Vec3};
+use crate::spatial::{Force, Motion, Transform, Vec3};
 use crate::Scalar;
 
 /// The pose of the joint's body in its parent's frame at position `q`:
@@ -13,9 +13,10 @@ pub fn joint_transform<S: Scalar>(joint: &Joint, q: S) -> Transform<S> {
     let place = Transform::<S>::from_f64(&joint.placement);
     match joint.kind {
         JointKind::Revolute | JointKind::Continuous => {
-            let angle = if joint.axis_norm == 1.0 { q } else { q * S::from_f64(joint.axis_norm) };
+            let angle =
+                if joint.axis_norm == 1.0 { q } else { q * S::axis_norm_constant(&joint.axis, joint.axis_norm) };
             let (s, c) = angle.sin_cos();
-            let r = linalg_rodrigues(&joint.unit_axis, s, c);
+            let r = S::axis_rotation(&joint.axis, &joint.unit_axis, s, c);
             Transform { rot: place.rot.mul_mat(&r), trans: place.trans }
         }
         JointKind::Prismatic => {

@@ -215,6 +215,21 @@ pub(crate) fn rodrigues<S: Scalar>(axis: &Vec3<f64>, s: S, c: S) -> Mat3<S> {
     ])
 }
 
+/// [`rodrigues`] with the axis in the scalar itself: the products of its
+/// components are computed in `S`.
+#[inline(always)]
+pub(crate) fn rodrigues_generic<S: Scalar>(axis: &Vec3<S>, s: S, c: S) -> Mat3<S> {
+    let [x, y, z] = axis.0;
+    let t = S::one() - c;
+    let (txy, txz, tyz) = (t * (x * y), t * (x * z), t * (y * z));
+    let (sx, sy, sz) = (s * x, s * y, s * z);
+    Mat3([
+        [c + t * (x * x), txy - sz, txz + sy],
+        [txy + sz, c + t * (y * y), tyz - sx],
+        [txz - sy, tyz + sx, c + t * (z * z)],
+    ])
+}
+
 impl<S: Scalar> Mul<Vec3<S>> for Mat3<S> {
     type Output = Vec3<S>;
     #[inline(always)]

@@ -11,7 +11,7 @@ mod motion;
 mod transform;
 
 pub use inertia::Inertia;
-pub(crate) use linalg::rodrigues as linalg_rodrigues;
+pub(crate) use linalg::{rodrigues as linalg_rodrigues, rodrigues_generic};
 pub use linalg::{Mat3, Sym3, Vec3};
 pub use motion::{Force, Motion};
 pub use transform::Transform;

@@ -30,10 +30,11 @@ impl<S: Scalar> Transform<S> {
     pub fn translation(trans: Vec3<S>) -> Self {
         Transform { rot: Mat3::identity(), trans }
     }
-    /// Converts an `f64` transform (a model constant) to this scalar.
+    /// Converts an `f64` transform (a model constant) to this scalar (see
+    /// [`Scalar::rotation_constant`]).
     #[inline(always)]
     pub fn from_f64(t: &Transform<f64>) -> Self {
-        Transform { rot: Mat3::from_f64(&t.rot), trans: Vec3::from_f64(&t.trans) }
+        Transform { rot: S::rotation_constant(&t.rot), trans: Vec3::from_f64(&t.trans) }
     }
     /// `T_AC = T_AB · T_BC` where `self = T_AB`.
     #[inline(always)]

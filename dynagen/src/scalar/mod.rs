@@ -10,6 +10,7 @@
 //! branch. Algorithms may branch on the *model* (which is plain `f64`), never
 //! on the state.
 
+use crate::spatial::{Mat3, Vec3};
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
@@ -57,6 +58,33 @@ pub trait Scalar:
     fn cos(self) -> Self {
         self.sin_cos().1
     }
+
+    /// A rotation matrix of the model (computed in `f64`, so orthonormal only
+    /// to `f64` precision). A scalar more precise than `f64` re-establishes
+    /// orthonormality at its own precision, so that the model it computes
+    /// with is a rigid one and identities such as `RᵀR = 1` hold to its
+    /// precision; the default converts entry by entry.
+    #[inline(always)]
+    fn rotation_constant(r: &Mat3<f64>) -> Mat3<Self> {
+        Mat3::from_f64(r)
+    }
+    /// The rotation by the angle of sine `s` and cosine `c` about a joint
+    /// axis: `axis` as given, `unit` its `f64` normalisation. The default
+    /// uses `unit`, with the products of its components folded in `f64`; a
+    /// more precise scalar normalises `axis` itself, so that the rotation is
+    /// exactly about the joint's motion axis.
+    #[inline(always)]
+    fn axis_rotation(axis: &Vec3<f64>, unit: &Vec3<f64>, s: Self, c: Self) -> Mat3<Self> {
+        let _ = axis;
+        crate::spatial::linalg_rodrigues(unit, s, c)
+    }
+    /// `|axis|`, the factor between a revolute joint's position and its
+    /// angle (1 for a unit axis), computed in `f64` as `norm`.
+    #[inline(always)]
+    fn axis_norm_constant(axis: &Vec3<f64>, norm: f64) -> Self {
+        let _ = axis;
+        Self::from_f64(norm)
+    }
 }
 
 impl Scalar for f64 {
@@ -96,3 +124,6 @@ impl Scalar for f32 {
         f32::sin_cos(self)
     }
 }
+
+mod double_double;
+pub use double_double::DoubleDouble;
