@@ -43,9 +43,7 @@ impl Rng {
 
 fn states(n: usize) -> Vec<State> {
     let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
-    (0..STATES)
-        .map(|_| State { q: rng.vec(n, 3.0), qd: rng.vec(n, 2.0), qdd: rng.vec(n, 5.0) })
-        .collect()
+    (0..STATES).map(|_| State { q: rng.vec(n, 3.0), qd: rng.vec(n, 2.0), qdd: rng.vec(n, 5.0) }).collect()
 }
 
 fn load(file: &str) -> Model {

@@ -3,9 +3,9 @@
 //! in O(n), without forming M. On long chains it keeps far more digits than
 //! a factorisation of M, which is why it is the default forward dynamics.
 
-use super::joint::{joint_transform, motion, project};
+use super::joint::{add_motion, cross_motion, joint_transform, motion, project};
 use super::{TipWrench, Workspace};
-use crate::model::Model;
+use crate::model::{AxisAlignment, Joint, JointKind, Model};
 use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
 use crate::Scalar;
 
@@ -36,6 +36,30 @@ impl<S: Scalar> ArticulatedInertia<S> {
         Force {
             ang: self.a.mul_vec(&m.ang) + self.b.mul_vec(&m.lin),
             lin: self.b.tr_mul_vec(&m.ang) + self.c.mul_vec(&m.lin),
+        }
+    }
+    /// `self · S` for the joint's motion subspace `S` (one column of the
+    /// matrix, times the axis component, for an axis-aligned joint).
+    #[inline(always)]
+    fn mul_subspace(&self, joint: &Joint) -> Force<S> {
+        let k = match joint.alignment {
+            AxisAlignment::X => 0,
+            AxisAlignment::Y => 1,
+            AxisAlignment::Z => 2,
+            AxisAlignment::General => return self.mul_motion(&motion(joint, S::one())),
+        };
+        let a = S::from_f64(joint.axis.0[k]);
+        let sym_col = |s: &Sym3<S>| {
+            let [xx, yy, zz, xy, xz, yz] = s.0;
+            Vec3([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]][k]).scale(a)
+        };
+        match joint.kind {
+            // (A e_k a, Bᵀ e_k a)
+            JointKind::Revolute | JointKind::Continuous => {
+                Force { ang: sym_col(&self.a), lin: Vec3(self.b.0[k]).scale(a) }
+            }
+            // (B e_k a, C e_k a)
+            JointKind::Prismatic => Force { ang: self.b.col(k).scale(a), lin: sym_col(&self.c) },
         }
     }
     /// `self − u uᵀ / d`.
@@ -129,16 +153,17 @@ pub fn aba<S: Scalar>(
     );
     // Forward: velocities, velocity-product accelerations c, bias forces pA.
     for (i, body) in model.bodies.iter().enumerate() {
-        let x = joint_transform(&body.joint, q[i]);
+        let joint = &body.joint;
+        let x = joint_transform(joint, q[i]);
         ws.x[i] = x;
-        let sqd = motion(&body.joint, qd[i]);
         let inertia = Inertia::<S>::from_f64(&body.inertia);
         let (v, c) = match body.parent {
             Some(p) => {
-                let v = x.motion_to_child(&ws.v[p]) + sqd;
-                (v, v.cross_motion(&sqd))
+                let mut v = x.motion_to_child(&ws.v[p]);
+                add_motion(joint, &mut v, qd[i]);
+                (v, cross_motion(joint, &v, qd[i]))
             }
-            None => (sqd, Motion::zero()),
+            None => (motion(joint, qd[i]), Motion::zero()),
         };
         ws.v[i] = v;
         ws.a[i] = c; // c_i, kept until the last pass
@@ -153,7 +178,7 @@ pub fn aba<S: Scalar>(
     }
     // Backward: articulated inertias and bias forces.
     for (i, body) in model.bodies.iter().enumerate().rev() {
-        let u = ws.art[i].mul_motion(&motion(&body.joint, S::one()));
+        let u = ws.art[i].mul_subspace(&body.joint);
         let d_inv = S::one() / project(&body.joint, &u);
         let ui = tau[i] - project(&body.joint, &ws.f[i]);
         ws.u6[i] = u;
@@ -177,6 +202,7 @@ pub fn aba<S: Scalar>(
         let a = ws.x[i].motion_to_child(&a_parent) + ws.a[i];
         let qddi = (ws.s2[i] - a.dot(&ws.u6[i])) * ws.s1[i];
         qdd[i] = qddi;
-        ws.a[i] = a + motion(&body.joint, qddi);
+        ws.a[i] = a;
+        add_motion(&body.joint, &mut ws.a[i], qddi);
     }
 }

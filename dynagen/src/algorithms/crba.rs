@@ -3,7 +3,7 @@
 //! *Modern Robotics* construction — n inverse dynamics calls with unit
 //! accelerations — kept as an independent check.
 
-use super::joint::{motion, project};
+use super::joint::{inertia_times_subspace, project};
 use super::rnea::{rnea, update_joint_transforms};
 use super::Workspace;
 use crate::model::Model;
@@ -27,7 +27,7 @@ pub fn crba<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], m: &mut [S
     for i in (0..n).rev() {
         let body = &model.bodies[i];
         // F = Iᶜ_i S_i, then carried up the chain of ancestors.
-        let mut f = ws.inertia[i].mul_motion(&motion(&body.joint, S::one()));
+        let mut f = inertia_times_subspace(&body.joint, &ws.inertia[i]);
         m[i * n + i] = project(&body.joint, &f);
         let mut j = i;
         while let Some(p) = model.bodies[j].parent {
