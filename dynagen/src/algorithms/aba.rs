@@ -3,7 +3,10 @@
 //! in O(n), without forming M. On long chains it keeps far more digits than
 //! a factorisation of M, which is why it is the default forward dynamics.
 
-use super::joint::{add_motion, cross_motion, joint_transform, motion, project};
+use super::joint::{
+    add_motion, cross_motion, force_to_parent, joint_transform, motion, motion_to_child, project, with_rotation,
+    Rotation,
+};
 use super::{TipWrench, Workspace};
 use crate::model::{AxisAlignment, Joint, JointKind, Model};
 use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
@@ -89,14 +92,13 @@ impl<S: Scalar> ArticulatedInertia<S> {
     /// maps parent motion to this frame and `x` is this frame's pose in
     /// the parent.
     #[inline(always)]
-    fn expressed_in_parent(&self, x: &Transform<S>) -> Self {
+    fn expressed_in_parent<R: Rotation<S>>(&self, r: &R, trans: &Vec3<S>) -> Self {
         // Rotate the blocks into the parent's axes, then shift the origin
         // by r: A' = A₁ − B₁[r] + [r]B₁ᵀ − [r]C₁[r], B' = B₁ + [r]C₁, C' = C₁.
-        let r = &x.rot;
-        let a1 = self.a.rotate(r);
-        let b1 = r.mul_mat(&self.b).mul_mat(&r.transpose());
-        let c1 = self.c.rotate(r);
-        let rx = Mat3::skew(&x.trans);
+        let a1 = r.rotate_sym(&self.a);
+        let b1 = r.rotate_mat(&self.b);
+        let c1 = r.rotate_sym(&self.c);
+        let rx = Mat3::skew(trans);
         let rc = rx.mul_mat(&c1.to_mat()); // [r]C₁
         let rb = rx.mul_mat(&b1.transpose()); // [r]B₁ᵀ
         let rcr = rc.mul_mat(&rx); // [r]C₁[r]
@@ -159,7 +161,7 @@ pub fn aba<S: Scalar>(
         let inertia = Inertia::<S>::from_f64(&body.inertia);
         let (v, c) = match body.parent {
             Some(p) => {
-                let mut v = x.motion_to_child(&ws.v[p]);
+                let mut v = motion_to_child(joint, &x, &ws.v[p]);
                 add_motion(joint, &mut v, qd[i]);
                 (v, cross_motion(joint, &v, qd[i]))
             }
@@ -188,8 +190,9 @@ pub fn aba<S: Scalar>(
             let ia = ws.art[i].sub_outer(&u, d_inv);
             let pa = ws.f[i] + ia.mul_motion(&ws.a[i]) + u.scale(ui * d_inv);
             let x = ws.x[i];
-            ws.art[p] = ws.art[p].add(&ia.expressed_in_parent(&x));
-            ws.f[p] += x.force_to_parent(&pa);
+            let ia_p = with_rotation!(&body.joint, x, |r| ia.expressed_in_parent(&r, &x.trans));
+            ws.art[p] = ws.art[p].add(&ia_p);
+            ws.f[p] += force_to_parent(&body.joint, &x, &pa);
         }
     }
     // Forward: accelerations.
@@ -199,7 +202,7 @@ pub fn aba<S: Scalar>(
             Some(p) => ws.a[p],
             None => a0,
         };
-        let a = ws.x[i].motion_to_child(&a_parent) + ws.a[i];
+        let a = motion_to_child(&body.joint, &ws.x[i], &a_parent) + ws.a[i];
         let qddi = (ws.s2[i] - a.dot(&ws.u6[i])) * ws.s1[i];
         qdd[i] = qddi;
         ws.a[i] = a;

@@ -10,7 +10,7 @@
 //! The results are those of the general formulas, up to rounding.
 
 use crate::model::{AxisAlignment, Joint, JointKind};
-use crate::spatial::{Force, Inertia, Mat3, Motion, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
 use crate::Scalar;
 
 /// The coordinate index of an aligned axis, and the other two in cyclic
@@ -222,6 +222,145 @@ pub fn motion_dot<S: Scalar>(joint: &Joint, m: &Motion<S>) -> S {
     project(joint, &Force { ang: m.ang, lin: m.lin })
 }
 
+/// The rotation part of a joint's transform (its pose in the parent), as an
+/// operator on 3-vectors. Besides the general matrix, a revolute joint with
+/// an aligned axis and an unrotated placement turns about a coordinate axis
+/// (one row and column of the matrix are those of the identity): the
+/// products then skip the known zeros and ones. The stored matrix is the
+/// same in every case, so the results are those of the general products up
+/// to rounding.
+pub(crate) trait Rotation<S: Scalar> {
+    /// `R·v`.
+    fn mul(&self, v: &Vec3<S>) -> Vec3<S>;
+    /// `Rᵀ·v`.
+    fn tr_mul(&self, v: &Vec3<S>) -> Vec3<S>;
+    /// `R·S·Rᵀ` for a symmetric `S`.
+    #[inline(always)]
+    fn rotate_sym(&self, s: &Sym3<S>) -> Sym3<S> {
+        let m = s.to_mat();
+        // T = R·S column by column; R·S·Rᵀ = R·Tᵀ, whose column c is R·(row c of T).
+        let t = [self.mul(&m.col(0)), self.mul(&m.col(1)), self.mul(&m.col(2))];
+        let row = |c: usize| Vec3([t[0].0[c], t[1].0[c], t[2].0[c]]);
+        let (c0, c1, c2) = (self.mul(&row(0)), self.mul(&row(1)), self.mul(&row(2)));
+        Sym3([c0.0[0], c1.0[1], c2.0[2], c1.0[0], c2.0[0], c2.0[1]])
+    }
+    /// `R·M·Rᵀ`.
+    #[inline(always)]
+    fn rotate_mat(&self, m: &Mat3<S>) -> Mat3<S> {
+        let t = [self.mul(&m.col(0)), self.mul(&m.col(1)), self.mul(&m.col(2))];
+        let row = |c: usize| Vec3([t[0].0[c], t[1].0[c], t[2].0[c]]);
+        // R·M·Rᵀ = (R·(R·M)ᵀ)ᵀ: its row c is R·(row c of R·M)
+        Mat3([self.mul(&row(0)).0, self.mul(&row(1)).0, self.mul(&row(2)).0])
+    }
+}
+
+/// Any rotation matrix.
+pub(crate) struct Dense<'a, S>(pub &'a Mat3<S>);
+
+/// A rotation matrix about `e_K`; `(I, J)` are the other indices in cyclic
+/// order.
+pub(crate) struct AboutAxis<'a, S, const K: usize, const I: usize, const J: usize>(pub &'a Mat3<S>);
+
+impl<S: Scalar> Rotation<S> for Dense<'_, S> {
+    #[inline(always)]
+    fn mul(&self, v: &Vec3<S>) -> Vec3<S> {
+        self.0.mul_vec(v)
+    }
+    #[inline(always)]
+    fn tr_mul(&self, v: &Vec3<S>) -> Vec3<S> {
+        self.0.tr_mul_vec(v)
+    }
+    #[inline(always)]
+    fn rotate_sym(&self, s: &Sym3<S>) -> Sym3<S> {
+        s.rotate(self.0)
+    }
+    #[inline(always)]
+    fn rotate_mat(&self, m: &Mat3<S>) -> Mat3<S> {
+        self.0.mul_mat(m).mul_mat(&self.0.transpose())
+    }
+}
+
+impl<S: Scalar, const K: usize, const I: usize, const J: usize> Rotation<S> for AboutAxis<'_, S, K, I, J> {
+    #[inline(always)]
+    fn mul(&self, v: &Vec3<S>) -> Vec3<S> {
+        let (m, v) = (&self.0 .0, &v.0);
+        let mut o = *v;
+        o[I] = m[I][I] * v[I] + m[I][J] * v[J];
+        o[J] = m[J][I] * v[I] + m[J][J] * v[J];
+        Vec3(o)
+    }
+    #[inline(always)]
+    fn tr_mul(&self, v: &Vec3<S>) -> Vec3<S> {
+        let (m, v) = (&self.0 .0, &v.0);
+        let mut o = *v;
+        o[I] = m[I][I] * v[I] + m[J][I] * v[J];
+        o[J] = m[I][J] * v[I] + m[J][J] * v[J];
+        Vec3(o)
+    }
+}
+
+/// Runs `$body` with `$r` bound to the [`Rotation`] of the joint's transform
+/// `$x` (a `Transform` computed by [`joint_transform`] for this joint),
+/// chosen from the model's constants.
+macro_rules! with_rotation {
+    ($joint:expr, $x:expr, |$r:ident| $body:expr) => {{
+        use $crate::algorithms::joint::{AboutAxis, Dense};
+        use $crate::model::{AxisAlignment, JointKind};
+        let joint: &$crate::model::Joint = $joint;
+        let rot = &$x.rot;
+        match (joint.placement_rotation_is_identity, joint.kind, joint.alignment) {
+            (_, JointKind::Prismatic, _) => {
+                let $r = Dense(rot);
+                $body
+            }
+            (true, _, AxisAlignment::X) => {
+                let $r = AboutAxis::<_, 0, 1, 2>(rot);
+                $body
+            }
+            (true, _, AxisAlignment::Y) => {
+                let $r = AboutAxis::<_, 1, 2, 0>(rot);
+                $body
+            }
+            (true, _, AxisAlignment::Z) => {
+                let $r = AboutAxis::<_, 2, 0, 1>(rot);
+                $body
+            }
+            _ => {
+                let $r = Dense(rot);
+                $body
+            }
+        }
+    }};
+}
+pub(crate) use with_rotation;
+
+/// [`Transform::motion_to_child`] for a joint's transform.
+#[inline(always)]
+pub fn motion_to_child<S: Scalar>(joint: &Joint, x: &Transform<S>, m: &Motion<S>) -> Motion<S> {
+    with_rotation!(joint, x, |r| Motion { ang: r.tr_mul(&m.ang), lin: r.tr_mul(&(m.lin + m.ang.cross(&x.trans))) })
+}
+
+/// [`Transform::force_to_parent`] for a joint's transform.
+#[inline(always)]
+pub fn force_to_parent<S: Scalar>(joint: &Joint, x: &Transform<S>, f: &Force<S>) -> Force<S> {
+    with_rotation!(joint, x, |r| {
+        let lin = r.mul(&f.lin);
+        Force { ang: r.mul(&f.ang) + x.trans.cross(&lin), lin }
+    })
+}
+
+/// [`Transform::inertia_to_parent`] for a joint's transform.
+#[inline(always)]
+pub fn inertia_to_parent<S: Scalar>(joint: &Joint, x: &Transform<S>, i: &Inertia<S>) -> Inertia<S> {
+    with_rotation!(joint, x, |r| {
+        let h = r.mul(&i.h);
+        let p = &x.trans;
+        let ibar =
+            r.rotate_sym(&i.ibar) + Sym3::cross_shift(&h, p) + Sym3::cross_shift(p, p).scale(i.mass * S::from_f64(0.5));
+        Inertia { mass: i.mass, h: h + p.scale(i.mass), ibar }
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -287,6 +426,18 @@ mod tests {
                                 // the general path agrees too
                                 let gen = joint_transform_general(&j, q);
                                 assert_close(&flat(&gen.rot), &flat(&rot), "general rotation");
+                                // the joint-aware products equal the transform's own
+                                let m = motion_to_child(&j, &got, &v).to_array();
+                                assert_close(&m, &got.motion_to_child(&v).to_array(), "motion_to_child");
+                                let p = force_to_parent(&j, &got, &f).to_array();
+                                assert_close(&p, &got.force_to_parent(&f).to_array(), "force_to_parent");
+                                let (ia, ib) = (inertia_to_parent(&j, &got, &inertia), got.inertia_to_parent(&inertia));
+                                assert_close(&ia.ibar.0, &ib.ibar.0, "inertia_to_parent");
+                                assert_close(&ia.h.0, &ib.h.0, "inertia_to_parent h");
+                                let b = Mat3([[0.3, -1.2, 0.4], [0.9, 0.1, -0.5], [0.2, 0.7, 1.1]]);
+                                let dense = got.rot.mul_mat(&b).mul_mat(&got.rot.transpose());
+                                let sparse = with_rotation!(&j, got, |r| r.rotate_mat(&b));
+                                assert_close(&flat(&sparse), &flat(&dense), "rotate_mat");
                             }
                             // S·x, Sᵀf, v ×ₘ S·x, I·S, m + S·x against the dense forms
                             let s = Motion::from_array(j.motion_subspace());
