@@ -98,20 +98,24 @@ impl<S: Scalar> ArticulatedInertia<S> {
         let a1 = r.rotate_sym(&self.a);
         let b1 = r.rotate_mat(&self.b);
         let c1 = r.rotate_sym(&self.c);
-        let rx = Mat3::skew(trans);
-        let rc = rx.mul_mat(&c1.to_mat()); // [r]C₁
-        let rb = rx.mul_mat(&b1.transpose()); // [r]B₁ᵀ
-        let rcr = rc.mul_mat(&rx); // [r]C₁[r]
+        // The products with the skew matrix [r] are cross products:
+        // column c of [r]C₁ is r × (column c of C₁), column c of [r]B₁ᵀ is
+        // r × (row c of B₁), and row i of ([r]C₁)[r] is (row i of [r]C₁) × r.
+        let c1m = c1.to_mat();
+        let rc = [trans.cross(&c1m.col(0)), trans.cross(&c1m.col(1)), trans.cross(&c1m.col(2))]; // columns
+        let rb = [trans.cross(&Vec3(b1.0[0])), trans.cross(&Vec3(b1.0[1])), trans.cross(&Vec3(b1.0[2]))]; // columns
+        let rc_row = |i: usize| Vec3([rc[0].0[i], rc[1].0[i], rc[2].0[i]]);
+        let rcr = [rc_row(0).cross(trans), rc_row(1).cross(trans), rc_row(2).cross(trans)]; // rows
         let mut a = a1.0;
         let idx = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
         for (k, (i, j)) in idx.into_iter().enumerate() {
             // −B₁[r] = ([r]B₁ᵀ)ᵀ
-            a[k] = a[k] + rb.0[j][i] + rb.0[i][j] - rcr.0[i][j];
+            a[k] = a[k] + rb[i].0[j] + rb[j].0[i] - rcr[i].0[j];
         }
         let mut b = b1;
-        for i in 0..3 {
-            for j in 0..3 {
-                b.0[i][j] += rc.0[i][j];
+        for (i, row) in b.0.iter_mut().enumerate() {
+            for (j, e) in row.iter_mut().enumerate() {
+                *e += rc[j].0[i];
             }
         }
         ArticulatedInertia { a: Sym3(a), b, c: c1 }
