@@ -11,6 +11,7 @@
 //! prismatic ones; torques in N·m, forces in N. Joint order is
 //! [`Robot::joint_names`]. Spatial vectors are (angular; linear).
 
+use crate::algorithms::integrators::IntegratorScratch;
 use crate::algorithms::{aba, bias, crba, forward_dynamics, kinematics, rnea, TipWrench, Workspace};
 use crate::model::{BuildOptions, Model, ModelError};
 use crate::spatial::{Force, Vec3};
@@ -49,15 +50,48 @@ pub enum InputError {
     /// An unknown frame name.
     #[error("no frame named \"{0}\"")]
     UnknownFrame(String),
+    /// A matrix of the wrong shape (a trajectory's, or a tip wrench history).
+    #[error("{what} is {rows}×{cols}, but it must be {expected_rows}×{expected_cols}")]
+    WrongShape {
+        /// The argument.
+        what: &'static str,
+        /// Its number of rows.
+        rows: usize,
+        /// Its number of columns.
+        cols: usize,
+        /// The rows it must have.
+        expected_rows: usize,
+        /// The columns it must have.
+        expected_cols: usize,
+    },
+    /// A bad entry in one row of a trajectory.
+    #[error("row {row}: {error}")]
+    Row {
+        /// The row (time step), from 0.
+        row: usize,
+        /// What is wrong in it.
+        error: Box<InputError>,
+    },
+    /// A bad integration parameter (time step, number of sub-steps).
+    #[error("{what} is {value}, but it must be {must}")]
+    BadParameter {
+        /// The parameter.
+        what: &'static str,
+        /// Its value.
+        value: f64,
+        /// What it must be.
+        must: &'static str,
+    },
 }
 
 /// A robot with the generic `f64` solver. See the [module docs](self).
 #[derive(Clone, Debug)]
 pub struct Robot {
-    model: Model,
-    ws: Workspace<f64>,
-    tips: Vec<TipWrench<f64>>,
+    pub(crate) model: Model,
+    pub(crate) ws: Workspace<f64>,
+    pub(crate) tips: Vec<TipWrench<f64>>,
     jac: Vec<f64>,
+    pub(crate) integ: IntegratorScratch<f64>,
 }
 
 impl Robot {
@@ -65,7 +99,8 @@ impl Robot {
     pub fn new(model: Model) -> Self {
         let ws = Workspace::new(&model);
         let jac = vec![0.0; 6 * model.dof()];
-        Robot { model, ws, tips: Vec::new(), jac }
+        let integ = IntegratorScratch::new(&model);
+        Robot { model, ws, tips: Vec::new(), jac, integ }
     }
     /// Reads a URDF file.
     pub fn from_urdf_file(path: impl AsRef<Path>) -> Result<Self, ModelError> {
@@ -124,7 +159,7 @@ impl Robot {
         self.tips.clear();
     }
 
-    fn check(&self, what: &'static str, x: &[f64]) -> Result<(), InputError> {
+    pub(crate) fn check(&self, what: &'static str, x: &[f64]) -> Result<(), InputError> {
         let n = self.model.dof();
         if x.len() != n {
             return Err(InputError::WrongLength { what, got: x.len(), expected: n });
@@ -139,13 +174,13 @@ impl Robot {
             None => Ok(()),
         }
     }
-    fn check_out(&self, what: &'static str, len: usize, want: usize) -> Result<(), InputError> {
+    pub(crate) fn check_out(&self, what: &'static str, len: usize, want: usize) -> Result<(), InputError> {
         if len != want {
             return Err(InputError::WrongLength { what, got: len, expected: self.model.dof() });
         }
         Ok(())
     }
-    fn frame(&self, frame: &str) -> Result<usize, InputError> {
+    pub(crate) fn frame(&self, frame: &str) -> Result<usize, InputError> {
         self.model.frame_index(frame).ok_or_else(|| InputError::UnknownFrame(frame.to_string()))
     }
 

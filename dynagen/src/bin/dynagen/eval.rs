@@ -1,0 +1,181 @@
+//! `dynagen eval`: the generic solver ([`dynagen::Robot`]) on states read
+//! from JSON.
+//!
+//! Input: `{"states": [{"q": […], "qd": […], "qdd": […], "tau": […]}, …]}`
+//! (an optional `"joint_names": […]` is checked against the robot's order).
+//! Output: `{"joint_names": […], "results": [{"tau", "M", "h", "g", "qdd"}, …]}`,
+//! each output present when the state has the inputs it needs:
+//!
+//! | output | needs | computed by |
+//! | --- | --- | --- |
+//! | `tau` | q, qd, qdd | [`Robot::inverse_dynamics`] (RNEA) |
+//! | `M` | q | [`Robot::mass_matrix`] (CRBA) |
+//! | `h` | q, qd | [`Robot::bias_forces`] |
+//! | `g` | q | [`Robot::gravity_torques`] |
+//! | `qdd` | q, qd, tau | [`Robot::forward_dynamics`] (ABA) |
+
+use crate::error::{CliError, Output};
+use crate::json::Json;
+use crate::robot_source::RobotSource;
+use crate::states::{parse_states, State};
+use dynagen::Robot;
+use nalgebra::Vector3;
+use std::fmt;
+use std::io::Read;
+use std::path::PathBuf;
+
+/// Arguments of `dynagen eval`.
+#[derive(clap::Args, Debug)]
+#[command(after_long_help = EVAL_HELP)]
+pub struct Args {
+    /// The robot's URDF file (default: the bundled UR5).
+    #[arg(value_name = "ROBOT.urdf")]
+    pub robot: Option<PathBuf>,
+    /// The states, as JSON (`-` reads stdin).
+    #[arg(long, short, value_name = "STATES.json")]
+    pub input: PathBuf,
+    /// Gravity in the base frame, m/s² (default: 0,0,-9.81).
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    pub gravity: Option<String>,
+}
+
+const EVAL_HELP: &str = "\
+Input (STATES.json):
+  {\"states\": [{\"q\": [...], \"qd\": [...], \"qdd\": [...], \"tau\": [...]}, ...]}
+  One number per joint, in the order `dynagen inspect` lists. \"q\" is required;
+  leave out a field to skip the outputs that need it. States count from 0 in
+  messages. An optional \"joint_names\" list is checked against the robot's.
+
+Output (stdout):
+  {\"joint_names\": [...], \"results\": [{...}, ...]}, one result per state:
+    tau  inverse dynamics (RNEA)          needs q, qd, qdd
+    M    mass matrix, one row per line    needs q
+    h    bias forces C(q,qd)qd + g(q)     needs q, qd
+    g    gravity torques                  needs q
+    qdd  forward dynamics (ABA)           needs q, qd, tau
+  Numbers are printed with full round-trip precision.
+
+Example:
+  echo '{\"states\": [{\"q\": [0,0,0,0,0,0], \"qd\": [0,0,0,0,0,0]}]}' | dynagen eval --input -";
+
+/// Where the states come from, for messages.
+struct InputName<'a>(&'a std::path::Path);
+
+impl fmt::Display for InputName<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.0.as_os_str() == "-" {
+            f.write_str("<stdin>")
+        } else {
+            write!(f, "{}", self.0.display())
+        }
+    }
+}
+
+/// Runs `dynagen eval`.
+pub fn run(args: &Args) -> Result<Output, CliError> {
+    let source = RobotSource::from_arg(args.robot.as_deref());
+    let model = source.load()?;
+    let warnings = source.warnings(&model);
+    let mut robot = Robot::new(model);
+    if let Some(text) = &args.gravity {
+        let g = parse_gravity(text)?;
+        robot.set_gravity(Vector3::from(g)).map_err(|e| CliError::input("--gravity", e))?;
+    }
+
+    let name = InputName(&args.input);
+    let text = read_input(&args.input).map_err(|e| CliError::input(&name, format!("cannot read the file: {e}")))?;
+    let joint_names: Vec<String> = robot.joint_names().iter().map(|s| s.to_string()).collect();
+    let states = parse_states(&text, &joint_names).map_err(|e| CliError::input(&name, e))?;
+
+    let mut results = Vec::with_capacity(states.len());
+    for (i, state) in states.iter().enumerate() {
+        let result =
+            evaluate(&mut robot, state, &joint_names).map_err(|e| CliError::input(&name, format!("state {i}: {e}")))?;
+        results.push(result);
+    }
+    let out = Json::Obj(vec![
+        ("joint_names".into(), Json::Arr(joint_names.iter().map(|n| Json::Str(n.clone())).collect())),
+        ("results".into(), Json::Arr(results)),
+    ]);
+    Ok(Output { stdout: out.render(), warnings })
+}
+
+fn read_input(path: &std::path::Path) -> std::io::Result<String> {
+    if path.as_os_str() == "-" {
+        let mut s = String::new();
+        std::io::stdin().read_to_string(&mut s)?;
+        Ok(s)
+    } else {
+        std::fs::read_to_string(path)
+    }
+}
+
+/// `X,Y,Z`: three finite numbers.
+fn parse_gravity(text: &str) -> Result<[f64; 3], CliError> {
+    let bad = |why: String| CliError::input(format!("--gravity \"{text}\""), why);
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    if parts.len() != 3 {
+        return Err(bad(format!(
+            "expected three numbers X,Y,Z separated by commas (e.g. 0,0,-9.81), found {} part{}",
+            parts.len(),
+            if parts.len() == 1 { "" } else { "s" }
+        )));
+    }
+    let mut g = [0.0; 3];
+    for (k, (part, axis)) in parts.iter().zip(["X", "Y", "Z"]).enumerate() {
+        g[k] = match part.parse::<f64>() {
+            Ok(x) if x.is_finite() => x,
+            Ok(_) => return Err(bad(format!("{axis} = \"{part}\" is not a finite number"))),
+            Err(_) => return Err(bad(format!("{axis} = \"{part}\" is not a number"))),
+        };
+    }
+    Ok(g)
+}
+
+/// Every output the state has the inputs for, in the order tau, M, h, g, qdd.
+fn evaluate(robot: &mut Robot, s: &State, joint_names: &[String]) -> Result<Json, String> {
+    let err = |e: dynagen::InputError| e.to_string();
+    let mut out = Vec::new();
+    if let (Some(qd), Some(qdd)) = (&s.qd, &s.qdd) {
+        let tau = robot.inverse_dynamics(&s.q, qd, qdd).map_err(err)?;
+        out.push(("tau".to_string(), finite("tau", tau.as_slice(), joint_names)?));
+    }
+    let m = robot.mass_matrix(&s.q).map_err(err)?;
+    let rows: Vec<Vec<f64>> = m.row_iter().map(|r| r.iter().copied().collect()).collect();
+    for (r, row) in rows.iter().enumerate() {
+        finite_row(row, r, joint_names)?;
+    }
+    out.push(("M".to_string(), Json::Arr(rows.iter().map(|r| Json::nums(r)).collect())));
+    if let Some(qd) = &s.qd {
+        let h = robot.bias_forces(&s.q, qd).map_err(err)?;
+        out.push(("h".to_string(), finite("h", h.as_slice(), joint_names)?));
+    }
+    let g = robot.gravity_torques(&s.q).map_err(err)?;
+    out.push(("g".to_string(), finite("g", g.as_slice(), joint_names)?));
+    if let (Some(qd), Some(tau)) = (&s.qd, &s.tau) {
+        let qdd = robot.forward_dynamics(&s.q, qd, tau).map_err(err)?;
+        out.push(("qdd".to_string(), finite("qdd", qdd.as_slice(), joint_names)?));
+    }
+    Ok(Json::Obj(out))
+}
+
+/// JSON has no NaN or infinity: an output that overflowed is an error.
+fn finite(name: &str, x: &[f64], joint_names: &[String]) -> Result<Json, String> {
+    match x.iter().position(|v| !v.is_finite()) {
+        None => Ok(Json::nums(x)),
+        Some(k) => Err(format!(
+            "output \"{name}\"[{k}] (joint \"{}\") is {}: the inputs are too large for f64",
+            joint_names[k], x[k]
+        )),
+    }
+}
+
+fn finite_row(row: &[f64], r: usize, joint_names: &[String]) -> Result<(), String> {
+    match row.iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(c) => Err(format!(
+            "output \"M\"[{r}][{c}] (joints \"{}\", \"{}\") is {}: the inputs are too large for f64",
+            joint_names[r], joint_names[c], row[c]
+        )),
+    }
+}

@@ -1,0 +1,57 @@
+//! Where the robot comes from: a URDF file named on the command line, or the
+//! bundled UR5, compiled into the binary so that it works from any directory.
+
+use crate::error::CliError;
+use dynagen::Model;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// The bundled default robot.
+const BUNDLED_UR5: &str = include_str!("../../../robots/ur5.urdf");
+/// Its name in messages.
+const BUNDLED_UR5_NAME: &str = "ur5.urdf (bundled)";
+
+/// A robot's source.
+#[derive(Clone, Debug)]
+pub enum RobotSource {
+    /// The bundled UR5.
+    BundledUr5,
+    /// A URDF file.
+    File(PathBuf),
+}
+
+impl RobotSource {
+    /// The file given on the command line, or the bundled UR5.
+    pub fn from_arg(arg: Option<&Path>) -> Self {
+        match arg {
+            Some(p) => RobotSource::File(p.to_path_buf()),
+            None => RobotSource::BundledUr5,
+        }
+    }
+
+    /// Reads and validates the robot. Errors name the file, then the link or
+    /// joint (dynagen's model errors name it).
+    pub fn load(&self) -> Result<Model, CliError> {
+        let xml = match self {
+            RobotSource::BundledUr5 => std::borrow::Cow::Borrowed(BUNDLED_UR5),
+            RobotSource::File(p) => std::fs::read_to_string(p)
+                .map(std::borrow::Cow::Owned)
+                .map_err(|e| CliError::input(self, format!("cannot read the file: {e}")))?,
+        };
+        Model::from_urdf_str(&xml).map_err(|e| CliError::input(self, e))
+    }
+
+    /// Each warning of the model, as `{file}: {warning}`.
+    pub fn warnings(&self, model: &Model) -> Vec<String> {
+        model.warnings.iter().map(|w| format!("{self}: {w}")).collect()
+    }
+}
+
+impl fmt::Display for RobotSource {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RobotSource::BundledUr5 => f.write_str(BUNDLED_UR5_NAME),
+            RobotSource::File(p) => write!(f, "{}", p.display()),
+        }
+    }
+}

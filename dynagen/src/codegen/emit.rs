@@ -1,0 +1,188 @@
+//! One traced function → one Rust `fn`.
+//!
+//! The signature and attributes are written with `quote` and parsed; the
+//! body, which can hold tens of thousands of statements, is built directly
+//! as `syn` syntax (parsing it back from tokens would dominate the
+//! generator's run time).
+
+use super::literal::float_literal_text;
+use super::trace::FunctionKind;
+use super::{CodegenError, ScalarType};
+use crate::symbolic::{Function, Node};
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::{format_ident, quote};
+use syn::punctuated::Punctuated;
+use syn::{BinOp, Expr, Pat, Stmt, UnOp};
+
+/// The Rust type of the scalar.
+pub(crate) fn scalar_type(scalar: ScalarType) -> TokenStream {
+    match scalar {
+        ScalarType::F64 => quote!(f64),
+        ScalarType::F32 => quote!(f32),
+    }
+}
+
+fn ident(name: &str) -> Ident {
+    Ident::new(name, Span::call_site())
+}
+fn path(id: Ident) -> Expr {
+    Expr::Path(syn::ExprPath { attrs: vec![], qself: None, path: syn::Path::from(id) })
+}
+fn float(x: f64, scalar: ScalarType) -> Option<Expr> {
+    let text = float_literal_text(x, scalar)?;
+    let (neg, digits) = match text.strip_prefix('-') {
+        Some(d) => (true, d),
+        None => (false, text.as_str()),
+    };
+    let lit =
+        Expr::Lit(syn::ExprLit { attrs: vec![], lit: syn::Lit::Float(syn::LitFloat::new(digits, Span::call_site())) });
+    Some(if neg { unary(UnOp::Neg(Default::default()), lit) } else { lit })
+}
+fn index(array: &str, i: usize) -> Expr {
+    Expr::Index(syn::ExprIndex {
+        attrs: vec![],
+        expr: Box::new(path(ident(array))),
+        bracket_token: Default::default(),
+        index: Box::new(Expr::Lit(syn::ExprLit {
+            attrs: vec![],
+            lit: syn::Lit::Int(syn::LitInt::new(&i.to_string(), Span::call_site())),
+        })),
+    })
+}
+fn binary(a: &Expr, op: BinOp, b: &Expr) -> Expr {
+    Expr::Binary(syn::ExprBinary { attrs: vec![], left: Box::new(a.clone()), op, right: Box::new(b.clone()) })
+}
+fn unary(op: UnOp, a: Expr) -> Expr {
+    Expr::Unary(syn::ExprUnary { attrs: vec![], op, expr: Box::new(a) })
+}
+fn method(receiver: &Expr, name: &str) -> Expr {
+    Expr::MethodCall(syn::ExprMethodCall {
+        attrs: vec![],
+        receiver: Box::new(receiver.clone()),
+        dot_token: Default::default(),
+        method: ident(name),
+        turbofish: None,
+        paren_token: Default::default(),
+        args: Punctuated::new(),
+    })
+}
+fn pat(id: Ident) -> Pat {
+    Pat::Ident(syn::PatIdent { attrs: vec![], by_ref: None, mutability: None, ident: id, subpat: None })
+}
+fn let_stmt(pat: Pat, e: Expr) -> Stmt {
+    Stmt::Local(syn::Local {
+        attrs: vec![],
+        let_token: Default::default(),
+        modifiers: Default::default(),
+        pat,
+        init: Some(syn::LocalInit { eq_token: Default::default(), expr: Box::new(e), diverge: None }),
+        semi_token: Default::default(),
+    })
+}
+fn array(elems: impl IntoIterator<Item = Expr>) -> Expr {
+    Expr::Array(syn::ExprArray { attrs: vec![], bracket_token: Default::default(), elems: elems.into_iter().collect() })
+}
+
+/// `pub fn name(inputs…) -> output { let …; [outputs] }`: one `let` per kept
+/// operation, named `t{k}` in order (`s{k}`/`c{k}` for a sine and cosine),
+/// constants written in place as literals, inputs read as `q[i]`.
+pub(crate) fn emit_function(
+    f: &Function,
+    kind: FunctionKind,
+    scalar: ScalarType,
+    n: usize,
+    doc: &str,
+) -> Result<syn::Item, CodegenError> {
+    let nodes = f.nodes();
+    // How each node is referred to by its users (for a SinCos node: its
+    // sine; the cosine's name is kept in `cos_ref`).
+    let mut refs: Vec<Expr> = Vec::with_capacity(nodes.len());
+    let mut cos_ref: Vec<Option<Expr>> = vec![None; nodes.len()];
+    let mut stmts = Vec::new();
+    // For each SinCos node: whether its sine and cosine are read.
+    let mut sin_used = vec![false; nodes.len()];
+    let mut cos_used = vec![false; nodes.len()];
+    for node in nodes {
+        match *node {
+            Node::Sin(sc) => sin_used[sc as usize] = true,
+            Node::Cos(sc) => cos_used[sc as usize] = true,
+            _ => {}
+        }
+    }
+    let mut k = 0usize;
+    for (id, node) in nodes.iter().enumerate() {
+        let r = |i: u32| &refs[i as usize];
+        let reference = match *node {
+            Node::Const(_) => {
+                let x = node.constant().unwrap_or_default();
+                float(x, scalar)
+                    .ok_or_else(|| CodegenError::NonFiniteConstant { function: f.name().to_string(), value: x })?
+            }
+            Node::Input { name, index: i } => index(&f.input_names()[name as usize], i as usize),
+            Node::SinCos(a) => {
+                let (s, c) = (format_ident!("s{}", k), format_ident!("c{}", k));
+                k += 1;
+                let a = r(a);
+                let stmt = match (sin_used[id], cos_used[id]) {
+                    (true, true) => {
+                        let elems = [pat(s.clone()), pat(c.clone())].into_iter().collect();
+                        let tuple = Pat::Tuple(syn::PatTuple { attrs: vec![], paren_token: Default::default(), elems });
+                        let_stmt(tuple, method(a, "sin_cos"))
+                    }
+                    (true, false) => let_stmt(pat(s.clone()), method(a, "sin")),
+                    _ => let_stmt(pat(c.clone()), method(a, "cos")),
+                };
+                stmts.push(stmt);
+                cos_ref[id] = Some(path(c));
+                path(s)
+            }
+            Node::Sin(sc) => refs[sc as usize].clone(),
+            Node::Cos(sc) => cos_ref[sc as usize].clone().expect("a Cos reads a SinCos"),
+            _ => {
+                let t = format_ident!("t{}", k);
+                k += 1;
+                let e = match *node {
+                    Node::Add(a, b) => binary(r(a), BinOp::Add(Default::default()), r(b)),
+                    Node::Sub(a, b) => binary(r(a), BinOp::Sub(Default::default()), r(b)),
+                    Node::Mul(a, b) => binary(r(a), BinOp::Mul(Default::default()), r(b)),
+                    Node::Div(a, b) => binary(r(a), BinOp::Div(Default::default()), r(b)),
+                    Node::Neg(a) => unary(UnOp::Neg(Default::default()), r(a).clone()),
+                    Node::Sqrt(a) => method(r(a), "sqrt"),
+                    _ => unreachable!("handled above"),
+                };
+                stmts.push(let_stmt(pat(t.clone()), e));
+                path(t)
+            }
+        };
+        refs.push(reference);
+    }
+    let out: Vec<Expr> = f.outputs().iter().map(|&o| refs[o as usize].clone()).collect();
+    let result = if kind.is_matrix() {
+        array(out.chunks(n.max(1)).take(n).map(|row| array(row.iter().cloned())))
+    } else {
+        array(out)
+    };
+    let ty = scalar_type(scalar);
+    let params = kind.inputs().iter().map(|name| {
+        let name = ident(name);
+        quote!(#name: &[#ty; DOF])
+    });
+    let unused = kind.inputs().iter().filter(|name| !f.uses_input(name)).map(|name| {
+        let name = ident(name);
+        quote!(let _ = #name;)
+    });
+    let ret = if kind.is_matrix() { quote!([[#ty; DOF]; DOF]) } else { quote!([#ty; DOF]) };
+    let name = ident(kind.fn_name());
+    let doc = doc.lines();
+    let shell = quote! {
+        #(#[doc = #doc])*
+        #[allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal, clippy::too_many_lines)]
+        pub fn #name(#(#params),*) -> #ret {
+            #(#unused)*
+        }
+    };
+    let mut item: syn::ItemFn = syn::parse2(shell).map_err(|e| CodegenError::Internal(e.to_string()))?;
+    item.block.stmts.extend(stmts);
+    item.block.stmts.push(Stmt::Expr(result, None));
+    Ok(syn::Item::Fn(item))
+}

@@ -1,0 +1,61 @@
+//! An interpreter for traced functions: evaluates the kept nodes on numbers,
+//! so that a trace and its simplifications can be checked against the
+//! generic solver without compiling the generated code.
+
+use super::function::Function;
+use super::node::Node;
+use crate::Scalar;
+
+/// An input vector that [`Function::eval`] was not given, or given too short.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("function {function} reads {input}[{index}], which was not given")]
+pub struct MissingInput {
+    /// The function.
+    pub function: String,
+    /// The input vector.
+    pub input: String,
+    /// The entry read.
+    pub index: usize,
+}
+
+impl Function {
+    /// Evaluates the outputs on `f64` inputs given as `(name, values)`.
+    pub fn eval(&self, inputs: &[(&str, &[f64])]) -> Result<Vec<f64>, MissingInput> {
+        self.eval_as::<f64>(inputs)
+    }
+    /// Evaluates the outputs in the scalar `S` (e.g. `f32`), each constant
+    /// converted with [`Scalar::from_f64`].
+    pub fn eval_as<S: Scalar>(&self, inputs: &[(&str, &[f64])]) -> Result<Vec<S>, MissingInput> {
+        let nodes = self.nodes();
+        let mut val: Vec<S> = Vec::with_capacity(nodes.len());
+        for node in nodes {
+            let v = match *node {
+                Node::Const(_) => S::from_f64(node.constant().unwrap_or_default()),
+                Node::Input { name, index } => {
+                    let input = &self.input_names()[name as usize];
+                    let x =
+                        inputs.iter().find(|(n, _)| n == input).and_then(|(_, v)| v.get(index as usize)).ok_or_else(
+                            || MissingInput {
+                                function: self.name().to_string(),
+                                input: input.clone(),
+                                index: index as usize,
+                            },
+                        )?;
+                    S::from_f64(*x)
+                }
+                Node::Add(a, b) => val[a as usize] + val[b as usize],
+                Node::Sub(a, b) => val[a as usize] - val[b as usize],
+                Node::Mul(a, b) => val[a as usize] * val[b as usize],
+                Node::Div(a, b) => val[a as usize] / val[b as usize],
+                Node::Neg(a) => -val[a as usize],
+                Node::Sqrt(a) => val[a as usize].sqrt(),
+                // The angle; its users take the sine or the cosine.
+                Node::SinCos(a) => val[a as usize],
+                Node::Sin(sc) => val[sc as usize].sin_cos().0,
+                Node::Cos(sc) => val[sc as usize].sin_cos().1,
+            };
+            val.push(v);
+        }
+        Ok(self.outputs().iter().map(|&o| val[o as usize]).collect())
+    }
+}

@@ -1,0 +1,95 @@
+//! A traced function: the part of a graph its outputs reach.
+
+use super::count::OpCount;
+use super::expr::Expr;
+use super::graph::Graph;
+use super::node::{Node, NodeId};
+
+/// A function of named input vectors: the nodes its outputs reach (dead
+/// code eliminated), renumbered densely in topological order, and the
+/// output nodes in output order. It owns its nodes, so it outlives the
+/// trace that built it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Function {
+    name: String,
+    nodes: Vec<Node>,
+    input_names: Vec<String>,
+    outputs: Vec<NodeId>,
+}
+
+impl Function {
+    /// Keeps what `outputs` reach in `graph` (dead code elimination).
+    ///
+    /// # Panics
+    /// If an output is not a node of `graph`.
+    pub fn new(name: &str, graph: &Graph, outputs: &[Expr]) -> Function {
+        let ids: Vec<NodeId> = outputs.iter().map(|e| e.id()).collect();
+        Self::from_ids(name, graph, &ids)
+    }
+    /// As [`Function::new`], with outputs given by node index.
+    pub fn from_ids(name: &str, graph: &Graph, outputs: &[NodeId]) -> Function {
+        let nodes = graph.nodes();
+        let mut live = vec![false; nodes.len()];
+        for &o in outputs {
+            live[o as usize] = true;
+        }
+        // Operands come before their users, so one backward sweep marks
+        // everything reachable.
+        for id in (0..nodes.len()).rev() {
+            if live[id] {
+                for op in nodes[id].operands() {
+                    live[op as usize] = true;
+                }
+            }
+        }
+        let mut new_id = vec![NodeId::MAX; nodes.len()];
+        let mut kept = Vec::new();
+        for (id, node) in nodes.iter().enumerate() {
+            if live[id] {
+                new_id[id] = kept.len() as NodeId;
+                kept.push(node.map_operands(|x| new_id[x as usize]));
+            }
+        }
+        Function {
+            name: name.to_string(),
+            nodes: kept,
+            input_names: graph.input_names().to_vec(),
+            outputs: outputs.iter().map(|&o| new_id[o as usize]).collect(),
+        }
+    }
+    /// The function's name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+    /// The kept nodes, operands before users.
+    pub fn nodes(&self) -> &[Node] {
+        &self.nodes
+    }
+    /// The output nodes, in output order.
+    pub fn outputs(&self) -> &[NodeId] {
+        &self.outputs
+    }
+    /// The names of the input vectors ([`Node::Input::name`] indexes them).
+    pub fn input_names(&self) -> &[String] {
+        &self.input_names
+    }
+    /// Whether some kept node reads the input vector `name`.
+    pub fn uses_input(&self, name: &str) -> bool {
+        let Some(k) = self.input_names.iter().position(|s| s == name) else { return false };
+        self.nodes.iter().any(|n| matches!(n, Node::Input { name, .. } if *name as usize == k))
+    }
+    pub(crate) fn set_input_names(&mut self, names: &[String]) {
+        // Renumber the inputs to the given name table.
+        let old = std::mem::replace(&mut self.input_names, names.to_vec());
+        for n in &mut self.nodes {
+            if let Node::Input { name, .. } = n {
+                let s = &old[*name as usize];
+                *name = self.input_names.iter().position(|x| x == s).expect("input name kept") as u32;
+            }
+        }
+    }
+    /// The operation count.
+    pub fn op_count(&self) -> OpCount {
+        OpCount::of(&self.nodes)
+    }
+}

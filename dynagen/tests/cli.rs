@@ -1,0 +1,467 @@
+//! The `dynagen` command, run as a user would: every subcommand, its output
+//! checked against the library called here on the same input, and every
+//! kind of bad input giving one error line that names the file and the item.
+
+use assert_cmd::Command;
+use dynagen::Robot;
+use nalgebra::{DVector, Vector3};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+
+const ROBOTS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/robots");
+
+fn dynagen() -> Command {
+    Command::cargo_bin("dynagen").expect("the dynagen binary is built for integration tests")
+}
+
+/// A fresh directory for one test's files.
+fn scratch(test: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli").join(test);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn ur5() -> Robot {
+    Robot::from_urdf_file(format!("{ROBOTS}/ur5.urdf")).unwrap()
+}
+
+/// Runs and expects failure with `status`: stderr is one line `error: …`,
+/// which is returned. No panic, no backtrace, no usage text.
+fn fails(cmd: &mut Command, status: i32) -> String {
+    let out = cmd.output().unwrap();
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(out.status.code(), Some(status), "stderr: {stderr}");
+    assert!(out.stdout.is_empty(), "nothing on stdout on failure");
+    let lines: Vec<&str> = stderr.lines().collect();
+    assert_eq!(lines.len(), 1, "one line on stderr, got: {stderr}");
+    assert!(lines[0].starts_with("error: "), "{stderr}");
+    assert!(!stderr.contains("panicked") && !stderr.contains("internal error"), "{stderr}");
+    lines[0].to_string()
+}
+
+fn succeeds(cmd: &mut Command) -> String {
+    let out = cmd.output().unwrap();
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(out.status.success(), "stderr: {stderr}");
+    String::from_utf8(out.stdout).unwrap()
+}
+
+// ---------------------------------------------------------------- inspect
+
+#[test]
+fn inspect_the_bundled_ur5_from_any_directory() {
+    let dir = scratch("inspect_bundled");
+    let out = succeeds(dynagen().arg("inspect").current_dir(&dir));
+    assert!(out.starts_with("robot \"ur5\" from ur5.urdf (bundled)\n"), "{out}");
+
+    // The joint table lists every joint in the library's order, with its
+    // index, type, axis and limits (UR5: ±2π rad, π rad/s; 150 and 28 N·m).
+    let robot = ur5();
+    let names = robot.joint_names();
+    assert_eq!(names.len(), 6);
+    let axes = ["(0, 0, 1)", "(0, 1, 0)", "(0, 1, 0)", "(0, 1, 0)", "(0, 0, 1)", "(0, 1, 0)"];
+    for (i, name) in names.iter().enumerate() {
+        let line = out
+            .lines()
+            .find(|l| l.split_whitespace().take(2).eq([i.to_string().as_str(), name]))
+            .unwrap_or_else(|| panic!("no joint row \"{i} {name}\" in\n{out}"));
+        let effort = if i < 3 { "150 N·m" } else { "28 N·m" };
+        for part in ["revolute", axes[i], "-6.28319 rad", "6.28319 rad", "3.14159 rad/s", effort] {
+            assert!(line.contains(part), "{line:?} lacks {part:?}");
+        }
+    }
+    // The tree is a chain: each joint one level deeper than the last, and
+    // ee_link (fixed to wrist_3_link) merged into the last body.
+    let tree: Vec<&str> = out.lines().filter(|l| l.contains("└─") || l.contains("├─")).collect();
+    assert_eq!(tree.len(), 6, "{out}");
+    for (i, line) in tree.iter().enumerate() {
+        assert_eq!(line.find("└─"), Some(2 + 3 * i), "{line:?}");
+        assert!(line.contains(&format!("[{i}] {}", names[i])), "{line:?}");
+    }
+    assert!(tree[5].ends_with("-> wrist_3_link + ee_link"), "{}", tree[5]);
+    // Masses as in the file, and their sum (3.7 + 8.393 + 2.275 + 2·1.219 + 0.1879).
+    for (body, mass) in [("shoulder_link", "3.7 kg"), ("upper_arm_link", "8.393 kg"), ("wrist_3_link", "0.1879 kg")] {
+        let line = out.lines().find(|l| l.split_whitespace().nth(1) == Some(body) && l.contains(" kg ")).unwrap();
+        assert!(line.contains(mass), "{line:?}");
+    }
+    assert!(out.contains("total mass 16.9939 kg"), "{out}");
+    // The centre of mass of upper_arm_link is 0.28 m up its z axis.
+    assert!(out.lines().any(|l| l.contains("upper_arm_link") && l.contains("(0, 0, 0.28) m")), "{out}");
+    // Every link is a frame; ee_link sits 0.0823 m along y of wrist_3_link.
+    let ee = out.lines().find(|l| l.trim_start().starts_with("ee_link")).unwrap();
+    assert!(ee.contains("5 wrist_3_link") && ee.contains("(0, 0.0823, 0)"), "{ee:?}");
+    assert!(out.contains("\nwarnings: none\n"), "{out}");
+}
+
+#[test]
+fn inspect_a_file_shows_branches_fixed_links_and_base_mass() {
+    let out = succeeds(dynagen().arg("inspect").arg(format!("{ROBOTS}/torso_two_arms.urdf")));
+    assert!(out.contains("torso_two_arms.urdf"), "{out}");
+    let robot = Robot::from_urdf_file(format!("{ROBOTS}/torso_two_arms.urdf")).unwrap();
+    let model = robot.model();
+    // One tree line per body, in joint order; a body with two children has
+    // one ├─ child and one └─ child at the same depth.
+    let tree: Vec<&str> = out.lines().filter(|l| l.contains("└─") || l.contains("├─")).collect();
+    assert_eq!(tree.len(), model.dof());
+    for (i, line) in tree.iter().enumerate() {
+        let b = &model.bodies[i];
+        assert!(line.contains(&format!("[{i}] {} (revolute) -> {}", b.joint.name, b.name)), "{line:?}");
+        let depth = |mut j: usize| {
+            let mut d = 0;
+            while let Some(p) = model.bodies[j].parent {
+                j = p;
+                d += 1;
+            }
+            d
+        };
+        let col = line.find("─").unwrap() - 3; // the byte before "├" or "└" (3 bytes each)
+        assert_eq!(line[..col].chars().count(), 2 + 3 * depth(i), "{line:?}");
+    }
+    // Links fixed to a body are listed with it, and the base's mass is shown apart.
+    assert!(out.contains("-> left_forearm + left_wrist_mount"), "{out}");
+    assert!(out.contains("-> right_hand + right_ee"), "{out}");
+    // Frames: a fixed link's pose in its body's frame, as the file gives it
+    // (joint origins xyz="0 0 -0.09" rpy="0.1 -0.2 0.3" and xyz="0 0 -0.25" rpy="0 0 0.5").
+    let frame = |name: &str| out.lines().find(|l| l.split_whitespace().next() == Some(name)).unwrap();
+    assert!(frame("right_ee").ends_with("6 right_hand       (0, 0, -0.09)  (0.1, -0.2, 0.3)"), "{out}");
+    assert!(frame("left_wrist_mount").ends_with("2 left_forearm     (0, 0, -0.25)  (0, 0, 0.5)"), "{out}");
+    // Masses from the file: left_forearm 1.2 kg + left_wrist_mount 0.6 kg
+    // fixed to it; 11.8 kg moving in all, and the base link's 5 kg.
+    assert!(out.lines().any(|l| l.contains(" left_forearm ") && l.contains(" 1.8 kg ")), "{out}");
+    assert!(out.contains("total mass 16.8 kg: 11.8 kg moving, 5 kg fixed to the base"), "{out}");
+}
+
+const TWO_LINKS: &str = r#"<robot name="two">
+  <link name="base"/>
+  <link name="arm">
+    <inertial><origin xyz="0.5 0 0"/><mass value="2"/>
+      <inertia ixx="0.01" iyy="0.01" izz="0.05" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <joint name="shoulder" type="continuous">
+    <parent link="base"/><child link="arm"/><axis xyz="0 0 AXIS"/>
+  </joint>
+</robot>"#;
+
+#[test]
+fn inspect_lists_every_warning() {
+    let dir = scratch("inspect_warnings");
+    // Axis of length 2: normalised, with a warning. Inertia 0.01, 0.01, 0.05:
+    // 0.01 + 0.01 < 0.05 breaks the triangle inequality, another warning.
+    let file = write(&dir, "warn.urdf", &TWO_LINKS.replace("AXIS", "2"));
+    let out = succeeds(dynagen().arg("inspect").arg(&file));
+    assert!(out.contains("warnings (2):"), "{out}");
+    assert!(out.contains("warning: joint \"shoulder\": axis of length 2 normalised"), "{out}");
+    assert!(out.contains("warning: link \"arm\": principal moments"), "{out}");
+    assert!(out.lines().any(|l| l.contains("shoulder") && l.contains("continuous") && l.contains("(0, 0, 1)")));
+    // eval on the same robot passes the warnings to stderr and still works.
+    let states = write(&dir, "s.json", r#"{"states": [{"q": [0.5]}]}"#);
+    let run = dynagen().args(["eval"]).arg(&file).arg("--input").arg(&states).output().unwrap();
+    assert!(run.status.success());
+    let stderr = String::from_utf8(run.stderr).unwrap();
+    assert_eq!(stderr.lines().count(), 2, "{stderr}");
+    assert!(stderr.lines().all(|l| l.starts_with("warning: ") && l.contains("warn.urdf: ")), "{stderr}");
+}
+
+// ---------------------------------------------------------------- eval
+
+/// Deterministic numbers in [-scale, scale) with all 53 bits used.
+struct Lcg(u64);
+impl Lcg {
+    fn next(&mut self, scale: f64) -> f64 {
+        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        ((self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0) * scale
+    }
+    fn vec(&mut self, n: usize, scale: f64) -> Vec<f64> {
+        (0..n).map(|_| self.next(scale)).collect()
+    }
+}
+
+/// A state with the fields given; each number written in a different text
+/// form (shortest, exponent, 17 significant digits), all exact.
+fn state_json(fields: &[(&str, &[f64])]) -> String {
+    let num = |k: usize, x: f64| match k % 3 {
+        0 => format!("{x:?}"),
+        1 => format!("{x:e}"),
+        _ => format!("{x:.16e}"),
+    };
+    let body: Vec<String> = fields
+        .iter()
+        .map(|(name, xs)| {
+            let items: Vec<String> = xs.iter().enumerate().map(|(k, &x)| num(k, x)).collect();
+            format!("\"{name}\": [{}]", items.join(", "))
+        })
+        .collect();
+    format!("{{{}}}", body.join(", "))
+}
+
+fn bits_eq(what: &str, got: &Value, want: &[f64]) {
+    let got: Vec<f64> = got
+        .as_array()
+        .unwrap_or_else(|| panic!("{what} is not an array"))
+        .iter()
+        .map(|v| v.as_f64().unwrap_or_else(|| panic!("{what}: {v} is not a number")))
+        .collect();
+    assert_eq!(got.len(), want.len(), "{what}");
+    for (k, (g, w)) in got.iter().zip(want).enumerate() {
+        assert_eq!(g.to_bits(), w.to_bits(), "{what}[{k}]: {g:e} from the command, {w:e} from the library");
+    }
+}
+
+type Fields = (Vec<f64>, Option<Vec<f64>>, Option<Vec<f64>>, Option<Vec<f64>>);
+
+/// Checks one result object against the library on the same state: exactly
+/// the outputs the state has inputs for, equal bit for bit.
+fn check_result(robot: &mut Robot, r: &Value, (q, qd, qdd, tau): &Fields, i: usize) {
+    let v = |x: &Vec<f64>| DVector::from_column_slice(x);
+    let obj = r.as_object().unwrap();
+    let mut expected_keys = vec!["M", "g"];
+    let m = robot.mass_matrix(&v(q)).unwrap();
+    let rows = obj["M"].as_array().unwrap();
+    assert_eq!(rows.len(), robot.dof());
+    for (row, json_row) in rows.iter().enumerate() {
+        let want: Vec<f64> = m.row(row).iter().copied().collect();
+        bits_eq(&format!("state {i} M[{row}]"), json_row, &want);
+    }
+    bits_eq(&format!("state {i} g"), &obj["g"], robot.gravity_torques(&v(q)).unwrap().as_slice());
+    if let (Some(qd), Some(qdd)) = (qd, qdd) {
+        expected_keys.push("tau");
+        let want = robot.inverse_dynamics(&v(q), &v(qd), &v(qdd)).unwrap();
+        bits_eq(&format!("state {i} tau"), &obj["tau"], want.as_slice());
+    }
+    if let Some(qd) = qd {
+        expected_keys.push("h");
+        let want = robot.bias_forces(&v(q), &v(qd)).unwrap();
+        bits_eq(&format!("state {i} h"), &obj["h"], want.as_slice());
+    }
+    if let (Some(qd), Some(tau)) = (qd, tau) {
+        expected_keys.push("qdd");
+        let want = robot.forward_dynamics(&v(q), &v(qd), &v(tau)).unwrap();
+        bits_eq(&format!("state {i} qdd"), &obj["qdd"], want.as_slice());
+    }
+    let mut keys: Vec<&str> = obj.keys().map(String::as_str).collect();
+    keys.sort_unstable();
+    expected_keys.sort_unstable();
+    assert_eq!(keys, expected_keys, "state {i}: the outputs present");
+}
+
+/// States covering every combination of optional fields.
+fn some_states(n: usize, seed: u64) -> Vec<Fields> {
+    let mut rng = Lcg(seed);
+    let mut states = Vec::new();
+    for mask in 0..8u32 {
+        for scale in [1.0, 50.0] {
+            let q = rng.vec(n, 3.0 * scale);
+            let qd = (mask & 1 != 0).then(|| rng.vec(n, 4.0 * scale));
+            let qdd = (mask & 2 != 0).then(|| rng.vec(n, 10.0 * scale));
+            let tau = (mask & 4 != 0).then(|| rng.vec(n, 100.0 * scale));
+            states.push((q, qd, qdd, tau));
+        }
+    }
+    states
+}
+
+fn states_file(states: &[Fields]) -> String {
+    let items: Vec<String> = states
+        .iter()
+        .map(|(q, qd, qdd, tau)| {
+            let mut f: Vec<(&str, &[f64])> = vec![("q", q)];
+            // Field order varies: it must not matter.
+            if let Some(x) = tau {
+                f.push(("tau", x));
+            }
+            if let Some(x) = qdd {
+                f.push(("qdd", x));
+            }
+            if let Some(x) = qd {
+                f.push(("qd", x));
+            }
+            state_json(&f)
+        })
+        .collect();
+    format!("{{\"states\": [\n  {}\n]}}\n", items.join(",\n  "))
+}
+
+#[test]
+fn eval_on_the_bundled_ur5_agrees_bit_for_bit_with_the_library() {
+    let dir = scratch("eval_bundled");
+    let states = some_states(6, 1);
+    let file = write(&dir, "states.json", &states_file(&states));
+    let out = succeeds(dynagen().arg("eval").arg("--input").arg(&file));
+    let doc: Value = serde_json::from_str(&out).unwrap();
+    let mut robot = ur5();
+    let names: Vec<&str> = doc["joint_names"].as_array().unwrap().iter().map(|v| v.as_str().unwrap()).collect();
+    assert_eq!(names, robot.joint_names());
+    let results = doc["results"].as_array().unwrap();
+    assert_eq!(results.len(), states.len());
+    for (i, (r, s)) in results.iter().zip(&states).enumerate() {
+        check_result(&mut robot, r, s, i);
+    }
+    // The same through stdin, and a mass matrix printed one row per line.
+    let piped = succeeds(dynagen().args(["eval", "--input", "-"]).write_stdin(std::fs::read(&file).unwrap()));
+    assert_eq!(piped, out);
+    assert!(out.contains("      \"M\": [\n        ["), "{out}");
+}
+
+#[test]
+fn eval_on_a_file_with_gravity_agrees_bit_for_bit_with_the_library() {
+    let dir = scratch("eval_gravity");
+    let path = format!("{ROBOTS}/panda.urdf");
+    let mut robot = Robot::from_urdf_file(&path).unwrap();
+    let states = some_states(robot.dof(), 2);
+    let file = write(&dir, "states.json", &states_file(&states));
+    // Negative first component: must not be taken for an option.
+    let out = succeeds(dynagen().args(["eval", &path, "--gravity", "-1.5, 0.25,-9.80665", "--input"]).arg(&file));
+    robot.set_gravity(Vector3::new(-1.5, 0.25, -9.80665)).unwrap();
+    let doc: Value = serde_json::from_str(&out).unwrap();
+    let names: Vec<&str> = doc["joint_names"].as_array().unwrap().iter().map(|v| v.as_str().unwrap()).collect();
+    assert_eq!(names, robot.joint_names());
+    for (i, (r, s)) in doc["results"].as_array().unwrap().iter().zip(&states).enumerate() {
+        check_result(&mut robot, r, s, i);
+    }
+    // Gravity really changed the answer (g differs from the default's).
+    let mut default = Robot::from_urdf_file(&path).unwrap();
+    let q = DVector::from_column_slice(&states[0].0);
+    let g_default = default.gravity_torques(&q).unwrap();
+    let g_out: Vec<f64> = doc["results"][0]["g"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    assert!(g_out.iter().zip(g_default.iter()).any(|(a, b)| a != b));
+}
+
+#[test]
+fn eval_accepts_integers_and_checks_joint_names() {
+    let dir = scratch("eval_joint_names");
+    let robot = ur5();
+    let names: Vec<String> = robot.joint_names().iter().map(|n| format!("\"{n}\"")).collect();
+    let good = format!("{{\"joint_names\": [{}], \"states\": [{{\"q\": [0, 1, 0, 0, 0, 0]}}]}}", names.join(", "));
+    let out = succeeds(dynagen().args(["eval", "--input", "-"]).write_stdin(good));
+    let doc: Value = serde_json::from_str(&out).unwrap();
+    let mut robot = ur5();
+    let g = robot.gravity_torques(&DVector::from_column_slice(&[0.0, 1.0, 0.0, 0.0, 0.0, 0.0])).unwrap();
+    bits_eq("g", &doc["results"][0]["g"], g.as_slice());
+
+    let mut swapped = names.clone();
+    swapped.swap(1, 2);
+    let bad = write(&dir, "order.json", &format!("{{\"joint_names\": [{}], \"states\": []}}", swapped.join(", ")));
+    let e = fails(dynagen().args(["eval", "--input"]).arg(&bad), 1);
+    assert!(e.contains("order.json: \"joint_names\"[1] is \"elbow_joint\""), "{e}");
+}
+
+// ---------------------------------------------------------------- errors
+
+#[test]
+fn a_missing_robot_file_is_one_line_naming_it() {
+    for sub in [&["inspect"][..], &["eval", "--input", "-"]] {
+        let e = fails(dynagen().args(sub).arg("no/such/robot.urdf").write_stdin("{\"states\": []}"), 1);
+        assert!(e.starts_with("error: no/such/robot.urdf: cannot read the file"), "{e}");
+    }
+}
+
+#[test]
+fn a_malformed_urdf_is_one_line_naming_the_file() {
+    let dir = scratch("bad_urdf");
+    let file = write(&dir, "broken.urdf", "<robot name=\"x\">\n  <link name=\"a\">\n</robot>\n");
+    let e = fails(dynagen().arg("inspect").arg(&file), 1);
+    assert!(e.contains("broken.urdf: malformed URDF"), "{e}");
+}
+
+#[test]
+fn a_bad_urdf_names_the_file_and_the_joint_or_link() {
+    let dir = scratch("bad_joint");
+    let zero = write(&dir, "zero.urdf", &TWO_LINKS.replace("0 0 AXIS", "0 0 0"));
+    let e = fails(dynagen().arg("inspect").arg(&zero), 1);
+    assert_eq!(e, format!("error: {}: joint \"shoulder\": the axis is zero", zero.display()));
+    let heavy = write(&dir, "neg.urdf", &TWO_LINKS.replace("AXIS", "1").replace("value=\"2\"", "value=\"-2\""));
+    let states = write(&dir, "s.json", r#"{"states": [{"q": [0]}]}"#);
+    let e = fails(dynagen().arg("eval").arg(&heavy).arg("--input").arg(&states), 1);
+    assert!(e.starts_with(&format!("error: {}: link \"arm\": negative mass", heavy.display())), "{e}");
+}
+
+/// Runs eval on the bundled UR5 with this input file and returns the error.
+fn eval_error(test: &str, json: &str) -> String {
+    let dir = scratch(test);
+    write(&dir, "states.json", json);
+    fails(dynagen().args(["eval", "--input", "states.json"]).current_dir(&dir), 1)
+}
+
+#[test]
+fn a_state_of_the_wrong_length_names_the_file_state_and_field() {
+    let ok = "\"q\": [0, 0, 0, 0, 0, 0]";
+    let json = format!("{{\"states\": [{{{ok}}}, {{{ok}}}, {{{ok}}}, {{{ok}, \"qd\": [1, 2, 3, 4, 5]}}]}}");
+    let e = eval_error("wrong_length", &json);
+    assert!(e.ends_with("states.json: state 3: \"qd\" has 5 entries, the robot has 6 joints"), "{e}");
+}
+
+#[test]
+fn non_numbers_in_a_state_name_the_entry_and_its_joint() {
+    let cases = [
+        (r#"{"states": [{"q": [0, 0, "x", 0, 0, 0]}]}"#, "state 0: \"q\"[2] (joint \"elbow_joint\") is a string"),
+        (r#"{"states": [{"q": [0, 0, 0, 0, null, 0]}]}"#, "state 0: \"q\"[4] (joint \"wrist_2_joint\") is null"),
+        (
+            r#"{"states": [{"q": [0, 0, 0, 0, 0, 0], "qd": [true, 0, 0, 0, 0, 0]}]}"#,
+            "\"qd\"[0] (joint \"shoulder_pan_joint\") is a boolean",
+        ),
+        (r#"{"states": [{"q": [0, 0, 0, 0, 0, 0], "qd": null}]}"#, "state 0: \"qd\" is null"),
+        (r#"{"states": [{"q": [0, 0, 0, 0, 0, 0], "tau": "fast"}]}"#, "state 0: \"tau\" must be an array"),
+        // JSON has no NaN or infinity; a number beyond f64 is refused and located.
+        (
+            r#"{"states": [{"q": [0, 0, 0, 0, 0, 0]}, {"q": [0, 0, 0, 1e999, 0, 0]}]}"#,
+            "state 1: \"q\"[3] (joint \"wrist_1_joint\"): a number too large for f64",
+        ),
+        (
+            r#"{"states": [{"q": [0, 0, 0, 0, 0, 0], "qdd": [NaN, 0, 0, 0, 0, 0]}]}"#,
+            "state 0: \"qdd\"[0] (joint \"shoulder_pan_joint\"): malformed JSON",
+        ),
+        (r#"{"states": [{"q": [0, 0, 0, 0, 0, 0], "qdot": [0, 0, 0, 0, 0, 0]}]}"#, "state 0: unknown field \"qdot\""),
+        (r#"{"states": [{"qd": [0, 0, 0, 0, 0, 0]}]}"#, "state 0: \"q\" is missing"),
+        (r#"{"states": [{"q": [0, 0, 0, 0, 0, 0]}, 7]}"#, "state 1: expected an object"),
+        (r#"{"state": []}"#, "unknown top-level field \"state\""),
+        (r#"{"states": [{"q": [0, 0, 0,"#, "state 0: \"q\"[3] (joint \"wrist_1_joint\"): malformed JSON: EOF"),
+        // Finite inputs whose outputs overflow f64: refused, not printed as null.
+        (
+            r#"{"states": [{"q": [0, 0, 0, 0, 0, 0], "qd": [1e200, 1e200, 1e200, 1e200, 1e200, 1e200]}]}"#,
+            "state 0: output \"h\"",
+        ),
+    ];
+    for (k, (json, item)) in cases.iter().enumerate() {
+        let e = eval_error(&format!("non_numbers_{k}"), json);
+        assert!(e.starts_with("error: states.json: "), "{e}");
+        assert!(e.contains(item), "case {k}: {e:?} lacks {item:?}");
+    }
+}
+
+#[test]
+fn a_missing_or_malformed_states_file_is_named() {
+    let e = fails(dynagen().args(["eval", "--input", "no_such_states.json"]), 1);
+    assert!(e.starts_with("error: no_such_states.json: cannot read the file"), "{e}");
+    let e = fails(dynagen().args(["eval", "--input", "-"]).write_stdin("{\"states\": [}"), 1);
+    assert!(e.starts_with("error: <stdin>: state 0: malformed JSON: expected value at line 1 column 13"), "{e}");
+}
+
+#[test]
+fn a_bad_gravity_is_one_line_naming_the_option() {
+    for (g, why) in [
+        ("0,-9.81", "expected three numbers X,Y,Z"),
+        ("0;0;-9.81", "expected three numbers X,Y,Z"),
+        ("0,0,down", "Z = \"down\" is not a number"),
+        ("nan,0,0", "X = \"nan\" is not a finite number"),
+    ] {
+        let e = fails(dynagen().args(["eval", "--input", "-", "--gravity", g]).write_stdin("{\"states\": []}"), 1);
+        assert!(e.starts_with(&format!("error: --gravity \"{g}\": {why}")), "{e}");
+    }
+}
+
+#[test]
+fn generate_ops_and_report_are_not_available_yet() {
+    for sub in ["generate", "ops", "report"] {
+        for extra in [&[][..], &["robot.urdf", "--output", "x.rs"]] {
+            let e = fails(dynagen().arg(sub).args(extra), 3);
+            assert!(e.starts_with(&format!("error: `dynagen {sub}` is not available yet in this version")), "{e}");
+        }
+    }
+}

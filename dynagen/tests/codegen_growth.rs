@@ -1,0 +1,48 @@
+//! Operation counts over serial chains of 2 to 64 joints: linear in the
+//! number of joints for τ (RNEA is O(n)), quadratic for M (n(n+1)/2
+//! entries, each a projection of a force carried up the chain).
+
+use dynagen::codegen::{trace, FunctionKind};
+use dynagen::model::{Inertial, JointDescription, RobotBuilder};
+use dynagen::symbolic::Rewrites;
+use dynagen::Model;
+
+/// A chain with skewed placements and full inertias, so that nothing folds
+/// away by accident of symmetry.
+fn chain(n: usize) -> Model {
+    let mut b = RobotBuilder::new("chain").link("l0", None);
+    for i in 1..=n {
+        let k = i as f64;
+        b = b.link(
+            &format!("l{i}"),
+            Some(Inertial::new(1.0 + 0.1 * k, [0.05, 0.02, 0.2], [0.03, 0.04, 0.02, 0.001, -0.002, 0.003])),
+        );
+        let axis = [[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]][i % 3];
+        let j = JointDescription::revolute(&format!("j{i}"), &format!("l{}", i - 1), &format!("l{i}"), axis)
+            .origin([0.1, 0.02 * k, 0.3], [0.1 * k, 0.2, -0.3]);
+        b = b.joint(j);
+    }
+    b.build().unwrap()
+}
+
+#[test]
+fn op_counts_grow_linearly_for_tau_and_quadratically_for_m() {
+    let sizes = [2usize, 4, 8, 16, 32, 64];
+    let mut rows = Vec::new();
+    println!("{:>6} {:>10} {:>10} {:>10} {:>10}", "joints", "tau", "tau/n", "M", "M/n^2");
+    for &n in &sizes {
+        let model = chain(n);
+        let tau = trace(&model, FunctionKind::InverseDynamics, Rewrites::default()).unwrap().op_count().total();
+        let m = trace(&model, FunctionKind::MassMatrix, Rewrites::default()).unwrap().op_count().total();
+        println!("{n:>6} {tau:>10} {:>10.1} {m:>10} {:>10.1}", tau as f64 / n as f64, m as f64 / (n * n) as f64);
+        rows.push((n, tau, m));
+    }
+    // Doubling the joints from 16 on: τ doubles, M quadruples (within the
+    // first rows' fixed costs).
+    for w in rows.windows(2).skip(3) {
+        let ((n0, t0, m0), (n1, t1, m1)) = (w[0], w[1]);
+        let (rt, rm) = (t1 as f64 / t0 as f64, m1 as f64 / m0 as f64);
+        assert!((1.9..=2.1).contains(&rt), "τ from {n0} to {n1} joints grew {rt:.2}×");
+        assert!((3.6..=4.2).contains(&rm), "M from {n0} to {n1} joints grew {rm:.2}×");
+    }
+}
