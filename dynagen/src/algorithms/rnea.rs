@@ -7,7 +7,7 @@
 //! torque is the projection of the wrench it transmits onto its axis. Every
 //! quantity is kept in the body's own frame.
 
-use super::joint::{joint_transform, motion, project};
+use super::joint::{add_motion, cross_motion, joint_transform, motion, project};
 use super::{TipWrench, Workspace};
 use crate::model::Model;
 use crate::spatial::{Inertia, Motion, Transform, Vec3};
@@ -50,13 +50,14 @@ pub fn rnea<S: Scalar>(
         qd.is_none_or(|x| x.len() == n) && qdd.is_none_or(|x| x.len() == n),
         "rnea: slices must have the model's {n} joints"
     );
-    update_joint_transforms(model, ws, q);
 
     // The base's acceleration is −g.
     let a0 = Motion::new(Vec3::zero(), gravity.map_or(Vec3::zero(), |g| -*g));
     let has_a0 = gravity.is_some();
     for (i, body) in model.bodies.iter().enumerate() {
-        let x = &ws.x[i];
+        let joint = &body.joint;
+        let x = joint_transform(joint, q[i]);
+        ws.x[i] = x;
         let inertia = Inertia::<S>::from_f64(&body.inertia);
         // acceleration of the parent (or of the base)
         let a_parent = match body.parent {
@@ -65,15 +66,20 @@ pub fn rnea<S: Scalar>(
         };
         let mut a = a_parent.map_or(Motion::zero(), |ap| x.motion_to_child(&ap));
         if let Some(qdd) = qdd {
-            a += motion(&body.joint, qdd[i]);
+            add_motion(joint, &mut a, qdd[i]);
         }
         let f = if let Some(qd) = qd {
-            let sqd = motion(&body.joint, qd[i]);
+            let qdi = qd[i];
             let v = match body.parent {
-                Some(p) => x.motion_to_child(&ws.v[p]) + sqd,
-                None => sqd,
+                Some(p) => {
+                    let mut v = x.motion_to_child(&ws.v[p]);
+                    add_motion(joint, &mut v, qdi);
+                    a += cross_motion(joint, &v, qdi);
+                    v
+                }
+                // v ×ₘ S q̇ = 0 for v = S q̇
+                None => motion(joint, qdi),
             };
-            a += v.cross_motion(&sqd);
             ws.v[i] = v;
             inertia.mul_motion(&a) + v.cross_force(&inertia.mul_motion(&v))
         } else {

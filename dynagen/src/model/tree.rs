@@ -2,8 +2,8 @@
 //! depth-first joint order, and fixed joints merged away.
 
 use super::description::{JointDescription, JointType, RobotDescription};
-use super::{validate, Body, BuildOptions, Frame, Joint, JointKind, Model, ModelError, DEFAULT_GRAVITY};
-use crate::spatial::{Inertia, Transform, Vec3};
+use super::{validate, AxisAlignment, Body, BuildOptions, Frame, Joint, JointKind, Model, ModelError, DEFAULT_GRAVITY};
+use crate::spatial::{Inertia, Mat3, Transform, Vec3};
 use std::collections::HashMap;
 
 impl Model {
@@ -123,6 +123,8 @@ fn joint_from(desc: &JointDescription, placement: Transform<f64>) -> Joint {
         limits: desc.limits,
         unit_axis: desc.axis.scale(1.0 / n),
         axis_norm: n,
+        alignment: AxisAlignment::of(&desc.axis),
+        placement_rotation_is_identity: placement.rot == Mat3::identity(),
     }
 }
 
