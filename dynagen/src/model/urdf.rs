@@ -1,49 +1,413 @@
-//! URDF import, through urdf-rs, then dynagen's own checks.
+//! URDF import: dynagen's own reading of the raw XML, then urdf-rs, then the
+//! checks every description goes through.
+//!
+//! urdf-rs 0.10 loses information dynagen needs, so the XML is read once by
+//! [`precheck`] (with quick-xml, which urdf-rs already depends on) before
+//! urdf-rs sees it:
+//!
+//! - its vectors keep only the tokens that parse as numbers, so
+//!   `xyz="1 2 abc 4"` becomes (1, 2, 4) without a word; it accepts `nan`
+//!   and `inf` (and `1e400`, which is infinite) everywhere;
+//! - a link without `<inertial>` reads as mass 0 with zero inertia, and a
+//!   joint without `<limit>` as limits (0, 0, 0, 0): absent and zero look
+//!   the same;
+//! - it does not check that the root element is `<robot>`, and ignores a
+//!   second root element;
+//! - its errors for a missing attribute or element ("missing field
+//!   `parent`") do not say which link or joint;
+//! - it recurses once per level of nesting, so a deeply nested document
+//!   overflows the stack.
+//!
+//! The pre-check refuses each of these with an error that names the link or
+//! joint, the attribute and the text; what urdf-rs then reads is only used
+//! for what the pre-check has vouched for.
 
 use super::description::{Inertial, JointDescription, JointLimits, JointType, LinkDescription, RobotDescription};
 use super::{BuildOptions, Model, ModelError, ModelWarning};
 use crate::spatial::{Mat3, Sym3, Transform, Vec3};
+use quick_xml::events::{BytesStart, Event};
 use std::path::Path;
+
+/// Elements may nest at most this deep (`<robot><link><visual><geometry>
+/// <mesh>` is 5): urdf-rs and the XML crates under it recurse per level.
+const MAX_NESTING: usize = 64;
+
+/// What the pre-check learnt that urdf-rs does not say.
+#[derive(Debug, Default)]
+struct RawFacts {
+    /// For each `<link>` child of `<robot>`, in file order: whether it has an
+    /// `<inertial>`.
+    link_has_inertial: Vec<bool>,
+    /// For each `<joint>` child of `<robot>`, in file order: whether it has a
+    /// `<limit>`.
+    joint_has_limit: Vec<bool>,
+}
+
+/// The URDF joint types, as urdf-rs spells them.
+const JOINT_TYPES: [&str; 7] = ["revolute", "continuous", "prismatic", "fixed", "floating", "planar", "spherical"];
+
+/// The element being read, as far as the pre-check cares.
+enum Ctx {
+    Robot,
+    Link,
+    Joint,
+    Inertial,
+    /// An element whose attributes the pre-check reads (`<origin>`,
+    /// `<mass>`, ...), in a joint (`true`) or a link: it must not have child
+    /// elements, which serde-xml-rs could read in place of an attribute.
+    Leaf(&'static str, bool),
+    /// Anything else (visuals, collisions, extensions): not looked into.
+    Other,
+}
+
+/// The state of the `<link>` being read.
+#[derive(Default)]
+struct LinkState {
+    item: String,
+    inertial: bool,
+    origin: bool,
+    mass: bool,
+    inertia: bool,
+}
+
+/// The state of the `<joint>` being read.
+#[derive(Default)]
+struct JointState {
+    item: String,
+    origin: bool,
+    axis: bool,
+    limit: bool,
+    parent: bool,
+    child: bool,
+}
+
+/// Reads the attributes of an element as (local name, unescaped value).
+fn attributes(
+    e: &BytesStart<'_>,
+    reader: &quick_xml::Reader<&[u8]>,
+    xml: &str,
+) -> Result<Vec<(String, String)>, ModelError> {
+    let mut out = Vec::new();
+    for a in e.attributes().with_checks(true) {
+        let a = a.map_err(|err| malformed(xml, reader, &err.to_string()))?;
+        let key = String::from_utf8_lossy(a.key.local_name().as_ref()).into_owned();
+        let value =
+            a.decode_and_unescape_value(reader.decoder()).map_err(|err| malformed(xml, reader, &err.to_string()))?;
+        out.push((key, value.into_owned()));
+    }
+    Ok(out)
+}
+
+/// The line (1-based) of a byte offset.
+fn line_of(xml: &str, pos: u64) -> usize {
+    let pos = usize::try_from(pos).unwrap_or(usize::MAX).min(xml.len());
+    xml.as_bytes()[..pos].iter().filter(|&&b| b == b'\n').count() + 1
+}
+
+fn malformed(xml: &str, reader: &quick_xml::Reader<&[u8]>, why: &str) -> ModelError {
+    ModelError::Urdf(format!("line {}: {why}", line_of(xml, reader.buffer_position())))
+}
+
+/// Parses `text` as exactly `N` finite numbers separated by white space.
+fn numbers<const N: usize>(item: &str, what: &str, text: &str) -> Result<[f64; N], ModelError> {
+    let bad = || ModelError::BadNumber { item: item.to_string(), what: what.to_string(), text: text.to_string() };
+    let mut out = [0.0; N];
+    let mut tokens = text.split_whitespace();
+    for x in &mut out {
+        *x = tokens.next().and_then(|t| t.parse::<f64>().ok()).filter(|x| x.is_finite()).ok_or_else(bad)?;
+    }
+    if tokens.next().is_some() {
+        return Err(bad());
+    }
+    Ok(out)
+}
+
+fn get<'a>(attrs: &'a [(String, String)], key: &str) -> Option<&'a str> {
+    attrs.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str())
+}
+
+/// Checks the numbers of an element: each of `keys` that is present must be
+/// `N` finite numbers (every attribute with that local name, so a prefixed
+/// duplicate cannot slip past); those in `required` must be present.
+fn check_numbers<const N: usize>(
+    attrs: &[(String, String)],
+    item: &str,
+    element: &str,
+    keys: &[&str],
+    required: &[&str],
+) -> Result<(), ModelError> {
+    for (k, v) in attrs {
+        if keys.contains(&k.as_str()) {
+            numbers::<N>(item, &format!("{element} {k}"), v)?;
+        }
+    }
+    for k in required {
+        if get(attrs, k).is_none() {
+            return Err(ModelError::Urdf(format!("{item}: <{element}> has no {k} attribute")));
+        }
+    }
+    Ok(())
+}
+
+/// Checks an `<origin>`: xyz and rpy three finite numbers each; from URDF
+/// 1.1 on, `quat_xyzw` four, not all zero, and not together with rpy.
+fn check_origin(attrs: &[(String, String)], item: &str, element: &str, version: (u32, u32)) -> Result<(), ModelError> {
+    check_numbers::<3>(attrs, item, element, &["xyz", "rpy"], &[])?;
+    if version >= (1, 1) {
+        if let Some(q) = get(attrs, "quat_xyzw") {
+            let v = numbers::<4>(item, &format!("{element} quat_xyzw"), q)?;
+            if v.iter().all(|&x| x == 0.0) {
+                return Err(ModelError::BadNumber {
+                    item: item.to_string(),
+                    what: format!("{element} quat_xyzw (a zero quaternion is no rotation)"),
+                    text: q.to_string(),
+                });
+            }
+            if get(attrs, "rpy").is_some() {
+                return Err(ModelError::Urdf(format!("{item}: <{element}> has both rpy and quat_xyzw")));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The `version` attribute of `<robot>` as urdf-rs reads it: "major.minor",
+/// anything else (or nothing) is 1.0.
+fn urdf_version(attrs: &[(String, String)]) -> (u32, u32) {
+    get(attrs, "version")
+        .and_then(|v| {
+            let (major, minor) = v.trim().split_once('.')?;
+            Some((major.parse().ok()?, minor.parse().ok()?))
+        })
+        .unwrap_or((1, 0))
+}
+
+/// Reads the raw XML for what urdf-rs would lose or not name: every number
+/// dynagen uses, the structure of links and joints, the root element and the
+/// nesting depth.
+fn precheck(xml: &str) -> Result<RawFacts, ModelError> {
+    let mut reader = quick_xml::Reader::from_str(xml);
+    let mut facts = RawFacts::default();
+    let mut stack: Vec<Ctx> = Vec::new();
+    let mut names: Vec<String> = Vec::new();
+    let mut seen_root = false;
+    let mut version = (1, 0);
+    let mut link = LinkState::default();
+    let mut joint = JointState::default();
+    loop {
+        let event = reader.read_event().map_err(|e| malformed(xml, &reader, &e.to_string()))?;
+        let (e, empty) = match event {
+            Event::Start(e) => (e, false),
+            Event::Empty(e) => (e, true),
+            Event::End(_) => {
+                names.pop();
+                close(stack.pop(), &mut facts, &link, &joint)?;
+                continue;
+            }
+            Event::Eof => break,
+            _ => continue,
+        };
+        if stack.len() >= MAX_NESTING {
+            return Err(malformed(xml, &reader, &format!("elements nested more than {MAX_NESTING} deep")));
+        }
+        let name = String::from_utf8_lossy(e.local_name().as_ref()).into_owned();
+        let attrs = attributes(&e, &reader, xml)?;
+        let ctx = match stack.last() {
+            None => {
+                if seen_root {
+                    return Err(malformed(xml, &reader, &format!("a second root element <{name}> after </robot>")));
+                }
+                seen_root = true;
+                if name != "robot" {
+                    return Err(ModelError::Urdf(format!("the root element is <{name}>, not <robot>")));
+                }
+                version = urdf_version(&attrs);
+                Ctx::Robot
+            }
+            Some(Ctx::Robot) if name == "link" => {
+                let n = facts.link_has_inertial.len() + 1;
+                let item = match get(&attrs, "name") {
+                    None => return Err(ModelError::Urdf(format!("link number {n} has no name attribute"))),
+                    Some("") => return Err(ModelError::Urdf(format!("link number {n} has an empty name"))),
+                    Some(s) => format!("link \"{s}\""),
+                };
+                link = LinkState { item, ..Default::default() };
+                Ctx::Link
+            }
+            Some(Ctx::Robot) if name == "joint" => {
+                let n = facts.joint_has_limit.len() + 1;
+                let item = match get(&attrs, "name") {
+                    None => return Err(ModelError::Urdf(format!("joint number {n} has no name attribute"))),
+                    Some("") => return Err(ModelError::Urdf(format!("joint number {n} has an empty name"))),
+                    Some(s) => format!("joint \"{s}\""),
+                };
+                match get(&attrs, "type") {
+                    None => return Err(ModelError::Urdf(format!("{item} has no type attribute"))),
+                    Some(t) if !JOINT_TYPES.contains(&t) => {
+                        return Err(ModelError::Urdf(format!(
+                            "{item}: unknown joint type \"{t}\" (URDF knows {})",
+                            JOINT_TYPES.join(", ")
+                        )))
+                    }
+                    Some(_) => {}
+                }
+                joint = JointState { item, ..Default::default() };
+                Ctx::Joint
+            }
+            Some(Ctx::Link) if name == "inertial" => {
+                once(&mut link.inertial, &link.item, "inertial")?;
+                Ctx::Inertial
+            }
+            Some(Ctx::Inertial) => {
+                let item = link.item.as_str();
+                match name.as_str() {
+                    "origin" => {
+                        once(&mut link.origin, item, "inertial><origin")?;
+                        check_origin(&attrs, item, "inertial origin", version)?;
+                        Ctx::Leaf("inertial><origin", false)
+                    }
+                    "mass" => {
+                        once(&mut link.mass, item, "inertial><mass")?;
+                        check_numbers::<1>(&attrs, item, "mass", &["value"], &["value"])?;
+                        Ctx::Leaf("mass", false)
+                    }
+                    "inertia" => {
+                        once(&mut link.inertia, item, "inertial><inertia")?;
+                        let keys = ["ixx", "ixy", "ixz", "iyy", "iyz", "izz"];
+                        check_numbers::<1>(&attrs, item, "inertia", &keys, &keys)?;
+                        Ctx::Leaf("inertia", false)
+                    }
+                    _ => Ctx::Other,
+                }
+            }
+            Some(Ctx::Joint) => {
+                let item = joint.item.as_str();
+                match name.as_str() {
+                    "origin" => {
+                        once(&mut joint.origin, item, "origin")?;
+                        check_origin(&attrs, item, "origin", version)?;
+                        Ctx::Leaf("origin", true)
+                    }
+                    "axis" => {
+                        once(&mut joint.axis, item, "axis")?;
+                        check_numbers::<3>(&attrs, item, "axis", &["xyz"], &["xyz"])?;
+                        Ctx::Leaf("axis", true)
+                    }
+                    "limit" => {
+                        once(&mut joint.limit, item, "limit")?;
+                        // urdf-rs needs the velocity before URDF 1.2, and
+                        // takes a missing one as infinite from 1.2 on.
+                        let required: &[&str] = if version < (1, 2) { &["velocity"] } else { &[] };
+                        check_numbers::<1>(&attrs, item, "limit", &["lower", "upper", "effort", "velocity"], required)?;
+                        Ctx::Leaf("limit", true)
+                    }
+                    "parent" | "child" => {
+                        let (seen, role) =
+                            if name == "parent" { (&mut joint.parent, "parent") } else { (&mut joint.child, "child") };
+                        once(seen, item, role)?;
+                        if get(&attrs, "link").is_none() {
+                            return Err(ModelError::Urdf(format!("{item}: <{role}> has no link attribute")));
+                        }
+                        Ctx::Leaf(if role == "parent" { "parent" } else { "child" }, true)
+                    }
+                    _ => Ctx::Other,
+                }
+            }
+            Some(&Ctx::Leaf(parent, in_joint)) => {
+                let item = if in_joint { &joint.item } else { &link.item };
+                return Err(ModelError::Urdf(format!("{item}: <{parent}> must not contain an element (<{name}>)")));
+            }
+            Some(_) => Ctx::Other,
+        };
+        stack.push(ctx);
+        names.push(name);
+        if empty {
+            names.pop();
+            close(stack.pop(), &mut facts, &link, &joint)?;
+        }
+    }
+    if !seen_root {
+        return Err(ModelError::Urdf("no <robot> element".into()));
+    }
+    if let Some(open) = names.last() {
+        return Err(ModelError::Urdf(format!("the document ends inside <{open}>")));
+    }
+    Ok(facts)
+}
+
+/// Marks an element seen, refusing a second one.
+fn once(seen: &mut bool, item: &str, element: &str) -> Result<(), ModelError> {
+    if std::mem::replace(seen, true) {
+        return Err(ModelError::Urdf(format!("{item} has more than one <{element}>")));
+    }
+    Ok(())
+}
+
+/// What to check and record when an element ends.
+fn close(ctx: Option<Ctx>, facts: &mut RawFacts, link: &LinkState, joint: &JointState) -> Result<(), ModelError> {
+    match ctx {
+        Some(Ctx::Link) => facts.link_has_inertial.push(link.inertial),
+        Some(Ctx::Joint) => {
+            for (seen, role) in [(joint.parent, "parent"), (joint.child, "child")] {
+                if !seen {
+                    return Err(ModelError::Urdf(format!("{} has no <{role} link=\"...\"/>", joint.item)));
+                }
+            }
+            facts.joint_has_limit.push(joint.limit);
+        }
+        Some(Ctx::Inertial) => {
+            for (seen, what) in [(link.mass, "mass value=\"...\""), (link.inertia, "inertia .../")] {
+                if !seen {
+                    return Err(ModelError::Urdf(format!("{}: <inertial> has no <{what}>", link.item)));
+                }
+            }
+        }
+        _ => {}
+    }
+    Ok(())
+}
 
 fn pose(p: &urdf_rs::Pose) -> Transform<f64> {
     Transform::new(Mat3::from_rpy(p.rpy[0], p.rpy[1], p.rpy[2]), Vec3(*p.xyz))
 }
 
-/// Converts a parsed URDF to a description. Axes are normalised (as the URDF
+/// Converts a parsed URDF to a description, using what the pre-check found
+/// for what urdf-rs cannot tell apart. Axes are normalised (as the URDF
 /// specification requires and Pinocchio does); each normalisation is
 /// returned as a warning.
-pub(super) fn description_from_urdf(
+fn description_from_urdf(
     robot: &urdf_rs::Robot,
+    facts: &RawFacts,
 ) -> Result<(RobotDescription, Vec<ModelWarning>), ModelError> {
+    if robot.links.len() != facts.link_has_inertial.len() || robot.joints.len() != facts.joint_has_limit.len() {
+        return Err(ModelError::Urdf(format!(
+            "urdf-rs read {} links and {} joints, dynagen's own reading {} and {}",
+            robot.links.len(),
+            robot.joints.len(),
+            facts.link_has_inertial.len(),
+            facts.joint_has_limit.len()
+        )));
+    }
     let mut warnings = Vec::new();
     let links = robot
         .links
         .iter()
-        .map(|l| {
+        .zip(&facts.link_has_inertial)
+        .map(|(l, &has_inertial)| {
             let i = &l.inertial;
-            let rpy = &i.origin.rpy;
-            if !rpy.iter().all(|x| x.is_finite()) {
-                return Err(ModelError::NonFinite {
-                    item: format!("link \"{}\"", l.name),
-                    what: "inertial origin rpy",
-                });
-            }
             let inertia =
                 Sym3([i.inertia.ixx, i.inertia.iyy, i.inertia.izz, i.inertia.ixy, i.inertia.ixz, i.inertia.iyz]);
-            let massless = i.mass.value == 0.0 && inertia.0.iter().all(|&x| x == 0.0);
-            Ok(LinkDescription {
+            LinkDescription {
                 name: l.name.clone(),
-                inertial: (!massless).then(|| Inertial { mass: i.mass.value, origin: pose(&i.origin), inertia }),
-            })
+                inertial: has_inertial.then(|| Inertial { mass: i.mass.value, origin: pose(&i.origin), inertia }),
+            }
         })
-        .collect::<Result<Vec<_>, _>>()?;
+        .collect();
     let joints = robot
         .joints
         .iter()
-        .map(|j| {
-            if !j.origin.rpy.iter().all(|x| x.is_finite()) {
-                return Err(ModelError::NonFinite { item: format!("joint \"{}\"", j.name), what: "origin rpy" });
-            }
+        .zip(&facts.joint_has_limit)
+        .map(|(j, &has_limit)| {
             let joint_type = match j.joint_type {
                 urdf_rs::JointType::Revolute => JointType::Revolute,
                 urdf_rs::JointType::Continuous => JointType::Continuous,
@@ -59,13 +423,15 @@ pub(super) fn description_from_urdf(
                 warnings.push(ModelWarning::AxisNormalised { joint: j.name.clone(), norm });
                 axis = axis.scale(1.0 / norm);
             }
-            let limits = matches!(joint_type, JointType::Revolute | JointType::Prismatic).then_some(JointLimits {
-                lower: j.limit.lower,
-                upper: j.limit.upper,
-                velocity: j.limit.velocity,
-                effort: j.limit.effort,
-            });
-            Ok(JointDescription {
+            let limits = (has_limit && matches!(joint_type, JointType::Revolute | JointType::Prismatic)).then_some(
+                JointLimits {
+                    lower: j.limit.lower,
+                    upper: j.limit.upper,
+                    velocity: j.limit.velocity,
+                    effort: j.limit.effort,
+                },
+            );
+            JointDescription {
                 name: j.name.clone(),
                 joint_type,
                 parent: j.parent.link.clone(),
@@ -74,10 +440,22 @@ pub(super) fn description_from_urdf(
                 axis,
                 limits,
                 mimic: j.mimic.is_some(),
-            })
+            }
         })
-        .collect::<Result<Vec<_>, _>>()?;
+        .collect();
     Ok((RobotDescription { name: robot.name.clone(), links, joints, gravity: None }, warnings))
+}
+
+impl RobotDescription {
+    /// Reads a URDF document as a description, without building the model
+    /// (to inspect or edit it first), with the warnings of the import (axes
+    /// normalised). A link without `<inertial>` has `inertial: None`, and a
+    /// joint without `<limit>` has `limits: None`.
+    pub fn from_urdf_str(xml: &str) -> Result<(RobotDescription, Vec<ModelWarning>), ModelError> {
+        let facts = precheck(xml)?;
+        let robot = urdf_rs::read_from_string(xml).map_err(|e| ModelError::Urdf(e.to_string()))?;
+        description_from_urdf(&robot, &facts)
+    }
 }
 
 impl Model {
@@ -87,9 +465,13 @@ impl Model {
     }
 
     /// Reads a URDF document from a string, with options.
+    ///
+    /// Every number dynagen uses (origins, axes, masses, inertias, limits)
+    /// must be written in full as finite numbers, or the error
+    /// [`ModelError::BadNumber`] names the link or joint, the attribute and
+    /// the text. A link without `<inertial>` is massless.
     pub fn from_urdf_str_with(xml: &str, opts: &BuildOptions) -> Result<Model, ModelError> {
-        let robot = urdf_rs::read_from_string(xml).map_err(|e| ModelError::Urdf(e.to_string()))?;
-        let (desc, warnings) = description_from_urdf(&robot)?;
+        let (desc, warnings) = RobotDescription::from_urdf_str(xml)?;
         let mut model = Model::from_description_with(&desc, opts)?;
         model.warnings.splice(0..0, warnings);
         Ok(model)
