@@ -1,0 +1,17 @@
+//! Any bytes as a URDF document: the import must return a model or an
+//! error, never panic, overflow the stack or hang.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+
+#[path = "common.rs"]
+mod common;
+
+fuzz_target!(|data: &[u8]| {
+    let Ok(xml) = std::str::from_utf8(data) else {
+        return;
+    };
+    if let Ok(model) = dynagen::Model::from_urdf_str(xml) {
+        common::exercise(model);
+    }
+});
