@@ -211,7 +211,13 @@ fn precheck(xml: &str) -> Result<RawFacts, ModelError> {
             return Err(malformed(xml, &reader, &format!("elements nested more than {MAX_NESTING} deep")));
         }
         let name = String::from_utf8_lossy(e.local_name().as_ref()).into_owned();
-        let attrs = attributes(&e, &reader, xml)?;
+        // only the attributes of elements the pre-check reads (visuals and
+        // collisions are most of a file, and urdf-rs reads them anyway)
+        let attrs = if matches!(stack.last(), None | Some(Ctx::Robot | Ctx::Joint | Ctx::Inertial)) {
+            attributes(&e, &reader, xml)?
+        } else {
+            Vec::new()
+        };
         let ctx = match stack.last() {
             None => {
                 if seen_root {
