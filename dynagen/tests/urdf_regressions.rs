@@ -192,3 +192,44 @@ proptest! {
         }
     }
 }
+
+// ---------------------------------------------------------------------------
+// found by fuzzing (fuzz/, target urdf_text)
+
+/// A broken XML declaration whose content holds `?` and then `>`: quick-xml
+/// (dynagen's pre-check) ends it at `?>`, RustyXML (under urdf-rs) at the
+/// first `>` after a `?`, and then reads the rest of the declaration as
+/// elements: the two saw different documents (urdf-rs: no links; dynagen: a
+/// robot). Now refused as malformed before urdf-rs is asked.
+#[test]
+fn fuzz_processing_instruction_read_differently() {
+    let xml = r#"<?xml vxyzersion=<?xm<origin xyz="0 -0.1197 0.425" rpy="0 0 0"/>
+    <axis xyz="0 1 0"/>
+  </joint>
+l version="1.0"?>
+<robot name="r"><link name="base"/><link name="arm"><inertial><mass value="1"/>
+<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+<joint name="j" type="continuous"><parent link="base"/><child link="arm"/></joint></robot>"#;
+    let e = Model::from_urdf_str(xml).unwrap_err();
+    assert!(matches!(e, ModelError::Urdf(_)), "{e:?}");
+    assert!(e.to_string().contains("processing instruction"), "{e}");
+    // the same kind of thing in a processing instruction after the root
+    let xml = r#"<robot name="r"><link name="a"/><?pi ? > <link name="b"/> ?></robot>"#;
+    let e = Model::from_urdf_str(xml).unwrap_err();
+    assert!(e.to_string().contains("processing instruction"), "{e}");
+    // and an ordinary declaration and processing instruction are fine
+    let xml = r#"<?xml version="1.0" encoding="UTF-8"?><?pi some ? text?><robot name="r"><link name="a"/></robot>"#;
+    assert_eq!(Model::from_urdf_str(xml).unwrap().frames.len(), 1);
+}
+
+/// RustyXML ends a DOCTYPE at its first `>`, so an internal subset would
+/// leave the rest of it to be read as elements (found while reading
+/// RustyXML's parser after the crash above).
+#[test]
+fn doctype_with_an_internal_subset_is_refused() {
+    let xml = r#"<!DOCTYPE robot [<!-- > --> <link name="ghost"/> ]><robot name="r"><link name="a"/></robot>"#;
+    let e = Model::from_urdf_str(xml).unwrap_err();
+    assert!(matches!(e, ModelError::Urdf(_)) && e.to_string().contains("DOCTYPE"), "{e:?}");
+    let xml = r#"<!DOCTYPE robot><robot name="r"><link name="a"/></robot>"#;
+    assert_eq!(Model::from_urdf_str(xml).unwrap().frames.len(), 1);
+}

@@ -6,8 +6,9 @@
 //! urdf-rs sees it:
 //!
 //! - its vectors keep only the tokens that parse as numbers, so
-//!   `xyz="1 2 abc 4"` becomes (1, 2, 4) without a word; it accepts `nan`
-//!   and `inf` (and `1e400`, which is infinite) everywhere;
+//!   `xyz="1 2 abc 4"` becomes (1, 2, 4) and `xyz="0 0 1x 1"` (0, 0, 1)
+//!   without a word; it accepts `nan`, `inf` and `1e400` (infinite) in
+//!   origins, axes, masses and inertias, and in limits before URDF 1.2;
 //! - a link without `<inertial>` reads as mass 0 with zero inertia, and a
 //!   joint without `<limit>` as limits (0, 0, 0, 0): absent and zero look
 //!   the same;
@@ -32,15 +33,31 @@ use std::path::Path;
 /// <mesh>` is 5): urdf-rs and the XML crates under it recurse per level.
 const MAX_NESTING: usize = 64;
 
-/// What the pre-check learnt that urdf-rs does not say.
+/// What the pre-check learnt, in part what urdf-rs does not say, and in
+/// part to check that urdf-rs read the same document.
 #[derive(Debug, Default)]
 struct RawFacts {
-    /// For each `<link>` child of `<robot>`, in file order: whether it has an
-    /// `<inertial>`.
-    link_has_inertial: Vec<bool>,
-    /// For each `<joint>` child of `<robot>`, in file order: whether it has a
-    /// `<limit>`.
-    joint_has_limit: Vec<bool>,
+    /// The `<link>` children of `<robot>`, in file order.
+    links: Vec<RawLink>,
+    /// The `<joint>` children of `<robot>`, in file order.
+    joints: Vec<RawJoint>,
+}
+
+/// A `<link>` as the pre-check read it.
+#[derive(Debug, Default)]
+struct RawLink {
+    name: String,
+    has_inertial: bool,
+}
+
+/// A `<joint>` as the pre-check read it.
+#[derive(Debug, Default)]
+struct RawJoint {
+    name: String,
+    joint_type: String,
+    parent: String,
+    child: String,
+    has_limit: bool,
 }
 
 /// The URDF joint types, as urdf-rs spells them.
@@ -64,6 +81,7 @@ enum Ctx {
 #[derive(Default)]
 struct LinkState {
     item: String,
+    name: String,
     inertial: bool,
     origin: bool,
     mass: bool,
@@ -74,11 +92,13 @@ struct LinkState {
 #[derive(Default)]
 struct JointState {
     item: String,
+    name: String,
+    joint_type: String,
     origin: bool,
     axis: bool,
     limit: bool,
-    parent: bool,
-    child: bool,
+    parent: Option<String>,
+    child: Option<String>,
 }
 
 /// Reads the attributes of an element as (local name, unescaped value).
@@ -196,6 +216,18 @@ fn precheck(xml: &str) -> Result<RawFacts, ModelError> {
     let mut joint = JointState::default();
     loop {
         let event = reader.read_event().map_err(|e| malformed(xml, &reader, &e.to_string()))?;
+        // RustyXML (which urdf-rs reads with) ends a processing instruction
+        // at the first '>' after any '?', and a DOCTYPE at its first '>':
+        // where that differs from the XML rules, the two readers would see
+        // different elements.
+        if matches!(event, Event::PI(_) | Event::Decl(_))
+            && event.iter().skip_while(|&&b| b != b'?').any(|&b| b == b'>')
+        {
+            return Err(malformed(xml, &reader, "a processing instruction with '?' and then '>' inside"));
+        }
+        if matches!(event, Event::DocType(_)) && event.contains(&b'>') {
+            return Err(malformed(xml, &reader, "a DOCTYPE with an internal subset"));
+        }
         let (e, empty) = match event {
             Event::Start(e) => (e, false),
             Event::Empty(e) => (e, true),
@@ -231,23 +263,24 @@ fn precheck(xml: &str) -> Result<RawFacts, ModelError> {
                 Ctx::Robot
             }
             Some(Ctx::Robot) if name == "link" => {
-                let n = facts.link_has_inertial.len() + 1;
-                let item = match get(&attrs, "name") {
+                let n = facts.links.len() + 1;
+                let name = match get(&attrs, "name") {
                     None => return Err(ModelError::Urdf(format!("link number {n} has no name attribute"))),
                     Some("") => return Err(ModelError::Urdf(format!("link number {n} has an empty name"))),
-                    Some(s) => format!("link \"{s}\""),
+                    Some(s) => s.to_string(),
                 };
-                link = LinkState { item, ..Default::default() };
+                link = LinkState { item: format!("link \"{name}\""), name, ..Default::default() };
                 Ctx::Link
             }
             Some(Ctx::Robot) if name == "joint" => {
-                let n = facts.joint_has_limit.len() + 1;
-                let item = match get(&attrs, "name") {
+                let n = facts.joints.len() + 1;
+                let name = match get(&attrs, "name") {
                     None => return Err(ModelError::Urdf(format!("joint number {n} has no name attribute"))),
                     Some("") => return Err(ModelError::Urdf(format!("joint number {n} has an empty name"))),
-                    Some(s) => format!("joint \"{s}\""),
+                    Some(s) => s.to_string(),
                 };
-                match get(&attrs, "type") {
+                let item = format!("joint \"{name}\"");
+                let joint_type = match get(&attrs, "type") {
                     None => return Err(ModelError::Urdf(format!("{item} has no type attribute"))),
                     Some(t) if !JOINT_TYPES.contains(&t) => {
                         return Err(ModelError::Urdf(format!(
@@ -255,9 +288,9 @@ fn precheck(xml: &str) -> Result<RawFacts, ModelError> {
                             JOINT_TYPES.join(", ")
                         )))
                     }
-                    Some(_) => {}
-                }
-                joint = JointState { item, ..Default::default() };
+                    Some(t) => t.to_string(),
+                };
+                joint = JointState { item, name, joint_type, ..Default::default() };
                 Ctx::Joint
             }
             Some(Ctx::Link) if name == "inertial" => {
@@ -310,9 +343,12 @@ fn precheck(xml: &str) -> Result<RawFacts, ModelError> {
                     "parent" | "child" => {
                         let (seen, role) =
                             if name == "parent" { (&mut joint.parent, "parent") } else { (&mut joint.child, "child") };
-                        once(seen, item, role)?;
-                        if get(&attrs, "link").is_none() {
-                            return Err(ModelError::Urdf(format!("{item}: <{role}> has no link attribute")));
+                        if seen.is_some() {
+                            return Err(ModelError::Urdf(format!("{item} has more than one <{role}>")));
+                        }
+                        match get(&attrs, "link") {
+                            None => return Err(ModelError::Urdf(format!("{item}: <{role}> has no link attribute"))),
+                            Some(l) => *seen = Some(l.to_string()),
                         }
                         Ctx::Leaf(if role == "parent" { "parent" } else { "child" }, true)
                     }
@@ -352,14 +388,19 @@ fn once(seen: &mut bool, item: &str, element: &str) -> Result<(), ModelError> {
 /// What to check and record when an element ends.
 fn close(ctx: Option<Ctx>, facts: &mut RawFacts, link: &LinkState, joint: &JointState) -> Result<(), ModelError> {
     match ctx {
-        Some(Ctx::Link) => facts.link_has_inertial.push(link.inertial),
+        Some(Ctx::Link) => facts.links.push(RawLink { name: link.name.clone(), has_inertial: link.inertial }),
         Some(Ctx::Joint) => {
-            for (seen, role) in [(joint.parent, "parent"), (joint.child, "child")] {
-                if !seen {
-                    return Err(ModelError::Urdf(format!("{} has no <{role} link=\"...\"/>", joint.item)));
-                }
-            }
-            facts.joint_has_limit.push(joint.limit);
+            let (Some(parent), Some(child)) = (&joint.parent, &joint.child) else {
+                let role = if joint.parent.is_none() { "parent" } else { "child" };
+                return Err(ModelError::Urdf(format!("{} has no <{role} link=\"...\"/>", joint.item)));
+            };
+            facts.joints.push(RawJoint {
+                name: joint.name.clone(),
+                joint_type: joint.joint_type.clone(),
+                parent: parent.clone(),
+                child: child.clone(),
+                has_limit: joint.limit,
+            });
         }
         Some(Ctx::Inertial) => {
             for (seen, what) in [(link.mass, "mass value=\"...\""), (link.inertia, "inertia .../")] {
@@ -385,35 +426,53 @@ fn description_from_urdf(
     robot: &urdf_rs::Robot,
     facts: &RawFacts,
 ) -> Result<(RobotDescription, Vec<ModelWarning>), ModelError> {
-    if robot.links.len() != facts.link_has_inertial.len() || robot.joints.len() != facts.joint_has_limit.len() {
-        return Err(ModelError::Urdf(format!(
-            "urdf-rs read {} links and {} joints, dynagen's own reading {} and {}",
+    // What urdf-rs read must be what the pre-check vouched for. They differ
+    // only where RustyXML, under urdf-rs, misreads malformed XML.
+    let differ = |what: String| {
+        ModelError::Urdf(format!("the XML reads differently to urdf-rs and to dynagen ({what}): is it well-formed?"))
+    };
+    if robot.links.len() != facts.links.len() || robot.joints.len() != facts.joints.len() {
+        return Err(differ(format!(
+            "{} links and {} joints against {} and {}",
             robot.links.len(),
             robot.joints.len(),
-            facts.link_has_inertial.len(),
-            facts.joint_has_limit.len()
+            facts.links.len(),
+            facts.joints.len()
         )));
+    }
+    for (l, raw) in robot.links.iter().zip(&facts.links) {
+        if l.name != raw.name {
+            return Err(differ(format!("link \"{}\" against \"{}\"", l.name, raw.name)));
+        }
+    }
+    for (j, raw) in robot.joints.iter().zip(&facts.joints) {
+        let joint_type = format!("{:?}", j.joint_type).to_lowercase();
+        if (&j.name, &joint_type, &j.parent.link, &j.child.link)
+            != (&raw.name, &raw.joint_type, &raw.parent, &raw.child)
+        {
+            return Err(differ(format!("joint \"{}\" against \"{}\"", j.name, raw.name)));
+        }
     }
     let mut warnings = Vec::new();
     let links = robot
         .links
         .iter()
-        .zip(&facts.link_has_inertial)
-        .map(|(l, &has_inertial)| {
+        .zip(&facts.links)
+        .map(|(l, raw)| {
             let i = &l.inertial;
             let inertia =
                 Sym3([i.inertia.ixx, i.inertia.iyy, i.inertia.izz, i.inertia.ixy, i.inertia.ixz, i.inertia.iyz]);
             LinkDescription {
                 name: l.name.clone(),
-                inertial: has_inertial.then(|| Inertial { mass: i.mass.value, origin: pose(&i.origin), inertia }),
+                inertial: raw.has_inertial.then(|| Inertial { mass: i.mass.value, origin: pose(&i.origin), inertia }),
             }
         })
         .collect();
     let joints = robot
         .joints
         .iter()
-        .zip(&facts.joint_has_limit)
-        .map(|(j, &has_limit)| {
+        .zip(&facts.joints)
+        .map(|(j, raw)| {
             let joint_type = match j.joint_type {
                 urdf_rs::JointType::Revolute => JointType::Revolute,
                 urdf_rs::JointType::Continuous => JointType::Continuous,
@@ -429,7 +488,7 @@ fn description_from_urdf(
                 warnings.push(ModelWarning::AxisNormalised { joint: j.name.clone(), norm });
                 axis = axis.scale(1.0 / norm);
             }
-            let limits = (has_limit && matches!(joint_type, JointType::Revolute | JointType::Prismatic)).then_some(
+            let limits = (raw.has_limit && matches!(joint_type, JointType::Revolute | JointType::Prismatic)).then_some(
                 JointLimits {
                     lower: j.limit.lower,
                     upper: j.limit.upper,
