@@ -51,17 +51,21 @@ pub fn rnea<S: Scalar>(
         "rnea: slices must have the model's {n} joints"
     );
 
+    // Slices of the known length, so that indexing by body needs no checks.
+    let (bodies, q, tau) = (&model.bodies[..n], &q[..n], &mut tau[..n]);
+    let (qd, qdd) = (qd.map(|x| &x[..n]), qdd.map(|x| &x[..n]));
+    let (xs, vs, accs, fs) = (&mut ws.x[..n], &mut ws.v[..n], &mut ws.a[..n], &mut ws.f[..n]);
     // The base's acceleration is −g.
     let a0 = Motion::new(Vec3::zero(), gravity.map_or(Vec3::zero(), |g| -*g));
     let has_a0 = gravity.is_some();
-    for (i, body) in model.bodies.iter().enumerate() {
+    for (i, body) in bodies.iter().enumerate() {
         let joint = &body.joint;
         let x = joint_transform(joint, q[i]);
-        ws.x[i] = x;
+        xs[i] = x;
         let inertia = Inertia::<S>::from_f64(&body.inertia);
         // acceleration of the parent (or of the base)
         let a_parent = match body.parent {
-            Some(p) => Some(ws.a[p]),
+            Some(p) => Some(accs[p]),
             None => has_a0.then_some(a0),
         };
         let mut a = a_parent.map_or(Motion::zero(), |ap| x.motion_to_child(&ap));
@@ -72,7 +76,7 @@ pub fn rnea<S: Scalar>(
             let qdi = qd[i];
             let v = match body.parent {
                 Some(p) => {
-                    let mut v = x.motion_to_child(&ws.v[p]);
+                    let mut v = x.motion_to_child(&vs[p]);
                     add_motion(joint, &mut v, qdi);
                     a += cross_motion(joint, &v, qdi);
                     v
@@ -80,26 +84,26 @@ pub fn rnea<S: Scalar>(
                 // v ×ₘ S q̇ = 0 for v = S q̇
                 None => motion(joint, qdi),
             };
-            ws.v[i] = v;
+            vs[i] = v;
             inertia.mul_motion(&a) + v.cross_force(&inertia.mul_motion(&v))
         } else {
             inertia.mul_motion(&a)
         };
-        ws.a[i] = a;
-        ws.f[i] = f;
+        accs[i] = a;
+        fs[i] = f;
     }
     for tip in tips {
         let frame = &model.frames[tip.frame];
         if let Some(b) = frame.body {
             let place = Transform::<S>::from_f64(&frame.placement);
-            ws.f[b] += place.force_to_parent(&tip.wrench);
+            fs[b] += place.force_to_parent(&tip.wrench);
         }
     }
-    for (i, body) in model.bodies.iter().enumerate().rev() {
-        tau[i] = project(&body.joint, &ws.f[i]);
+    for (i, body) in bodies.iter().enumerate().rev() {
+        tau[i] = project(&body.joint, &fs[i]);
         if let Some(p) = body.parent {
-            let fp = ws.x[i].force_to_parent(&ws.f[i]);
-            ws.f[p] += fp;
+            let fp = xs[i].force_to_parent(&fs[i]);
+            fs[p] += fp;
         }
     }
 }
