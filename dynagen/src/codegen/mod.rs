@@ -7,9 +7,15 @@
 //! per kept operation with `quote`, formatted by `prettyplease`. The result
 //! ([`GeneratedModule::source`]) is a file of items to `include!` in a
 //! module: `DOF`, `JOINT_NAMES`, `inverse_dynamics`, `mass_matrix`,
-//! `bias_forces`, `gravity_torques`, `forward_dynamics`. It depends on
-//! nothing but `sin_cos` and `sqrt` of the float type. The same model and
-//! options give a byte-identical file.
+//! `bias_forces`, `gravity_torques`, `forward_dynamics`, each also as
+//! `NAME_sc`, which takes the sines and cosines of the joint angles instead
+//! of computing them (the one body; `NAME` computes them and calls it), and
+//! `sin_cos_all`, a batched sine and cosine without std ([`sin_cos_kernel`]).
+//! Where `NAME` gets its sines and cosines is [`Trig`]: std's `sin_cos` (the
+//! default: measured faster than `sin_cos_all` here, see
+//! `benches/README.md`), `sin_cos_all`, the `libm` crate, or nobody (only
+//! the `NAME_sc` functions, for `#![no_std]` without dependencies). The same
+//! model and options give a byte-identical file.
 //!
 //! ```
 //! use dynagen::codegen::{generate, CodegenOptions};
