@@ -228,7 +228,7 @@ fn expand_urdf(input: UrdfInput) -> syn::Result<TokenStream> {
     if !path.is_file() {
         return Err(syn::Error::new(
             span,
-            format!("no such file: {} (paths are relative to the crate's root, {root})", path.display()),
+            format!("no such file: {given:?} (paths are relative to the crate's root, the folder of its Cargo.toml)"),
         ));
     }
     let builder = input.options.apply(Builder::new().urdf(&path), given.clone());
