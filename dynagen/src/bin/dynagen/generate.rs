@@ -53,8 +53,8 @@ Each function's operation count is printed on stderr.
 Example:
   dynagen generate robots/panda.urdf --functions inverse_dynamics,mass_matrix -o src/panda.rs";
 
-/// The builder for `args` (the robot already loaded).
-fn builder(args: &Args, source: &RobotSource) -> Result<Builder, CliError> {
+/// The builder for `args`, and the model it was given.
+fn builder(args: &Args, source: &RobotSource) -> Result<(Builder, dynagen::Model), CliError> {
     if args.no_std {
         return Err(CliError {
             message: format!(
@@ -70,14 +70,14 @@ fn builder(args: &Args, source: &RobotSource) -> Result<Builder, CliError> {
         .forward_dynamics(if args.ldlt { ForwardDynamicsMethod::Ldlt } else { ForwardDynamicsMethod::Aba })
         .snap_rounding(!args.no_snap);
     options.source = Some(source.to_string());
-    let mut b = Builder::new().model(model).options(options);
+    let mut b = Builder::new().model(model.clone()).options(options);
     if let Some(f) = &args.functions {
         b = b.functions(f);
     }
     if let Some(s) = &args.scene {
         b = b.scene_file(s);
     }
-    Ok(b)
+    Ok((b, model))
 }
 
 /// A builder error as a command-line error.
@@ -96,16 +96,18 @@ pub fn cli_error(e: BuildError, source: &RobotSource) -> CliError {
     CliError { message, status }
 }
 
-/// Generates the module `args` ask for.
-pub fn module(args: &Args) -> Result<(RobotSource, GeneratedModule), CliError> {
+/// Generates the module `args` ask for; also gives the robot's source and
+/// its model.
+fn module(args: &Args) -> Result<(RobotSource, dynagen::Model, GeneratedModule), CliError> {
     let source = RobotSource::from_arg(args.robot.as_deref());
-    let module = builder(args, &source)?.generate_module().map_err(|e| cli_error(e, &source))?;
-    Ok((source, module))
+    let (builder, model) = builder(args, &source)?;
+    let module = builder.generate_module().map_err(|e| cli_error(e, &source))?;
+    Ok((source, model, module))
 }
 
 /// Runs `dynagen generate`.
 pub fn run(args: &Args) -> Result<Output, CliError> {
-    let (source, module) = module(args)?;
+    let (source, model, module) = module(args)?;
     let mut notes: Vec<String> = module
         .functions
         .iter()
@@ -120,6 +122,5 @@ pub fn run(args: &Args) -> Result<Output, CliError> {
             String::new()
         }
     };
-    let model = source.load()?;
     Ok(Output { stdout, warnings: source.warnings(&model), notes })
 }
