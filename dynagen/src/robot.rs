@@ -84,7 +84,35 @@ pub enum InputError {
     },
 }
 
-/// A robot with the generic `f64` solver. See the [module docs](self).
+/// Checks that a joint-space argument has one finite entry per joint.
+pub(crate) fn check_joint_vector(model: &Model, what: &'static str, x: &[f64]) -> Result<(), InputError> {
+    let n = model.dof();
+    if x.len() != n {
+        return Err(InputError::WrongLength { what, got: x.len(), expected: n });
+    }
+    match x.iter().position(|v| !v.is_finite()) {
+        Some(index) => {
+            Err(InputError::NonFinite { what, index, joint: model.bodies[index].joint.name.clone(), value: x[index] })
+        }
+        None => Ok(()),
+    }
+}
+
+/// Checks that an output has the length `want`.
+pub(crate) fn check_output_length(
+    model: &Model,
+    what: &'static str,
+    len: usize,
+    want: usize,
+) -> Result<(), InputError> {
+    if len != want {
+        return Err(InputError::WrongLength { what, got: len, expected: model.dof() });
+    }
+    Ok(())
+}
+
+/// A robot with the generic `f64` solver, on nalgebra types: units, frames
+/// and joint order as in the crate documentation.
 #[derive(Clone, Debug)]
 pub struct Robot {
     pub(crate) model: Model,
@@ -160,25 +188,10 @@ impl Robot {
     }
 
     pub(crate) fn check(&self, what: &'static str, x: &[f64]) -> Result<(), InputError> {
-        let n = self.model.dof();
-        if x.len() != n {
-            return Err(InputError::WrongLength { what, got: x.len(), expected: n });
-        }
-        match x.iter().position(|v| !v.is_finite()) {
-            Some(index) => Err(InputError::NonFinite {
-                what,
-                index,
-                joint: self.model.bodies[index].joint.name.clone(),
-                value: x[index],
-            }),
-            None => Ok(()),
-        }
+        check_joint_vector(&self.model, what, x)
     }
     pub(crate) fn check_out(&self, what: &'static str, len: usize, want: usize) -> Result<(), InputError> {
-        if len != want {
-            return Err(InputError::WrongLength { what, got: len, expected: self.model.dof() });
-        }
-        Ok(())
+        check_output_length(&self.model, what, len, want)
     }
     pub(crate) fn frame(&self, frame: &str) -> Result<usize, InputError> {
         self.model.frame_index(frame).ok_or_else(|| InputError::UnknownFrame(frame.to_string()))

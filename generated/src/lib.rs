@@ -14,7 +14,8 @@
 //! ```
 //!
 //! (a test in `tests/` fails, naming that command, when a committed file is
-//! stale).
+//! stale). The files are the generator's output byte for byte, so
+//! `rustfmt` is told to skip them (`#[rustfmt::skip]` on each `mod`).
 //!
 //! # `no_std`
 //!
@@ -30,16 +31,20 @@ extern crate std;
 
 /// The Universal Robots UR5 (6 revolute joints).
 #[cfg(feature = "std")]
+#[rustfmt::skip]
 pub mod ur5;
 
 /// The Franka Emika Panda (7 revolute joints and 2 prismatic fingers).
 #[cfg(feature = "std")]
+#[rustfmt::skip]
 pub mod panda;
 
 /// A torso with two arms (a branched tree).
 #[cfg(feature = "std")]
+#[rustfmt::skip]
 pub mod torso_two_arms;
 
 /// A planar two-link arm (the textbook closed form is in dynagen's tests).
 #[cfg(feature = "std")]
+#[rustfmt::skip]
 pub mod planar_2link;

@@ -10,7 +10,7 @@
 //   mass_matrix: 5 ops: 2 add, 0 sub, 2 mul, 0 div, 0 neg, 0 sqrt, 1 sin_cos
 //   bias_forces: 37 ops: 5 add, 8 sub, 22 mul, 0 div, 0 neg, 0 sqrt, 2 sin_cos
 //   gravity_torques: 20 ops: 0 add, 5 sub, 11 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos
-//   forward_dynamics (ABA): 58 ops: 9 add, 12 sub, 34 mul, 1 div, 0 neg, 0 sqrt, 2 sin_cos
+//   forward_dynamics (ABA): 56 ops: 9 add, 12 sub, 32 mul, 1 div, 0 neg, 0 sqrt, 2 sin_cos
 //   forward_dynamics (CRBA + LTDL) [not emitted]: 52 ops: 7 add, 13 sub, 28 mul, 2 div, 0 neg, 0 sqrt, 2 sin_cos
 
 /// The number of degrees of freedom (joints).
@@ -21,29 +21,38 @@ pub const JOINT_NAMES: [&str; DOF] = ["joint1", "joint2"];
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 45 ops: 8 add, 10 sub, 25 mul, 0 div, 0 neg, 0 sqrt, 2 sin_cos.
-#[allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal, clippy::too_many_lines)]
-pub fn inverse_dynamics(q: &[f64; DOF], qd: &[f64; DOF], qdd: &[f64; DOF]) -> [f64; DOF] {
+#[allow(
+    clippy::approx_constant,
+    clippy::excessive_precision,
+    clippy::unreadable_literal,
+    clippy::too_many_lines
+)]
+pub fn inverse_dynamics(
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+    qdd: &[f64; DOF],
+) -> [f64; DOF] {
     let (s0, c0) = q[0].sin_cos();
-    let (s1, c1) = q[1].sin_cos();
-    let t2 = 9.81 * s0;
-    let t3 = 9.81 * c0;
-    let t4 = 0.6666666666666666 * qdd[0];
-    let t5 = t4 - t3;
-    let t6 = t3 - qdd[0];
-    let t7 = c1 * t2;
-    let t8 = s1 * t6;
+    let t1 = 9.81 * s0;
+    let t2 = 9.81 * c0;
+    let t3 = 0.6666666666666666 * qdd[0];
+    let t4 = t3 - t2;
+    let (s5, c5) = q[1].sin_cos();
+    let t6 = t2 - qdd[0];
+    let t7 = t1 * c5;
+    let t8 = s5 * t6;
     let t9 = t7 + t8;
-    let t10 = s1 * t2;
-    let t11 = c1 * t6;
+    let t10 = t1 * s5;
+    let t11 = c5 * t6;
     let t12 = t11 - t10;
     let t13 = qdd[0] + qdd[1];
-    let t14 = qd[0] * s1;
-    let t15 = qd[0] * c1;
+    let t14 = qd[0] * s5;
+    let t15 = qd[0] * c5;
     let t16 = qd[0] + qd[1];
-    let t17 = qd[1] * t15;
-    let t18 = qd[1] * t14;
-    let t19 = t17 - t9;
-    let t20 = t12 + t18;
+    let t17 = qd[1] * t14;
+    let t18 = qd[1] * t15;
+    let t19 = t18 - t9;
+    let t20 = t12 + t17;
     let t21 = 0.32000000000000006 * t13;
     let t22 = 0.6000000000000001 * t20;
     let t23 = t21 - t22;
@@ -63,18 +72,23 @@ pub fn inverse_dynamics(q: &[f64; DOF], qd: &[f64; DOF], qdd: &[f64; DOF]) -> [f
     let t37 = t23 + t34;
     let t38 = t24 - t35;
     let t39 = t27 - t36;
-    let t40 = s1 * t38;
-    let t41 = c1 * t39;
+    let t40 = s5 * t38;
+    let t41 = c5 * t39;
     let t42 = t40 - t41;
     let t43 = t37 + t42;
-    let t44 = t5 + t43;
+    let t44 = t4 + t43;
     [t44, t37]
 }
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 5 ops: 2 add, 0 sub, 2 mul, 0 div, 0 neg, 0 sqrt, 1 sin_cos.
-#[allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal, clippy::too_many_lines)]
+#[allow(
+    clippy::approx_constant,
+    clippy::excessive_precision,
+    clippy::unreadable_literal,
+    clippy::too_many_lines
+)]
 pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let c0 = q[1].cos();
     let t1 = 0.6000000000000001 * c0;
@@ -87,25 +101,30 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 37 ops: 5 add, 8 sub, 22 mul, 0 div, 0 neg, 0 sqrt, 2 sin_cos.
-#[allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal, clippy::too_many_lines)]
+#[allow(
+    clippy::approx_constant,
+    clippy::excessive_precision,
+    clippy::unreadable_literal,
+    clippy::too_many_lines
+)]
 pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     let (s0, c0) = q[0].sin_cos();
-    let (s1, c1) = q[1].sin_cos();
-    let t2 = 9.81 * s0;
-    let t3 = 9.81 * c0;
-    let t4 = c1 * t2;
-    let t5 = s1 * t3;
+    let t1 = 9.81 * s0;
+    let t2 = 9.81 * c0;
+    let (s3, c3) = q[1].sin_cos();
+    let t4 = t1 * c3;
+    let t5 = t2 * s3;
     let t6 = t4 + t5;
-    let t7 = s1 * t2;
-    let t8 = c1 * t3;
+    let t7 = t1 * s3;
+    let t8 = t2 * c3;
     let t9 = t8 - t7;
-    let t10 = qd[0] * s1;
-    let t11 = qd[0] * c1;
+    let t10 = qd[0] * s3;
+    let t11 = qd[0] * c3;
     let t12 = qd[0] + qd[1];
-    let t13 = qd[1] * t11;
-    let t14 = qd[1] * t10;
-    let t15 = t13 - t6;
-    let t16 = t9 + t14;
+    let t13 = qd[1] * t10;
+    let t14 = qd[1] * t11;
+    let t15 = t14 - t6;
+    let t16 = t9 + t13;
     let t17 = 0.6000000000000001 * t16;
     let t18 = 1.5 * t15;
     let t19 = 1.5 * t16;
@@ -121,104 +140,116 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     let t29 = t26 - t17;
     let t30 = t18 - t27;
     let t31 = t19 - t28;
-    let t32 = s1 * t30;
-    let t33 = c1 * t31;
+    let t32 = s3 * t30;
+    let t33 = c3 * t31;
     let t34 = t32 - t33;
     let t35 = t29 + t34;
-    let t36 = t35 - t3;
+    let t36 = t35 - t2;
     [t36, t29]
 }
 /// The gravity torques g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 20 ops: 0 add, 5 sub, 11 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos.
-#[allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal, clippy::too_many_lines)]
+#[allow(
+    clippy::approx_constant,
+    clippy::excessive_precision,
+    clippy::unreadable_literal,
+    clippy::too_many_lines
+)]
 pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
     let (s0, c0) = q[0].sin_cos();
-    let (s1, c1) = q[1].sin_cos();
-    let t2 = 9.81 * s0;
-    let t3 = 9.81 * c0;
-    let t4 = c1 * t2;
+    let t1 = 9.81 * s0;
+    let t2 = 9.81 * c0;
+    let (s3, c3) = q[1].sin_cos();
+    let t4 = t1 * c3;
     let t5 = -t4;
-    let t6 = s1 * t3;
+    let t6 = t2 * s3;
     let t7 = t5 - t6;
-    let t8 = s1 * t2;
-    let t9 = c1 * t3;
+    let t8 = t1 * s3;
+    let t9 = t2 * c3;
     let t10 = t9 - t8;
     let t11 = 0.6000000000000001 * t10;
     let t12 = -t11;
     let t13 = 1.5 * t7;
     let t14 = 1.5 * t10;
-    let t15 = s1 * t13;
-    let t16 = c1 * t14;
+    let t15 = s3 * t13;
+    let t16 = c3 * t14;
     let t17 = t15 - t16;
     let t18 = t17 - t11;
-    let t19 = t18 - t3;
+    let t19 = t18 - t2;
     [t19, t12]
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by the articulated-body algorithm.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 58 ops: 9 add, 12 sub, 34 mul, 1 div, 0 neg, 0 sqrt, 2 sin_cos.
-#[allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal, clippy::too_many_lines)]
-pub fn forward_dynamics(q: &[f64; DOF], qd: &[f64; DOF], tau: &[f64; DOF]) -> [f64; DOF] {
+/// 56 ops: 9 add, 12 sub, 32 mul, 1 div, 0 neg, 0 sqrt, 2 sin_cos.
+#[allow(
+    clippy::approx_constant,
+    clippy::excessive_precision,
+    clippy::unreadable_literal,
+    clippy::too_many_lines
+)]
+pub fn forward_dynamics(
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+    tau: &[f64; DOF],
+) -> [f64; DOF] {
     let (s0, c0) = q[0].sin_cos();
     let (s1, c1) = q[1].sin_cos();
-    let t2 = qd[0] * s1;
-    let t3 = qd[0] * c1;
+    let t2 = qd[0] * c1;
+    let t3 = qd[0] * s1;
     let t4 = qd[0] + qd[1];
     let t5 = qd[1] * t3;
     let t6 = qd[1] * t2;
-    let t7 = 1.5 * t2;
-    let t8 = 1.5 * t3;
+    let t7 = 1.5 * t3;
+    let t8 = 1.5 * t2;
     let t9 = 0.6000000000000001 * t4;
     let t10 = t8 + t9;
-    let t11 = t3 * t7;
-    let t12 = t2 * t10;
+    let t11 = t2 * t7;
+    let t12 = t3 * t10;
     let t13 = t12 - t11;
     let t14 = t4 * t10;
     let t15 = t4 * t7;
     let t16 = tau[1] - t13;
-    let t17 = 1.5 * t5;
-    let t18 = 0.3749999999999998 * t6;
+    let t17 = 1.5 * t6;
+    let t18 = 0.3749999999999998 * t5;
     let t19 = t17 - t14;
     let t20 = t18 - t15;
     let t21 = 1.875 * t16;
     let t22 = t20 - t21;
-    let t23 = 1.5 * c1;
-    let t24 = 0.3749999999999998 * s1;
-    let t25 = 1.5 * s1;
-    let t26 = 0.3749999999999998 * c1;
-    let t27 = s1 * t25;
-    let t28 = c1 * t26;
-    let t29 = t27 + t28;
-    let t30 = s1 * t23;
-    let t31 = c1 * t24;
-    let t32 = t30 - t31;
-    let t33 = 1.0 + t29;
-    let t34 = 0.6666666666666666 + t29;
-    let t35 = s1 * t19;
-    let t36 = c1 * t22;
-    let t37 = t35 - t36;
-    let t38 = tau[1] + t37;
-    let t39 = 1.0 / t34;
-    let t40 = tau[0] - t38;
-    let t41 = 9.81 * s0;
-    let t42 = 9.81 * c0;
-    let t43 = t32 * t41;
-    let t44 = t33 * t42;
-    let t45 = t43 + t44;
-    let t46 = t40 + t45;
-    let t47 = t39 * t46;
-    let t48 = t42 - t47;
-    let t49 = s1 * t41;
-    let t50 = c1 * t48;
-    let t51 = t50 - t49;
-    let t52 = t6 + t51;
-    let t53 = 0.32000000000000006 * t47;
-    let t54 = 0.6000000000000001 * t52;
-    let t55 = t53 - t54;
-    let t56 = t16 - t55;
-    let t57 = 3.1249999999999996 * t56;
-    [t47, t57]
+    let t23 = 1.5 * s1;
+    let t24 = 0.3749999999999998 * c1;
+    let t25 = c1 * t24;
+    let t26 = s1 * t23;
+    let t27 = t25 + t26;
+    let t28 = s1 * t24;
+    let t29 = c1 * t23;
+    let t30 = t29 - t28;
+    let t31 = 1.0 + t27;
+    let t32 = 0.6666666666666666 + t27;
+    let t33 = c1 * t22;
+    let t34 = s1 * t19;
+    let t35 = t34 - t33;
+    let t36 = tau[1] + t35;
+    let t37 = 1.0 / t32;
+    let t38 = tau[0] - t36;
+    let t39 = 9.81 * c0;
+    let t40 = 9.81 * s0;
+    let t41 = t30 * t40;
+    let t42 = t31 * t39;
+    let t43 = t41 + t42;
+    let t44 = t38 + t43;
+    let t45 = t37 * t44;
+    let t46 = t39 - t45;
+    let t47 = c1 * t46;
+    let t48 = s1 * t40;
+    let t49 = t47 - t48;
+    let t50 = t5 + t49;
+    let t51 = 0.32000000000000006 * t45;
+    let t52 = 0.6000000000000001 * t50;
+    let t53 = t51 - t52;
+    let t54 = t16 - t53;
+    let t55 = 3.1249999999999996 * t54;
+    [t45, t55]
 }

@@ -3,9 +3,12 @@
 //! in O(n), without forming M. On long chains it keeps far more digits than
 //! a factorisation of M, which is why it is the default forward dynamics.
 
-use super::joint::{joint_transform, motion, project};
+use super::joint::{
+    add_motion, cross_motion, force_to_parent, joint_transform, motion, motion_to_child, project, with_rotation,
+    Rotation,
+};
 use super::{TipWrench, Workspace};
-use crate::model::Model;
+use crate::model::{AxisAlignment, Joint, JointKind, Model};
 use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
 use crate::Scalar;
 
@@ -38,6 +41,30 @@ impl<S: Scalar> ArticulatedInertia<S> {
             lin: self.b.tr_mul_vec(&m.ang) + self.c.mul_vec(&m.lin),
         }
     }
+    /// `self · S` for the joint's motion subspace `S` (one column of the
+    /// matrix, times the axis component, for an axis-aligned joint).
+    #[inline(always)]
+    fn mul_subspace(&self, joint: &Joint) -> Force<S> {
+        let k = match joint.alignment {
+            AxisAlignment::X => 0,
+            AxisAlignment::Y => 1,
+            AxisAlignment::Z => 2,
+            AxisAlignment::General => return self.mul_motion(&motion(joint, S::one())),
+        };
+        let a = S::from_f64(joint.axis.0[k]);
+        let sym_col = |s: &Sym3<S>| {
+            let [xx, yy, zz, xy, xz, yz] = s.0;
+            Vec3([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]][k]).scale(a)
+        };
+        match joint.kind {
+            // (A e_k a, Bᵀ e_k a)
+            JointKind::Revolute | JointKind::Continuous => {
+                Force { ang: sym_col(&self.a), lin: Vec3(self.b.0[k]).scale(a) }
+            }
+            // (B e_k a, C e_k a)
+            JointKind::Prismatic => Force { ang: self.b.col(k).scale(a), lin: sym_col(&self.c) },
+        }
+    }
     /// `self − u uᵀ / d`.
     #[inline(always)]
     fn sub_outer(&self, u: &Force<S>, d_inv: S) -> Self {
@@ -65,27 +92,30 @@ impl<S: Scalar> ArticulatedInertia<S> {
     /// maps parent motion to this frame and `x` is this frame's pose in
     /// the parent.
     #[inline(always)]
-    fn expressed_in_parent(&self, x: &Transform<S>) -> Self {
+    fn expressed_in_parent<R: Rotation<S>>(&self, r: &R, trans: &Vec3<S>) -> Self {
         // Rotate the blocks into the parent's axes, then shift the origin
         // by r: A' = A₁ − B₁[r] + [r]B₁ᵀ − [r]C₁[r], B' = B₁ + [r]C₁, C' = C₁.
-        let r = &x.rot;
-        let a1 = self.a.rotate(r);
-        let b1 = r.mul_mat(&self.b).mul_mat(&r.transpose());
-        let c1 = self.c.rotate(r);
-        let rx = Mat3::skew(&x.trans);
-        let rc = rx.mul_mat(&c1.to_mat()); // [r]C₁
-        let rb = rx.mul_mat(&b1.transpose()); // [r]B₁ᵀ
-        let rcr = rc.mul_mat(&rx); // [r]C₁[r]
+        let a1 = r.rotate_sym(&self.a);
+        let b1 = r.rotate_mat(&self.b);
+        let c1 = r.rotate_sym(&self.c);
+        // The products with the skew matrix [r] are cross products:
+        // column c of [r]C₁ is r × (column c of C₁), column c of [r]B₁ᵀ is
+        // r × (row c of B₁), and row i of ([r]C₁)[r] is (row i of [r]C₁) × r.
+        let c1m = c1.to_mat();
+        let rc = [trans.cross(&c1m.col(0)), trans.cross(&c1m.col(1)), trans.cross(&c1m.col(2))]; // columns
+        let rb = [trans.cross(&Vec3(b1.0[0])), trans.cross(&Vec3(b1.0[1])), trans.cross(&Vec3(b1.0[2]))]; // columns
+        let rc_row = |i: usize| Vec3([rc[0].0[i], rc[1].0[i], rc[2].0[i]]);
+        let rcr = [rc_row(0).cross(trans), rc_row(1).cross(trans), rc_row(2).cross(trans)]; // rows
         let mut a = a1.0;
         let idx = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
         for (k, (i, j)) in idx.into_iter().enumerate() {
             // −B₁[r] = ([r]B₁ᵀ)ᵀ
-            a[k] = a[k] + rb.0[j][i] + rb.0[i][j] - rcr.0[i][j];
+            a[k] = a[k] + rb[i].0[j] + rb[j].0[i] - rcr[i].0[j];
         }
         let mut b = b1;
-        for i in 0..3 {
-            for j in 0..3 {
-                b.0[i][j] += rc.0[i][j];
+        for (i, row) in b.0.iter_mut().enumerate() {
+            for (j, e) in row.iter_mut().enumerate() {
+                *e += rc[j].0[i];
             }
         }
         ArticulatedInertia { a: Sym3(a), b, c: c1 }
@@ -129,16 +159,17 @@ pub fn aba<S: Scalar>(
     );
     // Forward: velocities, velocity-product accelerations c, bias forces pA.
     for (i, body) in model.bodies.iter().enumerate() {
-        let x = joint_transform(&body.joint, q[i]);
+        let joint = &body.joint;
+        let x = joint_transform(joint, q[i]);
         ws.x[i] = x;
-        let sqd = motion(&body.joint, qd[i]);
         let inertia = Inertia::<S>::from_f64(&body.inertia);
         let (v, c) = match body.parent {
             Some(p) => {
-                let v = x.motion_to_child(&ws.v[p]) + sqd;
-                (v, v.cross_motion(&sqd))
+                let mut v = motion_to_child(joint, &x, &ws.v[p]);
+                add_motion(joint, &mut v, qd[i]);
+                (v, cross_motion(joint, &v, qd[i]))
             }
-            None => (sqd, Motion::zero()),
+            None => (motion(joint, qd[i]), Motion::zero()),
         };
         ws.v[i] = v;
         ws.a[i] = c; // c_i, kept until the last pass
@@ -153,7 +184,7 @@ pub fn aba<S: Scalar>(
     }
     // Backward: articulated inertias and bias forces.
     for (i, body) in model.bodies.iter().enumerate().rev() {
-        let u = ws.art[i].mul_motion(&motion(&body.joint, S::one()));
+        let u = ws.art[i].mul_subspace(&body.joint);
         let d_inv = S::one() / project(&body.joint, &u);
         let ui = tau[i] - project(&body.joint, &ws.f[i]);
         ws.u6[i] = u;
@@ -163,8 +194,9 @@ pub fn aba<S: Scalar>(
             let ia = ws.art[i].sub_outer(&u, d_inv);
             let pa = ws.f[i] + ia.mul_motion(&ws.a[i]) + u.scale(ui * d_inv);
             let x = ws.x[i];
-            ws.art[p] = ws.art[p].add(&ia.expressed_in_parent(&x));
-            ws.f[p] += x.force_to_parent(&pa);
+            let ia_p = with_rotation!(&body.joint, x, |r| ia.expressed_in_parent(&r, &x.trans));
+            ws.art[p] = ws.art[p].add(&ia_p);
+            ws.f[p] += force_to_parent(&body.joint, &x, &pa);
         }
     }
     // Forward: accelerations.
@@ -174,9 +206,10 @@ pub fn aba<S: Scalar>(
             Some(p) => ws.a[p],
             None => a0,
         };
-        let a = ws.x[i].motion_to_child(&a_parent) + ws.a[i];
+        let a = motion_to_child(&body.joint, &ws.x[i], &a_parent) + ws.a[i];
         let qddi = (ws.s2[i] - a.dot(&ws.u6[i])) * ws.s1[i];
         qdd[i] = qddi;
-        ws.a[i] = a + motion(&body.joint, qddi);
+        ws.a[i] = a;
+        add_motion(&body.joint, &mut ws.a[i], qddi);
     }
 }

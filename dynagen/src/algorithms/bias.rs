@@ -1,5 +1,5 @@
 //! The terms of the equations of motion that do not depend on q̈, each one
-//! call of [`rnea`](super::rnea::rnea) with the other terms left out:
+//! call of [`rnea`](super::rnea::rnea()) with the other terms left out:
 //! h(q, q̇) = C(q, q̇)q̇ + g(q), g(q), C(q, q̇)q̇ alone, and J(q)ᵀF_tip.
 
 use super::rnea::rnea;

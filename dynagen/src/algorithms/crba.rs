@@ -3,7 +3,7 @@
 //! *Modern Robotics* construction — n inverse dynamics calls with unit
 //! accelerations — kept as an independent check.
 
-use super::joint::{motion, project};
+use super::joint::{force_to_parent, inertia_times_subspace, inertia_to_parent, project};
 use super::rnea::{rnea, update_joint_transforms};
 use super::Workspace;
 use crate::model::Model;
@@ -27,18 +27,18 @@ pub fn crba<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], m: &mut [S
     for i in (0..n).rev() {
         let body = &model.bodies[i];
         // F = Iᶜ_i S_i, then carried up the chain of ancestors.
-        let mut f = ws.inertia[i].mul_motion(&motion(&body.joint, S::one()));
+        let mut f = inertia_times_subspace(&body.joint, &ws.inertia[i]);
         m[i * n + i] = project(&body.joint, &f);
         let mut j = i;
         while let Some(p) = model.bodies[j].parent {
-            f = ws.x[j].force_to_parent(&f);
+            f = force_to_parent(&model.bodies[j].joint, &ws.x[j], &f);
             j = p;
             let mij = project(&model.bodies[j].joint, &f);
             m[i * n + j] = mij;
             m[j * n + i] = mij;
         }
         if let Some(p) = body.parent {
-            let ic = ws.x[i].inertia_to_parent(&ws.inertia[i]);
+            let ic = inertia_to_parent(&body.joint, &ws.x[i], &ws.inertia[i]);
             ws.inertia[p] = ws.inertia[p].add(&ic);
         }
     }

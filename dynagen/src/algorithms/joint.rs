@@ -1,27 +1,120 @@
 //! Joint kinematics: the pose of a body in its parent's frame as a function
 //! of the joint position, and the joint's motion subspace.
+//!
+//! A joint whose axis lies along a coordinate axis of its frame
+//! ([`AxisAlignment`]) and a placement without rotation are common in robot
+//! descriptions. The functions here branch on these model constants (never
+//! on the state) and then compute only the terms that are not multiplied by
+//! an exact zero: for `f64` this skips work the compiler may not skip (it
+//! cannot fold `0·x`), and a symbolic trace gets the same short expressions.
+//! The results are those of the general formulas, up to rounding.
 
-use crate::model::{Joint, JointKind};
-use crate::spatial::{Force, Motion, Transform, Vec3};
+use crate::model::{AxisAlignment, Joint, JointKind};
+use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
 use crate::Scalar;
+
+/// The coordinate index of an aligned axis, and the other two in cyclic
+/// order: `(k, i, j)` with `e_i × e_j = e_k`.
+#[inline(always)]
+fn aligned_indices(alignment: AxisAlignment) -> Option<(usize, usize, usize)> {
+    match alignment {
+        AxisAlignment::X => Some((0, 1, 2)),
+        AxisAlignment::Y => Some((1, 2, 0)),
+        AxisAlignment::Z => Some((2, 0, 1)),
+        AxisAlignment::General => None,
+    }
+}
 
 /// The pose of the joint's body in its parent's frame at position `q`:
 /// the fixed placement, then the joint's own motion (a rotation by
 /// `|axis|·q` about the axis, or a translation by `axis·q`).
 #[inline(always)]
 pub fn joint_transform<S: Scalar>(joint: &Joint, q: S) -> Transform<S> {
+    match joint.alignment {
+        AxisAlignment::X => joint_transform_aligned::<S, 0, 1, 2>(joint, q),
+        AxisAlignment::Y => joint_transform_aligned::<S, 1, 2, 0>(joint, q),
+        AxisAlignment::Z => joint_transform_aligned::<S, 2, 0, 1>(joint, q),
+        AxisAlignment::General => joint_transform_general(joint, q),
+    }
+}
+
+/// The angle of a revolute joint at position `q`: `|axis|·q`.
+#[inline(always)]
+fn joint_angle<S: Scalar>(joint: &Joint, q: S) -> S {
+    if joint.axis_norm == 1.0 {
+        q
+    } else {
+        q * S::axis_norm_constant(&joint.axis, joint.axis_norm)
+    }
+}
+
+/// [`joint_transform`] for any axis, by Rodrigues' formula and full products
+/// with the placement.
+#[inline(always)]
+pub(crate) fn joint_transform_general<S: Scalar>(joint: &Joint, q: S) -> Transform<S> {
     let place = Transform::<S>::from_f64(&joint.placement);
     match joint.kind {
         JointKind::Revolute | JointKind::Continuous => {
-            let angle =
-                if joint.axis_norm == 1.0 { q } else { q * S::axis_norm_constant(&joint.axis, joint.axis_norm) };
-            let (s, c) = angle.sin_cos();
+            let (s, c) = joint_angle(joint, q).sin_cos();
             let r = S::axis_rotation(&joint.axis, &joint.unit_axis, s, c);
-            Transform { rot: place.rot.mul_mat(&r), trans: place.trans }
+            let rot = if joint.placement_rotation_is_identity { r } else { place.rot.mul_mat(&r) };
+            Transform { rot, trans: place.trans }
         }
         JointKind::Prismatic => {
             let d = Vec3::<S>::from_f64(&joint.axis).scale(q);
-            Transform { rot: place.rot, trans: place.trans + place.rot.mul_vec(&d) }
+            let d = if joint.placement_rotation_is_identity { d } else { place.rot.mul_vec(&d) };
+            Transform { rot: place.rot, trans: place.trans + d }
+        }
+    }
+}
+
+/// [`joint_transform`] for an axis along `±e_K`; `(I, J)` are the other two
+/// indices in cyclic order.
+#[inline(always)]
+fn joint_transform_aligned<S: Scalar, const K: usize, const I: usize, const J: usize>(
+    joint: &Joint,
+    q: S,
+) -> Transform<S> {
+    let identity = joint.placement_rotation_is_identity;
+    let trans = Vec3::<S>::from_f64(&joint.placement.trans);
+    match joint.kind {
+        JointKind::Revolute | JointKind::Continuous => {
+            let (s, c) = joint_angle(joint, q).sin_cos();
+            // About −e_K the rotation is the one about e_K by minus the angle.
+            let s = if joint.unit_axis.0[K] < 0.0 { -s } else { s };
+            // The rotation about e_K: c, −s / s, c in rows and columns I, J.
+            let rot = if identity {
+                let (z, o) = (S::zero(), S::one());
+                let mut r = [[z; 3]; 3];
+                r[K][K] = o;
+                r[I][I] = c;
+                r[I][J] = -s;
+                r[J][I] = s;
+                r[J][J] = c;
+                Mat3(r)
+            } else {
+                // P·R: column I is c·P_I + s·P_J, column J is c·P_J − s·P_I,
+                // column K is P_K.
+                let p = S::rotation_constant(&joint.placement.rot).0;
+                let mut r = p;
+                for row in 0..3 {
+                    r[row][I] = p[row][I] * c + p[row][J] * s;
+                    r[row][J] = p[row][J] * c - p[row][I] * s;
+                }
+                Mat3(r)
+            };
+            Transform { rot, trans }
+        }
+        JointKind::Prismatic => {
+            let d = S::from_f64(joint.axis.0[K]) * q;
+            if identity {
+                let mut t = trans;
+                t.0[K] += d;
+                Transform { rot: Mat3::identity(), trans: t }
+            } else {
+                let p = S::rotation_constant(&joint.placement.rot);
+                Transform { rot: p, trans: trans + p.col(K).scale(d) }
+            }
         }
     }
 }
@@ -29,20 +122,96 @@ pub fn joint_transform<S: Scalar>(joint: &Joint, q: S) -> Transform<S> {
 /// `S·x`: the twist of a joint moving at rate `x`, in the joint's frame.
 #[inline(always)]
 pub fn motion<S: Scalar>(joint: &Joint, x: S) -> Motion<S> {
-    let a = Vec3::<S>::from_f64(&joint.axis).scale(x);
+    let a = match aligned_indices(joint.alignment) {
+        Some((k, _, _)) => {
+            let mut a = Vec3::zero();
+            a.0[k] = S::from_f64(joint.axis.0[k]) * x;
+            a
+        }
+        None => Vec3::<S>::from_f64(&joint.axis).scale(x),
+    };
     match joint.kind {
         JointKind::Revolute | JointKind::Continuous => Motion::new(a, Vec3::zero()),
         JointKind::Prismatic => Motion::new(Vec3::zero(), a),
     }
 }
 
+/// `m + S·x`, adding only the non-zero terms.
+#[inline(always)]
+pub fn add_motion<S: Scalar>(joint: &Joint, m: &mut Motion<S>, x: S) {
+    let part = match joint.kind {
+        JointKind::Revolute | JointKind::Continuous => &mut m.ang,
+        JointKind::Prismatic => &mut m.lin,
+    };
+    match aligned_indices(joint.alignment) {
+        Some((k, _, _)) => part.0[k] += S::from_f64(joint.axis.0[k]) * x,
+        None => *part += Vec3::<S>::from_f64(&joint.axis).scale(x),
+    }
+}
+
+/// `u × (a·x)` for the joint's axis `a`, computing only the non-zero terms.
+#[inline(always)]
+fn cross_axis<S: Scalar>(joint: &Joint, u: &Vec3<S>, x: S) -> Vec3<S> {
+    match aligned_indices(joint.alignment) {
+        Some((k, i, j)) => {
+            // u × e_k = u_j e_i − u_i e_j
+            let w = S::from_f64(joint.axis.0[k]) * x;
+            let mut r = Vec3::zero();
+            r.0[i] = u.0[j] * w;
+            r.0[j] = -(u.0[i] * w);
+            r
+        }
+        None => u.cross(&Vec3::<S>::from_f64(&joint.axis).scale(x)),
+    }
+}
+
+/// `v ×ₘ (S·x)`: the velocity-product acceleration of a body moving with
+/// twist `v` whose joint moves at rate `x`.
+#[inline(always)]
+pub fn cross_motion<S: Scalar>(joint: &Joint, v: &Motion<S>, x: S) -> Motion<S> {
+    match joint.kind {
+        JointKind::Revolute | JointKind::Continuous => {
+            Motion { ang: cross_axis(joint, &v.ang, x), lin: cross_axis(joint, &v.lin, x) }
+        }
+        JointKind::Prismatic => Motion { ang: Vec3::zero(), lin: cross_axis(joint, &v.ang, x) },
+    }
+}
+
+/// `I·S`: the momentum of a rigid body moving with its joint at unit rate.
+#[inline(always)]
+pub fn inertia_times_subspace<S: Scalar>(joint: &Joint, inertia: &Inertia<S>) -> Force<S> {
+    match aligned_indices(joint.alignment) {
+        Some((k, _, _)) => {
+            let a = S::from_f64(joint.axis.0[k]);
+            match joint.kind {
+                // (Ī e_k a, −h × e_k a)
+                JointKind::Revolute | JointKind::Continuous => {
+                    let [xx, yy, zz, xy, xz, yz] = inertia.ibar.0;
+                    let col = [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]][k];
+                    Force { ang: Vec3(col).scale(a), lin: -cross_axis(joint, &inertia.h, S::one()) }
+                }
+                // (h × e_k a, m e_k a)
+                JointKind::Prismatic => {
+                    let mut lin = Vec3::zero();
+                    lin.0[k] = a * inertia.mass;
+                    Force { ang: cross_axis(joint, &inertia.h, S::one()), lin }
+                }
+            }
+        }
+        None => inertia.mul_motion(&motion(joint, S::one())),
+    }
+}
+
 /// `Sᵀ·f`: the generalised force of a wrench on the joint.
 #[inline(always)]
 pub fn project<S: Scalar>(joint: &Joint, f: &Force<S>) -> S {
-    let a = Vec3::<S>::from_f64(&joint.axis);
-    match joint.kind {
-        JointKind::Revolute | JointKind::Continuous => a.dot(&f.ang),
-        JointKind::Prismatic => a.dot(&f.lin),
+    let part = match joint.kind {
+        JointKind::Revolute | JointKind::Continuous => &f.ang,
+        JointKind::Prismatic => &f.lin,
+    };
+    match aligned_indices(joint.alignment) {
+        Some((k, _, _)) => S::from_f64(joint.axis.0[k]) * part.0[k],
+        None => Vec3::<S>::from_f64(&joint.axis).dot(part),
     }
 }
 
@@ -50,9 +219,245 @@ pub fn project<S: Scalar>(joint: &Joint, f: &Force<S>) -> S {
 /// body Jacobian's transpose).
 #[inline(always)]
 pub fn motion_dot<S: Scalar>(joint: &Joint, m: &Motion<S>) -> S {
-    let a = Vec3::<S>::from_f64(&joint.axis);
-    match joint.kind {
-        JointKind::Revolute | JointKind::Continuous => a.dot(&m.ang),
-        JointKind::Prismatic => a.dot(&m.lin),
+    project(joint, &Force { ang: m.ang, lin: m.lin })
+}
+
+/// The rotation part of a joint's transform (its pose in the parent), as an
+/// operator on 3-vectors. Besides the general matrix, a revolute joint with
+/// an aligned axis and an unrotated placement turns about a coordinate axis
+/// (one row and column of the matrix are those of the identity): the
+/// products then skip the known zeros and ones. The stored matrix is the
+/// same in every case, so the results are those of the general products up
+/// to rounding.
+pub(crate) trait Rotation<S: Scalar> {
+    /// `R·v`.
+    fn mul(&self, v: &Vec3<S>) -> Vec3<S>;
+    /// `Rᵀ·v`.
+    fn tr_mul(&self, v: &Vec3<S>) -> Vec3<S>;
+    /// `R·S·Rᵀ` for a symmetric `S`.
+    #[inline(always)]
+    fn rotate_sym(&self, s: &Sym3<S>) -> Sym3<S> {
+        let m = s.to_mat();
+        // T = R·S column by column; R·S·Rᵀ = R·Tᵀ, whose column c is R·(row c of T).
+        let t = [self.mul(&m.col(0)), self.mul(&m.col(1)), self.mul(&m.col(2))];
+        let row = |c: usize| Vec3([t[0].0[c], t[1].0[c], t[2].0[c]]);
+        let (c0, c1, c2) = (self.mul(&row(0)), self.mul(&row(1)), self.mul(&row(2)));
+        Sym3([c0.0[0], c1.0[1], c2.0[2], c1.0[0], c2.0[0], c2.0[1]])
+    }
+    /// `R·M·Rᵀ`.
+    #[inline(always)]
+    fn rotate_mat(&self, m: &Mat3<S>) -> Mat3<S> {
+        let t = [self.mul(&m.col(0)), self.mul(&m.col(1)), self.mul(&m.col(2))];
+        let row = |c: usize| Vec3([t[0].0[c], t[1].0[c], t[2].0[c]]);
+        // R·M·Rᵀ = (R·(R·M)ᵀ)ᵀ: its row c is R·(row c of R·M)
+        Mat3([self.mul(&row(0)).0, self.mul(&row(1)).0, self.mul(&row(2)).0])
+    }
+}
+
+/// Any rotation matrix.
+pub(crate) struct Dense<'a, S>(pub &'a Mat3<S>);
+
+/// A rotation matrix about `e_K`; `(I, J)` are the other indices in cyclic
+/// order.
+pub(crate) struct AboutAxis<'a, S, const K: usize, const I: usize, const J: usize>(pub &'a Mat3<S>);
+
+impl<S: Scalar> Rotation<S> for Dense<'_, S> {
+    #[inline(always)]
+    fn mul(&self, v: &Vec3<S>) -> Vec3<S> {
+        self.0.mul_vec(v)
+    }
+    #[inline(always)]
+    fn tr_mul(&self, v: &Vec3<S>) -> Vec3<S> {
+        self.0.tr_mul_vec(v)
+    }
+    #[inline(always)]
+    fn rotate_sym(&self, s: &Sym3<S>) -> Sym3<S> {
+        s.rotate(self.0)
+    }
+    #[inline(always)]
+    fn rotate_mat(&self, m: &Mat3<S>) -> Mat3<S> {
+        self.0.mul_mat(m).mul_mat(&self.0.transpose())
+    }
+}
+
+impl<S: Scalar, const K: usize, const I: usize, const J: usize> Rotation<S> for AboutAxis<'_, S, K, I, J> {
+    #[inline(always)]
+    fn mul(&self, v: &Vec3<S>) -> Vec3<S> {
+        let (m, v) = (&self.0 .0, &v.0);
+        let mut o = *v;
+        o[I] = m[I][I] * v[I] + m[I][J] * v[J];
+        o[J] = m[J][I] * v[I] + m[J][J] * v[J];
+        Vec3(o)
+    }
+    #[inline(always)]
+    fn tr_mul(&self, v: &Vec3<S>) -> Vec3<S> {
+        let (m, v) = (&self.0 .0, &v.0);
+        let mut o = *v;
+        o[I] = m[I][I] * v[I] + m[J][I] * v[J];
+        o[J] = m[I][J] * v[I] + m[J][J] * v[J];
+        Vec3(o)
+    }
+}
+
+/// Runs `$body` with `$r` bound to the [`Rotation`] of the joint's transform
+/// `$x` (a `Transform` computed by [`joint_transform`] for this joint),
+/// chosen from the model's constants.
+macro_rules! with_rotation {
+    ($joint:expr, $x:expr, |$r:ident| $body:expr) => {{
+        use $crate::algorithms::joint::{AboutAxis, Dense};
+        use $crate::model::{AxisAlignment, JointKind};
+        let joint: &$crate::model::Joint = $joint;
+        let rot = &$x.rot;
+        match (joint.placement_rotation_is_identity, joint.kind, joint.alignment) {
+            (_, JointKind::Prismatic, _) => {
+                let $r = Dense(rot);
+                $body
+            }
+            (true, _, AxisAlignment::X) => {
+                let $r = AboutAxis::<_, 0, 1, 2>(rot);
+                $body
+            }
+            (true, _, AxisAlignment::Y) => {
+                let $r = AboutAxis::<_, 1, 2, 0>(rot);
+                $body
+            }
+            (true, _, AxisAlignment::Z) => {
+                let $r = AboutAxis::<_, 2, 0, 1>(rot);
+                $body
+            }
+            _ => {
+                let $r = Dense(rot);
+                $body
+            }
+        }
+    }};
+}
+pub(crate) use with_rotation;
+
+/// [`Transform::motion_to_child`] for a joint's transform.
+#[inline(always)]
+pub fn motion_to_child<S: Scalar>(joint: &Joint, x: &Transform<S>, m: &Motion<S>) -> Motion<S> {
+    with_rotation!(joint, x, |r| Motion { ang: r.tr_mul(&m.ang), lin: r.tr_mul(&(m.lin + m.ang.cross(&x.trans))) })
+}
+
+/// [`Transform::force_to_parent`] for a joint's transform.
+#[inline(always)]
+pub fn force_to_parent<S: Scalar>(joint: &Joint, x: &Transform<S>, f: &Force<S>) -> Force<S> {
+    with_rotation!(joint, x, |r| {
+        let lin = r.mul(&f.lin);
+        Force { ang: r.mul(&f.ang) + x.trans.cross(&lin), lin }
+    })
+}
+
+/// [`Transform::inertia_to_parent`] for a joint's transform.
+#[inline(always)]
+pub fn inertia_to_parent<S: Scalar>(joint: &Joint, x: &Transform<S>, i: &Inertia<S>) -> Inertia<S> {
+    with_rotation!(joint, x, |r| {
+        let h = r.mul(&i.h);
+        let p = &x.trans;
+        let ibar =
+            r.rotate_sym(&i.ibar) + Sym3::cross_shift(&h, p) + Sym3::cross_shift(p, p).scale(i.mass * S::from_f64(0.5));
+        Inertia { mass: i.mass, h: h + p.scale(i.mass), ibar }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn joint(kind: JointKind, axis: [f64; 3], placement: Transform<f64>) -> Joint {
+        let axis = Vec3(axis);
+        let n = axis.norm();
+        Joint {
+            name: "j".into(),
+            kind,
+            placement,
+            axis,
+            limits: None,
+            unit_axis: axis.scale(1.0 / n),
+            axis_norm: n,
+            alignment: AxisAlignment::of(&axis),
+            placement_rotation_is_identity: placement.rot == Mat3::identity(),
+        }
+    }
+
+    fn assert_close(a: &[f64], b: &[f64], what: &str) {
+        for (i, (x, y)) in a.iter().zip(b).enumerate() {
+            assert!((x - y).abs() <= 1e-15, "{what}[{i}]: {x} vs {y}");
+        }
+    }
+
+    /// Every aligned class, both signs, unit and non-unit axes, revolute and
+    /// prismatic, with and without a rotated placement: the short cuts give
+    /// Rodrigues' formula and the dense spatial products.
+    #[test]
+    fn aligned_short_cuts_equal_the_general_formulas() {
+        let placements = [
+            Transform::new(Mat3::identity(), Vec3([0.1, -0.2, 0.3])),
+            Transform::new(Mat3::from_rpy(0.4, -1.2, 2.5), Vec3([-0.3, 0.05, 0.2])),
+        ];
+        let inertia = crate::spatial::Inertia::from_mass_com_inertia(
+            2.0,
+            Vec3([0.1, -0.05, 0.2]),
+            crate::spatial::Sym3([0.3, 0.25, 0.2, 0.01, -0.02, 0.015]),
+        );
+        let v = Motion::from_array([0.3, -0.7, 0.5, 0.2, 0.9, -0.4]);
+        let f = Force::from_array([1.5, -0.3, 0.8, -2.0, 0.6, 1.1]);
+        let mut cases = 0;
+        for k in 0..3 {
+            for sign in [1.0, -1.0] {
+                for len in [1.0, 0.6] {
+                    for kind in [JointKind::Revolute, JointKind::Continuous, JointKind::Prismatic] {
+                        for place in &placements {
+                            let mut axis = [0.0; 3];
+                            axis[k] = sign * len;
+                            let j = joint(kind, axis, *place);
+                            assert_eq!(j.alignment, [AxisAlignment::X, AxisAlignment::Y, AxisAlignment::Z][k]);
+                            for q in [0.0, 0.3, -1.7, 2.9, 12.0] {
+                                let got = joint_transform(&j, q);
+                                let (rot, trans) = if kind == JointKind::Prismatic {
+                                    (place.rot, place.trans + place.rot.mul_vec(&j.axis.scale(q)))
+                                } else {
+                                    (place.rot.mul_mat(&Mat3::from_axis_angle(&j.unit_axis, len * q)), place.trans)
+                                };
+                                let flat = |m: &Mat3<f64>| m.0.concat();
+                                assert_close(&flat(&got.rot), &flat(&rot), "rotation");
+                                assert_close(&got.trans.0, &trans.0, "translation");
+                                // the general path agrees too
+                                let gen = joint_transform_general(&j, q);
+                                assert_close(&flat(&gen.rot), &flat(&rot), "general rotation");
+                                // the joint-aware products equal the transform's own
+                                let m = motion_to_child(&j, &got, &v).to_array();
+                                assert_close(&m, &got.motion_to_child(&v).to_array(), "motion_to_child");
+                                let p = force_to_parent(&j, &got, &f).to_array();
+                                assert_close(&p, &got.force_to_parent(&f).to_array(), "force_to_parent");
+                                let (ia, ib) = (inertia_to_parent(&j, &got, &inertia), got.inertia_to_parent(&inertia));
+                                assert_close(&ia.ibar.0, &ib.ibar.0, "inertia_to_parent");
+                                assert_close(&ia.h.0, &ib.h.0, "inertia_to_parent h");
+                                let b = Mat3([[0.3, -1.2, 0.4], [0.9, 0.1, -0.5], [0.2, 0.7, 1.1]]);
+                                let dense = got.rot.mul_mat(&b).mul_mat(&got.rot.transpose());
+                                let sparse = with_rotation!(&j, got, |r| r.rotate_mat(&b));
+                                assert_close(&flat(&sparse), &flat(&dense), "rotate_mat");
+                            }
+                            // S·x, Sᵀf, v ×ₘ S·x, I·S, m + S·x against the dense forms
+                            let s = Motion::from_array(j.motion_subspace());
+                            let x = -1.3;
+                            assert_close(&motion(&j, x).to_array(), &s.scale(x).to_array(), "motion");
+                            assert_close(&[project(&j, &f)], &[s.dot(&f)], "project");
+                            assert_close(&[motion_dot(&j, &v)], &[s.dot(&Force::new(v.ang, v.lin))], "motion_dot");
+                            let c = cross_motion(&j, &v, x);
+                            assert_close(&c.to_array(), &v.cross_motion(&s.scale(x)).to_array(), "cross");
+                            let is = inertia_times_subspace(&j, &inertia);
+                            assert_close(&is.to_array(), &inertia.mul_motion(&s).to_array(), "I·S");
+                            let mut m = v;
+                            add_motion(&j, &mut m, x);
+                            assert_close(&m.to_array(), &(v + s.scale(x)).to_array(), "add_motion");
+                            cases += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert_eq!(cases, 72);
     }
 }

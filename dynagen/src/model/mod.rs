@@ -65,6 +65,40 @@ pub struct Joint {
     pub unit_axis: Vec3<f64>,
     /// `|axis|`.
     pub axis_norm: f64,
+    /// Derived from `axis`: the coordinate axis it lies along, if any, so
+    /// that the algorithms can skip the products with its zero components.
+    pub alignment: AxisAlignment,
+    /// Derived from `placement`: whether its rotation is exactly the
+    /// identity, so that the algorithms can skip the product with it.
+    pub placement_rotation_is_identity: bool,
+}
+
+/// Which coordinate axis of its frame a joint's axis lies along (its other
+/// two components exactly zero), or none. A model constant: algorithms may
+/// branch on it, and for an aligned axis they compute only the non-zero
+/// terms (the same numbers as the general formulas, up to rounding).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AxisAlignment {
+    /// Along ±x.
+    X,
+    /// Along ±y.
+    Y,
+    /// Along ±z.
+    Z,
+    /// Any other direction.
+    General,
+}
+
+impl AxisAlignment {
+    /// The alignment of `axis` (a non-zero vector).
+    pub fn of(axis: &Vec3<f64>) -> Self {
+        match axis.0 {
+            [_, 0.0, 0.0] => AxisAlignment::X,
+            [0.0, _, 0.0] => AxisAlignment::Y,
+            [0.0, 0.0, _] => AxisAlignment::Z,
+            _ => AxisAlignment::General,
+        }
+    }
 }
 
 impl Joint {

@@ -2,8 +2,8 @@
 //! depth-first joint order, and fixed joints merged away.
 
 use super::description::{JointDescription, JointType, RobotDescription};
-use super::{validate, Body, BuildOptions, Frame, Joint, JointKind, Model, ModelError, DEFAULT_GRAVITY};
-use crate::spatial::{Inertia, Transform, Vec3};
+use super::{validate, AxisAlignment, Body, BuildOptions, Frame, Joint, JointKind, Model, ModelError, DEFAULT_GRAVITY};
+use crate::spatial::{Inertia, Mat3, Transform, Vec3};
 use std::collections::HashMap;
 
 impl Model {
@@ -38,12 +38,14 @@ impl Model {
             child_joints[link_index[j.parent.as_str()]].push(ji);
         }
         let roots: Vec<usize> = (0..desc.links.len()).filter(|&l| parent_joint[l].is_none()).collect();
-        if roots.len() > 1 {
-            return Err(ModelError::MultipleRoots(roots.iter().map(|&r| desc.links[r].name.clone()).collect()));
-        }
-        // No root at all: every link has a parent, so the joints close a cycle.
-        let root =
-            *roots.first().ok_or_else(|| ModelError::Cycle(desc.links.iter().map(|l| l.name.clone()).collect()))?;
+        let parent_link = |l: usize| parent_joint[l].map(|j| link_index[desc.joints[j].parent.as_str()]);
+        let root = match roots[..] {
+            [root] => root,
+            // No root at all: every link has a parent, so the joints close a
+            // cycle (links is not empty: validate::check refuses that).
+            [] => return Err(ModelError::Cycle(cycle_above(0, &parent_link, desc))),
+            _ => return Err(ModelError::MultipleRoots(roots.iter().map(|&r| desc.links[r].name.clone()).collect())),
+        };
 
         // Depth-first walk from the root with an explicit stack (a long chain
         // must not overflow the call stack), children in file order. An entry
@@ -84,11 +86,13 @@ impl Model {
                 stack.push((link_index[j.child.as_str()], body, pose.compose(&j.origin), moving));
             }
         }
-        let unreached: Vec<String> =
-            (0..desc.links.len()).filter(|&l| !visited[l]).map(|l| desc.links[l].name.clone()).collect();
-        if !unreached.is_empty() {
-            return Err(ModelError::Cycle(unreached));
+        // A link the walk did not reach has a parent (the one root was
+        // reached), and so has that parent: going up from it must close a
+        // cycle, apart from the tree.
+        if let Some(l) = (0..desc.links.len()).find(|&l| !visited[l]) {
+            return Err(ModelError::Cycle(cycle_above(l, &parent_link, desc)));
         }
+        check_finite(&bodies, &frames, base_mass, &desc.links[root].name)?;
 
         let model = Model {
             name: desc.name.clone(),
@@ -102,6 +106,56 @@ impl Model {
         check_every_joint_moves_mass(&model)?;
         Ok(model)
     }
+}
+
+/// The cycle met going up from link `start` through parents, each link of
+/// which has a parent: its link names, from parent to child.
+fn cycle_above(start: usize, parent_link: &dyn Fn(usize) -> Option<usize>, desc: &RobotDescription) -> Vec<String> {
+    let mut position = vec![usize::MAX; desc.links.len()];
+    let mut walk = Vec::new();
+    let mut l = start;
+    while position[l] == usize::MAX {
+        position[l] = walk.len();
+        walk.push(l);
+        match parent_link(l) {
+            Some(p) => l = p,
+            None => break, // not reached when the caller is right
+        }
+    }
+    let from = position[l].min(walk.len());
+    walk[from..].iter().rev().map(|&l| desc.links[l].name.clone()).collect()
+}
+
+/// Finite numbers can combine into infinite ones (a long chain of huge
+/// offsets, a huge mass far from its body's origin): refuse those too.
+fn check_finite(bodies: &[Body], frames: &[Frame], base_mass: f64, root: &str) -> Result<(), ModelError> {
+    for b in bodies {
+        if !b.joint.placement.is_finite() {
+            return Err(ModelError::NonFinite {
+                item: format!("joint \"{}\"", b.joint.name),
+                what: "placement (composed with the fixed joints above it)",
+            });
+        }
+        let i = &b.inertia;
+        if !(i.mass.is_finite() && i.h.is_finite() && i.ibar.is_finite()) {
+            return Err(ModelError::NonFinite {
+                item: format!("link \"{}\"", b.name),
+                what: "spatial inertia (with the links fixed to it)",
+            });
+        }
+    }
+    for f in frames {
+        if !f.placement.is_finite() {
+            return Err(ModelError::NonFinite {
+                item: format!("link \"{}\"", f.name),
+                what: "placement in the body it is fixed to",
+            });
+        }
+    }
+    if !base_mass.is_finite() {
+        return Err(ModelError::NonFinite { item: format!("link \"{root}\""), what: "mass fixed to the base" });
+    }
+    Ok(())
 }
 
 /// (link, body it hangs from, link pose in that body's frame, the moving
@@ -123,6 +177,8 @@ fn joint_from(desc: &JointDescription, placement: Transform<f64>) -> Joint {
         limits: desc.limits,
         unit_axis: desc.axis.scale(1.0 / n),
         axis_norm: n,
+        alignment: AxisAlignment::of(&desc.axis),
+        placement_rotation_is_identity: placement.rot == Mat3::identity(),
     }
 }
 
@@ -139,6 +195,12 @@ fn check_every_joint_moves_mass(model: &Model) -> Result<(), ModelError> {
         let l = Vec3([s[3], s[4], s[5]]);
         let f = ic.mul_motion(&crate::spatial::Motion::new(a, l));
         let diag = a.dot(&f.ang) + l.dot(&f.lin);
+        if !diag.is_finite() {
+            return Err(ModelError::NonFinite {
+                item: format!("joint \"{}\"", b.joint.name),
+                what: "inertia moved by the joint (its subtree's)",
+            });
+        }
         if diag.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
             return Err(ModelError::MasslessSubtree(b.joint.name.clone()));
         }

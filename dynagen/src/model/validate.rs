@@ -3,7 +3,7 @@
 
 use super::description::{Inertial, JointType, RobotDescription};
 use super::{BuildOptions, ModelError, ModelWarning};
-use crate::spatial::Mat3;
+use crate::spatial::{Mat3, Sym3};
 use std::collections::HashSet;
 
 /// Relative tolerance of the inertia checks: eigenvalues may be this far
@@ -114,19 +114,24 @@ fn check_inertial(
     if i.mass < 0.0 {
         return Err(ModelError::NegativeMass { link: link.to_string(), mass: i.mass });
     }
-    let moments = i.inertia.eigenvalues();
-    let scale = moments[2].abs().max(f64::MIN_POSITIVE);
-    if moments[0] < -INERTIA_RTOL * scale {
+    // The eigenvalues of the inertia divided by its largest entry: the
+    // closed form squares the entries, which would overflow for entries
+    // beyond 1e154 and turn every comparison below false.
+    let largest = i.inertia.0.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let unit = if largest > 0.0 { Sym3(i.inertia.0.map(|x| x / largest)).eigenvalues() } else { [0.0; 3] };
+    let moments = unit.map(|x| x * largest);
+    let scale = unit[2].abs().max(f64::MIN_POSITIVE);
+    if unit.iter().any(|x| x.is_nan()) || unit[0] < -INERTIA_RTOL * scale {
         return Err(ModelError::InertiaNotPositive { link: link.to_string(), moments });
     }
-    if i.mass == 0.0 && moments[2] > 0.0 {
+    if i.mass == 0.0 && unit[2] > 0.0 {
         warnings.push(ModelWarning::InertiaWithoutMass { link: link.to_string() });
     }
     // Σ = tr(I)/2 · 1 − I is the second moment of the mass distribution;
     // it is positive semi-definite for every physical body, which is the
     // triangle inequality on the principal moments.
-    let half_trace = 0.5 * (moments[0] + moments[1] + moments[2]);
-    if half_trace - moments[2] < -INERTIA_RTOL * scale {
+    let half_trace = 0.5 * (unit[0] + unit[1] + unit[2]);
+    if half_trace - unit[2] < -INERTIA_RTOL * scale {
         if opts.strict {
             return Err(ModelError::TriangleInequality { link: link.to_string(), moments });
         }

@@ -17,7 +17,8 @@ use crate::spatial::{Mat3, Vec3};
 use core::cmp::Ordering;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
-/// A double-double number `hi + lo` (see the [module docs](self)).
+/// A double-double number `hi + lo`, about 106 bits (32 decimal digits) of
+/// precision: the reference scalar errors are measured against.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct DoubleDouble {
     /// The leading part: the `f64` nearest the value.

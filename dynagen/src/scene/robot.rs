@@ -120,27 +120,11 @@ impl SceneRobot {
     }
 
     fn check(&self, what: &'static str, x: &[f64]) -> Result<(), InputError> {
-        let n = self.dof();
-        if x.len() != n {
-            return Err(InputError::WrongLength { what, got: x.len(), expected: n });
-        }
-        match x.iter().position(|v| !v.is_finite()) {
-            Some(index) => Err(InputError::NonFinite {
-                what,
-                index,
-                joint: self.scene.model.bodies[index].joint.name.clone(),
-                value: x[index],
-            }),
-            None => Ok(()),
-        }
+        crate::robot::check_joint_vector(&self.scene.model, what, x)
     }
 
     fn check_out(&self, what: &'static str, len: usize) -> Result<(), InputError> {
-        let n = self.dof();
-        if len != n {
-            return Err(InputError::WrongLength { what, got: len, expected: n });
-        }
-        Ok(())
+        crate::robot::check_output_length(&self.scene.model, what, len, self.dof())
     }
 
     /// Checks the inputs against the scene, sets the tip wrench and the
