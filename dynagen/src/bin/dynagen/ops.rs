@@ -27,12 +27,12 @@ pub fn run(args: &Args) -> Result<Output, CliError> {
     let _ = writeln!(o, "robot \"{}\" from {source}: {} joints", model.name, model.dof());
     let _ = writeln!(
         o,
-        "operations per call (+ - * / sqrt sin_cos; negations apart in the last two columns): generated vs the generic recursion"
+        "operations per call (+ - * / sqrt sin_cos; negations apart, in the last two columns): generated vs the generic recursion"
     );
     let _ = writeln!(
         o,
         "{:<32} {:>10} {:>10} {:>7}   {:>9} {:>9}",
-        "function", "generated", "generic", "ratio", "neg", "neg"
+        "function", "generated", "generic", "ratio", "neg gen.", "neg gnr."
     );
     for f in &module.functions {
         let generic = generic_op_count(&model, f.kind);
