@@ -31,15 +31,15 @@ pub fn run(args: &Args) -> Result<Output, CliError> {
     );
     let _ = writeln!(
         o,
-        "{:<32} {:>10} {:>10} {:>7}   {:>9} {:>9}",
-        "function", "generated", "generic", "ratio", "neg gen.", "neg gnr."
+        "{:<32} {:>10} {:>10} {:>7}   {:>13} {:>11}",
+        "function", "generated", "generic", "ratio", "generated neg", "generic neg"
     );
     for f in &module.functions {
         let generic = generic_op_count(&model, f.kind);
         let (g, r) = (f.op_count.arithmetic(), generic.arithmetic());
         let _ = writeln!(
             o,
-            "{:<32} {:>10} {:>10} {:>6.2}x   {:>9} {:>9}",
+            "{:<32} {:>10} {:>10} {:>6.2}x   {:>13} {:>11}",
             f.kind.label(),
             g,
             r,
