@@ -6,12 +6,12 @@
 // Gravity: [0.0, 0.0, -9.81] m/s^2 in the base frame, folded in.
 // Options: scalar f64; forward dynamics by the articulated-body algorithm; rounding snap on (0 constants); like terms on, constant products on, constant sums on.
 // Operation counts:
-//   inverse_dynamics: 45 ops: 8 add, 10 sub, 25 mul, 0 div, 0 neg, 0 sqrt, 2 sin_cos
+//   inverse_dynamics: 33 ops: 5 add, 8 sub, 17 mul, 0 div, 1 neg, 0 sqrt, 2 sin_cos
 //   mass_matrix: 5 ops: 2 add, 0 sub, 2 mul, 0 div, 0 neg, 0 sqrt, 1 sin_cos
-//   bias_forces: 37 ops: 5 add, 8 sub, 22 mul, 0 div, 0 neg, 0 sqrt, 2 sin_cos
+//   bias_forces: 26 ops: 2 add, 6 sub, 14 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos
 //   gravity_torques: 20 ops: 0 add, 5 sub, 11 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos
 //   forward_dynamics (ABA): 56 ops: 9 add, 12 sub, 32 mul, 1 div, 0 neg, 0 sqrt, 2 sin_cos
-//   forward_dynamics (CRBA + LTDL) [not emitted]: 52 ops: 7 add, 13 sub, 28 mul, 2 div, 0 neg, 0 sqrt, 2 sin_cos
+//   forward_dynamics (CRBA + LTDL) [not emitted]: 40 ops: 5 add, 10 sub, 20 mul, 2 div, 1 neg, 0 sqrt, 2 sin_cos
 
 /// The number of degrees of freedom (joints).
 pub const DOF: usize = 2;
@@ -20,7 +20,7 @@ pub const JOINT_NAMES: [&str; DOF] = ["joint1", "joint2"];
 /// Inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton-Euler algorithm.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 45 ops: 8 add, 10 sub, 25 mul, 0 div, 0 neg, 0 sqrt, 2 sin_cos.
+/// 33 ops: 5 add, 8 sub, 17 mul, 0 div, 1 neg, 0 sqrt, 2 sin_cos.
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
@@ -33,51 +33,39 @@ pub fn inverse_dynamics(
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
     let (s0, c0) = q[0].sin_cos();
-    let t1 = 9.81 * s0;
-    let t2 = 9.81 * c0;
-    let t3 = 0.6666666666666666 * qdd[0];
-    let t4 = t3 - t2;
-    let (s5, c5) = q[1].sin_cos();
-    let t6 = t2 - qdd[0];
-    let t7 = t1 * c5;
-    let t8 = s5 * t6;
-    let t9 = t7 + t8;
-    let t10 = t1 * s5;
-    let t11 = c5 * t6;
-    let t12 = t11 - t10;
-    let t13 = qdd[0] + qdd[1];
-    let t14 = qd[0] * s5;
-    let t15 = qd[0] * c5;
+    let t1 = 9.81 * c0;
+    let t2 = 9.81 * s0;
+    let t3 = -t2;
+    let t4 = 0.6666666666666666 * qdd[0];
+    let t5 = t4 - t1;
+    let t6 = qd[0] * qd[0];
+    let (s7, c7) = q[1].sin_cos();
+    let t8 = t1 - qdd[0];
+    let t9 = t3 - t6;
+    let t10 = c7 * t8;
+    let t11 = s7 * t9;
+    let t12 = t10 + t11;
+    let t13 = s7 * t8;
+    let t14 = c7 * t9;
+    let t15 = t14 - t13;
     let t16 = qd[0] + qd[1];
-    let t17 = qd[1] * t14;
-    let t18 = qd[1] * t15;
-    let t19 = t18 - t9;
-    let t20 = t12 + t17;
-    let t21 = 0.32000000000000006 * t13;
-    let t22 = 0.6000000000000001 * t20;
-    let t23 = t21 - t22;
-    let t24 = 1.5 * t19;
-    let t25 = 1.5 * t20;
-    let t26 = 0.6000000000000001 * t13;
-    let t27 = t25 - t26;
-    let t28 = 1.5 * t14;
-    let t29 = 1.5 * t15;
-    let t30 = 0.6000000000000001 * t16;
-    let t31 = t29 + t30;
-    let t32 = t15 * t28;
-    let t33 = t14 * t31;
-    let t34 = t33 - t32;
-    let t35 = t16 * t31;
-    let t36 = t16 * t28;
-    let t37 = t23 + t34;
-    let t38 = t24 - t35;
-    let t39 = t27 - t36;
-    let t40 = s5 * t38;
-    let t41 = c5 * t39;
-    let t42 = t40 - t41;
-    let t43 = t37 + t42;
-    let t44 = t4 + t43;
-    [t44, t37]
+    let t17 = qdd[0] + qdd[1];
+    let t18 = 1.5 * t15;
+    let t19 = 1.5 * t12;
+    let t20 = 0.6000000000000001 * t12;
+    let t21 = 0.6000000000000001 * t17;
+    let t22 = t19 - t21;
+    let t23 = 0.32000000000000006 * t17;
+    let t24 = t23 - t20;
+    let t25 = 0.6000000000000001 * t16;
+    let t26 = t16 * t25;
+    let t27 = t18 - t26;
+    let t28 = c7 * t22;
+    let t29 = s7 * t27;
+    let t30 = t29 - t28;
+    let t31 = t24 + t30;
+    let t32 = t5 + t31;
+    [t32, t24]
 }
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
@@ -100,7 +88,7 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 37 ops: 5 add, 8 sub, 22 mul, 0 div, 0 neg, 0 sqrt, 2 sin_cos.
+/// 26 ops: 2 add, 6 sub, 14 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos.
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
@@ -109,43 +97,32 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 )]
 pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     let (s0, c0) = q[0].sin_cos();
-    let t1 = 9.81 * s0;
-    let t2 = 9.81 * c0;
-    let (s3, c3) = q[1].sin_cos();
-    let t4 = t1 * c3;
-    let t5 = t2 * s3;
-    let t6 = t4 + t5;
-    let t7 = t1 * s3;
-    let t8 = t2 * c3;
-    let t9 = t8 - t7;
-    let t10 = qd[0] * s3;
-    let t11 = qd[0] * c3;
-    let t12 = qd[0] + qd[1];
-    let t13 = qd[1] * t10;
-    let t14 = qd[1] * t11;
-    let t15 = t14 - t6;
-    let t16 = t9 + t13;
-    let t17 = 0.6000000000000001 * t16;
-    let t18 = 1.5 * t15;
-    let t19 = 1.5 * t16;
-    let t20 = 1.5 * t10;
-    let t21 = 1.5 * t11;
-    let t22 = 0.6000000000000001 * t12;
-    let t23 = t21 + t22;
-    let t24 = t11 * t20;
-    let t25 = t10 * t23;
-    let t26 = t25 - t24;
-    let t27 = t12 * t23;
-    let t28 = t12 * t20;
-    let t29 = t26 - t17;
-    let t30 = t18 - t27;
-    let t31 = t19 - t28;
-    let t32 = s3 * t30;
-    let t33 = c3 * t31;
-    let t34 = t32 - t33;
-    let t35 = t29 + t34;
-    let t36 = t35 - t2;
-    [t36, t29]
+    let t1 = 9.81 * c0;
+    let t2 = 9.81 * s0;
+    let t3 = -t2;
+    let t4 = qd[0] * qd[0];
+    let (s5, c5) = q[1].sin_cos();
+    let t6 = t3 - t4;
+    let t7 = t1 * c5;
+    let t8 = s5 * t6;
+    let t9 = t7 + t8;
+    let t10 = t1 * s5;
+    let t11 = c5 * t6;
+    let t12 = t11 - t10;
+    let t13 = qd[0] + qd[1];
+    let t14 = 1.5 * t12;
+    let t15 = 1.5 * t9;
+    let t16 = 0.6000000000000001 * t9;
+    let t17 = -t16;
+    let t18 = 0.6000000000000001 * t13;
+    let t19 = t13 * t18;
+    let t20 = t14 - t19;
+    let t21 = c5 * t15;
+    let t22 = s5 * t20;
+    let t23 = t22 - t21;
+    let t24 = t23 - t16;
+    let t25 = t24 - t1;
+    [t25, t17]
 }
 /// The gravity torques g(q).
 ///
@@ -159,26 +136,26 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 )]
 pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
     let (s0, c0) = q[0].sin_cos();
-    let t1 = 9.81 * s0;
-    let t2 = 9.81 * c0;
+    let t1 = 9.81 * c0;
+    let t2 = 9.81 * s0;
     let (s3, c3) = q[1].sin_cos();
     let t4 = t1 * c3;
-    let t5 = -t4;
-    let t6 = t2 * s3;
-    let t7 = t5 - t6;
-    let t8 = t1 * s3;
+    let t5 = t2 * s3;
+    let t6 = t4 - t5;
+    let t7 = t1 * s3;
+    let t8 = -t7;
     let t9 = t2 * c3;
-    let t10 = t9 - t8;
-    let t11 = 0.6000000000000001 * t10;
-    let t12 = -t11;
-    let t13 = 1.5 * t7;
-    let t14 = 1.5 * t10;
-    let t15 = s3 * t13;
-    let t16 = c3 * t14;
-    let t17 = t15 - t16;
-    let t18 = t17 - t11;
-    let t19 = t18 - t2;
-    [t19, t12]
+    let t10 = t8 - t9;
+    let t11 = 1.5 * t10;
+    let t12 = 1.5 * t6;
+    let t13 = 0.6000000000000001 * t6;
+    let t14 = -t13;
+    let t15 = c3 * t12;
+    let t16 = s3 * t11;
+    let t17 = t16 - t15;
+    let t18 = t17 - t13;
+    let t19 = t18 - t1;
+    [t19, t14]
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by the articulated-body algorithm.
 ///
