@@ -23,8 +23,9 @@ pub mod spatial;
 pub mod symbolic;
 
 pub use algorithms::integrators::Integrator;
+pub use codegen::Builder;
 pub use model::{Model, ModelError, ModelWarning, RobotBuilder};
 pub use robot::{InputError, Robot};
 pub use robot_simulate::TipWrenchHistory;
-pub use scalar::{DoubleDouble, Scalar};
+pub use scalar::{Counting, DoubleDouble, Scalar};
 pub use scene::{Scene, SceneError, SceneModel, SceneRobot};

@@ -94,3 +94,25 @@ pub fn rel_err(a: &[f64], b: &[f64], floor: f64) -> f64 {
     let scale = b.iter().fold(floor, |m, x| m.max(x.abs()));
     a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max) / scale
 }
+
+/// The bundled robots vendored in `generated/` (each `dynagen/robots/<name>.urdf`
+/// → `generated/src/<name>.rs`).
+pub const BUNDLED: [&str; 4] = ["ur5", "panda", "torso_two_arms", "planar_2link"];
+
+/// The command that rewrites `generated/src/*.rs` from the bundled robots.
+pub const REGENERATE_COMMAND: &str = "cargo run -p dynagen-tests --bin regenerate";
+
+/// The workspace's root folder.
+pub fn workspace_root() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("tests/ is in the workspace").to_path_buf()
+}
+
+/// The module of the bundled robot `name` as `generated/src/<name>.rs` must
+/// hold it: the default options, the source named relative to the workspace
+/// root so the file does not depend on where the workspace is.
+pub fn bundled_module(name: &str) -> Result<String, dynagen::codegen::BuildError> {
+    let rel = format!("dynagen/robots/{name}.urdf");
+    let options = dynagen::codegen::CodegenOptions::default().source(rel.clone());
+    let module = dynagen::Builder::new().urdf(workspace_root().join(&rel)).options(options).generate_module()?;
+    Ok(module.source)
+}

@@ -143,15 +143,21 @@ pub fn add_motion<S: Scalar>(joint: &Joint, m: &mut Motion<S>, x: S) {
         JointKind::Revolute | JointKind::Continuous => &mut m.ang,
         JointKind::Prismatic => &mut m.lin,
     };
+    add_axis(joint, part, x);
+}
+
+/// `u + a·x` for the joint's axis `a`, adding only the non-zero terms.
+#[inline(always)]
+pub(crate) fn add_axis<S: Scalar>(joint: &Joint, u: &mut Vec3<S>, x: S) {
     match aligned_indices(joint.alignment) {
-        Some((k, _, _)) => part.0[k] += S::from_f64(joint.axis.0[k]) * x,
-        None => *part += Vec3::<S>::from_f64(&joint.axis).scale(x),
+        Some((k, _, _)) => u.0[k] += S::from_f64(joint.axis.0[k]) * x,
+        None => *u += Vec3::<S>::from_f64(&joint.axis).scale(x),
     }
 }
 
 /// `u × (a·x)` for the joint's axis `a`, computing only the non-zero terms.
 #[inline(always)]
-fn cross_axis<S: Scalar>(joint: &Joint, u: &Vec3<S>, x: S) -> Vec3<S> {
+pub(crate) fn cross_axis<S: Scalar>(joint: &Joint, u: &Vec3<S>, x: S) -> Vec3<S> {
     match aligned_indices(joint.alignment) {
         Some((k, i, j)) => {
             // u × e_k = u_j e_i − u_i e_j

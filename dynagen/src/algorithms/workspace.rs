@@ -20,9 +20,10 @@ pub struct TipWrench<S> {
 pub struct Workspace<S> {
     /// Pose of each body in its parent's frame (the base's for a root body).
     pub(crate) x: Vec<Transform<S>>,
-    /// Twist of each body, in its frame.
+    /// Twist of each body, in its frame (RNEA keeps only the angular part ω).
     pub(crate) v: Vec<Motion<S>>,
-    /// Acceleration of each body (including −g), in its frame.
+    /// Acceleration of each body (including −g), in its frame: spatial in
+    /// ABA; in RNEA (ω̇; ordinary acceleration of the frame's origin).
     pub(crate) a: Vec<Motion<S>>,
     /// Net wrench transmitted by each joint, in the body's frame.
     pub(crate) f: Vec<Force<S>>,

@@ -60,13 +60,17 @@
 //! stays. Masses are never changed. What was replaced is listed in
 //! [`GeneratedModule::snapped`] and counted in the header.
 
+mod builder;
 mod emit;
+mod generic_count;
 mod hash;
 mod literal;
 mod rounding;
 mod sin_cos;
 mod trace;
 
+pub use builder::{module_name, BuildError, Builder, GeneratedFile};
+pub use generic_count::generic_op_count;
 pub use hash::{canonical_text, fnv1a64, model_hash};
 pub use literal::float_literal_text;
 pub use rounding::{snap_rounding, SnappedConstant, ROUNDING_TOLERANCE};
@@ -77,6 +81,10 @@ use crate::model::Model;
 use crate::symbolic::{Function, OpCount, Rewrites};
 use quote::quote;
 use std::fmt::Write;
+
+/// The names of the functions a module can have, in the order it lists them.
+pub const FUNCTION_NAMES: [&str; 5] =
+    ["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "forward_dynamics"];
 
 /// The generator's version, written into every header.
 pub const GENERATOR_VERSION: &str = env!("CARGO_PKG_VERSION");

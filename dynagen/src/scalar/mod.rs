@@ -125,5 +125,7 @@ impl Scalar for f32 {
     }
 }
 
+mod counting;
 mod double_double;
+pub use counting::Counting;
 pub use double_double::DoubleDouble;

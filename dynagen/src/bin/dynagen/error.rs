@@ -8,12 +8,14 @@ pub struct Output {
     pub stdout: String,
     /// Warnings, each naming the file and the item.
     pub warnings: Vec<String>,
+    /// Information for stderr, printed as is (after the warnings).
+    pub notes: Vec<String>,
 }
 
 impl Output {
     /// Output without warnings.
     pub fn text(stdout: String) -> Self {
-        Output { stdout, warnings: Vec::new() }
+        Output { stdout, ..Default::default() }
     }
 }
 

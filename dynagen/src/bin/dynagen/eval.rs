@@ -97,7 +97,7 @@ pub fn run(args: &Args) -> Result<Output, CliError> {
         ("joint_names".into(), Json::Arr(joint_names.iter().map(|n| Json::Str(n.clone())).collect())),
         ("results".into(), Json::Arr(results)),
     ]);
-    Ok(Output { stdout: out.render(), warnings })
+    Ok(Output { stdout: out.render(), warnings, notes: Vec::new() })
 }
 
 fn read_input(path: &std::path::Path) -> std::io::Result<String> {

@@ -8,8 +8,10 @@
 
 mod error;
 mod eval;
+mod generate;
 mod inspect;
 mod json;
+mod ops;
 mod robot_source;
 mod states;
 mod unavailable;
@@ -19,7 +21,8 @@ use error::{CliError, Output};
 use std::io::Write;
 use std::process::ExitCode;
 
-/// A dynamics compiler for robots: inspect a robot, evaluate its dynamics.
+/// A dynamics compiler for robots: inspect a robot, evaluate its dynamics,
+/// generate specialised Rust for it and count its operations.
 ///
 /// Every subcommand takes a URDF file; without one it uses the bundled
 /// UR5 (Universal Robots UR5 with the Modern Robotics inertias).
@@ -43,11 +46,13 @@ enum Command {
     /// Run the generic solver on a list of states read from JSON: inverse
     /// dynamics, mass matrix, bias and gravity torques, forward dynamics.
     Eval(eval::Args),
-    /// Write specialised Rust for a robot (not available yet in this version).
-    Generate(unavailable::Args),
-    /// Count the operations of the generated functions (not available yet in
-    /// this version).
-    Ops(unavailable::Args),
+    /// Write specialised Rust for a robot: one module of unrolled dynamics
+    /// (to stdout, or to a file with -o); each function's operation count
+    /// goes to stderr.
+    Generate(generate::Args),
+    /// Count the operations of each generated function beside those of the
+    /// generic recursion (the same algorithm run on a counting scalar).
+    Ops(ops::Args),
     /// Compare generated and generic code: accuracy and speed (not available
     /// yet in this version).
     Report(unavailable::Args),
@@ -57,8 +62,8 @@ fn run(command: Command) -> Result<Output, CliError> {
     match command {
         Command::Inspect(args) => inspect::run(&args),
         Command::Eval(args) => eval::run(&args),
-        Command::Generate(_) => unavailable::run("generate"),
-        Command::Ops(_) => unavailable::run("ops"),
+        Command::Generate(args) => generate::run(&args),
+        Command::Ops(args) => ops::run(&args),
         Command::Report(_) => unavailable::run("report"),
     }
 }
@@ -82,6 +87,9 @@ fn main() -> ExitCode {
         Ok(out) => {
             for w in &out.warnings {
                 eprintln!("warning: {}", one_line(w));
+            }
+            for n in &out.notes {
+                eprintln!("{n}");
             }
             let mut stdout = std::io::stdout().lock();
             match stdout.write_all(out.stdout.as_bytes()).and_then(|()| stdout.flush()) {

@@ -1,5 +1,4 @@
-//! `generate`, `ops` and `report`: they need the code generator, which this
-//! version does not have yet. They are defined so that the command's shape
+//! `report`: it is not implemented in this version. They are defined so that the command's shape
 //! is settled and scripts get a clear answer. Each will get its own module,
 //! with its own `Args`, when it is implemented: replace its `Command`
 //! variant's `unavailable::Args` and its arm in `run`.
@@ -20,8 +19,8 @@ pub struct Args {
 pub fn run(name: &str) -> Result<Output, CliError> {
     Err(CliError {
         message: format!(
-            "`dynagen {name}` is not available yet in this version ({}): it needs the code generator; \
-             `dynagen inspect` and `dynagen eval` are available",
+            "`dynagen {name}` is not available yet in this version ({}): \
+             `dynagen inspect`, `eval`, `generate` and `ops` are available",
             env!("CARGO_PKG_VERSION")
         ),
         status: STATUS_UNAVAILABLE,

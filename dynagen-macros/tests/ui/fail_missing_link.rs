@@ -1,0 +1,11 @@
+mod pendulum {
+    dynagen_macros::robot! {
+        name: pendulum,
+        link base {},
+        link arm { mass: 1.0, com: [0, 0, -0.5] },
+        joint hinge: revolute(base -> arm) { axis: [0, 1, 0] },
+        joint wrist: revolute(arm -> hand) { axis: [1, 0, 0] },
+    }
+}
+
+fn main() {}

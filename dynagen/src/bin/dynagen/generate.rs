@@ -1,0 +1,126 @@
+//! `dynagen generate`: the module of unrolled dynamics for a robot, as
+//! [`dynagen::Builder`] writes it in a build script (byte for byte the same
+//! as [`dynagen::codegen::generate`] with the same options).
+
+use crate::error::{CliError, Output, STATUS_BAD_INPUT, STATUS_UNAVAILABLE};
+use crate::robot_source::RobotSource;
+use dynagen::codegen::{BuildError, Builder, ForwardDynamicsMethod, GeneratedModule, ScalarType};
+use std::path::PathBuf;
+
+/// Arguments of `dynagen generate`.
+#[derive(clap::Args, Debug)]
+#[command(after_long_help = GENERATE_HELP)]
+pub struct Args {
+    /// The robot's URDF file (default: the bundled UR5).
+    #[arg(value_name = "ROBOT.urdf")]
+    pub robot: Option<PathBuf>,
+    /// Write the module to this file instead of stdout.
+    #[arg(long, short, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// Only these functions (comma-separated): inverse_dynamics, mass_matrix,
+    /// bias_forces, gravity_torques, forward_dynamics.
+    #[arg(long, value_name = "a,b,...", value_delimiter = ',')]
+    pub functions: Option<Vec<String>>,
+    /// Generate f32 code (constants rounded to f32).
+    #[arg(long)]
+    pub f32: bool,
+    /// Generate code for #![no_std] (not available yet in this version).
+    #[arg(long)]
+    pub no_std: bool,
+    /// Forward dynamics by CRBA + RNEA + a sparse LTDL solve instead of the
+    /// articulated-body algorithm.
+    #[arg(long)]
+    pub ldlt: bool,
+    /// Keep constants that are 0 or ±1 up to rounding as they are.
+    #[arg(long)]
+    pub no_snap: bool,
+    /// A scene (TOML). Only the default scene can be generated yet.
+    #[arg(long, value_name = "SCENE.toml")]
+    pub scene: Option<PathBuf>,
+}
+
+const GENERATE_HELP: &str = "\
+The module holds DOF, JOINT_NAMES and the functions (f64 shown):
+  inverse_dynamics(q, qd, qdd) -> [f64; DOF]
+  mass_matrix(q) -> [[f64; DOF]; DOF]
+  bias_forces(q, qd) -> [f64; DOF]
+  gravity_torques(q) -> [f64; DOF]
+  forward_dynamics(q, qd, tau) -> [f64; DOF]
+It has no inner attributes: include it in a module with
+  mod ur5 { include!(\"ur5.rs\"); }
+Each function's operation count is printed on stderr.
+
+Example:
+  dynagen generate robots/panda.urdf --functions inverse_dynamics,mass_matrix -o src/panda.rs";
+
+/// The builder for `args`, and the model it was given.
+fn builder(args: &Args, source: &RobotSource) -> Result<(Builder, dynagen::Model), CliError> {
+    if args.no_std {
+        return Err(CliError {
+            message: format!(
+                "--no-std is not available yet in this version ({}): the generated code calls f64::sin_cos from std",
+                env!("CARGO_PKG_VERSION")
+            ),
+            status: STATUS_UNAVAILABLE,
+        });
+    }
+    let model = source.load()?;
+    let mut options = dynagen::codegen::CodegenOptions::default()
+        .scalar(if args.f32 { ScalarType::F32 } else { ScalarType::F64 })
+        .forward_dynamics(if args.ldlt { ForwardDynamicsMethod::Ldlt } else { ForwardDynamicsMethod::Aba })
+        .snap_rounding(!args.no_snap);
+    options.source = Some(source.to_string());
+    let mut b = Builder::new().model(model.clone()).options(options);
+    if let Some(f) = &args.functions {
+        b = b.functions(f);
+    }
+    if let Some(s) = &args.scene {
+        b = b.scene_file(s);
+    }
+    Ok((b, model))
+}
+
+/// A builder error as a command-line error.
+pub fn cli_error(e: BuildError, source: &RobotSource) -> CliError {
+    let status = match e {
+        BuildError::SceneNotSupported { .. } => STATUS_UNAVAILABLE,
+        _ => STATUS_BAD_INPUT,
+    };
+    let text = e.to_string();
+    let text = text.strip_prefix("dynagen: ").unwrap_or(&text);
+    let message = match e {
+        BuildError::UnknownFunction { .. } => format!("--functions: {text}"),
+        BuildError::Codegen { .. } => format!("{source}: {text}"),
+        _ => text.to_string(),
+    };
+    CliError { message, status }
+}
+
+/// Generates the module `args` ask for; also gives the robot's source and
+/// its model.
+fn module(args: &Args) -> Result<(RobotSource, dynagen::Model, GeneratedModule), CliError> {
+    let source = RobotSource::from_arg(args.robot.as_deref());
+    let (builder, model) = builder(args, &source)?;
+    let module = builder.generate_module().map_err(|e| cli_error(e, &source))?;
+    Ok((source, model, module))
+}
+
+/// Runs `dynagen generate`.
+pub fn run(args: &Args) -> Result<Output, CliError> {
+    let (source, model, module) = module(args)?;
+    let mut notes: Vec<String> = module
+        .functions
+        .iter()
+        .map(|f| format!("{}{}: {}", f.kind.label(), if f.emitted { "" } else { " [not emitted]" }, f.op_count))
+        .collect();
+    let stdout = match &args.output {
+        None => module.source,
+        Some(path) => {
+            std::fs::write(path, &module.source)
+                .map_err(|e| CliError::input(path.display(), format!("cannot write the file: {e}")))?;
+            notes.push(format!("wrote {}", path.display()));
+            String::new()
+        }
+    };
+    Ok(Output { stdout, warnings: source.warnings(&model), notes })
+}

@@ -1,0 +1,135 @@
+//! The vendored modules of `generated/` (the bundled robots): each is what
+//! the generator writes today, byte for byte, and each computes what the
+//! generic solver computes, to 1e-12 of the output's norm, on random states,
+//! for every function. Plus the f32 UR5 module that `build.rs` writes with
+//! `dynagen::Builder`.
+
+use dynagen::Robot;
+use dynagen_generated::{panda, planar_2link, torso_two_arms, ur5};
+use dynagen_tests::{bundled_module, workspace_root, Rng, BUNDLED, REGENERATE_COMMAND};
+use nalgebra::DVector;
+
+#[allow(dead_code)]
+mod ur5_f32 {
+    include!(concat!(env!("OUT_DIR"), "/ur5_f32.rs"));
+}
+
+#[test]
+fn committed_modules_equal_a_fresh_generation() {
+    let mut stale = Vec::new();
+    for name in BUNDLED {
+        let path = workspace_root().join(format!("generated/src/{name}.rs"));
+        let committed = std::fs::read(&path).unwrap_or_default();
+        let fresh = bundled_module(name).unwrap_or_else(|e| panic!("{e}"));
+        if committed != fresh.as_bytes() {
+            stale.push(path.display().to_string());
+        }
+    }
+    assert!(
+        stale.is_empty(),
+        "the vendored generated code is stale: {} differ(s) from what the generator writes now; \
+         regenerate with `{REGENERATE_COMMAND}` and commit the result",
+        stale.join(", ")
+    );
+}
+
+/// |got − want| / |want| (Euclidean norms; an all-zero `want` compares absolutely).
+fn rel_err(got: &[f64], want: &[f64]) -> f64 {
+    assert_eq!(got.len(), want.len());
+    let norm = want.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let diff = got.iter().zip(want).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
+    diff / norm.max(1e-300)
+}
+
+/// Checks one generated module against the generic solver on `cases` random
+/// states; returns the worst relative error of (τ, M, h, g, q̈).
+macro_rules! check_module {
+    ($m:ident, $cases:expr, $seed:expr) => {{
+        const N: usize = $m::DOF;
+        let mut robot =
+            Robot::from_urdf_file(workspace_root().join(concat!("dynagen/robots/", stringify!($m), ".urdf"))).unwrap();
+        assert_eq!(N, robot.dof());
+        assert_eq!($m::JOINT_NAMES.to_vec(), robot.joint_names());
+        let mut rng = Rng::new($seed);
+        let mut arr = |a: f64| -> [f64; N] { core::array::from_fn(|_| rng.range(-a, a)) };
+        let v = |a: &[f64; N]| DVector::from_column_slice(a);
+        let mut worst = [0.0f64; 5];
+        for _ in 0..$cases {
+            let (q, qd, qdd, tau) = (arr(3.0), arr(2.0), arr(5.0), arr(30.0));
+            let checks: [(&str, Vec<f64>, Vec<f64>); 5] = [
+                (
+                    "inverse_dynamics",
+                    $m::inverse_dynamics(&q, &qd, &qdd).to_vec(),
+                    robot.inverse_dynamics(&v(&q), &v(&qd), &v(&qdd)).unwrap().as_slice().to_vec(),
+                ),
+                (
+                    "mass_matrix",
+                    $m::mass_matrix(&q).concat(),
+                    // row-major, as the generated [[row]; DOF]
+                    robot.mass_matrix(&v(&q)).unwrap().transpose().as_slice().to_vec(),
+                ),
+                (
+                    "bias_forces",
+                    $m::bias_forces(&q, &qd).to_vec(),
+                    robot.bias_forces(&v(&q), &v(&qd)).unwrap().as_slice().to_vec(),
+                ),
+                (
+                    "gravity_torques",
+                    $m::gravity_torques(&q).to_vec(),
+                    robot.gravity_torques(&v(&q)).unwrap().as_slice().to_vec(),
+                ),
+                (
+                    "forward_dynamics",
+                    $m::forward_dynamics(&q, &qd, &tau).to_vec(),
+                    robot.forward_dynamics(&v(&q), &v(&qd), &v(&tau)).unwrap().as_slice().to_vec(),
+                ),
+            ];
+            for (k, (name, got, want)) in checks.iter().enumerate() {
+                let e = rel_err(got, want);
+                worst[k] = worst[k].max(e);
+                assert!(
+                    e < 1e-12,
+                    "{}::{name} at q = {q:?}: relative error {e:e}\n got {got:?}\nwant {want:?}",
+                    stringify!($m)
+                );
+            }
+        }
+        println!("{}: worst relative errors (τ, M, h, g, q̈): {worst:?}", stringify!($m));
+    }};
+}
+
+#[test]
+fn ur5_matches_the_generic_solver() {
+    check_module!(ur5, 500, 1);
+}
+
+#[test]
+fn panda_matches_the_generic_solver() {
+    check_module!(panda, 300, 2);
+}
+
+#[test]
+fn torso_two_arms_matches_the_generic_solver() {
+    check_module!(torso_two_arms, 200, 3);
+}
+
+#[test]
+fn planar_2link_matches_the_generic_solver() {
+    check_module!(planar_2link, 500, 4);
+}
+
+#[test]
+fn ur5_f32_is_close() {
+    let mut robot = Robot::from_urdf_file(workspace_root().join("dynagen/robots/ur5.urdf")).unwrap();
+    let mut rng = Rng::new(7);
+    for _ in 0..100 {
+        let mut arr = |a: f64| -> [f64; 6] { core::array::from_fn(|_| rng.range(-a, a)) };
+        let (q, qd, qdd) = (arr(3.0), arr(2.0), arr(5.0));
+        let f = |a: &[f64; 6]| a.map(|x| x as f32);
+        let got = ur5_f32::inverse_dynamics(&f(&q), &f(&qd), &f(&qdd)).map(f64::from);
+        let v = |a: &[f64; 6]| DVector::from_column_slice(a);
+        let want = robot.inverse_dynamics(&v(&q), &v(&qd), &v(&qdd)).unwrap();
+        let e = rel_err(&got, want.as_slice());
+        assert!(e < 1e-4, "f32 inverse dynamics: relative error {e:e}");
+    }
+}
