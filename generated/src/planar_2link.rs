@@ -5,6 +5,10 @@
 // Model content hash (FNV-1a 64 of its canonical text): d6d04477035bb72d
 // Gravity: [0.0, 0.0, -9.81] m/s^2 in the base frame, folded in.
 // Options: scalar f64; forward dynamics by the articulated-body algorithm; rounding snap on (0 constants); like terms on, constant products on, constant sums on.
+// Trigonometry: NAME(q, ...) computes the sines and cosines by std's sin_cos (needs std).
+// Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]
+//   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.
+// sin_cos_all(q): the batched sine and cosine, within 1 ulp for |q| <= 1.6e6 rad, no std.
 // Operation counts:
 //   inverse_dynamics: 33 ops: 5 add, 8 sub, 17 mul, 0 div, 1 neg, 0 sqrt, 2 sin_cos
 //   mass_matrix: 5 ops: 2 add, 0 sub, 2 mul, 0 div, 0 neg, 0 sqrt, 1 sin_cos
@@ -17,156 +21,291 @@
 pub const DOF: usize = 2;
 /// The joint names, in the order of every index of the functions below.
 pub const JOINT_NAMES: [&str; DOF] = ["joint1", "joint2"];
+/// The sines and cosines of `q`, joint by joint: within 1 ulp for |q| ≤ 1.6e6 rad, no std, vectorised.
+#[inline]
+pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
+    let mut s = [0.0; DOF];
+    let mut c = [0.0; DOF];
+    for ((x, s), c) in q.iter().zip(&mut s).zip(&mut c) {
+        (*s, *c) = sin_cos_kernel(*x);
+    }
+    (s, c)
+}
 /// Inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton-Euler algorithm.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 33 ops: 5 add, 8 sub, 17 mul, 0 div, 1 neg, 0 sqrt, 2 sin_cos.
+/// 31 ops: 5 add, 8 sub, 17 mul, 0 div, 1 neg, 0 sqrt, 0 sin_cos.
+///
+/// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+pub fn inverse_dynamics_sc(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+    qdd: &[f64; DOF],
+) -> [f64; DOF] {
+    let t0 = 9.81 * c[0];
+    let t1 = 9.81 * s[0];
+    let t2 = -t1;
+    let t3 = 0.6666666666666666 * qdd[0];
+    let t4 = t3 - t0;
+    let t5 = qd[0] * qd[0];
+    let t6 = t0 - qdd[0];
+    let t7 = t2 - t5;
+    let t8 = c[1] * t6;
+    let t9 = s[1] * t7;
+    let t10 = t8 + t9;
+    let t11 = s[1] * t6;
+    let t12 = c[1] * t7;
+    let t13 = t12 - t11;
+    let t14 = qd[0] + qd[1];
+    let t15 = qdd[0] + qdd[1];
+    let t16 = 1.5 * t13;
+    let t17 = 1.5 * t10;
+    let t18 = 0.6000000000000001 * t10;
+    let t19 = 0.6000000000000001 * t15;
+    let t20 = t17 - t19;
+    let t21 = 0.32000000000000006 * t15;
+    let t22 = t21 - t18;
+    let t23 = 0.6000000000000001 * t14;
+    let t24 = t14 * t23;
+    let t25 = t16 - t24;
+    let t26 = c[1] * t20;
+    let t27 = s[1] * t25;
+    let t28 = t27 - t26;
+    let t29 = t22 + t28;
+    let t30 = t4 + t29;
+    [t30, t22]
+}
+/// Inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton-Euler algorithm.
+///
+/// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
+/// 33 ops: 5 add, 8 sub, 17 mul, 0 div, 1 neg, 0 sqrt, 2 sin_cos.
+///
+/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`inverse_dynamics_sc`].
+#[inline]
 pub fn inverse_dynamics(
     q: &[f64; DOF],
     qd: &[f64; DOF],
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
     let (s0, c0) = q[0].sin_cos();
-    let t1 = 9.81 * c0;
-    let t2 = 9.81 * s0;
-    let t3 = -t2;
-    let t4 = 0.6666666666666666 * qdd[0];
-    let t5 = t4 - t1;
-    let t6 = qd[0] * qd[0];
-    let (s7, c7) = q[1].sin_cos();
-    let t8 = t1 - qdd[0];
-    let t9 = t3 - t6;
-    let t10 = c7 * t8;
-    let t11 = s7 * t9;
-    let t12 = t10 + t11;
-    let t13 = s7 * t8;
-    let t14 = c7 * t9;
-    let t15 = t14 - t13;
-    let t16 = qd[0] + qd[1];
-    let t17 = qdd[0] + qdd[1];
-    let t18 = 1.5 * t15;
-    let t19 = 1.5 * t12;
-    let t20 = 0.6000000000000001 * t12;
-    let t21 = 0.6000000000000001 * t17;
-    let t22 = t19 - t21;
-    let t23 = 0.32000000000000006 * t17;
-    let t24 = t23 - t20;
-    let t25 = 0.6000000000000001 * t16;
-    let t26 = t16 * t25;
-    let t27 = t18 - t26;
-    let t28 = c7 * t22;
-    let t29 = s7 * t27;
-    let t30 = t29 - t28;
-    let t31 = t24 + t30;
-    let t32 = t5 + t31;
-    [t32, t24]
+    let (s1, c1) = q[1].sin_cos();
+    inverse_dynamics_sc(&[s0, s1], &[c0, c1], qd, qdd)
+}
+/// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
+///
+/// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
+/// 4 ops: 2 add, 0 sub, 2 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos.
+///
+/// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+#[allow(
+    clippy::approx_constant,
+    clippy::excessive_precision,
+    clippy::unreadable_literal,
+    clippy::too_many_lines
+)]
+pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+    let _ = s;
+    let t0 = 0.6000000000000001 * c[1];
+    let t1 = 0.32000000000000006 + t0;
+    let t2 = 1.2000000000000002 * c[1];
+    let t3 = t2 + 2.486666666666667;
+    [[t3, t1], [t1, 0.32000000000000006]]
 }
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 5 ops: 2 add, 0 sub, 2 mul, 0 div, 0 neg, 0 sqrt, 1 sin_cos.
+///
+/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`mass_matrix_sc`].
+#[inline]
+pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+    let (s1, c1) = q[1].sin_cos();
+    mass_matrix_sc(&[0.0, s1], &[1.0, c1])
+}
+/// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
+///
+/// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
+/// 24 ops: 2 add, 6 sub, 14 mul, 0 div, 2 neg, 0 sqrt, 0 sin_cos.
+///
+/// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
-    let c0 = q[1].cos();
-    let t1 = 0.6000000000000001 * c0;
-    let t2 = 0.32000000000000006 + t1;
-    let t3 = 1.2000000000000002 * c0;
-    let t4 = t3 + 2.486666666666667;
-    [[t4, t2], [t2, 0.32000000000000006]]
+pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
+    let t0 = 9.81 * c[0];
+    let t1 = 9.81 * s[0];
+    let t2 = -t1;
+    let t3 = qd[0] * qd[0];
+    let t4 = t2 - t3;
+    let t5 = t0 * c[1];
+    let t6 = s[1] * t4;
+    let t7 = t5 + t6;
+    let t8 = t0 * s[1];
+    let t9 = c[1] * t4;
+    let t10 = t9 - t8;
+    let t11 = qd[0] + qd[1];
+    let t12 = 1.5 * t10;
+    let t13 = 1.5 * t7;
+    let t14 = 0.6000000000000001 * t7;
+    let t15 = -t14;
+    let t16 = 0.6000000000000001 * t11;
+    let t17 = t11 * t16;
+    let t18 = t12 - t17;
+    let t19 = c[1] * t13;
+    let t20 = s[1] * t18;
+    let t21 = t20 - t19;
+    let t22 = t21 - t14;
+    let t23 = t22 - t0;
+    [t23, t15]
 }
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 26 ops: 2 add, 6 sub, 14 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos.
+///
+/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`bias_forces_sc`].
+#[inline]
+pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
+    let (s0, c0) = q[0].sin_cos();
+    let (s1, c1) = q[1].sin_cos();
+    bias_forces_sc(&[s0, s1], &[c0, c1], qd)
+}
+/// The gravity torques g(q).
+///
+/// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
+/// 18 ops: 0 add, 5 sub, 11 mul, 0 div, 2 neg, 0 sqrt, 0 sin_cos.
+///
+/// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
-    let (s0, c0) = q[0].sin_cos();
-    let t1 = 9.81 * c0;
-    let t2 = 9.81 * s0;
-    let t3 = -t2;
-    let t4 = qd[0] * qd[0];
-    let (s5, c5) = q[1].sin_cos();
-    let t6 = t3 - t4;
-    let t7 = t1 * c5;
-    let t8 = s5 * t6;
-    let t9 = t7 + t8;
-    let t10 = t1 * s5;
-    let t11 = c5 * t6;
-    let t12 = t11 - t10;
-    let t13 = qd[0] + qd[1];
-    let t14 = 1.5 * t12;
-    let t15 = 1.5 * t9;
-    let t16 = 0.6000000000000001 * t9;
-    let t17 = -t16;
-    let t18 = 0.6000000000000001 * t13;
-    let t19 = t13 * t18;
-    let t20 = t14 - t19;
-    let t21 = c5 * t15;
-    let t22 = s5 * t20;
-    let t23 = t22 - t21;
-    let t24 = t23 - t16;
-    let t25 = t24 - t1;
-    [t25, t17]
+pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
+    let t0 = 9.81 * c[0];
+    let t1 = 9.81 * s[0];
+    let t2 = t0 * c[1];
+    let t3 = t1 * s[1];
+    let t4 = t2 - t3;
+    let t5 = t0 * s[1];
+    let t6 = -t5;
+    let t7 = t1 * c[1];
+    let t8 = t6 - t7;
+    let t9 = 1.5 * t8;
+    let t10 = 1.5 * t4;
+    let t11 = 0.6000000000000001 * t4;
+    let t12 = -t11;
+    let t13 = c[1] * t10;
+    let t14 = s[1] * t9;
+    let t15 = t14 - t13;
+    let t16 = t15 - t11;
+    let t17 = t16 - t0;
+    [t17, t12]
 }
 /// The gravity torques g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 20 ops: 0 add, 5 sub, 11 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos.
+///
+/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`gravity_torques_sc`].
+#[inline]
+pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
+    let (s0, c0) = q[0].sin_cos();
+    let (s1, c1) = q[1].sin_cos();
+    gravity_torques_sc(&[s0, s1], &[c0, c1])
+}
+/// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by the articulated-body algorithm.
+///
+/// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
+/// 54 ops: 9 add, 12 sub, 32 mul, 1 div, 0 neg, 0 sqrt, 0 sin_cos.
+///
+/// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
-    let (s0, c0) = q[0].sin_cos();
-    let t1 = 9.81 * c0;
-    let t2 = 9.81 * s0;
-    let (s3, c3) = q[1].sin_cos();
-    let t4 = t1 * c3;
-    let t5 = t2 * s3;
-    let t6 = t4 - t5;
-    let t7 = t1 * s3;
-    let t8 = -t7;
-    let t9 = t2 * c3;
-    let t10 = t8 - t9;
-    let t11 = 1.5 * t10;
-    let t12 = 1.5 * t6;
-    let t13 = 0.6000000000000001 * t6;
-    let t14 = -t13;
-    let t15 = c3 * t12;
-    let t16 = s3 * t11;
-    let t17 = t16 - t15;
-    let t18 = t17 - t13;
-    let t19 = t18 - t1;
-    [t19, t14]
+pub fn forward_dynamics_sc(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+    tau: &[f64; DOF],
+) -> [f64; DOF] {
+    let t0 = qd[0] * c[1];
+    let t1 = qd[0] * s[1];
+    let t2 = qd[0] + qd[1];
+    let t3 = qd[1] * t1;
+    let t4 = qd[1] * t0;
+    let t5 = 1.5 * t1;
+    let t6 = 1.5 * t0;
+    let t7 = 0.6000000000000001 * t2;
+    let t8 = t6 + t7;
+    let t9 = t0 * t5;
+    let t10 = t1 * t8;
+    let t11 = t10 - t9;
+    let t12 = t2 * t8;
+    let t13 = t2 * t5;
+    let t14 = tau[1] - t11;
+    let t15 = 1.5 * t4;
+    let t16 = 0.3749999999999998 * t3;
+    let t17 = t15 - t12;
+    let t18 = t16 - t13;
+    let t19 = 1.875 * t14;
+    let t20 = t18 - t19;
+    let t21 = 1.5 * s[1];
+    let t22 = 0.3749999999999998 * c[1];
+    let t23 = c[1] * t22;
+    let t24 = s[1] * t21;
+    let t25 = t23 + t24;
+    let t26 = s[1] * t22;
+    let t27 = c[1] * t21;
+    let t28 = t27 - t26;
+    let t29 = 1.0 + t25;
+    let t30 = 0.6666666666666666 + t25;
+    let t31 = c[1] * t20;
+    let t32 = s[1] * t17;
+    let t33 = t32 - t31;
+    let t34 = tau[1] + t33;
+    let t35 = 1.0 / t30;
+    let t36 = tau[0] - t34;
+    let t37 = 9.81 * c[0];
+    let t38 = 9.81 * s[0];
+    let t39 = t28 * t38;
+    let t40 = t29 * t37;
+    let t41 = t39 + t40;
+    let t42 = t36 + t41;
+    let t43 = t35 * t42;
+    let t44 = t37 - t43;
+    let t45 = c[1] * t44;
+    let t46 = s[1] * t38;
+    let t47 = t45 - t46;
+    let t48 = t3 + t47;
+    let t49 = 0.32000000000000006 * t43;
+    let t50 = 0.6000000000000001 * t48;
+    let t51 = t49 - t50;
+    let t52 = t14 - t51;
+    let t53 = 3.1249999999999996 * t52;
+    [t43, t53]
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by the articulated-body algorithm.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 56 ops: 9 add, 12 sub, 32 mul, 1 div, 0 neg, 0 sqrt, 2 sin_cos.
-#[allow(
-    clippy::approx_constant,
-    clippy::excessive_precision,
-    clippy::unreadable_literal,
-    clippy::too_many_lines
-)]
+///
+/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`forward_dynamics_sc`].
+#[inline]
 pub fn forward_dynamics(
     q: &[f64; DOF],
     qd: &[f64; DOF],
@@ -174,59 +313,87 @@ pub fn forward_dynamics(
 ) -> [f64; DOF] {
     let (s0, c0) = q[0].sin_cos();
     let (s1, c1) = q[1].sin_cos();
-    let t2 = qd[0] * c1;
-    let t3 = qd[0] * s1;
-    let t4 = qd[0] + qd[1];
-    let t5 = qd[1] * t3;
-    let t6 = qd[1] * t2;
-    let t7 = 1.5 * t3;
-    let t8 = 1.5 * t2;
-    let t9 = 0.6000000000000001 * t4;
-    let t10 = t8 + t9;
-    let t11 = t2 * t7;
-    let t12 = t3 * t10;
-    let t13 = t12 - t11;
-    let t14 = t4 * t10;
-    let t15 = t4 * t7;
-    let t16 = tau[1] - t13;
-    let t17 = 1.5 * t6;
-    let t18 = 0.3749999999999998 * t5;
-    let t19 = t17 - t14;
-    let t20 = t18 - t15;
-    let t21 = 1.875 * t16;
-    let t22 = t20 - t21;
-    let t23 = 1.5 * s1;
-    let t24 = 0.3749999999999998 * c1;
-    let t25 = c1 * t24;
-    let t26 = s1 * t23;
-    let t27 = t25 + t26;
-    let t28 = s1 * t24;
-    let t29 = c1 * t23;
-    let t30 = t29 - t28;
-    let t31 = 1.0 + t27;
-    let t32 = 0.6666666666666666 + t27;
-    let t33 = c1 * t22;
-    let t34 = s1 * t19;
-    let t35 = t34 - t33;
-    let t36 = tau[1] + t35;
-    let t37 = 1.0 / t32;
-    let t38 = tau[0] - t36;
-    let t39 = 9.81 * c0;
-    let t40 = 9.81 * s0;
-    let t41 = t30 * t40;
-    let t42 = t31 * t39;
-    let t43 = t41 + t42;
-    let t44 = t38 + t43;
-    let t45 = t37 * t44;
-    let t46 = t39 - t45;
-    let t47 = c1 * t46;
-    let t48 = s1 * t40;
-    let t49 = t47 - t48;
-    let t50 = t5 + t49;
-    let t51 = 0.32000000000000006 * t45;
-    let t52 = 0.6000000000000001 * t50;
-    let t53 = t51 - t52;
-    let t54 = t16 - t53;
-    let t55 = 3.1249999999999996 * t54;
-    [t45, t55]
+    forward_dynamics_sc(&[s0, s1], &[c0, c1], qd, tau)
+}
+
+// The sine and cosine of one angle in straight-line f64 arithmetic: no
+// branch, no table, no call, nothing from std or any crate, so that a loop
+// over the joints of a robot vectorises.
+//
+// 1. Range reduction (Cody and Waite): x = k·π/2 + r with k the integer
+//    nearest x·2/π (rounded by adding and subtracting 1.5·2⁵²) and π/2 split
+//    into P1 + P2 + P3 (33 significant bits each) + P4 (53 bits), so that
+//    k·P1, k·P2 and k·P3 are exact for |k| < 2²⁰ and x − k·P1 is exact. r is
+//    kept as a double-double rh + rl through error-free sums: even when x is
+//    the double nearest a multiple of π/2 and r cancels to ~1e-18, r keeps
+//    about 70 correct bits. Valid for |x| ≤ 1.6e6 rad; beyond, the results
+//    lose accuracy (they stay in [−1, 1]). NaN and ±∞ give NaN.
+// 2. On |r| ≤ π/4: sin r = r + r³·S(r²), cos r = 1 − r²/2 + r⁴·C(r²) with
+//    the Taylor coefficients 1/n! (to r¹⁷ and r¹⁸: truncation below 1e-19).
+//    The leading terms (r, and 1 − r²/2 with r² as an exact double-double)
+//    are added last, so the result carries one rounding plus a small part
+//    of one: within 1 ulp of the exact value (the tests measure it).
+// 3. The quadrant k mod 4 picks (±sin r, ±cos r) by bit masks, not branches.
+/// The sine and cosine of `x` (one angle), accurate to 1 ulp for
+/// |x| ≤ 1.6e6 rad; the scalar core of `sin_cos_all`.
+#[inline(always)]
+#[allow(clippy::excessive_precision, clippy::unreadable_literal, clippy::approx_constant)]
+pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
+    const FRAC_2_PI: f64 = 0.6366197723675814;
+    const ROUND: f64 = 6755399441055744.0; // 1.5·2⁵²: x + ROUND − ROUND rounds x to an integer
+    const P1: f64 = 1.5707963267341256;
+    const P2: f64 = 6.077100506303966e-11;
+    const P3: f64 = 2.0222662487111665e-21;
+    const P4: f64 = 8.4784276603689e-32;
+    const SPLIT: f64 = 134217729.0; // 2²⁷ + 1: Dekker's split of a double into two halves
+    let t = x * FRAC_2_PI + ROUND;
+    let quadrant = t.to_bits() & 3;
+    let k = t - ROUND;
+    // r = x − k·π/2 as the double-double rh + rl.
+    let t0 = x - k * P1;
+    let a2 = k * P2;
+    let a3 = k * P3;
+    let h1 = t0 - a2;
+    let b1 = h1 - t0;
+    let e1 = (t0 - (h1 - b1)) + (-a2 - b1);
+    let h2 = h1 - a3;
+    let b2 = h2 - h1;
+    let e2 = (h1 - (h2 - b2)) + (-a3 - b2);
+    let low = (e1 + e2) - k * P4;
+    let rh = h2 + low;
+    let rl = low - (rh - h2);
+    // z = rh² exactly, as zh + zl.
+    let p = rh * SPLIT;
+    let hi = p - (p - rh);
+    let lo = rh - hi;
+    let zh = rh * rh;
+    let zl = ((hi * hi - zh) + 2.0 * hi * lo) + lo * lo;
+    let z = zh;
+    // sin(rh + rl) = rh + rh·z·S(z) + rl·(1 − z/2) + …
+    let ps = -0.16666666666666666
+        + z * (0.008333333333333333
+            + z * (-0.0001984126984126984
+                + z * (2.7557319223985893e-06
+                    + z * (-2.505210838544172e-08
+                        + z * (1.6059043836821613e-10 + z * (-7.647163731819816e-13 + z * 2.8114572543455206e-15))))));
+    let sin_r = rh + (rh * z * ps + rl * (1.0 - 0.5 * z));
+    // cos(rh + rl) = (1 − z/2) + z²·C(z) − rh·rl + …, 1 − z/2 with its rounding error kept.
+    let pc = 0.041666666666666664
+        + z * (-0.001388888888888889
+            + z * (2.48015873015873e-05
+                + z * (-2.755731922398589e-07
+                    + z * (2.08767569878681e-09
+                        + z * (-1.1470745597729725e-11 + z * (4.779477332387385e-14 + z * -1.5619206968586225e-16))))));
+    let hz = 0.5 * zh;
+    let w = 1.0 - hz;
+    let w_err = (1.0 - w) - hz;
+    let cos_r = w + ((w_err - 0.5 * zl) + (z * z * pc - rh * rl));
+    // Quadrant: odd swaps sine and cosine; the sign bits follow k mod 4.
+    let swap = 0u64.wrapping_sub(quadrant & 1);
+    let (sb, cb) = (sin_r.to_bits(), cos_r.to_bits());
+    let sin_bits = (sb & !swap) | (cb & swap);
+    let cos_bits = (cb & !swap) | (sb & swap);
+    let sin_sign = ((quadrant >> 1) & 1) << 63;
+    let cos_sign = (((quadrant + 1) >> 1) & 1) << 63;
+    (f64::from_bits(sin_bits ^ sin_sign), f64::from_bits(cos_bits ^ cos_sign))
 }
