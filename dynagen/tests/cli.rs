@@ -524,8 +524,12 @@ fn generate_errors_are_one_line_naming_the_option_or_file() {
     assert!(e.contains("--functions") && e.contains("unknown function \"jacobian\""), "{e}");
     let e = fails(dynagen().args(["generate", "nowhere.urdf"]), 1);
     assert!(e.starts_with("error: nowhere.urdf: cannot read"), "{e}");
-    let e = fails(dynagen().args(["generate", "--no-std"]), 3);
-    assert!(e.contains("--no-std is not available yet"), "{e}");
+    let out = succeeds(dynagen().args(["generate", "--no-std"]));
+    assert!(out.contains("pub fn sin_cos_all") && !out.contains(".sin_cos()"), "--no-std must not call std's sin_cos");
+    let out = succeeds(dynagen().args(["generate", "--trig", "inputs"]));
+    assert!(out.contains("pub fn inverse_dynamics_sc") && !out.contains("pub fn inverse_dynamics("), "{out}");
+    let e = fails(dynagen().args(["generate", "--trig", "fast"]), 1);
+    assert!(e.contains("--trig \"fast\"") && e.contains("batched"), "{e}");
     // A scene asking for what code generation cannot do yet: exit 3, naming
     // the scene file and what it asks for.
     let scene = write(&dir, "scene.toml", "[gravity]\nmode = \"none\"\n");

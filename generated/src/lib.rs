@@ -19,32 +19,25 @@
 //!
 //! # `no_std`
 //!
-//! The crate is `#![no_std]`. The generated code computes sines and cosines
-//! with `f64::sin_cos`, which lives in `std`, so the robot modules need the
-//! `std` feature (on by default); without it the crate is empty. A no_std
-//! emission (sines and cosines from `libm`, or as inputs) is planned in the
-//! generator; these modules will use it then.
+//! The crate is `#![no_std]` with no dependency: the modules are generated
+//! with `Trig::Batched`, so their sines and cosines come from each module's
+//! own `sin_cos_all` (within 1 ulp, like libm). Each function also has a
+//! `NAME_sc` form that takes the sines and cosines, for a controller that
+//! already has them.
 #![no_std]
 
-#[cfg(feature = "std")]
-extern crate std;
-
 /// The Universal Robots UR5 (6 revolute joints).
-#[cfg(feature = "std")]
 #[rustfmt::skip]
 pub mod ur5;
 
 /// The Franka Emika Panda (7 revolute joints and 2 prismatic fingers).
-#[cfg(feature = "std")]
 #[rustfmt::skip]
 pub mod panda;
 
 /// A torso with two arms (a branched tree).
-#[cfg(feature = "std")]
 #[rustfmt::skip]
 pub mod torso_two_arms;
 
 /// A planar two-link arm (the textbook closed form is in dynagen's tests).
-#[cfg(feature = "std")]
 #[rustfmt::skip]
 pub mod planar_2link;

@@ -5,7 +5,7 @@
 // Model content hash (FNV-1a 64 of its canonical text): 05d2134012bdd4bf
 // Gravity: [0.0, 0.0, -9.81] m/s^2 in the base frame, folded in.
 // Options: scalar f64; forward dynamics by the articulated-body algorithm; rounding snap on (12 constants); like terms on, constant products on, constant sums on.
-// Trigonometry: NAME(q, ...) computes the sines and cosines by std's sin_cos (needs std).
+// Trigonometry: NAME(q, ...) computes the sines and cosines by sin_cos_all (no_std, no dependency).
 // Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]
 //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.
 // sin_cos_all(q): the batched sine and cosine, within 1 ulp for |q| <= 1.6e6 rad, no std.
@@ -1133,26 +1133,15 @@ pub fn inverse_dynamics_sc(
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 1072 ops: 260 add, 221 sub, 583 mul, 0 div, 2 neg, 0 sqrt, 6 sin_cos.
 ///
-/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`inverse_dynamics_sc`].
+/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`inverse_dynamics_sc`].
 #[inline]
 pub fn inverse_dynamics(
     q: &[f64; DOF],
     qd: &[f64; DOF],
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
-    let (s1, c1) = q[1].sin_cos();
-    let (s2, c2) = q[2].sin_cos();
-    let (s3, c3) = q[3].sin_cos();
-    let (s4, c4) = q[4].sin_cos();
-    let (s5, c5) = q[5].sin_cos();
-    let (s6, c6) = q[6].sin_cos();
-    inverse_dynamics_sc(
-        &[0.0, s1, s2, s3, s4, s5, s6, 0.0, 0.0],
-        &[1.0, c1, c2, c3, c4, c5, c6, 1.0, 1.0],
-        q,
-        qd,
-        qdd,
-    )
+    let (s, c) = sin_cos_all(q);
+    inverse_dynamics_sc(&s, &c, q, qd, qdd)
 }
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
@@ -1866,20 +1855,11 @@ pub fn mass_matrix_sc(
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 684 ops: 171 add, 141 sub, 361 mul, 0 div, 5 neg, 0 sqrt, 6 sin_cos.
 ///
-/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`mass_matrix_sc`].
+/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`mass_matrix_sc`].
 #[inline]
 pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
-    let (s1, c1) = q[1].sin_cos();
-    let (s2, c2) = q[2].sin_cos();
-    let (s3, c3) = q[3].sin_cos();
-    let (s4, c4) = q[4].sin_cos();
-    let (s5, c5) = q[5].sin_cos();
-    let (s6, c6) = q[6].sin_cos();
-    mass_matrix_sc(
-        &[0.0, s1, s2, s3, s4, s5, s6, 0.0, 0.0],
-        &[1.0, c1, c2, c3, c4, c5, c6, 1.0, 1.0],
-        q,
-    )
+    let (s, c) = sin_cos_all(q);
+    mass_matrix_sc(&s, &c, q)
 }
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
@@ -2946,21 +2926,11 @@ pub fn bias_forces_sc(
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 1046 ops: 251 add, 212 sub, 574 mul, 0 div, 3 neg, 0 sqrt, 6 sin_cos.
 ///
-/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`bias_forces_sc`].
+/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`bias_forces_sc`].
 #[inline]
 pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
-    let (s1, c1) = q[1].sin_cos();
-    let (s2, c2) = q[2].sin_cos();
-    let (s3, c3) = q[3].sin_cos();
-    let (s4, c4) = q[4].sin_cos();
-    let (s5, c5) = q[5].sin_cos();
-    let (s6, c6) = q[6].sin_cos();
-    bias_forces_sc(
-        &[0.0, s1, s2, s3, s4, s5, s6, 0.0, 0.0],
-        &[1.0, c1, c2, c3, c4, c5, c6, 1.0, 1.0],
-        q,
-        qd,
-    )
+    let (s, c) = sin_cos_all(q);
+    bias_forces_sc(&s, &c, q, qd)
 }
 /// The gravity torques g(q).
 ///
@@ -3252,20 +3222,11 @@ pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF], q: &[f64; DOF]) -> [f6
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 276 ops: 67 add, 48 sub, 153 mul, 0 div, 2 neg, 0 sqrt, 6 sin_cos.
 ///
-/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`gravity_torques_sc`].
+/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`gravity_torques_sc`].
 #[inline]
 pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
-    let (s1, c1) = q[1].sin_cos();
-    let (s2, c2) = q[2].sin_cos();
-    let (s3, c3) = q[3].sin_cos();
-    let (s4, c4) = q[4].sin_cos();
-    let (s5, c5) = q[5].sin_cos();
-    let (s6, c6) = q[6].sin_cos();
-    gravity_torques_sc(
-        &[0.0, s1, s2, s3, s4, s5, s6, 0.0, 0.0],
-        &[1.0, c1, c2, c3, c4, c5, c6, 1.0, 1.0],
-        q,
-    )
+    let (s, c) = sin_cos_all(q);
+    gravity_torques_sc(&s, &c, q)
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by the articulated-body algorithm.
 ///
@@ -5662,26 +5623,15 @@ pub fn forward_dynamics_sc(
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 2375 ops: 555 add, 554 sub, 1253 mul, 7 div, 0 neg, 0 sqrt, 6 sin_cos.
 ///
-/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`forward_dynamics_sc`].
+/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`forward_dynamics_sc`].
 #[inline]
 pub fn forward_dynamics(
     q: &[f64; DOF],
     qd: &[f64; DOF],
     tau: &[f64; DOF],
 ) -> [f64; DOF] {
-    let (s1, c1) = q[1].sin_cos();
-    let (s2, c2) = q[2].sin_cos();
-    let (s3, c3) = q[3].sin_cos();
-    let (s4, c4) = q[4].sin_cos();
-    let (s5, c5) = q[5].sin_cos();
-    let (s6, c6) = q[6].sin_cos();
-    forward_dynamics_sc(
-        &[0.0, s1, s2, s3, s4, s5, s6, 0.0, 0.0],
-        &[1.0, c1, c2, c3, c4, c5, c6, 1.0, 1.0],
-        q,
-        qd,
-        tau,
-    )
+    let (s, c) = sin_cos_all(q);
+    forward_dynamics_sc(&s, &c, q, qd, tau)
 }
 
 // The sine and cosine of one angle in straight-line f64 arithmetic: no

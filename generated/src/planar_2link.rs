@@ -5,7 +5,7 @@
 // Model content hash (FNV-1a 64 of its canonical text): d6d04477035bb72d
 // Gravity: [0.0, 0.0, -9.81] m/s^2 in the base frame, folded in.
 // Options: scalar f64; forward dynamics by the articulated-body algorithm; rounding snap on (0 constants); like terms on, constant products on, constant sums on.
-// Trigonometry: NAME(q, ...) computes the sines and cosines by std's sin_cos (needs std).
+// Trigonometry: NAME(q, ...) computes the sines and cosines by sin_cos_all (no_std, no dependency).
 // Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]
 //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.
 // sin_cos_all(q): the batched sine and cosine, within 1 ulp for |q| <= 1.6e6 rad, no std.
@@ -87,16 +87,15 @@ pub fn inverse_dynamics_sc(
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 33 ops: 5 add, 8 sub, 17 mul, 0 div, 1 neg, 0 sqrt, 2 sin_cos.
 ///
-/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`inverse_dynamics_sc`].
+/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`inverse_dynamics_sc`].
 #[inline]
 pub fn inverse_dynamics(
     q: &[f64; DOF],
     qd: &[f64; DOF],
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
-    let (s0, c0) = q[0].sin_cos();
-    let (s1, c1) = q[1].sin_cos();
-    inverse_dynamics_sc(&[s0, s1], &[c0, c1], qd, qdd)
+    let (s, c) = sin_cos_all(q);
+    inverse_dynamics_sc(&s, &c, qd, qdd)
 }
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
@@ -123,11 +122,11 @@ pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 5 ops: 2 add, 0 sub, 2 mul, 0 div, 0 neg, 0 sqrt, 1 sin_cos.
 ///
-/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`mass_matrix_sc`].
+/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`mass_matrix_sc`].
 #[inline]
 pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
-    let (s1, c1) = q[1].sin_cos();
-    mass_matrix_sc(&[0.0, s1], &[1.0, c1])
+    let (s, c) = sin_cos_all(q);
+    mass_matrix_sc(&s, &c)
 }
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
@@ -173,12 +172,11 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 26 ops: 2 add, 6 sub, 14 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos.
 ///
-/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`bias_forces_sc`].
+/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`bias_forces_sc`].
 #[inline]
 pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
-    let (s0, c0) = q[0].sin_cos();
-    let (s1, c1) = q[1].sin_cos();
-    bias_forces_sc(&[s0, s1], &[c0, c1], qd)
+    let (s, c) = sin_cos_all(q);
+    bias_forces_sc(&s, &c, qd)
 }
 /// The gravity torques g(q).
 ///
@@ -218,12 +216,11 @@ pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 20 ops: 0 add, 5 sub, 11 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos.
 ///
-/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`gravity_torques_sc`].
+/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`gravity_torques_sc`].
 #[inline]
 pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
-    let (s0, c0) = q[0].sin_cos();
-    let (s1, c1) = q[1].sin_cos();
-    gravity_torques_sc(&[s0, s1], &[c0, c1])
+    let (s, c) = sin_cos_all(q);
+    gravity_torques_sc(&s, &c)
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by the articulated-body algorithm.
 ///
@@ -304,16 +301,15 @@ pub fn forward_dynamics_sc(
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 56 ops: 9 add, 12 sub, 32 mul, 1 div, 0 neg, 0 sqrt, 2 sin_cos.
 ///
-/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`forward_dynamics_sc`].
+/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`forward_dynamics_sc`].
 #[inline]
 pub fn forward_dynamics(
     q: &[f64; DOF],
     qd: &[f64; DOF],
     tau: &[f64; DOF],
 ) -> [f64; DOF] {
-    let (s0, c0) = q[0].sin_cos();
-    let (s1, c1) = q[1].sin_cos();
-    forward_dynamics_sc(&[s0, s1], &[c0, c1], qd, tau)
+    let (s, c) = sin_cos_all(q);
+    forward_dynamics_sc(&s, &c, qd, tau)
 }
 
 // The sine and cosine of one angle in straight-line f64 arithmetic: no

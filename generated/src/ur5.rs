@@ -5,7 +5,7 @@
 // Model content hash (FNV-1a 64 of its canonical text): cad994e2c45c6621
 // Gravity: [0.0, 0.0, -9.81] m/s^2 in the base frame, folded in.
 // Options: scalar f64; forward dynamics by the articulated-body algorithm; rounding snap on (6 constants); like terms on, constant products on, constant sums on.
-// Trigonometry: NAME(q, ...) computes the sines and cosines by std's sin_cos (needs std).
+// Trigonometry: NAME(q, ...) computes the sines and cosines by sin_cos_all (no_std, no dependency).
 // Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]
 //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.
 // sin_cos_all(q): the batched sine and cosine, within 1 ulp for |q| <= 1.6e6 rad, no std.
@@ -480,19 +480,15 @@ pub fn inverse_dynamics_sc(
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 422 ops: 101 add, 69 sub, 247 mul, 0 div, 0 neg, 0 sqrt, 5 sin_cos.
 ///
-/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`inverse_dynamics_sc`].
+/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`inverse_dynamics_sc`].
 #[inline]
 pub fn inverse_dynamics(
     q: &[f64; DOF],
     qd: &[f64; DOF],
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
-    let (s1, c1) = q[1].sin_cos();
-    let (s2, c2) = q[2].sin_cos();
-    let (s3, c3) = q[3].sin_cos();
-    let (s4, c4) = q[4].sin_cos();
-    let (s5, c5) = q[5].sin_cos();
-    inverse_dynamics_sc(&[0.0, s1, s2, s3, s4, s5], &[1.0, c1, c2, c3, c4, c5], qd, qdd)
+    let (s, c) = sin_cos_all(q);
+    inverse_dynamics_sc(&s, &c, qd, qdd)
 }
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
@@ -722,15 +718,11 @@ pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 206 ops: 50 add, 34 sub, 113 mul, 0 div, 4 neg, 0 sqrt, 5 sin_cos.
 ///
-/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`mass_matrix_sc`].
+/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`mass_matrix_sc`].
 #[inline]
 pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
-    let (s1, c1) = q[1].sin_cos();
-    let (s2, c2) = q[2].sin_cos();
-    let (s3, c3) = q[3].sin_cos();
-    let (s4, c4) = q[4].sin_cos();
-    let (s5, c5) = q[5].sin_cos();
-    mass_matrix_sc(&[0.0, s1, s2, s3, s4, s5], &[1.0, c1, c2, c3, c4, c5])
+    let (s, c) = sin_cos_all(q);
+    mass_matrix_sc(&s, &c)
 }
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
@@ -1136,15 +1128,11 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 389 ops: 81 add, 71 sub, 231 mul, 0 div, 1 neg, 0 sqrt, 5 sin_cos.
 ///
-/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`bias_forces_sc`].
+/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`bias_forces_sc`].
 #[inline]
 pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
-    let (s1, c1) = q[1].sin_cos();
-    let (s2, c2) = q[2].sin_cos();
-    let (s3, c3) = q[3].sin_cos();
-    let (s4, c4) = q[4].sin_cos();
-    let (s5, c5) = q[5].sin_cos();
-    bias_forces_sc(&[0.0, s1, s2, s3, s4, s5], &[1.0, c1, c2, c3, c4, c5], qd)
+    let (s, c) = sin_cos_all(q);
+    bias_forces_sc(&s, &c, qd)
 }
 /// The gravity torques g(q).
 ///
@@ -1279,15 +1267,11 @@ pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 118 ops: 24 add, 16 sub, 71 mul, 0 div, 2 neg, 0 sqrt, 5 sin_cos.
 ///
-/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`gravity_torques_sc`].
+/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`gravity_torques_sc`].
 #[inline]
 pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
-    let (s1, c1) = q[1].sin_cos();
-    let (s2, c2) = q[2].sin_cos();
-    let (s3, c3) = q[3].sin_cos();
-    let (s4, c4) = q[4].sin_cos();
-    let (s5, c5) = q[5].sin_cos();
-    gravity_torques_sc(&[0.0, s1, s2, s3, s4, s5], &[1.0, c1, c2, c3, c4, c5])
+    let (s, c) = sin_cos_all(q);
+    gravity_torques_sc(&s, &c)
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by the articulated-body algorithm.
 ///
@@ -2565,19 +2549,15 @@ pub fn forward_dynamics_sc(
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 1256 ops: 295 add, 234 sub, 717 mul, 5 div, 0 neg, 0 sqrt, 5 sin_cos.
 ///
-/// The sines and cosines of the joint angles by `f64::sin_cos`, then [`forward_dynamics_sc`].
+/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`forward_dynamics_sc`].
 #[inline]
 pub fn forward_dynamics(
     q: &[f64; DOF],
     qd: &[f64; DOF],
     tau: &[f64; DOF],
 ) -> [f64; DOF] {
-    let (s1, c1) = q[1].sin_cos();
-    let (s2, c2) = q[2].sin_cos();
-    let (s3, c3) = q[3].sin_cos();
-    let (s4, c4) = q[4].sin_cos();
-    let (s5, c5) = q[5].sin_cos();
-    forward_dynamics_sc(&[0.0, s1, s2, s3, s4, s5], &[1.0, c1, c2, c3, c4, c5], qd, tau)
+    let (s, c) = sin_cos_all(q);
+    forward_dynamics_sc(&s, &c, qd, tau)
 }
 
 // The sine and cosine of one angle in straight-line f64 arithmetic: no

@@ -112,7 +112,9 @@ pub fn workspace_root() -> std::path::PathBuf {
 /// root so the file does not depend on where the workspace is.
 pub fn bundled_module(name: &str) -> Result<String, dynagen::codegen::BuildError> {
     let rel = format!("dynagen/robots/{name}.urdf");
-    let options = dynagen::codegen::CodegenOptions::default().source(rel.clone());
+    // Batched sines and cosines (the module's own sin_cos_all): no_std and no
+    // dependency, as the vendored crate promises.
+    let options = dynagen::codegen::CodegenOptions::default().source(rel.clone()).trig(dynagen::codegen::Trig::Batched);
     let module = dynagen::Builder::new().urdf(workspace_root().join(&rel)).options(options).generate_module()?;
     Ok(module.source)
 }

@@ -4,7 +4,7 @@
 
 use crate::error::{CliError, Output, STATUS_BAD_INPUT, STATUS_UNAVAILABLE};
 use crate::robot_source::RobotSource;
-use dynagen::codegen::{BuildError, Builder, ForwardDynamicsMethod, GeneratedModule, ScalarType};
+use dynagen::codegen::{BuildError, Builder, ForwardDynamicsMethod, GeneratedModule, ScalarType, Trig};
 use std::path::PathBuf;
 
 /// Arguments of `dynagen generate`.
@@ -24,9 +24,15 @@ pub struct Args {
     /// Generate f32 code (constants rounded to f32).
     #[arg(long)]
     pub f32: bool,
-    /// Generate code for #![no_std] (not available yet in this version).
-    #[arg(long)]
+    /// Generate code for #![no_std] with no dependency: the sines and cosines
+    /// come from the module's own sin_cos_all (the same as --trig batched).
+    #[arg(long, conflicts_with = "trig")]
     pub no_std: bool,
+    /// Where the sines and cosines come from: std (f64::sin_cos), batched
+    /// (the module's sin_cos_all; no_std), libm (no_std, needs the libm
+    /// crate), inputs (only the NAME_sc functions, which take them; no_std).
+    #[arg(long, value_name = "std|batched|libm|inputs")]
+    pub trig: Option<String>,
     /// Forward dynamics by CRBA + RNEA + a sparse LTDL solve instead of the
     /// articulated-body algorithm.
     #[arg(long)]
@@ -55,20 +61,24 @@ Example:
 
 /// The builder for `args`, and the model it was given.
 fn builder(args: &Args, source: &RobotSource) -> Result<(Builder, dynagen::Model), CliError> {
-    if args.no_std {
-        return Err(CliError {
-            message: format!(
-                "--no-std is not available yet in this version ({}): the generated code calls f64::sin_cos from std",
-                env!("CARGO_PKG_VERSION")
-            ),
-            status: STATUS_UNAVAILABLE,
-        });
-    }
+    let trig = match (args.no_std, args.trig.as_deref()) {
+        (true, _) | (false, Some("batched")) => Trig::Batched,
+        (false, None | Some("std")) => Trig::Std,
+        (false, Some("libm")) => Trig::Libm,
+        (false, Some("inputs")) => Trig::Inputs,
+        (false, Some(other)) => {
+            return Err(CliError {
+                message: format!("--trig {other:?}: expected one of std, batched, libm, inputs"),
+                status: STATUS_BAD_INPUT,
+            })
+        }
+    };
     let model = source.load()?;
     let mut options = dynagen::codegen::CodegenOptions::default()
         .scalar(if args.f32 { ScalarType::F32 } else { ScalarType::F64 })
         .forward_dynamics(if args.ldlt { ForwardDynamicsMethod::Ldlt } else { ForwardDynamicsMethod::Aba })
-        .snap_rounding(!args.no_snap);
+        .snap_rounding(!args.no_snap)
+        .trig(trig);
     options.source = Some(source.to_string());
     let mut b = Builder::new().model(model.clone()).options(options);
     if let Some(f) = &args.functions {
