@@ -6,6 +6,7 @@
 // Gravity: [0.0, 0.0, -9.81] m/s^2 in the base frame, folded in.
 // Options: scalar f64; forward dynamics by the articulated-body algorithm; rounding snap on (6 constants); like terms on, constant products on, constant sums on.
 // Trigonometry: NAME(q, ...) computes the sines and cosines by sin_cos_all (no_std, no dependency).
+// Forward dynamics: the articulated-body algorithm, although CRBA + LTDL takes fewer operations on short chains: it is the accurate one (64-joint chain against double-double: 1e-12 against 7e-10).
 // Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]
 //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.
 // sin_cos_all(q): the batched sine and cosine, within 1 ulp for |q| <= 1.6e6 rad, no std.

@@ -569,6 +569,14 @@ fn header(
         Trig::Inputs => "only NAME_sc(s, c, ...): the caller passes the sines and cosines (no_std, no dependency)",
     };
     let _ = writeln!(h, "// Trigonometry: {trig}.");
+    let why = match options.forward_dynamics {
+        ForwardDynamicsMethod::Aba => {
+            "the articulated-body algorithm, although CRBA + LTDL takes fewer operations on short chains: \
+             it is the accurate one (64-joint chain against double-double: 1e-12 against 7e-10)"
+        }
+        ForwardDynamicsMethod::Ldlt => "CRBA + LTDL, as asked: fewer operations, less accurate on long chains",
+    };
+    let _ = writeln!(h, "// Forward dynamics: {why}.");
     let _ = writeln!(
         h,
         "// Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]\n\
