@@ -2,7 +2,7 @@
 //! generated code's: the generic algorithm run on the [`Counting`] scalar.
 
 use super::FunctionKind;
-use crate::algorithms::{aba, bias, crba, forward_dynamics, rnea, Workspace};
+use crate::algorithms::Workspace;
 use crate::model::Model;
 use crate::scalar::{Counting, Scalar};
 use crate::spatial::Vec3;
@@ -15,21 +15,13 @@ use crate::symbolic::OpCount;
 /// count does not depend on it, as the algorithms never branch on the state.
 pub fn generic_op_count(model: &Model, kind: FunctionKind) -> OpCount {
     let n = model.dof();
-    let state = |k: f64| (0..n).map(|i| Counting(0.3 + k * (i as f64 + 1.0))).collect::<Vec<_>>();
-    let (q, qd, x) = (state(0.1), state(-0.2), state(0.7));
+    let args: Vec<Vec<Counting>> = (0..kind.inputs().len())
+        .map(|k| (0..n).map(|i| Counting(0.3 + (0.1 + 0.3 * k as f64) * (i as f64 + 1.0))).collect())
+        .collect();
     let mut ws = Workspace::<Counting>::new(model);
     let g = Vec3::<Counting>::from_f64(&model.gravity);
     let mut out = vec![Counting::zero(); if kind.is_matrix() { n * n } else { n }];
-    let ((), ops) = Counting::count(|| match kind {
-        FunctionKind::InverseDynamics => rnea::rnea(model, &mut ws, &q, Some(&qd), Some(&x), Some(&g), &[], &mut out),
-        FunctionKind::MassMatrix => crba::crba(model, &mut ws, &q, &mut out),
-        FunctionKind::BiasForces => bias::bias_forces(model, &mut ws, &q, &qd, Some(&g), &mut out),
-        FunctionKind::GravityTorques => bias::gravity_torques(model, &mut ws, &q, &g, &mut out),
-        FunctionKind::ForwardDynamicsAba => aba::aba(model, &mut ws, &q, &qd, &x, Some(&g), &[], &mut out),
-        FunctionKind::ForwardDynamicsLdlt => {
-            forward_dynamics::forward_dynamics_ldlt(model, &mut ws, &q, &qd, &x, Some(&g), &[], &mut out)
-        }
-    });
+    let ((), ops) = Counting::count(|| kind.run(model, &mut ws, &args, &g, &mut out));
     ops
 }
 

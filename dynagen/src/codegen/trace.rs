@@ -4,6 +4,7 @@ use crate::algorithms::{aba, bias, crba, forward_dynamics, rnea, Workspace};
 use crate::model::Model;
 use crate::spatial::Vec3;
 use crate::symbolic::{factor, Expr, Function, Graph, Node, NodeId, Rewrites, TraceActive, Tracer};
+use crate::Scalar;
 
 /// The functions of the generated-code contract (DESIGN.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -63,6 +64,32 @@ impl FunctionKind {
     pub fn is_matrix(self) -> bool {
         self == FunctionKind::MassMatrix
     }
+    /// Runs the generic algorithm behind this function on any scalar:
+    /// `args` in the order of [`inputs`](Self::inputs), `gravity` in the
+    /// base frame, the result into `out` (n, or n×n row-major). Tracing and
+    /// the generic operation count both go through here.
+    pub fn run<S: Scalar>(
+        self,
+        model: &Model,
+        ws: &mut Workspace<S>,
+        args: &[Vec<S>],
+        gravity: &Vec3<S>,
+        out: &mut [S],
+    ) {
+        let g = Some(gravity);
+        match self {
+            FunctionKind::InverseDynamics => {
+                rnea::rnea(model, ws, &args[0], Some(&args[1]), Some(&args[2]), g, &[], out)
+            }
+            FunctionKind::MassMatrix => crba::crba(model, ws, &args[0], out),
+            FunctionKind::BiasForces => bias::bias_forces(model, ws, &args[0], &args[1], g, out),
+            FunctionKind::GravityTorques => bias::gravity_torques(model, ws, &args[0], gravity, out),
+            FunctionKind::ForwardDynamicsAba => aba::aba(model, ws, &args[0], &args[1], &args[2], g, &[], out),
+            FunctionKind::ForwardDynamicsLdlt => {
+                forward_dynamics::forward_dynamics_ldlt(model, ws, &args[0], &args[1], &args[2], g, &[], out)
+            }
+        }
+    }
 }
 
 /// Runs the generic algorithm behind `kind` on symbolic inputs and keeps
@@ -80,27 +107,7 @@ fn trace_unfactored(model: &Model, kind: FunctionKind, rewrites: Rewrites) -> Re
     let g = Vec3::<Expr>::from_f64(&model.gravity);
     let zero = tracer.constant(0.0);
     let mut out = vec![zero; if kind.is_matrix() { n * n } else { n }];
-    match kind {
-        FunctionKind::InverseDynamics => {
-            rnea::rnea(model, &mut ws, &args[0], Some(&args[1]), Some(&args[2]), Some(&g), &[], &mut out)
-        }
-        FunctionKind::MassMatrix => crba::crba(model, &mut ws, &args[0], &mut out),
-        FunctionKind::BiasForces => bias::bias_forces(model, &mut ws, &args[0], &args[1], Some(&g), &mut out),
-        FunctionKind::GravityTorques => bias::gravity_torques(model, &mut ws, &args[0], &g, &mut out),
-        FunctionKind::ForwardDynamicsAba => {
-            aba::aba(model, &mut ws, &args[0], &args[1], &args[2], Some(&g), &[], &mut out)
-        }
-        FunctionKind::ForwardDynamicsLdlt => forward_dynamics::forward_dynamics_ldlt(
-            model,
-            &mut ws,
-            &args[0],
-            &args[1],
-            &args[2],
-            Some(&g),
-            &[],
-            &mut out,
-        ),
-    }
+    kind.run(model, &mut ws, &args, &g, &mut out);
     drop(ws);
     let graph = tracer.finish();
     Ok(Function::new(kind.fn_name(), &graph, &out))
