@@ -624,6 +624,21 @@ fn huge_inertias_are_judged_like_small_ones() {
 }
 
 #[test]
+fn reversed_limits_name_the_joint() {
+    let e = err(&one_joint(r#"<axis xyz="0 0 1"/><limit lower="1.0" upper="-1.0" effort="10" velocity="1"/>"#));
+    assert!(
+        matches!(&e, ModelError::LimitsReversed { joint, lower, upper } if joint == "j" && *lower == 1.0 && *upper == -1.0),
+        "{e:?}"
+    );
+    names(&e, &["j"]);
+    // an empty range of one point is a joint held in place: allowed
+    assert!(Model::from_urdf_str(&one_joint(
+        r#"<axis xyz="0 0 1"/><limit lower="0.5" upper="0.5" effort="1" velocity="1"/>"#
+    ))
+    .is_ok());
+}
+
+#[test]
 fn zero_axis() {
     let e = err(&one_joint(r#"<axis xyz="0 0 0"/>"#));
     assert!(matches!(&e, ModelError::ZeroAxis(j) if j == "j"), "{e:?}");

@@ -112,6 +112,16 @@ pub enum ModelError {
         "joint \"{0}\" moves no mass or inertia (its whole subtree is massless), so the mass matrix would be singular"
     )]
     MasslessSubtree(String),
+    /// A joint's lower position limit is above its upper one.
+    #[error("joint \"{joint}\": the lower limit {lower} is above the upper limit {upper}")]
+    LimitsReversed {
+        /// The joint.
+        joint: String,
+        /// The lower limit.
+        lower: f64,
+        /// The upper limit.
+        upper: f64,
+    },
     /// A feature the model does not handle yet.
     #[error("joint \"{joint}\": {what} not supported yet")]
     Unsupported {

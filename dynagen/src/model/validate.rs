@@ -62,6 +62,12 @@ pub(super) fn check(
             if ![l.lower, l.upper, l.velocity, l.effort].iter().all(|x| !x.is_nan()) {
                 return Err(ModelError::NonFinite { item, what: "limit" });
             }
+            // A continuous joint's limits are ignored (URDF); a revolute or
+            // prismatic joint whose range is empty is a broken file, and the
+            // limits would reach users through inspect and the API.
+            if j.joint_type != JointType::Continuous && l.lower > l.upper {
+                return Err(ModelError::LimitsReversed { joint: j.name.clone(), lower: l.lower, upper: l.upper });
+            }
         }
     }
     for l in &desc.links {
