@@ -310,6 +310,27 @@ fn eval_on_the_bundled_ur5_agrees_bit_for_bit_with_the_library() {
 }
 
 #[test]
+fn eval_on_every_other_bundled_robot_agrees_bit_for_bit_with_the_library() {
+    // The UR5 (default) and the Panda (with gravity) have their own tests.
+    for name in ["torso_two_arms", "planar_2link"] {
+        let dir = scratch(&format!("eval_{name}"));
+        let path = format!("{ROBOTS}/{name}.urdf");
+        let mut robot = Robot::from_urdf_file(&path).unwrap();
+        let states = some_states(robot.dof(), 3);
+        let file = write(&dir, "states.json", &states_file(&states));
+        let doc: Value =
+            serde_json::from_str(&succeeds(dynagen().args(["eval", &path, "--input"]).arg(&file))).unwrap();
+        let names: Vec<&str> = doc["joint_names"].as_array().unwrap().iter().map(|v| v.as_str().unwrap()).collect();
+        assert_eq!(names, robot.joint_names(), "{name}");
+        let results = doc["results"].as_array().unwrap();
+        assert_eq!(results.len(), states.len(), "{name}");
+        for (i, (r, s)) in results.iter().zip(&states).enumerate() {
+            check_result(&mut robot, r, s, i);
+        }
+    }
+}
+
+#[test]
 fn eval_on_a_file_with_gravity_agrees_bit_for_bit_with_the_library() {
     let dir = scratch("eval_gravity");
     let path = format!("{ROBOTS}/panda.urdf");
