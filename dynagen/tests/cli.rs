@@ -456,12 +456,35 @@ fn a_bad_gravity_is_one_line_naming_the_option() {
     }
 }
 
+// A full report takes minutes: these tests run `dynagen report` only as far
+// as its argument parsing and its errors.
+
 #[test]
-fn report_is_not_available_yet() {
-    for extra in [&[][..], &["robot.urdf", "--output", "x.rs"]] {
-        let e = fails(dynagen().arg("report").args(extra), 3);
-        assert!(e.starts_with("error: `dynagen report` is not available yet in this version"), "{e}");
+fn report_help_names_its_options_and_the_program_it_runs() {
+    let help = succeeds(dynagen().args(["report", "--help"]));
+    for what in ["--quick", "--out", "dynagen-report", "DYNAGEN_WORKSPACE"] {
+        assert!(help.contains(what), "`dynagen report --help` does not mention {what}:\n{help}");
     }
+    let out = dynagen().args(["report", "--slow"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2), "an unknown option is a command-line error");
+}
+
+#[test]
+fn report_without_a_workspace_says_what_to_run() {
+    let dir = scratch("report_no_workspace");
+    let e = fails(dynagen().args(["report", "--quick"]).env("DYNAGEN_WORKSPACE", &dir), 1);
+    assert!(e.starts_with(&format!("error: {}: no dynagen workspace here", dir.display())), "{e}");
+    assert!(e.contains("`cargo run --release -p dynagen-report -- --quick`"), "{e}");
+}
+
+#[test]
+fn report_without_cargo_says_what_to_run() {
+    let dir = scratch("report_no_cargo");
+    let missing = dir.join("no-such-cargo");
+    let e = fails(dynagen().args(["report", "--out", "somewhere"]).env("CARGO", &missing), 1);
+    assert!(e.starts_with(&format!("error: {}: cannot run cargo", missing.display())), "{e}");
+    assert!(e.contains("`cargo run --release -p dynagen-report -- --out somewhere`"), "{e}");
+    assert!(!dir.join("somewhere").exists());
 }
 
 // ---------------------------------------------------------------- generate

@@ -7,6 +7,7 @@
 //! ```
 
 // The sections use these; until they are all in, some items are unused.
+mod error_vs_time;
 #[allow(dead_code)]
 mod plot;
 #[allow(dead_code)]
@@ -37,6 +38,7 @@ fn main() {
         Err(e) => fail(&e),
     };
     // The sections, in the order the report shows them.
+    error_vs_time::run(&mut report);
     if let Err(e) = report.finish() {
         fail(&e);
     }
