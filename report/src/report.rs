@@ -81,7 +81,9 @@ pub fn machine() -> String {
         .ok()
         .filter(|o| o.status.success())
         .and_then(|o| String::from_utf8(o.stdout).ok())
-        .map(|c| format!("; commit {}", c.trim()))
+        .map(|c| {
+            format!("; commit {}{}", c.trim(), if uncommitted_changes() { " with uncommitted changes" } else { "" })
+        })
         .unwrap_or_default();
     let load = std::fs::read_to_string("/proc/loadavg")
         .ok()
@@ -94,4 +96,15 @@ pub fn machine() -> String {
         env!("DYNAGEN_REPORT_PROFILE"),
         std::env::consts::ARCH,
     )
+}
+
+/// Whether the workspace's tracked files (docs/, which the report writes,
+/// aside) differ from the commit.
+fn uncommitted_changes() -> bool {
+    std::process::Command::new("git")
+        .args(["status", "--porcelain", "--untracked-files=no", "--", ".", ":(exclude)docs"])
+        .current_dir(dynagen_tests::workspace_root())
+        .output()
+        .map(|o| o.status.success() && !o.stdout.is_empty())
+        .unwrap_or(false)
 }
