@@ -522,7 +522,7 @@ fn sizes(quick: bool) -> Sizes {
     if quick {
         Sizes { random: 40, extreme: 21, timing: 8, reps: 15, batch: Duration::from_micros(5) }
     } else {
-        Sizes { random: 1000, extreme: 501, timing: 16, reps: 2001, batch: Duration::from_micros(25) }
+        Sizes { random: 4000, extreme: 2001, timing: 16, reps: 2001, batch: Duration::from_micros(25) }
     }
 }
 
