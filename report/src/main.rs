@@ -7,11 +7,12 @@
 //! ```
 
 // The sections use these; until they are all in, some items are unused.
-mod error_vs_time;
 #[allow(dead_code)]
 mod plot;
 #[allow(dead_code)]
 mod report;
+
+mod error_vs_time;
 
 use report::Report;
 
