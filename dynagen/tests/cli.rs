@@ -487,6 +487,41 @@ fn report_without_cargo_says_what_to_run() {
     assert!(!dir.join("somewhere").exists());
 }
 
+/// A stand-in for cargo: records its working directory and arguments in
+/// `record`, then exits with `status`.
+#[cfg(unix)]
+fn fake_cargo(dir: &Path, record: &Path, status: i32) -> PathBuf {
+    use std::os::unix::fs::PermissionsExt;
+    let script = format!("#!/bin/sh\necho \"$PWD $*\" > '{}'\nexit {status}\n", record.display());
+    let path = write(dir, "fake-cargo", &script);
+    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+    path
+}
+
+#[cfg(unix)]
+#[test]
+fn report_runs_the_report_program_in_the_workspace_with_the_callers_directory() {
+    let dir = scratch("report_fake_cargo");
+    let record = dir.join("args.txt");
+    let cargo = fake_cargo(&dir, &record, 0);
+    let out =
+        dynagen().current_dir(&dir).args(["report", "--quick", "--out", "mine"]).env("CARGO", &cargo).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let want = format!(
+        "{} run --release -p dynagen-report -- --out {} --quick",
+        workspace.canonicalize().unwrap().display(),
+        dir.join("mine").display()
+    );
+    assert_eq!(std::fs::read_to_string(&record).unwrap().trim(), want);
+
+    // The report's failure is dynagen's, with the command to run by hand.
+    let cargo = fake_cargo(&dir, &record, 4);
+    let e = fails(dynagen().args(["report"]).env("CARGO", &cargo), 1);
+    assert!(e.starts_with("error: the report failed (exit status: 4)"), "{e}");
+    assert!(e.ends_with("`cargo run --release -p dynagen-report`"), "{e}");
+}
+
 // ---------------------------------------------------------------- generate
 
 /// Runs and returns (stdout, stderr) of a success.
