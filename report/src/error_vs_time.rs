@@ -577,7 +577,7 @@ fn fmt_stats(v: &[f64]) -> (String, String) {
 /// The Markdown table of one robot.
 fn table(rows: &[Row]) -> String {
     let mut t = String::from(
-        "| function | variant | median [ns] | min [ns] | vs generic f64 | error median | error max | extreme: median | extreme: max |\n\
+        "| function | variant | median [ns] | min [ns] | vs generic f64 | error, random: median | random: max | extreme: median | extreme: max |\n\
          | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
     );
     for r in rows {
