@@ -477,12 +477,70 @@ fn a_bad_gravity_is_one_line_naming_the_option() {
     }
 }
 
+// A full report takes minutes: these tests run `dynagen report` only as far
+// as its argument parsing and its errors.
+
 #[test]
-fn report_is_not_available_yet() {
-    for extra in [&[][..], &["robot.urdf", "--output", "x.rs"]] {
-        let e = fails(dynagen().arg("report").args(extra), 3);
-        assert!(e.starts_with("error: `dynagen report` is not available yet in this version"), "{e}");
+fn report_help_names_its_options_and_the_program_it_runs() {
+    let help = succeeds(dynagen().args(["report", "--help"]));
+    for what in ["--quick", "--out", "dynagen-report", "DYNAGEN_WORKSPACE"] {
+        assert!(help.contains(what), "`dynagen report --help` does not mention {what}:\n{help}");
     }
+    let out = dynagen().args(["report", "--slow"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2), "an unknown option is a command-line error");
+}
+
+#[test]
+fn report_without_a_workspace_says_what_to_run() {
+    let dir = scratch("report_no_workspace");
+    let e = fails(dynagen().args(["report", "--quick"]).env("DYNAGEN_WORKSPACE", &dir), 1);
+    assert!(e.starts_with(&format!("error: {}: no dynagen workspace here", dir.display())), "{e}");
+    assert!(e.contains("`cargo run --release -p dynagen-report -- --quick`"), "{e}");
+}
+
+#[test]
+fn report_without_cargo_says_what_to_run() {
+    let dir = scratch("report_no_cargo");
+    let missing = dir.join("no-such-cargo");
+    let e = fails(dynagen().args(["report", "--out", "somewhere"]).env("CARGO", &missing), 1);
+    assert!(e.starts_with(&format!("error: {}: cannot run cargo", missing.display())), "{e}");
+    assert!(e.contains("`cargo run --release -p dynagen-report -- --out somewhere`"), "{e}");
+    assert!(!dir.join("somewhere").exists());
+}
+
+/// A stand-in for cargo: records its working directory and arguments in
+/// `record`, then exits with `status`.
+#[cfg(unix)]
+fn fake_cargo(dir: &Path, record: &Path, status: i32) -> PathBuf {
+    use std::os::unix::fs::PermissionsExt;
+    let script = format!("#!/bin/sh\necho \"$PWD $*\" > '{}'\nexit {status}\n", record.display());
+    let path = write(dir, "fake-cargo", &script);
+    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+    path
+}
+
+#[cfg(unix)]
+#[test]
+fn report_runs_the_report_program_in_the_workspace_with_the_callers_directory() {
+    let dir = scratch("report_fake_cargo");
+    let record = dir.join("args.txt");
+    let cargo = fake_cargo(&dir, &record, 0);
+    let out =
+        dynagen().current_dir(&dir).args(["report", "--quick", "--out", "mine"]).env("CARGO", &cargo).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let want = format!(
+        "{} run --release -p dynagen-report -- --out {} --quick",
+        workspace.canonicalize().unwrap().display(),
+        dir.join("mine").display()
+    );
+    assert_eq!(std::fs::read_to_string(&record).unwrap().trim(), want);
+
+    // The report's failure is dynagen's, with the command to run by hand.
+    let cargo = fake_cargo(&dir, &record, 4);
+    let e = fails(dynagen().args(["report"]).env("CARGO", &cargo), 1);
+    assert!(e.starts_with("error: the report failed (exit status: 4)"), "{e}");
+    assert!(e.ends_with("`cargo run --release -p dynagen-report`"), "{e}");
 }
 
 // ---------------------------------------------------------------- generate

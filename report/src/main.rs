@@ -12,6 +12,8 @@ mod plot;
 #[allow(dead_code)]
 mod report;
 
+mod error_vs_time;
+
 use report::Report;
 
 fn main() {
@@ -37,6 +39,7 @@ fn main() {
         Err(e) => fail(&e),
     };
     // The sections, in the order the report shows them.
+    error_vs_time::run(&mut report);
     if let Err(e) = report.finish() {
         fail(&e);
     }

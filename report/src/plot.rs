@@ -20,6 +20,26 @@ impl Series {
     }
 }
 
+/// Ten colours that stay apart from each other on white (Palette99's third,
+/// a light yellow, does not).
+const COLOURS: [(u8, u8, u8); 10] = [
+    (31, 119, 180),
+    (255, 127, 14),
+    (44, 160, 44),
+    (214, 39, 40),
+    (148, 103, 189),
+    (140, 86, 75),
+    (227, 119, 194),
+    (127, 127, 127),
+    (188, 189, 34),
+    (23, 190, 207),
+];
+
+fn colour(i: usize) -> RGBAColor {
+    let (r, g, b) = COLOURS[i % COLOURS.len()];
+    RGBColor(r, g, b).to_rgba()
+}
+
 fn usable(p: &(f64, f64)) -> bool {
     p.0.is_finite() && p.1.is_finite() && p.0 > 0.0 && p.1 > 0.0
 }
@@ -39,7 +59,33 @@ fn decades(values: impl Iterator<Item = f64>) -> (f64, f64) {
 
 /// Draws `series` on log-log axes into the SVG file `path`.
 pub fn loglog(path: &Path, title: &str, x_label: &str, y_label: &str, series: &[Series]) -> Result<(), String> {
-    let all = || series.iter().flat_map(|s| s.points.iter().chain(s.marked.iter())).filter(|p| usable(p));
+    let labelled: Vec<(&Series, &[String])> = series.iter().map(|s| (s, &[][..])).collect();
+    draw(path, title, x_label, y_label, &labelled, true)
+}
+
+/// Draws each series as points only (no line between them), each point
+/// with the label of the same index (e.g. the function it measures), on
+/// log-log axes into the SVG file `path`.
+pub fn scatter_loglog(
+    path: &Path,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[(Series, Vec<String>)],
+) -> Result<(), String> {
+    let labelled: Vec<(&Series, &[String])> = series.iter().map(|(s, l)| (s, &l[..])).collect();
+    draw(path, title, x_label, y_label, &labelled, false)
+}
+
+fn draw(
+    path: &Path,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[(&Series, &[String])],
+    lines: bool,
+) -> Result<(), String> {
+    let all = || series.iter().flat_map(|(s, _)| s.points.iter().chain(s.marked.iter())).filter(|p| usable(p));
     let (x0, x1) = decades(all().map(|p| p.0));
     let (y0, y1) = decades(all().map(|p| p.1));
     let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
@@ -60,21 +106,36 @@ pub fn loglog(path: &Path, title: &str, x_label: &str, y_label: &str, series: &[
         .y_label_formatter(&|v| format!("{v:.0e}"))
         .draw()
         .map_err(|e| err(&e))?;
-    for (i, s) in series.iter().enumerate() {
-        let color = Palette99::pick(i).to_rgba();
-        let pts: Vec<(f64, f64)> = s.points.iter().copied().filter(usable).collect();
-        chart
-            .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
-            .map_err(|e| err(&e))?
-            .label(s.name.clone())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
-        chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled()))).map_err(|e| err(&e))?;
+    for (i, (s, labels)) in series.iter().enumerate() {
+        let color = colour(i);
+        let kept: Vec<(usize, (f64, f64))> = s.points.iter().copied().enumerate().filter(|(_, p)| usable(p)).collect();
+        let pts: Vec<(f64, f64)> = kept.iter().map(|&(_, p)| p).collect();
+        let legend = move |(x, y): (i32, i32)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2));
+        if lines {
+            chart
+                .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
+                .map_err(|e| err(&e))?
+                .label(s.name.clone())
+                .legend(legend);
+            chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled()))).map_err(|e| err(&e))?;
+        } else {
+            chart
+                .draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled())))
+                .map_err(|e| err(&e))?
+                .label(s.name.clone())
+                .legend(legend);
+        }
+        let texts = kept.iter().filter_map(|&(j, p)| {
+            labels.get(j).map(|l| Text::new(l.clone(), p, ("sans-serif", 12).into_font().color(&color)))
+        });
+        chart.draw_series(texts).map_err(|e| err(&e))?;
         let marked: Vec<(f64, f64)> = s.marked.iter().copied().filter(usable).collect();
         chart.draw_series(marked.iter().map(|&p| Cross::new(p, 6, color.stroke_width(2)))).map_err(|e| err(&e))?;
     }
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
+        // Errors cluster at f32's and f64's precision: between them is room.
+        .position(if lines { SeriesLabelPosition::UpperRight } else { SeriesLabelPosition::MiddleRight })
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .draw()
@@ -103,6 +164,20 @@ mod tests {
         loglog(&path, "title", "time [s]", "error", &[s]).unwrap();
         let svg = std::fs::read_to_string(&path).unwrap();
         assert!(svg.contains("<svg") && svg.contains("generic f64"));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn scatter_writes_the_point_labels() {
+        let dir = std::env::temp_dir().join(format!("dynagen-scatter-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("s.svg");
+        let s = Series::new("generated f64", vec![(1e-7, 1e-15), (-1.0, 1.0), (2e-7, 3e-16)]);
+        let labels = vec!["tau".to_string(), "skipped".to_string(), "mass".to_string()];
+        scatter_loglog(&path, "title", "time [s]", "error", &[(s, labels)]).unwrap();
+        let svg = std::fs::read_to_string(&path).unwrap();
+        assert!(svg.contains("generated f64") && svg.contains("tau") && svg.contains("mass"));
+        assert!(!svg.contains("skipped"), "a point off the log axes has no label");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

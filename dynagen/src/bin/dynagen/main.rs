@@ -12,9 +12,9 @@ mod generate;
 mod inspect;
 mod json;
 mod ops;
+mod report;
 mod robot_source;
 mod states;
-mod unavailable;
 
 use clap::{Parser, Subcommand};
 use error::{CliError, Output};
@@ -35,8 +35,9 @@ struct Cli {
 
 const EXIT_STATUS: &str = "\
 Exit status: 0 success; 1 bad input (file, URDF, state, option value), with one
-line on stderr naming the file and the item; 2 bad command line; 3 a subcommand
-not available yet in this version.";
+line on stderr naming the file and the item (for `report`: the workspace, cargo,
+or the report's own failure); 2 bad command line; 3 something this version does
+not do yet (a scene the generator does not support).";
 
 #[derive(Subcommand, Debug)]
 enum Command {
@@ -53,9 +54,13 @@ enum Command {
     /// Count the operations of each generated function beside those of the
     /// generic recursion (the same algorithm run on a counting scalar).
     Ops(ops::Args),
-    /// Compare generated and generic code: accuracy and speed (not available
-    /// yet in this version).
-    Report(unavailable::Args),
+    /// Measure every way dynagen computes the dynamics — generic and generated,
+    /// f64 and f32, two forward dynamics — for speed and for accuracy against
+    /// a double-double reference, on the bundled robots: writes docs/report.md
+    /// and its plots. Runs `cargo run --release -p dynagen-report` in the
+    /// dynagen workspace this binary was built from (DYNAGEN_WORKSPACE names
+    /// another).
+    Report(report::Args),
 }
 
 fn run(command: Command) -> Result<Output, CliError> {
@@ -64,7 +69,7 @@ fn run(command: Command) -> Result<Output, CliError> {
         Command::Eval(args) => eval::run(&args),
         Command::Generate(args) => generate::run(&args),
         Command::Ops(args) => ops::run(&args),
-        Command::Report(_) => unavailable::run("report"),
+        Command::Report(args) => report::run(&args),
     }
 }
 
