@@ -283,14 +283,14 @@ pub struct Payload {
     pub value: PayloadValue,
 }
 
-/// The scalar type of generated code (code generation only: the generic
-/// solver runs on `f64`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// The float type of generated code (code generation only: the generic
+/// solver runs on `f64`); also [`codegen::ScalarType`](crate::codegen::ScalarType).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum ScalarType {
     /// `f64`.
     #[default]
     F64,
-    /// `f32`.
+    /// `f32` (constants rounded to `f32`).
     F32,
 }
 
