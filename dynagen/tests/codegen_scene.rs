@@ -28,14 +28,11 @@ impl Rng {
     /// 10 cm, a positive diagonal inertia with a small product.
     fn payload(&mut self) -> PayloadInertia {
         let d = [2e-3 + 2e-4 * self.next(), 2e-3 + 2e-4 * self.next(), 1.5e-3 + 2e-4 * self.next()];
-        PayloadInertia::new(1.0 + 0.5 * self.next(), [0.1 * self.next(), 0.1 * self.next(), 0.1 * self.next()], [
-            d[0],
-            d[1],
-            d[2],
-            1e-5 * self.next(),
-            0.0,
-            0.0,
-        ])
+        PayloadInertia::new(
+            1.0 + 0.5 * self.next(),
+            [0.1 * self.next(), 0.1 * self.next(), 0.1 * self.next()],
+            [d[0], d[1], d[2], 1e-5 * self.next(), 0.0, 0.0],
+        )
     }
 }
 
@@ -143,7 +140,8 @@ fn full_module() -> GeneratedModule {
 }
 
 fn print(label: &str, module: &GeneratedModule) {
-    let counts: Vec<String> = module.scene_functions.iter().map(|f| format!("{} {}", f.name, f.op_count.total())).collect();
+    let counts: Vec<String> =
+        module.scene_functions.iter().map(|f| format!("{} {}", f.name, f.op_count.total())).collect();
     println!("{label:28} {}", counts.join(", "));
 }
 
@@ -159,7 +157,13 @@ fn measure() {
         ("tip wrench", full_scene().tip_wrench("ee_link")),
         ("subtree", full_scene().subtree("base_link", &["wrist_1_link"]).functions(Function::DEFAULT)),
         ("lock", full_scene().lock("wrist_3_joint", 0.3)),
-        ("payload const", full_scene().payload("ee_link", PayloadInertia::new(1.2, [0.0, 0.0, 0.06], [0.0018, 0.0018, 0.0012, 0.0, 0.0, 0.0]))),
+        (
+            "payload const",
+            full_scene().payload(
+                "ee_link",
+                PayloadInertia::new(1.2, [0.0, 0.0, 0.06], [0.0018, 0.0018, 0.0012, 0.0, 0.0, 0.0]),
+            ),
+        ),
         ("payload input", full_scene().payload_input("ee_link")),
         ("armature", full_scene().armature("elbow_joint", 0.3)),
         ("viscous", full_scene().viscous("elbow_joint", 0.3)),

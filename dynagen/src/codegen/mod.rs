@@ -336,9 +336,10 @@ impl GeneratedModule {
     /// Every function's name and operation count, for either kind of
     /// module (the forward dynamics not emitted are labelled so).
     pub fn named_op_counts(&self) -> Vec<(String, OpCount)> {
-        let plain = self.functions.iter().map(|f| {
-            (format!("{}{}", f.kind.label(), if f.emitted { "" } else { " [not emitted]" }), f.op_count)
-        });
+        let plain = self
+            .functions
+            .iter()
+            .map(|f| (format!("{}{}", f.kind.label(), if f.emitted { "" } else { " [not emitted]" }), f.op_count));
         plain.chain(self.scene_functions.iter().map(|f| (f.name.clone(), f.op_count))).collect()
     }
     /// The traced function of `kind`, if it was traced.

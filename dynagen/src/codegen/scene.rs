@@ -190,10 +190,24 @@ fn trace_unfactored(
         for p in &scene.input_payloads {
             let v = tracer.inputs(&payload_argument(&p.link), 10);
             let Some(body) = p.body else { continue };
-            let local =
-                Inertia::from_mass_com_inertia(v[0], Vec3([v[1], v[2], v[3]]), Sym3([v[4], v[5], v[6], v[7], v[8], v[9]]));
+            let local = Inertia::from_mass_com_inertia(
+                v[0],
+                Vec3([v[1], v[2], v[3]]),
+                Sym3([v[4], v[5], v[6], v[7], v[8], v[9]]),
+            );
             let i = Transform::<Expr>::from_f64(&p.placement).inertia_to_parent(&local);
-            let params = [i.mass, i.h.0[0], i.h.0[1], i.h.0[2], i.ibar.0[0], i.ibar.0[1], i.ibar.0[2], i.ibar.0[3], i.ibar.0[4], i.ibar.0[5]];
+            let params = [
+                i.mass,
+                i.h.0[0],
+                i.h.0[1],
+                i.h.0[2],
+                i.ibar.0[0],
+                i.ibar.0[1],
+                i.ibar.0[2],
+                i.ibar.0[3],
+                i.ibar.0[4],
+                i.ibar.0[5],
+            ];
             let models = (0..10).map(|k| unit_parameter_model(model, body, k)).collect();
             payloads.push(PayloadTerm { params, models });
         }
@@ -212,21 +226,24 @@ fn trace_unfactored(
     };
     let mut out = vec![zero; out_len];
     // Adds Σ params_k · run(unit model k) to `out`.
-    let add_payloads = |out: &mut [Expr], ws: &mut Workspace<Expr>, run: &dyn Fn(&Model, &mut Workspace<Expr>, &mut [Expr])| {
-        let mut tmp = vec![zero; out.len()];
-        for p in &payloads {
-            for (k, m) in p.models.iter().enumerate() {
-                run(m, ws, &mut tmp);
-                for (o, t) in out.iter_mut().zip(&tmp) {
-                    *o += p.params[k] * *t;
+    let add_payloads =
+        |out: &mut [Expr], ws: &mut Workspace<Expr>, run: &dyn Fn(&Model, &mut Workspace<Expr>, &mut [Expr])| {
+            let mut tmp = vec![zero; out.len()];
+            for p in &payloads {
+                for (k, m) in p.models.iter().enumerate() {
+                    run(m, ws, &mut tmp);
+                    for (o, t) in out.iter_mut().zip(&tmp) {
+                        *o += p.params[k] * *t;
+                    }
                 }
             }
-        }
-    };
+        };
     match f {
         SceneFn::InverseDynamics => {
             dynamics::inverse_dynamics(scene, &mut ws, &args[0], &args[1], &args[2], g, &tips, &mut out);
-            add_payloads(&mut out, &mut ws, &|m, ws, t| rnea::rnea(m, ws, &args[0], Some(&args[1]), Some(&args[2]), g, &[], t));
+            add_payloads(&mut out, &mut ws, &|m, ws, t| {
+                rnea::rnea(m, ws, &args[0], Some(&args[1]), Some(&args[2]), g, &[], t)
+            });
         }
         SceneFn::MassMatrix => {
             dynamics::mass_matrix(scene, &mut ws, &args[0], &mut out);
@@ -250,10 +267,26 @@ fn trace_unfactored(
             let mut scratch = vec![zero; n];
             match method {
                 ForwardDynamicsMethod::Aba => dynamics::forward_dynamics(
-                    scene, &mut ws, &args[0], &args[1], &args[2], g, &tips, &mut scratch, &mut out,
+                    scene,
+                    &mut ws,
+                    &args[0],
+                    &args[1],
+                    &args[2],
+                    g,
+                    &tips,
+                    &mut scratch,
+                    &mut out,
                 ),
                 ForwardDynamicsMethod::Ldlt => dynamics::forward_dynamics_ldlt(
-                    scene, &mut ws, &args[0], &args[1], &args[2], g, &tips, &mut scratch, &mut out,
+                    scene,
+                    &mut ws,
+                    &args[0],
+                    &args[1],
+                    &args[2],
+                    g,
+                    &tips,
+                    &mut scratch,
+                    &mut out,
                 ),
             }
         }
@@ -402,7 +435,14 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
             items.push(parse_item(wrapper(&name, &ps, ret, &sc, has_prismatic, &opts, &doc))?);
         }
         let inputs = ps.iter().map(|p| (p.name.clone(), p.len_value(n))).collect();
-        functions.push(SceneFunction { function: f.clone(), name, inputs, traced: function, sin_cos_inputs: sc, op_count });
+        functions.push(SceneFunction {
+            function: f.clone(),
+            name,
+            inputs,
+            traced: function,
+            sin_cos_inputs: sc,
+            op_count,
+        });
     }
     let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
     let body = prettyplease::unparse(&file);
@@ -477,17 +517,8 @@ fn header(
     let not_emitted: Vec<String> =
         all.iter().filter(|f| !scene.functions.contains(f)).map(|f| f.name().to_string()).collect();
     let _ = writeln!(h, "//   functions not generated: {}", list(&not_emitted));
-    match scene.gravity {
-        ResolvedGravity::None => {
-            let _ = writeln!(h, "//   gravity: none (every gravity term is gone; g(q) = 0)");
-        }
-        ResolvedGravity::Constant(_) => {
-            let _ =
-                writeln!(h, "//   gravity: constant {:?} m/s^2 in the base frame, folded in (no argument)", model.gravity.0);
-        }
-        ResolvedGravity::Input => {
-            let _ = writeln!(h, "//   gravity: none folded in (it is the run-time argument `gravity`)");
-        }
+    if scene.gravity == ResolvedGravity::None {
+        let _ = writeln!(h, "//   gravity: none (every gravity term is gone; g(q) = 0)");
     }
     if scene.tip_wrench_frame.is_none() {
         let _ = writeln!(h, "//   tip wrench: none (no J^T F_tip term)");
@@ -514,6 +545,9 @@ fn header(
         v.iter().zip(&names).filter(|(x, _)| **x != 0.0).map(|(x, j)| format!("{j} {x}")).collect()
     };
     let _ = writeln!(h, "// Folded in:");
+    if let ResolvedGravity::Constant(_) = scene.gravity {
+        let _ = writeln!(h, "//   gravity: {:?} m/s^2 in the base frame", model.gravity.0);
+    }
     let _ = writeln!(h, "//   armature: {}", list(&per_joint(&scene.armature)));
     let _ = writeln!(h, "//   viscous friction: {}", list(&per_joint(&scene.viscous_friction)));
     let coulomb = per_joint(&scene.coulomb_friction);
@@ -558,6 +592,7 @@ fn header(
         for line in toml.lines() {
             let _ = writeln!(h, "//   {line}");
         }
+        h = h.replace("//   \n", "//\n");
     }
     h
 }

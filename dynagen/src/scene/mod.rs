@@ -181,6 +181,23 @@ impl Function {
         Function::GravityTorques,
         Function::ForwardDynamics,
     ];
+    /// The function without a frame named `name` (`inverse_dynamics`,
+    /// `mass_matrix`, `bias_forces`, `gravity_torques`, `coriolis`,
+    /// `forward_dynamics`), if it is one.
+    pub fn from_name(name: &str) -> Option<Function> {
+        Some(match name {
+            "inverse_dynamics" => Function::InverseDynamics,
+            "mass_matrix" => Function::MassMatrix,
+            "bias_forces" => Function::BiasForces,
+            "gravity_torques" => Function::GravityTorques,
+            "coriolis" => Function::Coriolis,
+            "forward_dynamics" => Function::ForwardDynamics,
+            _ => return None,
+        })
+    }
+    /// The names [`from_name`](Self::from_name) knows.
+    pub const NAMES: [&'static str; 6] =
+        ["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "coriolis", "forward_dynamics"];
     /// The function's name in generated code and in TOML (`frame_pose` and
     /// `frame_jacobian` for the frame functions).
     pub fn name(&self) -> &'static str {
