@@ -238,7 +238,9 @@ impl MacroOptions {
     /// that the crate is rebuilt when it changes.
     pub(crate) fn rebuild_on_scene_change(&self) -> TokenStream {
         match self.scene.file_path() {
-            Some(p) => quote!(const _: &[u8] = include_bytes!(#p);),
+            Some(p) => quote!(
+                const _: &[u8] = include_bytes!(#p);
+            ),
             None => quote!(),
         }
     }
@@ -295,10 +297,9 @@ fn expand_urdf(input: UrdfInput) -> syn::Result<TokenStream> {
         ));
     }
     let builder = input.options.apply(Builder::new().urdf(&path), given.clone())?;
-    let module = builder.generate_module().map_err(|e| {
-        let text = e.to_string();
-        syn::Error::new(input.options.error_span(&e, span), text.strip_prefix("dynagen: ").unwrap_or(&text).to_string())
-    })?;
+    let module = builder
+        .generate_module()
+        .map_err(|e| syn::Error::new(input.options.error_span(&e, span), scene::SceneOptions::error_message(&e)))?;
     let body = items(&module.source, span)?;
     let abs = path.canonicalize().unwrap_or(path).display().to_string();
     let scene = input.options.rebuild_on_scene_change();

@@ -254,11 +254,7 @@ pub(crate) fn expand(robot: RobotInput) -> syn::Result<TokenStream> {
     })?;
     let source = format!("robot! {{ name: {}, … }}", robot.name);
     let module = robot.options.apply(Builder::new().model(model), source)?.generate_module().map_err(|e| {
-        let text = e.to_string();
-        syn::Error::new(
-            robot.options.error_span(&e, robot.name.span()),
-            text.strip_prefix("dynagen: ").unwrap_or(&text).to_string(),
-        )
+        syn::Error::new(robot.options.error_span(&e, robot.name.span()), crate::scene::SceneOptions::error_message(&e))
     })?;
     let scene = robot.options.rebuild_on_scene_change();
     let body = items(&module.source, robot.name.span())?;

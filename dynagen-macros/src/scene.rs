@@ -201,11 +201,8 @@ impl SceneOptions {
                 for n in names(input)? {
                     let f = self.name(&n);
                     let s = take(self);
-                    *self.scene() = s.function(if k == "frame_pose" {
-                        Function::FramePose(f)
-                    } else {
-                        Function::FrameJacobian(f)
-                    });
+                    *self.scene() =
+                        s.function(if k == "frame_pose" { Function::FramePose(f) } else { Function::FrameJacobian(f) });
                 }
             }
             _ => {
@@ -226,6 +223,18 @@ impl SceneOptions {
     /// Whether a scene was given.
     pub(crate) fn given(&self) -> bool {
         self.file.is_some() || self.scene.is_some()
+    }
+
+    /// The message of an error of the builder, without what the macro's
+    /// user already sees (the `dynagen:` prefix, which robot and scene).
+    pub(crate) fn error_message(error: &BuildError) -> String {
+        match error {
+            BuildError::SceneRobot { source, .. } => format!("scene: {source}"),
+            e => {
+                let text = e.to_string();
+                text.strip_prefix("dynagen: ").unwrap_or(&text).to_string()
+            }
+        }
     }
 
     /// The token an error of the builder is about: the scene file for a

@@ -109,7 +109,7 @@ pub enum BuildError {
     },
     /// The scene does not fit the robot (an unknown link or joint, a tip not
     /// below the root, …).
-    #[error("dynagen: scene {scene} on robot {robot}: {source}")]
+    #[error("dynagen: scene {scene} for {robot}: {source}")]
     SceneRobot {
         /// The scene file, or `(given in Rust)`.
         scene: String,

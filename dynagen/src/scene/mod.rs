@@ -6,8 +6,11 @@
 //! armature and friction of each joint. [`Scene::apply`] turns a [`Model`]
 //! and a scene into a [`SceneModel`]: the reduced model with every constant
 //! folded in, plus the per-joint vectors and run-time inputs. The generic
-//! solver runs it through [`SceneRobot`]; code generation consumes the same
-//! [`SceneModel`] (and traces the same functions, [`dynamics`]).
+//! solver runs it through [`SceneRobot`]; code generation
+//! ([`generate_scene`](crate::codegen::generate_scene), the `Builder`'s
+//! `.scene(..)`, `dynagen generate --scene`, the macros' scene keys)
+//! consumes the same [`SceneModel`] and traces the same functions,
+//! [`dynamics`].
 //!
 //! # The equations of a scene
 //!
@@ -69,7 +72,8 @@
 //!   the link belongs to, exactly as a URDF link fixed to it would be. An
 //!   input payload is recorded in [`SceneModel::input_payloads`]; the generic
 //!   solver adds the values given at each call to the body's inertia
-//!   ([`SceneInputs::payloads`]); code generation will make it an argument.
+//!   ([`SceneInputs::payloads`]); generated code takes it as an argument
+//!   `payload_LINK: &[T; 10]`.
 //!
 //! # The TOML format
 //!
@@ -481,6 +485,14 @@ impl Scene {
     /// The checks that need no robot: numbers, duplicates and
     /// contradictions. [`apply`](Self::apply) runs them first.
     pub fn check(&self) -> Result<(), SceneError> {
+        if self.functions.is_empty() {
+            return Err(SceneError::NoFunctions);
+        }
+        if self.target == Target::NoStdSinCos {
+            if let Some((joint, _)) = self.coulomb_friction.iter().find(|(_, f)| *f != 0.0) {
+                return Err(SceneError::NeedsSqrt { joint: joint.clone() });
+            }
+        }
         if !(self.coulomb_velocity.is_finite() && self.coulomb_velocity > 0.0) {
             return Err(SceneError::BadCoulombVelocity(self.coulomb_velocity));
         }
