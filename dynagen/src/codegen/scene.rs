@@ -23,13 +23,16 @@
 //!
 //! **Input payloads.** The algorithms read a body's inertia as a model
 //! constant, so a payload given at run time cannot be traced through them
-//! directly. τ, M, h, g and C(q, q̇)q̇ are linear in each body's ten inertial
-//! parameters, though, so the module computes the rigid robot's value plus,
-//! for each input payload, the sum over its ten parameters (in the body's
-//! frame, computed from the arguments) of the parameter times the same
-//! function of a robot whose only inertia is that unit parameter on the
-//! payload's body; the kinematics are shared. Forward dynamics with an input
-//! payload goes through M and h built that way and the sparse LᵀDL solve.
+//! directly. A payload fixed to a link is, for the rest of the robot, the
+//! wrench the link must apply to it: F = I·A + V ×* I·V, with I its inertia
+//! (from the arguments) and V, A the link frame's twist and acceleration
+//! (gravity included), computed by a forward pass along the link's path. So
+//! τ, h, g and C(q, q̇)q̇ are the recursive Newton-Euler algorithm with that
+//! wrench as one more tip wrench, and the mass matrix is M(q) + J_bᵀ I J_b,
+//! J_b the link frame's body Jacobian. Forward dynamics with an input
+//! payload solves (M + J_bᵀ I J_b) q̈ = τ − friction − h − Jᵀ(F_tip, F) by
+//! the sparse LᵀDL factorisation (the articulated-body algorithm would need
+//! the payload in its articulated inertias).
 
 use super::emit::{self, Dim, Param, Shape};
 use super::trace::{sin_cos_from_q, sin_cos_inputs, SinCosTrace};
@@ -37,10 +40,12 @@ use super::{
     module_name, parse_item, sin_cos, snap_rounding, trig_source, wrapper, CodegenError, CodegenOptions,
     ForwardDynamicsMethod, GeneratedModule, ScalarType, SnappedConstant, Trig, GENERATOR_VERSION,
 };
-use crate::algorithms::{bias, crba, kinematics, ldlt, rnea, TipWrench, Workspace};
+use crate::algorithms::joint::{add_motion, cross_motion, joint_transform, motion_to_child};
+use crate::algorithms::{kinematics, ldlt, rnea, TipWrench, Workspace};
 use crate::model::{JointKind, Model};
 use crate::scene::{dynamics, Function as SceneFn, ResolvedGravity, SceneModel};
-use crate::spatial::{Force, Inertia, Sym3, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Motion, Sym3, Transform, Vec3};
+use crate::Scalar;
 use crate::symbolic::{factor, Expr, Function, OpCount, Rewrites, TraceActive, Tracer};
 use quote::quote;
 use std::fmt::Write;
@@ -132,28 +137,93 @@ fn shape(f: &SceneFn) -> Shape {
     }
 }
 
-/// A robot whose only inertia is the unit inertial parameter `k` (mass,
-/// h = m·c, Ī entries [xx, yy, zz, xy, xz, yz]) on `body`.
-fn unit_parameter_model(model: &Model, body: usize, k: usize) -> Model {
-    let mut m = model.clone();
-    for b in &mut m.bodies {
-        b.inertia = Inertia::zero();
-    }
-    let mut i = Inertia::<f64>::zero();
-    match k {
-        0 => i.mass = 1.0,
-        1..=3 => i.h.0[k - 1] = 1.0,
-        _ => i.ibar.0[k - 4] = 1.0,
-    }
-    m.bodies[body].inertia = i;
-    m
+/// An input payload in the trace: its link's frame and its inertia there.
+struct PayloadTerm {
+    frame: usize,
+    inertia: Inertia<Expr>,
 }
 
-/// A payload argument's ten parameters as the inertia's ten entries in the
-/// body's frame, with the unit-parameter models they multiply.
-struct PayloadTerm {
-    params: [Expr; 10],
-    models: Vec<Model>,
+/// The twist and spatial acceleration (gravity as an upward acceleration of
+/// the base) of frame `frame`, in the frame, by a forward pass along its
+/// body's path: `qd`, `qdd` or `gravity` absent are zero.
+fn frame_motion(
+    model: &Model,
+    frame: usize,
+    q: &[Expr],
+    qd: Option<&[Expr]>,
+    qdd: Option<&[Expr]>,
+    gravity: Option<&Vec3<Expr>>,
+) -> (Motion<Expr>, Motion<Expr>) {
+    let mut path = Vec::new();
+    let mut b = model.frames[frame].body;
+    while let Some(i) = b {
+        path.push(i);
+        b = model.bodies[i].parent;
+    }
+    let mut v = Motion::<Expr>::zero();
+    let mut a = Motion::new(Vec3::zero(), gravity.map_or(Vec3::zero(), |g| -*g));
+    for &i in path.iter().rev() {
+        let joint = &model.bodies[i].joint;
+        let x = joint_transform(joint, q[i]);
+        v = motion_to_child(joint, &x, &v);
+        a = motion_to_child(joint, &x, &a);
+        if let Some(qd) = qd {
+            add_motion(joint, &mut v, qd[i]);
+            a = a + cross_motion(joint, &v, qd[i]);
+        }
+        if let Some(qdd) = qdd {
+            add_motion(joint, &mut a, qdd[i]);
+        }
+    }
+    let place = Transform::<Expr>::from_f64(&model.frames[frame].placement);
+    (place.motion_to_child(&v), place.motion_to_child(&a))
+}
+
+/// The wrench each payload's link applies to it, as tip wrenches.
+fn payload_wrenches(
+    model: &Model,
+    payloads: &[PayloadTerm],
+    q: &[Expr],
+    qd: Option<&[Expr]>,
+    qdd: Option<&[Expr]>,
+    gravity: Option<&Vec3<Expr>>,
+) -> Vec<TipWrench<Expr>> {
+    payloads
+        .iter()
+        .map(|p| {
+            let (v, a) = frame_motion(model, p.frame, q, qd, qdd, gravity);
+            let wrench = p.inertia.mul_motion(&a) + v.cross_force(&p.inertia.mul_motion(&v));
+            TipWrench { frame: p.frame, wrench }
+        })
+        .collect()
+}
+
+/// Adds J_bᵀ I J_b of every payload to the n×n row-major `m`.
+fn add_payload_mass(model: &Model, ws: &mut Workspace<Expr>, payloads: &[PayloadTerm], q: &[Expr], m: &mut [Expr]) {
+    if payloads.is_empty() {
+        return;
+    }
+    let n = model.dof();
+    let zero = Expr::zero();
+    kinematics::forward_kinematics(model, ws, q);
+    let mut jac = vec![zero; 6 * n];
+    for p in payloads {
+        kinematics::body_jacobian(model, ws, p.frame, &mut jac);
+        let col = |j: usize| Motion::from_array(core::array::from_fn(|r| jac[r * n + j]));
+        // Columns of the joints that move the frame (the others are zero).
+        let Some(body) = model.frames[p.frame].body else { continue };
+        let moving: Vec<usize> = (0..n).filter(|&j| model.is_in_subtree(j, body)).collect();
+        let ij: Vec<Force<Expr>> = moving.iter().map(|&j| p.inertia.mul_motion(&col(j))).collect();
+        for (a, &r) in moving.iter().enumerate() {
+            for (b, &c) in moving.iter().enumerate().skip(a) {
+                let x = col(r).dot(&ij[b]);
+                m[r * n + c] += x;
+                if r != c {
+                    m[c * n + r] += x;
+                }
+            }
+        }
+    }
 }
 
 /// Traces `f` of `scene` (with `model`, the snapped reduced model) without
@@ -189,27 +259,12 @@ fn trace_unfactored(
     if x.payloads {
         for p in &scene.input_payloads {
             let v = tracer.inputs(&payload_argument(&p.link), 10);
-            let Some(body) = p.body else { continue };
-            let local = Inertia::from_mass_com_inertia(
-                v[0],
-                Vec3([v[1], v[2], v[3]]),
-                Sym3([v[4], v[5], v[6], v[7], v[8], v[9]]),
-            );
-            let i = Transform::<Expr>::from_f64(&p.placement).inertia_to_parent(&local);
-            let params = [
-                i.mass,
-                i.h.0[0],
-                i.h.0[1],
-                i.h.0[2],
-                i.ibar.0[0],
-                i.ibar.0[1],
-                i.ibar.0[2],
-                i.ibar.0[3],
-                i.ibar.0[4],
-                i.ibar.0[5],
-            ];
-            let models = (0..10).map(|k| unit_parameter_model(model, body, k)).collect();
-            payloads.push(PayloadTerm { params, models });
+            if p.body.is_none() {
+                continue; // on the base: moves nothing
+            }
+            let inertia =
+                Inertia::from_mass_com_inertia(v[0], Vec3([v[1], v[2], v[3]]), Sym3([v[4], v[5], v[6], v[7], v[8], v[9]]));
+            payloads.push(PayloadTerm { frame: p.frame, inertia });
         }
     }
     let mut s = scene.clone();
@@ -225,79 +280,56 @@ fn trace_unfactored(
         Shape::Matrix(..) => n * n,
     };
     let mut out = vec![zero; out_len];
-    // Adds Σ params_k · run(unit model k) to `out`.
-    let add_payloads =
-        |out: &mut [Expr], ws: &mut Workspace<Expr>, run: &dyn Fn(&Model, &mut Workspace<Expr>, &mut [Expr])| {
-            let mut tmp = vec![zero; out.len()];
-            for p in &payloads {
-                for (k, m) in p.models.iter().enumerate() {
-                    run(m, ws, &mut tmp);
-                    for (o, t) in out.iter_mut().zip(&tmp) {
-                        *o += p.params[k] * *t;
-                    }
-                }
-            }
-        };
+    let with_payloads = |mut tips: Vec<TipWrench<Expr>>, qd: Option<&[Expr]>, qdd: Option<&[Expr]>, g| {
+        tips.extend(payload_wrenches(model, &payloads, &args[0], qd, qdd, g));
+        tips
+    };
+    let p = !payloads.is_empty();
     match f {
         SceneFn::InverseDynamics => {
+            let tips = with_payloads(tips, Some(&args[1]), Some(&args[2]), g);
             dynamics::inverse_dynamics(scene, &mut ws, &args[0], &args[1], &args[2], g, &tips, &mut out);
-            add_payloads(&mut out, &mut ws, &|m, ws, t| {
-                rnea::rnea(m, ws, &args[0], Some(&args[1]), Some(&args[2]), g, &[], t)
-            });
         }
         SceneFn::MassMatrix => {
             dynamics::mass_matrix(scene, &mut ws, &args[0], &mut out);
-            add_payloads(&mut out, &mut ws, &|m, ws, t| crba::crba(m, ws, &args[0], t));
+            add_payload_mass(model, &mut ws, &payloads, &args[0], &mut out);
         }
-        SceneFn::BiasForces => {
-            dynamics::bias_forces(scene, &mut ws, &args[0], &args[1], g, &mut out);
-            add_payloads(&mut out, &mut ws, &|m, ws, t| bias::bias_forces(m, ws, &args[0], &args[1], g, t));
+        SceneFn::BiasForces if p => {
+            // h = RNEA(q, q̇, 0) with the payloads' wrenches, plus friction.
+            let tips = with_payloads(Vec::new(), Some(&args[1]), None, g);
+            rnea::rnea(model, &mut ws, &args[0], Some(&args[1]), None, g, &tips, &mut out);
+            dynamics::add_friction(scene, &args[1], &mut out);
         }
-        SceneFn::GravityTorques => {
-            dynamics::gravity_torques(scene, &mut ws, &args[0], g, &mut out);
-            if let Some(grav) = g {
-                add_payloads(&mut out, &mut ws, &|m, ws, t| bias::gravity_torques(m, ws, &args[0], grav, t));
-            }
+        SceneFn::BiasForces => dynamics::bias_forces(scene, &mut ws, &args[0], &args[1], g, &mut out),
+        SceneFn::GravityTorques if p && g.is_some() => {
+            let tips = with_payloads(Vec::new(), None, None, g);
+            rnea::rnea(model, &mut ws, &args[0], None, None, g, &tips, &mut out);
         }
-        SceneFn::Coriolis => {
-            dynamics::coriolis(scene, &mut ws, &args[0], &args[1], &mut out);
-            add_payloads(&mut out, &mut ws, &|m, ws, t| bias::coriolis_torques(m, ws, &args[0], &args[1], t));
+        SceneFn::GravityTorques => dynamics::gravity_torques(scene, &mut ws, &args[0], g, &mut out),
+        SceneFn::Coriolis if p => {
+            let tips = with_payloads(Vec::new(), Some(&args[1]), None, None);
+            rnea::rnea(model, &mut ws, &args[0], Some(&args[1]), None, None, &tips, &mut out);
         }
-        SceneFn::ForwardDynamics if payloads.is_empty() => {
+        SceneFn::Coriolis => dynamics::coriolis(scene, &mut ws, &args[0], &args[1], &mut out),
+        SceneFn::ForwardDynamics if !p => {
             let mut scratch = vec![zero; n];
             match method {
                 ForwardDynamicsMethod::Aba => dynamics::forward_dynamics(
-                    scene,
-                    &mut ws,
-                    &args[0],
-                    &args[1],
-                    &args[2],
-                    g,
-                    &tips,
-                    &mut scratch,
-                    &mut out,
+                    scene, &mut ws, &args[0], &args[1], &args[2], g, &tips, &mut scratch, &mut out,
                 ),
                 ForwardDynamicsMethod::Ldlt => dynamics::forward_dynamics_ldlt(
-                    scene,
-                    &mut ws,
-                    &args[0],
-                    &args[1],
-                    &args[2],
-                    g,
-                    &tips,
-                    &mut scratch,
-                    &mut out,
+                    scene, &mut ws, &args[0], &args[1], &args[2], g, &tips, &mut scratch, &mut out,
                 ),
             }
         }
         SceneFn::ForwardDynamics => {
-            // M and h + JᵀF_tip with the payloads, then M q̈ = τ − friction − h − JᵀF_tip.
+            // (M + Σ J_bᵀ I J_b) q̈ = τ − friction − h − Jᵀ(F_tip, payload wrenches at q̈ = 0).
             let mut m = vec![zero; n * n];
             dynamics::mass_matrix(scene, &mut ws, &args[0], &mut m);
-            add_payloads(&mut m, &mut ws, &|md, ws, t| crba::crba(md, ws, &args[0], t));
+            add_payload_mass(model, &mut ws, &payloads, &args[0], &mut m);
+            let tips = with_payloads(tips, Some(&args[1]), None, g);
             let mut h = vec![zero; n];
             rnea::rnea(model, &mut ws, &args[0], Some(&args[1]), None, g, &tips, &mut h);
-            add_payloads(&mut h, &mut ws, &|md, ws, t| rnea::rnea(md, ws, &args[0], Some(&args[1]), None, g, &[], t));
             out.copy_from_slice(&args[2]);
             dynamics::sub_friction(scene, &args[1], &mut out);
             for (o, hi) in out.iter_mut().zip(&h) {
