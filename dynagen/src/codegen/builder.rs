@@ -117,7 +117,7 @@ pub enum BuildError {
         robot: String,
         /// What is wrong (names the link, joint or option).
         #[source]
-        source: SceneError,
+        source: Box<SceneError>,
     },
     /// A function name that is not one of the generated-code contract (or,
     /// with a scene, `coriolis`).
@@ -334,7 +334,7 @@ impl Builder {
         let applied = scene.apply(&model).map_err(|source| BuildError::SceneRobot {
             scene: label,
             robot: self.robot_label(),
-            source,
+            source: Box::new(source),
         })?;
         Ok((Target::Scene(Box::new(applied)), options, name, inputs))
     }

@@ -45,8 +45,8 @@ use crate::algorithms::{kinematics, ldlt, rnea, TipWrench, Workspace};
 use crate::model::{JointKind, Model};
 use crate::scene::{dynamics, Function as SceneFn, ResolvedGravity, SceneModel};
 use crate::spatial::{Force, Inertia, Motion, Sym3, Transform, Vec3};
-use crate::Scalar;
 use crate::symbolic::{factor, Expr, Function, OpCount, Rewrites, TraceActive, Tracer};
+use crate::Scalar;
 use quote::quote;
 use std::fmt::Write;
 
@@ -169,7 +169,7 @@ fn frame_motion(
         a = motion_to_child(joint, &x, &a);
         if let Some(qd) = qd {
             add_motion(joint, &mut v, qd[i]);
-            a = a + cross_motion(joint, &v, qd[i]);
+            a += cross_motion(joint, &v, qd[i]);
         }
         if let Some(qdd) = qdd {
             add_motion(joint, &mut a, qdd[i]);
@@ -262,8 +262,11 @@ fn trace_unfactored(
             if p.body.is_none() {
                 continue; // on the base: moves nothing
             }
-            let inertia =
-                Inertia::from_mass_com_inertia(v[0], Vec3([v[1], v[2], v[3]]), Sym3([v[4], v[5], v[6], v[7], v[8], v[9]]));
+            let inertia = Inertia::from_mass_com_inertia(
+                v[0],
+                Vec3([v[1], v[2], v[3]]),
+                Sym3([v[4], v[5], v[6], v[7], v[8], v[9]]),
+            );
             payloads.push(PayloadTerm { frame: p.frame, inertia });
         }
     }
@@ -315,10 +318,26 @@ fn trace_unfactored(
             let mut scratch = vec![zero; n];
             match method {
                 ForwardDynamicsMethod::Aba => dynamics::forward_dynamics(
-                    scene, &mut ws, &args[0], &args[1], &args[2], g, &tips, &mut scratch, &mut out,
+                    scene,
+                    &mut ws,
+                    &args[0],
+                    &args[1],
+                    &args[2],
+                    g,
+                    &tips,
+                    &mut scratch,
+                    &mut out,
                 ),
                 ForwardDynamicsMethod::Ldlt => dynamics::forward_dynamics_ldlt(
-                    scene, &mut ws, &args[0], &args[1], &args[2], g, &tips, &mut scratch, &mut out,
+                    scene,
+                    &mut ws,
+                    &args[0],
+                    &args[1],
+                    &args[2],
+                    g,
+                    &tips,
+                    &mut scratch,
+                    &mut out,
                 ),
             }
         }
