@@ -554,6 +554,16 @@ fn header(
             Trig::Inputs => "only NAME_sc(s, c, ...), the caller passes the sines and cosines (no_std)",
         }
     );
+    if scene.functions.contains(&SceneFn::ForwardDynamics) {
+        let fd = if !scene.input_payloads.is_empty() {
+            "M + J_b^T I J_b of the input payloads, h by RNEA, and a sparse LTDL solve"
+        } else if options.forward_dynamics == ForwardDynamicsMethod::Ldlt {
+            "CRBA with the armature on M's diagonal, RNEA, and a sparse LTDL solve, as asked"
+        } else {
+            "the articulated-body algorithm, armature in D_i = S_i^T U_i + a_i"
+        };
+        let _ = writeln!(h, "// Forward dynamics: {fd}.");
+    }
     // What the scene left out.
     let _ = writeln!(h, "//");
     let _ = writeln!(h, "// Left out by the scene:");
