@@ -512,7 +512,7 @@ fn toml_round_trip_and_the_example_scene() {
         functions = ["inverse_dynamics", "coriolis"]
         frame_pose = ["left_ee"]
         scalar = "f32"
-        target = "no_std_sincos"
+        target = "no_std_libm"
         tip_wrench = "left_ee"
         coulomb_velocity = 0.002
         [gravity]
@@ -538,7 +538,7 @@ fn toml_round_trip_and_the_example_scene() {
         .name("left_arm")
         .functions([Function::InverseDynamics, Function::Coriolis, Function::FramePose("left_ee".into())])
         .scalar(dynagen::scene::ScalarType::F32)
-        .target(dynagen::scene::Target::NoStdSinCos)
+        .target(dynagen::scene::Target::NoStdLibm)
         .tip_wrench("left_ee")
         .coulomb_velocity(0.002)
         .gravity(Gravity::Input)
