@@ -553,6 +553,9 @@ fn generate_errors_are_one_line_naming_the_option_or_file() {
     };
     let (_, full) = succeeds_with_stderr(dynagen().arg("generate"));
     assert!(ops(&err) < ops(&full), "{err}\n{full}");
+    // coriolis without a scene: the default scene's module.
+    let out = succeeds(dynagen().args(["generate", "--functions", "coriolis,inverse_dynamics"]));
+    assert!(out.contains("pub fn coriolis(q: &[f64; DOF], qd: &[f64; DOF])") && !out.contains("fn mass_matrix"));
     // The bundled controller scene.
     let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/ur5_controller.toml");
     let out = succeeds(dynagen().args(["generate", "--scene", scene]));

@@ -119,9 +119,9 @@ pub enum BuildError {
         #[source]
         source: Box<SceneError>,
     },
-    /// A function name that is not one of the generated-code contract (or,
-    /// with a scene, `coriolis`).
-    #[error("dynagen: unknown function \"{name}\" (the functions are {}; with a scene also coriolis)", super::FUNCTION_NAMES.join(", "))]
+    /// A function name that is not one of the generated-code contract or
+    /// `coriolis`.
+    #[error("dynagen: unknown function \"{name}\" (the functions are {}, coriolis)", super::FUNCTION_NAMES.join(", "))]
     UnknownFunction {
         /// The name given.
         name: String,
@@ -229,8 +229,9 @@ impl Builder {
         self
     }
     /// Only these functions, by name (`inverse_dynamics`, `mass_matrix`,
-    /// `bias_forces`, `gravity_torques`, `forward_dynamics`, and with a
-    /// scene `coriolis`); default all five (or the scene's).
+    /// `bias_forces`, `gravity_torques`, `forward_dynamics`, `coriolis`);
+    /// default all five (or the scene's). `coriolis` is a scene function:
+    /// without a scene it makes the module the default scene's.
     pub fn functions<S: AsRef<str>>(mut self, names: &[S]) -> Self {
         self.functions = Some(names.iter().map(|s| s.as_ref().to_string()).collect());
         self
@@ -298,7 +299,14 @@ impl Builder {
                 Model::from_urdf_file(path).map_err(|source| BuildError::Robot { path: path.clone(), source })?
             }
         };
-        let Some(input) = &self.scene else {
+        // `coriolis` is a scene function: asking for it means the default scene.
+        let coriolis = self.functions.as_ref().is_some_and(|f| f.iter().any(|n| n.trim() == "coriolis"));
+        let default_scene = SceneInput::Scene(Box::default());
+        let scene_input = match &self.scene {
+            None if coriolis => Some(&default_scene),
+            s => s.as_ref(),
+        };
+        let Some(input) = scene_input else {
             if let Some(names) = &self.functions {
                 options.functions =
                     Functions::from_names(names).map_err(|name| BuildError::UnknownFunction { name })?;

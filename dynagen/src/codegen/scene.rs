@@ -429,6 +429,17 @@ fn doc_of(scene: &SceneModel, f: &SceneFn, count: &OpCount) -> String {
 /// is std. The scalar is `f32` if the scene or `options` ask for it; a
 /// no_std target sets the trigonometry (libm, or the sines and cosines as
 /// inputs).
+///
+/// ```
+/// use dynagen::codegen::{generate_scene, CodegenOptions};
+/// use dynagen::scene::{Function, Gravity, Scene};
+/// let ur5 = dynagen::Model::from_urdf_file(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/ur5.urdf")).unwrap();
+/// let scene = Scene::new().functions([Function::InverseDynamics]).gravity(Gravity::None).tip_wrench("ee_link");
+/// let module = generate_scene(&scene.apply(&ur5).unwrap(), &CodegenOptions::default()).unwrap();
+/// assert!(module.source.contains("f_tip: &[f64; 6]"));
+/// assert!(!module.source.contains("fn mass_matrix"));
+/// assert!(module.source.contains("//   functions not generated: mass_matrix, bias_forces"));
+/// ```
 pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<GeneratedModule, CodegenError> {
     let (model, snapped) =
         if options.snap_rounding { snap_rounding(&scene.model) } else { (scene.model.clone(), Vec::new()) };
