@@ -170,10 +170,21 @@ impl SceneOptions {
                     match key.0.as_str() {
                         "link" => link = Some(content.parse::<Name>()?),
                         "mass" => {
-                            let span = content.span();
+                            // The tokens of the number, for an error spanning all of it.
+                            let tokens: proc_macro2::TokenStream = content.fork().parse::<Num>().map(|_| {
+                                let mut t = proc_macro2::TokenStream::new();
+                                let f = content.fork();
+                                if let Ok(Some(minus)) = f.parse::<Option<Token![-]>>() {
+                                    t.extend(quote::quote!(#minus));
+                                }
+                                if let Ok(lit) = f.parse::<syn::Lit>() {
+                                    t.extend(quote::quote!(#lit));
+                                }
+                                t
+                            })?;
                             let m = content.parse::<Num>()?.0;
                             if m < 0.0 {
-                                return Err(syn::Error::new(span, format!("payload: negative mass {m} kg")));
+                                return Err(syn::Error::new_spanned(tokens, format!("payload: negative mass {m} kg")));
                             }
                             mass = Some(m);
                         }
