@@ -1,15 +1,41 @@
-//! Generates the UR5 module in f32 into OUT_DIR with [`dynagen::Builder`],
-//! for `tests/generated_bundled.rs` to compile and check against the
-//! generic solver (the f64 modules are the committed ones in `generated/`).
+//! Generates into OUT_DIR with [`dynagen::Builder`]: the UR5 module in f32,
+//! for `tests/generated_bundled.rs` (the f64 modules are the committed ones
+//! in `generated/`), and three scene modules for `tests/generated_scene.rs`:
+//! the bundled `ur5_controller` scene (from its TOML file), a UR5 with every
+//! run-time input (gravity, tip wrench, a payload) and a lock, and an f32
+//! UR5 with only τ and no gravity.
 
 use dynagen::codegen::ScalarType;
+use dynagen::scene::{Function, Gravity, Scene};
 
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
+    let ur5 = "../dynagen/robots/ur5.urdf";
     dynagen::Builder::new()
-        .urdf("../dynagen/robots/ur5.urdf")
+        .urdf(ur5)
         .scalar(ScalarType::F32)
         .file_name("ur5_f32.rs")
         .generate()
         .expect("generating the f32 UR5 module");
+    dynagen::Builder::new()
+        .urdf(ur5)
+        .scene_file("../dynagen/scenes/ur5_controller.toml")
+        .generate()
+        .expect("generating the ur5_controller scene");
+    let inputs = Scene::new()
+        .name("ur5_inputs")
+        .function(Function::Coriolis)
+        .gravity(Gravity::Input)
+        .tip_wrench("ee_link")
+        .payload_input("ee_link")
+        .lock("wrist_3_joint", 0.2)
+        .armature("elbow_joint", 0.2)
+        .coulomb("shoulder_lift_joint", 2.0);
+    dynagen::Builder::new().urdf(ur5).scene(inputs).generate().expect("generating the ur5_inputs scene");
+    let torque_only = Scene::new()
+        .name("ur5_tau_f32")
+        .functions([Function::InverseDynamics])
+        .gravity(Gravity::None)
+        .scalar(ScalarType::F32);
+    dynagen::Builder::new().urdf(ur5).scene(torque_only).generate().expect("generating the ur5_tau_f32 scene");
 }

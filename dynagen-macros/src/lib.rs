@@ -36,15 +36,47 @@
 //!
 //! | option | values | default |
 //! | --- | --- | --- |
-//! | `functions` | `[inverse_dynamics, mass_matrix, bias_forces, gravity_torques, forward_dynamics]` | all five |
+//! | `functions` | `[inverse_dynamics, mass_matrix, bias_forces, gravity_torques, coriolis, forward_dynamics]` (`coriolis` makes it a scene module) | all five |
 //! | `scalar` | `f64`, `f32` | `f64` |
 //! | `forward_dynamics` | `aba`, `ldlt` | `aba` |
 //! | `snap_rounding` | `true`, `false` | `true` |
 //!
+//! # Scenes (both macros)
+//!
+//! A scene (see `dynagen::scene`) comes from a TOML file, `scene =
+//! "scenes/controller.toml"` (relative to the crate's root), or from inline
+//! keys (not both); either makes the module a scene module
+//! (`dynagen::codegen::generate_scene`): only the scene's functions, its
+//! constants folded in, its run-time inputs as arguments (`gravity: &[f64;
+//! 3]`, `f_tip: &[f64; 6]`, `payload_LINK: &[f64; 10]`). Names are
+//! identifiers or strings; inside braces `=` and `:` both work.
+//!
+//! | key | value |
+//! | --- | --- |
+//! | `gravity` | `none`, `input`, `default` or `[x, y, z]` (in `robot!`, `gravity: [x, y, z]` is the robot's own gravity) |
+//! | `tip_wrench` | `LINK`: the wrench at LINK is an argument |
+//! | `subtree` | `{ root = LINK, tips = [LINK, …] }` |
+//! | `lock` | `{ JOINT = position, … }` |
+//! | `armature`, `viscous`, `coulomb` | `{ JOINT = value, … }` |
+//! | `coulomb_velocity` | a number (rad/s or m/s) |
+//! | `payload` | `{ link = LINK, mass = kg, com = [x, y, z], inertia = [ixx, iyy, izz, ixy, ixz, iyz] }` (repeat the key for several) |
+//! | `payload_input` | `LINK`: its payload is an argument |
+//! | `frame_pose`, `frame_jacobian` | `[FRAME, …]`: `frame_pose_FRAME(q)`, `frame_jacobian_FRAME(q)` |
+//! | `target` | `std`, `no_std_libm`, `no_std_sincos` |
+//!
+//! ```ignore
+//! mod ur5_tau {
+//!     dynagen_macros::urdf!("robots/ur5.urdf", functions = [inverse_dynamics], gravity = none,
+//!                           lock = { wrist_3_joint = 0.0 });
+//! }
+//! ```
+//!
 //! Every mistake is a compile error at the token it is about: an unknown
 //! option or function, a number that is not one, a missing file (at the
 //! path), a model error such as a massless subtree or a missing link (at
-//! the joint's or link's name).
+//! the joint's or link's name), a scene error such as an unknown or locked
+//! joint or a tip not below the root (at the name the error is about; at
+//! the scene file's path for an error in the file).
 
 use dynagen::codegen::{Builder, CodegenOptions, ForwardDynamicsMethod, Functions, ScalarType};
 use proc_macro2::{Span, TokenStream};
@@ -54,6 +86,7 @@ use syn::punctuated::Punctuated;
 use syn::{bracketed, Ident, LitBool, LitStr, Token};
 
 mod robot;
+mod scene;
 
 /// Generates the dynamics module of a URDF robot, in place: write it inside
 /// a module.
@@ -115,6 +148,7 @@ pub(crate) struct MacroOptions {
     scalar: Option<ScalarType>,
     forward_dynamics: Option<ForwardDynamicsMethod>,
     snap_rounding: Option<bool>,
+    scene: scene::SceneOptions,
 }
 
 impl MacroOptions {
@@ -128,12 +162,12 @@ impl MacroOptions {
                 bracketed!(content in input);
                 let list: Punctuated<Ident, Token![,]> = content.parse_terminated(Ident::parse, Token![,])?;
                 for f in &list {
-                    if !dynagen::codegen::FUNCTION_NAMES.contains(&f.to_string().as_str()) {
+                    if dynagen::scene::Function::from_name(&f.to_string()).is_none() {
                         return Err(syn::Error::new(
                             f.span(),
                             format!(
                                 "unknown function `{f}`; the functions are {}",
-                                dynagen::codegen::FUNCTION_NAMES.join(", ")
+                                dynagen::scene::Function::NAMES.join(", ")
                             ),
                         ));
                     }
@@ -157,13 +191,15 @@ impl MacroOptions {
                 });
             }
             "snap_rounding" => self.snap_rounding = Some(input.parse::<LitBool>()?.value),
-            _ => return Ok(false),
+            _ => return self.scene.parse_value(key, input),
         }
         Ok(true)
     }
 
-    /// The options as a builder's, with `source` for the header.
-    pub(crate) fn apply(&self, builder: Builder, source: String) -> Builder {
+    /// The options as a builder's, with `source` for the header. A scene
+    /// (a file, inline keys, or `coriolis` among the functions) makes it a
+    /// scene module.
+    pub(crate) fn apply(&self, builder: Builder, source: String) -> syn::Result<Builder> {
         let mut o = CodegenOptions::default().source(source);
         if let Some(s) = self.scalar {
             o = o.scalar(s);
@@ -174,17 +210,46 @@ impl MacroOptions {
         if let Some(s) = self.snap_rounding {
             o = o.snap_rounding(s);
         }
-        if let Some(f) = &self.functions {
-            let names: Vec<String> = f.iter().map(Ident::to_string).collect();
-            // Checked when parsed.
-            o = o.functions(Functions::from_names(&names).unwrap_or_default());
+        let names: Option<Vec<String>> = self.functions.as_ref().map(|f| f.iter().map(Ident::to_string).collect());
+        let coriolis = names.as_ref().is_some_and(|n| n.iter().any(|f| f == "coriolis"));
+        if !self.scene.given() && !coriolis {
+            if let Some(names) = &names {
+                // Checked when parsed.
+                o = o.functions(Functions::from_names(names).unwrap_or_default());
+            }
+            return Ok(builder.options(o));
         }
-        builder.options(o)
+        let mut builder = self.scene.apply(builder.options(o))?;
+        if !self.scene.given() {
+            builder = builder.scene(dynagen::scene::Scene::new());
+        }
+        if let Some(names) = &names {
+            builder = builder.functions(names);
+        }
+        Ok(builder)
+    }
+
+    /// The span for an error of the builder.
+    pub(crate) fn error_span(&self, error: &dynagen::codegen::BuildError, default: Span) -> Span {
+        self.scene.error_span(error, default)
+    }
+
+    /// `const _: &[u8] = include_bytes!(…);` for the scene file, if any, so
+    /// that the crate is rebuilt when it changes.
+    pub(crate) fn rebuild_on_scene_change(&self) -> TokenStream {
+        match self.scene.file_path() {
+            Some(p) => quote!(
+                const _: &[u8] = include_bytes!(#p);
+            ),
+            None => quote!(),
+        }
     }
 }
 
 /// The options every macro accepts, for error messages.
-pub(crate) const OPTION_NAMES: &str = "functions, scalar, forward_dynamics, snap_rounding";
+pub(crate) const OPTION_NAMES: &str = "functions, scalar, forward_dynamics, snap_rounding, scene, gravity, \
+                                       tip_wrench, subtree, lock, armature, viscous, coulomb, coulomb_velocity, \
+                                       payload, payload_input, frame_pose, frame_jacobian, target";
 
 struct UrdfInput {
     path: LitStr,
@@ -231,16 +296,17 @@ fn expand_urdf(input: UrdfInput) -> syn::Result<TokenStream> {
             format!("no such file: {given:?} (paths are relative to the crate's root, the folder of its Cargo.toml)"),
         ));
     }
-    let builder = input.options.apply(Builder::new().urdf(&path), given.clone());
-    let module = builder.generate_module().map_err(|e| {
-        let text = e.to_string();
-        syn::Error::new(span, text.strip_prefix("dynagen: ").unwrap_or(&text).to_string())
-    })?;
+    let builder = input.options.apply(Builder::new().urdf(&path), given.clone())?;
+    let module = builder
+        .generate_module()
+        .map_err(|e| syn::Error::new(input.options.error_span(&e, span), scene::SceneOptions::error_message(&e)))?;
     let body = items(&module.source, span)?;
     let abs = path.canonicalize().unwrap_or(path).display().to_string();
+    let scene = input.options.rebuild_on_scene_change();
     Ok(quote! {
-        // Rebuild when the robot file changes.
+        // Rebuild when the robot file (or the scene file) changes.
         const _: &[u8] = include_bytes!(#abs);
+        #scene
         #body
     })
 }

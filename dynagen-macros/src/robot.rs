@@ -12,7 +12,7 @@ use syn::{braced, bracketed, parenthesized, Ident, Token};
 
 /// A number literal, optionally negated.
 #[derive(Clone, Copy)]
-struct Num(f64);
+pub(crate) struct Num(pub(crate) f64);
 
 impl Parse for Num {
     fn parse(input: ParseStream) -> syn::Result<Self> {
@@ -29,7 +29,7 @@ impl Parse for Num {
 }
 
 /// `[a, b, c, …]` with exactly `N` numbers.
-fn array<const N: usize>(input: ParseStream, what: &str) -> syn::Result<[f64; N]> {
+pub(crate) fn array<const N: usize>(input: ParseStream, what: &str) -> syn::Result<[f64; N]> {
     let content;
     let bracket = bracketed!(content in input);
     let list: Punctuated<Num, Token![,]> = content.parse_terminated(Num::parse, Token![,])?;
@@ -174,7 +174,12 @@ impl Parse for RobotInput {
                 _ if comma.is_none() => return Err(syn::Error::new(key.span(), "expected `,`")),
                 "gravity" => {
                     input.parse::<Token![:]>()?;
-                    robot.gravity = Some(array(input, "gravity")?);
+                    if input.peek(syn::token::Bracket) {
+                        robot.gravity = Some(array(input, "gravity")?);
+                    } else {
+                        // `none`, `input` or `default`: the scene's gravity.
+                        robot.options.parse_value(&key, input)?;
+                    }
                 }
                 _ => {
                     input.parse::<Token![:]>()?;
@@ -248,10 +253,13 @@ pub(crate) fn expand(robot: RobotInput) -> syn::Result<TokenStream> {
         syn::Error::new(error_span(&robot, &message), format!("robot `{}`: {message}", robot.name))
     })?;
     let source = format!("robot! {{ name: {}, … }}", robot.name);
-    let module = robot
-        .options
-        .apply(Builder::new().model(model), source)
-        .generate_module()
-        .map_err(|e| syn::Error::new(robot.name.span(), e.to_string()))?;
-    items(&module.source, robot.name.span())
+    let module = robot.options.apply(Builder::new().model(model), source)?.generate_module().map_err(|e| {
+        syn::Error::new(robot.options.error_span(&e, robot.name.span()), crate::scene::SceneOptions::error_message(&e))
+    })?;
+    let scene = robot.options.rebuild_on_scene_change();
+    let body = items(&module.source, robot.name.span())?;
+    Ok(quote::quote! {
+        #scene
+        #body
+    })
 }

@@ -609,11 +609,38 @@ fn generate_errors_are_one_line_naming_the_option_or_file() {
     assert!(out.contains("pub fn inverse_dynamics_sc") && !out.contains("pub fn inverse_dynamics("), "{out}");
     let e = fails(dynagen().args(["generate", "--trig", "fast"]), 1);
     assert!(e.contains("--trig \"fast\"") && e.contains("batched"), "{e}");
-    // A scene asking for what code generation cannot do yet: exit 3, naming
-    // the scene file and what it asks for.
-    let scene = write(&dir, "scene.toml", "[gravity]\nmode = \"none\"\n");
-    let e = fails(dynagen().arg("generate").arg("--scene").arg(&scene), 3);
-    assert!(e.contains("scene.toml: a gravity other than the model's is not supported by code generation yet"), "{e}");
+    // A scene that does not fit the robot: exit 1, one line naming the
+    // scene file and the joint.
+    let scene = write(&dir, "scene.toml", "[joints.elbow_jiont]\nlock = 0.5\n");
+    let e = fails(dynagen().arg("generate").arg("--scene").arg(&scene), 1);
+    assert!(e.starts_with("error: scene ") && e.contains("scene.toml") && e.contains("\"elbow_jiont\""), "{e}");
+    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    // A malformed scene: the key.
+    let scene = write(&dir, "typo.toml", "[gravity]\nmode = \"none\"\nvectr = [0, 0, 1]\n");
+    let e = fails(dynagen().arg("generate").arg("--scene").arg(&scene), 1);
+    assert!(e.contains("typo.toml") && e.contains("vectr"), "{e}");
+    let e = fails(dynagen().args(["generate", "--scene", "no/such/scene.toml"]), 1);
+    assert!(e.contains("no/such/scene.toml"), "{e}");
+    // Gravity none and only τ: fewer operations than the default, no M.
+    let scene = write(&dir, "tau.toml", "functions = [\"inverse_dynamics\"]\n[gravity]\nmode = \"none\"\n");
+    let (out, err) = succeeds_with_stderr(dynagen().arg("generate").arg("--scene").arg(&scene));
+    assert!(out.contains("pub fn inverse_dynamics(") && !out.contains("fn mass_matrix"), "{out}");
+    assert!(out.contains("//   gravity: none"), "{out}");
+    let ops = |stderr: &str| -> usize {
+        let line = stderr.lines().find(|l| l.starts_with("inverse_dynamics: ")).unwrap_or_else(|| panic!("{stderr}"));
+        line["inverse_dynamics: ".len()..].split(' ').next().unwrap().parse().unwrap()
+    };
+    let (_, full) = succeeds_with_stderr(dynagen().arg("generate"));
+    assert!(ops(&err) < ops(&full), "{err}\n{full}");
+    // coriolis without a scene: the default scene's module.
+    let out = succeeds(dynagen().args(["generate", "--functions", "coriolis,inverse_dynamics"]));
+    assert!(out.contains("pub fn coriolis(q: &[f64; DOF], qd: &[f64; DOF])") && !out.contains("fn mass_matrix"));
+    // The bundled controller scene.
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/ur5_controller.toml");
+    let out = succeeds(dynagen().args(["generate", "--scene", scene]));
+    assert!(out.contains("in the scene \"ur5_controller\""), "{out}");
+    assert!(out.contains("f_tip: &[f64; 6]") && out.contains("pub fn frame_jacobian_ee_link("), "{out}");
+    assert!(out.contains("//   functions not generated: coriolis"), "{out}");
     // A scene that only picks functions and the scalar is honoured.
     let scene = write(&dir, "plain.toml", "functions = [\"mass_matrix\"]\nscalar = \"f32\"\n");
     let out = succeeds(dynagen().arg("generate").arg("--scene").arg(&scene));

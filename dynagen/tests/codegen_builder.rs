@@ -87,18 +87,21 @@ fn errors_name_the_file_and_the_item() {
     let e = msg(Builder::new().urdf(&ur5).file_name("sub/ur5.rs"));
     assert!(e.contains("bad output file name \"sub/ur5.rs\""), "{e}");
 
-    // Scenes: what codegen does not do yet is refused by name.
-    let e = msg(Builder::new().urdf(&ur5).scene(Scene::new().gravity(Gravity::Input)));
+    // Scenes: a scene that does not fit the robot names the scene, the
+    // robot and the item.
+    let e = msg(Builder::new().urdf(&ur5).scene(Scene::new().lock("wrist_9_joint", 0.0)));
     assert!(
-        e.contains("scene (given in Rust): a gravity other than the model's is not supported by code generation yet"),
+        e.starts_with("dynagen: scene (given in Rust) for ")
+            && e.contains("ur5.urdf")
+            && e.contains("\"wrist_9_joint\""),
         "{e}"
     );
-    let e = msg(Builder::new().urdf(&ur5).scene(Scene::new().lock("wrist_3_joint", 0.0)));
-    assert!(e.contains("locking joints is not supported by code generation yet"), "{e}");
     let scene = dir.join("s.toml");
-    std::fs::write(&scene, "functions = [\"coriolis\"]\n").unwrap();
+    std::fs::write(&scene, "tip_wrench = \"tool9\"\n").unwrap();
     let e = msg(Builder::new().urdf(&ur5).scene_file(&scene));
-    assert!(e.contains("s.toml: the function `coriolis` is not supported by code generation yet"), "{e}");
+    assert!(e.contains("s.toml") && e.contains("tip wrench") && e.contains("\"tool9\""), "{e}");
+    let e = msg(Builder::new().urdf(&ur5).scene(Scene::new()).functions(&["coriolis", "jacobian"]));
+    assert!(e.contains("unknown function \"jacobian\""), "{e}");
     std::fs::write(&scene, "functoins = []\n").unwrap();
     let e = msg(Builder::new().urdf(&ur5).scene_file(&scene));
     assert!(e.starts_with("dynagen: scene ") && e.contains("s.toml") && e.contains("functoins"), "{e}");
@@ -109,4 +112,19 @@ fn errors_name_the_file_and_the_item() {
     assert_eq!(written.path, dir.join("ur5_gravity.rs"));
     assert!(written.module.source.contains("pub fn gravity_torques(q: &[f32; DOF]) -> [f32; DOF]"));
     assert!(!written.module.source.contains("pub fn mass_matrix"));
+
+    // A scene with a run-time gravity and coriolis: generated, with the input.
+    let written = Builder::new()
+        .urdf(&ur5)
+        .scene(Scene::new().name("ur5 gravity input").gravity(Gravity::Input))
+        .functions(&["gravity_torques", "coriolis"])
+        .out_dir(&dir)
+        .generate()
+        .unwrap();
+    assert_eq!(written.path, dir.join("ur5_gravity_input.rs"));
+    let src = &written.module.source;
+    assert!(src.contains("pub fn gravity_torques(q: &[f64; DOF], gravity: &[f64; 3]) -> [f64; DOF]"), "{src}");
+    assert!(src.contains("pub fn coriolis(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF]"), "{src}");
+    assert!(!src.contains("pub fn inverse_dynamics"));
+    assert_eq!(written.inputs.len(), 1);
 }

@@ -512,7 +512,7 @@ fn toml_round_trip_and_the_example_scene() {
         functions = ["inverse_dynamics", "coriolis"]
         frame_pose = ["left_ee"]
         scalar = "f32"
-        target = "no_std_sincos"
+        target = "no_std_libm"
         tip_wrench = "left_ee"
         coulomb_velocity = 0.002
         [gravity]
@@ -538,7 +538,7 @@ fn toml_round_trip_and_the_example_scene() {
         .name("left_arm")
         .functions([Function::InverseDynamics, Function::Coriolis, Function::FramePose("left_ee".into())])
         .scalar(dynagen::scene::ScalarType::F32)
-        .target(dynagen::scene::Target::NoStdSinCos)
+        .target(dynagen::scene::Target::NoStdLibm)
         .tip_wrench("left_ee")
         .coulomb_velocity(0.002)
         .gravity(Gravity::Input)
@@ -834,4 +834,59 @@ fn a_locked_branch_with_a_tip_keeps_its_mass() {
     assert!(scene.warnings.is_empty());
     assert_eq!(scene.joint_names(), ["torso_yaw_joint", "left_shoulder_joint", "left_elbow_joint", "left_wrist_joint"]);
     compare_with_full(&scene, &mut full("torso_two_arms"), &held, &[], 12);
+}
+
+/// Armature inside the articulated-body algorithm (D_i = S_iᵀU_i + a_i)
+/// against the mass matrix with the armature on its diagonal, solved by
+/// nalgebra's LU, and against the scene's CRBA + LᵀDL path, on the panda
+/// (branched hand merged) and the two-armed torso, with gravity, friction and
+/// a tip wrench.
+#[test]
+fn armature_in_the_articulated_body_algorithm_matches_m_plus_armature_solve() {
+    use dynagen::algorithms::{TipWrench, Workspace};
+    use dynagen::scene::dynamics;
+    use dynagen::spatial::Force;
+    for (name, scene) in [
+        (
+            "panda",
+            Scene::new()
+                .armature("panda_joint1", 0.4)
+                .armature("panda_joint4", 0.05)
+                .armature("panda_finger_joint1", 0.3)
+                .viscous("panda_joint2", 0.5)
+                .tip_wrench("panda_hand"),
+        ),
+        ("torso_two_arms", Scene::new().armature("left_elbow_joint", 0.2).armature("right_shoulder_joint", 1e-3)),
+        ("ur5", Scene::new().armature("shoulder_lift_joint", 2.0).tip_wrench("ee_link")),
+    ] {
+        let scene = scene.apply(&model(name)).unwrap();
+        let n = scene.dof();
+        let g = scene.gravity_vector(None).unwrap();
+        let mut ws = Workspace::<f64>::new(&scene.model);
+        for seed in 0..5u64 {
+            let (q, qd, tau) = (state(n, 40 + seed, 2.0), state(n, 50 + seed, 1.5), state(n, 60 + seed, 10.0));
+            let tips: Vec<TipWrench<f64>> = scene
+                .tip_wrench_frame
+                .map(|frame| TipWrench { frame, wrench: Force::from_array([0.1, -0.2, 0.3, 3.0, 1.0, -5.0]) })
+                .into_iter()
+                .collect();
+            let (mut aba, mut ldlt, mut scratch) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+            let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());
+            dynamics::forward_dynamics(&scene, &mut ws, q, qd, tau, Some(&g), &tips, &mut scratch, &mut aba);
+            dynamics::forward_dynamics_ldlt(&scene, &mut ws, q, qd, tau, Some(&g), &tips, &mut scratch, &mut ldlt);
+            // M + diag(a) and τ − h − JᵀF − friction, solved by LU.
+            let mut m = vec![0.0; n * n];
+            dynamics::mass_matrix(&scene, &mut ws, q, &mut m);
+            let mut rhs = vec![0.0; n];
+            dynamics::inverse_dynamics(&scene, &mut ws, q, qd, &vec![0.0; n], Some(&g), &tips, &mut rhs);
+            let rhs = DVector::from_iterator(n, tau.iter().zip(&rhs).map(|(t, h)| t - h));
+            let lu = DMatrix::from_row_slice(n, n, &m).lu().solve(&rhs).unwrap();
+            assert_close(&aba, lu.as_slice(), 1e-11, &format!("{name}: ABA with armature vs LU"));
+            assert_close(&aba, &ldlt, 1e-11, &format!("{name}: ABA with armature vs LTDL"));
+            // and armature changes the answer
+            let mut plain = vec![0.0; n];
+            dynagen::algorithms::aba::aba(&scene.model, &mut ws, q, qd, &scratch, Some(&g), &tips, &mut plain);
+            assert!(plain.iter().zip(&aba).any(|(a, b)| (a - b).abs() > 1e-6), "{name}: armature had no effect");
+        }
+    }
 }

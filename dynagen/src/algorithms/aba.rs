@@ -152,11 +152,39 @@ pub fn aba<S: Scalar>(
     tips: &[TipWrench<S>],
     qdd: &mut [S],
 ) {
+    aba_with_armature(model, ws, q, qd, tau, gravity, tips, None, qdd)
+}
+
+/// [`aba`] with a per-joint armature `a` (reflected rotor inertia, kg·m² or
+/// kg): q̈ = (M(q) + diag(a))⁻¹(τ − h(q, q̇) − J(q)ᵀF_tip).
+///
+/// Armature is an inertia felt by the joint coordinate alone, so it enters
+/// the recursion exactly where the joint's own inertia does: in
+/// `D_i = S_iᵀU_i + a_i` (and so in the articulated inertia passed to the
+/// parent, `I_iᴬ − U_i D_i⁻¹ U_iᵀ`). Nothing else changes, so the
+/// algorithm keeps its O(n) cost and its accuracy. A joint with `a_i = 0`
+/// costs nothing more; `None` is no armature at all.
+///
+/// # Panics
+/// If a slice's length is not the model's number of joints.
+#[allow(clippy::too_many_arguments)]
+pub fn aba_with_armature<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    qd: &[S],
+    tau: &[S],
+    gravity: Option<&Vec3<S>>,
+    tips: &[TipWrench<S>],
+    armature: Option<&[f64]>,
+    qdd: &mut [S],
+) {
     let n = model.dof();
     assert!(
         q.len() == n && qd.len() == n && tau.len() == n && qdd.len() == n && ws.dof() == n,
         "aba: slices must have the model's {n} joints"
     );
+    assert!(armature.is_none_or(|a| a.len() == n), "aba: the armature must have the model's {n} joints");
     // Forward: velocities, velocity-product accelerations c, bias forces pA.
     for (i, body) in model.bodies.iter().enumerate() {
         let joint = &body.joint;
@@ -185,7 +213,12 @@ pub fn aba<S: Scalar>(
     // Backward: articulated inertias and bias forces.
     for (i, body) in model.bodies.iter().enumerate().rev() {
         let u = ws.art[i].mul_subspace(&body.joint);
-        let d_inv = S::one() / project(&body.joint, &u);
+        let d = project(&body.joint, &u);
+        let d = match armature.map_or(0.0, |a| a[i]) {
+            0.0 => d,
+            a => d + S::from_f64(a),
+        };
+        let d_inv = S::one() / d;
         let ui = tau[i] - project(&body.joint, &ws.f[i]);
         ws.u6[i] = u;
         ws.s1[i] = d_inv;

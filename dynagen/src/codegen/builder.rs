@@ -15,9 +15,12 @@
 //! The written file holds items only (no inner attributes such as
 //! `#![...]`), so it can be `include!`d inside a `mod` block.
 
-use super::{generate, CodegenError, CodegenOptions, ForwardDynamicsMethod, Functions, GeneratedModule, ScalarType};
+use super::{
+    generate, generate_scene, CodegenError, CodegenOptions, ForwardDynamicsMethod, Functions, GeneratedModule,
+    ScalarType,
+};
 use crate::model::{Model, ModelError};
-use crate::scene::{Scene, SceneError};
+use crate::scene::{Function as SceneFunction, Scene, SceneError, SceneModel};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -104,16 +107,21 @@ pub enum BuildError {
         #[source]
         source: SceneError,
     },
-    /// The scene asks for something code generation does not do yet.
-    #[error("dynagen: scene {scene}: {what} is not supported by code generation yet (only the whole robot, its own gravity, and the functions {} can be generated)", super::FUNCTION_NAMES.join(", "))]
-    SceneNotSupported {
+    /// The scene does not fit the robot (an unknown link or joint, a tip not
+    /// below the root, …).
+    #[error("dynagen: scene {scene} for {robot}: {source}")]
+    SceneRobot {
         /// The scene file, or `(given in Rust)`.
         scene: String,
-        /// What it asks for.
-        what: String,
+        /// The robot's source.
+        robot: String,
+        /// What is wrong (names the link, joint or option).
+        #[source]
+        source: Box<SceneError>,
     },
-    /// A function name that is not one of the generated-code contract.
-    #[error("dynagen: unknown function \"{name}\" (the functions are {})", super::FUNCTION_NAMES.join(", "))]
+    /// A function name that is not one of the generated-code contract or
+    /// `coriolis`.
+    #[error("dynagen: unknown function \"{name}\" (the functions are {}, coriolis)", super::FUNCTION_NAMES.join(", "))]
     UnknownFunction {
         /// The name given.
         name: String,
@@ -201,23 +209,29 @@ impl Builder {
         self.robot = Some(RobotInput::Model(Box::new(model)));
         self
     }
-    /// A scene. Code generation does not apply scenes yet: a scene that asks
-    /// for more than the whole robot with its own gravity (its name, scalar
-    /// and a choice among the five functions are honoured) makes
-    /// [`generate`](Builder::generate) fail with
-    /// [`BuildError::SceneNotSupported`].
+    /// A scene: the module then has only the scene's functions, with
+    /// everything it fixes folded in and its run-time inputs as arguments
+    /// (see [`generate_scene`](super::generate_scene)). The output file is
+    /// named after the scene's name if it has one. [`functions`](Builder::functions)
+    /// replaces the scene's functions other than the frame functions;
+    /// [`scalar`](Builder::scalar)`(F32)` makes it `f32` whatever the scene
+    /// says; the rounding snap, the forward-dynamics method and the
+    /// trigonometry (for a std target) come from the builder.
     pub fn scene(mut self, scene: Scene) -> Self {
         self.scene = Some(SceneInput::Scene(Box::new(scene)));
         self
     }
     /// A scene from a TOML file (see [`scene`](crate::scene)); as
-    /// [`scene`](Builder::scene).
+    /// [`scene`](Builder::scene). In a build script, cargo reruns it when the
+    /// file changes.
     pub fn scene_file(mut self, path: impl AsRef<Path>) -> Self {
         self.scene = Some(SceneInput::File(path.as_ref().to_path_buf()));
         self
     }
     /// Only these functions, by name (`inverse_dynamics`, `mass_matrix`,
-    /// `bias_forces`, `gravity_torques`, `forward_dynamics`); default all.
+    /// `bias_forces`, `gravity_torques`, `forward_dynamics`, `coriolis`);
+    /// default all five (or the scene's). `coriolis` is a scene function:
+    /// without a scene it makes the module the default scene's.
     pub fn functions<S: AsRef<str>>(mut self, names: &[S]) -> Self {
         self.functions = Some(names.iter().map(|s| s.as_ref().to_string()).collect());
         self
@@ -269,8 +283,9 @@ impl Builder {
         self
     }
 
-    /// The model, the options and the input files, without writing anything.
-    fn prepare(&self) -> Result<(Model, CodegenOptions, Option<String>, Vec<PathBuf>), BuildError> {
+    /// What to generate, the options and the input files, without writing
+    /// anything.
+    fn prepare(&self) -> Result<(Target, CodegenOptions, Option<String>, Vec<PathBuf>), BuildError> {
         let mut inputs = Vec::new();
         let mut options = self.options.clone();
         let model = match &self.robot {
@@ -284,32 +299,59 @@ impl Builder {
                 Model::from_urdf_file(path).map_err(|source| BuildError::Robot { path: path.clone(), source })?
             }
         };
-        let mut name = None;
-        if let Some(input) = &self.scene {
-            let (scene, label) = match input {
-                SceneInput::Scene(s) => ((**s).clone(), "(given in Rust)".to_string()),
-                SceneInput::File(path) => {
-                    inputs.push(path.clone());
-                    let s = Scene::from_toml_file(path)
-                        .map_err(|source| BuildError::Scene { path: path.clone(), source })?;
-                    (s, path.display().to_string())
-                }
-            };
-            // When codegen applies scenes, this becomes `scene.apply(&model)`.
-            supported_scene(&scene, &label, &mut options)?;
-            name = scene.name.clone();
-        }
+        // `coriolis` is a scene function: asking for it means the default scene.
+        let coriolis = self.functions.as_ref().is_some_and(|f| f.iter().any(|n| n.trim() == "coriolis"));
+        let default_scene = SceneInput::Scene(Box::default());
+        let scene_input = match &self.scene {
+            None if coriolis => Some(&default_scene),
+            s => s.as_ref(),
+        };
+        let Some(input) = scene_input else {
+            if let Some(names) = &self.functions {
+                options.functions =
+                    Functions::from_names(names).map_err(|name| BuildError::UnknownFunction { name })?;
+            }
+            return Ok((Target::Model(Box::new(model)), options, None, inputs));
+        };
+        let (mut scene, label) = match input {
+            SceneInput::Scene(s) => ((**s).clone(), "(given in Rust)".to_string()),
+            SceneInput::File(path) => {
+                inputs.push(path.clone());
+                let s =
+                    Scene::from_toml_file(path).map_err(|source| BuildError::Scene { path: path.clone(), source })?;
+                (s, path.display().to_string())
+            }
+        };
         if let Some(names) = &self.functions {
-            options.functions = Functions::from_names(names).map_err(|name| BuildError::UnknownFunction { name })?;
+            let mut functions = Vec::new();
+            for name in names {
+                let f = SceneFunction::from_name(name.trim())
+                    .ok_or_else(|| BuildError::UnknownFunction { name: name.clone() })?;
+                functions.push(f);
+            }
+            functions.extend(
+                scene
+                    .functions
+                    .iter()
+                    .filter(|f| matches!(f, SceneFunction::FramePose(_) | SceneFunction::FrameJacobian(_)))
+                    .cloned(),
+            );
+            scene.functions = functions;
         }
-        Ok((model, options, name, inputs))
+        let name = scene.name.clone();
+        let applied = scene.apply(&model).map_err(|source| BuildError::SceneRobot {
+            scene: label,
+            robot: self.robot_label(),
+            source: Box::new(source),
+        })?;
+        Ok((Target::Scene(Box::new(applied)), options, name, inputs))
     }
 
     /// Generates the module without writing it or printing anything (what
     /// the proc-macros and the `dynagen` command use).
     pub fn generate_module(&self) -> Result<GeneratedModule, BuildError> {
-        let (model, options, _, _) = self.prepare()?;
-        generate(&model, &options).map_err(|source| BuildError::Codegen { robot: self.robot_label(), source })
+        let (target, options, _, _) = self.prepare()?;
+        target.generate(&options).map_err(|source| BuildError::Codegen { robot: self.robot_label(), source })
     }
 
     fn robot_label(&self) -> String {
@@ -325,7 +367,7 @@ impl Builder {
     /// the URDF and the scene file. The file is rewritten only when its
     /// content changes.
     pub fn generate(&self) -> Result<GeneratedFile, BuildError> {
-        let (model, options, scene_name, inputs) = self.prepare()?;
+        let (target, options, scene_name, inputs) = self.prepare()?;
         let out_env = std::env::var_os("OUT_DIR");
         if self.cargo_output.unwrap_or(out_env.is_some()) {
             for p in &inputs {
@@ -340,13 +382,13 @@ impl Builder {
         let file = match (&self.file_name, scene_name) {
             (Some(f), _) => f.clone(),
             (None, Some(n)) => format!("{}.rs", module_name(&n)),
-            (None, None) => format!("{}.rs", module_name(&model.name)),
+            (None, None) => format!("{}.rs", module_name(target.robot_name())),
         };
         if file.contains(['/', '\\']) || !file.ends_with(".rs") || file == ".rs" {
             return Err(BuildError::BadFileName(file));
         }
         let module =
-            generate(&model, &options).map_err(|source| BuildError::Codegen { robot: self.robot_label(), source })?;
+            target.generate(&options).map_err(|source| BuildError::Codegen { robot: self.robot_label(), source })?;
         let path = dir.join(&file);
         let unchanged = std::fs::read(&path).is_ok_and(|old| old == module.source.as_bytes());
         if !unchanged {
@@ -358,52 +400,25 @@ impl Builder {
     }
 }
 
-/// Checks that code generation can do what `scene` asks, taking over its
-/// scalar and functions into `options`.
-fn supported_scene(scene: &Scene, label: &str, options: &mut CodegenOptions) -> Result<(), BuildError> {
-    use crate::scene::{Function, ScalarType as SceneScalar, Target};
-    let unsupported = |what: &str| BuildError::SceneNotSupported { scene: label.to_string(), what: what.to_string() };
-    let mut plain = scene.clone();
-    plain.name = None;
-    plain.scalar = SceneScalar::F64;
-    plain.functions = Function::DEFAULT.to_vec();
-    if plain.target != Target::Std {
-        return Err(unsupported("a no_std target"));
-    }
-    if plain != Scene::default() {
-        let d = Scene::default();
-        let what = if plain.gravity != d.gravity {
-            "a gravity other than the model's"
-        } else if plain.tip_wrench.is_some() {
-            "a tip wrench input"
-        } else if plain.subtree.is_some() {
-            "a sub-tree"
-        } else if !plain.locks.is_empty() {
-            "locking joints"
-        } else if !plain.payloads.is_empty() {
-            "a payload"
-        } else if !plain.armature.is_empty() {
-            "armature"
-        } else if !plain.viscous_friction.is_empty() || !plain.coulomb_friction.is_empty() {
-            "friction"
-        } else {
-            "a Coulomb smoothing velocity"
-        };
-        return Err(unsupported(what));
-    }
-    let mut names = Vec::new();
-    for f in &scene.functions {
-        if !Function::DEFAULT.contains(f) {
-            return Err(unsupported(&format!("the function `{}`", f.name())));
+/// What a builder generates: a model's module, or a scene's.
+enum Target {
+    Model(Box<Model>),
+    Scene(Box<SceneModel>),
+}
+
+impl Target {
+    fn robot_name(&self) -> &str {
+        match self {
+            Target::Model(m) => &m.name,
+            Target::Scene(s) => &s.model.name,
         }
-        names.push(f.name());
     }
-    options.functions = Functions::from_names(names).map_err(|name| BuildError::UnknownFunction { name })?;
-    options.scalar = match scene.scalar {
-        SceneScalar::F64 => ScalarType::F64,
-        SceneScalar::F32 => ScalarType::F32,
-    };
-    Ok(())
+    fn generate(&self, options: &CodegenOptions) -> Result<GeneratedModule, CodegenError> {
+        match self {
+            Target::Model(m) => generate(m, options),
+            Target::Scene(s) => generate_scene(s, options),
+        }
+    }
 }
 
 impl fmt::Display for GeneratedFile {

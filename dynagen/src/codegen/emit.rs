@@ -95,24 +95,113 @@ fn array(elems: impl IntoIterator<Item = Expr>) -> Expr {
     Expr::Array(syn::ExprArray { attrs: vec![], bracket_token: Default::default(), elems: elems.into_iter().collect() })
 }
 
-/// The name and parameters of an emitted function.
-pub(crate) struct Signature<'a> {
-    /// Which function.
-    pub kind: FunctionKind,
+/// A length of a parameter or of the output: the number of joints (`DOF`)
+/// or a fixed number.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Dim {
+    /// `DOF`.
+    Dof,
+    /// A literal length.
+    Fixed(usize),
+}
+
+impl Dim {
+    fn tokens(self) -> TokenStream {
+        match self {
+            Dim::Dof => quote!(DOF),
+            Dim::Fixed(k) => {
+                let k = proc_macro2::Literal::usize_unsuffixed(k);
+                quote!(#k)
+            }
+        }
+    }
+    fn value(self, n: usize) -> usize {
+        match self {
+            Dim::Dof => n,
+            Dim::Fixed(k) => k,
+        }
+    }
+}
+
+/// The shape of a function's output: `[T; len]` or `[[T; cols]; rows]`
+/// (the traced outputs row-major).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Shape {
+    /// A vector.
+    Vector(Dim),
+    /// A matrix, rows then columns.
+    Matrix(Dim, Dim),
+}
+
+impl Shape {
+    /// The shape of a function of the generated-code contract.
+    pub(crate) fn of(kind: FunctionKind) -> Shape {
+        if kind.is_matrix() {
+            Shape::Matrix(Dim::Dof, Dim::Dof)
+        } else {
+            Shape::Vector(Dim::Dof)
+        }
+    }
+    /// The Rust type.
+    pub(crate) fn tokens(self, scalar: ScalarType) -> TokenStream {
+        let ty = scalar_type(scalar);
+        match self {
+            Shape::Vector(d) => {
+                let d = d.tokens();
+                quote!([#ty; #d])
+            }
+            Shape::Matrix(r, c) => {
+                let (r, c) = (r.tokens(), c.tokens());
+                quote!([[#ty; #c]; #r])
+            }
+        }
+    }
+}
+
+/// A parameter `name: &[T; len]`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct Param {
+    /// Its name.
+    pub name: String,
+    /// Its length.
+    pub len: Dim,
+}
+
+impl Param {
+    /// `name: &[T; DOF]`.
+    pub(crate) fn dof(name: &str) -> Param {
+        Param { name: name.to_string(), len: Dim::Dof }
+    }
+    /// `name: &[T; len]`.
+    pub(crate) fn fixed(name: &str, len: usize) -> Param {
+        Param { name: name.to_string(), len: Dim::Fixed(len) }
+    }
+    /// Its length for `n` joints.
+    pub(crate) fn len_value(&self, n: usize) -> usize {
+        self.len.value(n)
+    }
+    /// The tokens `name: &[T; len]`.
+    pub(crate) fn tokens(&self, scalar: ScalarType) -> TokenStream {
+        let ty = scalar_type(scalar);
+        let name = ident(&self.name);
+        let len = self.len.tokens();
+        quote!(#name: &[#ty; #len])
+    }
+}
+
+/// The name, parameters and output of an emitted function.
+pub(crate) struct Signature {
     /// Its Rust name.
     pub name: String,
-    /// Its parameters, each `&[T; DOF]`, in order.
-    pub params: Vec<&'a str>,
+    /// Its parameters, in order.
+    pub params: Vec<Param>,
+    /// Its output.
+    pub output: Shape,
 }
 
 /// `[T; DOF]`, or `[[T; DOF]; DOF]` for the mass matrix.
 pub(crate) fn return_type(kind: FunctionKind, scalar: ScalarType) -> TokenStream {
-    let ty = scalar_type(scalar);
-    if kind.is_matrix() {
-        quote!([[#ty; DOF]; DOF])
-    } else {
-        quote!([#ty; DOF])
-    }
+    Shape::of(kind).tokens(scalar)
 }
 
 /// `pub fn name(inputs…) -> output { let …; [outputs] }`: one `let` per kept
@@ -120,13 +209,12 @@ pub(crate) fn return_type(kind: FunctionKind, scalar: ScalarType) -> TokenStream
 /// constants written in place as literals, inputs read as `q[i]`.
 pub(crate) fn emit_function(
     f: &Function,
-    signature: &Signature<'_>,
+    signature: &Signature,
     scalar: ScalarType,
     trig: Trig,
     n: usize,
     doc: &str,
 ) -> Result<syn::Item, CodegenError> {
-    let kind = signature.kind;
     let libm_sqrt = match scalar {
         ScalarType::F64 => "sqrt",
         ScalarType::F32 => "sqrtf",
@@ -201,21 +289,19 @@ pub(crate) fn emit_function(
         refs.push(reference);
     }
     let out: Vec<Expr> = f.outputs().iter().map(|&o| refs[o as usize].clone()).collect();
-    let result = if kind.is_matrix() {
-        array(out.chunks(n.max(1)).take(n).map(|row| array(row.iter().cloned())))
-    } else {
-        array(out)
+    let result = match signature.output {
+        Shape::Matrix(r, c) => {
+            let (r, c) = (r.value(n), c.value(n));
+            array(out.chunks(c.max(1)).take(r).map(|row| array(row.iter().cloned())))
+        }
+        Shape::Vector(_) => array(out),
     };
-    let ty = scalar_type(scalar);
-    let params = signature.params.iter().map(|name| {
-        let name = ident(name);
-        quote!(#name: &[#ty; DOF])
-    });
-    let unused = signature.params.iter().filter(|name| !f.uses_input(name)).map(|name| {
-        let name = ident(name);
+    let params = signature.params.iter().map(|p| p.tokens(scalar));
+    let unused = signature.params.iter().filter(|p| !f.uses_input(&p.name)).map(|p| {
+        let name = ident(&p.name);
         quote!(let _ = #name;)
     });
-    let ret = return_type(kind, scalar);
+    let ret = signature.output.tokens(scalar);
     let name = ident(&signature.name);
     let doc = doc.lines();
     let shell = quote! {

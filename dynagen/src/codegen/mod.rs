@@ -66,6 +66,7 @@ mod generic_count;
 mod hash;
 mod literal;
 mod rounding;
+mod scene;
 mod sin_cos;
 mod trace;
 
@@ -74,8 +75,9 @@ pub use generic_count::generic_op_count;
 pub use hash::{canonical_text, fnv1a64, model_hash};
 pub use literal::float_literal_text;
 pub use rounding::{snap_rounding, SnappedConstant, ROUNDING_TOLERANCE};
+pub use scene::{generate_scene, payload_argument, scene_function_name, trace_scene, SceneFunction};
 pub use sin_cos::{sin_cos_batch, sin_cos_kernel};
-pub use trace::{sin_cos_from_q, trace, trace_sin_cos_inputs, FunctionKind, SinCosTrace};
+pub use trace::{sin_cos_from_q, sin_cos_inputs, trace, trace_sin_cos_inputs, FunctionKind, SinCosTrace};
 
 use crate::model::Model;
 use crate::symbolic::{Function, OpCount, Rewrites};
@@ -89,15 +91,8 @@ pub const FUNCTION_NAMES: [&str; 5] =
 /// The generator's version, written into every header.
 pub const GENERATOR_VERSION: &str = env!("CARGO_PKG_VERSION");
 
-/// The float type of the generated code.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum ScalarType {
-    /// `f64`.
-    #[default]
-    F64,
-    /// `f32` (constants rounded to `f32`).
-    F32,
-}
+/// The float type of the generated code (one type with the scene's).
+pub use crate::scene::ScalarType;
 
 /// How the generated `forward_dynamics` computes q̈.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -284,6 +279,10 @@ pub enum CodegenError {
         /// The operation.
         what: &'static str,
     },
+    /// Two functions of a scene get the same Rust name (two frames whose
+    /// names differ only in characters a Rust name cannot hold).
+    #[error("two functions would be named `{0}` (frame names that differ only in characters Rust names cannot hold)")]
+    DuplicateName(String),
     /// The generated tokens did not parse as a Rust file (a bug of dynagen).
     #[error("internal error: generated code does not parse: {0}")]
     Internal(String),
@@ -312,8 +311,12 @@ pub struct GeneratedFunction {
 pub struct GeneratedModule {
     /// The formatted Rust source, header included.
     pub source: String,
-    /// Every traced function.
+    /// Every traced function (of a module of [`generate`]; empty for a
+    /// scene's).
     pub functions: Vec<GeneratedFunction>,
+    /// The functions of a scene's module ([`generate_scene`]; empty for
+    /// [`generate`]'s).
+    pub scene_functions: Vec<SceneFunction>,
     /// The model constants replaced by 0 or ±1.
     pub snapped: Vec<SnappedConstant>,
     /// FNV-1a of the model's [`canonical_text`].
@@ -324,6 +327,20 @@ impl GeneratedModule {
     /// The operation counts, as `(label, count)`.
     pub fn op_counts(&self) -> Vec<(&'static str, OpCount)> {
         self.functions.iter().map(|f| (f.kind.label(), f.op_count)).collect()
+    }
+    /// The function of a scene's module named `name` (`inverse_dynamics`,
+    /// `frame_pose_ee_link`, …).
+    pub fn scene_function(&self, name: &str) -> Option<&SceneFunction> {
+        self.scene_functions.iter().find(|f| f.name == name)
+    }
+    /// Every function's name and operation count, for either kind of
+    /// module (the forward dynamics not emitted are labelled so).
+    pub fn named_op_counts(&self) -> Vec<(String, OpCount)> {
+        let plain = self
+            .functions
+            .iter()
+            .map(|f| (format!("{}{}", f.kind.label(), if f.emitted { "" } else { " [not emitted]" }), f.op_count));
+        plain.chain(self.scene_functions.iter().map(|f| (f.name.clone(), f.op_count))).collect()
     }
     /// The traced function of `kind`, if it was traced.
     pub fn function(&self, kind: FunctionKind) -> Option<&Function> {
@@ -402,7 +419,8 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
             }
             params.extend(&kind.inputs()[1..]);
             let sc_name = format!("{}_sc", kind.fn_name());
-            let signature = emit::Signature { kind, name: sc_name.clone(), params };
+            let params = params.into_iter().map(emit::Param::dof).collect();
+            let signature = emit::Signature { name: sc_name.clone(), params, output: emit::Shape::of(kind) };
             let doc = format!("{}\n\n{}", doc_of(kind, model, &sc.function.op_count()), sc_doc(has_prismatic));
             items.push(emit::emit_function(&sc.function, &signature, options.scalar, options.trig, n, &doc)?);
             if options.trig != Trig::Inputs {
@@ -411,7 +429,9 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
                     doc_of(kind, model, &op_count),
                     trig_source(options.trig, options.scalar)
                 );
-                items.push(parse_item(wrapper(kind, &sc, has_prismatic, options, &doc))?);
+                let params: Vec<emit::Param> = kind.inputs().iter().map(|p| emit::Param::dof(p)).collect();
+                let ret = emit::return_type(kind, options.scalar);
+                items.push(parse_item(wrapper(kind.fn_name(), &params, ret, &sc, has_prismatic, options, &doc))?);
             }
         }
         functions.push(GeneratedFunction { kind, emitted, function, sin_cos_inputs: sc, op_count });
@@ -421,7 +441,13 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
     let model_hash = model_hash(model);
     let header = header(model, options, &functions, &snapped, model_hash);
     let kernel = sin_cos::KERNEL_SOURCE;
-    Ok(GeneratedModule { source: format!("{header}\n{body}\n{kernel}"), functions, snapped, model_hash })
+    Ok(GeneratedModule {
+        source: format!("{header}\n{body}\n{kernel}"),
+        functions,
+        scene_functions: Vec::new(),
+        snapped,
+        model_hash,
+    })
 }
 
 fn parse_item(tokens: proc_macro2::TokenStream) -> Result<syn::Item, CodegenError> {
@@ -447,20 +473,21 @@ fn trig_source(trig: Trig, scalar: ScalarType) -> &'static str {
     }
 }
 
-/// `NAME(q, …)`: the sines and cosines, then `NAME_sc`.
+/// `NAME(q, …)`: the sines and cosines, then `NAME_sc`. `params` start
+/// with `q`.
 fn wrapper(
-    kind: FunctionKind,
+    fn_name: &str,
+    params: &[emit::Param],
+    ret: proc_macro2::TokenStream,
     sc: &SinCosTrace,
     has_prismatic: bool,
     options: &CodegenOptions,
     doc: &str,
 ) -> proc_macro2::TokenStream {
-    let ty = emit::scalar_type(options.scalar);
-    let ret = emit::return_type(kind, options.scalar);
-    let name = quote::format_ident!("{}", kind.fn_name());
-    let sc_name = quote::format_ident!("{}_sc", kind.fn_name());
-    let params: Vec<proc_macro2::Ident> = kind.inputs().iter().map(|p| quote::format_ident!("{p}")).collect();
-    let rest = &params[1..];
+    let name = quote::format_ident!("{}", fn_name);
+    let sc_name = quote::format_ident!("{}_sc", fn_name);
+    let typed: Vec<proc_macro2::TokenStream> = params.iter().map(|p| p.tokens(options.scalar)).collect();
+    let rest: Vec<proc_macro2::Ident> = params[1..].iter().map(|p| quote::format_ident!("{}", p.name)).collect();
     let q_arg = if has_prismatic { quote!(q,) } else { quote!() };
     let angle = |i: usize, k: f64| {
         let i = proc_macro2::Literal::usize_unsuffixed(i);
@@ -518,7 +545,7 @@ fn wrapper(
     quote! {
         #(#[doc = #doc])*
         #[inline]
-        pub fn #name(#(#params: &[#ty; DOF]),*) -> #ret {
+        pub fn #name(#(#typed),*) -> #ret {
             #body
         }
     }

@@ -131,7 +131,12 @@ pub struct SinCosTrace {
 /// anything other than a joint angle (which the algorithms never take).
 pub fn trace_sin_cos_inputs(model: &Model, kind: FunctionKind, rewrites: Rewrites) -> Result<SinCosTrace, String> {
     let f = trace_unfactored(model, kind, rewrites).map_err(|e| e.to_string())?;
-    let n = model.dof();
+    sin_cos_inputs(&f, model.dof(), rewrites)
+}
+
+/// A traced (unfactored) function of `q` with the sines and cosines of the
+/// `n` joint angles made inputs, then factored; see [`trace_sin_cos_inputs`].
+pub fn sin_cos_inputs(f: &Function, n: usize, rewrites: Rewrites) -> Result<SinCosTrace, String> {
     let nodes = f.nodes();
     let q = f.input_names().iter().position(|s| s == "q").map(|k| k as u32);
     let joint_of = |id: NodeId| match nodes[id as usize] {

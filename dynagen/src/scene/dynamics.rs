@@ -114,16 +114,10 @@ pub fn coriolis<S: Scalar>(scene: &SceneModel, ws: &mut Workspace<S>, q: &[S], q
     bias::coriolis_torques(&scene.model, ws, q, qd, c);
 }
 
-/// q̈ = (M(q) + diag(armature))⁻¹(τ − friction − h(q, q̇) − J(q)ᵀF_tip).
-///
-/// Without armature this is the articulated-body algorithm on τ − friction
-/// (the most accurate method, see DESIGN.md). Armature changes the
-/// articulated-body recursion itself (it adds to each joint's
-/// `D_i = S_iᵀU_i`), so a scene with armature goes through the mass matrix
-/// instead: M by the composite-rigid-body algorithm, the armature on its
-/// diagonal, and the sparse LᵀDL solve of [`ldlt`]; armature only makes M
-/// better conditioned, but on long chains this path keeps fewer digits than
-/// the articulated-body algorithm. `scratch` (n entries) holds τ − friction.
+/// q̈ = (M(q) + diag(armature))⁻¹(τ − friction − h(q, q̇) − J(q)ᵀF_tip), by
+/// the articulated-body algorithm on τ − friction with the armature in its
+/// joint inertias ([`aba::aba_with_armature`]): exact, O(n), and the most
+/// accurate method (see DESIGN.md). `scratch` (n entries) holds τ − friction.
 #[allow(clippy::too_many_arguments)]
 pub fn forward_dynamics<S: Scalar>(
     scene: &SceneModel,
@@ -140,10 +134,31 @@ pub fn forward_dynamics<S: Scalar>(
     assert!(scratch.len() == n && tau.len() == n, "forward_dynamics: slices must have the model's {n} joints");
     scratch.copy_from_slice(tau);
     sub_friction(scene, qd, scratch);
-    if !scene.has_armature() {
-        aba::aba(&scene.model, ws, q, qd, scratch, gravity, tips, qdd);
-        return;
-    }
+    let armature = if scene.has_armature() { Some(scene.armature.as_slice()) } else { None };
+    aba::aba_with_armature(&scene.model, ws, q, qd, scratch, gravity, tips, armature, qdd);
+}
+
+/// The same q̈ as [`forward_dynamics`] through the mass matrix: M by the
+/// composite-rigid-body algorithm with the armature on its diagonal, h and
+/// J(q)ᵀF_tip by the recursive Newton-Euler algorithm, and the sparse LᵀDL
+/// solve of [`ldlt`]. Fewer operations on short chains, fewer digits on
+/// long ones. `scratch` (n entries) holds τ − friction.
+#[allow(clippy::too_many_arguments)]
+pub fn forward_dynamics_ldlt<S: Scalar>(
+    scene: &SceneModel,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    qd: &[S],
+    tau: &[S],
+    gravity: Option<&Vec3<S>>,
+    tips: &[TipWrench<S>],
+    scratch: &mut [S],
+    qdd: &mut [S],
+) {
+    let n = scene.dof();
+    assert!(scratch.len() == n && tau.len() == n, "forward_dynamics_ldlt: slices must have the model's {n} joints");
+    scratch.copy_from_slice(tau);
+    sub_friction(scene, qd, scratch);
     // h + JᵀF_tip into qdd, then the right-hand side.
     rnea::rnea(&scene.model, ws, q, Some(qd), None, gravity, tips, qdd);
     for i in 0..n {

@@ -6,8 +6,11 @@
 //! armature and friction of each joint. [`Scene::apply`] turns a [`Model`]
 //! and a scene into a [`SceneModel`]: the reduced model with every constant
 //! folded in, plus the per-joint vectors and run-time inputs. The generic
-//! solver runs it through [`SceneRobot`]; code generation consumes the same
-//! [`SceneModel`] (and traces the same functions, [`dynamics`]).
+//! solver runs it through [`SceneRobot`]; code generation
+//! ([`generate_scene`](crate::codegen::generate_scene), the `Builder`'s
+//! `.scene(..)`, `dynagen generate --scene`, the macros' scene keys)
+//! consumes the same [`SceneModel`] and traces the same functions,
+//! [`dynamics`].
 //!
 //! # The equations of a scene
 //!
@@ -69,7 +72,8 @@
 //!   the link belongs to, exactly as a URDF link fixed to it would be. An
 //!   input payload is recorded in [`SceneModel::input_payloads`]; the generic
 //!   solver adds the values given at each call to the body's inertia
-//!   ([`SceneInputs::payloads`]); code generation will make it an argument.
+//!   ([`SceneInputs::payloads`]); generated code takes it as an argument
+//!   `payload_LINK: &[T; 10]`.
 //!
 //! # The TOML format
 //!
@@ -181,6 +185,23 @@ impl Function {
         Function::GravityTorques,
         Function::ForwardDynamics,
     ];
+    /// The function without a frame named `name` (`inverse_dynamics`,
+    /// `mass_matrix`, `bias_forces`, `gravity_torques`, `coriolis`,
+    /// `forward_dynamics`), if it is one.
+    pub fn from_name(name: &str) -> Option<Function> {
+        Some(match name {
+            "inverse_dynamics" => Function::InverseDynamics,
+            "mass_matrix" => Function::MassMatrix,
+            "bias_forces" => Function::BiasForces,
+            "gravity_torques" => Function::GravityTorques,
+            "coriolis" => Function::Coriolis,
+            "forward_dynamics" => Function::ForwardDynamics,
+            _ => return None,
+        })
+    }
+    /// The names [`from_name`](Self::from_name) knows.
+    pub const NAMES: [&'static str; 6] =
+        ["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "coriolis", "forward_dynamics"];
     /// The function's name in generated code and in TOML (`frame_pose` and
     /// `frame_jacobian` for the frame functions).
     pub fn name(&self) -> &'static str {
@@ -283,14 +304,14 @@ pub struct Payload {
     pub value: PayloadValue,
 }
 
-/// The scalar type of generated code (code generation only: the generic
-/// solver runs on `f64`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// The float type of generated code (code generation only: the generic
+/// solver runs on `f64`); also [`codegen::ScalarType`](crate::codegen::ScalarType).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum ScalarType {
     /// `f64`.
     #[default]
     F64,
-    /// `f32`.
+    /// `f32` (constants rounded to `f32`).
     F32,
 }
 
@@ -464,6 +485,14 @@ impl Scene {
     /// The checks that need no robot: numbers, duplicates and
     /// contradictions. [`apply`](Self::apply) runs them first.
     pub fn check(&self) -> Result<(), SceneError> {
+        if self.functions.is_empty() {
+            return Err(SceneError::NoFunctions);
+        }
+        if self.target == Target::NoStdSinCos {
+            if let Some((joint, _)) = self.coulomb_friction.iter().find(|(_, f)| *f != 0.0) {
+                return Err(SceneError::NeedsSqrt { joint: joint.clone() });
+            }
+        }
         if !(self.coulomb_velocity.is_finite() && self.coulomb_velocity > 0.0) {
             return Err(SceneError::BadCoulombVelocity(self.coulomb_velocity));
         }

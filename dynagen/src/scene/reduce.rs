@@ -106,8 +106,7 @@ impl SceneModel {
     pub fn joint_names(&self) -> Vec<&str> {
         self.model.joint_names()
     }
-    /// Whether any joint has armature (then forward dynamics goes through
-    /// the mass matrix; see [`dynamics::forward_dynamics`](super::dynamics::forward_dynamics)).
+    /// Whether any joint has armature.
     pub fn has_armature(&self) -> bool {
         self.armature.iter().any(|&a| a != 0.0)
     }

@@ -8,7 +8,9 @@
 //!   caller passes the sines and cosines (the Panda's prismatic fingers make
 //!   it take `q` as well);
 //! - [`ur5_batched`], [`ur5_batched_f32`]: `NAME(q, …)` calls the module's
-//!   own `sin_cos_all`.
+//!   own `sin_cos_all`;
+//! - [`ur5_controller_libm`], [`ur5_tau_sincos`]: scene modules with the
+//!   `no_std_libm` and `no_std_sincos` targets.
 //!
 //! The tests (which may use std) check every module against the generic
 //! solver, `dynagen::Robot`.
@@ -30,6 +32,16 @@ generated!(ur5_inputs, "ur5_inputs.rs", "The UR5, `f64`, sines and cosines as in
 generated!(ur5_batched, "ur5_batched.rs", "The UR5, `f64`, sines and cosines by the module's `sin_cos_all`.");
 generated!(ur5_batched_f32, "ur5_batched_f32.rs", "The UR5, `f32`, sines and cosines by the module's `sin_cos_all`.");
 generated!(panda_inputs, "panda_inputs.rs", "The Panda (prismatic fingers), `f64`, sines and cosines as inputs.");
+generated!(
+    ur5_controller_libm,
+    "ur5_controller_libm.rs",
+    "The UR5 controller scene (`dynagen/scenes/ur5_controller.toml`), target `no_std_libm`."
+);
+generated!(
+    ur5_tau_sincos,
+    "ur5_tau_sincos.rs",
+    "A UR5 torque scene (gravity and tip wrench as arguments), target `no_std_sincos`."
+);
 
 #[cfg(test)]
 mod tests {
@@ -164,6 +176,53 @@ mod tests {
             ];
             for (k, (g, w)) in got.iter().zip(&want).enumerate() {
                 assert!(rel_err(g, w) < 1e-11, "function {k}: {g:?} vs {w:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn no_std_scene_modules_match_the_scene_robot() {
+        use dynagen::scene::{Gravity, Scene, SceneInputs, SceneRobot};
+        use nalgebra::{Vector3, Vector6};
+        let path = |p: &str| std::format!("{}/../../dynagen/{p}", env!("CARGO_MANIFEST_DIR"));
+        let ur5 = dynagen::Model::from_urdf_file(path("robots/ur5.urdf")).unwrap();
+        let mut controller =
+            SceneRobot::new(Scene::from_toml_file(path("scenes/ur5_controller.toml")).unwrap().apply(&ur5).unwrap());
+        let tau_scene = Scene::new().gravity(Gravity::Input).tip_wrench("ee_link").viscous("elbow_joint", 0.5);
+        let mut tau_robot = SceneRobot::new(tau_scene.apply(&ur5).unwrap());
+        let mut rng = Rng(0x0bad_cafe_1234_5678);
+        for _ in 0..100 {
+            let (q, qd, qdd, tau): ([f64; 6], [f64; 6], [f64; 6], [f64; 6]) =
+                (rng.array(3.0), rng.array(2.0), rng.array(5.0), rng.array(30.0));
+            let (f, g): ([f64; 6], [f64; 3]) = (rng.array(10.0), [rng.next(), rng.next(), -9.81]);
+            let v = DVector::from_column_slice;
+            let inputs = SceneInputs { tip_wrench: Some(Vector6::from(f)), ..Default::default() };
+            let checks = [
+                (
+                    ur5_controller_libm::inverse_dynamics(&q, &qd, &qdd, &f).to_vec(),
+                    controller.inverse_dynamics_with(&v(&q), &v(&qd), &v(&qdd), &inputs).unwrap().as_slice().to_vec(),
+                ),
+                (
+                    ur5_controller_libm::forward_dynamics(&q, &qd, &tau, &f).to_vec(),
+                    controller.forward_dynamics_with(&v(&q), &v(&qd), &v(&tau), &inputs).unwrap().as_slice().to_vec(),
+                ),
+                (
+                    ur5_tau_sincos::inverse_dynamics_sc(&q.map(f64::sin), &q.map(f64::cos), &qd, &qdd, &g, &f).to_vec(),
+                    tau_robot
+                        .inverse_dynamics_with(
+                            &v(&q),
+                            &v(&qd),
+                            &v(&qdd),
+                            &SceneInputs { gravity: Some(Vector3::from(g)), ..inputs },
+                        )
+                        .unwrap()
+                        .as_slice()
+                        .to_vec(),
+                ),
+            ];
+            for (got, want) in &checks {
+                let e = rel_err(got, want);
+                assert!(e < 1e-12, "relative error {e:e}: {got:?} vs {want:?}");
             }
         }
     }

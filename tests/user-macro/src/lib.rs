@@ -108,3 +108,34 @@ mod tests {
         assert!(err.is_finite());
     }
 }
+
+/// The UR5 under the bundled controller scene (a TOML file): the tip wrench
+/// at `ee_link` is an argument, armature, friction and a gripper are folded
+/// in, and the tool flange's pose and Jacobian come with it.
+pub mod ur5_controller {
+    dynagen_macros::urdf!("../../dynagen/robots/ur5.urdf", scene = "../../dynagen/scenes/ur5_controller.toml");
+}
+
+#[cfg(test)]
+mod scene_tests {
+    use super::ur5_controller as c;
+
+    #[test]
+    fn the_tip_wrench_adds_the_jacobian_transpose_times_the_wrench() {
+        let q = [0.3, -1.1, 0.7, 2.0, -0.4, 0.9];
+        let (qd, qdd) = ([0.2, -0.1, 0.4, 0.0, 0.3, -0.5], [1.0, 0.5, -0.3, 0.2, 0.0, 0.1]);
+        let f = [0.4, -0.2, 0.1, 3.0, -5.0, 10.0];
+        let base = c::inverse_dynamics(&q, &qd, &qdd, &[0.0; 6]);
+        let with = c::inverse_dynamics(&q, &qd, &qdd, &f);
+        let j = c::frame_jacobian_ee_link(&q);
+        for i in 0..c::DOF {
+            let jt_f: f64 = (0..6).map(|r| j[r][i] * f[r]).sum();
+            assert!((with[i] - base[i] - jt_f).abs() < 1e-10, "joint {i}");
+        }
+        // Forward dynamics undoes inverse dynamics, wrench, armature and friction included.
+        let back = c::forward_dynamics(&q, &qd, &with, &f);
+        for i in 0..c::DOF {
+            assert!((back[i] - qdd[i]).abs() < 1e-10, "joint {i}: {back:?}");
+        }
+    }
+}

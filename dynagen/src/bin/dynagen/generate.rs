@@ -2,7 +2,7 @@
 //! [`dynagen::Builder`] writes it in a build script (byte for byte the same
 //! as [`dynagen::codegen::generate`] with the same options).
 
-use crate::error::{CliError, Output, STATUS_BAD_INPUT, STATUS_UNAVAILABLE};
+use crate::error::{CliError, Output, STATUS_BAD_INPUT};
 use crate::robot_source::RobotSource;
 use dynagen::codegen::{BuildError, Builder, ForwardDynamicsMethod, GeneratedModule, ScalarType, Trig};
 use std::path::PathBuf;
@@ -18,7 +18,8 @@ pub struct Args {
     #[arg(long, short, value_name = "FILE")]
     pub output: Option<PathBuf>,
     /// Only these functions (comma-separated): inverse_dynamics, mass_matrix,
-    /// bias_forces, gravity_torques, forward_dynamics.
+    /// bias_forces, gravity_torques, forward_dynamics (with --scene also
+    /// coriolis).
     #[arg(long, value_name = "a,b,...", value_delimiter = ',')]
     pub functions: Option<Vec<String>>,
     /// Generate f32 code (constants rounded to f32).
@@ -40,7 +41,10 @@ pub struct Args {
     /// Keep constants that are 0 or ±1 up to rounding as they are.
     #[arg(long)]
     pub no_snap: bool,
-    /// A scene (TOML). Only the default scene can be generated yet.
+    /// A scene (TOML; see the documentation of `dynagen::scene`): only its
+    /// functions, its constants folded in, its run-time inputs (gravity,
+    /// tip wrench, payloads) as extra arguments. --functions replaces its
+    /// functions (frame functions kept), --f32 makes it f32.
     #[arg(long, value_name = "SCENE.toml")]
     pub scene: Option<PathBuf>,
 }
@@ -56,8 +60,15 @@ It has no inner attributes: include it in a module with
   mod ur5 { include!(\"ur5.rs\"); }
 Each function's operation count is printed on stderr.
 
-Example:
-  dynagen generate robots/panda.urdf --functions inverse_dynamics,mass_matrix -o src/panda.rs";
+With --scene SCENE.toml the module has the scene's functions only (coriolis,
+frame_pose_FRAME and frame_jacobian_FRAME too if it asks), and the scene's
+run-time inputs as arguments after the usual ones: gravity: &[f64; 3],
+f_tip: &[f64; 6], payload_LINK: &[f64; 10]. Its header lists what the scene
+left out and each function's operation count.
+
+Examples:
+  dynagen generate robots/panda.urdf --functions inverse_dynamics,mass_matrix -o src/panda.rs
+  dynagen generate robots/ur5.urdf --scene scenes/ur5_controller.toml -o src/ur5_controller.rs";
 
 /// The builder for `args`, and the model it was given.
 fn builder(args: &Args, source: &RobotSource) -> Result<(Builder, dynagen::Model), CliError> {
@@ -92,10 +103,7 @@ fn builder(args: &Args, source: &RobotSource) -> Result<(Builder, dynagen::Model
 
 /// A builder error as a command-line error.
 pub fn cli_error(e: BuildError, source: &RobotSource) -> CliError {
-    let status = match e {
-        BuildError::SceneNotSupported { .. } => STATUS_UNAVAILABLE,
-        _ => STATUS_BAD_INPUT,
-    };
+    let status = STATUS_BAD_INPUT;
     let text = e.to_string();
     let text = text.strip_prefix("dynagen: ").unwrap_or(&text);
     let message = match e {
@@ -118,11 +126,8 @@ fn module(args: &Args) -> Result<(RobotSource, dynagen::Model, GeneratedModule),
 /// Runs `dynagen generate`.
 pub fn run(args: &Args) -> Result<Output, CliError> {
     let (source, model, module) = module(args)?;
-    let mut notes: Vec<String> = module
-        .functions
-        .iter()
-        .map(|f| format!("{}{}: {}", f.kind.label(), if f.emitted { "" } else { " [not emitted]" }, f.op_count))
-        .collect();
+    let mut notes: Vec<String> =
+        module.named_op_counts().into_iter().map(|(name, count)| format!("{name}: {count}")).collect();
     let stdout = match &args.output {
         None => module.source,
         Some(path) => {

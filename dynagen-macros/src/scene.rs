@@ -1,0 +1,300 @@
+//! The scene options of the macros: `scene = "file.toml"` or inline keys
+//! (`gravity = none`, `lock = { wrist_3_joint = 0.0 }`, …), collected into a
+//! [`dynagen::scene::Scene`], with the span of every name given so that an
+//! error about a link or joint points at it.
+
+use crate::robot::{array, Num};
+use dynagen::codegen::BuildError;
+use dynagen::scene::{Function, Gravity, PayloadInertia, Scene, Target};
+use proc_macro2::Span;
+use syn::parse::{Parse, ParseStream};
+use syn::punctuated::Punctuated;
+use syn::{braced, bracketed, Ident, LitStr, Token};
+
+/// The scene keys, for error messages.
+pub(crate) const SCENE_KEYS: &str = "scene, gravity, tip_wrench, subtree, lock, armature, viscous, coulomb, \
+                                     coulomb_velocity, payload, payload_input, frame_pose, frame_jacobian, target";
+
+/// A link, joint or frame name: an identifier or a string.
+struct Name(String, Span);
+
+impl Parse for Name {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        if input.peek(LitStr) {
+            let s: LitStr = input.parse()?;
+            Ok(Name(s.value(), s.span()))
+        } else {
+            let i: Ident = input.parse().map_err(|e| syn::Error::new(e.span(), "expected a link or joint name"))?;
+            Ok(Name(i.to_string(), i.span()))
+        }
+    }
+}
+
+/// `=` or `:`.
+fn separator(input: ParseStream) -> syn::Result<()> {
+    if input.peek(Token![=]) {
+        input.parse::<Token![=]>()?;
+    } else {
+        input.parse::<Token![:]>()?;
+    }
+    Ok(())
+}
+
+/// `{ key = value, … }` (or `key: value`).
+fn entries(input: ParseStream, mut entry: impl FnMut(&Name, ParseStream) -> syn::Result<()>) -> syn::Result<()> {
+    let content;
+    braced!(content in input);
+    while !content.is_empty() {
+        let key: Name = content.parse()?;
+        separator(&content)?;
+        entry(&key, &content)?;
+        if content.is_empty() {
+            break;
+        }
+        content.parse::<Token![,]>()?;
+    }
+    Ok(())
+}
+
+/// `[name, …]`.
+fn names(input: ParseStream) -> syn::Result<Vec<Name>> {
+    let content;
+    bracketed!(content in input);
+    let list: Punctuated<Name, Token![,]> = content.parse_terminated(Name::parse, Token![,])?;
+    Ok(list.into_iter().collect())
+}
+
+/// The scene a macro was given.
+#[derive(Default)]
+pub(crate) struct SceneOptions {
+    /// `scene = "path.toml"`.
+    pub(crate) file: Option<LitStr>,
+    /// The inline keys.
+    pub(crate) scene: Option<Scene>,
+    /// Every name given inline, in order, with its span.
+    spans: Vec<(String, Span)>,
+    /// The first scene key's span (for errors that name no item).
+    first_key: Option<Span>,
+}
+
+impl SceneOptions {
+    fn scene(&mut self) -> &mut Scene {
+        self.scene.get_or_insert_with(Scene::new)
+    }
+    fn name(&mut self, n: &Name) -> String {
+        self.spans.push((n.0.clone(), n.1));
+        n.0.clone()
+    }
+
+    /// Parses the value of scene key `key`, or returns `Ok(false)` when it is
+    /// not one.
+    pub(crate) fn parse_value(&mut self, key: &Ident, input: ParseStream) -> syn::Result<bool> {
+        let k = key.to_string();
+        if !SCENE_KEYS.split(", ").any(|s| s.trim() == k) {
+            return Ok(false);
+        }
+        self.first_key.get_or_insert(key.span());
+        if k == "scene" {
+            let path: LitStr = input.parse()?;
+            if self.file.is_some() {
+                return Err(syn::Error::new(path.span(), "`scene` is given twice"));
+            }
+            self.file = Some(path);
+            return Ok(true);
+        }
+        let take = |s: &mut Self| std::mem::take(s.scene());
+        match k.as_str() {
+            "gravity" => {
+                let g = if input.peek(syn::token::Bracket) {
+                    Gravity::Constant(array::<3>(input, "gravity")?)
+                } else {
+                    let v: Ident = input.parse()?;
+                    match v.to_string().as_str() {
+                        "none" => Gravity::None,
+                        "input" => Gravity::Input,
+                        "default" => Gravity::Default,
+                        _ => return Err(syn::Error::new(v.span(), "expected `none`, `input`, `default` or [x, y, z]")),
+                    }
+                };
+                let s = take(self);
+                *self.scene() = s.gravity(g);
+            }
+            "tip_wrench" => {
+                let n: Name = input.parse()?;
+                let link = self.name(&n);
+                let s = take(self);
+                *self.scene() = s.tip_wrench(&link);
+            }
+            "subtree" => {
+                let (mut root, mut tips) = (None, Vec::new());
+                entries(input, |key, content| {
+                    match key.0.as_str() {
+                        "root" => root = Some(content.parse::<Name>()?),
+                        "tips" => tips = names(content)?,
+                        _ => return Err(syn::Error::new(key.1, "expected `root` or `tips`")),
+                    }
+                    Ok(())
+                })?;
+                let root = root.ok_or_else(|| syn::Error::new(key.span(), "subtree: `root = LINK` is missing"))?;
+                let root = self.name(&root);
+                let tips: Vec<String> = tips.iter().map(|t| self.name(t)).collect();
+                let tips: Vec<&str> = tips.iter().map(String::as_str).collect();
+                let s = take(self);
+                *self.scene() = s.subtree(&root, &tips);
+            }
+            "lock" | "armature" | "viscous" | "coulomb" => {
+                let mut list = Vec::new();
+                entries(input, |joint, content| {
+                    list.push((Name(joint.0.clone(), joint.1), content.parse::<Num>()?.0));
+                    Ok(())
+                })?;
+                for (joint, x) in list {
+                    let j = self.name(&joint);
+                    let s = take(self);
+                    *self.scene() = match k.as_str() {
+                        "lock" => s.lock(&j, x),
+                        "armature" => s.armature(&j, x),
+                        "viscous" => s.viscous(&j, x),
+                        _ => s.coulomb(&j, x),
+                    };
+                }
+            }
+            "coulomb_velocity" => {
+                let v = input.parse::<Num>()?.0;
+                let s = take(self);
+                *self.scene() = s.coulomb_velocity(v);
+            }
+            "payload" => {
+                let (mut link, mut mass, mut com, mut inertia) = (None, None, [0.0; 3], [0.0; 6]);
+                entries(input, |key, content| {
+                    match key.0.as_str() {
+                        "link" => link = Some(content.parse::<Name>()?),
+                        "mass" => {
+                            // The tokens of the number, for an error spanning all of it.
+                            let tokens: proc_macro2::TokenStream = content.fork().parse::<Num>().map(|_| {
+                                let mut t = proc_macro2::TokenStream::new();
+                                let f = content.fork();
+                                if let Ok(Some(minus)) = f.parse::<Option<Token![-]>>() {
+                                    t.extend(quote::quote!(#minus));
+                                }
+                                if let Ok(lit) = f.parse::<syn::Lit>() {
+                                    t.extend(quote::quote!(#lit));
+                                }
+                                t
+                            })?;
+                            let m = content.parse::<Num>()?.0;
+                            if m < 0.0 {
+                                return Err(syn::Error::new_spanned(tokens, format!("payload: negative mass {m} kg")));
+                            }
+                            mass = Some(m);
+                        }
+                        "com" => com = array::<3>(content, "com")?,
+                        "inertia" => inertia = array::<6>(content, "inertia")?,
+                        _ => return Err(syn::Error::new(key.1, "expected `link`, `mass`, `com` or `inertia`")),
+                    }
+                    Ok(())
+                })?;
+                let link = link.ok_or_else(|| syn::Error::new(key.span(), "payload: `link = LINK` is missing"))?;
+                let mass = mass.ok_or_else(|| {
+                    syn::Error::new(key.span(), "payload: `mass = KG` is missing (or use `payload_input = LINK`)")
+                })?;
+                let l = self.name(&link);
+                let s = take(self);
+                *self.scene() = s.payload(&l, PayloadInertia::new(mass, com, inertia));
+            }
+            "payload_input" => {
+                let n: Name = input.parse()?;
+                let l = self.name(&n);
+                let s = take(self);
+                *self.scene() = s.payload_input(&l);
+            }
+            "frame_pose" | "frame_jacobian" => {
+                for n in names(input)? {
+                    let f = self.name(&n);
+                    let s = take(self);
+                    *self.scene() =
+                        s.function(if k == "frame_pose" { Function::FramePose(f) } else { Function::FrameJacobian(f) });
+                }
+            }
+            _ => {
+                let v: Ident = input.parse()?;
+                let t = match v.to_string().as_str() {
+                    "std" => Target::Std,
+                    "no_std_libm" => Target::NoStdLibm,
+                    "no_std_sincos" => Target::NoStdSinCos,
+                    _ => return Err(syn::Error::new(v.span(), "expected `std`, `no_std_libm` or `no_std_sincos`")),
+                };
+                let s = take(self);
+                *self.scene() = s.target(t);
+            }
+        }
+        Ok(true)
+    }
+
+    /// Whether a scene was given.
+    pub(crate) fn given(&self) -> bool {
+        self.file.is_some() || self.scene.is_some()
+    }
+
+    /// The message of an error of the builder, without what the macro's
+    /// user already sees (the `dynagen:` prefix, which robot and scene).
+    pub(crate) fn error_message(error: &BuildError) -> String {
+        match error {
+            BuildError::SceneRobot { source, .. } => format!("scene: {source}"),
+            e => {
+                let text = e.to_string();
+                text.strip_prefix("dynagen: ").unwrap_or(&text).to_string()
+            }
+        }
+    }
+
+    /// The token an error of the builder is about: the scene file for a
+    /// file's errors, else the last inline name the message quotes, else
+    /// the first scene key.
+    pub(crate) fn error_span(&self, error: &BuildError, default: Span) -> Span {
+        if let Some(f) = &self.file {
+            return f.span();
+        }
+        let message = error.to_string();
+        let quoted = self.spans.iter().rev().find(|(name, _)| message.contains(&format!("\"{name}\"")));
+        match (quoted, error) {
+            (Some((_, span)), _) => *span,
+            (None, BuildError::SceneRobot { .. }) => self.first_key.unwrap_or(default),
+            _ => default,
+        }
+    }
+
+    /// Adds the scene to `builder` (the inline keys on top of the file's
+    /// are not supported: the file wins, and both is an error when parsed).
+    pub(crate) fn apply(&self, builder: dynagen::codegen::Builder) -> syn::Result<dynagen::codegen::Builder> {
+        let root = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_else(|_| ".".into());
+        match (&self.file, &self.scene) {
+            (Some(f), Some(_)) => Err(syn::Error::new(
+                f.span(),
+                "give the scene either as a file (`scene = \"…\"`) or as inline keys, not both",
+            )),
+            (Some(f), None) => {
+                let path = std::path::Path::new(&root).join(f.value());
+                if !path.is_file() {
+                    return Err(syn::Error::new(
+                        f.span(),
+                        format!(
+                            "no such file: {:?} (paths are relative to the crate's root, the folder of its Cargo.toml)",
+                            f.value()
+                        ),
+                    ));
+                }
+                Ok(builder.scene_file(path))
+            }
+            (None, Some(s)) => Ok(builder.scene(s.clone())),
+            (None, None) => Ok(builder),
+        }
+    }
+
+    /// The scene file's absolute path, for `include_bytes!`.
+    pub(crate) fn file_path(&self) -> Option<String> {
+        let root = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_else(|_| ".".into());
+        let path = std::path::Path::new(&root).join(self.file.as_ref()?.value());
+        Some(path.canonicalize().unwrap_or(path).display().to_string())
+    }
+}

@@ -1,0 +1,670 @@
+//! Code generation for a scene: [`generate_scene`].
+//!
+//! Each function a scene asks for is traced from the functions of
+//! [`scene::dynamics`](crate::scene::dynamics), the ones
+//! [`SceneRobot`](crate::scene::SceneRobot) runs, on the reduced model of the
+//! [`SceneModel`]: locks, sub-tree, constant payloads, armature, friction and
+//! a constant (or no) gravity are folded in as constants, and what the scene
+//! does not ask for is never traced. The run-time inputs become arguments
+//! after the contract's (`q`, `qd`, `qdd` or `tau`), in this order:
+//!
+//! | argument | when | meaning |
+//! | --- | --- | --- |
+//! | `gravity: &[T; 3]` | gravity `input` | m/s², in the reduced model's base frame (the sub-tree root's) |
+//! | `f_tip: &[T; 6]` | a tip wrench | (m; f) the tip frame applies to its environment, in that frame (MR's `Ftip`) |
+//! | `payload_LINK: &[T; 10]` | an input payload on LINK | `[mass, cx, cy, cz, ixx, iyy, izz, ixy, ixz, iyz]`: kg, centre of mass (m) and inertia about it (kg·m²), in LINK's frame |
+//!
+//! `inverse_dynamics` and `forward_dynamics` take the gravity, the tip
+//! wrench and the payloads; `bias_forces` and `gravity_torques` gravity and
+//! payloads (h has no tip wrench); `mass_matrix` and `coriolis` only
+//! payloads; `frame_pose_FRAME(q) -> [[T; 4]; 4]` (the homogeneous pose in
+//! the base frame) and `frame_jacobian_FRAME(q) -> [[T; DOF]; 6]` (the body
+//! Jacobian, rows (ω; v), in the frame) nothing.
+//!
+//! **Input payloads.** The algorithms read a body's inertia as a model
+//! constant, so a payload given at run time cannot be traced through them
+//! directly. A payload fixed to a link is, for the rest of the robot, the
+//! wrench the link must apply to it: F = I·A + V ×* I·V, with I its inertia
+//! (from the arguments) and V, A the link frame's twist and acceleration
+//! (gravity included), computed by a forward pass along the link's path. So
+//! τ, h, g and C(q, q̇)q̇ are the recursive Newton-Euler algorithm with that
+//! wrench as one more tip wrench, and the mass matrix is M(q) + J_bᵀ I J_b,
+//! J_b the link frame's body Jacobian. Forward dynamics with an input
+//! payload solves (M + J_bᵀ I J_b) q̈ = τ − friction − h − Jᵀ(F_tip, F) by
+//! the sparse LᵀDL factorisation (the articulated-body algorithm would need
+//! the payload in its articulated inertias).
+
+use super::emit::{self, Dim, Param, Shape};
+use super::trace::{sin_cos_from_q, sin_cos_inputs, SinCosTrace};
+use super::{
+    module_name, parse_item, sin_cos, snap_rounding, trig_source, wrapper, CodegenError, CodegenOptions,
+    ForwardDynamicsMethod, GeneratedModule, ScalarType, SnappedConstant, Trig, GENERATOR_VERSION,
+};
+use crate::algorithms::joint::{add_motion, cross_motion, joint_transform, motion_to_child};
+use crate::algorithms::{kinematics, ldlt, rnea, TipWrench, Workspace};
+use crate::model::{JointKind, Model};
+use crate::scene::{dynamics, Function as SceneFn, ResolvedGravity, SceneModel};
+use crate::spatial::{Force, Inertia, Motion, Sym3, Transform, Vec3};
+use crate::symbolic::{factor, Expr, Function, OpCount, Rewrites, TraceActive, Tracer};
+use crate::Scalar;
+use quote::quote;
+use std::fmt::Write;
+
+/// One function of a scene module.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneFunction {
+    /// What the scene asked for.
+    pub function: SceneFn,
+    /// Its name in the module (`frame_pose_ee_link` for a frame function).
+    pub name: String,
+    /// Its arguments in order, with their lengths (the `_sc` variant takes
+    /// `s` and `c` instead of `q`, and `q` too if a joint is prismatic).
+    pub inputs: Vec<(String, usize)>,
+    /// The traced, dead-code-eliminated function (evaluate it with
+    /// [`Function::eval`], inputs by the names of [`inputs`](Self::inputs)).
+    pub traced: Function,
+    /// The same with the sines and cosines as inputs: the body of `NAME_sc`.
+    pub sin_cos_inputs: SinCosTrace,
+    /// Its operation count.
+    pub op_count: OpCount,
+}
+
+/// The run-time arguments of a scene function after the contract's.
+struct Extras {
+    gravity: bool,
+    tip: bool,
+    payloads: bool,
+}
+
+fn extras(f: &SceneFn) -> Extras {
+    let (gravity, tip, payloads) = match f {
+        SceneFn::InverseDynamics | SceneFn::ForwardDynamics => (true, true, true),
+        SceneFn::BiasForces | SceneFn::GravityTorques => (true, false, true),
+        SceneFn::MassMatrix | SceneFn::Coriolis => (false, false, true),
+        SceneFn::FramePose(_) | SceneFn::FrameJacobian(_) => (false, false, false),
+    };
+    Extras { gravity, tip, payloads }
+}
+
+/// The contract's vector arguments of a scene function.
+fn vectors(f: &SceneFn) -> &'static [&'static str] {
+    match f {
+        SceneFn::InverseDynamics => &["q", "qd", "qdd"],
+        SceneFn::BiasForces | SceneFn::Coriolis => &["q", "qd"],
+        SceneFn::ForwardDynamics => &["q", "qd", "tau"],
+        _ => &["q"],
+    }
+}
+
+/// The name of a payload's argument.
+pub fn payload_argument(link: &str) -> String {
+    format!("payload_{}", module_name(link).trim_start_matches('_'))
+}
+
+/// The Rust name of a scene function.
+pub fn scene_function_name(f: &SceneFn) -> String {
+    match f {
+        SceneFn::FramePose(frame) => format!("frame_pose_{}", module_name(frame).trim_start_matches('_')),
+        SceneFn::FrameJacobian(frame) => format!("frame_jacobian_{}", module_name(frame).trim_start_matches('_')),
+        f => f.name().to_string(),
+    }
+}
+
+/// The arguments of `f` in `scene`, with their lengths.
+fn params(scene: &SceneModel, f: &SceneFn) -> Vec<Param> {
+    let mut p: Vec<Param> = vectors(f).iter().map(|v| Param::dof(v)).collect();
+    let x = extras(f);
+    if x.gravity && scene.gravity == ResolvedGravity::Input {
+        p.push(Param::fixed("gravity", 3));
+    }
+    if x.tip && scene.tip_wrench_frame.is_some() {
+        p.push(Param::fixed("f_tip", 6));
+    }
+    if x.payloads {
+        for pl in &scene.input_payloads {
+            p.push(Param::fixed(&payload_argument(&pl.link), 10));
+        }
+    }
+    p
+}
+
+fn shape(f: &SceneFn) -> Shape {
+    match f {
+        SceneFn::MassMatrix => Shape::Matrix(Dim::Dof, Dim::Dof),
+        SceneFn::FramePose(_) => Shape::Matrix(Dim::Fixed(4), Dim::Fixed(4)),
+        SceneFn::FrameJacobian(_) => Shape::Matrix(Dim::Fixed(6), Dim::Dof),
+        _ => Shape::Vector(Dim::Dof),
+    }
+}
+
+/// An input payload in the trace: its link's frame and its inertia there.
+struct PayloadTerm {
+    frame: usize,
+    inertia: Inertia<Expr>,
+}
+
+/// The twist and spatial acceleration (gravity as an upward acceleration of
+/// the base) of frame `frame`, in the frame, by a forward pass along its
+/// body's path: `qd`, `qdd` or `gravity` absent are zero.
+fn frame_motion(
+    model: &Model,
+    frame: usize,
+    q: &[Expr],
+    qd: Option<&[Expr]>,
+    qdd: Option<&[Expr]>,
+    gravity: Option<&Vec3<Expr>>,
+) -> (Motion<Expr>, Motion<Expr>) {
+    let mut path = Vec::new();
+    let mut b = model.frames[frame].body;
+    while let Some(i) = b {
+        path.push(i);
+        b = model.bodies[i].parent;
+    }
+    let mut v = Motion::<Expr>::zero();
+    let mut a = Motion::new(Vec3::zero(), gravity.map_or(Vec3::zero(), |g| -*g));
+    for &i in path.iter().rev() {
+        let joint = &model.bodies[i].joint;
+        let x = joint_transform(joint, q[i]);
+        v = motion_to_child(joint, &x, &v);
+        a = motion_to_child(joint, &x, &a);
+        if let Some(qd) = qd {
+            add_motion(joint, &mut v, qd[i]);
+            a += cross_motion(joint, &v, qd[i]);
+        }
+        if let Some(qdd) = qdd {
+            add_motion(joint, &mut a, qdd[i]);
+        }
+    }
+    let place = Transform::<Expr>::from_f64(&model.frames[frame].placement);
+    (place.motion_to_child(&v), place.motion_to_child(&a))
+}
+
+/// The wrench each payload's link applies to it, as tip wrenches.
+fn payload_wrenches(
+    model: &Model,
+    payloads: &[PayloadTerm],
+    q: &[Expr],
+    qd: Option<&[Expr]>,
+    qdd: Option<&[Expr]>,
+    gravity: Option<&Vec3<Expr>>,
+) -> Vec<TipWrench<Expr>> {
+    payloads
+        .iter()
+        .map(|p| {
+            let (v, a) = frame_motion(model, p.frame, q, qd, qdd, gravity);
+            let wrench = p.inertia.mul_motion(&a) + v.cross_force(&p.inertia.mul_motion(&v));
+            TipWrench { frame: p.frame, wrench }
+        })
+        .collect()
+}
+
+/// Adds J_bᵀ I J_b of every payload to the n×n row-major `m`.
+fn add_payload_mass(model: &Model, ws: &mut Workspace<Expr>, payloads: &[PayloadTerm], q: &[Expr], m: &mut [Expr]) {
+    if payloads.is_empty() {
+        return;
+    }
+    let n = model.dof();
+    let zero = Expr::zero();
+    kinematics::forward_kinematics(model, ws, q);
+    let mut jac = vec![zero; 6 * n];
+    for p in payloads {
+        kinematics::body_jacobian(model, ws, p.frame, &mut jac);
+        let col = |j: usize| Motion::from_array(core::array::from_fn(|r| jac[r * n + j]));
+        // Columns of the joints that move the frame (the others are zero).
+        let Some(body) = model.frames[p.frame].body else { continue };
+        let moving: Vec<usize> = (0..n).filter(|&j| model.is_in_subtree(j, body)).collect();
+        let ij: Vec<Force<Expr>> = moving.iter().map(|&j| p.inertia.mul_motion(&col(j))).collect();
+        for (a, &r) in moving.iter().enumerate() {
+            for (b, &c) in moving.iter().enumerate().skip(a) {
+                let x = col(r).dot(&ij[b]);
+                m[r * n + c] += x;
+                if r != c {
+                    m[c * n + r] += x;
+                }
+            }
+        }
+    }
+}
+
+/// Traces `f` of `scene` (with `model`, the snapped reduced model) without
+/// factoring.
+fn trace_unfactored(
+    scene: &SceneModel,
+    model: &Model,
+    f: &SceneFn,
+    method: ForwardDynamicsMethod,
+    rewrites: Rewrites,
+) -> Result<Function, TraceActive> {
+    let n = model.dof();
+    let tracer = Tracer::start_with(rewrites)?;
+    let args: Vec<Vec<Expr>> = vectors(f).iter().map(|name| tracer.inputs(name, n)).collect();
+    let x = extras(f);
+    let gravity: Option<Vec3<Expr>> = match scene.gravity {
+        _ if !x.gravity => None,
+        ResolvedGravity::None => None,
+        ResolvedGravity::Constant(_) => Some(Vec3::from_f64(&model.gravity)),
+        ResolvedGravity::Input => {
+            let g = tracer.inputs("gravity", 3);
+            Some(Vec3([g[0], g[1], g[2]]))
+        }
+    };
+    let tips: Vec<TipWrench<Expr>> = match scene.tip_wrench_frame {
+        Some(frame) if x.tip => {
+            let w = tracer.inputs("f_tip", 6);
+            vec![TipWrench { frame, wrench: Force::from_array([w[0], w[1], w[2], w[3], w[4], w[5]]) }]
+        }
+        _ => Vec::new(),
+    };
+    let mut payloads = Vec::new();
+    if x.payloads {
+        for p in &scene.input_payloads {
+            let v = tracer.inputs(&payload_argument(&p.link), 10);
+            if p.body.is_none() {
+                continue; // on the base: moves nothing
+            }
+            let inertia = Inertia::from_mass_com_inertia(
+                v[0],
+                Vec3([v[1], v[2], v[3]]),
+                Sym3([v[4], v[5], v[6], v[7], v[8], v[9]]),
+            );
+            payloads.push(PayloadTerm { frame: p.frame, inertia });
+        }
+    }
+    let mut s = scene.clone();
+    s.model = model.clone();
+    let scene = &s;
+    let mut ws = Workspace::<Expr>::new(model);
+    let zero = tracer.constant(0.0);
+    let g = gravity.as_ref();
+    let out_len = match shape(f) {
+        Shape::Vector(_) => n,
+        Shape::Matrix(Dim::Fixed(4), _) => 16,
+        Shape::Matrix(Dim::Fixed(6), _) => 6 * n,
+        Shape::Matrix(..) => n * n,
+    };
+    let mut out = vec![zero; out_len];
+    let with_payloads = |mut tips: Vec<TipWrench<Expr>>, qd: Option<&[Expr]>, qdd: Option<&[Expr]>, g| {
+        tips.extend(payload_wrenches(model, &payloads, &args[0], qd, qdd, g));
+        tips
+    };
+    let p = !payloads.is_empty();
+    match f {
+        SceneFn::InverseDynamics => {
+            let tips = with_payloads(tips, Some(&args[1]), Some(&args[2]), g);
+            dynamics::inverse_dynamics(scene, &mut ws, &args[0], &args[1], &args[2], g, &tips, &mut out);
+        }
+        SceneFn::MassMatrix => {
+            dynamics::mass_matrix(scene, &mut ws, &args[0], &mut out);
+            add_payload_mass(model, &mut ws, &payloads, &args[0], &mut out);
+        }
+        SceneFn::BiasForces if p => {
+            // h = RNEA(q, q̇, 0) with the payloads' wrenches, plus friction.
+            let tips = with_payloads(Vec::new(), Some(&args[1]), None, g);
+            rnea::rnea(model, &mut ws, &args[0], Some(&args[1]), None, g, &tips, &mut out);
+            dynamics::add_friction(scene, &args[1], &mut out);
+        }
+        SceneFn::BiasForces => dynamics::bias_forces(scene, &mut ws, &args[0], &args[1], g, &mut out),
+        SceneFn::GravityTorques if p && g.is_some() => {
+            let tips = with_payloads(Vec::new(), None, None, g);
+            rnea::rnea(model, &mut ws, &args[0], None, None, g, &tips, &mut out);
+        }
+        SceneFn::GravityTorques => dynamics::gravity_torques(scene, &mut ws, &args[0], g, &mut out),
+        SceneFn::Coriolis if p => {
+            let tips = with_payloads(Vec::new(), Some(&args[1]), None, None);
+            rnea::rnea(model, &mut ws, &args[0], Some(&args[1]), None, None, &tips, &mut out);
+        }
+        SceneFn::Coriolis => dynamics::coriolis(scene, &mut ws, &args[0], &args[1], &mut out),
+        SceneFn::ForwardDynamics if !p => {
+            let mut scratch = vec![zero; n];
+            match method {
+                ForwardDynamicsMethod::Aba => dynamics::forward_dynamics(
+                    scene,
+                    &mut ws,
+                    &args[0],
+                    &args[1],
+                    &args[2],
+                    g,
+                    &tips,
+                    &mut scratch,
+                    &mut out,
+                ),
+                ForwardDynamicsMethod::Ldlt => dynamics::forward_dynamics_ldlt(
+                    scene,
+                    &mut ws,
+                    &args[0],
+                    &args[1],
+                    &args[2],
+                    g,
+                    &tips,
+                    &mut scratch,
+                    &mut out,
+                ),
+            }
+        }
+        SceneFn::ForwardDynamics => {
+            // (M + Σ J_bᵀ I J_b) q̈ = τ − friction − h − Jᵀ(F_tip, payload wrenches at q̈ = 0).
+            let mut m = vec![zero; n * n];
+            dynamics::mass_matrix(scene, &mut ws, &args[0], &mut m);
+            add_payload_mass(model, &mut ws, &payloads, &args[0], &mut m);
+            let tips = with_payloads(tips, Some(&args[1]), None, g);
+            let mut h = vec![zero; n];
+            rnea::rnea(model, &mut ws, &args[0], Some(&args[1]), None, g, &tips, &mut h);
+            out.copy_from_slice(&args[2]);
+            dynamics::sub_friction(scene, &args[1], &mut out);
+            for (o, hi) in out.iter_mut().zip(&h) {
+                *o -= *hi;
+            }
+            ldlt::factorise(model, &mut m);
+            ldlt::solve(model, &m, &mut out);
+        }
+        SceneFn::FramePose(name) | SceneFn::FrameJacobian(name) => {
+            let frame = model.frame_index(name).expect("checked by Scene::apply");
+            kinematics::forward_kinematics(model, &mut ws, &args[0]);
+            if matches!(f, SceneFn::FramePose(_)) {
+                let t = kinematics::frame_pose(model, &ws, frame).to_homogeneous();
+                for (o, x) in out.iter_mut().zip(t.iter().flatten()) {
+                    *o = *x;
+                }
+            } else {
+                kinematics::body_jacobian(model, &ws, frame, &mut out);
+            }
+        }
+    }
+    drop(ws);
+    let graph = tracer.finish();
+    Ok(Function::new(&scene_function_name(f), &graph, &out))
+}
+
+/// Traces `f` of `scene` as the generated module computes it, factored (no
+/// rounding snap; [`generate_scene`] snaps the model first when asked).
+pub fn trace_scene(scene: &SceneModel, f: &SceneFn, rewrites: Rewrites) -> Result<Function, TraceActive> {
+    let t = trace_unfactored(scene, &scene.model, f, ForwardDynamicsMethod::Aba, rewrites)?;
+    Ok(factor(&t, rewrites))
+}
+
+fn doc_of(scene: &SceneModel, f: &SceneFn, count: &OpCount) -> String {
+    let what = match f {
+        SceneFn::InverseDynamics => {
+            "Inverse dynamics τ = (M(q) + diag(armature))q̈ + C(q, q̇)q̇ + g(q) + friction + J(q)ᵀF_tip, by the recursive Newton-Euler algorithm.".to_string()
+        }
+        SceneFn::MassMatrix => {
+            "The mass matrix M(q) + diag(armature) by the composite-rigid-body algorithm (symmetric, `[row][col]`).".to_string()
+        }
+        SceneFn::BiasForces => "The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q) + friction.".to_string(),
+        SceneFn::GravityTorques => "The gravity torques g(q).".to_string(),
+        SceneFn::Coriolis => "The Coriolis and centripetal torques C(q, q̇)q̇.".to_string(),
+        SceneFn::ForwardDynamics => {
+            "Forward dynamics q̈ = (M(q) + diag(armature))⁻¹(τ − h(q, q̇) − J(q)ᵀF_tip).".to_string()
+        }
+        SceneFn::FramePose(frame) => {
+            format!("The pose of frame `{frame}` in the base frame, as a homogeneous matrix `[row][col]`.")
+        }
+        SceneFn::FrameJacobian(frame) => format!(
+            "The body Jacobian of frame `{frame}` (6 × DOF, rows (ω; v), in the frame): its twist is `J q̇`, and `Jᵀ F` is the joint torque of a wrench `F` given in the frame."
+        ),
+    };
+    let mut args = String::new();
+    for p in params(scene, f) {
+        let what = match p.name.as_str() {
+            "gravity" => "`gravity`: m/s², in the base frame.".to_string(),
+            "f_tip" => {
+                let frame = scene.tip_wrench_frame.map(|i| scene.model.frames[i].name.as_str()).unwrap_or("");
+                format!("`f_tip`: the wrench (m; f) frame `{frame}` applies to its environment, in that frame (N·m; N).")
+            }
+            name if name.starts_with("payload_") => format!(
+                "`{name}`: [mass, cx, cy, cz, ixx, iyy, izz, ixy, ixz, iyz], kg, m and kg·m² about the centre of mass, in the link's frame."
+            ),
+            _ => continue,
+        };
+        let _ = write!(args, "\n {what}");
+    }
+    format!(" {what}\n\n Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N.{args}\n {count}.")
+}
+
+/// Generates the module of an applied scene: only the functions it asks
+/// for, everything it fixes folded in, its run-time inputs as arguments (see
+/// the [module documentation](self)). From `options`: the rounding snap,
+/// the rewrites, the source for the header, the forward-dynamics method
+/// (without input payloads), and the trigonometry when the scene's target
+/// is std. The scalar is `f32` if the scene or `options` ask for it; a
+/// no_std target sets the trigonometry (libm, or the sines and cosines as
+/// inputs).
+///
+/// ```
+/// use dynagen::codegen::{generate_scene, CodegenOptions};
+/// use dynagen::scene::{Function, Gravity, Scene};
+/// let ur5 = dynagen::Model::from_urdf_file(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/ur5.urdf")).unwrap();
+/// let scene = Scene::new().functions([Function::InverseDynamics]).gravity(Gravity::None).tip_wrench("ee_link");
+/// let module = generate_scene(&scene.apply(&ur5).unwrap(), &CodegenOptions::default()).unwrap();
+/// assert!(module.source.contains("f_tip: &[f64; 6]"));
+/// assert!(!module.source.contains("fn mass_matrix"));
+/// assert!(module.source.contains("//   functions not generated: mass_matrix, bias_forces"));
+/// ```
+pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<GeneratedModule, CodegenError> {
+    let (model, snapped) =
+        if options.snap_rounding { snap_rounding(&scene.model) } else { (scene.model.clone(), Vec::new()) };
+    let n = model.dof();
+    let scalar = if scene.scalar == ScalarType::F32 { ScalarType::F32 } else { options.scalar };
+    let trig = match scene.target {
+        crate::scene::Target::Std => options.trig,
+        t => Trig::from(t),
+    };
+    let opts = CodegenOptions { scalar, trig, ..options.clone() };
+    let mut names = std::collections::HashSet::new();
+    for f in &scene.functions {
+        let name = scene_function_name(f);
+        if !names.insert(name.clone()) {
+            return Err(CodegenError::DuplicateName(name));
+        }
+    }
+    let mut items: Vec<syn::Item> = Vec::new();
+    let joint_names = model.joint_names();
+    let n_lit = proc_macro2::Literal::usize_unsuffixed(n);
+    let consts = quote! {
+        #[doc = " The number of degrees of freedom (joints)."]
+        pub const DOF: usize = #n_lit;
+        #[doc = " The joint names, in the order of every index of the functions below."]
+        pub const JOINT_NAMES: [&str; DOF] = [#(#joint_names),*];
+    };
+    let consts: syn::File = syn::parse2(consts).map_err(|e| CodegenError::Internal(e.to_string()))?;
+    items.extend(consts.items);
+    items.push(parse_item(sin_cos::sin_cos_all_item(scalar))?);
+    let has_prismatic = model.bodies.iter().any(|b| b.joint.kind == JointKind::Prismatic);
+    let mut functions = Vec::new();
+    for f in &scene.functions {
+        let name = scene_function_name(f);
+        let traced = trace_unfactored(scene, &model, f, options.forward_dynamics, options.rewrites)?;
+        let sc = sin_cos_inputs(&traced, n, options.rewrites).map_err(CodegenError::Internal)?;
+        let function = sin_cos_from_q(&sc, options.rewrites);
+        let op_count = function.op_count();
+        let ps = params(scene, f);
+        let mut sc_params = vec![Param::dof("s"), Param::dof("c")];
+        if has_prismatic {
+            sc_params.push(Param::dof("q"));
+        }
+        sc_params.extend(ps[1..].iter().cloned());
+        let sc_name = format!("{name}_sc");
+        let signature = emit::Signature { name: sc_name.clone(), params: sc_params, output: shape(f) };
+        let doc = format!("{}\n\n{}", doc_of(scene, f, &sc.function.op_count()), super::sc_doc(has_prismatic));
+        items.push(emit::emit_function(&sc.function, &signature, scalar, trig, n, &doc)?);
+        if trig != Trig::Inputs {
+            let doc = format!(
+                "{}\n\n The sines and cosines of the joint angles by {}, then [`{sc_name}`].",
+                doc_of(scene, f, &op_count),
+                trig_source(trig, scalar)
+            );
+            let ret = shape(f).tokens(scalar);
+            items.push(parse_item(wrapper(&name, &ps, ret, &sc, has_prismatic, &opts, &doc))?);
+        }
+        let inputs = ps.iter().map(|p| (p.name.clone(), p.len_value(n))).collect();
+        functions.push(SceneFunction {
+            function: f.clone(),
+            name,
+            inputs,
+            traced: function,
+            sin_cos_inputs: sc,
+            op_count,
+        });
+    }
+    let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
+    let body = prettyplease::unparse(&file);
+    let model_hash = super::model_hash(&scene.model);
+    let header = header(scene, &opts, &functions, &snapped, model_hash);
+    let kernel = sin_cos::KERNEL_SOURCE;
+    Ok(GeneratedModule {
+        source: format!("{header}\n{body}\n{kernel}"),
+        functions: Vec::new(),
+        scene_functions: functions,
+        snapped,
+        model_hash,
+    })
+}
+
+fn list(items: &[String]) -> String {
+    if items.is_empty() {
+        "none".to_string()
+    } else {
+        items.join(", ")
+    }
+}
+
+fn header(
+    scene: &SceneModel,
+    options: &CodegenOptions,
+    functions: &[SceneFunction],
+    snapped: &[SnappedConstant],
+    hash: u64,
+) -> String {
+    let model = &scene.model;
+    let mut h = String::new();
+    let scene_name = scene.name.as_deref().map(|s| format!(" in the scene \"{s}\"")).unwrap_or_default();
+    let _ = writeln!(
+        h,
+        "// Dynamics of the robot \"{}\"{scene_name} ({} joints), generated by dynagen {GENERATOR_VERSION}.",
+        model.name,
+        model.dof()
+    );
+    let _ = writeln!(h, "// Do not edit: regenerate from the model and the scene instead.");
+    let _ = writeln!(h, "//");
+    let source = options.source.as_deref().unwrap_or("(not given)");
+    let _ = writeln!(h, "// Model source: {source}");
+    let _ = writeln!(h, "// Reduced model content hash (FNV-1a 64 of its canonical text): {hash:016x}");
+    let scalar = match options.scalar {
+        ScalarType::F64 => "f64",
+        ScalarType::F32 => "f32",
+    };
+    let _ = writeln!(
+        h,
+        "// Options: scalar {scalar}; rounding snap {} ({} constants); trigonometry: {}.",
+        if options.snap_rounding { "on" } else { "off" },
+        snapped.len(),
+        match options.trig {
+            Trig::Std => "std's sin_cos",
+            Trig::Batched => "sin_cos_all (no_std)",
+            Trig::Libm => "libm (no_std)",
+            Trig::Inputs => "only NAME_sc(s, c, ...), the caller passes the sines and cosines (no_std)",
+        }
+    );
+    if scene.functions.contains(&SceneFn::ForwardDynamics) {
+        let fd = if !scene.input_payloads.is_empty() {
+            "M + J_b^T I J_b of the input payloads, h by RNEA, and a sparse LTDL solve"
+        } else if options.forward_dynamics == ForwardDynamicsMethod::Ldlt {
+            "CRBA with the armature on M's diagonal, RNEA, and a sparse LTDL solve, as asked"
+        } else {
+            "the articulated-body algorithm, armature in D_i = S_i^T U_i + a_i"
+        };
+        let _ = writeln!(h, "// Forward dynamics: {fd}.");
+    }
+    // What the scene left out.
+    let _ = writeln!(h, "//");
+    let _ = writeln!(h, "// Left out by the scene:");
+    let all = [
+        SceneFn::InverseDynamics,
+        SceneFn::MassMatrix,
+        SceneFn::BiasForces,
+        SceneFn::GravityTorques,
+        SceneFn::Coriolis,
+        SceneFn::ForwardDynamics,
+    ];
+    let not_emitted: Vec<String> =
+        all.iter().filter(|f| !scene.functions.contains(f)).map(|f| f.name().to_string()).collect();
+    let _ = writeln!(h, "//   functions not generated: {}", list(&not_emitted));
+    if scene.gravity == ResolvedGravity::None {
+        let _ = writeln!(h, "//   gravity: none (every gravity term is gone; g(q) = 0)");
+    }
+    if scene.tip_wrench_frame.is_none() {
+        let _ = writeln!(h, "//   tip wrench: none (no J^T F_tip term)");
+    }
+    let locked: Vec<String> = scene
+        .fixed_joints
+        .iter()
+        .filter(|(j, _)| scene.scene.locks.iter().any(|(l, _)| l == j))
+        .map(|(j, q)| format!("{j} at {q}"))
+        .collect();
+    let merged: Vec<String> = scene
+        .fixed_joints
+        .iter()
+        .filter(|(j, _)| !scene.scene.locks.iter().any(|(l, _)| l == j))
+        .map(|(j, q)| format!("{j} at {q}"))
+        .collect();
+    let _ = writeln!(h, "//   locked joints (fixed, folded): {}", list(&locked));
+    let _ = writeln!(h, "//   joints merged rigidly below a sub-tree tip: {}", list(&merged));
+    let _ = writeln!(h, "//   joints removed (above the root or off the sub-tree): {}", list(&scene.removed_joints));
+    let _ = writeln!(h, "//   bodies dropped: {}", list(&scene.dropped_links));
+    // What it folded in.
+    let names = scene.joint_names();
+    let per_joint = |v: &[f64]| -> Vec<String> {
+        v.iter().zip(&names).filter(|(x, _)| **x != 0.0).map(|(x, j)| format!("{j} {x}")).collect()
+    };
+    let _ = writeln!(h, "// Folded in:");
+    if let ResolvedGravity::Constant(_) = scene.gravity {
+        let _ = writeln!(h, "//   gravity: {:?} m/s^2 in the base frame", model.gravity.0);
+    }
+    let _ = writeln!(h, "//   armature: {}", list(&per_joint(&scene.armature)));
+    let _ = writeln!(h, "//   viscous friction: {}", list(&per_joint(&scene.viscous_friction)));
+    let coulomb = per_joint(&scene.coulomb_friction);
+    let _ = writeln!(
+        h,
+        "//   Coulomb friction: {}{}",
+        list(&coulomb),
+        if coulomb.is_empty() { String::new() } else { format!(" (smoothed, v_eps = {})", scene.coulomb_velocity) }
+    );
+    let constant_payloads: Vec<String> = scene
+        .scene
+        .payloads
+        .iter()
+        .filter_map(|p| match &p.value {
+            crate::scene::PayloadValue::Constant(c) => Some(format!("{} ({} kg)", p.link, c.mass)),
+            crate::scene::PayloadValue::Input => None,
+        })
+        .collect();
+    let _ = writeln!(h, "//   constant payloads: {}", list(&constant_payloads));
+    let mut inputs = Vec::new();
+    if scene.gravity == ResolvedGravity::Input {
+        inputs.push("gravity: &[T; 3] (m/s^2, base frame)".to_string());
+    }
+    if let Some(i) = scene.tip_wrench_frame {
+        inputs.push(format!("f_tip: &[T; 6] (m; f) at frame \"{}\", in that frame", model.frames[i].name));
+    }
+    for p in &scene.input_payloads {
+        inputs.push(format!(
+            "{}: &[T; 10] = [mass, com xyz, ixx iyy izz ixy ixz iyz] on \"{}\"",
+            payload_argument(&p.link),
+            p.link
+        ));
+    }
+    let _ = writeln!(h, "// Run-time inputs: {}", list(&inputs));
+    let _ = writeln!(h, "// Operation counts:");
+    for f in functions {
+        let _ = writeln!(h, "//   {}: {}", f.name, f.op_count);
+    }
+    if let Ok(toml) = scene.scene.to_toml_string() {
+        let _ = writeln!(h, "//");
+        let _ = writeln!(h, "// The scene:");
+        for line in toml.lines() {
+            let _ = writeln!(h, "//   {line}");
+        }
+        h = h.replace("//   \n", "//\n");
+    }
+    h
+}

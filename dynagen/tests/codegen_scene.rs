@@ -1,0 +1,427 @@
+//! Scene modules ([`generate_scene`]) against the generic solver under the
+//! same scene ([`SceneRobot`]): every function of every option, evaluated by
+//! the graph interpreter on random states (what the emitted code computes,
+//! `tests/tests/generated_scene.rs` compiles two of them), and the
+//! operation count of each option against the full scene's.
+
+use dynagen::codegen::{generate_scene, CodegenOptions, FunctionKind, GeneratedModule};
+use dynagen::scene::{
+    Function, Gravity, PayloadInertia, ResolvedGravity, ScalarType, Scene, SceneInputs, SceneModel, SceneRobot, Target,
+};
+use dynagen::Model;
+use nalgebra::{DVector, Vector3, Vector6};
+use std::sync::OnceLock;
+
+/// A small deterministic generator (xorshift64*), uniform in [-1, 1).
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        let x = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d);
+        (x >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+    fn vec(&mut self, n: usize, scale: f64) -> Vec<f64> {
+        (0..n).map(|_| scale * self.next()).collect()
+    }
+    /// A physical payload: mass in [0.5, 1.5] kg, centre of mass within
+    /// 10 cm, a positive diagonal inertia with a small product.
+    fn payload(&mut self) -> PayloadInertia {
+        let d = [2e-3 + 2e-4 * self.next(), 2e-3 + 2e-4 * self.next(), 1.5e-3 + 2e-4 * self.next()];
+        PayloadInertia::new(
+            1.0 + 0.5 * self.next(),
+            [0.1 * self.next(), 0.1 * self.next(), 0.1 * self.next()],
+            [d[0], d[1], d[2], 1e-5 * self.next(), 0.0, 0.0],
+        )
+    }
+}
+
+fn ur5() -> Model {
+    Model::from_urdf_file(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/ur5.urdf")).unwrap()
+}
+
+fn rel_err(got: &[f64], want: &[f64]) -> f64 {
+    let norm = want.iter().map(|x| x * x).sum::<f64>().sqrt().max(1e-300);
+    let diff = got.iter().zip(want).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
+    diff / norm
+}
+
+/// Row-major entries of an nalgebra matrix.
+fn rows<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f64, R, C>>(
+    m: &nalgebra::Matrix<f64, R, C, S>,
+) -> Vec<f64> {
+    (0..m.nrows()).flat_map(|r| (0..m.ncols()).map(move |c| m[(r, c)])).collect()
+}
+
+/// Generates `scene` for `model`, and checks every function against
+/// [`SceneRobot`] on `states` random states (f64 graph evaluation within
+/// `tol`, or f32 evaluation within `tol` when the scene is f32).
+fn check(model: &Model, scene: &Scene, states: usize, tol: f64) -> (SceneModel, GeneratedModule) {
+    let applied = scene.apply(model).unwrap();
+    let module = generate_scene(&applied, &CodegenOptions::default()).unwrap();
+    let mut robot = SceneRobot::new(applied.clone());
+    let n = applied.dof();
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let f32 = applied.scalar == ScalarType::F32;
+    for _ in 0..states {
+        let (q, qd, qdd, tau) = (rng.vec(n, 3.0), rng.vec(n, 2.0), rng.vec(n, 5.0), rng.vec(n, 20.0));
+        let gravity = [rng.next(), rng.next(), -9.81 + rng.next()];
+        let f_tip = rng.vec(6, 10.0);
+        let payloads: Vec<PayloadInertia> = applied.input_payloads.iter().map(|_| rng.payload()).collect();
+        let mut named: Vec<(String, Vec<f64>)> = vec![
+            ("q".into(), q.clone()),
+            ("qd".into(), qd.clone()),
+            ("qdd".into(), qdd.clone()),
+            ("tau".into(), tau.clone()),
+            ("gravity".into(), gravity.to_vec()),
+            ("f_tip".into(), f_tip.clone()),
+        ];
+        for (p, v) in applied.input_payloads.iter().zip(&payloads) {
+            let mut x = vec![v.mass];
+            x.extend(v.com);
+            x.extend(v.inertia);
+            named.push((dynagen::codegen::payload_argument(&p.link), x));
+        }
+        let inputs: Vec<(&str, &[f64])> = named.iter().map(|(k, v)| (k.as_str(), v.as_slice())).collect();
+        let scene_inputs = SceneInputs {
+            gravity: (applied.gravity == ResolvedGravity::Input).then(|| Vector3::from(gravity)),
+            tip_wrench: applied.tip_wrench_frame.map(|_| Vector6::from_column_slice(&f_tip)),
+            payloads: &payloads,
+        };
+        let dv = |v: &Vec<f64>| DVector::from_column_slice(v);
+        for f in &module.scene_functions {
+            let got: Vec<f64> = if f32 {
+                f.traced.eval_as::<f32>(&inputs).unwrap().into_iter().map(f64::from).collect()
+            } else {
+                f.traced.eval(&inputs).unwrap()
+            };
+            let i = &scene_inputs;
+            let want: Vec<f64> = match &f.function {
+                Function::InverseDynamics => {
+                    robot.inverse_dynamics_with(&dv(&q), &dv(&qd), &dv(&qdd), i).unwrap().as_slice().to_vec()
+                }
+                Function::MassMatrix => rows(&robot.mass_matrix_with(&dv(&q), i).unwrap()),
+                Function::BiasForces => robot.bias_forces_with(&dv(&q), &dv(&qd), i).unwrap().as_slice().to_vec(),
+                Function::GravityTorques => robot.gravity_torques_with(&dv(&q), i).unwrap().as_slice().to_vec(),
+                Function::Coriolis => robot.coriolis_with(&dv(&q), &dv(&qd), i).unwrap().as_slice().to_vec(),
+                Function::ForwardDynamics => {
+                    robot.forward_dynamics_with(&dv(&q), &dv(&qd), &dv(&tau), i).unwrap().as_slice().to_vec()
+                }
+                Function::FramePose(frame) => rows(&robot.frame_pose(frame, &dv(&q)).unwrap()),
+                Function::FrameJacobian(frame) => rows(&robot.frame_jacobian(frame, &dv(&q)).unwrap()),
+            };
+            assert_eq!(got.len(), want.len(), "{}", f.name);
+            let e = rel_err(&got, &want);
+            // g(q) = 0 without gravity: compare absolutely.
+            let e = if want.iter().all(|x| *x == 0.0) { got.iter().fold(0.0f64, |m, x| m.max(x.abs())) } else { e };
+            assert!(e < tol, "{}: relative error {e:e}\n got {got:?}\nwant {want:?}", f.name);
+        }
+    }
+    (applied, module)
+}
+
+fn ops(module: &GeneratedModule, name: &str) -> usize {
+    module.scene_function(name).unwrap_or_else(|| panic!("no function {name}")).op_count.total()
+}
+
+/// The full scene: the five functions plus coriolis and the end-effector's
+/// pose and Jacobian.
+fn full_scene() -> Scene {
+    Scene::new()
+        .function(Function::Coriolis)
+        .function(Function::FramePose("ee_link".into()))
+        .function(Function::FrameJacobian("ee_link".into()))
+}
+
+/// The full scene's module, generated once and checked against SceneRobot.
+fn full() -> &'static GeneratedModule {
+    static FULL: OnceLock<GeneratedModule> = OnceLock::new();
+    FULL.get_or_init(|| check(&ur5(), &full_scene(), 5, 1e-12).1)
+}
+
+const ALL: [&str; 8] = [
+    "inverse_dynamics",
+    "mass_matrix",
+    "bias_forces",
+    "gravity_torques",
+    "coriolis",
+    "forward_dynamics",
+    "frame_pose_ee_link",
+    "frame_jacobian_ee_link",
+];
+
+/// Each function's count minus the full scene's, printed for the report.
+fn deltas(label: &str, module: &GeneratedModule) -> Vec<(&'static str, i64)> {
+    let d: Vec<(&str, i64)> = ALL
+        .iter()
+        .filter(|f| module.scene_function(f).is_some())
+        .map(|f| (*f, ops(module, f) as i64 - ops(full(), f) as i64))
+        .collect();
+    let text: Vec<String> = d.iter().map(|(f, x)| format!("{f} {} ({x:+})", ops(module, f))).collect();
+    println!("UR5 {label}: {}", text.join(", "));
+    d
+}
+
+fn delta(d: &[(&str, i64)], f: &str) -> i64 {
+    d.iter().find(|(g, _)| *g == f).unwrap_or_else(|| panic!("{f} not generated")).1
+}
+
+#[test]
+fn the_full_scene_is_the_plain_module() {
+    // The full scene's contract functions count what generate(&Model) does:
+    // the scene path adds nothing when the scene asks for nothing.
+    let plain = dynagen::codegen::generate(&ur5(), &CodegenOptions::default()).unwrap();
+    for (kind, name) in [
+        (FunctionKind::InverseDynamics, "inverse_dynamics"),
+        (FunctionKind::MassMatrix, "mass_matrix"),
+        (FunctionKind::BiasForces, "bias_forces"),
+        (FunctionKind::GravityTorques, "gravity_torques"),
+        (FunctionKind::ForwardDynamicsAba, "forward_dynamics"),
+    ] {
+        let p = plain.functions.iter().find(|f| f.kind == kind).unwrap().op_count;
+        assert_eq!(full().scene_function(name).unwrap().op_count, p, "{name}");
+    }
+    deltas("full scene", full());
+}
+
+#[test]
+fn a_function_subset_emits_only_those() {
+    let scene = Scene::new().functions([Function::InverseDynamics, Function::Coriolis]);
+    let (_, m) = check(&ur5(), &scene, 5, 1e-12);
+    let d = deltas("functions = [inverse_dynamics, coriolis]", &m);
+    assert_eq!((delta(&d, "inverse_dynamics"), delta(&d, "coriolis")), (0, 0));
+    for f in ["mass_matrix", "bias_forces", "gravity_torques", "forward_dynamics", "frame_pose"] {
+        assert!(!m.source.contains(&format!("fn {f}")), "{f} emitted");
+    }
+    assert!(m
+        .source
+        .contains("//   functions not generated: mass_matrix, bias_forces, gravity_torques, forward_dynamics"));
+    let total: usize = m.scene_functions.iter().map(|f| f.op_count.total()).sum();
+    let full_total: usize = full().scene_functions.iter().map(|f| f.op_count.total()).sum();
+    assert!(total < full_total / 3, "{total} vs {full_total}");
+}
+
+#[test]
+fn torque_only_without_gravity_has_fewer_operations_and_no_mass_matrix() {
+    let scene = Scene::new().functions([Function::InverseDynamics]).gravity(Gravity::None);
+    let (_, m) = check(&ur5(), &scene, 5, 1e-12);
+    let d = deltas("tau only, gravity none", &m);
+    assert!(delta(&d, "inverse_dynamics") < 0);
+    assert!(!m.source.contains("fn mass_matrix") && m.source.contains("pub fn inverse_dynamics("));
+    assert!(m.source.contains("//   gravity: none"));
+}
+
+#[test]
+fn gravity_none_removes_every_gravity_term() {
+    let (_, m) = check(&ur5(), &full_scene().gravity(Gravity::None), 5, 1e-12);
+    let d = deltas("gravity none", &m);
+    assert_eq!(ops(&m, "gravity_torques"), 0);
+    for f in ["inverse_dynamics", "bias_forces", "forward_dynamics"] {
+        assert!(delta(&d, f) < 0, "{f}");
+    }
+    for f in ["mass_matrix", "coriolis", "frame_pose_ee_link", "frame_jacobian_ee_link"] {
+        assert_eq!(delta(&d, f), 0, "{f}");
+    }
+}
+
+#[test]
+fn constant_gravity_is_folded_and_costs_no_more_than_an_input() {
+    // The model's own vector given as a constant: the same module.
+    let (_, same) = check(&ur5(), &full_scene().gravity(Gravity::Constant([0.0, 0.0, -9.81])), 3, 1e-12);
+    assert!(deltas("gravity constant (0, 0, -9.81)", &same).iter().all(|(_, x)| *x == 0));
+    // A tilted vector: three components instead of one to propagate.
+    let (_, tilted) = check(&ur5(), &full_scene().gravity(Gravity::Constant([1.0, -2.0, -9.0])), 5, 1e-12);
+    let dt = deltas("gravity constant (1, -2, -9)", &tilted);
+    let (_, input) = check(&ur5(), &full_scene().gravity(Gravity::Input), 5, 1e-12);
+    let di = deltas("gravity input", &input);
+    assert!(input.source.contains("gravity: &[f64; 3]"));
+    for f in ["inverse_dynamics", "bias_forces", "gravity_torques", "forward_dynamics"] {
+        // An input costs what a general direction costs, plus a few
+        // products a constant would have folded.
+        assert!(delta(&dt, f) > 0 && delta(&di, f) >= delta(&dt, f), "{f}");
+        assert!(delta(&di, f) - delta(&dt, f) <= 5, "{f}: input {} vs constant {}", delta(&di, f), delta(&dt, f));
+    }
+    for f in ["mass_matrix", "coriolis"] {
+        assert_eq!((delta(&dt, f), delta(&di, f)), (0, 0), "{f}");
+    }
+}
+
+#[test]
+fn a_tip_wrench_input_costs_less_than_its_jacobian_transpose() {
+    let (_, m) = check(&ur5(), &full_scene().tip_wrench("ee_link"), 5, 1e-12);
+    let d = deltas("tip wrench input at ee_link", &m);
+    assert!(m.source.contains("f_tip: &[f64; 6]"));
+    // What J_bᵀF would cost on its own: the Jacobian plus 6n products and
+    // 5n sums.
+    let separate = (ops(full(), "frame_jacobian_ee_link") + 11 * 6) as i64;
+    for f in ["inverse_dynamics", "forward_dynamics"] {
+        assert!(delta(&d, f) > 0 && delta(&d, f) < separate, "{f}: {}", delta(&d, f));
+    }
+    // h, g and M have no tip wrench.
+    for f in ["mass_matrix", "bias_forces", "gravity_torques", "coriolis"] {
+        assert_eq!(delta(&d, f), 0, "{f}");
+    }
+}
+
+#[test]
+fn a_subtree_drops_joints_and_operations() {
+    let scene = full_scene().subtree("base_link", &["wrist_1_link"]).functions(Function::DEFAULT);
+    let (applied, m) = check(&ur5(), &scene, 5, 1e-12);
+    assert_eq!(applied.dof(), 4);
+    let d = deltas("subtree base_link -> wrist_1_link", &m);
+    assert!(d.iter().all(|(_, x)| *x < 0), "{d:?}");
+    assert!(m
+        .source
+        .contains("//   joints merged rigidly below a sub-tree tip: wrist_2_joint at 0, wrist_3_joint at 0"));
+}
+
+#[test]
+fn a_locked_joint_folds_and_drops_operations() {
+    let (applied, m) =
+        check(&ur5(), &full_scene().lock("wrist_3_joint", 0.3).lock("shoulder_pan_joint", -1.0), 5, 1e-12);
+    assert_eq!(applied.dof(), 4);
+    let d = deltas("lock wrist_3_joint, shoulder_pan_joint", &m);
+    assert!(d.iter().all(|(_, x)| *x < 0), "{d:?}");
+    assert!(m.source.contains("//   locked joints (fixed, folded): shoulder_pan_joint at -1, wrist_3_joint at 0.3"));
+}
+
+#[test]
+fn constant_and_input_payloads() {
+    let p = PayloadInertia::new(1.2, [0.0, 0.0, 0.06], [0.0018, 0.0018, 0.0012, 0.0, 0.0, 0.0]);
+    let (_, constant) = check(&ur5(), &full_scene().payload("ee_link", p), 5, 1e-12);
+    let dc = deltas("constant payload on ee_link", &constant);
+    let (_, input) = check(&ur5(), &full_scene().payload_input("ee_link"), 5, 1e-12);
+    let di = deltas("input payload on ee_link", &input);
+    assert!(input.source.contains("payload_ee_link: &[f64; 10]"));
+    let n = 6;
+    // As an input, the payload costs: for τ, h, g and C(q, q̇)q̇ the wrench
+    // its link applies to it (the link's motion along its path, I·A + V×*I·V)
+    // and that wrench's J_bᵀF in the backward pass, less than a second
+    // inverse dynamics; for M, J_bᵀ I J_b: the Jacobian, I times each column
+    // (≤ 40 operations) and the n(n+1)/2 dot products (11 each); forward
+    // dynamics, both.
+    let jacobian = ops(full(), "frame_jacobian_ee_link") as i64;
+    let id = ops(full(), "inverse_dynamics") as i64;
+    let bound_m = jacobian + 40 * n + 11 * n * (n + 1) / 2;
+    for f in ["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "coriolis", "forward_dynamics"] {
+        // Folded, a payload costs at most the sparsity its body's inertia
+        // loses (here a centre of mass off the flange's axis).
+        let full_ops = ops(full(), f) as i64;
+        assert!(delta(&dc, f) <= full_ops / 4, "{f}: {}", delta(&dc, f));
+        assert!(delta(&di, f) > delta(&dc, f), "{f}");
+        let bound = match f {
+            "mass_matrix" => bound_m,
+            "forward_dynamics" => id + bound_m,
+            _ => id,
+        };
+        assert!(delta(&di, f) <= bound, "{f}: {} > {bound}", delta(&di, f));
+    }
+    for f in ["frame_pose_ee_link", "frame_jacobian_ee_link"] {
+        assert_eq!((delta(&dc, f), delta(&di, f)), (0, 0), "{f}");
+    }
+}
+
+#[test]
+fn armature_adds_one_product_and_sum_per_joint() {
+    let scene = full_scene().armature("elbow_joint", 0.3).armature("wrist_1_joint", 0.05);
+    let (_, m) = check(&ur5(), &scene, 5, 1e-12);
+    let d = deltas("armature on 2 joints", &m);
+    // τ: a·q̈ and its sum; M: a on the diagonal; ABA: a in D_i.
+    assert_eq!(delta(&d, "inverse_dynamics"), 4);
+    assert_eq!(delta(&d, "mass_matrix"), 2);
+    assert_eq!(delta(&d, "forward_dynamics"), 2);
+    for f in ["bias_forces", "gravity_torques", "coriolis"] {
+        assert_eq!(delta(&d, f), 0, "{f}");
+    }
+}
+
+#[test]
+fn viscous_and_coulomb_friction_cost_what_their_formulas_do() {
+    let (_, viscous) = check(&ur5(), &full_scene().viscous("elbow_joint", 0.8), 5, 1e-12);
+    let dv = deltas("viscous friction on 1 joint", &viscous);
+    let (_, coulomb) = check(&ur5(), &full_scene().coulomb("elbow_joint", 2.0).coulomb_velocity(0.05), 5, 1e-12);
+    let dc = deltas("Coulomb friction on 1 joint", &coulomb);
+    for f in ["inverse_dynamics", "bias_forces", "forward_dynamics"] {
+        // b·q̇ and its sum; f·q̇/√(q̇² + v²): ², +, √, /, ·, sum.
+        assert_eq!(delta(&dv, f), 2, "{f}");
+        assert_eq!(delta(&dc, f), 6, "{f}");
+    }
+    for f in ["mass_matrix", "gravity_torques", "coriolis"] {
+        assert_eq!((delta(&dv, f), delta(&dc, f)), (0, 0), "{f}");
+    }
+}
+
+#[test]
+fn f32_scenes_match_in_f32() {
+    let scene = full_scene().scalar(ScalarType::F32).tip_wrench("ee_link").gravity(Gravity::Input);
+    let (_, m) = check(&ur5(), &scene, 10, 1e-5);
+    assert!(m.source.contains("pub fn inverse_dynamics(\n    q: &[f32; DOF],") || m.source.contains("q: &[f32; DOF]"));
+    assert!(m.source.contains("gravity: &[f32; 3]") && !m.source.contains("f64; DOF"));
+    let (_, f64_module) = check(&ur5(), &full_scene().tip_wrench("ee_link").gravity(Gravity::Input), 1, 1e-12);
+    for f in ALL {
+        assert_eq!(ops(&m, f), ops(&f64_module, f), "{f}");
+    }
+}
+
+#[test]
+fn no_std_targets() {
+    let libm = full_scene().target(Target::NoStdLibm).coulomb("elbow_joint", 1.0);
+    let (_, m) = check(&ur5(), &libm, 2, 1e-12);
+    assert!(m.source.contains("libm::sincos(") && m.source.contains("libm::sqrt("));
+    assert!(!m.source.contains(".sin_cos()") && !m.source.contains(".sqrt()"));
+    let inputs = full_scene().target(Target::NoStdSinCos).tip_wrench("ee_link");
+    let (_, m) = check(&ur5(), &inputs, 2, 1e-12);
+    assert!(m.source.contains("pub fn inverse_dynamics_sc(") && !m.source.contains("pub fn inverse_dynamics("));
+    assert!(deltas("no_std_sincos, tip wrench", &m).iter().all(|(f, x)| *x == 0 || f.contains("dynamics")));
+    // Coulomb friction needs a square root that target has not: refused,
+    // naming the joint.
+    let e = full_scene().target(Target::NoStdSinCos).coulomb("elbow_joint", 1.0).apply(&ur5()).unwrap_err();
+    assert!(e.to_string().contains("\"elbow_joint\"") && e.to_string().contains("no_std_sincos"), "{e}");
+}
+
+#[test]
+fn branched_and_prismatic_robots() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/robots/");
+    let panda = Model::from_urdf_file(format!("{dir}panda.urdf")).unwrap();
+    // Prismatic fingers: the _sc functions also take q, then the inputs.
+    let scene = Scene::new()
+        .function(Function::Coriolis)
+        .function(Function::FrameJacobian("panda_hand".into()))
+        .gravity(Gravity::Input)
+        .tip_wrench("panda_hand")
+        .payload_input("panda_hand")
+        .lock("panda_joint7", 0.3)
+        .armature("panda_joint2", 0.2)
+        .viscous("panda_finger_joint1", 3.0);
+    let (applied, _) = check(&panda, &scene, 3, 1e-12);
+    assert_eq!(applied.dof(), 8);
+    let torso = Model::from_urdf_file(format!("{dir}torso_two_arms.urdf")).unwrap();
+    let scene = Scene::new()
+        .subtree("torso", &["left_hand"])
+        .function(Function::FramePose("left_hand".into()))
+        .tip_wrench("left_hand")
+        .coulomb("left_elbow_joint", 1.0);
+    let (applied, m) = check(&torso, &scene, 3, 1e-12);
+    assert!(!applied.dropped_links.is_empty());
+    assert!(m.source.contains("//   bodies dropped: right_"), "{}", &m.source[..2000]);
+}
+
+#[test]
+fn codegen_errors_name_the_item() {
+    // Two frames whose names differ only in characters Rust names cannot hold.
+    let model = dynagen::model::RobotBuilder::new("r")
+        .link("base", None)
+        .link("a-b", Some(dynagen::model::Inertial::point_mass(1.0, [0.0, 0.0, -1.0])))
+        .link("a_b", None)
+        .joint(dynagen::model::JointDescription::revolute("j", "base", "a-b", [0.0, 1.0, 0.0]))
+        .joint(dynagen::model::JointDescription::fixed("f", "a-b", "a_b"))
+        .build()
+        .unwrap();
+    let scene = Scene::new().function(Function::FramePose("a-b".into())).function(Function::FramePose("a_b".into()));
+    let e = generate_scene(&scene.apply(&model).unwrap(), &CodegenOptions::default()).unwrap_err();
+    assert!(e.to_string().contains("frame_pose_a_b"), "{e}");
+    // A scene without functions.
+    let e = Scene::new().functions([]).apply(&model).unwrap_err();
+    assert!(e.to_string().contains("no function"), "{e}");
+}
