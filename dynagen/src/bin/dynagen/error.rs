@@ -31,8 +31,6 @@ pub struct CliError {
 
 /// The exit status of bad input (a file, a URDF, a state, an option).
 pub const STATUS_BAD_INPUT: u8 = 1;
-/// The exit status of a subcommand that this version does not have yet.
-pub const STATUS_UNAVAILABLE: u8 = 3;
 
 impl CliError {
     /// Bad input: `{source}: {message}`, where `source` is the file (or

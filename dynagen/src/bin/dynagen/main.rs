@@ -36,8 +36,7 @@ struct Cli {
 const EXIT_STATUS: &str = "\
 Exit status: 0 success; 1 bad input (file, URDF, state, option value), with one
 line on stderr naming the file and the item (for `report`: the workspace, cargo,
-or the report's own failure); 2 bad command line; 3 something this version does
-not do yet (a scene the generator does not support).";
+or the report's own failure); 2 bad command line.";
 
 #[derive(Subcommand, Debug)]
 enum Command {
