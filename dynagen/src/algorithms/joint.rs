@@ -303,6 +303,158 @@ impl<S: Scalar, const K: usize, const I: usize, const J: usize> Rotation<S> for 
         o[J] = m[I][J] * v[I] + m[J][J] * v[J];
         Vec3(o)
     }
+    /// By the double angle: in the plane (I, J) a symmetric 2×2 block is
+    /// `a·1 + [[d, e], [e, −d]]`, the rotation leaves `a` and turns `(d, e)`
+    /// by 2θ; column K turns by θ.
+    #[inline(always)]
+    fn rotate_sym(&self, s: &Sym3<S>) -> Sym3<S> {
+        let m = s.to_mat().0;
+        let (c2, s2) = self.double_angle();
+        let half = S::from_f64(0.5);
+        let a = (m[I][I] + m[J][J]) * half;
+        let d = (m[I][I] - m[J][J]) * half;
+        let e = m[I][J];
+        let (d2, e2) = (d * c2 - e * s2, d * s2 + e * c2);
+        let col = self.mul(&Vec3([m[0][K], m[1][K], m[2][K]]));
+        let mut r = [[S::zero(); 3]; 3];
+        r[I][I] = a + d2;
+        r[J][J] = a - d2;
+        r[I][J] = e2;
+        r[J][I] = e2;
+        r[K][K] = m[K][K];
+        r[I][K] = col.0[I];
+        r[K][I] = col.0[I];
+        r[J][K] = col.0[J];
+        r[K][J] = col.0[J];
+        Sym3::from_mat_upper(&Mat3(r))
+    }
+    /// As [`Self::rotate_sym`], with the antisymmetric part of the (I, J)
+    /// block (which a rotation in its plane leaves alone) apart.
+    #[inline(always)]
+    fn rotate_mat(&self, b: &Mat3<S>) -> Mat3<S> {
+        let m = &b.0;
+        let (c2, s2) = self.double_angle();
+        let half = S::from_f64(0.5);
+        let a = (m[I][I] + m[J][J]) * half;
+        let d = (m[I][I] - m[J][J]) * half;
+        let e = (m[I][J] + m[J][I]) * half;
+        let w = (m[J][I] - m[I][J]) * half;
+        let (d2, e2) = (d * c2 - e * s2, d * s2 + e * c2);
+        let col = self.mul(&Vec3([m[0][K], m[1][K], m[2][K]]));
+        let row = self.mul(&Vec3([m[K][0], m[K][1], m[K][2]]));
+        let mut r = [[S::zero(); 3]; 3];
+        r[I][I] = a + d2;
+        r[J][J] = a - d2;
+        r[I][J] = e2 - w;
+        r[J][I] = e2 + w;
+        r[K][K] = m[K][K];
+        r[I][K] = col.0[I];
+        r[J][K] = col.0[J];
+        r[K][I] = row.0[I];
+        r[K][J] = row.0[J];
+        Mat3(r)
+    }
+}
+
+impl<S: Scalar, const K: usize, const I: usize, const J: usize> AboutAxis<'_, S, K, I, J> {
+    /// `(cos 2θ, sin 2θ)` of the rotation's angle θ.
+    #[inline(always)]
+    fn double_angle(&self) -> (S, S) {
+        let m = &self.0 .0;
+        let (c, s) = (m[I][I], m[J][I]);
+        (c * c - s * s, (s * c) * S::from_f64(2.0))
+    }
+}
+
+/// A rotation `P·R_K(θ)`: a constant signed permutation `P` (a placement
+/// turned by quarter turns, e.g. `rpy = "0 1.5707963267948966 0"` once
+/// rounding is snapped) after a rotation about `e_K`. Products with `P` only
+/// move entries and flip signs, and `R_K` keeps the short forms of
+/// [`AboutAxis`].
+pub(crate) struct Permuted<S, const K: usize, const I: usize, const J: usize> {
+    /// Row `r` of `P` has its non-zero entry in column `col[r]`…
+    col: [usize; 3],
+    /// … and it is −1 where `neg[r]`.
+    neg: [bool; 3],
+    /// `R_K(θ) = Pᵀ·R`.
+    inner: Mat3<S>,
+}
+
+/// The columns and signs of a signed permutation matrix, if `m` is one.
+#[inline(always)]
+pub(crate) fn signed_permutation(m: &Mat3<f64>) -> Option<([usize; 3], [bool; 3])> {
+    let mut col = [0; 3];
+    let mut neg = [false; 3];
+    let mut seen = [false; 3];
+    for r in 0..3 {
+        let row = &m.0[r];
+        let c = (0..3).find(|&c| row[c] != 0.0)?;
+        if row[c].abs() != 1.0 || seen[c] || (0..3).any(|d| d != c && row[d] != 0.0) {
+            return None;
+        }
+        col[r] = c;
+        neg[r] = row[c] < 0.0;
+        seen[c] = true;
+    }
+    Some((col, neg))
+}
+
+impl<S: Scalar, const K: usize, const I: usize, const J: usize> Permuted<S, K, I, J> {
+    /// For a joint transform's rotation `rot = P·R_K(θ)`.
+    #[inline(always)]
+    pub(crate) fn new(rot: &Mat3<S>, (col, neg): ([usize; 3], [bool; 3])) -> Self {
+        let mut inner = [[S::zero(); 3]; 3];
+        for r in 0..3 {
+            inner[col[r]] = rot.0[r].map(|x| if neg[r] { -x } else { x });
+        }
+        Permuted { col, neg, inner: Mat3(inner) }
+    }
+    #[inline(always)]
+    fn sign(&self, r: usize, x: S) -> S {
+        if self.neg[r] {
+            -x
+        } else {
+            x
+        }
+    }
+    /// `P·M·Pᵀ`.
+    #[inline(always)]
+    fn conjugate(&self, m: &Mat3<S>) -> Mat3<S> {
+        let mut o = [[S::zero(); 3]; 3];
+        for a in 0..3 {
+            for b in 0..3 {
+                let x = m.0[self.col[a]][self.col[b]];
+                o[a][b] = if self.neg[a] != self.neg[b] { -x } else { x };
+            }
+        }
+        Mat3(o)
+    }
+}
+
+impl<S: Scalar, const K: usize, const I: usize, const J: usize> Rotation<S> for Permuted<S, K, I, J> {
+    #[inline(always)]
+    fn mul(&self, v: &Vec3<S>) -> Vec3<S> {
+        let u = AboutAxis::<S, K, I, J>(&self.inner).mul(v);
+        Vec3([0, 1, 2].map(|r| self.sign(r, u.0[self.col[r]])))
+    }
+    #[inline(always)]
+    fn tr_mul(&self, v: &Vec3<S>) -> Vec3<S> {
+        let mut w = [S::zero(); 3];
+        for r in 0..3 {
+            w[self.col[r]] = self.sign(r, v.0[r]);
+        }
+        AboutAxis::<S, K, I, J>(&self.inner).tr_mul(&Vec3(w))
+    }
+    #[inline(always)]
+    fn rotate_sym(&self, s: &Sym3<S>) -> Sym3<S> {
+        let t = AboutAxis::<S, K, I, J>(&self.inner).rotate_sym(s).to_mat();
+        Sym3::from_mat_upper(&self.conjugate(&t))
+    }
+    #[inline(always)]
+    fn rotate_mat(&self, m: &Mat3<S>) -> Mat3<S> {
+        let t = AboutAxis::<S, K, I, J>(&self.inner).rotate_mat(m);
+        self.conjugate(&t)
+    }
 }
 
 /// Runs `$body` with `$r` bound to the [`Rotation`] of the joint's transform
@@ -310,13 +462,33 @@ impl<S: Scalar, const K: usize, const I: usize, const J: usize> Rotation<S> for 
 /// chosen from the model's constants.
 macro_rules! with_rotation {
     ($joint:expr, $x:expr, |$r:ident| $body:expr) => {{
-        use $crate::algorithms::joint::{AboutAxis, Dense};
+        use $crate::algorithms::joint::{signed_permutation, AboutAxis, Dense, Permuted};
         use $crate::model::{AxisAlignment, JointKind};
         let joint: &$crate::model::Joint = $joint;
         let rot = &$x.rot;
+        let perm = match (joint.placement_rotation_is_identity, joint.kind, joint.alignment) {
+            (
+                false,
+                JointKind::Revolute | JointKind::Continuous,
+                AxisAlignment::X | AxisAlignment::Y | AxisAlignment::Z,
+            ) => signed_permutation(&joint.placement.rot),
+            _ => None,
+        };
         match (joint.placement_rotation_is_identity, joint.kind, joint.alignment) {
             (_, JointKind::Prismatic, _) => {
                 let $r = Dense(rot);
+                $body
+            }
+            (false, _, AxisAlignment::X) if perm.is_some() => {
+                let $r = Permuted::<_, 0, 1, 2>::new(rot, perm.unwrap_or_default());
+                $body
+            }
+            (false, _, AxisAlignment::Y) if perm.is_some() => {
+                let $r = Permuted::<_, 1, 2, 0>::new(rot, perm.unwrap_or_default());
+                $body
+            }
+            (false, _, AxisAlignment::Z) if perm.is_some() => {
+                let $r = Permuted::<_, 2, 0, 1>::new(rot, perm.unwrap_or_default());
                 $body
             }
             (true, _, AxisAlignment::X) => {

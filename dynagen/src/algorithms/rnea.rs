@@ -20,8 +20,31 @@
 use super::joint::{add_axis, cross_axis, force_to_parent, joint_transform, project, with_rotation, Rotation};
 use super::{TipWrench, Workspace};
 use crate::model::Model;
-use crate::spatial::{Force, Inertia, Motion, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Mat3, Motion, Transform, Vec3};
 use crate::Scalar;
+
+/// `U = [ω̇×] + [ω×][ω×]` (Khalil's matrix), so that `U·v = ω̇ × v + ω × (ω × v)`:
+/// the acceleration of a point at `v` of a body turning with ω, ω̇ relative
+/// to the body's origin. Without velocity (`with_w` false) only `[ω̇×]`.
+#[inline(always)]
+pub(crate) fn velocity_product_matrix<S: Scalar>(w: &Vec3<S>, wd: &Vec3<S>, with_w: bool) -> Mat3<S> {
+    let mut u = Mat3::skew(wd);
+    if with_w {
+        let [x, y, z] = w.0;
+        let (xx, yy, zz, xy, xz, yz) = (x * x, y * y, z * z, x * y, x * z, y * z);
+        let m = &mut u.0;
+        m[0][0] = -(yy + zz);
+        m[1][1] = -(xx + zz);
+        m[2][2] = -(xx + yy);
+        m[0][1] += xy;
+        m[1][0] += xy;
+        m[0][2] += xz;
+        m[2][0] += xz;
+        m[1][2] += yz;
+        m[2][1] += yz;
+    }
+    u
+}
 
 /// Computes the pose of every body in its parent's frame into `ws.x`.
 #[inline(always)]
@@ -66,6 +89,7 @@ pub fn rnea<S: Scalar>(
     let (qd, qdd) = (qd.map(|x| &x[..n]), qdd.map(|x| &x[..n]));
     // ws.v[i].ang holds ω (ws.v[i].lin is not used); ws.a[i] holds (ω̇; a).
     let (xs, vs, accs, fs) = (&mut ws.x[..n], &mut ws.v[..n], &mut ws.a[..n], &mut ws.f[..n]);
+    let us = &mut ws.u[..n];
     // Without q̇ and q̈ every ω̇ is zero (and without q̇ every ω).
     let moving = qd.is_some() || qdd.is_some();
     for (i, body) in bodies.iter().enumerate() {
@@ -76,18 +100,16 @@ pub fn rnea<S: Scalar>(
         // all in this body's frame. The base is at rest, accelerating at −g.
         let (w_in, wd_in, mut a) = match body.parent {
             Some(p) => with_rotation!(joint, x, |r| {
-                // a_origin = a_parent + ω̇ × p + ω × (ω × p), in the parent's frame
+                // a_origin = a_parent + ω̇ × p + ω × (ω × p) = a_parent + U·p,
+                // in the parent's frame
                 let mut ao = accs[p].lin;
                 let (mut w_in, mut wd_in) = (Vec3::zero(), Vec3::zero());
                 if moving {
-                    let wdp = accs[p].ang;
-                    ao += wdp.cross(&x.trans);
-                    wd_in = r.tr_mul(&wdp);
+                    ao += us[p].mul_vec(&x.trans);
+                    wd_in = r.tr_mul(&accs[p].ang);
                 }
                 if qd.is_some() {
-                    let wp = vs[p].ang;
-                    ao += wp.cross(&wp.cross(&x.trans));
-                    w_in = r.tr_mul(&wp);
+                    w_in = r.tr_mul(&vs[p].ang);
                 }
                 (w_in, wd_in, r.tr_mul(&ao))
             }),
@@ -116,11 +138,14 @@ pub fn rnea<S: Scalar>(
         let mut f = a.scale(inertia.mass);
         let mut m = h.cross(&a);
         if moving {
-            f += wd.cross(h);
+            // U = [ω̇×] + [ω×][ω×]: U·v = ω̇ × v + ω × (ω × v), shared by
+            // this body's force (v = h) and its children's origins (v = p)
+            let u = velocity_product_matrix(&w, &wd, qd.is_some());
+            f += u.mul_vec(h);
             m += ibar.mul_vec(&wd);
+            us[i] = u;
         }
         if qd.is_some() {
-            f += w.cross(&w.cross(h));
             m += w.cross(&ibar.mul_vec(&w));
         }
         vs[i].ang = w;

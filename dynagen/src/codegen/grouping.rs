@@ -23,6 +23,11 @@
 //! inertial parameters of Khalil and Kleinfinger (the "base parameters"),
 //! written as a transformation of the model's spatial inertias.
 //!
+//! A difference `Ī_II − Ī_JJ` within [`ROUNDING_TOLERANCE`] of its operands
+//! (a body symmetric about its axis, whose two moments differ only by the
+//! rounding of the sums that made them) is taken as 0, as the rounding snap
+//! does for the model's constants.
+//!
 //! Bodies are processed from the tips to the root so that a parent is
 //! regrouped after what its children moved into it. Joints whose axis is not
 //! along a coordinate axis are left as they are. The regrouped inertias are
@@ -30,6 +35,7 @@
 //! only used for the generated code, whose results equal the original
 //! model's up to rounding (tested against the generic solver).
 
+use super::rounding::ROUNDING_TOLERANCE;
 use crate::model::{AxisAlignment, JointKind, Model};
 use crate::spatial::{Inertia, Sym3, Vec3};
 
@@ -70,7 +76,11 @@ pub fn regroup_inertia(model: &Model) -> Model {
         // Exact zeros where a parameter moved entirely (x − x = 0).
         let mut rest = Inertia { mass: inertia.mass - moved.mass, h: inertia.h - moved.h, ibar: inertia.ibar };
         for d in 0..6 {
-            rest.ibar.0[d] -= moved.ibar.0[d];
+            let (x, y) = (inertia.ibar.0[d], moved.ibar.0[d]);
+            let r = x - y;
+            // XX − YY of a body symmetric about its axis: 0 up to the
+            // rounding of the sums that made XX and YY.
+            rest.ibar.0[d] = if r.abs() <= ROUNDING_TOLERANCE * x.abs().max(y.abs()) { 0.0 } else { r };
         }
         let (parent, placement) = (body.parent, body.joint.placement);
         m.bodies[i].inertia = rest;
