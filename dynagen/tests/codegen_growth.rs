@@ -46,3 +46,51 @@ fn op_counts_grow_linearly_for_tau_and_quadratically_for_m() {
         assert!((3.6..=4.2).contains(&rm), "M from {n0} to {n1} joints grew {rm:.2}×");
     }
 }
+
+/// A regression guard on the operation counts of the generated UR5 and
+/// Panda functions (the bundled URDFs, default options): they may fall, not
+/// rise (negations included). The numbers are those reached with the regrouped inertial
+/// parameters, Khalil's U matrix in the RNEA and the quarter-turn placements
+/// as signed permutations (see `benches/README.md`). For scale, a CasADi
+/// graph of Pinocchio's algorithms takes 579 (τ), 301 (M) and 134 (g) on
+/// the UR5.
+#[test]
+fn bundled_op_counts_do_not_grow() {
+    use dynagen::codegen::{generate, CodegenOptions};
+    let limits: [(&str, [(FunctionKind, usize); 5]); 2] = [
+        (
+            "ur5",
+            [
+                (FunctionKind::InverseDynamics, 313),
+                (FunctionKind::MassMatrix, 191),
+                (FunctionKind::BiasForces, 275),
+                (FunctionKind::GravityTorques, 19),
+                (FunctionKind::ForwardDynamicsAba, 848),
+            ],
+        ),
+        (
+            "panda",
+            [
+                (FunctionKind::InverseDynamics, 845),
+                (FunctionKind::MassMatrix, 646),
+                (FunctionKind::BiasForces, 818),
+                (FunctionKind::GravityTorques, 227),
+                (FunctionKind::ForwardDynamicsAba, 2165),
+            ],
+        ),
+    ];
+    for (robot, limits) in limits {
+        let path = format!("{}/robots/{robot}.urdf", env!("CARGO_MANIFEST_DIR"));
+        let module = generate(&Model::from_urdf_file(&path).unwrap(), &CodegenOptions::default()).unwrap();
+        for (kind, limit) in limits {
+            let count = module.functions.iter().find(|f| f.kind == kind).unwrap().op_count;
+            println!("{robot} {}: {count}", kind.label());
+            assert!(
+                count.total() <= limit,
+                "{robot} {}: {} operations, more than {limit}",
+                kind.label(),
+                count.total()
+            );
+        }
+    }
+}
