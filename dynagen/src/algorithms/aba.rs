@@ -4,9 +4,10 @@
 //! a factorisation of M, which is why it is the default forward dynamics.
 
 use super::joint::{
-    add_motion, cross_motion, force_to_parent, joint_transform, motion, motion_to_child, project, with_rotation,
-    Rotation,
+    add_axis, add_motion, cross_axis, force_to_parent, joint_transform, motion, motion_to_child, project,
+    with_rotation, Rotation,
 };
+use super::rnea::velocity_product_matrix;
 use super::{TipWrench, Workspace};
 use crate::model::{AxisAlignment, Joint, JointKind, Model};
 use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
@@ -157,24 +158,40 @@ pub fn aba<S: Scalar>(
         q.len() == n && qd.len() == n && tau.len() == n && qdd.len() == n && ws.dof() == n,
         "aba: slices must have the model's {n} joints"
     );
-    // Forward: velocities, velocity-product accelerations c, bias forces pA.
+    // Forward: angular velocities ω, velocity-product accelerations c, bias
+    // forces pA. The accelerations of this algorithm are "classic": (ω̇; the
+    // ordinary acceleration of the frame's origin), as in the RNEA, so the
+    // linear velocity is never needed: a body's wrench is I·(ω̇; a) + b with
+    // b = (ω × Ī ω; ω × (ω × h)), and the origin of a child at p (in the
+    // parent) accelerates by X·(ω̇_p; a_p) + c with c's linear part
+    // ω_p × (ω_p × p) (plus the Coriolis 2 ω × ṗ of a prismatic joint) and
+    // c's angular part ω_in × S q̇ (revolute). Featherstone's spatial form
+    // gives the same q̈ with more operations.
     for (i, body) in model.bodies.iter().enumerate() {
         let joint = &body.joint;
         let x = joint_transform(joint, q[i]);
         ws.x[i] = x;
         let inertia = Inertia::<S>::from_f64(&body.inertia);
-        let (v, c) = match body.parent {
-            Some(p) => {
-                let mut v = motion_to_child(joint, &x, &ws.v[p]);
-                add_motion(joint, &mut v, qd[i]);
-                (v, cross_motion(joint, &v, qd[i]))
-            }
-            None => (motion(joint, qd[i]), Motion::zero()),
+        let revolute = joint.is_revolute();
+        let (mut w, mut c) = match body.parent {
+            Some(p) => with_rotation!(joint, x, |r| {
+                let wp = ws.v[p].ang;
+                let centripetal = velocity_product_matrix(&wp, &Vec3::zero(), true).mul_vec(&x.trans);
+                (r.tr_mul(&wp), Motion::new(Vec3::zero(), r.tr_mul(&centripetal)))
+            }),
+            None => (Vec3::zero(), Motion::zero()),
         };
-        ws.v[i] = v;
+        if revolute {
+            c.ang = cross_axis(joint, &w, qd[i]);
+            add_axis(joint, &mut w, qd[i]);
+        } else {
+            c.lin += cross_axis(joint, &w, qd[i] + qd[i]);
+        }
+        ws.v[i] = Motion::new(w, Vec3::zero());
         ws.a[i] = c; // c_i, kept until the last pass
         ws.art[i] = ArticulatedInertia::from_rigid(&inertia);
-        ws.f[i] = v.cross_force(&inertia.mul_motion(&v));
+        let wwh = velocity_product_matrix(&w, &Vec3::zero(), true).mul_vec(&inertia.h);
+        ws.f[i] = Force::new(w.cross(&inertia.ibar.mul_vec(&w)), wwh);
     }
     for tip in tips {
         let frame = &model.frames[tip.frame];
