@@ -176,7 +176,7 @@ pub fn aba<S: Scalar>(
         let (mut w, mut c) = match body.parent {
             Some(p) => with_rotation!(joint, x, |r| {
                 let wp = ws.v[p].ang;
-                let centripetal = velocity_product_matrix(&wp, &Vec3::zero(), true).mul_vec(&x.trans);
+                let centripetal = ws.u[p].mul_vec(&x.trans);
                 (r.tr_mul(&wp), Motion::new(Vec3::zero(), r.tr_mul(&centripetal)))
             }),
             None => (Vec3::zero(), Motion::zero()),
@@ -190,7 +190,10 @@ pub fn aba<S: Scalar>(
         ws.v[i] = Motion::new(w, Vec3::zero());
         ws.a[i] = c; // c_i, kept until the last pass
         ws.art[i] = ArticulatedInertia::from_rigid(&inertia);
-        let wwh = velocity_product_matrix(&w, &Vec3::zero(), true).mul_vec(&inertia.h);
+        // [ω×]²: ω × (ω × h) here, the centripetal acceleration of the children
+        let u = velocity_product_matrix(&w, &Vec3::zero(), true);
+        ws.u[i] = u;
+        let wwh = u.mul_vec(&inertia.h);
         ws.f[i] = Force::new(w.cross(&inertia.ibar.mul_vec(&w)), wwh);
     }
     for tip in tips {
