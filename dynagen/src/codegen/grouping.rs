@@ -92,6 +92,52 @@ pub fn regroup_inertia(model: &Model) -> Model {
     m
 }
 
+/// A copy of `model` in which the frame of every body turning about an
+/// aligned axis `e_K` has slid along that axis, so that the placement of
+/// its first child has no component along `e_K`.
+///
+/// A translation along a revolute joint's axis commutes with the turn about
+/// it: `T_place·R_K(q)·Trans(δ e_K) = T_place·Trans(δ e_K)·R_K(q)`. Moving a
+/// body's origin by `δ e_K` therefore only moves the constant `δ` from the
+/// children's placements (and the body's frames and inertia) into the
+/// body's own placement, where it is a constant too. Done from the tips to
+/// the root, the offsets along the axes move towards the base, and the
+/// placements in the middle of a chain get sparser (the UR5's elbow
+/// placement `(0, −0.1197, 0.425)` becomes `(0, 0, 0.425)`), which saves
+/// products in every `ω × (ω × p)` and `p × f`. The dynamics are those of
+/// the original model (the joint axes are the same lines); the frames keep
+/// their poses.
+pub fn slide_origins_along_axes(model: &Model) -> Model {
+    let mut m = model.clone();
+    for i in (0..m.bodies.len()).rev() {
+        let joint = &m.bodies[i].joint;
+        let k = match (joint.kind, indices(joint.alignment)) {
+            (JointKind::Revolute | JointKind::Continuous, Some((k, _, _))) => k,
+            _ => continue,
+        };
+        let Some(first) = m.bodies.iter().position(|b| b.parent == Some(i)) else { continue };
+        let delta = m.bodies[first].joint.placement.trans.0[k];
+        if delta == 0.0 {
+            continue;
+        }
+        let mut shift = Vec3::zero();
+        shift.0[k] = delta;
+        // The body's frame B' sits at δ e_K in B: T_B'B = Trans(−δ e_K).
+        let to_new = crate::spatial::Transform::translation(-shift);
+        for b in m.bodies.iter_mut().filter(|b| b.parent == Some(i)) {
+            b.joint.placement.trans = b.joint.placement.trans - shift;
+        }
+        for f in m.frames.iter_mut().filter(|f| f.body == Some(i)) {
+            f.placement.trans = f.placement.trans - shift;
+        }
+        let body = &mut m.bodies[i];
+        body.inertia = to_new.inertia_to_parent(&body.inertia);
+        let place = &mut body.joint.placement;
+        place.trans = place.trans + place.rot.mul_vec(&shift);
+    }
+    m
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -103,12 +149,36 @@ mod tests {
 
     /// τ and M of the regrouped model equal the original's (the generic
     /// solver on both), and the regrouped bodies lost their mass.
+    /// Sliding the body frames along their axes keeps every frame's pose.
+    #[test]
+    fn slid_frames_keep_their_poses() {
+        use crate::algorithms::kinematics::{forward_kinematics, frame_pose};
+        for name in ["ur5", "panda", "torso_two_arms"] {
+            let path = format!("{}/robots/{name}.urdf", env!("CARGO_MANIFEST_DIR"));
+            let model = Model::from_urdf_file(&path).unwrap();
+            let slid = slide_origins_along_axes(&model);
+            let q: Vec<f64> = (0..model.dof()).map(|i| 0.3 + 0.8 * i as f64).collect();
+            let (mut wa, mut wb) = (Workspace::new(&model), Workspace::new(&slid));
+            forward_kinematics(&model, &mut wa, &q);
+            forward_kinematics(&slid, &mut wb, &q);
+            for f in 0..model.frames.len() {
+                let (a, b) = (frame_pose(&model, &wa, f), frame_pose(&slid, &wb, f));
+                for (x, y) in a.trans.0.iter().zip(&b.trans.0) {
+                    assert!((x - y).abs() < 1e-14, "{name} frame {f}: {:?} vs {:?}", a.trans, b.trans);
+                }
+                for (x, y) in a.rot.0.iter().flatten().zip(b.rot.0.iter().flatten()) {
+                    assert!((x - y).abs() < 1e-14, "{name} frame {f}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn regrouped_model_has_the_same_dynamics() {
         for name in ["ur5", "panda", "torso_two_arms"] {
             let path = format!("{}/robots/{name}.urdf", env!("CARGO_MANIFEST_DIR"));
             let model = Model::from_urdf_file(&path).unwrap();
-            let grouped = regroup_inertia(&model);
+            let grouped = regroup_inertia(&slide_origins_along_axes(&model));
             let n = model.dof();
             let (mut wa, mut wb) = (Workspace::new(&model), Workspace::new(&grouped));
             let q: Vec<f64> = (0..n).map(|i| 0.7 * i as f64 - 1.1).collect();
@@ -132,6 +202,10 @@ mod tests {
         }
         let grouped = regroup_inertia(&ur5());
         assert!(grouped.bodies.iter().all(|b| b.inertia.mass == 0.0));
+        // the elbow's placement lost its component along the shoulder's axis
+        let slid = slide_origins_along_axes(&ur5());
+        assert_eq!(ur5().bodies[2].joint.placement.trans.0, [0.0, -0.1197, 0.425]);
+        assert_eq!(slid.bodies[2].joint.placement.trans.0[1], 0.0);
         // the first body keeps only its rotational inertia about its axis
         let first = &grouped.bodies[0].inertia;
         assert_eq!(first.h.0[2], 0.0);

@@ -72,7 +72,7 @@ mod trace;
 
 pub use builder::{module_name, BuildError, Builder, GeneratedFile};
 pub use generic_count::generic_op_count;
-pub use grouping::regroup_inertia;
+pub use grouping::{regroup_inertia, slide_origins_along_axes};
 pub use hash::{canonical_text, fnv1a64, model_hash};
 pub use literal::float_literal_text;
 pub use rounding::{snap_rounding, SnappedConstant, ROUNDING_TOLERANCE};
@@ -369,7 +369,11 @@ fn doc_of(kind: FunctionKind, model: &Model, count: &OpCount) -> String {
 pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModule, CodegenError> {
     let (snapped_model, snapped) =
         if options.snap_rounding { snap_rounding(model) } else { (model.clone(), Vec::new()) };
-    let grouped_model = if options.regroup_inertia { regroup_inertia(&snapped_model) } else { snapped_model };
+    let grouped_model = if options.regroup_inertia {
+        regroup_inertia(&slide_origins_along_axes(&snapped_model))
+    } else {
+        snapped_model
+    };
     let m = &grouped_model;
     let n = model.dof();
     let f = &options.functions;
