@@ -89,6 +89,38 @@ impl<S: Scalar> ArticulatedInertia<S> {
         }
         ArticulatedInertia { a: sym(&self.a, &ua, &u.ang), b, c: sym(&self.c, &ul.scale(d_inv), &ul) }
     }
+    /// Sets to exact zeros what `self − u uᵀ / d` (with `u = self·S`,
+    /// `d = Sᵀu`) has as zeros in exact arithmetic: the row and column of
+    /// an axis-aligned joint's direction, since `(I − u uᵀ/d)·S = u − u = 0`.
+    /// Computing them would only give rounding errors (and operations).
+    #[inline(always)]
+    fn clear_subspace(&mut self, joint: &Joint) {
+        let k = match joint.alignment {
+            AxisAlignment::X => 0,
+            AxisAlignment::Y => 1,
+            AxisAlignment::Z => 2,
+            AxisAlignment::General => return,
+        };
+        let z = S::zero();
+        // Sym3 storage [xx, yy, zz, xy, xz, yz]: the entries of row/column k.
+        let sym_entries = [[0, 3, 4], [3, 1, 5], [4, 5, 2]][k];
+        match joint.kind {
+            JointKind::Revolute | JointKind::Continuous => {
+                for e in sym_entries {
+                    self.a.0[e] = z;
+                }
+                self.b.0[k] = [z; 3];
+            }
+            JointKind::Prismatic => {
+                for e in sym_entries {
+                    self.c.0[e] = z;
+                }
+                for row in self.b.0.iter_mut() {
+                    row[k] = z;
+                }
+            }
+        }
+    }
     /// The same inertia seen from the parent: `Xᵀ · self · X`, where `X`
     /// maps parent motion to this frame and `x` is this frame's pose in
     /// the parent.
@@ -211,7 +243,8 @@ pub fn aba<S: Scalar>(
         ws.s1[i] = d_inv;
         ws.s2[i] = ui;
         if let Some(p) = body.parent {
-            let ia = ws.art[i].sub_outer(&u, d_inv);
+            let mut ia = ws.art[i].sub_outer(&u, d_inv);
+            ia.clear_subspace(&body.joint);
             let pa = ws.f[i] + ia.mul_motion(&ws.a[i]) + u.scale(ui * d_inv);
             let x = ws.x[i];
             let ia_p = with_rotation!(&body.joint, x, |r| ia.expressed_in_parent(&r, &x.trans));
