@@ -7,7 +7,7 @@ use super::joint::{
     add_axis, add_motion, cross_axis, force_to_parent, joint_transform, motion, motion_to_child, project,
     with_rotation, Rotation,
 };
-use super::rnea::velocity_product_matrix;
+use super::rnea::{gyroscopic, products, velocity_product_matrix};
 use super::{TipWrench, Workspace};
 use crate::model::{AxisAlignment, Joint, JointKind, Model};
 use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
@@ -223,10 +223,12 @@ pub fn aba<S: Scalar>(
         ws.a[i] = c; // c_i, kept until the last pass
         ws.art[i] = ArticulatedInertia::from_rigid(&inertia);
         // [ω×]²: ω × (ω × h) here, the centripetal acceleration of the children
-        let u = velocity_product_matrix(&w, &Vec3::zero(), true);
+        let p = products(&w);
+        let u = velocity_product_matrix(Some(&p), &Vec3::zero());
         ws.u[i] = u;
         let wwh = u.mul_vec(&inertia.h);
-        ws.f[i] = Force::new(w.cross(&inertia.ibar.mul_vec(&w)), wwh);
+        let gyro = if ws.gyro_products[i] { gyroscopic(&inertia.ibar, &p) } else { w.cross(&inertia.ibar.mul_vec(&w)) };
+        ws.f[i] = Force::new(gyro, wwh);
     }
     for tip in tips {
         let frame = &model.frames[tip.frame];

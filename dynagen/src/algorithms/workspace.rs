@@ -29,6 +29,10 @@ pub struct Workspace<S> {
     pub(crate) f: Vec<Force<S>>,
     /// RNEA: `[ω̇×] + [ω×][ω×]` of each body, in its frame.
     pub(crate) u: Vec<Mat3<S>>,
+    /// Per body, whether `ω × (Ī ω)` is computed from the products `ω ωᵀ`
+    /// (decided once from the model's `Ī`, see `rnea::use_products_for_gyroscopic`;
+    /// either form gives the same value up to rounding).
+    pub(crate) gyro_products: Vec<bool>,
     /// Composite or articulated quantities, per body.
     pub(crate) inertia: Vec<Inertia<S>>,
     /// Articulated-body inertias, per body.
@@ -54,6 +58,11 @@ impl<S: Scalar> Workspace<S> {
             a: vec![Motion::zero(); n],
             f: vec![Force::zero(); n],
             u: vec![Mat3::zero(); n],
+            gyro_products: model
+                .bodies
+                .iter()
+                .map(|b| crate::algorithms::rnea::use_products_for_gyroscopic(&b.inertia.ibar))
+                .collect(),
             inertia: vec![Inertia::zero(); n],
             art: vec![crate::algorithms::aba::ArticulatedInertia::zero(); n],
             u6: vec![Force::zero(); n],
