@@ -368,25 +368,6 @@ pub(crate) struct Permuted<S, const K: usize, const I: usize, const J: usize> {
     inner: Mat3<S>,
 }
 
-/// The columns and signs of a signed permutation matrix, if `m` is one.
-#[inline(always)]
-pub(crate) fn signed_permutation(m: &Mat3<f64>) -> Option<([usize; 3], [bool; 3])> {
-    let mut col = [0; 3];
-    let mut neg = [false; 3];
-    let mut seen = [false; 3];
-    for r in 0..3 {
-        let row = &m.0[r];
-        let c = (0..3).find(|&c| row[c] != 0.0)?;
-        if row[c].abs() != 1.0 || seen[c] || (0..3).any(|d| d != c && row[d] != 0.0) {
-            return None;
-        }
-        col[r] = c;
-        neg[r] = row[c] < 0.0;
-        seen[c] = true;
-    }
-    Some((col, neg))
-}
-
 impl<S: Scalar, const K: usize, const I: usize, const J: usize> Permuted<S, K, I, J> {
     /// For a joint transform's rotation `rot = P·R_K(θ)`.
     #[inline(always)]
@@ -450,7 +431,7 @@ impl<S: Scalar, const K: usize, const I: usize, const J: usize> Rotation<S> for 
 /// chosen from the model's constants.
 macro_rules! with_rotation {
     ($joint:expr, $x:expr, |$r:ident| $body:expr) => {{
-        use $crate::algorithms::joint::{signed_permutation, AboutAxis, Dense, Permuted};
+        use $crate::algorithms::joint::{AboutAxis, Dense, Permuted};
         use $crate::model::{AxisAlignment, JointKind};
         let joint: &$crate::model::Joint = $joint;
         let rot = &$x.rot;
@@ -459,7 +440,7 @@ macro_rules! with_rotation {
                 false,
                 JointKind::Revolute | JointKind::Continuous,
                 AxisAlignment::X | AxisAlignment::Y | AxisAlignment::Z,
-            ) => signed_permutation(&joint.placement.rot),
+            ) => joint.placement_permutation,
             _ => None,
         };
         match (joint.placement_rotation_is_identity, joint.kind, joint.alignment) {
@@ -544,6 +525,7 @@ mod tests {
             axis_norm: n,
             alignment: AxisAlignment::of(&axis),
             placement_rotation_is_identity: placement.rot == Mat3::identity(),
+            placement_permutation: crate::model::signed_permutation(&placement.rot),
         }
     }
 
