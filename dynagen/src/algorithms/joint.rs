@@ -354,110 +354,18 @@ impl<S: Scalar, const K: usize, const I: usize, const J: usize> Rotation<S> for 
     }
 }
 
-/// A rotation `P·R_K(θ)`: a constant signed permutation `P` (a placement
-/// turned by quarter turns, e.g. `rpy = "0 1.5707963267948966 0"` once
-/// rounding is snapped) after a rotation about `e_K`. Products with `P` only
-/// move entries and flip signs, and `R_K` keeps the short forms of
-/// [`AboutAxis`].
-pub(crate) struct Permuted<S, const K: usize, const I: usize, const J: usize> {
-    /// Row `r` of `P` has its non-zero entry in column `col[r]`…
-    col: [usize; 3],
-    /// … and it is −1 where `neg[r]`.
-    neg: [bool; 3],
-    /// `R_K(θ) = Pᵀ·R`.
-    inner: Mat3<S>,
-}
-
-impl<S: Scalar, const K: usize, const I: usize, const J: usize> Permuted<S, K, I, J> {
-    /// For a joint transform's rotation `rot = P·R_K(θ)`.
-    #[inline(always)]
-    pub(crate) fn new(rot: &Mat3<S>, (col, neg): ([usize; 3], [bool; 3])) -> Self {
-        let mut inner = [[S::zero(); 3]; 3];
-        for r in 0..3 {
-            inner[col[r]] = rot.0[r].map(|x| if neg[r] { -x } else { x });
-        }
-        Permuted { col, neg, inner: Mat3(inner) }
-    }
-    #[inline(always)]
-    fn sign(&self, r: usize, x: S) -> S {
-        if self.neg[r] {
-            -x
-        } else {
-            x
-        }
-    }
-    /// `P·M·Pᵀ`.
-    #[inline(always)]
-    fn conjugate(&self, m: &Mat3<S>) -> Mat3<S> {
-        let mut o = [[S::zero(); 3]; 3];
-        for a in 0..3 {
-            for b in 0..3 {
-                let x = m.0[self.col[a]][self.col[b]];
-                o[a][b] = if self.neg[a] != self.neg[b] { -x } else { x };
-            }
-        }
-        Mat3(o)
-    }
-}
-
-impl<S: Scalar, const K: usize, const I: usize, const J: usize> Rotation<S> for Permuted<S, K, I, J> {
-    #[inline(always)]
-    fn mul(&self, v: &Vec3<S>) -> Vec3<S> {
-        let u = AboutAxis::<S, K, I, J>(&self.inner).mul(v);
-        Vec3([0, 1, 2].map(|r| self.sign(r, u.0[self.col[r]])))
-    }
-    #[inline(always)]
-    fn tr_mul(&self, v: &Vec3<S>) -> Vec3<S> {
-        let mut w = [S::zero(); 3];
-        for r in 0..3 {
-            w[self.col[r]] = self.sign(r, v.0[r]);
-        }
-        AboutAxis::<S, K, I, J>(&self.inner).tr_mul(&Vec3(w))
-    }
-    #[inline(always)]
-    fn rotate_sym(&self, s: &Sym3<S>) -> Sym3<S> {
-        let t = AboutAxis::<S, K, I, J>(&self.inner).rotate_sym(s).to_mat();
-        Sym3::from_mat_upper(&self.conjugate(&t))
-    }
-    #[inline(always)]
-    fn rotate_mat(&self, m: &Mat3<S>) -> Mat3<S> {
-        let t = AboutAxis::<S, K, I, J>(&self.inner).rotate_mat(m);
-        self.conjugate(&t)
-    }
-}
-
 /// Runs `$body` with `$r` bound to the [`Rotation`] of the joint's transform
 /// `$x` (a `Transform` computed by [`joint_transform`] for this joint),
 /// chosen from the model's constants.
 macro_rules! with_rotation {
     ($joint:expr, $x:expr, |$r:ident| $body:expr) => {{
-        use $crate::algorithms::joint::{AboutAxis, Dense, Permuted};
+        use $crate::algorithms::joint::{AboutAxis, Dense};
         use $crate::model::{AxisAlignment, JointKind};
         let joint: &$crate::model::Joint = $joint;
         let rot = &$x.rot;
-        let perm = match (joint.placement_rotation_is_identity, joint.kind, joint.alignment) {
-            (
-                false,
-                JointKind::Revolute | JointKind::Continuous,
-                AxisAlignment::X | AxisAlignment::Y | AxisAlignment::Z,
-            ) => joint.placement_permutation,
-            _ => None,
-        };
         match (joint.placement_rotation_is_identity, joint.kind, joint.alignment) {
             (_, JointKind::Prismatic, _) => {
                 let $r = Dense(rot);
-                $body
-            }
-            (false, _, AxisAlignment::X) if perm.is_some() => {
-                let $r = Permuted::<_, 0, 1, 2>::new(rot, perm.unwrap_or_default());
-                $body
-            }
-            (false, _, AxisAlignment::Y) if perm.is_some() => {
-                let $r = Permuted::<_, 1, 2, 0>::new(rot, perm.unwrap_or_default());
-                $body
-            }
-            (false, _, AxisAlignment::Z) if perm.is_some() => {
-                let $r = Permuted::<_, 2, 0, 1>::new(rot, perm.unwrap_or_default());
                 $body
             }
             (true, _, AxisAlignment::X) => {
@@ -525,7 +433,6 @@ mod tests {
             axis_norm: n,
             alignment: AxisAlignment::of(&axis),
             placement_rotation_is_identity: placement.rot == Mat3::identity(),
-            placement_permutation: crate::model::signed_permutation(&placement.rot),
         }
     }
 
@@ -543,7 +450,7 @@ mod tests {
         let placements = [
             Transform::new(Mat3::identity(), Vec3([0.1, -0.2, 0.3])),
             Transform::new(Mat3::from_rpy(0.4, -1.2, 2.5), Vec3([-0.3, 0.05, 0.2])),
-            // quarter turns (signed permutations: the `Permuted` short cut)
+            // quarter turns (signed permutations)
             Transform::new(Mat3([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]]), Vec3([0.0, 0.136, 0.0])),
             Transform::new(Mat3([[0.0, -1.0, 0.0], [0.0, 0.0, 1.0], [-1.0, 0.0, 0.0]]), Vec3([0.2, 0.0, -0.1])),
         ];

@@ -71,13 +71,6 @@ pub struct Joint {
     /// Derived from `placement`: whether its rotation is exactly the
     /// identity, so that the algorithms can skip the product with it.
     pub placement_rotation_is_identity: bool,
-    /// Derived from `placement`: when its rotation is a signed permutation
-    /// (quarter turns, e.g. `rpy = "0 1.5707963267948966 0"` once the
-    /// rounding is snapped), the column of the non-zero entry of each row
-    /// and whether it is −1, so that the algorithms can apply it by moving
-    /// entries. Recompute with [`Joint::refresh_derived`] after changing the
-    /// placement or the axis.
-    pub placement_permutation: Option<([usize; 3], [bool; 3])>,
 }
 
 /// Which coordinate axis of its frame a joint's axis lies along (its other
@@ -108,32 +101,13 @@ impl AxisAlignment {
     }
 }
 
-/// The columns and signs of a signed permutation matrix, if `m` is one.
-pub fn signed_permutation(m: &Mat3<f64>) -> Option<([usize; 3], [bool; 3])> {
-    let mut col = [0; 3];
-    let mut neg = [false; 3];
-    let mut seen = [false; 3];
-    for r in 0..3 {
-        let row = &m.0[r];
-        let c = (0..3).find(|&c| row[c] != 0.0)?;
-        if row[c].abs() != 1.0 || seen[c] || (0..3).any(|d| d != c && row[d] != 0.0) {
-            return None;
-        }
-        col[r] = c;
-        neg[r] = row[c] < 0.0;
-        seen[c] = true;
-    }
-    Some((col, neg))
-}
-
 impl Joint {
     /// Recomputes the fields derived from `axis` and `placement`
-    /// (`alignment`, `placement_rotation_is_identity`, `placement_permutation`;
-    /// `unit_axis` and `axis_norm` are left alone).
+    /// (`alignment`, `placement_rotation_is_identity`; `unit_axis` and
+    /// `axis_norm` are left alone).
     pub fn refresh_derived(&mut self) {
         self.alignment = AxisAlignment::of(&self.axis);
         self.placement_rotation_is_identity = self.placement.rot == Mat3::identity();
-        self.placement_permutation = signed_permutation(&self.placement.rot);
     }
     /// The joint's motion subspace S in its own frame: the twist of the body
     /// relative to its parent per unit joint velocity, (angular; linear).

@@ -179,7 +179,6 @@ fn joint_from(desc: &JointDescription, placement: Transform<f64>) -> Joint {
         axis_norm: n,
         alignment: AxisAlignment::of(&desc.axis),
         placement_rotation_is_identity: placement.rot == Mat3::identity(),
-        placement_permutation: super::signed_permutation(&placement.rot),
     }
 }
 
