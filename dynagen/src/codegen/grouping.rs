@@ -125,15 +125,15 @@ pub fn slide_origins_along_axes(model: &Model) -> Model {
         // The body's frame B' sits at δ e_K in B: T_B'B = Trans(−δ e_K).
         let to_new = crate::spatial::Transform::translation(-shift);
         for b in m.bodies.iter_mut().filter(|b| b.parent == Some(i)) {
-            b.joint.placement.trans = b.joint.placement.trans - shift;
+            b.joint.placement.trans -= shift;
         }
         for f in m.frames.iter_mut().filter(|f| f.body == Some(i)) {
-            f.placement.trans = f.placement.trans - shift;
+            f.placement.trans -= shift;
         }
         let body = &mut m.bodies[i];
         body.inertia = to_new.inertia_to_parent(&body.inertia);
         let place = &mut body.joint.placement;
-        place.trans = place.trans + place.rot.mul_vec(&shift);
+        place.trans += place.rot.mul_vec(&shift);
     }
     m
 }
