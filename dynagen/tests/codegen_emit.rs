@@ -196,6 +196,11 @@ fn constants_within_rounding_of_zero_or_one() {
     assert_eq!(m.bodies[0].inertia.ibar.0[3], 0.0);
     // Masses are never touched.
     assert_eq!(m.bodies[0].inertia.mass, 2.0);
+    // A placement that snaps to the identity is then known as one (the
+    // algorithms' derived flags are refreshed after the snap).
+    let almost = tilted(1e-17, 0.0);
+    assert!(!almost.bodies[1].joint.placement_rotation_is_identity);
+    assert!(snap_rounding(&almost).0.bodies[1].joint.placement_rotation_is_identity);
 }
 
 #[test]

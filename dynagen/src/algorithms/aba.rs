@@ -4,9 +4,10 @@
 //! a factorisation of M, which is why it is the default forward dynamics.
 
 use super::joint::{
-    add_motion, cross_motion, force_to_parent, joint_transform, motion, motion_to_child, project, with_rotation,
-    Rotation,
+    add_axis, add_motion, cross_axis, force_to_parent, joint_transform, motion, motion_to_child, project,
+    with_rotation, Rotation,
 };
+use super::rnea::{gyroscopic, products, velocity_product_matrix};
 use super::{TipWrench, Workspace};
 use crate::model::{AxisAlignment, Joint, JointKind, Model};
 use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
@@ -87,6 +88,38 @@ impl<S: Scalar> ArticulatedInertia<S> {
             }
         }
         ArticulatedInertia { a: sym(&self.a, &ua, &u.ang), b, c: sym(&self.c, &ul.scale(d_inv), &ul) }
+    }
+    /// Sets to exact zeros what `self − u uᵀ / d` (with `u = self·S`,
+    /// `d = Sᵀu`) has as zeros in exact arithmetic: the row and column of
+    /// an axis-aligned joint's direction, since `(I − u uᵀ/d)·S = u − u = 0`.
+    /// Computing them would only give rounding errors (and operations).
+    #[inline(always)]
+    fn clear_subspace(&mut self, joint: &Joint) {
+        let k = match joint.alignment {
+            AxisAlignment::X => 0,
+            AxisAlignment::Y => 1,
+            AxisAlignment::Z => 2,
+            AxisAlignment::General => return,
+        };
+        let z = S::zero();
+        // Sym3 storage [xx, yy, zz, xy, xz, yz]: the entries of row/column k.
+        let sym_entries = [[0, 3, 4], [3, 1, 5], [4, 5, 2]][k];
+        match joint.kind {
+            JointKind::Revolute | JointKind::Continuous => {
+                for e in sym_entries {
+                    self.a.0[e] = z;
+                }
+                self.b.0[k] = [z; 3];
+            }
+            JointKind::Prismatic => {
+                for e in sym_entries {
+                    self.c.0[e] = z;
+                }
+                for row in self.b.0.iter_mut() {
+                    row[k] = z;
+                }
+            }
+        }
     }
     /// The same inertia seen from the parent: `Xᵀ · self · X`, where `X`
     /// maps parent motion to this frame and `x` is this frame's pose in
@@ -185,24 +218,45 @@ pub fn aba_with_armature<S: Scalar>(
         "aba: slices must have the model's {n} joints"
     );
     assert!(armature.is_none_or(|a| a.len() == n), "aba: the armature must have the model's {n} joints");
-    // Forward: velocities, velocity-product accelerations c, bias forces pA.
+    // Forward: angular velocities ω, velocity-product accelerations c, bias
+    // forces pA. The accelerations of this algorithm are "classic": (ω̇; the
+    // ordinary acceleration of the frame's origin), as in the RNEA, so the
+    // linear velocity is never needed: a body's wrench is I·(ω̇; a) + b with
+    // b = (ω × Ī ω; ω × (ω × h)), and the origin of a child at p (in the
+    // parent) accelerates by X·(ω̇_p; a_p) + c with c's linear part
+    // ω_p × (ω_p × p) (plus the Coriolis 2 ω × ṗ of a prismatic joint) and
+    // c's angular part ω_in × S q̇ (revolute). Featherstone's spatial form
+    // gives the same q̈ with more operations.
     for (i, body) in model.bodies.iter().enumerate() {
         let joint = &body.joint;
         let x = joint_transform(joint, q[i]);
         ws.x[i] = x;
         let inertia = Inertia::<S>::from_f64(&body.inertia);
-        let (v, c) = match body.parent {
-            Some(p) => {
-                let mut v = motion_to_child(joint, &x, &ws.v[p]);
-                add_motion(joint, &mut v, qd[i]);
-                (v, cross_motion(joint, &v, qd[i]))
-            }
-            None => (motion(joint, qd[i]), Motion::zero()),
+        let revolute = joint.is_revolute();
+        let (mut w, mut c) = match body.parent {
+            Some(p) => with_rotation!(joint, x, |r| {
+                let wp = ws.v[p].ang;
+                let centripetal = ws.u[p].mul_vec(&x.trans);
+                (r.tr_mul(&wp), Motion::new(Vec3::zero(), r.tr_mul(&centripetal)))
+            }),
+            None => (Vec3::zero(), Motion::zero()),
         };
-        ws.v[i] = v;
+        if revolute {
+            c.ang = cross_axis(joint, &w, qd[i]);
+            add_axis(joint, &mut w, qd[i]);
+        } else {
+            c.lin += cross_axis(joint, &w, qd[i] + qd[i]);
+        }
+        ws.v[i] = Motion::new(w, Vec3::zero());
         ws.a[i] = c; // c_i, kept until the last pass
         ws.art[i] = ArticulatedInertia::from_rigid(&inertia);
-        ws.f[i] = v.cross_force(&inertia.mul_motion(&v));
+        // [ω×]²: ω × (ω × h) here, the centripetal acceleration of the children
+        let p = products(&w);
+        let u = velocity_product_matrix(Some(&p), &Vec3::zero());
+        ws.u[i] = u;
+        let wwh = u.mul_vec(&inertia.h);
+        let gyro = if ws.gyro_products[i] { gyroscopic(&inertia.ibar, &p) } else { w.cross(&inertia.ibar.mul_vec(&w)) };
+        ws.f[i] = Force::new(gyro, wwh);
     }
     for tip in tips {
         let frame = &model.frames[tip.frame];
@@ -214,17 +268,20 @@ pub fn aba_with_armature<S: Scalar>(
     for (i, body) in model.bodies.iter().enumerate().rev() {
         let u = ws.art[i].mul_subspace(&body.joint);
         let d = project(&body.joint, &u);
-        let d = match armature.map_or(0.0, |a| a[i]) {
-            0.0 => d,
-            a => d + S::from_f64(a),
-        };
+        let arm = armature.map_or(0.0, |a| a[i]);
+        let d = if arm == 0.0 { d } else { d + S::from_f64(arm) };
         let d_inv = S::one() / d;
         let ui = tau[i] - project(&body.joint, &ws.f[i]);
         ws.u6[i] = u;
         ws.s1[i] = d_inv;
         ws.s2[i] = ui;
         if let Some(p) = body.parent {
-            let ia = ws.art[i].sub_outer(&u, d_inv);
+            let mut ia = ws.art[i].sub_outer(&u, d_inv);
+            // Without armature (I − u uᵀ/d)·S = 0 exactly; with it, the
+            // product is u·a/d, which the parent must see.
+            if arm == 0.0 {
+                ia.clear_subspace(&body.joint);
+            }
             let pa = ws.f[i] + ia.mul_motion(&ws.a[i]) + u.scale(ui * d_inv);
             let x = ws.x[i];
             let ia_p = with_rotation!(&body.joint, x, |r| ia.expressed_in_parent(&r, &x.trans));

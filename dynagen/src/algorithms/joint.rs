@@ -303,6 +303,55 @@ impl<S: Scalar, const K: usize, const I: usize, const J: usize> Rotation<S> for 
         o[J] = m[I][J] * v[I] + m[J][J] * v[J];
         Vec3(o)
     }
+    /// In the plane (I, J) a symmetric 2×2 block is `yy·1 + [[d, e], [e, 0]]`
+    /// with `d = xx − yy`: the rotation leaves `yy·1` alone, and the rest
+    /// takes five products with the joint's `c²`, `s²`, `s·c`, `2s·c` and
+    /// `c² − s²` (fewer when `yy` or `e` is zero, as in a regrouped inertia);
+    /// column K turns by θ.
+    #[inline(always)]
+    fn rotate_sym(&self, s: &Sym3<S>) -> Sym3<S> {
+        let m = s.to_mat().0;
+        let (c, sn) = (self.0 .0[I][I], self.0 .0[J][I]);
+        let (cc, ss, sc) = (c * c, sn * sn, sn * c);
+        let (sc2, c2) = (sc * S::from_f64(2.0), cc - ss);
+        let (yy, d, e) = (m[J][J], m[I][I] - m[J][J], m[I][J]);
+        let col = self.mul(&Vec3([m[0][K], m[1][K], m[2][K]]));
+        let mut r = [[S::zero(); 3]; 3];
+        r[I][I] = (cc * d - sc2 * e) + yy;
+        r[J][J] = (ss * d + sc2 * e) + yy;
+        r[I][J] = sc * d + c2 * e;
+        r[J][I] = r[I][J];
+        r[K][K] = m[K][K];
+        r[I][K] = col.0[I];
+        r[K][I] = col.0[I];
+        r[J][K] = col.0[J];
+        r[K][J] = col.0[J];
+        Sym3::from_mat_upper(&Mat3(r))
+    }
+    /// As [`Self::rotate_sym`]: the (I, J) block is `yy·1 + [[d, p], [q, 0]]`;
+    /// column K and row K turn by θ.
+    #[inline(always)]
+    fn rotate_mat(&self, b: &Mat3<S>) -> Mat3<S> {
+        let m = &b.0;
+        let (c, sn) = (self.0 .0[I][I], self.0 .0[J][I]);
+        let (cc, ss, sc) = (c * c, sn * sn, sn * c);
+        let (yy, d, p, q) = (m[J][J], m[I][I] - m[J][J], m[I][J], m[J][I]);
+        let scd = sc * d;
+        let scpq = sc * (p + q);
+        let col = self.mul(&Vec3([m[0][K], m[1][K], m[2][K]]));
+        let row = self.mul(&Vec3([m[K][0], m[K][1], m[K][2]]));
+        let mut r = [[S::zero(); 3]; 3];
+        r[I][I] = (cc * d - scpq) + yy;
+        r[J][J] = (ss * d + scpq) + yy;
+        r[I][J] = (scd - ss * q) + cc * p;
+        r[J][I] = (scd + cc * q) - ss * p;
+        r[K][K] = m[K][K];
+        r[I][K] = col.0[I];
+        r[J][K] = col.0[J];
+        r[K][I] = row.0[I];
+        r[K][J] = row.0[J];
+        Mat3(r)
+    }
 }
 
 /// Runs `$body` with `$r` bound to the [`Rotation`] of the joint's transform
@@ -401,6 +450,9 @@ mod tests {
         let placements = [
             Transform::new(Mat3::identity(), Vec3([0.1, -0.2, 0.3])),
             Transform::new(Mat3::from_rpy(0.4, -1.2, 2.5), Vec3([-0.3, 0.05, 0.2])),
+            // quarter turns (signed permutations)
+            Transform::new(Mat3([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]]), Vec3([0.0, 0.136, 0.0])),
+            Transform::new(Mat3([[0.0, -1.0, 0.0], [0.0, 0.0, 1.0], [-1.0, 0.0, 0.0]]), Vec3([0.2, 0.0, -0.1])),
         ];
         let inertia = crate::spatial::Inertia::from_mass_com_inertia(
             2.0,
@@ -464,6 +516,6 @@ mod tests {
                 }
             }
         }
-        assert_eq!(cases, 72);
+        assert_eq!(cases, 144);
     }
 }

@@ -20,8 +20,83 @@
 use super::joint::{add_axis, cross_axis, force_to_parent, joint_transform, project, with_rotation, Rotation};
 use super::{TipWrench, Workspace};
 use crate::model::Model;
-use crate::spatial::{Force, Inertia, Motion, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
 use crate::Scalar;
+
+/// The products `ω ωᵀ` as `[xx, yy, zz, xy, xz, yz]`, shared by
+/// [`velocity_product_matrix`] and [`gyroscopic`].
+#[inline(always)]
+pub(crate) fn products<S: Scalar>(w: &Vec3<S>) -> Sym3<S> {
+    let [x, y, z] = w.0;
+    Sym3([x * x, y * y, z * z, x * y, x * z, y * z])
+}
+
+/// `U = [ω̇×] + [ω×][ω×]` (Khalil's matrix), so that `U·v = ω̇ × v + ω × (ω × v)`:
+/// the acceleration of a point at `v` of a body turning with ω, ω̇ relative
+/// to the body's origin; `p` = [`products`] of ω (`None`: ω = 0, only `[ω̇×]`).
+#[inline(always)]
+pub(crate) fn velocity_product_matrix<S: Scalar>(p: Option<&Sym3<S>>, wd: &Vec3<S>) -> Mat3<S> {
+    let mut u = Mat3::skew(wd);
+    if let Some(p) = p {
+        let [xx, yy, zz, xy, xz, yz] = p.0;
+        let m = &mut u.0;
+        m[0][0] = -(yy + zz);
+        m[1][1] = -(xx + zz);
+        m[2][2] = -(xx + yy);
+        m[0][1] += xy;
+        m[1][0] += xy;
+        m[0][2] += xz;
+        m[2][0] += xz;
+        m[1][2] += yz;
+        m[2][1] += yz;
+    }
+    u
+}
+
+/// Whether [`gyroscopic`] is the cheaper form of `ω × (Ī ω)` for this body's
+/// (constant) `Ī`, counting the operations of both forms on its non-zero
+/// entries (not counting the products `ω ωᵀ`, which `U` needs anyway): a
+/// sparse `Ī`, as regrouping leaves, takes fewer operations from the
+/// products, a dense one as `Ī ω` then a cross product.
+#[inline(always)]
+pub(crate) fn use_products_for_gyroscopic(ibar: &Sym3<f64>) -> bool {
+    let [xx, yy, zz, xy, xz, yz] = ibar.0;
+    let nz = |x: f64| usize::from(x != 0.0);
+    let sum = |terms: &[usize]| {
+        let n: usize = terms.iter().sum();
+        (2 * n).saturating_sub(1)
+    };
+    // Ī ω row by row, then ω × (Ī ω): a component of the cross product has
+    // a term for each non-zero entry of Ī ω it reads.
+    let rows = [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]].map(|r| r.iter().map(|x| nz(*x)).sum::<usize>());
+    let direct = rows.iter().map(|n| (2 * n).saturating_sub(1)).sum::<usize>()
+        + sum(&[usize::from(rows[2] > 0), usize::from(rows[1] > 0)])
+        + sum(&[usize::from(rows[0] > 0), usize::from(rows[2] > 0)])
+        + sum(&[usize::from(rows[1] > 0), usize::from(rows[0] > 0)]);
+    // the three components of `gyroscopic`, a difference of products each
+    let products = sum(&[nz(xz), nz(xy), nz(yz), nz(zz - yy)])
+        + sum(&[nz(xy), nz(yz), nz(xz), nz(xx - zz)])
+        + sum(&[nz(yz), nz(xz), nz(xy), nz(yy - xx)])
+        + nz(yz)
+        + nz(xz)
+        + nz(xy);
+    products < direct
+}
+
+/// The gyroscopic moment `ω × (Ī ω)` from the products `p = ω ωᵀ` (see
+/// [`products`]): each component is a combination of the products with
+/// constant coefficients, e.g. `x: Ī_xz p_xy − Ī_xy p_xz + Ī_yz (p_yy − p_zz)
+/// + (Ī_zz − Ī_yy) p_yz`, so the products of ω that `U` needs serve here too.
+#[inline(always)]
+pub(crate) fn gyroscopic<S: Scalar>(i: &Sym3<S>, p: &Sym3<S>) -> Vec3<S> {
+    let [ixx, iyy, izz, ixy, ixz, iyz] = i.0;
+    let [pxx, pyy, pzz, pxy, pxz, pyz] = p.0;
+    Vec3([
+        ixz * pxy - ixy * pxz + iyz * (pyy - pzz) + (izz - iyy) * pyz,
+        ixy * pyz - iyz * pxy + ixz * (pzz - pxx) + (ixx - izz) * pxz,
+        iyz * pxz - ixz * pyz + ixy * (pxx - pyy) + (iyy - ixx) * pxy,
+    ])
+}
 
 /// Computes the pose of every body in its parent's frame into `ws.x`.
 #[inline(always)]
@@ -66,6 +141,7 @@ pub fn rnea<S: Scalar>(
     let (qd, qdd) = (qd.map(|x| &x[..n]), qdd.map(|x| &x[..n]));
     // ws.v[i].ang holds ω (ws.v[i].lin is not used); ws.a[i] holds (ω̇; a).
     let (xs, vs, accs, fs) = (&mut ws.x[..n], &mut ws.v[..n], &mut ws.a[..n], &mut ws.f[..n]);
+    let (us, gyro) = (&mut ws.u[..n], &ws.gyro_products[..n]);
     // Without q̇ and q̈ every ω̇ is zero (and without q̇ every ω).
     let moving = qd.is_some() || qdd.is_some();
     for (i, body) in bodies.iter().enumerate() {
@@ -76,18 +152,16 @@ pub fn rnea<S: Scalar>(
         // all in this body's frame. The base is at rest, accelerating at −g.
         let (w_in, wd_in, mut a) = match body.parent {
             Some(p) => with_rotation!(joint, x, |r| {
-                // a_origin = a_parent + ω̇ × p + ω × (ω × p), in the parent's frame
+                // a_origin = a_parent + ω̇ × p + ω × (ω × p) = a_parent + U·p,
+                // in the parent's frame
                 let mut ao = accs[p].lin;
                 let (mut w_in, mut wd_in) = (Vec3::zero(), Vec3::zero());
                 if moving {
-                    let wdp = accs[p].ang;
-                    ao += wdp.cross(&x.trans);
-                    wd_in = r.tr_mul(&wdp);
+                    ao += us[p].mul_vec(&x.trans);
+                    wd_in = r.tr_mul(&accs[p].ang);
                 }
                 if qd.is_some() {
-                    let wp = vs[p].ang;
-                    ao += wp.cross(&wp.cross(&x.trans));
-                    w_in = r.tr_mul(&wp);
+                    w_in = r.tr_mul(&vs[p].ang);
                 }
                 (w_in, wd_in, r.tr_mul(&ao))
             }),
@@ -115,13 +189,17 @@ pub fn rnea<S: Scalar>(
         let (h, ibar) = (&inertia.h, &inertia.ibar);
         let mut f = a.scale(inertia.mass);
         let mut m = h.cross(&a);
+        let p = qd.is_some().then(|| products(&w));
         if moving {
-            f += wd.cross(h);
+            // U = [ω̇×] + [ω×][ω×]: U·v = ω̇ × v + ω × (ω × v), shared by
+            // this body's force (v = h) and its children's origins (v = p)
+            let u = velocity_product_matrix(p.as_ref(), &wd);
+            f += u.mul_vec(h);
             m += ibar.mul_vec(&wd);
+            us[i] = u;
         }
-        if qd.is_some() {
-            f += w.cross(&w.cross(h));
-            m += w.cross(&ibar.mul_vec(&w));
+        if let Some(p) = &p {
+            m += if gyro[i] { gyroscopic(ibar, p) } else { w.cross(&ibar.mul_vec(&w)) };
         }
         vs[i].ang = w;
         accs[i] = Motion::new(wd, a);
@@ -140,5 +218,35 @@ pub fn rnea<S: Scalar>(
             let fp = force_to_parent(&body.joint, &xs[i], &fs[i]);
             fs[p] += fp;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `U·v = ω̇ × v + ω × (ω × v)` and the gyroscopic moment from the
+    /// products equals `ω × (Ī ω)`, for a dense and a sparse `Ī`.
+    #[test]
+    fn velocity_products_and_gyroscopic_moment() {
+        let (w, wd, v): (Vec3<f64>, Vec3<f64>, Vec3<f64>) =
+            (Vec3([0.7, -1.3, 0.4]), Vec3([2.1, 0.3, -0.9]), Vec3([-0.2, 0.5, 1.1]));
+        let u = velocity_product_matrix(Some(&products(&w)), &wd).mul_vec(&v);
+        let want = wd.cross(&v) + w.cross(&w.cross(&v));
+        for k in 0..3 {
+            assert!((u.0[k] - want.0[k]).abs() < 1e-14, "U·v[{k}]");
+        }
+        let only_wd = velocity_product_matrix(None, &wd).mul_vec(&v);
+        assert_eq!(only_wd.0, wd.cross(&v).0);
+        for ibar in [Sym3::<f64>([0.3, 0.25, 0.2, 0.01, -0.02, 0.015]), Sym3([0.0, 1.77, -1.755, 0.0, 0.0, 0.075])] {
+            let g = gyroscopic(&ibar, &products(&w));
+            let want = w.cross(&ibar.mul_vec(&w));
+            for k in 0..3 {
+                assert!((g.0[k] - want.0[k]).abs() < 1e-14, "gyroscopic[{k}]");
+            }
+        }
+        // the regrouped UR5 upper arm's Ī is cheaper from the products, a dense one is not
+        assert!(use_products_for_gyroscopic(&Sym3([0.0, 1.77, -1.755, 0.0, 0.0, 0.075])));
+        assert!(!use_products_for_gyroscopic(&Sym3([0.3, 0.25, 0.2, 0.01, -0.02, 0.015])));
     }
 }

@@ -1,7 +1,7 @@
 //! Scratch space for the algorithms, allocated once per model.
 
 use crate::model::Model;
-use crate::spatial::{Force, Inertia, Motion, Transform};
+use crate::spatial::{Force, Inertia, Mat3, Motion, Transform};
 use crate::Scalar;
 
 /// A wrench that a frame of the robot applies to its environment, in that
@@ -27,6 +27,12 @@ pub struct Workspace<S> {
     pub(crate) a: Vec<Motion<S>>,
     /// Net wrench transmitted by each joint, in the body's frame.
     pub(crate) f: Vec<Force<S>>,
+    /// RNEA: `[ω̇×] + [ω×][ω×]` of each body, in its frame.
+    pub(crate) u: Vec<Mat3<S>>,
+    /// Per body, whether `ω × (Ī ω)` is computed from the products `ω ωᵀ`
+    /// (decided once from the model's `Ī`, see `rnea::use_products_for_gyroscopic`;
+    /// either form gives the same value up to rounding).
+    pub(crate) gyro_products: Vec<bool>,
     /// Composite or articulated quantities, per body.
     pub(crate) inertia: Vec<Inertia<S>>,
     /// Articulated-body inertias, per body.
@@ -51,6 +57,12 @@ impl<S: Scalar> Workspace<S> {
             v: vec![Motion::zero(); n],
             a: vec![Motion::zero(); n],
             f: vec![Force::zero(); n],
+            u: vec![Mat3::zero(); n],
+            gyro_products: model
+                .bodies
+                .iter()
+                .map(|b| crate::algorithms::rnea::use_products_for_gyroscopic(&b.inertia.ibar))
+                .collect(),
             inertia: vec![Inertia::zero(); n],
             art: vec![crate::algorithms::aba::ArticulatedInertia::zero(); n],
             u6: vec![Force::zero(); n],

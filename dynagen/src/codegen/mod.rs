@@ -63,6 +63,7 @@
 mod builder;
 mod emit;
 mod generic_count;
+mod grouping;
 mod hash;
 mod literal;
 mod rounding;
@@ -72,6 +73,7 @@ mod trace;
 
 pub use builder::{module_name, BuildError, Builder, GeneratedFile};
 pub use generic_count::generic_op_count;
+pub use grouping::{regroup_inertia, slide_origins_along_axes};
 pub use hash::{canonical_text, fnv1a64, model_hash};
 pub use literal::float_literal_text;
 pub use rounding::{snap_rounding, SnappedConstant, ROUNDING_TOLERANCE};
@@ -193,6 +195,9 @@ pub struct CodegenOptions {
     /// Replace constants that are 0 or ±1 up to rounding (on); see the
     /// [module documentation](self).
     pub snap_rounding: bool,
+    /// Move the inertia a joint cannot move to its parent (on); see
+    /// [`regroup_inertia`].
+    pub regroup_inertia: bool,
     /// The value-changing graph rewrites (on); see [`Rewrites`].
     pub rewrites: Rewrites,
     /// Where the model came from (a file name), for the header.
@@ -208,6 +213,7 @@ impl Default for CodegenOptions {
             functions: Functions::default(),
             forward_dynamics: ForwardDynamicsMethod::Aba,
             snap_rounding: true,
+            regroup_inertia: true,
             rewrites: Rewrites::default(),
             source: None,
             trig: Trig::default(),
@@ -234,6 +240,11 @@ impl CodegenOptions {
     /// Turns the rounding snap on or off.
     pub fn snap_rounding(mut self, on: bool) -> Self {
         self.snap_rounding = on;
+        self
+    }
+    /// Turns the regrouping of inertial parameters on or off.
+    pub fn regroup_inertia(mut self, on: bool) -> Self {
+        self.regroup_inertia = on;
         self
     }
     /// Sets the value-changing rewrites.
@@ -375,7 +386,12 @@ fn doc_of(kind: FunctionKind, model: &Model, count: &OpCount) -> String {
 pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModule, CodegenError> {
     let (snapped_model, snapped) =
         if options.snap_rounding { snap_rounding(model) } else { (model.clone(), Vec::new()) };
-    let m = &snapped_model;
+    let grouped_model = if options.regroup_inertia {
+        regroup_inertia(&slide_origins_along_axes(&snapped_model))
+    } else {
+        snapped_model
+    };
+    let m = &grouped_model;
     let n = model.dof();
     let f = &options.functions;
     let wanted = [
@@ -582,9 +598,10 @@ fn header(
     let r = options.rewrites;
     let _ = writeln!(
         h,
-        "// Options: scalar {scalar}; forward dynamics by the {fd}; rounding snap {} ({} constants); like terms {}, constant products {}, constant sums {}.",
+        "// Options: scalar {scalar}; forward dynamics by the {fd}; rounding snap {} ({} constants); inertia regrouping {}; like terms {}, constant products {}, constant sums {}.",
         if options.snap_rounding { "on" } else { "off" },
         snapped.len(),
+        if options.regroup_inertia { "on" } else { "off" },
         if r.like_terms { "on" } else { "off" },
         if r.constant_products { "on" } else { "off" },
         if r.constant_sums { "on" } else { "off" },

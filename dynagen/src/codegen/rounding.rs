@@ -84,6 +84,8 @@ pub fn snap_rounding(model: &Model) -> (Model, Vec<SnappedConstant>) {
         let place = format!("joint {}", j.name);
         s.transform(&mut j.placement, &place);
         s.rotation_axis(j, &place);
+        // what the algorithms read from the placement and the axis
+        j.refresh_derived();
         s.inertia(&mut b.inertia, &format!("body {}", b.name));
     }
     for f in &mut m.frames {

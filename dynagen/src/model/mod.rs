@@ -25,7 +25,7 @@ pub use description::{Inertial, JointDescription, JointLimits, JointType, LinkDe
 pub use error::{ModelError, ModelWarning};
 pub use modern_robotics::ModernRoboticsLists;
 
-use crate::spatial::{Inertia, Transform, Vec3};
+use crate::spatial::{Inertia, Mat3, Transform, Vec3};
 
 /// How strictly to check a description.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -102,6 +102,13 @@ impl AxisAlignment {
 }
 
 impl Joint {
+    /// Recomputes the fields derived from `axis` and `placement`
+    /// (`alignment`, `placement_rotation_is_identity`; `unit_axis` and
+    /// `axis_norm` are left alone).
+    pub fn refresh_derived(&mut self) {
+        self.alignment = AxisAlignment::of(&self.axis);
+        self.placement_rotation_is_identity = self.placement.rot == Mat3::identity();
+    }
     /// The joint's motion subspace S in its own frame: the twist of the body
     /// relative to its parent per unit joint velocity, (angular; linear).
     pub fn motion_subspace(&self) -> [f64; 6] {

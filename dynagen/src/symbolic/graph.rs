@@ -162,8 +162,8 @@ impl Graph {
         if self.rewrites.constant_sums {
             let (ca, cb) = (self.constant_value(a), self.constant_value(b));
             let pair = match (ca, cb) {
-                (Some(c), None) => self.offset(b).map(|(d, x)| (c + d, x)),
-                (None, Some(c)) => self.offset(a).map(|(d, x)| (c + d, x)),
+                (Some(c), None) => self.offset(b).map(|(d, x)| (constant_sum(c, d), x)),
+                (None, Some(c)) => self.offset(a).map(|(d, x)| (constant_sum(c, d), x)),
                 _ => None,
             };
             if let Some((c, x)) = pair {
@@ -223,7 +223,7 @@ impl Graph {
         }
         if self.rewrites.constant_sums {
             if let (Some(c), Some((d, x))) = (self.constant_value(b), self.offset(a)) {
-                let c = self.constant(d - c);
+                let c = self.constant(constant_sum(d, -c));
                 return self.add(x, c);
             }
         }
@@ -368,6 +368,20 @@ impl Graph {
         }
         let sc = self.intern(Node::SinCos(a));
         (self.intern(Node::Sin(sc)), self.intern(Node::Cos(sc)))
+    }
+}
+
+/// `c + d` for the `constant_sums` rewrite, with a sum that cancels to
+/// within four ulps of its larger operand taken as 0: two constants of the
+/// model that are equal up to their own rounding (e.g. two moments of
+/// inertia of a symmetric body, each the result of sums) leave such a
+/// residue, which would otherwise cost an addition.
+fn constant_sum(c: f64, d: f64) -> f64 {
+    let s = c + d;
+    if s.abs() <= 4.0 * f64::EPSILON * c.abs().max(d.abs()) {
+        0.0
+    } else {
+        s
     }
 }
 

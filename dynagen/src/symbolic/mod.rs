@@ -36,7 +36,9 @@
 //! Rewrites that may change the last bit of a value, on by default and off
 //! with [`Rewrites::exact`]: like terms with constant coefficients
 //! (`a·x + b·x → (a+b)·x`), products of constants (`a·(b·x) → (ab)·x`) and
-//! sums of constants (`(x + a) + b → x + (a + b)`).
+//! sums of constants (`(x + a) + b → x + (a + b)`, where an `a + b` that
+//! cancels to within four ulps of the larger of `a`, `b` is taken as 0: the
+//! residue of two model constants equal up to their own rounding).
 //! General like terms with symbolic coefficients are not combined: whether
 //! `a·x + b·x → (a+b)·x` saves anything depends on whether `a·x` is used
 //! elsewhere, which is not known while the graph is being built.

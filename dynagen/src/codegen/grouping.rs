@@ -1,0 +1,214 @@
+//! Regrouping of inertial parameters: the part of a body's inertia that its
+//! own joint cannot move is carried by the parent instead.
+//!
+//! A revolute joint turns its body about an axis through the body frame's
+//! origin. Along an axis `e_K` of that frame (`I`, `J` the other two), the
+//! spatial inertia
+//!
+//! ```text
+//! mass m,   first moment h_K·e_K,   rotational inertia Ī_JJ·(e_I e_Iᵀ + e_J e_Jᵀ)
+//! ```
+//!
+//! is unchanged by a rotation about `e_K`, and its kinetic energy does not
+//! depend on the joint's rate either: `ωᵀ(e_I e_Iᵀ + e_J e_Jᵀ)ω = |ω|² − ω_K²`
+//! and `ω × e_K` do not change when `q̇` is added to `ω_K`. So moving that
+//! part from the body to its parent (rigidly, through the joint's placement)
+//! leaves the Lagrangian, hence τ, M, h, g and q̈, exactly as they were. What
+//! stays on the body is its mass-free remainder `(0, h_I e_I + h_J e_J,
+//! Ī − Ī_JJ·(e_I e_Iᵀ + e_J e_Jᵀ))`: the mass, `h_K` and `Ī_JJ` are now
+//! zeros the symbolic graph folds away. A part that reaches the fixed base
+//! is dropped. For a prismatic joint the body does not turn relative to its
+//! parent, and a rotational inertia without mass is the same about every
+//! point: its whole `Ī` moves to the parent. This is the regrouping of
+//! inertial parameters of Khalil and Kleinfinger (the "base parameters"),
+//! written as a transformation of the model's spatial inertias.
+//!
+//! A difference `Ī_II − Ī_JJ` within [`ROUNDING_TOLERANCE`] of its operands
+//! (a body symmetric about its axis, whose two moments differ only by the
+//! rounding of the sums that made them) is taken as 0, as the rounding snap
+//! does for the model's constants.
+//!
+//! Bodies are processed from the tips to the root so that a parent is
+//! regrouped after what its children moved into it. Joints whose axis is not
+//! along a coordinate axis are left as they are. The regrouped inertias are
+//! not physical (a body may have no mass and an indefinite `Ī`); they are
+//! only used for the generated code, whose results equal the original
+//! model's up to rounding (tested against the generic solver).
+
+use super::rounding::ROUNDING_TOLERANCE;
+use crate::model::{AxisAlignment, JointKind, Model};
+use crate::spatial::{Inertia, Sym3, Vec3};
+
+/// The index of the aligned axis and the other two, in `Sym3` storage
+/// order `[xx, yy, zz, xy, xz, yz]`: `(K, I, J)`.
+fn indices(alignment: AxisAlignment) -> Option<(usize, usize, usize)> {
+    match alignment {
+        AxisAlignment::X => Some((0, 1, 2)),
+        AxisAlignment::Y => Some((1, 2, 0)),
+        AxisAlignment::Z => Some((2, 0, 1)),
+        AxisAlignment::General => None,
+    }
+}
+
+/// A copy of `model` with the inertial parameters regrouped (see the
+/// [module documentation](self)).
+pub fn regroup_inertia(model: &Model) -> Model {
+    let mut m = model.clone();
+    for i in (0..m.bodies.len()).rev() {
+        let body = &m.bodies[i];
+        let inertia = body.inertia;
+        let moved = match (body.joint.kind, indices(body.joint.alignment)) {
+            (JointKind::Prismatic, _) => Inertia { mass: 0.0, h: Vec3::zero(), ibar: inertia.ibar },
+            (_, Some((k, _, j))) => {
+                let mut h = Vec3::zero();
+                h.0[k] = inertia.h.0[k];
+                let yy = inertia.ibar.0[j];
+                let mut ibar = Sym3::zero();
+                for d in [0, 1, 2] {
+                    if d != k {
+                        ibar.0[d] = yy;
+                    }
+                }
+                Inertia { mass: inertia.mass, h, ibar }
+            }
+            (_, None) => continue,
+        };
+        // Exact zeros where a parameter moved entirely (x − x = 0).
+        let mut rest = Inertia { mass: inertia.mass - moved.mass, h: inertia.h - moved.h, ibar: inertia.ibar };
+        for d in 0..6 {
+            let (x, y) = (inertia.ibar.0[d], moved.ibar.0[d]);
+            let r = x - y;
+            // XX − YY of a body symmetric about its axis: 0 up to the
+            // rounding of the sums that made XX and YY.
+            rest.ibar.0[d] = if r.abs() <= ROUNDING_TOLERANCE * x.abs().max(y.abs()) { 0.0 } else { r };
+        }
+        let (parent, placement) = (body.parent, body.joint.placement);
+        m.bodies[i].inertia = rest;
+        if let Some(p) = parent {
+            let carried = placement.inertia_to_parent(&moved);
+            m.bodies[p].inertia = m.bodies[p].inertia.add(&carried);
+        }
+    }
+    m
+}
+
+/// A copy of `model` in which the frame of every body turning about an
+/// aligned axis `e_K` has slid along that axis, so that the placement of
+/// its first child has no component along `e_K`.
+///
+/// A translation along a revolute joint's axis commutes with the turn about
+/// it: `T_place·R_K(q)·Trans(δ e_K) = T_place·Trans(δ e_K)·R_K(q)`. Moving a
+/// body's origin by `δ e_K` therefore only moves the constant `δ` from the
+/// children's placements (and the body's frames and inertia) into the
+/// body's own placement, where it is a constant too. Done from the tips to
+/// the root, the offsets along the axes move towards the base, and the
+/// placements in the middle of a chain get sparser (the UR5's elbow
+/// placement `(0, −0.1197, 0.425)` becomes `(0, 0, 0.425)`), which saves
+/// products in every `ω × (ω × p)` and `p × f`. The dynamics are those of
+/// the original model (the joint axes are the same lines); the frames keep
+/// their poses.
+pub fn slide_origins_along_axes(model: &Model) -> Model {
+    let mut m = model.clone();
+    for i in (0..m.bodies.len()).rev() {
+        let joint = &m.bodies[i].joint;
+        let k = match (joint.kind, indices(joint.alignment)) {
+            (JointKind::Revolute | JointKind::Continuous, Some((k, _, _))) => k,
+            _ => continue,
+        };
+        let Some(first) = m.bodies.iter().position(|b| b.parent == Some(i)) else { continue };
+        let delta = m.bodies[first].joint.placement.trans.0[k];
+        if delta == 0.0 {
+            continue;
+        }
+        let mut shift = Vec3::zero();
+        shift.0[k] = delta;
+        // The body's frame B' sits at δ e_K in B: T_B'B = Trans(−δ e_K).
+        let to_new = crate::spatial::Transform::translation(-shift);
+        for b in m.bodies.iter_mut().filter(|b| b.parent == Some(i)) {
+            b.joint.placement.trans -= shift;
+        }
+        for f in m.frames.iter_mut().filter(|f| f.body == Some(i)) {
+            f.placement.trans -= shift;
+        }
+        let body = &mut m.bodies[i];
+        body.inertia = to_new.inertia_to_parent(&body.inertia);
+        let place = &mut body.joint.placement;
+        place.trans += place.rot.mul_vec(&shift);
+    }
+    m
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algorithms::{crba, rnea, Workspace};
+
+    fn ur5() -> Model {
+        Model::from_urdf_file(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/ur5.urdf")).unwrap()
+    }
+
+    /// τ and M of the regrouped model equal the original's (the generic
+    /// solver on both), and the regrouped bodies lost their mass.
+    /// Sliding the body frames along their axes keeps every frame's pose.
+    #[test]
+    fn slid_frames_keep_their_poses() {
+        use crate::algorithms::kinematics::{forward_kinematics, frame_pose};
+        for name in ["ur5", "panda", "torso_two_arms"] {
+            let path = format!("{}/robots/{name}.urdf", env!("CARGO_MANIFEST_DIR"));
+            let model = Model::from_urdf_file(&path).unwrap();
+            let slid = slide_origins_along_axes(&model);
+            let q: Vec<f64> = (0..model.dof()).map(|i| 0.3 + 0.8 * i as f64).collect();
+            let (mut wa, mut wb) = (Workspace::new(&model), Workspace::new(&slid));
+            forward_kinematics(&model, &mut wa, &q);
+            forward_kinematics(&slid, &mut wb, &q);
+            for f in 0..model.frames.len() {
+                let (a, b) = (frame_pose(&model, &wa, f), frame_pose(&slid, &wb, f));
+                for (x, y) in a.trans.0.iter().zip(&b.trans.0) {
+                    assert!((x - y).abs() < 1e-14, "{name} frame {f}: {:?} vs {:?}", a.trans, b.trans);
+                }
+                for (x, y) in a.rot.0.iter().flatten().zip(b.rot.0.iter().flatten()) {
+                    assert!((x - y).abs() < 1e-14, "{name} frame {f}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn regrouped_model_has_the_same_dynamics() {
+        for name in ["ur5", "panda", "torso_two_arms"] {
+            let path = format!("{}/robots/{name}.urdf", env!("CARGO_MANIFEST_DIR"));
+            let model = Model::from_urdf_file(&path).unwrap();
+            let grouped = regroup_inertia(&slide_origins_along_axes(&model));
+            let n = model.dof();
+            let (mut wa, mut wb) = (Workspace::new(&model), Workspace::new(&grouped));
+            let q: Vec<f64> = (0..n).map(|i| 0.7 * i as f64 - 1.1).collect();
+            let qd: Vec<f64> = (0..n).map(|i| 1.3 - 0.4 * i as f64).collect();
+            let qdd: Vec<f64> = (0..n).map(|i| 0.5 + 0.9 * (i % 3) as f64).collect();
+            let g = model.gravity;
+            let (mut ta, mut tb) = (vec![0.0; n], vec![0.0; n]);
+            rnea::rnea(&model, &mut wa, &q, Some(&qd), Some(&qdd), Some(&g), &[], &mut ta);
+            rnea::rnea(&grouped, &mut wb, &q, Some(&qd), Some(&qdd), Some(&g), &[], &mut tb);
+            let norm = ta.iter().map(|x| x * x).sum::<f64>().sqrt();
+            for (a, b) in ta.iter().zip(&tb) {
+                assert!((a - b).abs() <= 1e-13 * norm, "{name} τ: {a} vs {b}");
+            }
+            let (mut ma, mut mb) = (vec![0.0; n * n], vec![0.0; n * n]);
+            crba::crba(&model, &mut wa, &q, &mut ma);
+            crba::crba(&grouped, &mut wb, &q, &mut mb);
+            let norm = ma.iter().map(|x| x * x).sum::<f64>().sqrt();
+            for (a, b) in ma.iter().zip(&mb) {
+                assert!((a - b).abs() <= 1e-13 * norm, "{name} M: {a} vs {b}");
+            }
+        }
+        let grouped = regroup_inertia(&ur5());
+        assert!(grouped.bodies.iter().all(|b| b.inertia.mass == 0.0));
+        // the elbow's placement lost its component along the shoulder's axis
+        let slid = slide_origins_along_axes(&ur5());
+        assert_eq!(ur5().bodies[2].joint.placement.trans.0, [0.0, -0.1197, 0.425]);
+        assert_eq!(slid.bodies[2].joint.placement.trans.0[1], 0.0);
+        // the first body keeps only its rotational inertia about its axis
+        let first = &grouped.bodies[0].inertia;
+        assert_eq!(first.h.0[2], 0.0);
+        assert_eq!(first.ibar.0[1], 0.0);
+    }
+}
