@@ -4,19 +4,19 @@
 // Model source: dynagen/robots/planar_2link.urdf
 // Model content hash (FNV-1a 64 of its canonical text): d6d04477035bb72d
 // Gravity: [0.0, 0.0, -9.81] m/s^2 in the base frame, folded in.
-// Options: scalar f64; forward dynamics by the articulated-body algorithm; rounding snap on (0 constants); like terms on, constant products on, constant sums on.
+// Options: scalar f64; forward dynamics by the articulated-body algorithm; rounding snap on (0 constants); inertia regrouping on; like terms on, constant products on, constant sums on.
 // Trigonometry: NAME(q, ...) computes the sines and cosines by sin_cos_all (no_std, no dependency).
 // Forward dynamics: the articulated-body algorithm, although CRBA + LTDL takes fewer operations on short chains: it is the accurate one (64-joint chain against double-double: 1e-12 against 7e-10).
 // Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]
 //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.
 // sin_cos_all(q): the batched sine and cosine, within 1 ulp for |q| <= 1.6e6 rad, no std.
 // Operation counts:
-//   inverse_dynamics: 33 ops: 5 add, 8 sub, 17 mul, 0 div, 1 neg, 0 sqrt, 2 sin_cos
+//   inverse_dynamics: 26 ops: 5 add, 5 sub, 14 mul, 0 div, 0 neg, 0 sqrt, 2 sin_cos
 //   mass_matrix: 5 ops: 2 add, 0 sub, 2 mul, 0 div, 0 neg, 0 sqrt, 1 sin_cos
-//   bias_forces: 26 ops: 2 add, 6 sub, 14 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos
-//   gravity_torques: 20 ops: 0 add, 5 sub, 11 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos
-//   forward_dynamics (ABA): 56 ops: 9 add, 12 sub, 32 mul, 1 div, 0 neg, 0 sqrt, 2 sin_cos
-//   forward_dynamics (CRBA + LTDL) [not emitted]: 40 ops: 5 add, 10 sub, 20 mul, 2 div, 1 neg, 0 sqrt, 2 sin_cos
+//   bias_forces: 18 ops: 2 add, 3 sub, 10 mul, 0 div, 1 neg, 0 sqrt, 2 sin_cos
+//   gravity_torques: 12 ops: 0 add, 2 sub, 6 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos
+//   forward_dynamics (ABA): 39 ops: 2 add, 12 sub, 22 mul, 1 div, 0 neg, 0 sqrt, 2 sin_cos
+//   forward_dynamics (CRBA + LTDL) [not emitted]: 32 ops: 8 add, 4 sub, 16 mul, 2 div, 0 neg, 0 sqrt, 2 sin_cos
 
 /// The number of degrees of freedom (joints).
 pub const DOF: usize = 2;
@@ -35,7 +35,7 @@ pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
 /// Inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton-Euler algorithm.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 31 ops: 5 add, 8 sub, 17 mul, 0 div, 1 neg, 0 sqrt, 0 sin_cos.
+/// 24 ops: 5 add, 5 sub, 14 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -52,41 +52,34 @@ pub fn inverse_dynamics_sc(
 ) -> [f64; DOF] {
     let t0 = 9.81 * c[0];
     let t1 = 9.81 * s[0];
-    let t2 = -t1;
-    let t3 = 0.6666666666666666 * qdd[0];
-    let t4 = t3 - t0;
-    let t5 = qd[0] * qd[0];
-    let t6 = t0 - qdd[0];
-    let t7 = t2 - t5;
-    let t8 = c[1] * t6;
-    let t9 = s[1] * t7;
-    let t10 = t8 + t9;
-    let t11 = s[1] * t6;
-    let t12 = c[1] * t7;
-    let t13 = t12 - t11;
-    let t14 = qd[0] + qd[1];
-    let t15 = qdd[0] + qdd[1];
-    let t16 = 1.5 * t13;
-    let t17 = 1.5 * t10;
-    let t18 = 0.6000000000000001 * t10;
-    let t19 = 0.6000000000000001 * t15;
-    let t20 = t17 - t19;
-    let t21 = 0.32000000000000006 * t15;
-    let t22 = t21 - t18;
-    let t23 = 0.6000000000000001 * t14;
-    let t24 = t14 * t23;
-    let t25 = t16 - t24;
-    let t26 = c[1] * t20;
-    let t27 = s[1] * t25;
-    let t28 = t27 - t26;
-    let t29 = t22 + t28;
-    let t30 = t4 + t29;
-    [t30, t22]
+    let t2 = 24.525000000000002 * c[0];
+    let t3 = qd[0] * qd[0];
+    let t4 = 2.1666666666666665 * qdd[0];
+    let t5 = t4 - t2;
+    let t6 = t1 + t3;
+    let t7 = t0 - qdd[0];
+    let t8 = c[1] * t7;
+    let t9 = s[1] * t6;
+    let t10 = t8 - t9;
+    let t11 = qd[0] + qd[1];
+    let t12 = qdd[0] + qdd[1];
+    let t13 = 0.6000000000000001 * t10;
+    let t14 = t11 * t11;
+    let t15 = 0.6000000000000001 * t14;
+    let t16 = 0.6000000000000001 * t12;
+    let t17 = 0.32000000000000006 * t12;
+    let t18 = t17 - t13;
+    let t19 = c[1] * t16;
+    let t20 = s[1] * t15;
+    let t21 = t19 - t20;
+    let t22 = t18 + t21;
+    let t23 = t5 + t22;
+    [t23, t18]
 }
 /// Inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton-Euler algorithm.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 33 ops: 5 add, 8 sub, 17 mul, 0 div, 1 neg, 0 sqrt, 2 sin_cos.
+/// 26 ops: 5 add, 5 sub, 14 mul, 0 div, 0 neg, 0 sqrt, 2 sin_cos.
 ///
 /// The sines and cosines of the joint angles by [`sin_cos_all`], then [`inverse_dynamics_sc`].
 #[inline]
@@ -115,7 +108,7 @@ pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let t0 = 0.6000000000000001 * c[1];
     let t1 = 0.32000000000000006 + t0;
     let t2 = 1.2000000000000002 * c[1];
-    let t3 = t2 + 2.486666666666667;
+    let t3 = t2 + 2.4866666666666664;
     [[t3, t1], [t1, 0.32000000000000006]]
 }
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
@@ -132,7 +125,7 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 24 ops: 2 add, 6 sub, 14 mul, 0 div, 2 neg, 0 sqrt, 0 sin_cos.
+/// 16 ops: 2 add, 3 sub, 10 mul, 0 div, 1 neg, 0 sqrt, 0 sin_cos.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -144,34 +137,26 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     let t0 = 9.81 * c[0];
     let t1 = 9.81 * s[0];
-    let t2 = -t1;
+    let t2 = 24.525000000000002 * c[0];
     let t3 = qd[0] * qd[0];
-    let t4 = t2 - t3;
+    let t4 = t1 + t3;
     let t5 = t0 * c[1];
     let t6 = s[1] * t4;
-    let t7 = t5 + t6;
-    let t8 = t0 * s[1];
-    let t9 = c[1] * t4;
-    let t10 = t9 - t8;
-    let t11 = qd[0] + qd[1];
-    let t12 = 1.5 * t10;
-    let t13 = 1.5 * t7;
-    let t14 = 0.6000000000000001 * t7;
-    let t15 = -t14;
-    let t16 = 0.6000000000000001 * t11;
-    let t17 = t11 * t16;
-    let t18 = t12 - t17;
-    let t19 = c[1] * t13;
-    let t20 = s[1] * t18;
-    let t21 = t20 - t19;
-    let t22 = t21 - t14;
-    let t23 = t22 - t0;
-    [t23, t15]
+    let t7 = t5 - t6;
+    let t8 = qd[0] + qd[1];
+    let t9 = 0.6000000000000001 * t7;
+    let t10 = -t9;
+    let t11 = t8 * t8;
+    let t12 = 0.6000000000000001 * t11;
+    let t13 = s[1] * t12;
+    let t14 = t10 - t13;
+    let t15 = t14 - t2;
+    [t15, t10]
 }
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 26 ops: 2 add, 6 sub, 14 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos.
+/// 18 ops: 2 add, 3 sub, 10 mul, 0 div, 1 neg, 0 sqrt, 2 sin_cos.
 ///
 /// The sines and cosines of the joint angles by [`sin_cos_all`], then [`bias_forces_sc`].
 #[inline]
@@ -182,7 +167,7 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 /// The gravity torques g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 18 ops: 0 add, 5 sub, 11 mul, 0 div, 2 neg, 0 sqrt, 0 sin_cos.
+/// 10 ops: 0 add, 2 sub, 6 mul, 0 div, 2 neg, 0 sqrt, 0 sin_cos.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -194,28 +179,20 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
     let t0 = 9.81 * c[0];
     let t1 = 9.81 * s[0];
-    let t2 = t0 * c[1];
-    let t3 = t1 * s[1];
-    let t4 = t2 - t3;
-    let t5 = t0 * s[1];
-    let t6 = -t5;
-    let t7 = t1 * c[1];
-    let t8 = t6 - t7;
-    let t9 = 1.5 * t8;
-    let t10 = 1.5 * t4;
-    let t11 = 0.6000000000000001 * t4;
-    let t12 = -t11;
-    let t13 = c[1] * t10;
-    let t14 = s[1] * t9;
-    let t15 = t14 - t13;
-    let t16 = t15 - t11;
-    let t17 = t16 - t0;
-    [t17, t12]
+    let t2 = 24.525000000000002 * c[0];
+    let t3 = -t2;
+    let t4 = t0 * c[1];
+    let t5 = t1 * s[1];
+    let t6 = t4 - t5;
+    let t7 = 0.6000000000000001 * t6;
+    let t8 = -t7;
+    let t9 = t3 - t7;
+    [t9, t8]
 }
 /// The gravity torques g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 20 ops: 0 add, 5 sub, 11 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos.
+/// 12 ops: 0 add, 2 sub, 6 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos.
 ///
 /// The sines and cosines of the joint angles by [`sin_cos_all`], then [`gravity_torques_sc`].
 #[inline]
@@ -226,7 +203,7 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by the articulated-body algorithm.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 54 ops: 9 add, 12 sub, 32 mul, 1 div, 0 neg, 0 sqrt, 0 sin_cos.
+/// 37 ops: 2 add, 12 sub, 22 mul, 1 div, 0 neg, 0 sqrt, 0 sin_cos.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -241,66 +218,49 @@ pub fn forward_dynamics_sc(
     qd: &[f64; DOF],
     tau: &[f64; DOF],
 ) -> [f64; DOF] {
-    let t0 = qd[0] * c[1];
-    let t1 = qd[0] * s[1];
+    let t0 = qd[0] * qd[0];
+    let t1 = t0 * s[1];
     let t2 = qd[0] + qd[1];
-    let t3 = qd[1] * t1;
-    let t4 = qd[1] * t0;
-    let t5 = 1.5 * t1;
-    let t6 = 1.5 * t0;
-    let t7 = 0.6000000000000001 * t2;
-    let t8 = t6 + t7;
-    let t9 = t0 * t5;
-    let t10 = t1 * t8;
-    let t11 = t10 - t9;
-    let t12 = t2 * t8;
-    let t13 = t2 * t5;
-    let t14 = tau[1] - t11;
-    let t15 = 1.5 * t4;
-    let t16 = 0.3749999999999998 * t3;
-    let t17 = t15 - t12;
-    let t18 = t16 - t13;
-    let t19 = 1.875 * t14;
-    let t20 = t18 - t19;
-    let t21 = 1.5 * s[1];
-    let t22 = 0.3749999999999998 * c[1];
-    let t23 = c[1] * t22;
-    let t24 = s[1] * t21;
-    let t25 = t23 + t24;
-    let t26 = s[1] * t22;
-    let t27 = c[1] * t21;
-    let t28 = t27 - t26;
-    let t29 = 1.0 + t25;
-    let t30 = 0.6666666666666666 + t25;
-    let t31 = c[1] * t20;
-    let t32 = s[1] * t17;
-    let t33 = t32 - t31;
-    let t34 = tau[1] + t33;
-    let t35 = 1.0 / t30;
-    let t36 = tau[0] - t34;
-    let t37 = 9.81 * c[0];
-    let t38 = 9.81 * s[0];
-    let t39 = t28 * t38;
-    let t40 = t29 * t37;
-    let t41 = t39 + t40;
-    let t42 = t36 + t41;
-    let t43 = t35 * t42;
-    let t44 = t37 - t43;
-    let t45 = c[1] * t44;
-    let t46 = s[1] * t38;
-    let t47 = t45 - t46;
-    let t48 = t3 + t47;
-    let t49 = 0.32000000000000006 * t43;
-    let t50 = 0.6000000000000001 * t48;
-    let t51 = t49 - t50;
-    let t52 = t14 - t51;
-    let t53 = 3.1249999999999996 * t52;
-    [t43, t53]
+    let t3 = t2 * t2;
+    let t4 = 0.6000000000000001 * t3;
+    let t5 = 1.1250000000000002 * t1;
+    let t6 = 1.875 * tau[1];
+    let t7 = t5 - t6;
+    let t8 = c[1] * c[1];
+    let t9 = s[1] * c[1];
+    let t10 = 1.1250000000000002 * t8;
+    let t11 = 1.1250000000000002 * t9;
+    let t12 = t10 - 2.5;
+    let t13 = 2.1666666666666665 - t10;
+    let t14 = c[1] * t7;
+    let t15 = s[1] * t4;
+    let t16 = t14 + t15;
+    let t17 = tau[1] - t16;
+    let t18 = 1.0 / t13;
+    let t19 = tau[0] - t17;
+    let t20 = 9.81 * c[0];
+    let t21 = 9.81 * s[0];
+    let t22 = t11 * t21;
+    let t23 = t12 * t20;
+    let t24 = t23 - t22;
+    let t25 = t19 - t24;
+    let t26 = t18 * t25;
+    let t27 = t20 - t26;
+    let t28 = c[1] * t27;
+    let t29 = s[1] * t21;
+    let t30 = t28 - t29;
+    let t31 = t30 - t1;
+    let t32 = 0.32000000000000006 * t26;
+    let t33 = 0.6000000000000001 * t31;
+    let t34 = t32 - t33;
+    let t35 = tau[1] - t34;
+    let t36 = 3.1249999999999996 * t35;
+    [t26, t36]
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by the articulated-body algorithm.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 56 ops: 9 add, 12 sub, 32 mul, 1 div, 0 neg, 0 sqrt, 2 sin_cos.
+/// 39 ops: 2 add, 12 sub, 22 mul, 1 div, 0 neg, 0 sqrt, 2 sin_cos.
 ///
 /// The sines and cosines of the joint angles by [`sin_cos_all`], then [`forward_dynamics_sc`].
 #[inline]
