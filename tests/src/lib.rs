@@ -118,3 +118,71 @@ pub fn bundled_module(name: &str) -> Result<String, dynagen::codegen::BuildError
     let module = dynagen::Builder::new().urdf(workspace_root().join(&rel)).options(options).generate_module()?;
     Ok(module.source)
 }
+
+/// Forward dynamics by the articulated-body algorithm in double-double
+/// (the reference), under the model's gravity, from `f64` inputs.
+pub fn reference_forward_dynamics(model: &Model, q: &[f64], qd: &[f64], tau: &[f64]) -> Vec<f64> {
+    use dynagen::algorithms::{aba, Workspace};
+    use dynagen::{DoubleDouble, Scalar as _};
+    let c = |x: &[f64]| x.iter().map(|&v| DoubleDouble::from(v)).collect::<Vec<_>>();
+    let mut ws = Workspace::<DoubleDouble>::new(model);
+    let g = dynagen::spatial::Vec3::<DoubleDouble>::from_f64(&model.gravity);
+    let mut out = vec![DoubleDouble::ZERO; model.dof()];
+    aba::aba(model, &mut ws, &c(q), &c(qd), &c(tau), Some(&g), &[], &mut out);
+    out.iter().map(|x| x.to_f64()).collect()
+}
+
+/// A state where τ nearly balances the bias forces: random q (in ±`q_scale`)
+/// and q̇ (in ±`qd_scale`), and τ = h(q, q̇) + M(q)·q̈ for a small random q̈
+/// (in ±`qdd_scale`), computed in double-double and rounded once, so that
+/// τ − h cancels to ‖M q̈‖ ≪ ‖h‖. Returns (q, q̇, τ).
+pub fn cancelling_state(
+    model: &Model,
+    rng: &mut Rng,
+    q_scale: f64,
+    qd_scale: f64,
+    qdd_scale: f64,
+) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    use dynagen::algorithms::{rnea, Workspace};
+    use dynagen::{DoubleDouble, Scalar as _};
+    let n = model.dof();
+    let (q, qd, qdd) = (rng.vec(n, q_scale), rng.vec(n, qd_scale), rng.vec(n, qdd_scale));
+    let c = |x: &[f64]| x.iter().map(|&v| DoubleDouble::from(v)).collect::<Vec<_>>();
+    let mut ws = Workspace::<DoubleDouble>::new(model);
+    let g = dynagen::spatial::Vec3::<DoubleDouble>::from_f64(&model.gravity);
+    let mut tau = vec![DoubleDouble::ZERO; n];
+    rnea::rnea(model, &mut ws, &c(&q), Some(&c(&qd)), Some(&c(&qdd)), Some(&g), &[], &mut tau);
+    let tau = tau.iter().map(|x| x.to_f64()).collect();
+    (q, qd, tau)
+}
+
+/// A bundled robot's model (`dynagen/robots/<name>.urdf`).
+pub fn bundled_model(name: &str) -> Model {
+    Model::from_urdf_file(workspace_root().join(format!("dynagen/robots/{name}.urdf"))).expect("a bundled robot")
+}
+
+/// A chain of `n` links with random unit axes (every fifth joint prismatic),
+/// masses `mass(i)` and lengths `length(i)`.
+pub fn random_axes(
+    rng: &mut Rng,
+    n: usize,
+    mass: impl Fn(usize) -> f64,
+    length: impl Fn(usize) -> f64,
+) -> Vec<LinkSpec> {
+    (0..n)
+        .map(|i| LinkSpec { mass: mass(i), length: length(i), axis: rng.unit_vector(), prismatic: i % 5 == 4 })
+        .collect()
+}
+
+/// Masses (kg) of [`stiff_chain`]'s links: neighbours differ by up to 1e6.
+pub const STIFF_MASSES: [f64; 8] = [1e3, 1e-3, 1.0, 1e2, 1e-2, 1.0, 1e-1, 10.0];
+/// Lengths (m) of [`stiff_chain`]'s links.
+pub const STIFF_LENGTHS: [f64; 8] = [1.0, 0.01, 0.3, 2.0, 0.05, 0.5, 0.1, 1.0];
+
+/// An 8-joint chain with random axes, [`STIFF_MASSES`] and [`STIFF_LENGTHS`]:
+/// a stiff robot (a 1 g link after a 1 t one) for the compensated forward
+/// dynamics comparisons.
+pub fn stiff_chain() -> Model {
+    let mut rng = Rng::new(9);
+    chain("stiff_chain", &random_axes(&mut rng, 8, |i| STIFF_MASSES[i], |i| STIFF_LENGTHS[i]))
+}
