@@ -4,6 +4,8 @@
 
 use dynagen::codegen::ScalarType;
 
+mod build_stiff;
+
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     dynagen::Builder::new()
@@ -12,4 +14,5 @@ fn main() {
         .file_name("ur5_f32.rs")
         .generate()
         .expect("generating the f32 UR5 module");
+    build_stiff::generate();
 }

@@ -28,5 +28,7 @@ pub use codegen::Builder;
 pub use model::{Model, ModelError, ModelWarning, RobotBuilder};
 pub use robot::{InputError, Robot};
 pub use robot_simulate::TipWrenchHistory;
-pub use scalar::{Compensated, Counting, DoubleDouble, Scalar};
+pub use scalar::{
+    Compensated, CompensatedFma, CompensatedWith, Counting, Dekker, DoubleDouble, ExactProduct, Fused, Scalar,
+};
 pub use scene::{Scene, SceneError, SceneModel, SceneRobot};

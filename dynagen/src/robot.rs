@@ -11,12 +11,11 @@
 //! prismatic ones; torques in N·m, forces in N. Joint order is
 //! [`Robot::joint_names`]. Spatial vectors are (angular; linear).
 
-use crate::algorithms::compensated::CompensatedScratch;
+use crate::algorithms::compensated::CompensatedSolver;
 use crate::algorithms::integrators::IntegratorScratch;
 use crate::algorithms::{aba, bias, crba, forward_dynamics, kinematics, rnea, TipWrench, Workspace};
 use crate::model::{BuildOptions, Model, ModelError};
 use crate::spatial::{Force, Vec3};
-use crate::Compensated;
 use nalgebra::{DMatrix, DVector, Matrix4, Matrix6xX, Vector3, Vector6};
 use std::path::Path;
 
@@ -123,7 +122,7 @@ pub struct Robot {
     jac: Vec<f64>,
     pub(crate) integ: IntegratorScratch<f64>,
     /// Scratch of [`Robot::forward_dynamics_compensated`].
-    pub(crate) comp: CompensatedScratch<Compensated>,
+    pub(crate) comp: CompensatedSolver,
 }
 
 impl Robot {
@@ -132,7 +131,7 @@ impl Robot {
         let ws = Workspace::new(&model);
         let jac = vec![0.0; 6 * model.dof()];
         let integ = IntegratorScratch::new(&model);
-        let comp = CompensatedScratch::new(&model);
+        let comp = CompensatedSolver::new(&model);
         Robot { model, ws, tips: Vec::new(), jac, integ, comp }
     }
     /// Reads a URDF file.

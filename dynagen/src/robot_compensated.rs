@@ -2,7 +2,6 @@
 //! torques nearly balance the bias forces at high speed (see
 //! [`algorithms::compensated`](crate::algorithms::compensated)).
 
-use crate::algorithms::compensated::forward_dynamics_compensated;
 use crate::robot::{InputError, Robot};
 use nalgebra::DVector;
 
@@ -53,9 +52,8 @@ impl Robot {
         self.check("tau", tau.as_slice())?;
         self.check_out("qdd", qdd.len(), self.dof())?;
         let g = self.model.gravity;
-        forward_dynamics_compensated(
+        self.comp.solve(
             &self.model,
-            &mut self.comp,
             &mut self.ws,
             q.as_slice(),
             qd.as_slice(),

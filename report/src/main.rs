@@ -11,6 +11,7 @@
 mod plot;
 #[allow(dead_code)]
 mod report;
+mod work_precision;
 
 use report::Report;
 
@@ -37,6 +38,7 @@ fn main() {
         Err(e) => fail(&e),
     };
     // The sections, in the order the report shows them.
+    work_precision::run(&mut report);
     if let Err(e) = report.finish() {
         fail(&e);
     }

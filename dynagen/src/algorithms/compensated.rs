@@ -22,7 +22,7 @@ use super::rnea::rnea;
 use super::{TipWrench, Workspace};
 use crate::model::Model;
 use crate::spatial::{Force, Vec3};
-use crate::Scalar;
+use crate::{Compensated, CompensatedFma, Scalar};
 
 /// Scratch for [`forward_dynamics_compensated`] in the precise scalar `P`:
 /// create it once per model, outside a control loop.
@@ -107,4 +107,102 @@ pub fn forward_dynamics_compensated<P: Scalar>(
     }
     // M q̈ = u: the articulated-body algorithm at rest, without gravity.
     aba(model, ws, q, zero, rhs, None, &[], qdd);
+}
+
+/// The compensated forward dynamics with its scratch, choosing at run time
+/// how exact products are formed: by fused multiply-adds when the CPU has
+/// them (the whole computation compiled with FMA enabled, about twice as fast),
+/// else by Dekker's splitting ([`Compensated`]). Both give the same results
+/// (exact products either way).
+#[derive(Clone, Debug)]
+pub enum CompensatedSolver {
+    /// Products by Dekker's splitting, or FMA if the build already targets it.
+    Portable(CompensatedScratch<Compensated>),
+    /// Products by FMA instructions, detected at run time.
+    Fused(CompensatedScratch<CompensatedFma>),
+}
+
+impl CompensatedSolver {
+    /// The solver for `model`, with FMA when this CPU has it.
+    pub fn new(model: &Model) -> Self {
+        if fma_detected() {
+            CompensatedSolver::Fused(CompensatedScratch::new(model))
+        } else {
+            CompensatedSolver::Portable(CompensatedScratch::new(model))
+        }
+    }
+    /// The solver for `model` with Dekker's splitting, whatever the CPU (for comparisons).
+    pub fn portable(model: &Model) -> Self {
+        CompensatedSolver::Portable(CompensatedScratch::new(model))
+    }
+    /// Whether products use FMA instructions detected at run time.
+    pub fn uses_fma(&self) -> bool {
+        matches!(self, CompensatedSolver::Fused(_))
+    }
+    /// [`forward_dynamics_compensated`] with this solver's scratch.
+    ///
+    /// # Panics
+    /// As [`forward_dynamics_compensated`].
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve(
+        &mut self,
+        model: &Model,
+        ws: &mut Workspace<f64>,
+        q: &[f64],
+        qd: &[f64],
+        tau: &[f64],
+        gravity: Option<&Vec3<f64>>,
+        tips: &[TipWrench<f64>],
+        qdd: &mut [f64],
+    ) {
+        match self {
+            CompensatedSolver::Portable(s) => {
+                forward_dynamics_compensated(model, s, ws, q, qd, tau, gravity, tips, qdd)
+            }
+            CompensatedSolver::Fused(s) => {
+                #[cfg(target_arch = "x86_64")]
+                // SAFETY: `Fused` is only built when the CPU has FMA (`fma_detected`).
+                unsafe {
+                    solve_fma(model, s, ws, q, qd, tau, gravity, tips, qdd)
+                }
+                #[cfg(not(target_arch = "x86_64"))]
+                forward_dynamics_compensated(model, s, ws, q, qd, tau, gravity, tips, qdd)
+            }
+        }
+    }
+}
+
+/// Whether to build the FMA variant: the CPU has FMA and the build does not
+/// already use it everywhere.
+fn fma_detected() -> bool {
+    #[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
+    {
+        std::arch::is_x86_feature_detected!("fma")
+    }
+    #[cfg(not(all(target_arch = "x86_64", not(target_feature = "fma"))))]
+    {
+        false
+    }
+}
+
+/// [`forward_dynamics_compensated`] in `CompensatedFma`, compiled with FMA
+/// enabled (the generic algorithms are instantiated, and inlined, here).
+///
+/// # Safety
+/// The CPU must support FMA.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "fma")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn solve_fma(
+    model: &Model,
+    scratch: &mut CompensatedScratch<CompensatedFma>,
+    ws: &mut Workspace<f64>,
+    q: &[f64],
+    qd: &[f64],
+    tau: &[f64],
+    gravity: Option<&Vec3<f64>>,
+    tips: &[TipWrench<f64>],
+    qdd: &mut [f64],
+) {
+    forward_dynamics_compensated(model, scratch, ws, q, qd, tau, gravity, tips, qdd)
 }

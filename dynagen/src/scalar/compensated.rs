@@ -23,18 +23,74 @@
 
 use super::Scalar;
 use crate::spatial::{Mat3, Vec3};
+use core::marker::PhantomData;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
 /// A compensated `f64`: `hi + lo`, about 32 digits per operation but with
 /// the light ("sloppy") double-double operations; see the module
 /// documentation. Around 20 correct digits through a whole dynamics
-/// recursion, at a few times the cost of `f64`.
+/// recursion, at a few times the cost of `f64`. `E` says how exact products
+/// are formed: [`Compensated`] (Dekker's splitting, or a fused multiply-add
+/// when the build targets a CPU with one) is the type to use;
+/// [`CompensatedFma`] always uses `f64::mul_add`, for code compiled with
+/// FMA enabled (see [`crate::algorithms::compensated`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Compensated {
+#[repr(C)]
+pub struct CompensatedWith<E> {
     /// The leading part.
     pub hi: f64,
     /// The trailing part, |lo| ≲ ulp(hi).
     pub lo: f64,
+    product: PhantomData<E>,
+}
+
+/// The compensated scalar with exact products by Dekker's splitting (no
+/// library call), or by a fused multiply-add when the whole build targets a
+/// CPU with one (`-C target-feature=+fma`, `-C target-cpu=native`).
+#[cfg(not(target_feature = "fma"))]
+pub type Compensated = CompensatedWith<Dekker>;
+/// The compensated scalar with exact products by a fused multiply-add (the
+/// build targets a CPU with one).
+#[cfg(target_feature = "fma")]
+pub type Compensated = CompensatedWith<Fused>;
+/// The compensated scalar with exact products by `f64::mul_add`: fast only
+/// where FMA instructions are enabled (else `mul_add` is a library call).
+pub type CompensatedFma = CompensatedWith<Fused>;
+
+/// How a [`CompensatedWith`] forms the exact product `a·b = p + e`.
+pub trait ExactProduct: Copy + core::fmt::Debug + Default + PartialEq + 'static {
+    /// `(p, e)` with `p = fl(a·b)` and `p + e = a·b` exactly.
+    fn two_prod(a: f64, b: f64) -> (f64, f64);
+}
+
+/// Exact products by Dekker's splitting: 17 `f64` operations.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Dekker;
+impl ExactProduct for Dekker {
+    #[inline(always)]
+    fn two_prod(a: f64, b: f64) -> (f64, f64) {
+        const SPLIT: f64 = 134_217_729.0; // 2²⁷ + 1
+        let split = |x: f64| {
+            let c = SPLIT * x;
+            let h = c - (c - x);
+            (h, x - h)
+        };
+        let p = a * b;
+        let (ah, al) = split(a);
+        let (bh, bl) = split(b);
+        (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
+    }
+}
+
+/// Exact products by one fused multiply-add.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Fused;
+impl ExactProduct for Fused {
+    #[inline(always)]
+    fn two_prod(a: f64, b: f64) -> (f64, f64) {
+        let p = a * b;
+        (p, a.mul_add(b, -p))
+    }
 }
 
 #[inline(always)]
@@ -48,31 +104,6 @@ fn two_sum(a: f64, b: f64) -> (f64, f64) {
 fn quick_two_sum(a: f64, b: f64) -> (f64, f64) {
     let s = a + b;
     (s, b - (s - a))
-}
-
-/// The exact product `a·b = p + e`: one fused multiply-add where the target
-/// has it (compiled in with `-C target-feature=+fma` or `target-cpu=native`),
-/// else Dekker's splitting, which costs more operations but no call to the
-/// C library's software `fma`.
-#[inline(always)]
-fn two_prod(a: f64, b: f64) -> (f64, f64) {
-    let p = a * b;
-    #[cfg(target_feature = "fma")]
-    {
-        (p, a.mul_add(b, -p))
-    }
-    #[cfg(not(target_feature = "fma"))]
-    {
-        const SPLIT: f64 = 134_217_729.0; // 2²⁷ + 1
-        let split = |x: f64| {
-            let c = SPLIT * x;
-            let h = c - (c - x);
-            (h, x - h)
-        };
-        let (ah, al) = split(a);
-        let (bh, bl) = split(b);
-        (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
-    }
 }
 
 /// π/16 as the sum of three doubles (π/2's three parts divided by 8, exactly).
@@ -93,22 +124,35 @@ const TABLE: [(f64, f64, f64, f64); 8] = [
     (0.9807852804032304, 1.854693999782501e-17, 0.19509032201612828, -7.991079068461733e-18),
 ];
 
-impl Compensated {
+impl<E: ExactProduct> CompensatedWith<E> {
     /// Zero.
-    pub const ZERO: Compensated = Compensated { hi: 0.0, lo: 0.0 };
+    pub const ZERO: Self = Self { hi: 0.0, lo: 0.0, product: PhantomData };
     /// One.
-    pub const ONE: Compensated = Compensated { hi: 1.0, lo: 0.0 };
+    pub const ONE: Self = Self { hi: 1.0, lo: 0.0, product: PhantomData };
 
+    /// From two parts as they are.
+    #[inline(always)]
+    const fn raw(hi: f64, lo: f64) -> Self {
+        Self { hi, lo, product: PhantomData }
+    }
+    /// The same number with `|lo| ≤ ulp(hi)/2` (sums and products leave
+    /// their parts unnormalised; division, square root and the sine's range
+    /// reduction need the leading part to be the value).
+    #[inline(always)]
+    fn normalised(self) -> Self {
+        let (hi, lo) = two_sum(self.hi, self.lo);
+        Self::raw(hi, lo)
+    }
     /// From its two parts, renormalised.
     pub fn new(hi: f64, lo: f64) -> Self {
         let (hi, lo) = two_sum(hi, lo);
-        Compensated { hi, lo }
+        Self::raw(hi, lo)
     }
     /// The exact product of two doubles.
     #[inline(always)]
     pub fn product(a: f64, b: f64) -> Self {
-        let (hi, lo) = two_prod(a, b);
-        Compensated { hi, lo }
+        let (hi, lo) = E::two_prod(a, b);
+        Self::raw(hi, lo)
     }
     /// The nearest `f64` (up to the last rounding).
     #[inline(always)]
@@ -118,18 +162,18 @@ impl Compensated {
     /// Multiplication by a double.
     #[inline(always)]
     pub fn mul_f64(self, b: f64) -> Self {
-        let (p, e) = two_prod(self.hi, b);
+        let (p, e) = E::two_prod(self.hi, b);
         let (hi, lo) = quick_two_sum(p, e + self.lo * b);
-        Compensated { hi, lo }
+        Self::raw(hi, lo)
     }
     /// Division by a double.
     #[inline(always)]
     fn div_f64(self, b: f64) -> Self {
         let q1 = self.hi / b;
-        let (p, e) = two_prod(q1, b);
+        let (p, e) = E::two_prod(q1, b);
         let q2 = ((self.hi - p) - e + self.lo) / b;
         let (hi, lo) = quick_two_sum(q1, q2);
-        Compensated { hi, lo }
+        Self::raw(hi, lo)
     }
 
     /// sin and cos of |t| ≲ π/32: double-double head, `f64` tail.
@@ -141,30 +185,28 @@ impl Compensated {
         let t3 = t2 * t;
         let t5 = t3.hi * x;
         let tail = t5 * (1.0 / 120.0 - x * (1.0 / 5040.0 - x * (1.0 / 362880.0 - x * (1.0 / 39916800.0))));
-        let sin = t - t3.div_f64(6.0) + Compensated { hi: tail, lo: 0.0 };
+        let sin = t - t3.div_f64(6.0) + Self::raw(tail, 0.0);
         // cos t = 1 − t²/2 + t⁴(1/4! − t²/6! + t⁴/8! − t⁶/10! + t⁸/12!).
         let t4 = x * x;
         let tail = t4
             * (1.0 / 24.0 - x * (1.0 / 720.0 - x * (1.0 / 40320.0 - x * (1.0 / 3628800.0 - x * (1.0 / 479001600.0)))));
-        let half = Compensated { hi: 0.5 * t2.hi, lo: 0.5 * t2.lo };
-        let cos = Compensated { hi: 1.0, lo: 0.0 } - half + Compensated { hi: tail, lo: 0.0 };
+        let half = Self::raw(0.5 * t2.hi, 0.5 * t2.lo);
+        let cos = Self::raw(1.0, 0.0) - half + Self::raw(tail, 0.0);
         (sin, cos)
     }
 
     fn sin_cos_c(self) -> (Self, Self) {
+        let x = self.normalised();
         // x = n·π/16 + t, |t| ≤ π/32 (plus rounding); n·π/16 subtracted part
         // by part, the first two products exact.
-        let n = (self.hi * (16.0 / core::f64::consts::PI)).round();
-        let t = self
-            - Compensated::product(n, PI_16[0])
-            - Compensated::product(n, PI_16[1])
-            - Compensated { hi: n * PI_16[2], lo: 0.0 };
-        let (st, ct) = Self::sin_cos_small(t);
+        let n = (x.hi * (16.0 / core::f64::consts::PI)).round();
+        let t = x - Self::product(n, PI_16[0]) - Self::product(n, PI_16[1]) - Self::raw(n * PI_16[2], 0.0);
+        let (st, ct) = Self::sin_cos_small(t.normalised());
         // n mod 32 = 8k + j: the angle is k quarter turns plus j·π/16. (A
         // non-finite n casts to 0; t is NaN then, and so are the results.)
         let m = n.rem_euclid(32.0) as usize % 32;
         let (sh, sl, ch, cl) = TABLE[m % 8];
-        let (sa, ca) = (Compensated { hi: sh, lo: sl }, Compensated { hi: ch, lo: cl });
+        let (sa, ca) = (Self::raw(sh, sl), Self::raw(ch, cl));
         let s = sa * ct + ca * st;
         let c = ca * ct - sa * st;
         match m / 8 {
@@ -176,42 +218,43 @@ impl Compensated {
     }
 
     fn sqrt_c(self) -> Self {
-        if self.hi <= 0.0 {
-            return Compensated { hi: self.hi.sqrt(), lo: 0.0 };
+        let x = self.normalised();
+        if x.hi <= 0.0 {
+            return Self::raw(x.hi.sqrt(), 0.0);
         }
-        let y = self.hi.sqrt();
-        let r = (self - Compensated::product(y, y)).hi / (2.0 * y);
+        let y = x.hi.sqrt();
+        let r = (x - Self::product(y, y)).to_f64() / (2.0 * y);
         let (hi, lo) = quick_two_sum(y, r);
-        Compensated { hi, lo }
+        Self::raw(hi, lo)
     }
 }
 
-impl From<f64> for Compensated {
+impl<E: ExactProduct> From<f64> for CompensatedWith<E> {
     #[inline(always)]
     fn from(x: f64) -> Self {
-        Compensated { hi: x, lo: 0.0 }
+        Self::raw(x, 0.0)
     }
 }
 
-impl Add for Compensated {
+impl<E: ExactProduct> Add for CompensatedWith<E> {
     type Output = Self;
     #[inline(always)]
     fn add(self, b: Self) -> Self {
+        // No renormalisation: hi is the f64 sum, lo gathers the errors.
         let (s, e) = two_sum(self.hi, b.hi);
-        let (hi, lo) = quick_two_sum(s, e + (self.lo + b.lo));
-        Compensated { hi, lo }
+        Self::raw(s, e + (self.lo + b.lo))
     }
 }
 
-impl Neg for Compensated {
+impl<E: ExactProduct> Neg for CompensatedWith<E> {
     type Output = Self;
     #[inline(always)]
     fn neg(self) -> Self {
-        Compensated { hi: -self.hi, lo: -self.lo }
+        Self::raw(-self.hi, -self.lo)
     }
 }
 
-impl Sub for Compensated {
+impl<E: ExactProduct> Sub for CompensatedWith<E> {
     type Output = Self;
     #[inline(always)]
     fn sub(self, b: Self) -> Self {
@@ -219,55 +262,56 @@ impl Sub for Compensated {
     }
 }
 
-impl Mul for Compensated {
+impl<E: ExactProduct> Mul for CompensatedWith<E> {
     type Output = Self;
     #[inline(always)]
     fn mul(self, b: Self) -> Self {
-        let (p, e) = two_prod(self.hi, b.hi);
-        let (hi, lo) = quick_two_sum(p, e + (self.hi * b.lo + self.lo * b.hi));
-        Compensated { hi, lo }
+        // No renormalisation: hi is the f64 product, lo gathers the errors.
+        let (p, e) = E::two_prod(self.hi, b.hi);
+        Self::raw(p, e + (self.hi * b.lo + self.lo * b.hi))
     }
 }
 
-impl Div for Compensated {
+impl<E: ExactProduct> Div for CompensatedWith<E> {
     type Output = Self;
     #[inline(always)]
     fn div(self, b: Self) -> Self {
-        let q1 = self.hi / b.hi;
-        let r = self - b.mul_f64(q1);
-        let q2 = r.hi / b.hi;
+        let (a, b) = (self.normalised(), b.normalised());
+        let q1 = a.hi / b.hi;
+        let r = a - b.mul_f64(q1);
+        let q2 = r.to_f64() / b.hi;
         let (hi, lo) = quick_two_sum(q1, q2);
-        Compensated { hi, lo }
+        Self::raw(hi, lo)
     }
 }
 
-impl AddAssign for Compensated {
+impl<E: ExactProduct> AddAssign for CompensatedWith<E> {
     #[inline(always)]
     fn add_assign(&mut self, b: Self) {
         *self = *self + b;
     }
 }
-impl SubAssign for Compensated {
+impl<E: ExactProduct> SubAssign for CompensatedWith<E> {
     #[inline(always)]
     fn sub_assign(&mut self, b: Self) {
         *self = *self - b;
     }
 }
-impl MulAssign for Compensated {
+impl<E: ExactProduct> MulAssign for CompensatedWith<E> {
     #[inline(always)]
     fn mul_assign(&mut self, b: Self) {
         *self = *self * b;
     }
 }
 
-impl Scalar for Compensated {
+impl<E: ExactProduct> Scalar for CompensatedWith<E> {
     #[inline(always)]
     fn from_f64(x: f64) -> Self {
-        Compensated::from(x)
+        Self::from(x)
     }
     #[inline(always)]
     fn to_f64(self) -> Option<f64> {
-        Some(Compensated::to_f64(self))
+        Some(Self::to_f64(self))
     }
     fn sqrt(self) -> Self {
         self.sqrt_c()
@@ -285,20 +329,20 @@ impl Scalar for Compensated {
         let mut e = [[0.0f64; 3]; 3];
         for a in 0..3 {
             for b in a..3 {
-                let mut s = Compensated::from(if a == b { 1.0 } else { 0.0 });
+                let mut s = Self::from(if a == b { 1.0 } else { 0.0 });
                 for row in x {
-                    s -= Compensated::product(row[a], row[b]);
+                    s -= Self::product(row[a], row[b]);
                 }
                 e[a][b] = s.to_f64();
                 e[b][a] = e[a][b];
             }
         }
-        let mut out = [[Compensated::ZERO; 3]; 3];
+        let mut out = [[Self::ZERO; 3]; 3];
         for i in 0..3 {
             for j in 0..3 {
                 let corr = 0.5 * (x[i][0] * e[0][j] + x[i][1] * e[1][j] + x[i][2] * e[2][j]);
                 let (hi, lo) = quick_two_sum(x[i][j], corr);
-                out[i][j] = Compensated { hi, lo };
+                out[i][j] = Self::raw(hi, lo);
             }
         }
         Mat3(out)

@@ -1,0 +1,14 @@
+//! The numerical sections of the report: simulation work-precision (each
+//! integrator on an ordinary and a stiff scene), the compensated forward
+//! dynamics (digits won, time), and the stiff and extreme suite's bounds.
+
+mod compensated;
+mod simulation;
+
+use crate::report::Report;
+
+/// Writes the sections.
+pub fn run(report: &mut Report) {
+    simulation::run(report);
+    compensated::run(report);
+}
