@@ -4,6 +4,7 @@
 
 mod compensated;
 mod simulation;
+mod stiff_suite;
 
 use crate::report::Report;
 
@@ -11,4 +12,5 @@ use crate::report::Report;
 pub fn run(report: &mut Report) {
     simulation::run(report);
     compensated::run(report);
+    stiff_suite::run(report);
 }

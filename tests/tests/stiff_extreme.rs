@@ -152,13 +152,16 @@ mod generated {
     }
 }
 
+/// A generated function of three joint vectors, on slices.
+type Fn3 = fn(&[f64], &[f64], &[f64]) -> Vec<f64>;
+
 /// The functions of a generated module, on vectors.
 struct GeneratedFns {
-    id: fn(&[f64], &[f64], &[f64]) -> Vec<f64>,
+    id: Fn3,
     m: fn(&[f64]) -> Vec<f64>,
     h: fn(&[f64], &[f64]) -> Vec<f64>,
     g: fn(&[f64]) -> Vec<f64>,
-    fd: fn(&[f64], &[f64], &[f64]) -> Vec<f64>,
+    fd: Fn3,
 }
 
 macro_rules! generated_fns {

@@ -72,6 +72,8 @@ impl<P: Scalar> CompensatedScratch<P> {
 /// # Panics
 /// If a slice, the workspace or the scratch does not have the model's number
 /// of joints.
+// Inlined so that the FMA form (`solve_fma`) compiles it with FMA enabled.
+#[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub fn forward_dynamics_compensated<P: Scalar>(
     model: &Model,

@@ -398,10 +398,11 @@ pub fn implicit_euler<S: Scalar>(
 /// The Jacobian ∂r/∂v = 1 − dt·(dt·∂a/∂q + ∂a/∂q̇) is formed once per step
 /// by forward differences (column j: v_j moved by √ε·max(1, |v_j|), which
 /// moves q₁ by dt times that, so one evaluation of `a` per column), factorised
-/// by LU with partial pivoting, and kept for every iteration of the step (a
-/// simplified Newton method: linear convergence, fast when dt·‖∂a‖ is what
-/// makes the problem stiff). Iterates until the correction is below ε^¾
-/// relative to |v| (or 1), at most [`IMPLICIT_MAX_ITERATIONS`] times.
+/// by LU with partial pivoting, and kept for the next iterations (a
+/// simplified Newton method) as long as each correction is below a quarter
+/// of the previous one; otherwise it is formed again at the current iterate.
+/// Iterates until the correction is below ε^¾ relative to |v| (or 1), at
+/// most [`IMPLICIT_MAX_ITERATIONS`] times.
 ///
 /// The branches (pivots, convergence) look at values: this is a numeric
 /// routine for `f64`, `f32` or a precise scalar, not one to trace.
@@ -423,12 +424,13 @@ pub fn implicit_euler_with<S: Scalar>(
     let tol = eps.powf(0.75);
     v.copy_from_slice(qd);
     let mut outcome = NewtonOutcome { iterations: 0, converged: false };
+    let (mut refresh, mut last) = (true, f64::INFINITY);
     for it in 0..IMPLICIT_MAX_ITERATIONS {
         for i in 0..n {
             q1[i] = q[i] + dt * v[i];
         }
         accel(q1, v, a0);
-        if it == 0 {
+        if refresh {
             // Column j of ∂r/∂v by a forward difference.
             for j in 0..n {
                 let vj = v[j];
@@ -466,11 +468,15 @@ pub fn implicit_euler_with<S: Scalar>(
             outcome.converged = true;
             break;
         }
+        // Slow convergence: the Jacobian of the first iterate is too far
+        // from the current one; form it again at the next iterate.
+        refresh = dmax > 0.25 * last;
+        last = dmax;
     }
     for i in 0..n {
         q[i] += dt * v[i];
-        qd[i] = v[i];
     }
+    qd.copy_from_slice(v);
     outcome
 }
 

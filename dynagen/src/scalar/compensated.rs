@@ -195,6 +195,7 @@ impl<E: ExactProduct> CompensatedWith<E> {
         (sin, cos)
     }
 
+    #[inline(always)]
     fn sin_cos_c(self) -> (Self, Self) {
         let x = self.normalised();
         // x = n·π/16 + t, |t| ≤ π/32 (plus rounding); n·π/16 subtracted part
@@ -316,14 +317,14 @@ impl<E: ExactProduct> Scalar for CompensatedWith<E> {
     fn sqrt(self) -> Self {
         self.sqrt_c()
     }
-    #[inline]
+    #[inline(always)]
     fn sin_cos(self) -> (Self, Self) {
         self.sin_cos_c()
     }
     /// One Newton-Schulz step, X(3·1 − XᵀX)/2 = X + X·E/2 with E = 1 − XᵀX:
     /// E (of order ε) is formed from exact products, the correction X·E/2 in
     /// `f64` (its own error is of order ε²), and kept as the trailing parts.
-    #[inline]
+    #[inline(always)]
     fn rotation_constant(r: &Mat3<f64>) -> Mat3<Self> {
         let x = &r.0;
         let mut e = [[0.0f64; 3]; 3];
