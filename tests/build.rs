@@ -8,6 +8,8 @@
 use dynagen::codegen::ScalarType;
 use dynagen::scene::{Function, Gravity, Scene};
 
+mod build_stiff;
+
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     let ur5 = "../dynagen/robots/ur5.urdf";
@@ -38,4 +40,5 @@ fn main() {
         .gravity(Gravity::None)
         .scalar(ScalarType::F32);
     dynagen::Builder::new().urdf(ur5).scene(torque_only).generate().expect("generating the ur5_tau_f32 scene");
+    build_stiff::generate();
 }

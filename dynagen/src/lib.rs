@@ -16,6 +16,7 @@ pub mod algorithms;
 pub mod codegen;
 pub mod model;
 mod robot;
+mod robot_compensated;
 mod robot_simulate;
 mod scalar;
 pub mod scene;
@@ -27,5 +28,7 @@ pub use codegen::Builder;
 pub use model::{Model, ModelError, ModelWarning, RobotBuilder};
 pub use robot::{InputError, Robot};
 pub use robot_simulate::TipWrenchHistory;
-pub use scalar::{Counting, DoubleDouble, Scalar};
+pub use scalar::{
+    Compensated, CompensatedFma, CompensatedWith, Counting, Dekker, DoubleDouble, ExactProduct, Fused, Scalar,
+};
 pub use scene::{Scene, SceneError, SceneModel, SceneRobot};

@@ -11,6 +11,7 @@
 //! prismatic ones; torques in N·m, forces in N. Joint order is
 //! [`Robot::joint_names`]. Spatial vectors are (angular; linear).
 
+use crate::algorithms::compensated::CompensatedSolver;
 use crate::algorithms::integrators::IntegratorScratch;
 use crate::algorithms::{aba, bias, crba, forward_dynamics, kinematics, rnea, TipWrench, Workspace};
 use crate::model::{BuildOptions, Model, ModelError};
@@ -120,6 +121,8 @@ pub struct Robot {
     pub(crate) tips: Vec<TipWrench<f64>>,
     jac: Vec<f64>,
     pub(crate) integ: IntegratorScratch<f64>,
+    /// Scratch of [`Robot::forward_dynamics_compensated`].
+    pub(crate) comp: CompensatedSolver,
 }
 
 impl Robot {
@@ -128,7 +131,8 @@ impl Robot {
         let ws = Workspace::new(&model);
         let jac = vec![0.0; 6 * model.dof()];
         let integ = IntegratorScratch::new(&model);
-        Robot { model, ws, tips: Vec::new(), jac, integ }
+        let comp = CompensatedSolver::new(&model);
+        Robot { model, ws, tips: Vec::new(), jac, integ, comp }
     }
     /// Reads a URDF file.
     pub fn from_urdf_file(path: impl AsRef<Path>) -> Result<Self, ModelError> {

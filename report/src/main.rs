@@ -6,11 +6,9 @@
 //! cargo run --release -p dynagen-report [-- --out DIR] [--quick]
 //! ```
 
-// The sections use these; until they are all in, some items are unused.
-#[allow(dead_code)]
 mod plot;
-#[allow(dead_code)]
 mod report;
+mod work_precision;
 
 mod error_vs_time;
 
@@ -40,6 +38,7 @@ fn main() {
     };
     // The sections, in the order the report shows them.
     error_vs_time::run(&mut report);
+    work_precision::run(&mut report);
     if let Err(e) = report.finish() {
         fail(&e);
     }

@@ -15,6 +15,15 @@
 //! - [`rk4`]: the classical fourth-order Runge-Kutta scheme on the first-order
 //!   system d/dt (q, q̇) = (q̇, q̈); four calls of [`aba`] per step, error
 //!   O(dt⁴) over a fixed time.
+//! - [`implicit_euler`]: backward Euler, x₁ = x₀ + dt·f(x₁), solved by
+//!   Newton's method with the Jacobian of the dynamics by finite
+//!   differences. First order and strongly damping, but stable at any step
+//!   on stiff scenes (stiff joint springs, a light link after a heavy one)
+//!   where the explicit schemes blow up.
+//!
+//! Each scheme also has a `*_with` form that takes the accelerations as a
+//! function q̈ = a(q, q̇), for dynamics with state-dependent torques (joint
+//! springs and dampers, a controller).
 //!
 //! Units: `dt` in s; q in rad (revolute) or m (prismatic), q̇ per s; τ in
 //! N·m or N; gravity (m/s²) in the base frame; tip wrenches in their frames.
@@ -36,6 +45,8 @@ pub enum Integrator {
     SemiImplicitEuler,
     /// Classical fourth-order Runge-Kutta (see [`rk4`]).
     Rk4,
+    /// Implicit (backward) Euler by Newton's method (see [`implicit_euler`]).
+    ImplicitEuler,
 }
 
 /// What acts on the robot during a step, held constant over it.
@@ -62,6 +73,8 @@ pub struct IntegratorScratch<S> {
     /// Runge-Kutta weighted sums of the stage slopes.
     q_sum: Vec<S>,
     qd_sum: Vec<S>,
+    /// The implicit scheme's Newton scratch.
+    implicit: ImplicitScratch<S>,
 }
 
 impl<S: Scalar> IntegratorScratch<S> {
@@ -74,6 +87,7 @@ impl<S: Scalar> IntegratorScratch<S> {
             qd_stage: vec![S::zero(); n],
             q_sum: vec![S::zero(); n],
             qd_sum: vec![S::zero(); n],
+            implicit: ImplicitScratch::new(n),
         }
     }
     /// The number of joints this scratch is for.
@@ -124,7 +138,21 @@ pub fn euler<S: Scalar>(
     qd: &mut [S],
 ) {
     check(model, ws, scratch, q, qd, inputs.tau);
-    aba(model, ws, q, qd, inputs.tau, inputs.gravity, inputs.tips, &mut scratch.qdd);
+    euler_with(scratch, dt, q, qd, |q, qd, qdd| aba(model, ws, q, qd, inputs.tau, inputs.gravity, inputs.tips, qdd));
+}
+
+/// [`euler`] with the accelerations from `accel(q, q̇, q̈_out)`.
+///
+/// # Panics
+/// If `q`, `qd` or the scratch differ in length.
+pub fn euler_with<S: Scalar>(
+    scratch: &mut IntegratorScratch<S>,
+    dt: S,
+    q: &mut [S],
+    qd: &mut [S],
+    mut accel: impl FnMut(&[S], &[S], &mut [S]),
+) {
+    accel(q, qd, &mut scratch.qdd);
     euler_step(q, qd, &scratch.qdd, dt);
 }
 
@@ -144,7 +172,23 @@ pub fn semi_implicit_euler<S: Scalar>(
     qd: &mut [S],
 ) {
     check(model, ws, scratch, q, qd, inputs.tau);
-    aba(model, ws, q, qd, inputs.tau, inputs.gravity, inputs.tips, &mut scratch.qdd);
+    semi_implicit_euler_with(scratch, dt, q, qd, |q, qd, qdd| {
+        aba(model, ws, q, qd, inputs.tau, inputs.gravity, inputs.tips, qdd)
+    });
+}
+
+/// [`semi_implicit_euler`] with the accelerations from `accel(q, q̇, q̈_out)`.
+///
+/// # Panics
+/// If `q`, `qd` or the scratch differ in length.
+pub fn semi_implicit_euler_with<S: Scalar>(
+    scratch: &mut IntegratorScratch<S>,
+    dt: S,
+    q: &mut [S],
+    qd: &mut [S],
+    mut accel: impl FnMut(&[S], &[S], &mut [S]),
+) {
+    accel(q, qd, &mut scratch.qdd);
     for i in 0..q.len() {
         qd[i] += dt * scratch.qdd[i];
         q[i] += dt * qd[i];
@@ -168,9 +212,24 @@ pub fn rk4<S: Scalar>(
     qd: &mut [S],
 ) {
     check(model, ws, scratch, q, qd, inputs.tau);
+    rk4_with(scratch, dt, q, qd, |q, qd, qdd| aba(model, ws, q, qd, inputs.tau, inputs.gravity, inputs.tips, qdd));
+}
+
+/// [`rk4`] with the accelerations from `accel(q, q̇, q̈_out)`.
+///
+/// # Panics
+/// If `q`, `qd` or the scratch differ in length.
+pub fn rk4_with<S: Scalar>(
+    scratch: &mut IntegratorScratch<S>,
+    dt: S,
+    q: &mut [S],
+    qd: &mut [S],
+    mut accel: impl FnMut(&[S], &[S], &mut [S]),
+) {
     let n = q.len();
+    assert!(qd.len() == n && scratch.dof() == n, "rk4: q, qd and the scratch must have the same length");
     let half = dt * S::from_f64(0.5);
-    let IntegratorScratch { qdd, q_stage, qd_stage, q_sum, qd_sum } = scratch;
+    let IntegratorScratch { qdd, q_stage, qd_stage, q_sum, qd_sum, .. } = scratch;
     q_stage.copy_from_slice(q);
     qd_stage.copy_from_slice(qd);
     // (weight of the stage's slope in the sum, offset of the next stage)
@@ -179,7 +238,7 @@ pub fn rk4<S: Scalar>(
     q_sum.fill(S::zero());
     qd_sum.fill(S::zero());
     for (weight, next) in stages {
-        aba(model, ws, q_stage, qd_stage, inputs.tau, inputs.gravity, inputs.tips, qdd);
+        accel(q_stage, qd_stage, qdd);
         // The stage's slope is (qd_stage, qdd).
         for i in 0..n {
             q_sum[i] += weight * qd_stage[i];
@@ -197,8 +256,232 @@ pub fn rk4<S: Scalar>(
     }
 }
 
-/// One step with the scheme `integrator`: [`euler`], [`semi_implicit_euler`]
-/// or [`rk4`].
+/// Scratch of [`implicit_euler`]: the Newton iteration's Jacobian, its LU
+/// factors and vectors (part of [`IntegratorScratch`]).
+#[derive(Clone, Debug)]
+struct ImplicitScratch<S> {
+    /// The Newton matrix J = 1 − dt·(dt·∂a/∂q + ∂a/∂q̇), n×n row-major, then its LU factors.
+    jac: Vec<S>,
+    /// Row permutation of the LU factorisation.
+    perm: Vec<usize>,
+    v: Vec<S>,
+    q1: Vec<S>,
+    a0: Vec<S>,
+    a1: Vec<S>,
+    r: Vec<S>,
+    /// The scalar's machine epsilon (measured once), for the difference steps
+    /// and the Newton tolerance.
+    eps: f64,
+}
+
+/// The machine epsilon of `S` (2⁻⁵² for `f64`, 2⁻²³ for `f32`; a double-double
+/// represents 1 + 2⁻ᵏ exactly for any k, and is given 1e-32), found by halving.
+fn machine_epsilon<S: Scalar>() -> f64 {
+    let mut e = 1.0f64;
+    while e > 1e-40 {
+        let h = e * 0.5;
+        let d = (S::one() + S::from_f64(h)) - S::one();
+        if d.to_f64().is_none_or(|d| d == 0.0) {
+            break;
+        }
+        e = h;
+    }
+    e
+}
+
+impl<S: Scalar> ImplicitScratch<S> {
+    fn new(n: usize) -> Self {
+        ImplicitScratch {
+            jac: vec![S::zero(); n * n],
+            perm: (0..n).collect(),
+            v: vec![S::zero(); n],
+            q1: vec![S::zero(); n],
+            a0: vec![S::zero(); n],
+            a1: vec![S::zero(); n],
+            r: vec![S::zero(); n],
+            eps: machine_epsilon::<S>().max(1e-32),
+        }
+    }
+}
+
+/// |x| of a numeric scalar as `f64` (∞ for one without a value).
+fn magnitude<S: Scalar>(x: S) -> f64 {
+    x.to_f64().map_or(f64::INFINITY, f64::abs)
+}
+
+/// LU factorisation with partial pivoting, in place (pivots chosen on the
+/// values' magnitudes: a numeric routine, never traced).
+fn lu_factorise<S: Scalar>(a: &mut [S], perm: &mut [usize], n: usize) {
+    for (i, p) in perm.iter_mut().enumerate() {
+        *p = i;
+    }
+    for k in 0..n {
+        let p = (k..n).max_by(|&i, &j| magnitude(a[i * n + k]).total_cmp(&magnitude(a[j * n + k]))).unwrap_or(k);
+        if p != k {
+            for c in 0..n {
+                a.swap(k * n + c, p * n + c);
+            }
+            perm.swap(k, p);
+        }
+        let inv = S::one() / a[k * n + k];
+        for i in k + 1..n {
+            let l = a[i * n + k] * inv;
+            a[i * n + k] = l;
+            for c in k + 1..n {
+                let u = a[k * n + c];
+                a[i * n + c] -= l * u;
+            }
+        }
+    }
+}
+
+/// Solves LU·x = P·b in place of `b` (with `tmp` as scratch).
+fn lu_solve<S: Scalar>(a: &[S], perm: &[usize], n: usize, b: &mut [S], tmp: &mut [S]) {
+    for i in 0..n {
+        tmp[i] = b[perm[i]];
+    }
+    for i in 0..n {
+        for k in 0..i {
+            let l = a[i * n + k];
+            tmp[i] -= l * tmp[k];
+        }
+    }
+    for i in (0..n).rev() {
+        for k in i + 1..n {
+            let u = a[i * n + k];
+            tmp[i] -= u * tmp[k];
+        }
+        tmp[i] = tmp[i] / a[i * n + i];
+    }
+    b.copy_from_slice(&tmp[..n]);
+}
+
+/// What a Newton solve of [`implicit_euler_with`] did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NewtonOutcome {
+    /// Newton iterations done (each one evaluation of the dynamics, after the
+    /// n + 1 evaluations that form the Jacobian).
+    pub iterations: usize,
+    /// Whether the last correction was below the tolerance (≈ ε^¾ relative).
+    pub converged: bool,
+}
+
+/// Newton iterations of [`implicit_euler_with`] at most.
+pub const IMPLICIT_MAX_ITERATIONS: usize = 12;
+
+/// One implicit (backward) Euler step of d/dt (q, q̇) = (q̇, FD(q, q̇, τ)):
+/// q₁ = q₀ + dt·q̇₁ and q̇₁ = q̇₀ + dt·FD(q₁, q̇₁, τ), solved for q̇₁ by
+/// Newton's method (see [`implicit_euler_with`]). `q` and `qd` are updated
+/// in place.
+///
+/// # Panics
+/// If a slice or the scratch does not have the model's number of joints.
+pub fn implicit_euler<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    scratch: &mut IntegratorScratch<S>,
+    inputs: &StepInputs<'_, S>,
+    dt: S,
+    q: &mut [S],
+    qd: &mut [S],
+) -> NewtonOutcome {
+    check(model, ws, scratch, q, qd, inputs.tau);
+    implicit_euler_with(scratch, dt, q, qd, |q, qd, qdd| {
+        aba(model, ws, q, qd, inputs.tau, inputs.gravity, inputs.tips, qdd)
+    })
+}
+
+/// One implicit Euler step with the accelerations from `accel(q, q̇, q̈_out)`.
+///
+/// With v = q̇₁ the unknown and q₁ = q₀ + dt·v, the step solves
+/// r(v) = v − q̇₀ − dt·a(q₀ + dt·v, v) = 0 by Newton's method from v = q̇₀.
+/// The Jacobian ∂r/∂v = 1 − dt·(dt·∂a/∂q + ∂a/∂q̇) is formed once per step
+/// by forward differences (column j: v_j moved by √ε·max(1, |v_j|), which
+/// moves q₁ by dt times that, so one evaluation of `a` per column), factorised
+/// by LU with partial pivoting, and kept for the next iterations (a
+/// simplified Newton method) as long as each correction is below a quarter
+/// of the previous one; otherwise it is formed again at the current iterate.
+/// Iterates until the correction is below ε^¾ relative to |v| (or 1), at
+/// most [`IMPLICIT_MAX_ITERATIONS`] times.
+///
+/// The branches (pivots, convergence) look at values: this is a numeric
+/// routine for `f64`, `f32` or a precise scalar, not one to trace.
+///
+/// # Panics
+/// If `q`, `qd` or the scratch differ in length.
+pub fn implicit_euler_with<S: Scalar>(
+    scratch: &mut IntegratorScratch<S>,
+    dt: S,
+    q: &mut [S],
+    qd: &mut [S],
+    mut accel: impl FnMut(&[S], &[S], &mut [S]),
+) -> NewtonOutcome {
+    let n = q.len();
+    assert!(qd.len() == n && scratch.dof() == n, "implicit_euler: q, qd and the scratch must have the same length");
+    let tmp = &mut scratch.qdd;
+    let ImplicitScratch { jac, perm, v, q1, a0, a1, r, eps } = &mut scratch.implicit;
+    let h_rel = eps.sqrt();
+    let tol = eps.powf(0.75);
+    v.copy_from_slice(qd);
+    let mut outcome = NewtonOutcome { iterations: 0, converged: false };
+    let (mut refresh, mut last) = (true, f64::INFINITY);
+    for it in 0..IMPLICIT_MAX_ITERATIONS {
+        for i in 0..n {
+            q1[i] = q[i] + dt * v[i];
+        }
+        accel(q1, v, a0);
+        if refresh {
+            // Column j of ∂r/∂v by a forward difference.
+            for j in 0..n {
+                let vj = v[j];
+                let step = S::from_f64(h_rel * magnitude(vj).max(1.0));
+                v[j] = vj + step;
+                q1[j] = q[j] + dt * v[j];
+                accel(q1, v, a1);
+                // The step actually taken (v_j + step − v_j may round).
+                let taken = v[j] - vj;
+                for i in 0..n {
+                    let d = (a1[i] - a0[i]) / taken;
+                    jac[i * n + j] = if i == j { S::one() } else { S::zero() } - dt * d;
+                }
+                v[j] = vj;
+                q1[j] = q[j] + dt * vj;
+            }
+            lu_factorise(jac, perm, n);
+        }
+        for i in 0..n {
+            r[i] = v[i] - qd[i] - dt * a0[i];
+        }
+        lu_solve(jac, perm, n, r, tmp);
+        let (mut dmax, mut vmax) = (0.0f64, 1.0f64);
+        for i in 0..n {
+            v[i] -= r[i];
+            dmax = dmax.max(magnitude(r[i]));
+            vmax = vmax.max(magnitude(v[i]));
+        }
+        outcome.iterations = it + 1;
+        // A non-finite correction ends the iteration (not converged).
+        if !dmax.is_finite() {
+            break;
+        }
+        if dmax <= tol * vmax {
+            outcome.converged = true;
+            break;
+        }
+        // Slow convergence: the Jacobian of the first iterate is too far
+        // from the current one; form it again at the next iterate.
+        refresh = dmax > 0.25 * last;
+        last = dmax;
+    }
+    for i in 0..n {
+        q[i] += dt * v[i];
+    }
+    qd.copy_from_slice(v);
+    outcome
+}
+
+/// One step with the scheme `integrator`: [`euler`], [`semi_implicit_euler`],
+/// [`rk4`] or [`implicit_euler`].
 ///
 /// # Panics
 /// If a slice or the scratch does not have the model's number of joints.
@@ -217,6 +500,32 @@ pub fn step<S: Scalar>(
         Integrator::Euler => euler(model, ws, scratch, inputs, dt, q, qd),
         Integrator::SemiImplicitEuler => semi_implicit_euler(model, ws, scratch, inputs, dt, q, qd),
         Integrator::Rk4 => rk4(model, ws, scratch, inputs, dt, q, qd),
+        Integrator::ImplicitEuler => {
+            implicit_euler(model, ws, scratch, inputs, dt, q, qd);
+        }
+    }
+}
+
+/// [`step`] with the accelerations from `accel(q, q̇, q̈_out)` (for dynamics
+/// with state-dependent torques, such as joint springs and dampers).
+///
+/// # Panics
+/// If `q`, `qd` or the scratch differ in length.
+pub fn step_with<S: Scalar>(
+    integrator: Integrator,
+    scratch: &mut IntegratorScratch<S>,
+    dt: S,
+    q: &mut [S],
+    qd: &mut [S],
+    accel: impl FnMut(&[S], &[S], &mut [S]),
+) {
+    match integrator {
+        Integrator::Euler => euler_with(scratch, dt, q, qd, accel),
+        Integrator::SemiImplicitEuler => semi_implicit_euler_with(scratch, dt, q, qd, accel),
+        Integrator::Rk4 => rk4_with(scratch, dt, q, qd, accel),
+        Integrator::ImplicitEuler => {
+            implicit_euler_with(scratch, dt, q, qd, accel);
+        }
     }
 }
 
@@ -296,5 +605,94 @@ mod tests {
         for i in 0..3 {
             assert!((q[i] - wq[i]).abs() < 1e-15 && (qd[i] - wqd[i]).abs() < 1e-15);
         }
+    }
+
+    /// A stiff joint spring-damper τ = −k·q − d·q̇ on the slider (mass 2 kg):
+    /// ω = √(k/m) = 1000 rad/s, so dt = 0.01 s is 10 radians per step.
+    fn spring_run(integrator: Integrator, dt: f64, steps: usize, k: f64, d: f64) -> (f64, f64) {
+        let model = slider(2.0);
+        let mut ws = Workspace::<f64>::new(&model);
+        let mut scratch = IntegratorScratch::new(&model);
+        let (mut q, mut qd) = ([0.1], [0.0]);
+        for _ in 0..steps {
+            step_with(integrator, &mut scratch, dt, &mut q, &mut qd, |q, qd, qdd| {
+                let tau = [-k * q[0] - d * qd[0]];
+                aba(&model, &mut ws, q, qd, &tau, None, &[], qdd);
+            });
+        }
+        (q[0], qd[0])
+    }
+
+    #[test]
+    fn implicit_euler_is_stable_where_explicit_schemes_blow_up() {
+        let (k, d, dt) = (2e6, 10.0, 0.01);
+        for explicit in [Integrator::Euler, Integrator::SemiImplicitEuler, Integrator::Rk4] {
+            let (q, qd) = spring_run(explicit, dt, 100, k, d);
+            assert!(!(q.abs() < 1e3 && qd.abs() < 1e3), "{explicit:?} should blow up, got q = {q:e}");
+        }
+        // Backward Euler damps every mode: the spring's energy decays.
+        let (q, qd) = spring_run(Integrator::ImplicitEuler, dt, 100, k, d);
+        assert!(q.abs() < 0.1 && (0.5 * 2.0 * qd * qd + 0.5 * k * q * q) < 0.5 * k * 0.01, "q = {q:e}, qd = {qd:e}");
+        // At a step that resolves the oscillation, it agrees with RK4 to first order.
+        let (qr, _) = spring_run(Integrator::Rk4, 1e-5, 1000, k, d);
+        let (qi, _) = spring_run(Integrator::ImplicitEuler, 1e-6, 10000, k, d);
+        assert!((qi - qr).abs() < 0.05 * 0.1, "implicit {qi:e} vs RK4 {qr:e}");
+    }
+
+    #[test]
+    fn implicit_euler_converges_at_first_order() {
+        // A double pendulum: the final state after 0.5 s against RK4 at a tiny
+        // step; halving dt halves the error (ratio 2 ± 0.3).
+        let model = RobotBuilder::new("double")
+            .link("base", None)
+            .link("a", Some(Inertial::new(1.0, [0.0, 0.0, -0.5], [0.02, 0.02, 0.001, 0.0, 0.0, 0.0])))
+            .link("b", Some(Inertial::new(0.7, [0.0, 0.0, -0.4], [0.01, 0.01, 0.001, 0.0, 0.0, 0.0])))
+            .joint(JointDescription::revolute("j1", "base", "a", [0.0, 1.0, 0.0]))
+            .joint(JointDescription::revolute("j2", "a", "b", [0.0, 1.0, 0.0]).origin([0.0, 0.0, -1.0], [0.0; 3]))
+            .build()
+            .unwrap();
+        let g = Vec3([0.0, 0.0, -9.81]);
+        let tau = [0.3, -0.1];
+        let run = |integrator: Integrator, steps: usize| {
+            let mut ws = Workspace::<f64>::new(&model);
+            let mut scratch = IntegratorScratch::new(&model);
+            let inputs = StepInputs { tau: &tau, gravity: Some(&g), tips: &[] };
+            let (mut q, mut qd) = ([0.8, -0.4], [0.0, 0.5]);
+            let dt = 0.5 / steps as f64;
+            for _ in 0..steps {
+                if integrator == Integrator::ImplicitEuler {
+                    let out = implicit_euler(&model, &mut ws, &mut scratch, &inputs, dt, &mut q, &mut qd);
+                    assert!(out.converged, "Newton did not converge: {out:?}");
+                } else {
+                    step(integrator, &model, &mut ws, &mut scratch, &inputs, dt, &mut q, &mut qd);
+                }
+            }
+            [q[0], q[1], qd[0], qd[1]]
+        };
+        let reference = run(Integrator::Rk4, 4000);
+        let err = |steps| {
+            let x = run(Integrator::ImplicitEuler, steps);
+            x.iter().zip(&reference).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max)
+        };
+        let (e1, e2, e3) = (err(200), err(400), err(800));
+        for (a, b) in [(e1, e2), (e2, e3)] {
+            assert!((a / b - 2.0).abs() < 0.3, "errors {e1:e} {e2:e} {e3:e}: not first order");
+        }
+    }
+
+    #[test]
+    fn lu_solves_with_pivoting() {
+        // A zero leading entry needs the row exchange.
+        let mut a = vec![0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0];
+        let x = [1.0, -2.0, 0.5];
+        let mut b: Vec<f64> = (0..3).map(|i| a[i * 3] * x[0] + a[i * 3 + 1] * x[1] + a[i * 3 + 2] * x[2]).collect();
+        let (mut perm, mut tmp) = (vec![0; 3], vec![0.0; 3]);
+        lu_factorise(&mut a, &mut perm, 3);
+        lu_solve(&a, &perm, 3, &mut b, &mut tmp);
+        for i in 0..3 {
+            assert!((b[i] - x[i]).abs() < 1e-15, "{b:?}");
+        }
+        assert_eq!(machine_epsilon::<f64>(), f64::EPSILON);
+        assert_eq!(machine_epsilon::<f32>(), f32::EPSILON as f64);
     }
 }

@@ -10,6 +10,7 @@
 
 pub mod aba;
 pub mod bias;
+pub mod compensated;
 pub mod crba;
 pub mod energy;
 pub mod forward_dynamics;

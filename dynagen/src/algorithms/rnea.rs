@@ -118,6 +118,9 @@ pub(crate) fn update_joint_transforms<S: Scalar>(model: &Model, ws: &mut Workspa
 ///
 /// # Panics
 /// If a slice's length is not the model's number of joints.
+// Inlined into its callers so that a caller compiled with extra CPU features
+// (the FMA form of the compensated forward dynamics) compiles it with them.
+#[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub fn rnea<S: Scalar>(
     model: &Model,

@@ -125,7 +125,9 @@ impl Scalar for f32 {
     }
 }
 
+mod compensated;
 mod counting;
 mod double_double;
+pub use compensated::{Compensated, CompensatedFma, CompensatedWith, Dekker, ExactProduct, Fused};
 pub use counting::Counting;
 pub use double_double::DoubleDouble;

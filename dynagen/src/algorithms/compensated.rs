@@ -1,0 +1,210 @@
+//! Compensated forward dynamics: q̈ = M(q)⁻¹(τ − h(q, q̇) − J(q)ᵀF_tip) with
+//! the cancelling part carried in a more precise scalar.
+//!
+//! When the joint torques nearly balance the bias forces at high speed
+//! (τ ≈ h, with ‖h‖ ≫ ‖τ − h‖), the subtraction τ − h cancels: an `f64`
+//! h(q, q̇) is only known to ε·‖h‖, so every plain `f64` method — the
+//! articulated-body algorithm as much as a factorisation of M — returns q̈
+//! with an error of about ε·‖h‖/‖M‖, however small q̈ is. Here the bias
+//! forces h(q, q̇) + J(q)ᵀF_tip (gravity, the sines and cosines of q and the
+//! model's constants included) are computed by the recursive Newton-Euler
+//! algorithm in a precise scalar `P` (normally [`Compensated`](crate::Compensated),
+//! ≈ 20 digits at a few times the cost of `f64`; [`DoubleDouble`](crate::DoubleDouble)
+//! works too, slower), u = τ − h is formed in `P` and rounded once to `f64`,
+//! and the articulated-body algorithm solves M q̈ = u in `f64` with zero
+//! velocity and no gravity. The error is then about ε·‖u‖/‖M‖ plus `P`'s
+//! error on h, instead of ε·‖h‖/‖M‖: as many digits won as ‖h‖/‖τ − h‖ has.
+//! On ordinary states (no cancellation) it is as accurate as the plain
+//! algorithm.
+
+use super::aba::aba;
+use super::rnea::rnea;
+use super::{TipWrench, Workspace};
+use crate::model::Model;
+use crate::spatial::{Force, Vec3};
+use crate::{Compensated, CompensatedFma, Scalar};
+
+/// Scratch for [`forward_dynamics_compensated`] in the precise scalar `P`:
+/// create it once per model, outside a control loop.
+#[derive(Clone, Debug)]
+pub struct CompensatedScratch<P> {
+    ws: Workspace<P>,
+    q: Vec<P>,
+    qd: Vec<P>,
+    h: Vec<P>,
+    tips: Vec<TipWrench<P>>,
+    /// The right-hand side u = τ − h, rounded to `f64`.
+    rhs: Vec<f64>,
+    /// Zero joint velocities for the articulated-body solve.
+    zero: Vec<f64>,
+}
+
+impl<P: Scalar> CompensatedScratch<P> {
+    /// Scratch for `model`.
+    pub fn new(model: &Model) -> Self {
+        let n = model.dof();
+        CompensatedScratch {
+            ws: Workspace::new(model),
+            q: vec![P::zero(); n],
+            qd: vec![P::zero(); n],
+            h: vec![P::zero(); n],
+            tips: Vec::new(),
+            rhs: vec![0.0; n],
+            zero: vec![0.0; n],
+        }
+    }
+    /// The number of joints this scratch is for.
+    pub fn dof(&self) -> usize {
+        self.q.len()
+    }
+    /// The right-hand side τ − h(q, q̇) − J(q)ᵀF_tip of the last call,
+    /// rounded to `f64` once.
+    pub fn rhs(&self) -> &[f64] {
+        &self.rhs
+    }
+}
+
+/// Forward dynamics with the bias forces and τ − h in the precise scalar `P`
+/// (see the module documentation). Arguments as [`aba`], plus the scratch in
+/// `P`; `ws` is the `f64` workspace of the articulated-body solve. Allocates
+/// nothing once `scratch` has seen as many tip wrenches as `tips` holds.
+///
+/// # Panics
+/// If a slice, the workspace or the scratch does not have the model's number
+/// of joints.
+// Inlined so that the FMA form (`solve_fma`) compiles it with FMA enabled.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub fn forward_dynamics_compensated<P: Scalar>(
+    model: &Model,
+    scratch: &mut CompensatedScratch<P>,
+    ws: &mut Workspace<f64>,
+    q: &[f64],
+    qd: &[f64],
+    tau: &[f64],
+    gravity: Option<&Vec3<f64>>,
+    tips: &[TipWrench<f64>],
+    qdd: &mut [f64],
+) {
+    let n = model.dof();
+    assert!(
+        q.len() == n && qd.len() == n && tau.len() == n && qdd.len() == n && scratch.dof() == n,
+        "forward_dynamics_compensated: slices and scratch must have the model's {n} joints"
+    );
+    let CompensatedScratch { ws: ws_p, q: qp, qd: qdp, h, tips: tips_p, rhs, zero } = scratch;
+    for i in 0..n {
+        qp[i] = P::from_f64(q[i]);
+        qdp[i] = P::from_f64(qd[i]);
+    }
+    tips_p.clear();
+    tips_p.extend(tips.iter().map(|t| TipWrench {
+        frame: t.frame,
+        wrench: Force::new(Vec3::from_f64(&t.wrench.ang), Vec3::from_f64(&t.wrench.lin)),
+    }));
+    let g = gravity.map(Vec3::<P>::from_f64);
+    // h(q, q̇) + JᵀF_tip in P, then u = τ − h in P, rounded once.
+    rnea(model, ws_p, qp, Some(qdp), None, g.as_ref(), tips_p, h);
+    for i in 0..n {
+        rhs[i] = (P::from_f64(tau[i]) - h[i]).to_f64().unwrap_or(f64::NAN);
+    }
+    // M q̈ = u: the articulated-body algorithm at rest, without gravity.
+    aba(model, ws, q, zero, rhs, None, &[], qdd);
+}
+
+/// The compensated forward dynamics with its scratch, choosing at run time
+/// how exact products are formed: by fused multiply-adds when the CPU has
+/// them (the whole computation compiled with FMA enabled, about twice as fast),
+/// else by Dekker's splitting ([`Compensated`]). Both give the same results
+/// (exact products either way).
+#[derive(Clone, Debug)]
+pub enum CompensatedSolver {
+    /// Products by Dekker's splitting, or FMA if the build already targets it.
+    Portable(CompensatedScratch<Compensated>),
+    /// Products by FMA instructions, detected at run time.
+    Fused(CompensatedScratch<CompensatedFma>),
+}
+
+impl CompensatedSolver {
+    /// The solver for `model`, with FMA when this CPU has it.
+    pub fn new(model: &Model) -> Self {
+        if fma_detected() {
+            CompensatedSolver::Fused(CompensatedScratch::new(model))
+        } else {
+            CompensatedSolver::Portable(CompensatedScratch::new(model))
+        }
+    }
+    /// The solver for `model` with Dekker's splitting, whatever the CPU (for comparisons).
+    pub fn portable(model: &Model) -> Self {
+        CompensatedSolver::Portable(CompensatedScratch::new(model))
+    }
+    /// Whether products use FMA instructions detected at run time.
+    pub fn uses_fma(&self) -> bool {
+        matches!(self, CompensatedSolver::Fused(_))
+    }
+    /// [`forward_dynamics_compensated`] with this solver's scratch.
+    ///
+    /// # Panics
+    /// As [`forward_dynamics_compensated`].
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve(
+        &mut self,
+        model: &Model,
+        ws: &mut Workspace<f64>,
+        q: &[f64],
+        qd: &[f64],
+        tau: &[f64],
+        gravity: Option<&Vec3<f64>>,
+        tips: &[TipWrench<f64>],
+        qdd: &mut [f64],
+    ) {
+        match self {
+            CompensatedSolver::Portable(s) => {
+                forward_dynamics_compensated(model, s, ws, q, qd, tau, gravity, tips, qdd)
+            }
+            CompensatedSolver::Fused(s) => {
+                #[cfg(target_arch = "x86_64")]
+                // SAFETY: `Fused` is only built when the CPU has FMA (`fma_detected`).
+                unsafe {
+                    solve_fma(model, s, ws, q, qd, tau, gravity, tips, qdd)
+                }
+                #[cfg(not(target_arch = "x86_64"))]
+                forward_dynamics_compensated(model, s, ws, q, qd, tau, gravity, tips, qdd)
+            }
+        }
+    }
+}
+
+/// Whether to build the FMA variant: the CPU has FMA and the build does not
+/// already use it everywhere.
+fn fma_detected() -> bool {
+    #[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
+    {
+        std::arch::is_x86_feature_detected!("fma")
+    }
+    #[cfg(not(all(target_arch = "x86_64", not(target_feature = "fma"))))]
+    {
+        false
+    }
+}
+
+/// [`forward_dynamics_compensated`] in `CompensatedFma`, compiled with FMA
+/// enabled (the generic algorithms are instantiated, and inlined, here).
+///
+/// # Safety
+/// The CPU must support FMA.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "fma")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn solve_fma(
+    model: &Model,
+    scratch: &mut CompensatedScratch<CompensatedFma>,
+    ws: &mut Workspace<f64>,
+    q: &[f64],
+    qd: &[f64],
+    tau: &[f64],
+    gravity: Option<&Vec3<f64>>,
+    tips: &[TipWrench<f64>],
+    qdd: &mut [f64],
+) {
+    forward_dynamics_compensated(model, scratch, ws, q, qd, tau, gravity, tips, qdd)
+}
