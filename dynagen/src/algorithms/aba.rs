@@ -212,9 +212,39 @@ pub fn aba_with_armature<S: Scalar>(
     armature: Option<&[f64]>,
     qdd: &mut [S],
 ) {
+    aba_impl(model, ws, q, Some(qd), tau, gravity, tips, armature, qdd)
+}
+
+/// M(q)⁻¹τ: the articulated-body algorithm at rest (q̇ = 0) and without
+/// gravity or tip wrenches, which skips every velocity term (the forward
+/// pass only places the bodies, and the bias forces are zero). This is the
+/// solve of the compensated forward dynamics
+/// ([`forward_dynamics_compensated`](super::compensated::forward_dynamics_compensated)),
+/// which has the bias forces already.
+///
+/// # Panics
+/// If a slice's length is not the model's number of joints.
+pub fn aba_at_rest<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], tau: &[S], qdd: &mut [S]) {
+    aba_impl(model, ws, q, None, tau, None, &[], None, qdd)
+}
+
+/// The articulated-body algorithm; `qd: None` is at rest (see [`aba_at_rest`]).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn aba_impl<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    qd: Option<&[S]>,
+    tau: &[S],
+    gravity: Option<&Vec3<S>>,
+    tips: &[TipWrench<S>],
+    armature: Option<&[f64]>,
+    qdd: &mut [S],
+) {
     let n = model.dof();
     assert!(
-        q.len() == n && qd.len() == n && tau.len() == n && qdd.len() == n && ws.dof() == n,
+        q.len() == n && qd.is_none_or(|qd| qd.len() == n) && tau.len() == n && qdd.len() == n && ws.dof() == n,
         "aba: slices must have the model's {n} joints"
     );
     assert!(armature.is_none_or(|a| a.len() == n), "aba: the armature must have the model's {n} joints");
@@ -232,6 +262,13 @@ pub fn aba_with_armature<S: Scalar>(
         let x = joint_transform(joint, q[i]);
         ws.x[i] = x;
         let inertia = Inertia::<S>::from_f64(&body.inertia);
+        ws.art[i] = ArticulatedInertia::from_rigid(&inertia);
+        let Some(qd) = qd else {
+            // At rest: no velocity, no velocity-product acceleration, no bias force.
+            ws.a[i] = Motion::zero();
+            ws.f[i] = Force::zero();
+            continue;
+        };
         let revolute = joint.is_revolute();
         let (mut w, mut c) = match body.parent {
             Some(p) => with_rotation!(joint, x, |r| {
@@ -249,8 +286,7 @@ pub fn aba_with_armature<S: Scalar>(
         }
         ws.v[i] = Motion::new(w, Vec3::zero());
         ws.a[i] = c; // c_i, kept until the last pass
-        ws.art[i] = ArticulatedInertia::from_rigid(&inertia);
-        // [ω×]²: ω × (ω × h) here, the centripetal acceleration of the children
+                     // [ω×]²: ω × (ω × h) here, the centripetal acceleration of the children
         let p = products(&w);
         let u = velocity_product_matrix(Some(&p), &Vec3::zero());
         ws.u[i] = u;
@@ -282,7 +318,10 @@ pub fn aba_with_armature<S: Scalar>(
             if arm == 0.0 {
                 ia.clear_subspace(&body.joint);
             }
-            let pa = ws.f[i] + ia.mul_motion(&ws.a[i]) + u.scale(ui * d_inv);
+            let pa = match qd {
+                Some(_) => ws.f[i] + ia.mul_motion(&ws.a[i]) + u.scale(ui * d_inv),
+                None => ws.f[i] + u.scale(ui * d_inv), // c_i = 0 at rest
+            };
             let x = ws.x[i];
             let ia_p = with_rotation!(&body.joint, x, |r| ia.expressed_in_parent(&r, &x.trans));
             ws.art[p] = ws.art[p].add(&ia_p);

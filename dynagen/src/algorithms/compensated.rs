@@ -17,7 +17,7 @@
 //! On ordinary states (no cancellation) it is as accurate as the plain
 //! algorithm.
 
-use super::aba::aba;
+use super::aba::aba_at_rest;
 use super::rnea::rnea;
 use super::{TipWrench, Workspace};
 use crate::model::Model;
@@ -35,8 +35,6 @@ pub struct CompensatedScratch<P> {
     tips: Vec<TipWrench<P>>,
     /// The right-hand side u = τ − h, rounded to `f64`.
     rhs: Vec<f64>,
-    /// Zero joint velocities for the articulated-body solve.
-    zero: Vec<f64>,
 }
 
 impl<P: Scalar> CompensatedScratch<P> {
@@ -50,7 +48,6 @@ impl<P: Scalar> CompensatedScratch<P> {
             h: vec![P::zero(); n],
             tips: Vec::new(),
             rhs: vec![0.0; n],
-            zero: vec![0.0; n],
         }
     }
     /// The number of joints this scratch is for.
@@ -91,7 +88,7 @@ pub fn forward_dynamics_compensated<P: Scalar>(
         q.len() == n && qd.len() == n && tau.len() == n && qdd.len() == n && scratch.dof() == n,
         "forward_dynamics_compensated: slices and scratch must have the model's {n} joints"
     );
-    let CompensatedScratch { ws: ws_p, q: qp, qd: qdp, h, tips: tips_p, rhs, zero } = scratch;
+    let CompensatedScratch { ws: ws_p, q: qp, qd: qdp, h, tips: tips_p, rhs } = scratch;
     for i in 0..n {
         qp[i] = P::from_f64(q[i]);
         qdp[i] = P::from_f64(qd[i]);
@@ -108,7 +105,7 @@ pub fn forward_dynamics_compensated<P: Scalar>(
         rhs[i] = (P::from_f64(tau[i]) - h[i]).to_f64().unwrap_or(f64::NAN);
     }
     // M q̈ = u: the articulated-body algorithm at rest, without gravity.
-    aba(model, ws, q, zero, rhs, None, &[], qdd);
+    aba_at_rest(model, ws, q, rhs, qdd);
 }
 
 /// The compensated forward dynamics with its scratch, choosing at run time
