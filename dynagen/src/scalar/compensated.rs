@@ -21,6 +21,7 @@
 //! No operation branches on a value except the range reduction of sin/cos,
 //! which runs numerically, never symbolically.
 
+use super::error_free::{quick_two_sum, two_prod_fma, two_sum, PI_2};
 use super::Scalar;
 use crate::spatial::{Mat3, Vec3};
 use core::marker::PhantomData;
@@ -88,27 +89,12 @@ pub struct Fused;
 impl ExactProduct for Fused {
     #[inline(always)]
     fn two_prod(a: f64, b: f64) -> (f64, f64) {
-        let p = a * b;
-        (p, a.mul_add(b, -p))
+        two_prod_fma(a, b)
     }
 }
 
-#[inline(always)]
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bb = s - a;
-    (s, (a - (s - bb)) + (b - bb))
-}
-
-#[inline(always)]
-fn quick_two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    (s, b - (s - a))
-}
-
 /// π/16 as the sum of three doubles (π/2's three parts divided by 8, exactly).
-const PI_16: [f64; 3] =
-    [core::f64::consts::FRAC_PI_2 / 8.0, 6.123233995736766e-17 / 8.0, -1.4973849048591698e-33 / 8.0];
+const PI_16: [f64; 3] = [PI_2[0] / 8.0, PI_2[1] / 8.0, PI_2[2] / 8.0];
 
 /// (sin hi, sin lo, cos hi, cos lo) of j·π/16, j = 0..7, from the
 /// double-double reference.

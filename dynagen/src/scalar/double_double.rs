@@ -12,6 +12,7 @@
 //! Not a performance type: a double-double operation costs 10–20 `f64`
 //! operations, and sin/cos about 60 double-double operations.
 
+use super::error_free::{quick_two_sum, two_prod_fma, two_sum, PI_2};
 use super::Scalar;
 use crate::spatial::{Mat3, Vec3};
 use core::cmp::Ordering;
@@ -26,28 +27,6 @@ pub struct DoubleDouble {
     /// The trailing part.
     pub lo: f64,
 }
-
-#[inline(always)]
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bb = s - a;
-    (s, (a - (s - bb)) + (b - bb))
-}
-
-#[inline(always)]
-fn quick_two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    (s, b - (s - a))
-}
-
-#[inline(always)]
-fn two_prod(a: f64, b: f64) -> (f64, f64) {
-    let p = a * b;
-    (p, a.mul_add(b, -p))
-}
-
-/// π/2 as the sum of three doubles.
-const PI_2: [f64; 3] = [core::f64::consts::FRAC_PI_2, 6.123233995736766e-17, -1.4973849048591698e-33];
 
 impl DoubleDouble {
     /// Zero.
@@ -67,7 +46,7 @@ impl DoubleDouble {
     }
     /// The exact product of two doubles.
     pub fn product(a: f64, b: f64) -> Self {
-        let (hi, lo) = two_prod(a, b);
+        let (hi, lo) = two_prod_fma(a, b);
         DoubleDouble { hi, lo }
     }
     /// The nearest `f64`.
@@ -88,7 +67,7 @@ impl DoubleDouble {
     }
     /// Multiplication by a double.
     pub fn mul_f64(self, b: f64) -> Self {
-        let (p, e) = two_prod(self.hi, b);
+        let (p, e) = two_prod_fma(self.hi, b);
         let (hi, lo) = quick_two_sum(p, e + self.lo * b);
         DoubleDouble { hi, lo }
     }
@@ -196,7 +175,7 @@ impl Mul for DoubleDouble {
     type Output = Self;
     #[inline]
     fn mul(self, b: Self) -> Self {
-        let (p, e) = two_prod(self.hi, b.hi);
+        let (p, e) = two_prod_fma(self.hi, b.hi);
         let e = e + (self.hi * b.lo + self.lo * b.hi);
         let (hi, lo) = quick_two_sum(p, e);
         DoubleDouble { hi, lo }
