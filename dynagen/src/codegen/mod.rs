@@ -382,16 +382,25 @@ fn doc_of(kind: FunctionKind, model: &Model, count: &OpCount) -> String {
     )
 }
 
-/// Generates the module for `model`; see the [module documentation](self).
-pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModule, CodegenError> {
+/// The model code is generated from: `model` with the rounding snap and the
+/// inertia regrouping the options ask for (both exact within the file's
+/// precision, see [`snap_rounding`] and [`regroup_inertia`]), and the
+/// constants the snap changed. Plain and scene modules both start here.
+pub(crate) fn prepare_model(model: &Model, options: &CodegenOptions) -> (Model, Vec<SnappedConstant>) {
     let (snapped_model, snapped) =
         if options.snap_rounding { snap_rounding(model) } else { (model.clone(), Vec::new()) };
-    let grouped_model = if options.regroup_inertia {
+    let prepared = if options.regroup_inertia {
         regroup_inertia(&slide_origins_along_axes(&snapped_model))
     } else {
         snapped_model
     };
-    let m = &grouped_model;
+    (prepared, snapped)
+}
+
+/// Generates the module for `model`; see the [module documentation](self).
+pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModule, CodegenError> {
+    let (prepared, snapped) = prepare_model(model, options);
+    let m = &prepared;
     let n = model.dof();
     let f = &options.functions;
     let wanted = [

@@ -35,10 +35,9 @@
 //! the payload in its articulated inertias).
 
 use super::emit::{self, Dim, Param, Shape};
-use super::grouping::{regroup_inertia, slide_origins_along_axes};
 use super::trace::{sin_cos_from_q, sin_cos_inputs, SinCosTrace};
 use super::{
-    module_name, parse_item, sin_cos, snap_rounding, trig_source, wrapper, CodegenError, CodegenOptions,
+    module_name, parse_item, prepare_model, sin_cos, trig_source, wrapper, CodegenError, CodegenOptions,
     ForwardDynamicsMethod, GeneratedModule, ScalarType, SnappedConstant, Trig, GENERATOR_VERSION,
 };
 use crate::algorithms::joint::{add_motion, cross_motion, joint_transform, motion_to_child};
@@ -442,12 +441,10 @@ fn doc_of(scene: &SceneModel, f: &SceneFn, count: &OpCount) -> String {
 /// assert!(module.source.contains("//   functions not generated: mass_matrix, bias_forces"));
 /// ```
 pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<GeneratedModule, CodegenError> {
-    let (model, snapped) =
-        if options.snap_rounding { snap_rounding(&scene.model) } else { (scene.model.clone(), Vec::new()) };
-    // The same regrouping as `generate` (exact for every function of a
-    // scene: frames move with the slid bodies, armature, friction and
-    // run-time payloads do not depend on the bodies' own inertias).
-    let model = if options.regroup_inertia { regroup_inertia(&slide_origins_along_axes(&model)) } else { model };
+    // As `generate` (the regrouping is exact for every function of a scene:
+    // frames move with the slid bodies; armature, friction and run-time
+    // payloads do not depend on the bodies' own inertias).
+    let (model, snapped) = prepare_model(&scene.model, options);
     let n = model.dof();
     let scalar = if scene.scalar == ScalarType::F32 { ScalarType::F32 } else { options.scalar };
     let trig = match scene.target {
