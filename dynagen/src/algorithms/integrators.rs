@@ -496,14 +496,10 @@ pub fn step<S: Scalar>(
     q: &mut [S],
     qd: &mut [S],
 ) {
-    match integrator {
-        Integrator::Euler => euler(model, ws, scratch, inputs, dt, q, qd),
-        Integrator::SemiImplicitEuler => semi_implicit_euler(model, ws, scratch, inputs, dt, q, qd),
-        Integrator::Rk4 => rk4(model, ws, scratch, inputs, dt, q, qd),
-        Integrator::ImplicitEuler => {
-            implicit_euler(model, ws, scratch, inputs, dt, q, qd);
-        }
-    }
+    check(model, ws, scratch, q, qd, inputs.tau);
+    step_with(integrator, scratch, dt, q, qd, |q, qd, qdd| {
+        aba(model, ws, q, qd, inputs.tau, inputs.gravity, inputs.tips, qdd)
+    });
 }
 
 /// [`step`] with the accelerations from `accel(q, q̇, q̈_out)` (for dynamics
