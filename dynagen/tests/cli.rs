@@ -672,3 +672,37 @@ fn ops_lists_generated_and_generic_counts() {
     let e = fails(dynagen().args(["ops", "nowhere.urdf"]), 1);
     assert!(e.starts_with("error: nowhere.urdf: cannot read"), "{e}");
 }
+
+#[test]
+fn ops_with_a_scene_lists_the_scene_module_beside_the_full_one() {
+    use dynagen::codegen::{generate, generate_scene, CodegenOptions};
+    use dynagen::scene::Scene;
+    let dir = scratch("ops_scene");
+    let urdf = format!("{ROBOTS}/ur5.urdf");
+    let model = dynagen::Model::from_urdf_file(&urdf).unwrap();
+    let text = "functions = [\"inverse_dynamics\", \"gravity_torques\"]\nframe_pose = [\"ee_link\"]\n[gravity]\nmode = \"none\"\n[joints.wrist_3_joint]\nlock = 0.0\n";
+    let scene = write(&dir, "light.toml", text);
+    let out = succeeds(dynagen().arg("ops").arg(&urdf).arg("--scene").arg(&scene));
+    let full = generate(&model, &CodegenOptions::default()).unwrap();
+    let applied = Scene::from_toml_str(text).unwrap().apply(&model).unwrap();
+    let reduced = generate_scene(&applied, &CodegenOptions::default()).unwrap();
+    let row = |name: &str| -> Vec<String> {
+        let line = out.lines().find(|l| l.split_whitespace().next() == Some(name)).unwrap_or_else(|| panic!("{out}"));
+        line.split_whitespace().skip(1).map(str::to_string).collect()
+    };
+    let tau = row("inverse_dynamics");
+    let scene_tau = reduced.scene_function("inverse_dynamics").unwrap().op_count.arithmetic();
+    let full_tau = full.function(dynagen::codegen::FunctionKind::InverseDynamics).unwrap().op_count().arithmetic();
+    assert_eq!(tau[0], scene_tau.to_string(), "{out}");
+    assert_eq!(tau[1], full_tau.to_string(), "{out}");
+    // No gravity and a locked joint: τ is cheaper than the full module's.
+    assert!(scene_tau < full_tau, "{out}");
+    assert_eq!(tau[2], format!("{:+}", scene_tau as i64 - full_tau as i64), "{out}");
+    // g without gravity is zero: no operation at all.
+    assert_eq!(row("gravity_torques")[0], "0", "{out}");
+    // A frame function has no counterpart in the full module.
+    assert_eq!(row("frame_pose_ee_link")[1..], ["-", "-"], "{out}");
+    assert!(!out.contains("mass_matrix"), "{out}");
+    let e = fails(dynagen().args(["ops", "--scene", "no/such/scene.toml"]), 1);
+    assert!(e.contains("no/such/scene.toml"), "{e}");
+}

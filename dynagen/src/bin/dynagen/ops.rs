@@ -1,12 +1,14 @@
 //! `dynagen ops`: the operation count of each generated function beside
 //! that of the generic recursion ([`dynagen::codegen::generic_op_count`]:
 //! the same algorithm run on the [`dynagen::Counting`] scalar, every model
-//! constant used as a number at run time).
+//! constant used as a number at run time). With `--scene`, the scene
+//! module's functions beside the same functions of the full module: what
+//! the scene saves (or what its run-time inputs cost).
 
 use crate::error::{CliError, Output};
 use crate::generate::cli_error;
 use crate::robot_source::RobotSource;
-use dynagen::codegen::{generic_op_count, Builder};
+use dynagen::codegen::{generic_op_count, Builder, GeneratedModule};
 use std::fmt::Write;
 use std::path::PathBuf;
 
@@ -16,6 +18,10 @@ pub struct Args {
     /// The robot's URDF file (default: the bundled UR5).
     #[arg(value_name = "ROBOT.urdf")]
     pub robot: Option<PathBuf>,
+    /// Count the functions of this scene's module (TOML; see `dynagen
+    /// generate --scene`) beside those of the full module.
+    #[arg(long, value_name = "SCENE.toml")]
+    pub scene: Option<PathBuf>,
 }
 
 /// Runs `dynagen ops`.
@@ -25,6 +31,22 @@ pub fn run(args: &Args) -> Result<Output, CliError> {
     let module = Builder::new().model(model.clone()).generate_module().map_err(|e| cli_error(e, &source))?;
     let mut o = String::new();
     let _ = writeln!(o, "robot \"{}\" from {source}: {} joints", model.name, model.dof());
+    match &args.scene {
+        None => full_table(&mut o, &model, &module),
+        Some(path) => {
+            let scene = Builder::new()
+                .model(model.clone())
+                .scene_file(path)
+                .generate_module()
+                .map_err(|e| cli_error(e, &source))?;
+            scene_table(&mut o, path, &module, &scene);
+        }
+    }
+    Ok(Output { stdout: o, warnings: source.warnings(&model), notes: Vec::new() })
+}
+
+/// The generated functions beside the generic recursion.
+fn full_table(o: &mut String, model: &dynagen::Model, module: &GeneratedModule) {
     let _ = writeln!(
         o,
         "operations per call (+ - * / sqrt sin_cos; negations apart, in the last two columns): generated vs the generic recursion"
@@ -35,7 +57,7 @@ pub fn run(args: &Args) -> Result<Output, CliError> {
         "function", "generated", "generic", "ratio", "generated neg", "generic neg"
     );
     for f in &module.functions {
-        let generic = generic_op_count(&model, f.kind);
+        let generic = generic_op_count(model, f.kind);
         let (g, r) = (f.op_count.arithmetic(), generic.arithmetic());
         let _ = writeln!(
             o,
@@ -50,7 +72,36 @@ pub fn run(args: &Args) -> Result<Output, CliError> {
     }
     let _ = writeln!(o, "\nbreakdown (generated | generic):");
     for f in &module.functions {
-        let _ = writeln!(o, "  {}:\n    {}\n    {}", f.kind.label(), f.op_count, generic_op_count(&model, f.kind));
+        let _ = writeln!(o, "  {}:\n    {}\n    {}", f.kind.label(), f.op_count, generic_op_count(model, f.kind));
     }
-    Ok(Output { stdout: o, warnings: source.warnings(&model), notes: Vec::new() })
+}
+
+/// The scene module's functions beside the full module's (`-` where the
+/// full module has no such function: coriolis, the frame functions). A
+/// scene's constant gravity, locks or sub-tree make its functions cheaper;
+/// armature, friction, payloads and run-time inputs make them dearer.
+fn scene_table(o: &mut String, path: &std::path::Path, full: &GeneratedModule, scene: &GeneratedModule) {
+    let _ = writeln!(
+        o,
+        "operations per call (+ - * / sqrt sin_cos, negations apart) of the scene {}: its module vs the full module",
+        path.display()
+    );
+    let _ = writeln!(o, "{:<32} {:>10} {:>10} {:>12}", "function", "scene", "full", "scene - full");
+    for f in &scene.scene_functions {
+        let s = f.op_count.arithmetic();
+        match full.functions.iter().find(|g| g.emitted && g.kind.fn_name() == f.name) {
+            Some(g) => {
+                let r = g.op_count.arithmetic();
+                let diff = s as i64 - r as i64;
+                let _ = writeln!(o, "{:<32} {s:>10} {r:>10} {diff:>+12}", f.name);
+            }
+            None => {
+                let _ = writeln!(o, "{:<32} {s:>10} {:>10} {:>12}", f.name, "-", "-");
+            }
+        }
+    }
+    let _ = writeln!(o, "\nbreakdown (scene):");
+    for f in &scene.scene_functions {
+        let _ = writeln!(o, "  {}: {}", f.name, f.op_count);
+    }
 }
