@@ -843,6 +843,49 @@ fn an_actuated_joint_that_moves_nothing() {
     assert_eq!(Model::from_urdf_str(&xml).unwrap().dof(), 2);
 }
 
+/// M's diagonal entry of a revolute joint whose subtree is point masses on
+/// later joints: positive at q = 0 but not everywhere.
+#[test]
+fn a_diagonal_of_m_that_may_vanish_away_from_q_zero_is_a_warning() {
+    // `spin` turns about z; its own link is massless; a point mass sits at
+    // the end of a prismatic slide along x that starts 0.5 m off the axis:
+    // at slide = -0.5 the mass is on the axis and M[0][0] = 0.
+    let point = r#"<inertial><mass value="2"/><inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial>"#;
+    let xml = robot(&format!(
+        r#"<link name="base"/><link name="hub"/><link name="bead">{point}</link>
+        <joint name="spin" type="continuous"><parent link="base"/><child link="hub"/><axis xyz="0 0 1"/></joint>
+        <joint name="slide" type="prismatic"><parent link="hub"/><child link="bead"/><origin xyz="0.5 0 0"/>
+            <axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>"#
+    ));
+    let m = Model::from_urdf_str(&xml).unwrap();
+    assert!(
+        matches!(&m.warnings[..], [ModelWarning::MassMatrixMayBeSingular { joint }] if joint == "spin"),
+        "{:?}",
+        m.warnings
+    );
+    assert!(m.warnings[0].to_string().contains("\"spin\""));
+    // The warning is not idle: there is such a configuration.
+    let mut solver = Robot::new(m);
+    let mass = solver.mass_matrix(&DVector::from_vec(vec![0.3, -0.5])).unwrap();
+    assert!(mass[(0, 0)].abs() < 1e-15 && mass[(1, 1)] == 2.0, "{mass}");
+    // The same bead with a moment of inertia of its own (a small ball) is
+    // safe everywhere: no warning.
+    let ball =
+        r#"<inertial><mass value="2"/><inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" iyz="0" izz="1e-4"/></inertial>"#;
+    let safe = xml.replace(point, ball);
+    assert!(Model::from_urdf_str(&safe).unwrap().warnings.is_empty());
+    // So is a point mass on the joint's own link (its distance to the axis
+    // is fixed), and the mass on later joints does not matter then.
+    let own = robot(&format!(
+        r#"<link name="base"/><link name="arm"><inertial><origin xyz="0.4 0 0"/><mass value="1"/>
+            <inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial></link><link name="bead">{point}</link>
+        <joint name="spin" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+        <joint name="slide" type="prismatic"><parent link="arm"/><child link="bead"/><origin xyz="0.5 0 0"/>
+            <axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>"#
+    ));
+    assert!(Model::from_urdf_str(&own).unwrap().warnings.is_empty());
+}
+
 #[test]
 fn unsupported_joints() {
     for (ty, what) in [("floating", "floating"), ("planar", "planar"), ("spherical", "spherical")] {

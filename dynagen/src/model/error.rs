@@ -107,9 +107,10 @@ pub enum ModelError {
         /// The principal moments.
         moments: [f64; 3],
     },
-    /// A joint moves nothing with mass or inertia, so M(q) would be singular.
+    /// A joint moves nothing with mass or inertia along its motion (at
+    /// q = 0), so M(q) would be singular.
     #[error(
-        "joint \"{0}\" moves no mass or inertia (its whole subtree is massless), so the mass matrix would be singular"
+        "joint \"{0}\" moves no mass or inertia along its motion (at q = 0), so the mass matrix would be singular"
     )]
     MasslessSubtree(String),
     /// A joint's lower position limit is above its upper one.
@@ -163,6 +164,15 @@ pub enum ModelWarning {
         /// The axis' length in the file.
         norm: f64,
     },
+    /// A revolute joint moves mass at q = 0, but only through point masses
+    /// and rods that later joints can carry onto its axis: its diagonal
+    /// entry of M(q) could vanish in some configuration (no body moved by
+    /// it has a moment of inertia about every axis, and its own body none
+    /// about its axis).
+    MassMatrixMayBeSingular {
+        /// The joint.
+        joint: String,
+    },
 }
 
 impl std::fmt::Display for ModelWarning {
@@ -178,6 +188,10 @@ impl std::fmt::Display for ModelWarning {
             ModelWarning::AxisNormalised { joint, norm } => {
                 write!(f, "joint \"{joint}\": axis of length {norm} normalised to unit length")
             }
+            ModelWarning::MassMatrixMayBeSingular { joint } => write!(
+                f,
+                "joint \"{joint}\": it moves only point masses and rods held by later joints (nothing with a moment of inertia about every axis, and its own body nothing about its axis), so its diagonal entry of M(q), positive at q = 0, may vanish in another configuration, where forward dynamics fails"
+            ),
         }
     }
 }

@@ -2,7 +2,10 @@
 //! depth-first joint order, and fixed joints merged away.
 
 use super::description::{JointDescription, JointType, RobotDescription};
-use super::{validate, AxisAlignment, Body, BuildOptions, Frame, Joint, JointKind, Model, ModelError, DEFAULT_GRAVITY};
+use super::{
+    validate, AxisAlignment, Body, BuildOptions, Frame, Joint, JointKind, Model, ModelError, ModelWarning,
+    DEFAULT_GRAVITY,
+};
 use crate::spatial::{Inertia, Mat3, Transform, Vec3};
 use std::collections::HashMap;
 
@@ -103,7 +106,9 @@ impl Model {
             warnings,
             base_mass,
         };
-        check_every_joint_moves_mass(&model)?;
+        let mut model = model;
+        let more = check_every_joint_moves_mass(&model)?;
+        model.warnings.extend(more);
         Ok(model)
     }
 }
@@ -184,17 +189,36 @@ fn joint_from(desc: &JointDescription, placement: Transform<f64>) -> Joint {
 
 /// A joint whose subtree has no inertia along its motion gives a zero
 /// diagonal in M(q): refuse it. Checked at q = 0 with the composite
-/// inertia of each subtree.
-fn check_every_joint_moves_mass(model: &Model) -> Result<(), ModelError> {
+/// inertia of each subtree, which is exact for a prismatic joint (its entry
+/// is the subtree's mass, whatever q) and for a revolute joint whose own
+/// body has inertia about the axis (that part turns with the axis, so it
+/// does not depend on q) or whose subtree holds a body with a positive-
+/// definite rotational inertia about its centre of mass (a moment of inertia
+/// about any axis at all). Otherwise (point masses and rods moved by later
+/// joints) the entry could vanish in another configuration: a warning names
+/// the joint.
+fn check_every_joint_moves_mass(model: &Model) -> Result<Vec<ModelWarning>, ModelError> {
+    let along = |ic: &Inertia<f64>, s: &[f64; 6]| {
+        let a = Vec3([s[0], s[1], s[2]]);
+        let l = Vec3([s[3], s[4], s[5]]);
+        let f = ic.mul_motion(&crate::spatial::Motion::new(a, l));
+        a.dot(&f.ang) + l.dot(&f.lin)
+    };
+    let solid: Vec<bool> = model
+        .bodies
+        .iter()
+        .map(|b| {
+            let [lo, _, hi] = b.inertia.inertia_at_com().eigenvalues();
+            b.inertia.mass > 0.0 && hi > 0.0 && lo > 1e-9 * hi
+        })
+        .collect();
+    let mut warnings = Vec::new();
     let mut composite: Vec<Inertia<f64>> = model.bodies.iter().map(|b| b.inertia).collect();
     for i in (0..model.bodies.len()).rev() {
         let b = &model.bodies[i];
         let s = b.joint.motion_subspace();
         let ic = composite[i];
-        let a = Vec3([s[0], s[1], s[2]]);
-        let l = Vec3([s[3], s[4], s[5]]);
-        let f = ic.mul_motion(&crate::spatial::Motion::new(a, l));
-        let diag = a.dot(&f.ang) + l.dot(&f.lin);
+        let diag = along(&ic, &s);
         if !diag.is_finite() {
             return Err(ModelError::NonFinite {
                 item: format!("joint \"{}\"", b.joint.name),
@@ -204,10 +228,18 @@ fn check_every_joint_moves_mass(model: &Model) -> Result<(), ModelError> {
         if diag.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
             return Err(ModelError::MasslessSubtree(b.joint.name.clone()));
         }
+        let revolute = b.joint.kind != JointKind::Prismatic;
+        let provably_positive = !revolute
+            || along(&b.inertia, &s) > 0.0
+            || (i..model.bodies.len()).any(|k| solid[k] && model.is_in_subtree(i, k));
+        if !provably_positive {
+            warnings.push(ModelWarning::MassMatrixMayBeSingular { joint: b.joint.name.clone() });
+        }
         if let Some(p) = b.parent {
             let moved = b.joint.placement.inertia_to_parent(&ic);
             composite[p] = composite[p].add(&moved);
         }
     }
-    Ok(())
+    warnings.reverse();
+    Ok(warnings)
 }
