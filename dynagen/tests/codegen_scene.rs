@@ -300,15 +300,17 @@ fn constant_and_input_payloads() {
     let di = deltas("input payload on ee_link", &input);
     assert!(input.source.contains("payload_ee_link: &[f64; 10]"));
     let n = 6;
-    // As an input, the payload costs: for τ, h, g and C(q, q̇)q̇ the wrench
-    // its link applies to it (the link's motion along its path, I·A + V×*I·V)
-    // and that wrench's J_bᵀF in the backward pass, less than a second
-    // inverse dynamics; for M, J_bᵀ I J_b: the Jacobian, I times each column
-    // (≤ 40 operations) and the n(n+1)/2 dot products (11 each); forward
-    // dynamics, both.
-    let jacobian = ops(full(), "frame_jacobian_ee_link") as i64;
+    // As an input, the payload is one more inertia on its link's body
+    // (`rnea_with_payloads`, `crba_with_payloads`): its ten parameters moved
+    // into the body's frame, then m·a + U·h, Ī·ω̇ + ω×(Ī·ω) + h×a in the
+    // RNEA, or one more addition to a composite inertia in the CRBA, whose
+    // sum has no zero entry left to exploit up the chain. That is less than
+    // a second inverse dynamics for τ, h, g and C(q, q̇)q̇, and for M less
+    // than J_bᵀ I J_b, which an earlier version used (the frame's Jacobian,
+    // I times each column, ≤ 40 operations, and n(n+1)/2 dot products of 11:
+    // +753 operations on the UR5; now +196).
     let id = ops(full(), "inverse_dynamics") as i64;
-    let bound_m = jacobian + 40 * n + 11 * n * (n + 1) / 2;
+    let bound_m = 40 * n + 11 * n * (n + 1) / 2;
     for f in ["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "coriolis", "forward_dynamics"] {
         // Folded, a payload costs the sparsity its body's inertia loses: the
         // regrouping had left the UR5's wrist bodies without mass, and a

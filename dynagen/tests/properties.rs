@@ -26,7 +26,7 @@
 //! tuned to this seed's cases.)
 
 use dynagen::algorithms::integrators::{rk4, IntegratorScratch, StepInputs};
-use dynagen::algorithms::{aba, crba, energy, forward_dynamics, rnea, TipWrench, Workspace};
+use dynagen::algorithms::{aba, crba, energy, forward_dynamics, rnea, BodyInertia, TipWrench, Workspace};
 use dynagen::model::{Inertial, JointDescription};
 use dynagen::spatial::{Force, Mat3, Sym3, Transform, Vec3};
 use dynagen::{Model, Robot, RobotBuilder};
@@ -402,6 +402,47 @@ proptest! {
         let (ga, gb) = (ra.gravity_torques(&q).unwrap(), rb.gravity_torques(&q).unwrap());
         prop_assert!((&ma - &mb).amax() <= 1e-12 * ma.amax(), "M: {ma} vs {mb}");
         prop_assert!((&ga - &gb).amax() <= 1e-12 * ga.amax(), "g: {ga} vs {gb}");
+    }
+
+    /// A run-time payload (an extra inertia on a body, as generated code
+    /// takes input payloads) gives the same τ and M as a model whose body
+    /// inertia is the sum: `rnea_with_payloads` and `crba_with_payloads`
+    /// against `rnea` and `crba` on the changed model, to 1e-12 of their
+    /// size (the same terms, summed in another order). The payload is a
+    /// random physical inertia on a random body, given twice (split in two
+    /// halves) to check that several on one body add up; the state's τ
+    /// serves as q̈.
+    #[test]
+    fn payload_inertias_add_to_their_body((tree, raw, w) in case(), pick in 0usize..64, spec in inertial_spec()) {
+        let model = tree.model();
+        let s = state(&model, &raw, w);
+        let n = model.dof();
+        let body = pick % n;
+        // Half of a random physical inertia (principal axes along the body's).
+        let full = spec.inertial();
+        let extra = dynagen::spatial::Inertia::from_mass_com_inertia(
+            0.5 * full.mass,
+            full.origin.trans,
+            full.inertia.scale(0.5),
+        );
+        let payloads = [BodyInertia { body, inertia: extra }, BodyInertia { body, inertia: extra }];
+        let mut heavier = model.clone();
+        heavier.bodies[body].inertia = heavier.bodies[body].inertia.add(&extra).add(&extra);
+        let g = model.gravity;
+        let tips = tip_wrench(&model, &s.wrench);
+        let (mut ws, mut wh) = (Workspace::new(&model), Workspace::new(&heavier));
+        let (mut t1, mut t2) = (vec![0.0; n], vec![0.0; n]);
+        rnea::rnea_with_payloads(&model, &mut ws, &s.q, Some(&s.qd), Some(&s.tau), Some(&g), &tips, &payloads, &mut t1);
+        rnea::rnea(&heavier, &mut wh, &s.q, Some(&s.qd), Some(&s.tau), Some(&g), &tips, &mut t2);
+        prop_assert!(max_diff(&t1, &t2) <= 1e-12 * max_abs(&t2).max(1.0), "τ: {t1:?} vs {t2:?}");
+        let (mut m1, mut m2) = (vec![0.0; n * n], vec![0.0; n * n]);
+        crba::crba_with_payloads(&model, &mut ws, &s.q, &payloads, &mut m1);
+        crba::crba(&heavier, &mut wh, &s.q, &mut m2);
+        prop_assert!(max_diff(&m1, &m2) <= 1e-12 * max_abs(&m2), "M: {m1:?} vs {m2:?}");
+        // Without q̇ and q̈ (g only) the payload still weighs.
+        rnea::rnea_with_payloads(&model, &mut ws, &s.q, None, None, Some(&g), &[], &payloads, &mut t1);
+        rnea::rnea(&heavier, &mut wh, &s.q, None, None, Some(&g), &[], &mut t2);
+        prop_assert!(max_diff(&t1, &t2) <= 1e-12 * max_abs(&t2).max(1.0), "g: {t1:?} vs {t2:?}");
     }
 
     /// CRBA against the Modern Robotics construction (n inverse dynamics

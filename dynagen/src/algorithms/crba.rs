@@ -5,7 +5,7 @@
 
 use super::joint::{force_to_parent, inertia_times_subspace, inertia_to_parent, project};
 use super::rnea::{rnea, update_joint_transforms};
-use super::Workspace;
+use super::{BodyInertia, Workspace};
 use crate::model::Model;
 use crate::spatial::Inertia;
 use crate::Scalar;
@@ -16,13 +16,35 @@ use crate::Scalar;
 /// # Panics
 /// If `q` does not have the model's number of joints or `m` is not n×n.
 pub fn crba<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], m: &mut [S]) {
+    crba_with_payloads(model, ws, q, &[], m);
+}
+
+/// [`crba`] with extra inertias carried by bodies (`payloads`, each in its
+/// body's frame): each is added to its body's inertia before the composite
+/// inertias are summed up the tree, exactly as if the body's own inertia
+/// were the sum. Code generation uses it for payloads given at run time;
+/// with `&[]` it is [`crba`].
+///
+/// # Panics
+/// As [`crba`], and if a payload's body is not a body of the model.
+pub fn crba_with_payloads<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    payloads: &[BodyInertia<S>],
+    m: &mut [S],
+) {
     let n = model.dof();
     assert!(q.len() == n && m.len() == n * n && ws.dof() == n, "crba: slices must fit the model's {n} joints");
+    assert!(payloads.iter().all(|p| p.body < n), "crba: a payload's body is not one of the model's {n}");
     update_joint_transforms(model, ws, q);
     // Entries of joints on different branches stay zero.
     m.fill(S::zero());
     for (i, b) in model.bodies.iter().enumerate() {
         ws.inertia[i] = Inertia::from_f64(&b.inertia);
+    }
+    for p in payloads {
+        ws.inertia[p.body] = ws.inertia[p.body].add(&p.inertia);
     }
     for i in (0..n).rev() {
         let body = &model.bodies[i];

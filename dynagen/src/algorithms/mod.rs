@@ -21,4 +21,4 @@ pub mod ldlt;
 pub mod rnea;
 mod workspace;
 
-pub use workspace::{TipWrench, Workspace};
+pub use workspace::{BodyInertia, TipWrench, Workspace};

@@ -18,7 +18,7 @@
 //! fewer operations (and fewer in the generated code).
 
 use super::joint::{add_axis, cross_axis, force_to_parent, joint_transform, project, with_rotation, Rotation};
-use super::{TipWrench, Workspace};
+use super::{BodyInertia, TipWrench, Workspace};
 use crate::model::Model;
 use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
 use crate::Scalar;
@@ -132,7 +132,32 @@ pub fn rnea<S: Scalar>(
     tips: &[TipWrench<S>],
     tau: &mut [S],
 ) {
+    rnea_with_payloads(model, ws, q, qd, qdd, gravity, tips, &[], tau);
+}
+
+/// [`rnea`] with extra inertias carried by bodies (`payloads`, each in its
+/// body's frame; any number per body): each adds the wrench that produces
+/// its motion, m·a + U·h and Ī·ω̇ + ω × (Ī·ω) + h × a, to its body's, exactly
+/// as if the body's own inertia were the sum. Code generation uses it for
+/// payloads given at run time; with `&[]` it is [`rnea`].
+///
+/// # Panics
+/// As [`rnea`], and if a payload's body is not a body of the model.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub fn rnea_with_payloads<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    qd: Option<&[S]>,
+    qdd: Option<&[S]>,
+    gravity: Option<&Vec3<S>>,
+    tips: &[TipWrench<S>],
+    payloads: &[BodyInertia<S>],
+    tau: &mut [S],
+) {
     let n = model.dof();
+    assert!(payloads.iter().all(|p| p.body < n), "rnea: a payload's body is not one of the model's {n}");
     assert!(q.len() == n && tau.len() == n && ws.dof() == n, "rnea: slices must have the model's {n} joints");
     assert!(
         qd.is_none_or(|x| x.len() == n) && qdd.is_none_or(|x| x.len() == n),
@@ -193,16 +218,28 @@ pub fn rnea<S: Scalar>(
         let mut f = a.scale(inertia.mass);
         let mut m = h.cross(&a);
         let p = qd.is_some().then(|| products(&w));
-        if moving {
-            // U = [ω̇×] + [ω×][ω×]: U·v = ω̇ × v + ω × (ω × v), shared by
-            // this body's force (v = h) and its children's origins (v = p)
-            let u = velocity_product_matrix(p.as_ref(), &wd);
+        // U = [ω̇×] + [ω×][ω×]: U·v = ω̇ × v + ω × (ω × v), shared by this
+        // body's force (v = h) and its children's origins (v = p)
+        let u = moving.then(|| velocity_product_matrix(p.as_ref(), &wd));
+        if let Some(u) = &u {
             f += u.mul_vec(h);
             m += ibar.mul_vec(&wd);
-            us[i] = u;
+            us[i] = *u;
         }
         if let Some(p) = &p {
             m += if gyro[i] { gyroscopic(ibar, p) } else { w.cross(&ibar.mul_vec(&w)) };
+        }
+        for extra in payloads.iter().filter(|x| x.body == i) {
+            let Inertia { mass, h, ibar } = &extra.inertia;
+            f += a.scale(*mass);
+            m += h.cross(&a);
+            if let Some(u) = &u {
+                f += u.mul_vec(h);
+                m += ibar.mul_vec(&wd);
+            }
+            if qd.is_some() {
+                m += w.cross(&ibar.mul_vec(&w));
+            }
         }
         vs[i].ang = w;
         accs[i] = Motion::new(wd, a);

@@ -14,6 +14,19 @@ pub struct TipWrench<S> {
     pub wrench: Force<S>,
 }
 
+/// An inertia carried by a body in addition to the model's own, in the
+/// body's frame: a payload known only at run time (its parameters are
+/// inputs of the generated code), added where the body's inertia enters the
+/// recursion, as [`rnea_with_payloads`](super::rnea::rnea_with_payloads) and
+/// [`crba_with_payloads`](super::crba::crba_with_payloads) do.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BodyInertia<S> {
+    /// The body's index (its joint's index).
+    pub body: usize,
+    /// The inertia, in the body's frame.
+    pub inertia: crate::spatial::Inertia<S>,
+}
+
 /// Preallocated scratch for every algorithm on one model. Create it once
 /// (outside a control loop) and pass it to each call.
 #[derive(Clone, Debug)]

@@ -40,13 +40,11 @@ use super::{
     module_name, parse_item, prepare_model, sin_cos, trig_source, wrapper, CodegenError, CodegenOptions,
     ForwardDynamicsMethod, GeneratedModule, ScalarType, SnappedConstant, Trig, GENERATOR_VERSION,
 };
-use crate::algorithms::joint::{add_motion, cross_motion, joint_transform, motion_to_child};
-use crate::algorithms::{kinematics, ldlt, rnea, TipWrench, Workspace};
+use crate::algorithms::{crba, kinematics, ldlt, rnea, BodyInertia, TipWrench, Workspace};
 use crate::model::{JointKind, Model};
 use crate::scene::{dynamics, Function as SceneFn, ResolvedGravity, SceneModel};
-use crate::spatial::{Force, Inertia, Motion, Sym3, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Sym3, Transform, Vec3};
 use crate::symbolic::{factor, Expr, Function, OpCount, Rewrites, TraceActive, Tracer};
-use crate::Scalar;
 use quote::quote;
 use std::fmt::Write;
 
@@ -137,95 +135,6 @@ fn shape(f: &SceneFn) -> Shape {
     }
 }
 
-/// An input payload in the trace: its link's frame and its inertia there.
-struct PayloadTerm {
-    frame: usize,
-    inertia: Inertia<Expr>,
-}
-
-/// The twist and spatial acceleration (gravity as an upward acceleration of
-/// the base) of frame `frame`, in the frame, by a forward pass along its
-/// body's path: `qd`, `qdd` or `gravity` absent are zero.
-fn frame_motion(
-    model: &Model,
-    frame: usize,
-    q: &[Expr],
-    qd: Option<&[Expr]>,
-    qdd: Option<&[Expr]>,
-    gravity: Option<&Vec3<Expr>>,
-) -> (Motion<Expr>, Motion<Expr>) {
-    let mut path = Vec::new();
-    let mut b = model.frames[frame].body;
-    while let Some(i) = b {
-        path.push(i);
-        b = model.bodies[i].parent;
-    }
-    let mut v = Motion::<Expr>::zero();
-    let mut a = Motion::new(Vec3::zero(), gravity.map_or(Vec3::zero(), |g| -*g));
-    for &i in path.iter().rev() {
-        let joint = &model.bodies[i].joint;
-        let x = joint_transform(joint, q[i]);
-        v = motion_to_child(joint, &x, &v);
-        a = motion_to_child(joint, &x, &a);
-        if let Some(qd) = qd {
-            add_motion(joint, &mut v, qd[i]);
-            a += cross_motion(joint, &v, qd[i]);
-        }
-        if let Some(qdd) = qdd {
-            add_motion(joint, &mut a, qdd[i]);
-        }
-    }
-    let place = Transform::<Expr>::from_f64(&model.frames[frame].placement);
-    (place.motion_to_child(&v), place.motion_to_child(&a))
-}
-
-/// The wrench each payload's link applies to it, as tip wrenches.
-fn payload_wrenches(
-    model: &Model,
-    payloads: &[PayloadTerm],
-    q: &[Expr],
-    qd: Option<&[Expr]>,
-    qdd: Option<&[Expr]>,
-    gravity: Option<&Vec3<Expr>>,
-) -> Vec<TipWrench<Expr>> {
-    payloads
-        .iter()
-        .map(|p| {
-            let (v, a) = frame_motion(model, p.frame, q, qd, qdd, gravity);
-            let wrench = p.inertia.mul_motion(&a) + v.cross_force(&p.inertia.mul_motion(&v));
-            TipWrench { frame: p.frame, wrench }
-        })
-        .collect()
-}
-
-/// Adds J_bᵀ I J_b of every payload to the n×n row-major `m`.
-fn add_payload_mass(model: &Model, ws: &mut Workspace<Expr>, payloads: &[PayloadTerm], q: &[Expr], m: &mut [Expr]) {
-    if payloads.is_empty() {
-        return;
-    }
-    let n = model.dof();
-    let zero = Expr::zero();
-    kinematics::forward_kinematics(model, ws, q);
-    let mut jac = vec![zero; 6 * n];
-    for p in payloads {
-        kinematics::body_jacobian(model, ws, p.frame, &mut jac);
-        let col = |j: usize| Motion::from_array(core::array::from_fn(|r| jac[r * n + j]));
-        // Columns of the joints that move the frame (the others are zero).
-        let Some(body) = model.frames[p.frame].body else { continue };
-        let moving: Vec<usize> = (0..n).filter(|&j| model.is_in_subtree(j, body)).collect();
-        let ij: Vec<Force<Expr>> = moving.iter().map(|&j| p.inertia.mul_motion(&col(j))).collect();
-        for (a, &r) in moving.iter().enumerate() {
-            for (b, &c) in moving.iter().enumerate().skip(a) {
-                let x = col(r).dot(&ij[b]);
-                m[r * n + c] += x;
-                if r != c {
-                    m[c * n + r] += x;
-                }
-            }
-        }
-    }
-}
-
 /// Traces `f` of `scene` (with `model`, the snapped reduced model) without
 /// factoring.
 fn trace_unfactored(
@@ -259,7 +168,7 @@ fn trace_unfactored(
     if x.payloads {
         for p in &scene.input_payloads {
             let v = tracer.inputs(&payload_argument(&p.link), 10);
-            if p.body.is_none() {
+            if model.frames[p.frame].body.is_none() {
                 continue; // on the base: moves nothing
             }
             let inertia = Inertia::from_mass_com_inertia(
@@ -267,7 +176,13 @@ fn trace_unfactored(
                 Vec3([v[1], v[2], v[3]]),
                 Sym3([v[4], v[5], v[6], v[7], v[8], v[9]]),
             );
-            payloads.push(PayloadTerm { frame: p.frame, inertia });
+            // In the frame of the link's body (frames move with the bodies
+            // the regrouping slides, so this is exact in the snapped model).
+            let place = Transform::<Expr>::from_f64(&model.frames[p.frame].placement);
+            payloads.push(BodyInertia {
+                body: model.frames[p.frame].body.expect("checked above"),
+                inertia: place.inertia_to_parent(&inertia),
+            });
         }
     }
     let mut s = scene.clone();
@@ -283,55 +198,47 @@ fn trace_unfactored(
         Shape::Matrix(..) => n * n,
     };
     let mut out = vec![zero; out_len];
-    let with_payloads = |mut tips: Vec<TipWrench<Expr>>, qd: Option<&[Expr]>, qdd: Option<&[Expr]>, g| {
-        tips.extend(payload_wrenches(model, &payloads, &args[0], qd, qdd, g));
-        tips
-    };
     let p = !payloads.is_empty();
+    // The input payloads enter the recursions as extra body inertias
+    // (rnea_with_payloads, crba_with_payloads): the same dynamics as
+    // SceneRobot's, which adds their values to the model's inertias.
+    let (q, pl) = (&args[0], &payloads[..]);
     match f {
-        SceneFn::InverseDynamics => {
-            let tips = with_payloads(tips, Some(&args[1]), Some(&args[2]), g);
-            dynamics::inverse_dynamics(scene, &mut ws, &args[0], &args[1], &args[2], g, &tips, &mut out);
-        }
-        SceneFn::MassMatrix => {
-            dynamics::mass_matrix(scene, &mut ws, &args[0], &mut out);
-            add_payload_mass(model, &mut ws, &payloads, &args[0], &mut out);
-        }
-        SceneFn::BiasForces if p => {
-            // h = RNEA(q, q̇, 0) with the payloads' wrenches, plus friction.
-            let tips = with_payloads(Vec::new(), Some(&args[1]), None, g);
-            rnea::rnea(model, &mut ws, &args[0], Some(&args[1]), None, g, &tips, &mut out);
+        SceneFn::InverseDynamics if p => {
+            rnea::rnea_with_payloads(model, &mut ws, q, Some(&args[1]), Some(&args[2]), g, &tips, pl, &mut out);
+            dynamics::add_armature_times(scene, &args[2], &mut out);
             dynamics::add_friction(scene, &args[1], &mut out);
         }
-        SceneFn::BiasForces => dynamics::bias_forces(scene, &mut ws, &args[0], &args[1], g, &mut out),
+        SceneFn::InverseDynamics => {
+            dynamics::inverse_dynamics(scene, &mut ws, q, &args[1], &args[2], g, &tips, &mut out);
+        }
+        SceneFn::MassMatrix => {
+            crba::crba_with_payloads(model, &mut ws, q, pl, &mut out);
+            dynamics::add_armature_diagonal(scene, &mut out);
+        }
+        SceneFn::BiasForces if p => {
+            rnea::rnea_with_payloads(model, &mut ws, q, Some(&args[1]), None, g, &[], pl, &mut out);
+            dynamics::add_friction(scene, &args[1], &mut out);
+        }
+        SceneFn::BiasForces => dynamics::bias_forces(scene, &mut ws, q, &args[1], g, &mut out),
         SceneFn::GravityTorques if p && g.is_some() => {
-            let tips = with_payloads(Vec::new(), None, None, g);
-            rnea::rnea(model, &mut ws, &args[0], None, None, g, &tips, &mut out);
+            rnea::rnea_with_payloads(model, &mut ws, q, None, None, g, &[], pl, &mut out);
         }
-        SceneFn::GravityTorques => dynamics::gravity_torques(scene, &mut ws, &args[0], g, &mut out),
+        SceneFn::GravityTorques => dynamics::gravity_torques(scene, &mut ws, q, g, &mut out),
         SceneFn::Coriolis if p => {
-            let tips = with_payloads(Vec::new(), Some(&args[1]), None, None);
-            rnea::rnea(model, &mut ws, &args[0], Some(&args[1]), None, None, &tips, &mut out);
+            rnea::rnea_with_payloads(model, &mut ws, q, Some(&args[1]), None, None, &[], pl, &mut out);
         }
-        SceneFn::Coriolis => dynamics::coriolis(scene, &mut ws, &args[0], &args[1], &mut out),
+        SceneFn::Coriolis => dynamics::coriolis(scene, &mut ws, q, &args[1], &mut out),
         SceneFn::ForwardDynamics if !p => {
             let mut scratch = vec![zero; n];
             match method {
-                ForwardDynamicsMethod::Aba => dynamics::forward_dynamics(
-                    scene,
-                    &mut ws,
-                    &args[0],
-                    &args[1],
-                    &args[2],
-                    g,
-                    &tips,
-                    &mut scratch,
-                    &mut out,
-                ),
+                ForwardDynamicsMethod::Aba => {
+                    dynamics::forward_dynamics(scene, &mut ws, q, &args[1], &args[2], g, &tips, &mut scratch, &mut out)
+                }
                 ForwardDynamicsMethod::Ldlt => dynamics::forward_dynamics_ldlt(
                     scene,
                     &mut ws,
-                    &args[0],
+                    q,
                     &args[1],
                     &args[2],
                     g,
@@ -342,13 +249,13 @@ fn trace_unfactored(
             }
         }
         SceneFn::ForwardDynamics => {
-            // (M + Σ J_bᵀ I J_b) q̈ = τ − friction − h − Jᵀ(F_tip, payload wrenches at q̈ = 0).
+            // (M + diag(armature)) q̈ = τ − friction − h − J_tipᵀF_tip, the
+            // payloads in M and h.
             let mut m = vec![zero; n * n];
-            dynamics::mass_matrix(scene, &mut ws, &args[0], &mut m);
-            add_payload_mass(model, &mut ws, &payloads, &args[0], &mut m);
-            let tips = with_payloads(tips, Some(&args[1]), None, g);
+            crba::crba_with_payloads(model, &mut ws, q, pl, &mut m);
+            dynamics::add_armature_diagonal(scene, &mut m);
             let mut h = vec![zero; n];
-            rnea::rnea(model, &mut ws, &args[0], Some(&args[1]), None, g, &tips, &mut h);
+            rnea::rnea_with_payloads(model, &mut ws, q, Some(&args[1]), None, g, &tips, pl, &mut h);
             out.copy_from_slice(&args[2]);
             dynamics::sub_friction(scene, &args[1], &mut out);
             for (o, hi) in out.iter_mut().zip(&h) {

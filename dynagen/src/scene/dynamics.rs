@@ -68,12 +68,17 @@ pub fn inverse_dynamics<S: Scalar>(
     tau: &mut [S],
 ) {
     rnea::rnea(&scene.model, ws, q, Some(qd), Some(qdd), gravity, tips, tau);
+    add_armature_times(scene, qdd, tau);
+    add_friction(scene, qd, tau);
+}
+
+/// Adds armature∘q̈ to `tau`.
+pub fn add_armature_times<S: Scalar>(scene: &SceneModel, qdd: &[S], tau: &mut [S]) {
     for (i, &a) in scene.armature.iter().enumerate() {
         if a != 0.0 {
             tau[i] += S::from_f64(a) * qdd[i];
         }
     }
-    add_friction(scene, qd, tau);
 }
 
 /// M(q) + diag(armature), row-major n×n.
