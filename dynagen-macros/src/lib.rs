@@ -44,8 +44,11 @@
 //! # Scenes (both macros)
 //!
 //! A scene (see `dynagen::scene`) comes from a TOML file, `scene =
-//! "scenes/controller.toml"` (relative to the crate's root), or from inline
-//! keys (not both); either makes the module a scene module
+//! "scenes/controller.toml"` (relative to the crate's root), from inline
+//! keys, or both: the keys then change the file's scene, in the order
+//! given (an `armature` entry replaces the file's for that joint, a
+//! `frame_pose` adds a function, …). Any of these makes the module a scene
+//! module
 //! (`dynagen::codegen::generate_scene`): only the scene's functions, its
 //! constants folded in, its run-time inputs as arguments (`gravity: &[f64;
 //! 3]`, `f_tip: &[f64; 6]`, `payload_LINK: &[f64; 10]`). Names are

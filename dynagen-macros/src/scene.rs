@@ -64,13 +64,20 @@ fn names(input: ParseStream) -> syn::Result<Vec<Name>> {
     Ok(list.into_iter().collect())
 }
 
-/// The scene a macro was given.
+/// One inline key, as a change to a scene.
+type Edit = Box<dyn Fn(Scene) -> Scene>;
+
+/// The scene a macro was given: a file, inline keys, or both (the keys
+/// then change the file's scene, in the order given).
 #[derive(Default)]
 pub(crate) struct SceneOptions {
     /// `scene = "path.toml"`.
     pub(crate) file: Option<LitStr>,
-    /// The inline keys.
-    pub(crate) scene: Option<Scene>,
+    /// The inline keys, in order.
+    edits: Vec<Edit>,
+    /// `KEY.JOINT` of every inline per-joint value (lock, armature,
+    /// friction), to refuse one given twice.
+    joint_values: std::collections::HashSet<String>,
     /// Every name given inline, in order, with its span.
     spans: Vec<(String, Span)>,
     /// The first scene key's span (for errors that name no item).
@@ -78,8 +85,8 @@ pub(crate) struct SceneOptions {
 }
 
 impl SceneOptions {
-    fn scene(&mut self) -> &mut Scene {
-        self.scene.get_or_insert_with(Scene::new)
+    fn edit(&mut self, f: impl Fn(Scene) -> Scene + 'static) {
+        self.edits.push(Box::new(f));
     }
     fn name(&mut self, n: &Name) -> String {
         self.spans.push((n.0.clone(), n.1));
@@ -102,7 +109,6 @@ impl SceneOptions {
             self.file = Some(path);
             return Ok(true);
         }
-        let take = |s: &mut Self| std::mem::take(s.scene());
         match k.as_str() {
             "gravity" => {
                 let g = if input.peek(syn::token::Bracket) {
@@ -116,14 +122,12 @@ impl SceneOptions {
                         _ => return Err(syn::Error::new(v.span(), "expected `none`, `input`, `default` or [x, y, z]")),
                     }
                 };
-                let s = take(self);
-                *self.scene() = s.gravity(g);
+                self.edit(move |s| s.gravity(g));
             }
             "tip_wrench" => {
                 let n: Name = input.parse()?;
                 let link = self.name(&n);
-                let s = take(self);
-                *self.scene() = s.tip_wrench(&link);
+                self.edit(move |s| s.tip_wrench(&link));
             }
             "subtree" => {
                 let (mut root, mut tips) = (None, Vec::new());
@@ -138,9 +142,7 @@ impl SceneOptions {
                 let root = root.ok_or_else(|| syn::Error::new(key.span(), "subtree: `root = LINK` is missing"))?;
                 let root = self.name(&root);
                 let tips: Vec<String> = tips.iter().map(|t| self.name(t)).collect();
-                let tips: Vec<&str> = tips.iter().map(String::as_str).collect();
-                let s = take(self);
-                *self.scene() = s.subtree(&root, &tips);
+                self.edit(move |s| s.subtree(&root, &tips.iter().map(String::as_str).collect::<Vec<_>>()));
             }
             "lock" | "armature" | "viscous" | "coulomb" => {
                 let mut list = Vec::new();
@@ -149,20 +151,28 @@ impl SceneOptions {
                     Ok(())
                 })?;
                 for (joint, x) in list {
+                    if !self.joint_values.insert(format!("{k}.{}", joint.0)) {
+                        return Err(syn::Error::new(joint.1, format!("{k}: joint \"{}\" is given twice", joint.0)));
+                    }
                     let j = self.name(&joint);
-                    let s = take(self);
-                    *self.scene() = match k.as_str() {
-                        "lock" => s.lock(&j, x),
-                        "armature" => s.armature(&j, x),
-                        "viscous" => s.viscous(&j, x),
-                        _ => s.coulomb(&j, x),
-                    };
+                    let k = k.clone();
+                    // An inline value replaces the scene file's for the joint.
+                    self.edit(move |mut s| {
+                        let list = match k.as_str() {
+                            "lock" => &mut s.locks,
+                            "armature" => &mut s.armature,
+                            "viscous" => &mut s.viscous_friction,
+                            _ => &mut s.coulomb_friction,
+                        };
+                        list.retain(|(name, _)| *name != j);
+                        list.push((j.clone(), x));
+                        s
+                    });
                 }
             }
             "coulomb_velocity" => {
                 let v = input.parse::<Num>()?.0;
-                let s = take(self);
-                *self.scene() = s.coulomb_velocity(v);
+                self.edit(move |s| s.coulomb_velocity(v));
             }
             "payload" => {
                 let (mut link, mut mass, mut com, mut inertia) = (None, None, [0.0; 3], [0.0; 6]);
@@ -199,21 +209,24 @@ impl SceneOptions {
                     syn::Error::new(key.span(), "payload: `mass = KG` is missing (or use `payload_input = LINK`)")
                 })?;
                 let l = self.name(&link);
-                let s = take(self);
-                *self.scene() = s.payload(&l, PayloadInertia::new(mass, com, inertia));
+                self.edit(move |s| s.payload(&l, PayloadInertia::new(mass, com, inertia)));
             }
             "payload_input" => {
                 let n: Name = input.parse()?;
                 let l = self.name(&n);
-                let s = take(self);
-                *self.scene() = s.payload_input(&l);
+                self.edit(move |s| s.payload_input(&l));
             }
             "frame_pose" | "frame_jacobian" => {
                 for n in names(input)? {
                     let f = self.name(&n);
-                    let s = take(self);
-                    *self.scene() =
-                        s.function(if k == "frame_pose" { Function::FramePose(f) } else { Function::FrameJacobian(f) });
+                    let pose = k == "frame_pose";
+                    self.edit(move |s| {
+                        s.function(if pose {
+                            Function::FramePose(f.clone())
+                        } else {
+                            Function::FrameJacobian(f.clone())
+                        })
+                    });
                 }
             }
             _ => {
@@ -224,8 +237,7 @@ impl SceneOptions {
                     "no_std_sincos" => Target::NoStdSinCos,
                     _ => return Err(syn::Error::new(v.span(), "expected `std`, `no_std_libm` or `no_std_sincos`")),
                 };
-                let s = take(self);
-                *self.scene() = s.target(t);
+                self.edit(move |s| s.target(t));
             }
         }
         Ok(true)
@@ -233,7 +245,7 @@ impl SceneOptions {
 
     /// Whether a scene was given.
     pub(crate) fn given(&self) -> bool {
-        self.file.is_some() || self.scene.is_some()
+        self.file.is_some() || !self.edits.is_empty()
     }
 
     /// The message of an error of the builder, without what the macro's
@@ -248,32 +260,26 @@ impl SceneOptions {
         }
     }
 
-    /// The token an error of the builder is about: the scene file for a
-    /// file's errors, else the last inline name the message quotes, else
-    /// the first scene key.
+    /// The token an error of the builder is about: the last inline name the
+    /// message quotes, else the scene file, else the first scene key.
     pub(crate) fn error_span(&self, error: &BuildError, default: Span) -> Span {
-        if let Some(f) = &self.file {
-            return f.span();
-        }
         let message = error.to_string();
         let quoted = self.spans.iter().rev().find(|(name, _)| message.contains(&format!("\"{name}\"")));
-        match (quoted, error) {
-            (Some((_, span)), _) => *span,
-            (None, BuildError::SceneRobot { .. }) => self.first_key.unwrap_or(default),
+        match (quoted, &self.file, error) {
+            (Some((_, span)), _, _) => *span,
+            (None, Some(f), _) => f.span(),
+            (None, None, BuildError::SceneRobot { .. }) => self.first_key.unwrap_or(default),
             _ => default,
         }
     }
 
-    /// Adds the scene to `builder` (the inline keys on top of the file's
-    /// are not supported: the file wins, and both is an error when parsed).
+    /// Adds the scene to `builder`: the file's (an error spanned on its path
+    /// if it cannot be read or parsed), or an empty one, changed by the
+    /// inline keys in order.
     pub(crate) fn apply(&self, builder: dynagen::codegen::Builder) -> syn::Result<dynagen::codegen::Builder> {
         let root = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_else(|_| ".".into());
-        match (&self.file, &self.scene) {
-            (Some(f), Some(_)) => Err(syn::Error::new(
-                f.span(),
-                "give the scene either as a file (`scene = \"…\"`) or as inline keys, not both",
-            )),
-            (Some(f), None) => {
+        let base = match &self.file {
+            Some(f) => {
                 let path = std::path::Path::new(&root).join(f.value());
                 if !path.is_file() {
                     return Err(syn::Error::new(
@@ -284,11 +290,13 @@ impl SceneOptions {
                         ),
                     ));
                 }
-                Ok(builder.scene_file(path))
+                Scene::from_toml_file(&path)
+                    .map_err(|e| syn::Error::new(f.span(), format!("scene file {:?}: {e}", f.value())))?
             }
-            (None, Some(s)) => Ok(builder.scene(s.clone())),
-            (None, None) => Ok(builder),
-        }
+            None if self.edits.is_empty() => return Ok(builder),
+            None => Scene::new(),
+        };
+        Ok(builder.scene(self.edits.iter().fold(base, |s, edit| edit(s))))
     }
 
     /// The scene file's absolute path, for `include_bytes!`.

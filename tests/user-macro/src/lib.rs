@@ -116,9 +116,41 @@ pub mod ur5_controller {
     dynagen_macros::urdf!("../../dynagen/robots/ur5.urdf", scene = "../../dynagen/scenes/ur5_controller.toml");
 }
 
+/// The same scene file with two inline changes on top: the wrist's
+/// armature raised from the file's 0.06 to 0.5 kg·m², and gravity made a
+/// run-time argument.
+pub mod ur5_controller_heavy_wrist {
+    dynagen_macros::urdf!(
+        "../../dynagen/robots/ur5.urdf",
+        scene = "../../dynagen/scenes/ur5_controller.toml",
+        armature = { wrist_3_joint = 0.5 },
+        gravity = input
+    );
+}
+
 #[cfg(test)]
 mod scene_tests {
     use super::ur5_controller as c;
+
+    #[test]
+    fn inline_keys_change_the_scene_file() {
+        use super::ur5_controller_heavy_wrist as h;
+        let q = [0.3, -1.1, 0.7, 2.0, -0.4, 0.9];
+        let (qd, qdd) = ([0.2, -0.1, 0.4, 0.0, 0.3, -0.5], [1.0, 0.5, -0.3, 0.2, 0.0, 0.1]);
+        let f = [0.4, -0.2, 0.1, 3.0, -5.0, 10.0];
+        let g = [0.0, 0.0, -9.81];
+        let file = c::inverse_dynamics(&q, &qd, &qdd, &f);
+        let changed = h::inverse_dynamics(&q, &qd, &qdd, &g, &f);
+        // Only the wrist's torque changes, by (0.5 − 0.06)·q̈₆; the rest of
+        // the file (friction, payload, tip wrench) is kept.
+        for i in 0..5 {
+            assert!((changed[i] - file[i]).abs() < 1e-12 * (1.0 + file[i].abs()), "joint {i}");
+        }
+        assert!((changed[5] - file[5] - 0.44 * qdd[5]).abs() < 1e-12, "{} {}", changed[5], file[5]);
+        // Gravity is an argument now: none gives a different τ.
+        let weightless = h::inverse_dynamics(&q, &qd, &qdd, &[0.0; 3], &f);
+        assert!((weightless[1] - changed[1]).abs() > 1.0);
+    }
 
     #[test]
     fn the_tip_wrench_adds_the_jacobian_transpose_times_the_wrench() {
