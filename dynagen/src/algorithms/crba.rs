@@ -16,7 +16,7 @@ use crate::Scalar;
 /// # Panics
 /// If `q` does not have the model's number of joints or `m` is not n×n.
 pub fn crba<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], m: &mut [S]) {
-    crba_with_payloads(model, ws, q, &[], m);
+    composite_rigid_body(model, ws, q, &[], m);
 }
 
 /// [`crba`] with extra inertias carried by bodies (`payloads`, each in its
@@ -28,6 +28,19 @@ pub fn crba<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], m: &mut [S
 /// # Panics
 /// As [`crba`], and if a payload's body is not a body of the model.
 pub fn crba_with_payloads<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    payloads: &[BodyInertia<S>],
+    m: &mut [S],
+) {
+    composite_rigid_body(model, ws, q, payloads, m);
+}
+
+/// The algorithm of [`crba`] and [`crba_with_payloads`], inlined into both
+/// so that `crba` is compiled without the payloads.
+#[inline(always)]
+fn composite_rigid_body<S: Scalar>(
     model: &Model,
     ws: &mut Workspace<S>,
     q: &[S],

@@ -218,13 +218,13 @@ pub fn rnea_with_payloads<S: Scalar>(
         let mut f = a.scale(inertia.mass);
         let mut m = h.cross(&a);
         let p = qd.is_some().then(|| products(&w));
-        // U = [ω̇×] + [ω×][ω×]: U·v = ω̇ × v + ω × (ω × v), shared by this
-        // body's force (v = h) and its children's origins (v = p)
-        let u = moving.then(|| velocity_product_matrix(p.as_ref(), &wd));
-        if let Some(u) = &u {
+        if moving {
+            // U = [ω̇×] + [ω×][ω×]: U·v = ω̇ × v + ω × (ω × v), shared by
+            // this body's force (v = h) and its children's origins (v = p)
+            let u = velocity_product_matrix(p.as_ref(), &wd);
             f += u.mul_vec(h);
             m += ibar.mul_vec(&wd);
-            us[i] = *u;
+            us[i] = u;
         }
         if let Some(p) = &p {
             m += if gyro[i] { gyroscopic(ibar, p) } else { w.cross(&ibar.mul_vec(&w)) };
@@ -233,8 +233,8 @@ pub fn rnea_with_payloads<S: Scalar>(
             let Inertia { mass, h, ibar } = &extra.inertia;
             f += a.scale(*mass);
             m += h.cross(&a);
-            if let Some(u) = &u {
-                f += u.mul_vec(h);
+            if moving {
+                f += us[i].mul_vec(h);
                 m += ibar.mul_vec(&wd);
             }
             if qd.is_some() {
