@@ -78,7 +78,7 @@ pub use hash::{canonical_text, fnv1a64, model_hash};
 pub use literal::float_literal_text;
 pub use rounding::{snap_rounding, SnappedConstant, ROUNDING_TOLERANCE};
 pub use scene::{generate_scene, payload_argument, scene_function_name, trace_scene, SceneFunction};
-pub use sin_cos::{sin_cos_batch, sin_cos_kernel};
+pub use sin_cos::{sin_cos_array, sin_cos_array_f32, sin_cos_batch, sin_cos_kernel};
 pub use trace::{sin_cos_from_q, sin_cos_inputs, trace, trace_sin_cos_inputs, FunctionKind, SinCosTrace};
 
 use crate::model::Model;
@@ -465,7 +465,7 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
     let body = prettyplease::unparse(&file);
     let model_hash = model_hash(model);
     let header = header(model, options, &functions, &snapped, model_hash);
-    let kernel = sin_cos::KERNEL_SOURCE;
+    let kernel = sin_cos::kernel_source(options.scalar);
     Ok(GeneratedModule {
         source: format!("{header}\n{body}\n{kernel}"),
         functions,
@@ -525,16 +525,36 @@ fn wrapper(
         }
     };
     let body = if options.trig == Trig::Batched {
-        let all_unit = sc.angle_scale.iter().all(|k| k.is_none_or(|k| k == 1.0));
-        let theta = if all_unit {
-            quote!(q)
+        // Only the angles NAME_sc reads (the UR5's g reads 3 of 6, the Panda's functions 7 of 9).
+        let read: Vec<(usize, f64)> =
+            sc.angle_scale.iter().enumerate().filter_map(|(i, k)| k.map(|k| (i, k))).collect();
+        if read.len() == sc.angle_scale.len() && read.iter().all(|&(_, k)| k == 1.0) {
+            quote! {
+                let (s, c) = sin_cos_all(q);
+                #sc_name(&s, &c, #q_arg #(#rest),*)
+            }
         } else {
-            let entries = sc.angle_scale.iter().enumerate().map(|(i, k)| angle(i, k.unwrap_or(1.0)));
-            quote!(&[#(#entries),*])
-        };
-        quote! {
-            let (s, c) = sin_cos_all(#theta);
-            #sc_name(&s, &c, #q_arg #(#rest),*)
+            let batch = sin_cos::batch_function(options.scalar);
+            let angles = read.iter().map(|&(i, k)| angle(i, k));
+            let mut s_entries = Vec::new();
+            let mut c_entries = Vec::new();
+            let mut j = 0;
+            for k in &sc.angle_scale {
+                if k.is_some() {
+                    let lit = proc_macro2::Literal::usize_unsuffixed(j);
+                    s_entries.push(quote!(s[#lit]));
+                    c_entries.push(quote!(c[#lit]));
+                    j += 1;
+                } else {
+                    s_entries.push(quote!(0.0));
+                    c_entries.push(quote!(1.0));
+                }
+            }
+            let call = if read.is_empty() { quote!() } else { quote!(let (s, c) = #batch(&[#(#angles),*]);) };
+            quote! {
+                #call
+                #sc_name(&[#(#s_entries),*], &[#(#c_entries),*], #q_arg #(#rest),*)
+            }
         }
     } else {
         let mut stmts = Vec::new();
@@ -634,7 +654,7 @@ fn header(
         h,
         "// Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]\n\
          //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.\n\
-         // sin_cos_all(q): the batched sine and cosine, within 1 ulp for |q| <= 1.6e6 rad, no std{}.",
+         // sin_cos_all(q): the batched sine and cosine, within 1 ulp for every finite angle, no std{}.",
         if options.scalar == ScalarType::F32 { " (computed in f64, rounded to f32)" } else { "" }
     );
     let left_out: Vec<&str> = FunctionKind::ALL
