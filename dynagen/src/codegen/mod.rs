@@ -491,7 +491,8 @@ fn trig_source(trig: Trig, scalar: ScalarType) -> &'static str {
     match (trig, scalar) {
         (Trig::Std, ScalarType::F64) => "`f64::sin_cos`",
         (Trig::Std, ScalarType::F32) => "`f32::sin_cos`",
-        (Trig::Batched, _) => "[`sin_cos_all`]",
+        (Trig::Batched, ScalarType::F64) => "`sin_cos_array` (only the angles the body reads)",
+        (Trig::Batched, ScalarType::F32) => "`sin_cos_array_f32` (only the angles the body reads)",
         (Trig::Libm, ScalarType::F64) => "`libm::sincos`",
         (Trig::Libm, ScalarType::F32) => "`libm::sincosf`",
         (Trig::Inputs, _) => "the caller",
@@ -637,7 +638,9 @@ fn header(
     );
     let trig = match options.trig {
         Trig::Std => "NAME(q, ...) computes the sines and cosines by std's sin_cos (needs std)",
-        Trig::Batched => "NAME(q, ...) computes the sines and cosines by sin_cos_all (no_std, no dependency)",
+        Trig::Batched => {
+            "NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time (no_std, no dependency)"
+        }
         Trig::Libm => "NAME(q, ...) computes the sines and cosines by libm::sincos (no_std; needs the `libm` crate)",
         Trig::Inputs => "only NAME_sc(s, c, ...): the caller passes the sines and cosines (no_std, no dependency)",
     };
