@@ -21,8 +21,9 @@
 //! 1 ulp of the exact sine and cosine for every finite angle (measured by
 //! the tests against [`crate::DoubleDouble`] and against 60-digit values,
 //! including the doubles nearest to multiples of π/2, where the reduced
-//! angle cancels). `f32` modules compute in `f64` and round (within 1 ulp of
-//! `f32`).
+//! angle cancels). `f32` modules run [`sin_cos_array_f32`]: the same steps in
+//! `f64` with shorter polynomials and a two-part π/2, rounded to `f32`
+//! (within 1 ulp of `f32`).
 
 use super::ScalarType;
 use proc_macro2::TokenStream;
@@ -74,7 +75,7 @@ pub(crate) fn sin_cos_all_item(scalar: ScalarType) -> TokenStream {
             " The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time."
         }
         ScalarType::F32 => {
-            " The sines and cosines of `q`, joint by joint, computed in `f64` by `sin_cos_array` and rounded to `f32`."
+            " The sines and cosines of `q`, joint by joint: within 1 ulp of `f32` for every finite angle (computed in `f64`), no std, two at a time."
         }
     };
     quote! {
@@ -325,6 +326,21 @@ mod tests {
         assert!(worst.0 <= 1.0 && worst.1 <= 1.0, "{worst:?}");
         let (s, c) = sin_cos_array_f32(&[f32::NAN, f32::INFINITY]);
         assert!(s.iter().chain(&c).all(|v| v.is_nan()));
+        let (s, c) = sin_cos_array_f32(&[-0.0, 0.0]);
+        assert!(s[0] == 0.0 && s[0].is_sign_negative() && s[1].is_sign_positive() && c == [1.0, 1.0]);
+        // Beyond the fast path: the f64 kernel, rounded.
+        for x in [2e6f32, -3.5e7, 1e20, f32::MAX] {
+            let (s, c) = sin_cos_array_f32(&[x]);
+            let (a, b) = sin_cos_kernel(f64::from(x));
+            assert_eq!((s[0], c[0]), (a as f32, b as f32));
+        }
+        // The fast path takes the f32 nearest to every multiple of π/2 up to 1e5 rad.
+        for k in 1..=63662 {
+            let x = (k as f64 * core::f64::consts::FRAC_PI_2) as f32;
+            for d in -1i32..=1 {
+                assert!(sin_cos_fast_f32(f32::from_bits((x.to_bits() as i32 + d) as u32)).2, "k = {k}");
+            }
+        }
     }
 
     #[test]

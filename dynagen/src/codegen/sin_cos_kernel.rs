@@ -33,16 +33,19 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut c = [0.0; N];
     let mut fast = true;
     let mut i = 0;
-    while i + 4 <= N {
-        fast &= sin_cos_lanes::<4>(&x[i..], &mut s[i..], &mut c[i..]);
-        i += 4;
-    }
-    if i + 2 <= N {
-        fast &= sin_cos_lanes::<2>(&x[i..], &mut s[i..], &mut c[i..]);
+    while i + 2 <= N {
+        // Two angles through the same straight-line code: one pass of
+        // 2-lane vector instructions.
+        let (s0, c0, ok0) = sin_cos_fast(x[i]);
+        let (s1, c1, ok1) = sin_cos_fast(x[i + 1]);
+        (s[i], s[i + 1], c[i], c[i + 1]) = (s0, s1, c0, c1);
+        fast &= ok0 & ok1;
         i += 2;
     }
     if i < N {
-        fast &= sin_cos_lanes::<1>(&x[i..], &mut s[i..], &mut c[i..]);
+        let ok;
+        (s[i], c[i], ok) = sin_cos_fast(x[i]);
+        fast &= ok;
     }
     if !fast {
         sin_cos_again(x, &mut s, &mut c);
@@ -57,19 +60,6 @@ fn sin_cos_again(x: &[f64], s: &mut [f64], c: &mut [f64]) {
     for ((x, s), c) in x.iter().zip(s).zip(c) {
         (*s, *c) = sin_cos_kernel(*x);
     }
-}
-
-/// `sin_cos_fast` on the first `L` entries: the same straight-line code on
-/// each, which the compiler turns into vector instructions.
-#[inline(always)]
-fn sin_cos_lanes<const L: usize>(x: &[f64], s: &mut [f64], c: &mut [f64]) -> bool {
-    let mut fast = true;
-    for j in 0..L {
-        let ok;
-        (s[j], c[j], ok) = sin_cos_fast(x[j]);
-        fast &= ok;
-    }
-    fast
 }
 
 /// The sine and cosine of one angle `x`: within 1 ulp of the exact values
@@ -140,7 +130,13 @@ fn sin_cos_reduced(rh: f64, rl: f64, negative: u64, quadrant: u64) -> (f64, f64)
     // cos(rh + rl) = (1 − z/2) + z²·C(z) − rh·rl + …, with the rounding error of 1 − z/2.
     let w = 1.0 - hz;
     let cos_r = w + (((1.0 - w) - hz) + (z2 * pc - rh * rl));
-    let cb = cos_r.to_bits();
+    sin_cos_quadrant(sb, cos_r.to_bits(), quadrant)
+}
+
+/// Step 4: (sin, cos) of k·π/2 + r from the bits `sb`, `cb` of sin r and
+/// cos r and k ≡ `quadrant` (mod 4).
+#[inline(always)]
+fn sin_cos_quadrant(sb: u64, cb: u64, quadrant: u64) -> (f64, f64) {
     // Odd quadrants swap sine and cosine; the sign bits follow k mod 4.
     let swap = 0u64.wrapping_sub(quadrant & 1);
     let sin_bits = (sb & !swap) | (cb & swap);
@@ -167,7 +163,7 @@ fn sin_cos_slow(x: f64) -> (f64, f64) {
     const PIO2_LO: f64 = 6.123233995736766e-17;
     const SPLIT: f64 = 134217729.0; // 2²⁷ + 1: Dekker's split of a double into two halves
     if !x.is_finite() {
-        return (x - x, x - x);
+        return (f64::NAN, f64::NAN);
     }
     let ax = x.abs();
     if ax < 0.78 {
