@@ -97,16 +97,16 @@ fn sin_cos_fast(x: f64) -> (f64, f64, bool) {
     // min(2⁵⁸·|rh|, 1.5e6) ≥ |x|, the `if` a `min` instruction (a NaN picks 1.5e6).
     let m = rh.abs() * 2.8823037615171174e17;
     let ok = (if m < 1.5e6 { m } else { 1.5e6 }) >= x.abs();
-    let (s, c) = sin_cos_reduced(rh, rl, a.to_bits() >> 63, t.to_bits());
+    let (s, c) = sin_cos_reduced(rh, rl, a.to_bits() & (1 << 63), t.to_bits());
     (s, c, ok)
 }
 
 /// Step 3 and 4: sin and cos of k·π/2 + rh + rl for |rh + rl| ≤ π/4 and
-/// k ≡ `quadrant` (mod 4); `negative` (0 or 1) is the sign of rh, also
+/// k ≡ `quadrant` (mod 4); `sign` is the sign bit of rh (in place), also
 /// when rh = −0 (which the reduction may turn into +0).
 #[inline(always)]
 #[allow(clippy::excessive_precision)]
-fn sin_cos_reduced(rh: f64, rl: f64, negative: u64, quadrant: u64) -> (f64, f64) {
+fn sin_cos_reduced(rh: f64, rl: f64, sign: u64, quadrant: u64) -> (f64, f64) {
     const S0: f64 = -1.666666666666663e-1;
     const S1: f64 = 8.333333333322118e-3;
     const S2: f64 = -1.9841269829589533e-4;
@@ -126,7 +126,7 @@ fn sin_cos_reduced(rh: f64, rl: f64, negative: u64, quadrant: u64) -> (f64, f64)
     let hz = 0.5 * z;
     // sin(rh + rl) = rh + rh·z·S(z) + rl·(1 − z/2) + …; rh's sign or-ed in keeps sin(−0) = −0.
     let sin_r = rh + (rh * z * ps + rl * (1.0 - hz));
-    let sb = sin_r.to_bits() | (negative << 63);
+    let sb = sin_r.to_bits() | sign;
     // cos(rh + rl) = (1 − z/2) + z²·C(z) − rh·rl + …, with the rounding error of 1 − z/2.
     let w = 1.0 - hz;
     let cos_r = w + (((1.0 - w) - hz) + (z2 * pc - rh * rl));
@@ -137,13 +137,12 @@ fn sin_cos_reduced(rh: f64, rl: f64, negative: u64, quadrant: u64) -> (f64, f64)
 /// cos r and k ≡ `quadrant` (mod 4).
 #[inline(always)]
 fn sin_cos_quadrant(sb: u64, cb: u64, quadrant: u64) -> (f64, f64) {
-    // Odd quadrants swap sine and cosine; the sign bits follow k mod 4.
-    let swap = 0u64.wrapping_sub(quadrant & 1);
-    let sin_bits = (sb & !swap) | (cb & swap);
-    let cos_bits = (cb & !swap) | (sb & swap);
-    let sin_sign = ((quadrant >> 1) & 1) << 63;
-    let cos_sign = (((quadrant + 1) >> 1) & 1) << 63;
-    (f64::from_bits(sin_bits ^ sin_sign), f64::from_bits(cos_bits ^ cos_sign))
+    // Odd quadrants swap sine and cosine (d: the bits that differ, or 0);
+    // sin changes sign in quadrants 2 and 3, cos in 1 and 2.
+    let d = (sb ^ cb) & 0u64.wrapping_sub(quadrant & 1);
+    let sin_sign = (quadrant << 62) & (1 << 63);
+    let cos_sign = sin_sign ^ (quadrant << 63);
+    (f64::from_bits(sb ^ d ^ sin_sign), f64::from_bits(cb ^ d ^ cos_sign))
 }
 
 /// Step 2: Payne and Hanek's reduction of any finite `x`, then step 3.
@@ -210,6 +209,6 @@ fn sin_cos_slow(x: f64) -> (f64, f64) {
     let low = pl + (fh * PIO2_LO + fl * PIO2_HI);
     let rh = ph + low;
     let rl = low - (rh - ph);
-    let (s, c) = sin_cos_reduced(rh, rl, rh.to_bits() >> 63, k);
+    let (s, c) = sin_cos_reduced(rh, rl, rh.to_bits() & (1 << 63), k);
     (if x < 0.0 { -s } else { s }, c)
 }
