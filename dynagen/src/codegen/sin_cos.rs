@@ -172,6 +172,20 @@ mod tests {
     }
 
     #[test]
+    fn the_pair_is_the_scalar_fast_path_bit_for_bit() {
+        // On x86-64 sin_cos_pair is SSE2 code of its own: the same operations, so the same bits.
+        let xs = angles();
+        for w in xs.windows(2) {
+            let (s, c, ok) = sin_cos_pair([w[0], w[1]]);
+            let (a, b) = (sin_cos_fast(w[0]), sin_cos_fast(w[1]));
+            assert_eq!(ok, a.2 & b.2, "{w:?}");
+            for (got, want) in [(s[0], a.0), (s[1], b.0), (c[0], a.1), (c[1], b.1)] {
+                assert_eq!(got.to_bits(), want.to_bits(), "{w:?}");
+            }
+        }
+    }
+
+    #[test]
     fn std_sin_cos_within_one_ulp_on_the_same_angles() {
         // The same bound for the platform's libm: a check of the test itself.
         let (s, c, x) = worst(f64::sin_cos);

@@ -33,24 +33,105 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut c = [0.0; N];
     let mut fast = true;
     let mut i = 0;
-    while i + 2 <= N {
-        // Two angles through the same straight-line code: one pass of
-        // 2-lane vector instructions.
-        let (s0, c0, ok0) = sin_cos_fast(x[i]);
-        let (s1, c1, ok1) = sin_cos_fast(x[i + 1]);
-        (s[i], s[i + 1], c[i], c[i + 1]) = (s0, s1, c0, c1);
-        fast &= ok0 & ok1;
-        i += 2;
-    }
-    if i < N {
-        let ok;
-        (s[i], c[i], ok) = sin_cos_fast(x[i]);
-        fast &= ok;
+    while i < N {
+        // Up to six angles a pass, as three independent chains of 2-lane
+        // vector instructions that the processor overlaps (an odd N's last
+        // pair takes its last angle twice).
+        let at = |j: usize| if i + j < N { i + j } else { N - 1 };
+        for p in 0..3 {
+            if i + 2 * p < N {
+                let (j0, j1) = (at(2 * p), at(2 * p + 1));
+                let (ps, pc, ok) = sin_cos_pair([x[j0], x[j1]]);
+                (s[j0], s[j1], c[j0], c[j1]) = (ps[0], ps[1], pc[0], pc[1]);
+                fast &= ok;
+            }
+        }
+        i += 6;
     }
     if !fast {
         sin_cos_again(x, &mut s, &mut c);
     }
     (s, c)
+}
+
+/// `sin_cos_fast` on two angles, as 2-lane vector instructions: on x86-64
+/// spelled out in SSE2 (part of every x86-64 target; the compiler's own
+/// vectoriser takes the scalar code for some lengths N only), the same
+/// operations in the same order, so the same bits.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+#[allow(unused_unsafe, clippy::excessive_precision, clippy::approx_constant)]
+fn sin_cos_pair(x: [f64; 2]) -> ([f64; 2], [f64; 2], bool) {
+    use core::arch::x86_64::*;
+    // SAFETY: SSE2 is enabled on every x86-64 target; transmutes between
+    // __m128d and [f64; 2] (both 16 bytes of two f64).
+    unsafe {
+        let v = |a: f64| _mm_set1_pd(a);
+        let (add, sub, mul) = (|a, b| _mm_add_pd(a, b), |a, b| _mm_sub_pd(a, b), |a, b| _mm_mul_pd(a, b));
+        let sign = _mm_castpd_si128(v(-0.0));
+        let x = _mm_set_pd(x[1], x[0]);
+        let t = add(mul(x, v(0.6366197723675814)), v(6755399441055744.0));
+        let k = sub(t, v(6755399441055744.0));
+        let t0 = sub(x, mul(k, v(1.5707963267341256)));
+        let w = mul(k, v(6.077100506303966e-11));
+        let a = sub(t0, w);
+        let b = sub(sub(sub(t0, a), w), mul(k, v(2.0222662487959506e-21)));
+        let rh = add(a, b);
+        let rl = sub(b, sub(rh, a));
+        let m = mul(_mm_andnot_pd(v(-0.0), rh), v(2.8823037615171174e17));
+        let ok = _mm_cmpge_pd(_mm_min_pd(m, v(1.5e6)), _mm_andnot_pd(v(-0.0), x));
+        // sin_cos_reduced
+        let z = mul(rh, rh);
+        let z2 = mul(z, z);
+        let poly = |c: [f64; 6]| {
+            let lo = add(v(c[0]), mul(z, v(c[1])));
+            let mid = add(v(c[2]), mul(z, v(c[3])));
+            let hi = add(v(c[4]), mul(z, v(c[5])));
+            add(lo, mul(z2, add(mid, mul(z2, hi))))
+        };
+        let ps = poly([
+            -1.666666666666663e-1,
+            8.333333333322118e-3,
+            -1.9841269829589533e-4,
+            2.7557313621384545e-6,
+            -2.5050747762700404e-8,
+            1.5896230149614662e-10,
+        ]);
+        let pc = poly([
+            4.1666666666666595e-2,
+            -1.3888888888873056e-3,
+            2.4801587288851704e-5,
+            -2.755731417929683e-7,
+            2.08757008419834e-9,
+            -1.1358536521605753e-11,
+        ]);
+        let hz = mul(v(0.5), z);
+        let sin_r = add(rh, add(mul(mul(rh, z), ps), mul(rl, sub(v(1.0), hz))));
+        let sb = _mm_or_si128(_mm_castpd_si128(sin_r), _mm_and_si128(_mm_castpd_si128(a), sign));
+        let w = sub(v(1.0), hz);
+        let cos_r = add(w, add(sub(sub(v(1.0), w), hz), sub(mul(z2, pc), mul(rh, rl))));
+        let cb = _mm_castpd_si128(cos_r);
+        // sin_cos_quadrant
+        let q = _mm_castpd_si128(t);
+        let d = _mm_and_si128(_mm_xor_si128(sb, cb), _mm_sub_epi64(_mm_setzero_si128(), _mm_and_si128(q, _mm_set1_epi64x(1))));
+        let sin_sign = _mm_and_si128(_mm_slli_epi64::<62>(q), sign);
+        let cos_sign = _mm_xor_si128(sin_sign, _mm_slli_epi64::<63>(q));
+        let s = _mm_castsi128_pd(_mm_xor_si128(_mm_xor_si128(sb, d), sin_sign));
+        let c = _mm_castsi128_pd(_mm_xor_si128(_mm_xor_si128(cb, d), cos_sign));
+        let s: [f64; 2] = core::mem::transmute(s);
+        let c: [f64; 2] = core::mem::transmute(c);
+        (s, c, _mm_movemask_pd(ok) == 3)
+    }
+}
+
+/// `sin_cos_fast` on two angles (other targets: the compiler's vectoriser
+/// may turn the two calls into one pass of vector instructions).
+#[cfg(not(target_arch = "x86_64"))]
+#[inline(always)]
+fn sin_cos_pair(x: [f64; 2]) -> ([f64; 2], [f64; 2], bool) {
+    let (s0, c0, ok0) = sin_cos_fast(x[0]);
+    let (s1, c1, ok1) = sin_cos_fast(x[1]);
+    ([s0, s1], [c0, c1], ok0 & ok1)
 }
 
 /// The rare case of `sin_cos_array`: every angle again, one at a time.
