@@ -10,11 +10,11 @@
 //! `bias_forces`, `gravity_torques`, `forward_dynamics`, each also as
 //! `NAME_sc`, which takes the sines and cosines of the joint angles instead
 //! of computing them (the one body; `NAME` computes them and calls it), and
-//! `sin_cos_all`, a batched sine and cosine without std ([`sin_cos_kernel`]).
+//! `sin_cos_all`, a batched sine and cosine without std ([`sin_cos_array`]).
 //! Where `NAME` gets its sines and cosines is [`Trig`]: std's `sin_cos` (the
-//! default: measured faster than `sin_cos_all` here, see
-//! `benches/README.md`), `sin_cos_all`, the `libm` crate, or nobody (only
-//! the `NAME_sc` functions, for `#![no_std]` without dependencies). The same
+//! default, see [`Trig`] for why), the module's `sin_cos_array` (of only the
+//! angles the body reads), the `libm` crate, or nobody (only the `NAME_sc`
+//! functions, for `#![no_std]` without dependencies). The same
 //! model and options give a byte-identical file.
 //!
 //! ```
@@ -116,15 +116,23 @@ pub enum ForwardDynamicsMethod {
 /// a prismatic joint. Except with [`Trig::Inputs`], the module also has the
 /// contract's `NAME(q, …)`, which computes the sines and cosines and calls
 /// `NAME_sc`. Every module has `sin_cos_all(q)`, the batched sine and
-/// cosine of [`sin_cos_kernel`] (no std, no dependency).
+/// cosine of [`sin_cos_array`] (no std, no dependency, within 1 ulp).
+///
+/// Why `Std` stays the default although `Batched` measured faster (UR5 and
+/// Panda functions 1.1–1.4x, `benches/README.md`): DESIGN.md's contract
+/// makes std's `sin_cos` the default output, whose maximum error (0.56 ulp
+/// on the tests' angles) is below `sin_cos_array`'s (0.73 ulp), and the
+/// gain was measured on a loaded 2-core machine; `Batched` is one option
+/// away and `#![no_std]` as well.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Trig {
     /// `NAME(q, …)` calls `f64::sin_cos` (or `f32::sin_cos`) per joint:
     /// needs std.
     #[default]
     Std,
-    /// `NAME(q, …)` calls the module's `sin_cos_all`: `#![no_std]`, no
-    /// dependency.
+    /// `NAME(q, …)` calls the module's `sin_cos_array` on the angles its
+    /// body reads: `#![no_std]`, no dependency, faster than `Std` in the
+    /// benchmarks.
     Batched,
     /// `NAME(q, …)` calls `libm::sincos` (`libm::sincosf` for `f32`):
     /// `#![no_std]`, needs the `libm` crate.

@@ -20,9 +20,10 @@
 //    by Estrin's scheme (short dependency chains). The leading terms r and
 //    1 − r²/2 (with its rounding error kept) are added last.
 // 4. The quadrant k mod 4 picks (±sin r, ±cos r) by bit masks.
-// `sin_cos_array` runs the fast path on two angles at a time as the same
-// straight-line code, which the compiler turns into 2-lane vector
-// instructions (SSE2 on any x86-64, NEON on aarch64).
+// `sin_cos_array` runs the fast path on two angles at a time: on x86-64 in
+// SSE2 instructions (`sin_cos_pair`, the same operations as the scalar code,
+// so the same bits), elsewhere as the scalar code twice, which the compiler
+// may vectorise. Up to three pairs a pass, for the processor to overlap.
 
 /// The sines and cosines of `x`, entry by entry: within 1 ulp of the exact
 /// values for every finite angle (NaN and ±∞ give NaN); two angles at a
@@ -34,18 +35,16 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut fast = true;
     let mut i = 0;
     while i < N {
-        // Up to six angles a pass, as three independent chains of 2-lane
-        // vector instructions that the processor overlaps (an odd N's last
-        // pair takes its last angle twice).
-        let at = |j: usize| if i + j < N { i + j } else { N - 1 };
-        for p in 0..3 {
-            if i + 2 * p < N {
-                let (j0, j1) = (at(2 * p), at(2 * p + 1));
-                let (ps, pc, ok) = sin_cos_pair([x[j0], x[j1]]);
-                (s[j0], s[j1], c[j0], c[j1]) = (ps[0], ps[1], pc[0], pc[1]);
-                fast &= ok;
-            }
-        }
+        // Up to six angles a pass, as up to three pairs in 2-lane vector
+        // instructions, interleaved for the processor to overlap (an odd
+        // N's last pair takes its last angle twice).
+        let at = |j: usize| x[if i + j < N { i + j } else { N - 1 }];
+        let ok = match N - i {
+            1 | 2 => sin_cos_pass::<1, N>(i, [[at(0), at(1)]], &mut s, &mut c),
+            3 | 4 => sin_cos_pass::<2, N>(i, [[at(0), at(1)], [at(2), at(3)]], &mut s, &mut c),
+            _ => sin_cos_pass::<3, N>(i, [[at(0), at(1)], [at(2), at(3)], [at(4), at(5)]], &mut s, &mut c),
+        };
+        fast &= ok;
         i += 6;
     }
     if !fast {
@@ -54,40 +53,64 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     (s, c)
 }
 
-/// `sin_cos_fast` on two angles, as 2-lane vector instructions: on x86-64
-/// spelled out in SSE2 (part of every x86-64 target; the compiler's own
-/// vectoriser takes the scalar code for some lengths N only), the same
-/// operations in the same order, so the same bits.
+/// `sin_cos_pairs` on `x`, the results into `s[i..]` and `c[i..]` (what
+/// fits), and whether they are all within 1 ulp.
+#[inline(always)]
+fn sin_cos_pass<const P: usize, const N: usize>(
+    i: usize,
+    x: [[f64; 2]; P],
+    s: &mut [f64; N],
+    c: &mut [f64; N],
+) -> bool {
+    let (ps, pc, ok) = sin_cos_pairs(x);
+    for j in 0..2 * P {
+        if i + j < N {
+            (s[i + j], c[i + j]) = (ps[j / 2][j % 2], pc[j / 2][j % 2]);
+        }
+    }
+    ok
+}
+
+/// `sin_cos_fast` on `P` pairs of angles, each pair in 2-lane vector
+/// instructions, the pairs interleaved step by step: on x86-64 spelled out
+/// in SSE2 (part of every x86-64 target; the compiler's own vectoriser takes
+/// the scalar code for some lengths only), the same operations in the same
+/// order as `sin_cos_fast`, so the same bits.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 #[allow(unused_unsafe, clippy::excessive_precision, clippy::approx_constant)]
-fn sin_cos_pair(x: [f64; 2]) -> ([f64; 2], [f64; 2], bool) {
+fn sin_cos_pairs<const P: usize>(x: [[f64; 2]; P]) -> ([[f64; 2]; P], [[f64; 2]; P], bool) {
     use core::arch::x86_64::*;
-    // SAFETY: SSE2 is enabled on every x86-64 target; transmutes between
-    // __m128d and [f64; 2] (both 16 bytes of two f64).
+    // SAFETY: SSE2 is enabled on every x86-64 target; the transmutes are
+    // between __m128d and [f64; 2] (16 bytes, two f64 each).
     unsafe {
         let v = |a: f64| _mm_set1_pd(a);
-        let (add, sub, mul) = (|a, b| _mm_add_pd(a, b), |a, b| _mm_sub_pd(a, b), |a, b| _mm_mul_pd(a, b));
-        let sign = _mm_castpd_si128(v(-0.0));
-        let x = _mm_set_pd(x[1], x[0]);
-        let t = add(mul(x, v(0.6366197723675814)), v(6755399441055744.0));
-        let k = sub(t, v(6755399441055744.0));
-        let t0 = sub(x, mul(k, v(1.5707963267341256)));
-        let w = mul(k, v(6.077100506303966e-11));
-        let a = sub(t0, w);
-        let b = sub(sub(sub(t0, a), w), mul(k, v(2.0222662487959506e-21)));
-        let rh = add(a, b);
-        let rl = sub(b, sub(rh, a));
-        let m = mul(_mm_andnot_pd(v(-0.0), rh), v(2.8823037615171174e17));
-        let ok = _mm_cmpge_pd(_mm_min_pd(m, v(1.5e6)), _mm_andnot_pd(v(-0.0), x));
+        fn each<const P: usize>(f: impl FnMut(usize) -> __m128d) -> [__m128d; P] {
+            core::array::from_fn(f)
+        }
+        let add = |a: &[__m128d; P], b: &[__m128d; P]| each(|i| _mm_add_pd(a[i], b[i]));
+        let sub = |a: &[__m128d; P], b: &[__m128d; P]| each(|i| _mm_sub_pd(a[i], b[i]));
+        let mul = |a: &[__m128d; P], b: &[__m128d; P]| each(|i| _mm_mul_pd(a[i], b[i]));
+        let all = |a: f64| [v(a); P];
+        let x: [__m128d; P] = each(|i| _mm_set_pd(x[i][1], x[i][0]));
+        let t = add(&mul(&x, &all(0.6366197723675814)), &all(6755399441055744.0));
+        let k = sub(&t, &all(6755399441055744.0));
+        let t0 = sub(&x, &mul(&k, &all(1.5707963267341256)));
+        let w = mul(&k, &all(6.077100506303966e-11));
+        let a = sub(&t0, &w);
+        let b = sub(&sub(&sub(&t0, &a), &w), &mul(&k, &all(2.0222662487959506e-21)));
+        let rh = add(&a, &b);
+        let rl = sub(&b, &sub(&rh, &a));
+        let m: [__m128d; P] = each(|i| _mm_mul_pd(_mm_andnot_pd(v(-0.0), rh[i]), v(2.8823037615171174e17)));
+        let ok: [__m128d; P] = each(|i| _mm_cmpge_pd(_mm_min_pd(m[i], v(1.5e6)), _mm_andnot_pd(v(-0.0), x[i])));
         // sin_cos_reduced
-        let z = mul(rh, rh);
-        let z2 = mul(z, z);
+        let z = mul(&rh, &rh);
+        let z2 = mul(&z, &z);
         let poly = |c: [f64; 6]| {
-            let lo = add(v(c[0]), mul(z, v(c[1])));
-            let mid = add(v(c[2]), mul(z, v(c[3])));
-            let hi = add(v(c[4]), mul(z, v(c[5])));
-            add(lo, mul(z2, add(mid, mul(z2, hi))))
+            let lo = add(&all(c[0]), &mul(&z, &all(c[1])));
+            let mid = add(&all(c[2]), &mul(&z, &all(c[3])));
+            let hi = add(&all(c[4]), &mul(&z, &all(c[5])));
+            add(&lo, &mul(&z2, &add(&mid, &mul(&z2, &hi))))
         };
         let ps = poly([
             -1.666666666666663e-1,
@@ -105,33 +128,37 @@ fn sin_cos_pair(x: [f64; 2]) -> ([f64; 2], [f64; 2], bool) {
             2.08757008419834e-9,
             -1.1358536521605753e-11,
         ]);
-        let hz = mul(v(0.5), z);
-        let sin_r = add(rh, add(mul(mul(rh, z), ps), mul(rl, sub(v(1.0), hz))));
-        let sb = _mm_or_si128(_mm_castpd_si128(sin_r), _mm_and_si128(_mm_castpd_si128(a), sign));
-        let w = sub(v(1.0), hz);
-        let cos_r = add(w, add(sub(sub(v(1.0), w), hz), sub(mul(z2, pc), mul(rh, rl))));
-        let cb = _mm_castpd_si128(cos_r);
-        // sin_cos_quadrant
-        let q = _mm_castpd_si128(t);
-        let d = _mm_and_si128(_mm_xor_si128(sb, cb), _mm_sub_epi64(_mm_setzero_si128(), _mm_and_si128(q, _mm_set1_epi64x(1))));
-        let sin_sign = _mm_and_si128(_mm_slli_epi64::<62>(q), sign);
-        let cos_sign = _mm_xor_si128(sin_sign, _mm_slli_epi64::<63>(q));
-        let s = _mm_castsi128_pd(_mm_xor_si128(_mm_xor_si128(sb, d), sin_sign));
-        let c = _mm_castsi128_pd(_mm_xor_si128(_mm_xor_si128(cb, d), cos_sign));
-        let s: [f64; 2] = core::mem::transmute(s);
-        let c: [f64; 2] = core::mem::transmute(c);
-        (s, c, _mm_movemask_pd(ok) == 3)
+        let hz = mul(&all(0.5), &z);
+        let sin_r = add(&rh, &add(&mul(&mul(&rh, &z), &ps), &mul(&rl, &sub(&all(1.0), &hz))));
+        let w = sub(&all(1.0), &hz);
+        let cos_r = add(&w, &add(&sub(&sub(&all(1.0), &w), &hz), &sub(&mul(&z2, &pc), &mul(&rh, &rl))));
+        // sin_cos_quadrant, lane by lane
+        let sign = _mm_castpd_si128(v(-0.0));
+        let out = |i: usize| {
+            let sb = _mm_or_si128(_mm_castpd_si128(sin_r[i]), _mm_and_si128(_mm_castpd_si128(a[i]), sign));
+            let cb = _mm_castpd_si128(cos_r[i]);
+            let q = _mm_castpd_si128(t[i]);
+            let odd = _mm_sub_epi64(_mm_setzero_si128(), _mm_and_si128(q, _mm_set1_epi64x(1)));
+            let d = _mm_and_si128(_mm_xor_si128(sb, cb), odd);
+            let sin_sign = _mm_and_si128(_mm_slli_epi64::<62>(q), sign);
+            let cos_sign = _mm_xor_si128(sin_sign, _mm_slli_epi64::<63>(q));
+            let s = _mm_castsi128_pd(_mm_xor_si128(_mm_xor_si128(sb, d), sin_sign));
+            let c = _mm_castsi128_pd(_mm_xor_si128(_mm_xor_si128(cb, d), cos_sign));
+            (core::mem::transmute::<__m128d, [f64; 2]>(s), core::mem::transmute::<__m128d, [f64; 2]>(c))
+        };
+        let sc: [([f64; 2], [f64; 2]); P] = core::array::from_fn(out);
+        let fast = ok.iter().all(|&ok| _mm_movemask_pd(ok) == 3);
+        (core::array::from_fn(|i| sc[i].0), core::array::from_fn(|i| sc[i].1), fast)
     }
 }
 
-/// `sin_cos_fast` on two angles (other targets: the compiler's vectoriser
-/// may turn the two calls into one pass of vector instructions).
+/// `sin_cos_fast` on `P` pairs of angles (other targets: the compiler's
+/// vectoriser may turn the calls into vector instructions).
 #[cfg(not(target_arch = "x86_64"))]
 #[inline(always)]
-fn sin_cos_pair(x: [f64; 2]) -> ([f64; 2], [f64; 2], bool) {
-    let (s0, c0, ok0) = sin_cos_fast(x[0]);
-    let (s1, c1, ok1) = sin_cos_fast(x[1]);
-    ([s0, s1], [c0, c1], ok0 & ok1)
+fn sin_cos_pairs<const P: usize>(x: [[f64; 2]; P]) -> ([[f64; 2]; P], [[f64; 2]; P], bool) {
+    let r = x.map(|x| x.map(sin_cos_fast));
+    (r.map(|r| r.map(|r| r.0)), r.map(|r| r.map(|r| r.1)), r.iter().flatten().all(|r| r.2))
 }
 
 /// The rare case of `sin_cos_array`: every angle again, one at a time.
