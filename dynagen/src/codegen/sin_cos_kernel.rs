@@ -20,10 +20,11 @@
 //    by Estrin's scheme (short dependency chains). The leading terms r and
 //    1 − r²/2 (with its rounding error kept) are added last.
 // 4. The quadrant k mod 4 picks (±sin r, ±cos r) by bit masks.
-// `sin_cos_array` runs the fast path on two angles at a time: on x86-64 in
-// SSE2 instructions (`sin_cos_pair`, the same operations as the scalar code,
-// so the same bits), elsewhere as the scalar code twice, which the compiler
-// may vectorise. Up to three pairs a pass, for the processor to overlap.
+// `sin_cos_array` runs the fast path on two angles at a time, up to three
+// such pairs interleaved step by step (independent chains the processor
+// overlaps): on x86-64 in SSE2 instructions (`sin_cos_pairs`: the same
+// operations as the scalar code, so the same bits), elsewhere as the scalar
+// code, which the compiler may vectorise.
 
 /// The sines and cosines of `x`, entry by entry: within 1 ulp of the exact
 /// values for every finite angle (NaN and ±∞ give NaN); two angles at a
