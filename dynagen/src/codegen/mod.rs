@@ -118,12 +118,13 @@ pub enum ForwardDynamicsMethod {
 /// `NAME_sc`. Every module has `sin_cos_all(q)`, the batched sine and
 /// cosine of [`sin_cos_array`] (no std, no dependency, within 1 ulp).
 ///
-/// Why `Std` stays the default although `Batched` measured faster (UR5 and
-/// Panda functions 1.1–1.4x, `benches/README.md`): DESIGN.md's contract
-/// makes std's `sin_cos` the default output, whose maximum error (0.56 ulp
-/// on the tests' angles) is below `sin_cos_array`'s (0.73 ulp), and the
-/// gain was measured on a loaded 2-core machine; `Batched` is one option
-/// away and `#![no_std]` as well.
+/// Why `Std` stays the default although `Batched` measured as fast or
+/// faster (the sines and cosines alone 1.2–1.5x, whole UR5 and Panda
+/// functions 0–20 %, `benches/README.md`): DESIGN.md's contract makes std's
+/// `sin_cos` the default output, whose maximum error (0.56 ulp on the
+/// tests' angles) is below `sin_cos_array`'s (0.73 ulp), and the gain was
+/// measured on a loaded 2-core machine; `Batched` is one option away and
+/// `#![no_std]` as well.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Trig {
     /// `NAME(q, …)` calls `f64::sin_cos` (or `f32::sin_cos`) per joint:
