@@ -6,7 +6,8 @@
 //! - `gen_sc`: the generated `NAME_sc(s, c, …)`, sines and cosines given (trig excluded);
 //! - `gen_batched`: the generated `NAME(q, …)` of a `Trig::Batched` module (`sin_cos_all`);
 //!
-//! and `sin_cos_all` against a loop of `f64::sin_cos`. Each benchmark
+//! and `sin_cos_all` against a loop of `f64::sin_cos` (and the `f32` batch,
+//! `dynagen::codegen::sin_cos_array_f32`, against `f32::sin_cos`). Each benchmark
 //! cycles through 8 random states. Command and results: README.md.
 
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -127,6 +128,17 @@ macro_rules! robot_benches {
                 sc
             });
             cycle(c, &format!("{r}/sincos/sin_cos_all"), &st, |s| $batched::sin_cos_all(&s.q));
+            // f32: the same angles rounded (sin_cos_array_f32 is what an f32 module's sin_cos_all runs).
+            cycle(c, &format!("{r}/sincos/std_loop_f32"), &st, |s| {
+                let mut sc = ([0.0f32; $n], [0.0f32; $n]);
+                for i in 0..$n {
+                    (sc.0[i], sc.1[i]) = (s.q[i] as f32).sin_cos();
+                }
+                sc
+            });
+            cycle(c, &format!("{r}/sincos/sin_cos_all_f32"), &st, |s| {
+                dynagen::codegen::sin_cos_array_f32(&s.q.map(|x| x as f32))
+            });
         }
     };
 }

@@ -36,3 +36,6 @@ for robot in ["ur5", "panda"]:
     s, b = times.get(f"{robot}/sincos/std_loop"), times.get(f"{robot}/sincos/sin_cos_all")
     if s and b:
         print(f"| {robot} | all sin/cos | loop of f64::sin_cos {s:.0f} ns | | | sin_cos_all {b:.0f} ns ({s / b:.2f}x) |")
+    s, b = times.get(f"{robot}/sincos/std_loop_f32"), times.get(f"{robot}/sincos/sin_cos_all_f32")
+    if s and b:
+        print(f"| {robot} | all sin/cos, f32 | loop of f32::sin_cos {s:.0f} ns | | | sin_cos_array_f32 {b:.0f} ns ({s / b:.2f}x) |")

@@ -38,7 +38,15 @@ fn each_trig_kind_emits_its_functions() {
     assert!(libm.contains("libm::sincos(q[1])") && !libm.contains(".sin_cos()"));
     assert!(libm.contains("needs the `libm` crate"));
     let batched = source(&model, Trig::Batched);
-    assert!(batched.contains("let (s, c) = sin_cos_all(q);") && !batched.contains(".sin_cos()"));
+    assert!(!batched.contains(".sin_cos()"));
+    // Only the angles each body reads: τ, M, h, FD of the UR5 not q[0] (its axis is gravity's), g only q[1..4].
+    assert!(batched.contains("let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5]]);"), "{batched}");
+    assert!(batched.contains("let (s, c) = sin_cos_array(&[q[1], q[2], q[3]]);"), "{batched}");
+    assert!(
+        batched.contains("&[0.0, s[0], s[1], s[2], 0.0, 0.0],")
+            && batched.contains("&[1.0, c[0], c[1], c[2], 1.0, 1.0],")
+    );
+    assert!(batched.contains("pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF])"));
     let inputs = source(&model, Trig::Inputs);
     assert!(!inputs.contains("sin_cos()") && !inputs.contains("libm"));
     for name in ["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "forward_dynamics"] {
@@ -66,7 +74,8 @@ fn non_unit_axes_and_prismatic_joints() {
     assert!(std.contains("let (s0, c0) = (q[0] * 2.0).sin_cos();"), "{std}");
     assert!(std.contains("let (s2, c2) = q[2].sin_cos();"));
     let batched = source(&model, Trig::Batched);
-    assert!(batched.contains("sin_cos_all(&[q[0] * 2.0, q[1], q[2]])"), "{batched}");
+    assert!(batched.contains("sin_cos_array(&[q[0] * 2.0, q[2]])"), "{batched}");
+    assert!(batched.contains("&[s[0], 0.0, s[1]]") && batched.contains("&[c[0], 1.0, c[1]]"), "{batched}");
     // A prismatic joint: the bodies take q.
     assert!(std.contains("pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF], q: &[f64; DOF]) -> [f64; DOF]"));
 }

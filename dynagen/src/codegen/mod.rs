@@ -10,11 +10,11 @@
 //! `bias_forces`, `gravity_torques`, `forward_dynamics`, each also as
 //! `NAME_sc`, which takes the sines and cosines of the joint angles instead
 //! of computing them (the one body; `NAME` computes them and calls it), and
-//! `sin_cos_all`, a batched sine and cosine without std ([`sin_cos_kernel`]).
+//! `sin_cos_all`, a batched sine and cosine without std ([`sin_cos_array`]).
 //! Where `NAME` gets its sines and cosines is [`Trig`]: std's `sin_cos` (the
-//! default: measured faster than `sin_cos_all` here, see
-//! `benches/README.md`), `sin_cos_all`, the `libm` crate, or nobody (only
-//! the `NAME_sc` functions, for `#![no_std]` without dependencies). The same
+//! default, see [`Trig`] for why), the module's `sin_cos_array` (of only the
+//! angles the body reads), the `libm` crate, or nobody (only the `NAME_sc`
+//! functions, for `#![no_std]` without dependencies). The same
 //! model and options give a byte-identical file.
 //!
 //! ```
@@ -78,7 +78,7 @@ pub use hash::{canonical_text, fnv1a64, model_hash};
 pub use literal::float_literal_text;
 pub use rounding::{snap_rounding, SnappedConstant, ROUNDING_TOLERANCE};
 pub use scene::{generate_scene, payload_argument, scene_function_name, trace_scene, SceneFunction};
-pub use sin_cos::{sin_cos_batch, sin_cos_kernel};
+pub use sin_cos::{sin_cos_array, sin_cos_array_f32, sin_cos_batch, sin_cos_kernel};
 pub use trace::{sin_cos_from_q, sin_cos_inputs, trace, trace_sin_cos_inputs, FunctionKind, SinCosTrace};
 
 use crate::model::Model;
@@ -116,15 +116,24 @@ pub enum ForwardDynamicsMethod {
 /// a prismatic joint. Except with [`Trig::Inputs`], the module also has the
 /// contract's `NAME(q, …)`, which computes the sines and cosines and calls
 /// `NAME_sc`. Every module has `sin_cos_all(q)`, the batched sine and
-/// cosine of [`sin_cos_kernel`] (no std, no dependency).
+/// cosine of [`sin_cos_array`] (no std, no dependency, within 1 ulp).
+///
+/// Why `Std` stays the default although `Batched` measured as fast or
+/// faster (the sines and cosines alone 1.2–1.5x, whole UR5 and Panda
+/// functions 0–20 %, `benches/README.md`): DESIGN.md's contract makes std's
+/// `sin_cos` the default output, whose maximum error (0.56 ulp on the
+/// tests' angles) is below `sin_cos_array`'s (0.73 ulp), and the gain was
+/// measured on a loaded 2-core machine; `Batched` is one option away and
+/// `#![no_std]` as well.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Trig {
     /// `NAME(q, …)` calls `f64::sin_cos` (or `f32::sin_cos`) per joint:
     /// needs std.
     #[default]
     Std,
-    /// `NAME(q, …)` calls the module's `sin_cos_all`: `#![no_std]`, no
-    /// dependency.
+    /// `NAME(q, …)` calls the module's `sin_cos_array` on the angles its
+    /// body reads: `#![no_std]`, no dependency, faster than `Std` in the
+    /// benchmarks.
     Batched,
     /// `NAME(q, …)` calls `libm::sincos` (`libm::sincosf` for `f32`):
     /// `#![no_std]`, needs the `libm` crate.
@@ -465,7 +474,7 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
     let body = prettyplease::unparse(&file);
     let model_hash = model_hash(model);
     let header = header(model, options, &functions, &snapped, model_hash);
-    let kernel = sin_cos::KERNEL_SOURCE;
+    let kernel = sin_cos::kernel_source(options.scalar);
     Ok(GeneratedModule {
         source: format!("{header}\n{body}\n{kernel}"),
         functions,
@@ -491,7 +500,8 @@ fn trig_source(trig: Trig, scalar: ScalarType) -> &'static str {
     match (trig, scalar) {
         (Trig::Std, ScalarType::F64) => "`f64::sin_cos`",
         (Trig::Std, ScalarType::F32) => "`f32::sin_cos`",
-        (Trig::Batched, _) => "[`sin_cos_all`]",
+        (Trig::Batched, ScalarType::F64) => "`sin_cos_array` (only the angles the body reads)",
+        (Trig::Batched, ScalarType::F32) => "`sin_cos_array_f32` (only the angles the body reads)",
         (Trig::Libm, ScalarType::F64) => "`libm::sincos`",
         (Trig::Libm, ScalarType::F32) => "`libm::sincosf`",
         (Trig::Inputs, _) => "the caller",
@@ -525,16 +535,36 @@ fn wrapper(
         }
     };
     let body = if options.trig == Trig::Batched {
-        let all_unit = sc.angle_scale.iter().all(|k| k.is_none_or(|k| k == 1.0));
-        let theta = if all_unit {
-            quote!(q)
+        // Only the angles NAME_sc reads (the UR5's g reads 3 of 6, the Panda's functions 7 of 9).
+        let read: Vec<(usize, f64)> =
+            sc.angle_scale.iter().enumerate().filter_map(|(i, k)| k.map(|k| (i, k))).collect();
+        if read.len() == sc.angle_scale.len() && read.iter().all(|&(_, k)| k == 1.0) {
+            quote! {
+                let (s, c) = sin_cos_all(q);
+                #sc_name(&s, &c, #q_arg #(#rest),*)
+            }
         } else {
-            let entries = sc.angle_scale.iter().enumerate().map(|(i, k)| angle(i, k.unwrap_or(1.0)));
-            quote!(&[#(#entries),*])
-        };
-        quote! {
-            let (s, c) = sin_cos_all(#theta);
-            #sc_name(&s, &c, #q_arg #(#rest),*)
+            let batch = sin_cos::batch_function(options.scalar);
+            let angles = read.iter().map(|&(i, k)| angle(i, k));
+            let mut s_entries = Vec::new();
+            let mut c_entries = Vec::new();
+            let mut j = 0;
+            for k in &sc.angle_scale {
+                if k.is_some() {
+                    let lit = proc_macro2::Literal::usize_unsuffixed(j);
+                    s_entries.push(quote!(s[#lit]));
+                    c_entries.push(quote!(c[#lit]));
+                    j += 1;
+                } else {
+                    s_entries.push(quote!(0.0));
+                    c_entries.push(quote!(1.0));
+                }
+            }
+            let call = if read.is_empty() { quote!() } else { quote!(let (s, c) = #batch(&[#(#angles),*]);) };
+            quote! {
+                #call
+                #sc_name(&[#(#s_entries),*], &[#(#c_entries),*], #q_arg #(#rest),*)
+            }
         }
     } else {
         let mut stmts = Vec::new();
@@ -617,7 +647,9 @@ fn header(
     );
     let trig = match options.trig {
         Trig::Std => "NAME(q, ...) computes the sines and cosines by std's sin_cos (needs std)",
-        Trig::Batched => "NAME(q, ...) computes the sines and cosines by sin_cos_all (no_std, no dependency)",
+        Trig::Batched => {
+            "NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time (no_std, no dependency)"
+        }
         Trig::Libm => "NAME(q, ...) computes the sines and cosines by libm::sincos (no_std; needs the `libm` crate)",
         Trig::Inputs => "only NAME_sc(s, c, ...): the caller passes the sines and cosines (no_std, no dependency)",
     };
@@ -634,7 +666,7 @@ fn header(
         h,
         "// Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]\n\
          //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.\n\
-         // sin_cos_all(q): the batched sine and cosine, within 1 ulp for |q| <= 1.6e6 rad, no std{}.",
+         // sin_cos_all(q): the batched sine and cosine, within 1 ulp for every finite angle, no std{}.",
         if options.scalar == ScalarType::F32 { " (computed in f64, rounded to f32)" } else { "" }
     );
     let left_out: Vec<&str> = FunctionKind::ALL

@@ -419,7 +419,7 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
     let body = prettyplease::unparse(&file);
     let model_hash = super::model_hash(&scene.model);
     let header = header(scene, &opts, &functions, &snapped, model_hash);
-    let kernel = sin_cos::KERNEL_SOURCE;
+    let kernel = sin_cos::kernel_source(scalar);
     Ok(GeneratedModule {
         source: format!("{header}\n{body}\n{kernel}"),
         functions: Vec::new(),

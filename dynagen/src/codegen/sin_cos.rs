@@ -2,74 +2,88 @@
 //!
 //! `core` has no `sin` or `cos` on stable Rust, so a `#![no_std]` module
 //! either needs the `libm` crate, takes the sines and cosines as inputs, or
-//! brings its own: [`sin_cos_kernel`] is that one, written once in
-//! `sin_cos_kernel.rs` and copied verbatim into each module (it is compiled
-//! here too, for the tests and the benchmarks). Each module wraps it as
+//! brings its own: [`sin_cos_array`] is that one, written once in
+//! `sin_cos_kernel.rs` (and, for `f32` modules, `sin_cos_kernel_f32.rs`) and
+//! copied verbatim into each module (it is compiled here too, for the tests
+//! and the benchmarks). Each module has
 //!
 //! ```text
 //! pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF])
 //! ```
 //!
-//! a loop over the joints with a branch-free body, which the compiler
-//! vectorises. Accuracy: within 1 ulp of the exact sine and cosine for
-//! |q| ≤ 1.6e6 rad (measured by the tests against [`crate::DoubleDouble`],
+//! and its `NAME(q, …)` of [`Trig::Batched`](super::Trig::Batched) call
+//! `sin_cos_array` on the angles that `NAME_sc` reads, no others. Two
+//! angles at a time go through the same branch-free code: on x86-64 written
+//! out in SSE2 intrinsics (part of the default target; LLVM's own
+//! vectoriser took the scalar code for some lengths only), elsewhere the
+//! scalar code. A rare slow path (angles within ~1e-17·|q| of a multiple of
+//! π/2, |q| > 1.5e6 rad, NaN, ±∞) redoes the batch one angle at a time with
+//! an exact (Payne–Hanek) reduction. Accuracy: within
+//! 1 ulp of the exact sine and cosine for every finite angle (measured by
+//! the tests against [`crate::DoubleDouble`] and against 60-digit values,
 //! including the doubles nearest to multiples of π/2, where the reduced
-//! angle cancels). For `f32` modules, `sin_cos_all` converts each angle to
-//! `f64`, calls the kernel and rounds the results to `f32` (within 1 ulp of
-//! `f32` too).
+//! angle cancels). `f32` modules run [`sin_cos_array_f32`]: the same steps in
+//! `f64` with shorter polynomials and a two-part π/2, rounded to `f32`
+//! (within 1 ulp of `f32`).
 
 use super::ScalarType;
 use proc_macro2::TokenStream;
 use quote::quote;
 
 include!("sin_cos_kernel.rs");
+include!("sin_cos_kernel_f32.rs");
 
-/// The kernel's source text, as copied into generated modules.
+/// The kernel's source text, as copied into generated `f64` modules.
 pub(crate) const KERNEL_SOURCE: &str = include_str!("sin_cos_kernel.rs");
 
-/// The sines and cosines of `q`, entry by entry, by [`sin_cos_kernel`]:
-/// what a generated module's `sin_cos_all` computes, for any length.
+/// The kernel's source text for generated `f32` modules.
+pub(crate) const KERNEL_SOURCE_F32: &str =
+    concat!(include_str!("sin_cos_kernel.rs"), include_str!("sin_cos_kernel_f32.rs"));
+
+/// The kernel text a module of scalar `scalar` carries.
+pub(crate) fn kernel_source(scalar: ScalarType) -> &'static str {
+    match scalar {
+        ScalarType::F64 => KERNEL_SOURCE,
+        ScalarType::F32 => KERNEL_SOURCE_F32,
+    }
+}
+
+/// The name of the batch function of a module of scalar `scalar`.
+pub(crate) fn batch_function(scalar: ScalarType) -> TokenStream {
+    match scalar {
+        ScalarType::F64 => quote!(sin_cos_array),
+        ScalarType::F32 => quote!(sin_cos_array_f32),
+    }
+}
+
+/// The sines and cosines of `q`, entry by entry: what a generated module's
+/// `sin_cos_all` computes, for any length (the same as [`sin_cos_array`]).
 #[inline]
 pub fn sin_cos_batch<const N: usize>(q: &[f64; N]) -> ([f64; N], [f64; N]) {
-    let mut s = [0.0; N];
-    let mut c = [0.0; N];
-    for ((x, s), c) in q.iter().zip(&mut s).zip(&mut c) {
-        (*s, *c) = sin_cos_kernel(*x);
-    }
-    (s, c)
+    sin_cos_array(q)
 }
 
 /// The `sin_cos_all` function of a module of scalar `scalar` (the kernel
-/// itself is appended to the file as text, see [`KERNEL_SOURCE`]).
+/// itself is appended to the file as text, see [`kernel_source`]).
 pub(crate) fn sin_cos_all_item(scalar: ScalarType) -> TokenStream {
-    let (ty, call) = match scalar {
-        ScalarType::F64 => (quote!(f64), quote!((*s, *c) = sin_cos_kernel(*x);)),
-        ScalarType::F32 => (
-            quote!(f32),
-            quote! {
-                let (a, b) = sin_cos_kernel(f64::from(*x));
-                (*s, *c) = (a as f32, b as f32);
-            },
-        ),
+    let ty = match scalar {
+        ScalarType::F64 => quote!(f64),
+        ScalarType::F32 => quote!(f32),
     };
+    let batch = batch_function(scalar);
     let doc = match scalar {
         ScalarType::F64 => {
-            " The sines and cosines of `q`, joint by joint: within 1 ulp for |q| ≤ 1.6e6 rad, no std, vectorised."
+            " The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time."
         }
         ScalarType::F32 => {
-            " The sines and cosines of `q`, joint by joint, computed in `f64` by `sin_cos_kernel` and rounded to `f32`."
+            " The sines and cosines of `q`, joint by joint: within 1 ulp of `f32` for every finite angle (computed in `f64`), no std, two at a time."
         }
     };
     quote! {
         #[doc = #doc]
         #[inline]
         pub fn sin_cos_all(q: &[#ty; DOF]) -> ([#ty; DOF], [#ty; DOF]) {
-            let mut s = [0.0; DOF];
-            let mut c = [0.0; DOF];
-            for ((x, s), c) in q.iter().zip(&mut s).zip(&mut c) {
-                #call
-            }
-            (s, c)
+            #batch(q)
         }
     }
 }
@@ -105,11 +119,14 @@ mod tests {
         err / ulp.max(f64::from_bits(1))
     }
 
-    /// The test angles: random ones on several scales, the doubles nearest
-    /// (and next to) k·π/2 for every k up to 2000 and random k up to 1e5 rad.
+    /// The test angles: zeros, subnormals, tiny ones, the fast path's limits,
+    /// random ones on several scales, the doubles nearest (and next to)
+    /// k·π/2 for every k up to 2000 and random k up to 1e5 rad (the slow
+    /// path's cases: the reduced angle cancels to ~1e-18).
     fn angles() -> Vec<f64> {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
-        let mut xs = vec![0.0, 1e-300, 1e-20, 1e-9, 0.5, 1.0, core::f64::consts::FRAC_PI_4, 1e5, -1e5, 1.6e6];
+        let mut xs = vec![0.0, -0.0, 5e-324, -5e-324, 2.2e-308, 1e-300, 1e-20, 1e-9, 0.5, 1.0, 1e5, -1e5, 1.6e6];
+        xs.extend([core::f64::consts::FRAC_PI_4, 0.78, 0.7853981633974484, 1.4999999e6, 1.5e6, 1.5000001e6]);
         for scale in [1.0, 4.0, 100.0, 1e4, 1e5, 1.6e6] {
             for _ in 0..3000 {
                 xs.push(scale * (2.0 * rng.next() - 1.0));
@@ -156,6 +173,21 @@ mod tests {
     }
 
     #[test]
+    fn the_pair_is_the_scalar_fast_path_bit_for_bit() {
+        // On x86-64 sin_cos_pairs is SSE2 code of its own: the same operations, so the same bits.
+        let xs = angles();
+        for w in xs.windows(6) {
+            let (s, c, ok) = sin_cos_pairs([[w[0], w[1]], [w[2], w[3]], [w[4], w[5]]]);
+            let want: Vec<(f64, f64, bool)> = w.iter().map(|&x| sin_cos_fast(x)).collect();
+            assert_eq!(ok, want.iter().all(|r| r.2), "{w:?}");
+            for j in 0..6 {
+                assert_eq!(s[j / 2][j % 2].to_bits(), want[j].0.to_bits(), "{w:?}");
+                assert_eq!(c[j / 2][j % 2].to_bits(), want[j].1.to_bits(), "{w:?}");
+            }
+        }
+    }
+
+    #[test]
     fn std_sin_cos_within_one_ulp_on_the_same_angles() {
         // The same bound for the platform's libm: a check of the test itself.
         let (s, c, x) = worst(f64::sin_cos);
@@ -163,21 +195,176 @@ mod tests {
         assert!(s <= 1.0 && c <= 1.0, "sin {s} ulp, cos {c} ulp at x = {x:e}");
     }
 
+    /// sin and cos of large angles as double-doubles (hi, lo): `python3
+    /// scripts/sin_cos_minimax.py --references` (mpmath, 60 digits). Among
+    /// them 6381956970095103·2⁷⁹⁷, the double nearest to a multiple of π/2
+    /// (its cosine is −4.7e-19).
+    #[allow(clippy::type_complexity)]
+    const LARGE: [(f64, (f64, f64), (f64, f64)); 13] = [
+        (1600000.0, (-0.5414010921983009, -2.274244574012984e-17), (0.8407644482056118, -1.936105039722484e-17)),
+        (1700000.0, (0.5711113510481804, 2.3243112427694177e-17), (-0.8208725995572772, 4.031711604056672e-18)),
+        (30000000.0, (0.9641302978985832, 4.38901881977714e-18), (-0.2654294043130664, 2.6603162585193093e-17)),
+        (1000000000.0, (0.5458434494486996, 6.1757333566640775e-18), (0.8378871813639024, -5.4718713289282437e-17)),
+        (123456789.0, (0.9901147518020355, -8.980618906983069e-18), (0.14025968153390964, -5.935903437627408e-18)),
+        (
+            4503599627370496.0,
+            (0.8742173026236351, 1.1559913144165328e-17),
+            (-0.4855348677422206, -3.3821718984011717e-18),
+        ),
+        (
+            2500000000000000.0,
+            (0.8462676043361337, 5.0791875276131056e-17),
+            (-0.5327580518877035, 3.9826752396827006e-18),
+        ),
+        (1e+22, (-0.8522008497671888, -6.7806825896773284e-18), (0.523214785395139, -4.7143201076575164e-17)),
+        (1e+100, (-0.3806377310050287, 1.2782658365978341e-17), (0.9247242387519338, 1.669232482156043e-17)),
+        (1e+300, (-0.8178819121159085, -4.78135837440326e-17), (-0.5753861119575491, 2.6770761918787068e-17)),
+        (5.319372648326541e+255, (1.0, -1.098476220074687e-37), (-4.687165924254628e-19, 4.3720557429382733e-36)),
+        (
+            1.7976931348623157e+308,
+            (0.004961954789184062, -2.5049377676494104e-19),
+            (-0.9999876894265599, -2.6032890267216748e-17),
+        ),
+        (-8500000000000.0, (-0.6391363954162236, 4.613126468627203e-17), (0.7690934065861941, -4.590297231356081e-17)),
+    ];
+
     #[test]
-    fn batch_is_the_kernel_entry_by_entry_and_nan_stays_nan() {
-        let q = [0.3, -2.0, 1e5, f64::NAN, f64::INFINITY, 0.0];
-        let (s, c) = sin_cos_batch(&q);
-        for i in 0..3 {
-            assert_eq!((s[i], c[i]), sin_cos_kernel(q[i]));
-            assert!((s[i] - q[i].sin()).abs() < 1e-15 && (c[i] - q[i].cos()).abs() < 1e-15);
+    fn kernel_within_one_ulp_on_large_angles() {
+        let mut worst = 0.0f64;
+        for (x, (sh, sl), (ch, cl)) in LARGE {
+            let (gs, gc) = sin_cos_kernel(x);
+            let (us, uc) = (ulps(gs, DoubleDouble::new(sh, sl)), ulps(gc, DoubleDouble::new(ch, cl)));
+            assert!(us <= 1.0 && uc <= 1.0, "x = {x:e}: sin {gs:e} ({us} ulp), cos {gc:e} ({uc} ulp)");
+            worst = worst.max(us).max(uc);
+            let (ns, nc) = sin_cos_kernel(-x);
+            assert_eq!((ns, nc), (-gs, gc), "odd sine, even cosine at x = {x:e}");
         }
-        assert!(s[3].is_nan() && c[3].is_nan() && s[4].is_nan() && c[4].is_nan());
-        assert_eq!((s[5], c[5]), (0.0, 1.0));
+        eprintln!("large angles (1.6e6 to 1.8e308 rad): max error {worst:.3} ulp");
+    }
+
+    #[test]
+    fn zeros_keep_their_sign_and_nan_and_infinities_give_nan() {
+        assert_eq!(sin_cos_kernel(0.0), (0.0, 1.0));
+        let (s, c) = sin_cos_kernel(-0.0);
+        assert!(s == 0.0 && s.is_sign_negative() && c == 1.0);
+        assert_eq!(sin_cos_kernel(-5e-324), (-5e-324, 1.0));
+        for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let (s, c) = sin_cos_kernel(x);
+            assert!(s.is_nan() && c.is_nan(), "{x}");
+        }
+    }
+
+    #[test]
+    fn batch_is_the_kernel_entry_by_entry_for_every_length() {
+        // Fast angles, then slow ones (NaN, a near multiple of π/2, a huge one)
+        // in every position: the slow path redoes the whole batch.
+        let mut rng = Rng(7);
+        let fast: Vec<f64> = (0..9).map(|_| 8.0 * rng.next() - 4.0).collect();
+        let near = (DoubleDouble::new(core::f64::consts::FRAC_PI_2, 6.123233995736766e-17).mul_f64(7.0)).to_f64();
+        for slow in [None, Some(f64::NAN), Some(near), Some(1e300), Some(-f64::INFINITY)] {
+            for at in 0..9 {
+                let mut q = [0.0; 9];
+                q.copy_from_slice(&fast);
+                if let Some(x) = slow {
+                    q[at] = x;
+                }
+                fn check<const N: usize>(q: &[f64]) {
+                    let q: [f64; N] = q[..N].try_into().unwrap();
+                    let (s, c) = sin_cos_array(&q);
+                    for i in 0..N {
+                        let (ks, kc) = sin_cos_kernel(q[i]);
+                        assert!(s[i].to_bits() == ks.to_bits() && c[i].to_bits() == kc.to_bits(), "N {N}, {q:?}");
+                    }
+                }
+                check::<1>(&q);
+                check::<2>(&q);
+                check::<3>(&q);
+                check::<4>(&q);
+                check::<5>(&q);
+                check::<6>(&q);
+                check::<7>(&q);
+                check::<8>(&q);
+                check::<9>(&q);
+            }
+        }
+        // The fast path takes every angle up to 1.5e6 rad but the few near multiples of π/2.
+        let fast_taken = (0..20000).filter(|_| sin_cos_fast(3e6 * rng.next() - 1.5e6).2).count();
+        assert_eq!(fast_taken, 20000);
+        let (s, c) = sin_cos_batch(&[0.3, -2.0, 1e5]);
+        assert!((s[1] - (-2.0f64).sin()).abs() < 1e-15 && (c[2] - 1e5f64.cos()).abs() < 1e-15);
+    }
+
+    /// |got − exact| in ulps of `f32` at the exact value.
+    fn ulps_f32(got: f32, exact: DoubleDouble) -> f64 {
+        let err = (DoubleDouble::from(f64::from(got)) - exact).to_f64().abs();
+        let e = exact.to_f64().abs() as f32;
+        if e == 0.0 {
+            return if got == 0.0 { 0.0 } else { f64::INFINITY };
+        }
+        // The spacing of f32 at |exact| (the smaller one just below a power of two).
+        let below = f32::from_bits(e.to_bits() - 1);
+        let ulp = if f64::from(e) > exact.to_f64().abs() {
+            f64::from(e) - f64::from(below)
+        } else {
+            f64::from(f32::from_bits(e.to_bits() + 1)) - f64::from(e)
+        };
+        err / ulp
+    }
+
+    #[test]
+    fn f32_batch_within_one_ulp_of_f32() {
+        // Random angles, and the f32 nearest to k·π/2 and its neighbours for k up to 1e5 rad.
+        let mut rng = Rng(11);
+        let mut xs: Vec<f32> = vec![0.0, -0.0, 1e-45, 1e-30, 0.5, 1.0];
+        for scale in [1.0, 4.0, 100.0, 1e4, 1e5] {
+            for _ in 0..2000 {
+                xs.push((scale * (2.0 * rng.next() - 1.0)) as f32);
+            }
+        }
+        for _ in 0..3000 {
+            let k = (rng.next() * 1e5 / core::f64::consts::FRAC_PI_2).round();
+            let x = (k * core::f64::consts::FRAC_PI_2) as f32;
+            for d in -2i32..=2 {
+                xs.push(f32::from_bits((x.to_bits() as i32 + d) as u32));
+            }
+        }
+        let mut worst = (0.0f64, 0.0f64);
+        for chunk in xs.chunks_exact(3) {
+            let q = [chunk[0], chunk[1], chunk[2]];
+            let (s, c) = sin_cos_array_f32(&q);
+            for i in 0..3 {
+                let (es, ec) = DoubleDouble::from(f64::from(q[i])).sin_cos();
+                worst.0 = worst.0.max(ulps_f32(s[i], es));
+                worst.1 = worst.1.max(ulps_f32(c[i], ec));
+            }
+        }
+        eprintln!("sin_cos_array_f32: max error sin {:.3} ulp, cos {:.3} ulp (of f32)", worst.0, worst.1);
+        assert!(worst.0 <= 1.0 && worst.1 <= 1.0, "{worst:?}");
+        let (s, c) = sin_cos_array_f32(&[f32::NAN, f32::INFINITY]);
+        assert!(s.iter().chain(&c).all(|v| v.is_nan()));
+        let (s, c) = sin_cos_array_f32(&[-0.0, 0.0]);
+        assert!(s[0] == 0.0 && s[0].is_sign_negative() && s[1].is_sign_positive() && c == [1.0, 1.0]);
+        // Beyond the fast path: the f64 kernel, rounded.
+        for x in [2e6f32, -3.5e7, 1e20, f32::MAX] {
+            let (s, c) = sin_cos_array_f32(&[x]);
+            let (a, b) = sin_cos_kernel(f64::from(x));
+            assert_eq!((s[0], c[0]), (a as f32, b as f32));
+        }
+        // The fast path takes the f32 nearest to every multiple of π/2 up to 1e5 rad.
+        for k in 1..=63662 {
+            let x = (k as f64 * core::f64::consts::FRAC_PI_2) as f32;
+            for d in -1i32..=1 {
+                assert!(sin_cos_fast_f32(f32::from_bits((x.to_bits() as i32 + d) as u32)).2, "k = {k}");
+            }
+        }
     }
 
     #[test]
     fn kernel_source_is_the_compiled_kernel() {
         assert!(KERNEL_SOURCE.contains("pub fn sin_cos_kernel(x: f64) -> (f64, f64)"));
-        assert!(!KERNEL_SOURCE.contains("//!"), "inner docs cannot be include!d into a module");
+        assert!(KERNEL_SOURCE.contains("pub fn sin_cos_array<const N: usize>"));
+        assert!(KERNEL_SOURCE_F32.starts_with(KERNEL_SOURCE));
+        assert!(KERNEL_SOURCE_F32.contains("pub fn sin_cos_array_f32<const N: usize>"));
+        assert!(!KERNEL_SOURCE_F32.contains("//!"), "inner docs cannot be include!d into a module");
     }
 }
