@@ -488,7 +488,7 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
         let sc_name = format!("{name}_sc");
         let signature = emit::Signature { name: sc_name.clone(), params: sc_params, output: shape(f) };
         let doc = format!("{}\n\n{}", doc_of(scene, f, &sc.function.op_count()), super::sc_doc(has_prismatic));
-        items.push(emit::emit_function(&sc.function, &signature, scalar, trig, n, &doc)?);
+        items.extend(emit::emit_function(&sc.function, &signature, scalar, trig, n, &doc, options.split_lets)?);
         if trig != Trig::Inputs {
             let doc = format!(
                 "{}\n\n The sines and cosines of the joint angles by {}, then [`{sc_name}`].",
