@@ -445,6 +445,7 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
     items.extend(consts.items);
     items.push(parse_item(sin_cos::sin_cos_all_item(options.scalar))?);
     let has_prismatic = m.bodies.iter().any(|b| b.joint.kind == crate::model::JointKind::Prismatic);
+    let mut split_functions = Vec::new();
     for (kind, on) in wanted {
         if !on {
             continue;
@@ -476,6 +477,9 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
                 &doc,
                 options.split_lets,
             )?;
+            if let Some(parts) = split::parts_of(&emitted) {
+                split_functions.push((sc_name.clone(), parts));
+            }
             items.extend(emitted);
             if options.trig != Trig::Inputs {
                 let doc = format!(
@@ -493,7 +497,8 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
     let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
     let body = prettyplease::unparse(&file);
     let model_hash = model_hash(model);
-    let header = header(model, options, &functions, &snapped, model_hash);
+    let header = header(model, options, &functions, &snapped, model_hash)
+        + &split::header_note(options.split_lets, &split_functions);
     let kernel = sin_cos::KERNEL_SOURCE;
     Ok(GeneratedModule {
         source: format!("{header}\n{body}\n{kernel}"),

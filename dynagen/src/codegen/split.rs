@@ -243,3 +243,26 @@ impl Plan {
         Plan { parts, slot, slots }
     }
 }
+
+/// The header's line on split functions (`split`: each split function's
+/// name and number of parts); empty when none was split, so that modules
+/// without long bodies do not change.
+pub(crate) fn header_note(max_lets: Option<usize>, split: &[(String, usize)]) -> String {
+    match max_lets {
+        Some(max) if !split.is_empty() => {
+            let list: Vec<String> = split.iter().map(|(name, parts)| format!("{name} ({parts})")).collect();
+            format!(
+                "// Long bodies (over {max} lets) cut into private parts NAME_part1, NAME_part2, ... called in order \
+                 (split_lets): {}.\n",
+                list.join(", ")
+            )
+        }
+        _ => String::new(),
+    }
+}
+
+/// The number of parts of the items [`assemble`] made for one function, if
+/// it was split.
+pub(crate) fn parts_of(items: &[syn::Item]) -> Option<usize> {
+    (items.len() > 1).then(|| items.len() - 1)
+}
