@@ -2,7 +2,7 @@
 //! skewed chain of `dynagen/tests/support/skewed_chain.rs` (the chain of the
 //! operation-count growth test): 4 joints whole and cut into parts of at
 //! most 150 `let`s (every function split, to compare bit for bit), and 12
-//! joints with the default split (its forward dynamics, about 5,400 `let`s,
+//! joints with the default split (its forward dynamics, over 5,000 `let`s,
 //! would overflow rustc's stack in this debug build if it were one
 //! function). The UR5 scene with every run-time input is written again cut
 //! into parts of at most 60 `let`s (`ur5_inputs_split.rs`), for the

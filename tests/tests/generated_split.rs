@@ -75,6 +75,10 @@ fn the_split_modules_are_cut_into_parts_within_the_budget() {
         }
     }
     assert!(!CHAIN4_WHOLE.contains("_part"));
+    // The header names the split functions, and only when one was split.
+    assert!(CHAIN12.contains("// Long bodies (over 2500 lets) cut into private parts"));
+    assert!(CHAIN12.contains("forward_dynamics_sc ("));
+    assert!(!CHAIN4_WHOLE.contains("// Long bodies"));
     // The 12-joint chain's longest body is past the ~2,900 lets at which
     // rustc overflows its stack in debug builds.
     let traced = dynagen::codegen::generate(&skewed_chain::skewed_chain(12), &Default::default()).unwrap();
