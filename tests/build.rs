@@ -3,11 +3,13 @@
 //! in `generated/`), and three scene modules for `tests/generated_scene.rs`:
 //! the bundled `ur5_controller` scene (from its TOML file), a UR5 with every
 //! run-time input (gravity, tip wrench, a payload) and a lock, and an f32
-//! UR5 with only τ and no gravity.
+//! UR5 with only τ and no gravity; the stiff robots (`build_stiff.rs`) and
+//! the split long-chain modules (`build_split.rs`).
 
 use dynagen::codegen::ScalarType;
 use dynagen::scene::{Function, Gravity, Scene};
 
+mod build_split;
 mod build_stiff;
 
 fn main() {
@@ -24,16 +26,7 @@ fn main() {
         .scene_file("../dynagen/scenes/ur5_controller.toml")
         .generate()
         .expect("generating the ur5_controller scene");
-    let inputs = Scene::new()
-        .name("ur5_inputs")
-        .function(Function::Coriolis)
-        .gravity(Gravity::Input)
-        .tip_wrench("ee_link")
-        .payload_input("ee_link")
-        .lock("wrist_3_joint", 0.2)
-        .armature("elbow_joint", 0.2)
-        .coulomb("shoulder_lift_joint", 2.0);
-    dynagen::Builder::new().urdf(ur5).scene(inputs).generate().expect("generating the ur5_inputs scene");
+    dynagen::Builder::new().urdf(ur5).scene(ur5_inputs_scene()).generate().expect("generating the ur5_inputs scene");
     let torque_only = Scene::new()
         .name("ur5_tau_f32")
         .functions([Function::InverseDynamics])
@@ -41,4 +34,19 @@ fn main() {
         .scalar(ScalarType::F32);
     dynagen::Builder::new().urdf(ur5).scene(torque_only).generate().expect("generating the ur5_tau_f32 scene");
     build_stiff::generate();
+    build_split::generate();
+}
+
+/// The UR5 with every run-time input (gravity, tip wrench, a payload), a
+/// lock, armature and friction.
+fn ur5_inputs_scene() -> Scene {
+    Scene::new()
+        .name("ur5_inputs")
+        .function(Function::Coriolis)
+        .gravity(Gravity::Input)
+        .tip_wrench("ee_link")
+        .payload_input("ee_link")
+        .lock("wrist_3_joint", 0.2)
+        .armature("elbow_joint", 0.2)
+        .coulomb("shoulder_lift_joint", 2.0)
 }

@@ -2,28 +2,13 @@
 //! number of joints for τ (RNEA is O(n)), quadratic for M (n(n+1)/2
 //! entries, each a projection of a force carried up the chain).
 
+#[path = "support/skewed_chain.rs"]
+mod skewed_chain;
+
 use dynagen::codegen::{trace, FunctionKind};
-use dynagen::model::{Inertial, JointDescription, RobotBuilder};
 use dynagen::symbolic::Rewrites;
 use dynagen::Model;
-
-/// A chain with skewed placements and full inertias, so that nothing folds
-/// away by accident of symmetry.
-fn chain(n: usize) -> Model {
-    let mut b = RobotBuilder::new("chain").link("l0", None);
-    for i in 1..=n {
-        let k = i as f64;
-        b = b.link(
-            &format!("l{i}"),
-            Some(Inertial::new(1.0 + 0.1 * k, [0.05, 0.02, 0.2], [0.03, 0.04, 0.02, 0.001, -0.002, 0.003])),
-        );
-        let axis = [[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]][i % 3];
-        let j = JointDescription::revolute(&format!("j{i}"), &format!("l{}", i - 1), &format!("l{i}"), axis)
-            .origin([0.1, 0.02 * k, 0.3], [0.1 * k, 0.2, -0.3]);
-        b = b.joint(j);
-    }
-    b.build().unwrap()
-}
+use skewed_chain::skewed_chain as chain;
 
 #[test]
 fn op_counts_grow_linearly_for_tau_and_quadratically_for_m() {

@@ -252,6 +252,14 @@ impl Builder {
         self.options.snap_rounding = on;
         self
     }
+    /// The longest body emitted as one function, in `let`s (`None`: no
+    /// limit); longer ones become private parts (default
+    /// [`DEFAULT_SPLIT_LETS`](super::DEFAULT_SPLIT_LETS); see
+    /// [`CodegenOptions::split_lets`]).
+    pub fn split_lets(mut self, lets: Option<usize>) -> Self {
+        self.options.split_lets = lets;
+        self
+    }
     /// All code-generation options at once (replaces the scalar, forward
     /// dynamics, snap and function choices made so far).
     pub fn options(mut self, options: CodegenOptions) -> Self {

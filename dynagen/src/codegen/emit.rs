@@ -6,6 +6,7 @@
 //! generator's run time).
 
 use super::literal::float_literal_text;
+use super::split::{self, Body, Line, PartParam};
 use super::trace::FunctionKind;
 use super::{CodegenError, ScalarType, Trig};
 use crate::symbolic::{Function, Node};
@@ -25,7 +26,7 @@ pub(crate) fn scalar_type(scalar: ScalarType) -> TokenStream {
 fn ident(name: &str) -> Ident {
     Ident::new(name, Span::call_site())
 }
-fn path(id: Ident) -> Expr {
+pub(super) fn path(id: Ident) -> Expr {
     Expr::Path(syn::ExprPath { attrs: vec![], qself: None, path: syn::Path::from(id) })
 }
 fn float(x: f64, scalar: ScalarType) -> Option<Expr> {
@@ -38,7 +39,7 @@ fn float(x: f64, scalar: ScalarType) -> Option<Expr> {
         Expr::Lit(syn::ExprLit { attrs: vec![], lit: syn::Lit::Float(syn::LitFloat::new(digits, Span::call_site())) });
     Some(if neg { unary(UnOp::Neg(Default::default()), lit) } else { lit })
 }
-fn index(array: &str, i: usize) -> Expr {
+pub(super) fn index(array: &str, i: usize) -> Expr {
     Expr::Index(syn::ExprIndex {
         attrs: vec![],
         expr: Box::new(path(ident(array))),
@@ -78,10 +79,10 @@ fn call(segments: &[&str], arg: &Expr) -> Expr {
         args: std::iter::once(arg.clone()).collect(),
     })
 }
-fn pat(id: Ident) -> Pat {
+pub(super) fn pat(id: Ident) -> Pat {
     Pat::Ident(syn::PatIdent { attrs: vec![], by_ref: None, mutability: None, ident: id, subpat: None })
 }
-fn let_stmt(pat: Pat, e: Expr) -> Stmt {
+pub(super) fn let_stmt(pat: Pat, e: Expr) -> Stmt {
     Stmt::Local(syn::Local {
         attrs: vec![],
         let_token: Default::default(),
@@ -206,7 +207,8 @@ pub(crate) fn return_type(kind: FunctionKind, scalar: ScalarType) -> TokenStream
 
 /// `pub fn name(inputs…) -> output { let …; [outputs] }`: one `let` per kept
 /// operation, named `t{k}` in order (`s{k}`/`c{k}` for a sine and cosine),
-/// constants written in place as literals, inputs read as `q[i]`.
+/// constants written in place as literals, inputs read as `q[i]`. A body of
+/// more than `split_lets` `let`s is cut into private parts ([`split`]).
 pub(crate) fn emit_function(
     f: &Function,
     signature: &Signature,
@@ -214,7 +216,8 @@ pub(crate) fn emit_function(
     trig: Trig,
     n: usize,
     doc: &str,
-) -> Result<syn::Item, CodegenError> {
+    split_lets: Option<usize>,
+) -> Result<Vec<syn::Item>, CodegenError> {
     let libm_sqrt = match scalar {
         ScalarType::F64 => "sqrt",
         ScalarType::F32 => "sqrtf",
@@ -224,7 +227,13 @@ pub(crate) fn emit_function(
     // sine; the cosine's name is kept in `cos_ref`).
     let mut refs: Vec<Expr> = Vec::with_capacity(nodes.len());
     let mut cos_ref: Vec<Option<Expr>> = vec![None; nodes.len()];
-    let mut stmts = Vec::new();
+    // For the split: the value each node is (its sine for a SinCos node;
+    // the cosine's in `cos_value`), or the input array it reads.
+    let mut value: Vec<Option<u32>> = Vec::with_capacity(nodes.len());
+    let mut cos_value: Vec<Option<u32>> = vec![None; nodes.len()];
+    let mut input: Vec<Option<u32>> = Vec::with_capacity(nodes.len());
+    let mut names: Vec<Ident> = Vec::new();
+    let mut lines: Vec<Line> = Vec::new();
     // For each SinCos node: whether its sine and cosine are read.
     let mut sin_used = vec![false; nodes.len()];
     let mut cos_used = vec![false; nodes.len()];
@@ -238,13 +247,19 @@ pub(crate) fn emit_function(
     let mut k = 0usize;
     for (id, node) in nodes.iter().enumerate() {
         let r = |i: u32| &refs[i as usize];
+        let uses: Vec<u32> = node.operands().filter_map(|a| value[a as usize]).collect();
+        let inputs: Vec<u32> = node.operands().filter_map(|a| input[a as usize]).collect();
+        let (mut this_value, mut this_input) = (None, None);
         let reference = match *node {
             Node::Const(_) => {
                 let x = node.constant().unwrap_or_default();
                 float(x, scalar)
                     .ok_or_else(|| CodegenError::NonFiniteConstant { function: f.name().to_string(), value: x })?
             }
-            Node::Input { name, index: i } => index(&f.input_names()[name as usize], i as usize),
+            Node::Input { name, index: i } => {
+                this_input = Some(name);
+                index(&f.input_names()[name as usize], i as usize)
+            }
             Node::SinCos(a) => {
                 let (s, c) = (format_ident!("s{}", k), format_ident!("c{}", k));
                 k += 1;
@@ -258,12 +273,29 @@ pub(crate) fn emit_function(
                     (true, false) => let_stmt(pat(s.clone()), method(a, "sin")),
                     _ => let_stmt(pat(c.clone()), method(a, "cos")),
                 };
-                stmts.push(stmt);
+                let mut defs = Vec::new();
+                if sin_used[id] {
+                    this_value = Some(names.len() as u32);
+                    defs.push(names.len() as u32);
+                    names.push(s.clone());
+                }
+                if cos_used[id] || !sin_used[id] {
+                    cos_value[id] = Some(names.len() as u32);
+                    defs.push(names.len() as u32);
+                    names.push(c.clone());
+                }
+                lines.push(Line { stmt, defs, uses, inputs });
                 cos_ref[id] = Some(path(c));
                 path(s)
             }
-            Node::Sin(sc) => refs[sc as usize].clone(),
-            Node::Cos(sc) => cos_ref[sc as usize].clone().expect("a Cos reads a SinCos"),
+            Node::Sin(sc) => {
+                this_value = value[sc as usize];
+                refs[sc as usize].clone()
+            }
+            Node::Cos(sc) => {
+                this_value = cos_value[sc as usize];
+                cos_ref[sc as usize].clone().expect("a Cos reads a SinCos")
+            }
             _ => {
                 let t = format_ident!("t{}", k);
                 k += 1;
@@ -282,14 +314,20 @@ pub(crate) fn emit_function(
                     },
                     _ => unreachable!("handled above"),
                 };
-                stmts.push(let_stmt(pat(t.clone()), e));
+                this_value = Some(names.len() as u32);
+                lines.push(Line { stmt: let_stmt(pat(t.clone()), e), defs: vec![names.len() as u32], uses, inputs });
+                names.push(t.clone());
                 path(t)
             }
         };
         refs.push(reference);
+        value.push(this_value);
+        input.push(this_input);
     }
-    let out: Vec<Expr> = f.outputs().iter().map(|&o| refs[o as usize].clone()).collect();
-    let result = match signature.output {
+    let outputs: Vec<(Expr, Option<u32>)> =
+        f.outputs().iter().map(|&o| (refs[o as usize].clone(), value[o as usize])).collect();
+    let output = signature.output;
+    let result = move |out: Vec<Expr>| match output {
         Shape::Matrix(r, c) => {
             let (r, c) = (r.value(n), c.value(n));
             array(out.chunks(c.max(1)).take(r).map(|row| array(row.iter().cloned())))
@@ -311,8 +349,16 @@ pub(crate) fn emit_function(
             #(#unused)*
         }
     };
-    let mut item: syn::ItemFn = syn::parse2(shell).map_err(|e| CodegenError::Internal(e.to_string()))?;
-    item.block.stmts.extend(stmts);
-    item.block.stmts.push(Stmt::Expr(result, None));
-    Ok(syn::Item::Fn(item))
+    let item: syn::ItemFn = syn::parse2(shell).map_err(|e| CodegenError::Internal(e.to_string()))?;
+    let part_params: Vec<PartParam> = signature
+        .params
+        .iter()
+        .map(|p| PartParam {
+            name: ident(&p.name),
+            typed: p.tokens(scalar),
+            input: f.input_names().iter().position(|x| *x == p.name).map(|i| i as u32),
+        })
+        .collect();
+    let body = Body { lines, names, outputs };
+    split::assemble(item, body, &part_params, &scalar_type(scalar), split_lets, result)
 }

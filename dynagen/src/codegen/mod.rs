@@ -69,6 +69,7 @@ mod literal;
 mod rounding;
 mod scene;
 mod sin_cos;
+mod split;
 mod trace;
 
 pub use builder::{module_name, BuildError, Builder, GeneratedFile};
@@ -213,7 +214,20 @@ pub struct CodegenOptions {
     pub source: Option<String>,
     /// Where the sines and cosines come from ([`Trig::Std`]).
     pub trig: Trig,
+    /// A function body of more than this many `let`s is emitted as private
+    /// parts of at most this many, called in order by the public function
+    /// ([`DEFAULT_SPLIT_LETS`]; `None`: never split). Splitting keeps rustc
+    /// from overflowing its stack on long bodies in debug builds and bounds
+    /// LLVM's super-linear passes in release builds; the results are bit
+    /// for bit those of the unsplit body.
+    pub split_lets: Option<usize>,
 }
+
+/// The default [`CodegenOptions::split_lets`]: 2,500 `let`s. rustc with
+/// debug information overflows its stack at about 2,900 `let`s in one
+/// function; the largest body of a bundled robot (the torso's forward
+/// dynamics, 2,104) stays whole. Measured in `benches/README.md`.
+pub const DEFAULT_SPLIT_LETS: usize = 2500;
 
 impl Default for CodegenOptions {
     fn default() -> Self {
@@ -226,6 +240,7 @@ impl Default for CodegenOptions {
             rewrites: Rewrites::default(),
             source: None,
             trig: Trig::default(),
+            split_lets: Some(DEFAULT_SPLIT_LETS),
         }
     }
 }
@@ -264,6 +279,11 @@ impl CodegenOptions {
     /// Sets where the sines and cosines come from.
     pub fn trig(mut self, trig: Trig) -> Self {
         self.trig = trig;
+        self
+    }
+    /// Sets the longest body emitted as one function (`None`: no limit).
+    pub fn split_lets(mut self, lets: Option<usize>) -> Self {
+        self.split_lets = lets;
         self
     }
     /// Names the model's source for the header.
@@ -434,6 +454,7 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
     items.extend(consts.items);
     items.push(parse_item(sin_cos::sin_cos_all_item(options.scalar))?);
     let has_prismatic = m.bodies.iter().any(|b| b.joint.kind == crate::model::JointKind::Prismatic);
+    let mut split_functions = Vec::new();
     for (kind, on) in wanted {
         if !on {
             continue;
@@ -456,7 +477,19 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
             let params = params.into_iter().map(emit::Param::dof).collect();
             let signature = emit::Signature { name: sc_name.clone(), params, output: emit::Shape::of(kind) };
             let doc = format!("{}\n\n{}", doc_of(kind, model, &sc.function.op_count()), sc_doc(has_prismatic));
-            items.push(emit::emit_function(&sc.function, &signature, options.scalar, options.trig, n, &doc)?);
+            let emitted = emit::emit_function(
+                &sc.function,
+                &signature,
+                options.scalar,
+                options.trig,
+                n,
+                &doc,
+                options.split_lets,
+            )?;
+            if let Some(parts) = split::parts_of(&emitted) {
+                split_functions.push((sc_name.clone(), parts));
+            }
+            items.extend(emitted);
             if options.trig != Trig::Inputs {
                 let doc = format!(
                     "{}\n\n The sines and cosines of the joint angles by {}, then [`{sc_name}`].",
@@ -473,7 +506,8 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
     let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
     let body = prettyplease::unparse(&file);
     let model_hash = model_hash(model);
-    let header = header(model, options, &functions, &snapped, model_hash);
+    let header = header(model, options, &functions, &snapped, model_hash)
+        + &split::header_note(options.split_lets, &split_functions);
     let kernel = sin_cos::kernel_source(options.scalar);
     Ok(GeneratedModule {
         source: format!("{header}\n{body}\n{kernel}"),

@@ -380,6 +380,7 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
     items.push(parse_item(sin_cos::sin_cos_all_item(scalar))?);
     let has_prismatic = model.bodies.iter().any(|b| b.joint.kind == JointKind::Prismatic);
     let mut functions = Vec::new();
+    let mut split_functions = Vec::new();
     for f in &scene.functions {
         let name = scene_function_name(f);
         let traced = trace_unfactored(scene, &model, f, options.forward_dynamics, options.rewrites)?;
@@ -395,7 +396,11 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
         let sc_name = format!("{name}_sc");
         let signature = emit::Signature { name: sc_name.clone(), params: sc_params, output: shape(f) };
         let doc = format!("{}\n\n{}", doc_of(scene, f, &sc.function.op_count()), super::sc_doc(has_prismatic));
-        items.push(emit::emit_function(&sc.function, &signature, scalar, trig, n, &doc)?);
+        let emitted = emit::emit_function(&sc.function, &signature, scalar, trig, n, &doc, options.split_lets)?;
+        if let Some(parts) = super::split::parts_of(&emitted) {
+            split_functions.push((sc_name.clone(), parts));
+        }
+        items.extend(emitted);
         if trig != Trig::Inputs {
             let doc = format!(
                 "{}\n\n The sines and cosines of the joint angles by {}, then [`{sc_name}`].",
@@ -418,7 +423,8 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
     let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
     let body = prettyplease::unparse(&file);
     let model_hash = super::model_hash(&scene.model);
-    let header = header(scene, &opts, &functions, &snapped, model_hash);
+    let header = header(scene, &opts, &functions, &snapped, model_hash)
+        + &super::split::header_note(options.split_lets, &split_functions);
     let kernel = sin_cos::kernel_source(scalar);
     Ok(GeneratedModule {
         source: format!("{header}\n{body}\n{kernel}"),

@@ -41,6 +41,11 @@ pub struct Args {
     /// Keep constants that are 0 or ±1 up to rounding as they are.
     #[arg(long)]
     pub no_snap: bool,
+    /// Cut a function body of more than N `let`s into private parts of at
+    /// most N (default 2500; 0: never cut). Long bodies overflow rustc's
+    /// stack in debug builds and compile slowly in release builds.
+    #[arg(long, value_name = "N")]
+    pub split_lets: Option<usize>,
     /// A scene (TOML; see the documentation of `dynagen::scene`): only its
     /// functions, its constants folded in, its run-time inputs (gravity,
     /// tip wrench, payloads) as extra arguments. --functions replaces its
@@ -90,6 +95,9 @@ fn builder(args: &Args, source: &RobotSource) -> Result<(Builder, dynagen::Model
         .forward_dynamics(if args.ldlt { ForwardDynamicsMethod::Ldlt } else { ForwardDynamicsMethod::Aba })
         .snap_rounding(!args.no_snap)
         .trig(trig);
+    if let Some(n) = args.split_lets {
+        options.split_lets = (n > 0).then_some(n);
+    }
     options.source = Some(source.to_string());
     let mut b = Builder::new().model(model.clone()).options(options);
     if let Some(f) = &args.functions {
