@@ -5,11 +5,11 @@
 // Model content hash (FNV-1a 64 of its canonical text): c1ed6c647a88e920
 // Gravity: [0.0, 0.0, -9.81] m/s^2 in the base frame, folded in.
 // Options: scalar f64; forward dynamics by the articulated-body algorithm; rounding snap on (2 constants); inertia regrouping on; like terms on, constant products on, constant sums on.
-// Trigonometry: NAME(q, ...) computes the sines and cosines by sin_cos_all (no_std, no dependency).
+// Trigonometry: NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time (no_std, no dependency).
 // Forward dynamics: the articulated-body algorithm, although CRBA + LTDL takes fewer operations on short chains: it is the accurate one (64-joint chain against double-double: 1e-12 against 7e-10).
 // Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]
 //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.
-// sin_cos_all(q): the batched sine and cosine, within 1 ulp for |q| <= 1.6e6 rad, no std.
+// sin_cos_all(q): the batched sine and cosine, within 1 ulp for every finite angle, no std.
 // Operation counts:
 //   inverse_dynamics: 793 ops: 220 add, 131 sub, 436 mul, 0 div, 0 neg, 0 sqrt, 6 sin_cos
 //   mass_matrix: 624 ops: 162 add, 107 sub, 349 mul, 0 div, 0 neg, 0 sqrt, 6 sin_cos
@@ -30,15 +30,10 @@ pub const JOINT_NAMES: [&str; DOF] = [
     "right_elbow_joint",
     "right_wrist_joint",
 ];
-/// The sines and cosines of `q`, joint by joint: within 1 ulp for |q| ≤ 1.6e6 rad, no std, vectorised.
+/// The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time.
 #[inline]
 pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
-    let mut s = [0.0; DOF];
-    let mut c = [0.0; DOF];
-    for ((x, s), c) in q.iter().zip(&mut s).zip(&mut c) {
-        (*s, *c) = sin_cos_kernel(*x);
-    }
-    (s, c)
+    sin_cos_array(q)
 }
 /// Inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton-Euler algorithm.
 ///
@@ -852,15 +847,20 @@ pub fn inverse_dynamics_sc(
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 793 ops: 220 add, 131 sub, 436 mul, 0 div, 0 neg, 0 sqrt, 6 sin_cos.
 ///
-/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`inverse_dynamics_sc`].
+/// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`inverse_dynamics_sc`].
 #[inline]
 pub fn inverse_dynamics(
     q: &[f64; DOF],
     qd: &[f64; DOF],
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
-    let (s, c) = sin_cos_all(q);
-    inverse_dynamics_sc(&s, &c, qd, qdd)
+    let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    inverse_dynamics_sc(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
+        qd,
+        qdd,
+    )
 }
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
@@ -1508,11 +1508,14 @@ pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 624 ops: 162 add, 107 sub, 349 mul, 0 div, 0 neg, 0 sqrt, 6 sin_cos.
 ///
-/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`mass_matrix_sc`].
+/// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`mass_matrix_sc`].
 #[inline]
 pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
-    let (s, c) = sin_cos_all(q);
-    mass_matrix_sc(&s, &c)
+    let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    mass_matrix_sc(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
+    )
 }
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
@@ -2265,11 +2268,15 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 737 ops: 201 add, 119 sub, 411 mul, 0 div, 0 neg, 0 sqrt, 6 sin_cos.
 ///
-/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`bias_forces_sc`].
+/// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`bias_forces_sc`].
 #[inline]
 pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
-    let (s, c) = sin_cos_all(q);
-    bias_forces_sc(&s, &c, qd)
+    let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    bias_forces_sc(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
+        qd,
+    )
 }
 /// The gravity torques g(q).
 ///
@@ -2516,11 +2523,14 @@ pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 231 ops: 51 add, 36 sub, 138 mul, 0 div, 0 neg, 0 sqrt, 6 sin_cos.
 ///
-/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`gravity_torques_sc`].
+/// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`gravity_torques_sc`].
 #[inline]
 pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
-    let (s, c) = sin_cos_all(q);
-    gravity_torques_sc(&s, &c)
+    let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    gravity_torques_sc(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
+    )
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by the articulated-body algorithm.
 ///
@@ -4651,95 +4661,342 @@ pub fn forward_dynamics_sc(
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 2110 ops: 539 add, 391 sub, 1169 mul, 5 div, 0 neg, 0 sqrt, 6 sin_cos.
 ///
-/// The sines and cosines of the joint angles by [`sin_cos_all`], then [`forward_dynamics_sc`].
+/// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`forward_dynamics_sc`].
 #[inline]
 pub fn forward_dynamics(
     q: &[f64; DOF],
     qd: &[f64; DOF],
     tau: &[f64; DOF],
 ) -> [f64; DOF] {
-    let (s, c) = sin_cos_all(q);
-    forward_dynamics_sc(&s, &c, qd, tau)
+    let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    forward_dynamics_sc(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
+        qd,
+        tau,
+    )
 }
 
-// The sine and cosine of one angle in straight-line f64 arithmetic: no
-// branch, no table, no call, nothing from std or any crate, so that a loop
-// over the joints of a robot vectorises.
+// The sine and cosine of joint angles in plain f64 arithmetic: nothing from
+// std or any crate. Within 1 ulp of the exact values for every finite
+// angle; NaN and ±∞ give NaN.
 //
-// 1. Range reduction (Cody and Waite): x = k·π/2 + r with k the integer
-//    nearest x·2/π (rounded by adding and subtracting 1.5·2⁵²) and π/2 split
-//    into P1 + P2 + P3 (33 significant bits each) + P4 (53 bits), so that
-//    k·P1, k·P2 and k·P3 are exact for |k| < 2²⁰ and x − k·P1 is exact. r is
-//    kept as a double-double rh + rl through error-free sums: even when x is
-//    the double nearest a multiple of π/2 and r cancels to ~1e-18, r keeps
-//    about 70 correct bits. Valid for |x| ≤ 1.6e6 rad; beyond, the results
-//    lose accuracy (they stay in [−1, 1]). NaN and ±∞ give NaN.
-// 2. On |r| ≤ π/4: sin r = r + r³·S(r²), cos r = 1 − r²/2 + r⁴·C(r²) with
-//    the Taylor coefficients 1/n! (to r¹⁷ and r¹⁸: truncation below 1e-19).
-//    The leading terms (r, and 1 − r²/2 with r² as an exact double-double)
-//    are added last, so the result carries one rounding plus a small part
-//    of one: within 1 ulp of the exact value (the tests measure it).
-// 3. The quadrant k mod 4 picks (±sin r, ±cos r) by bit masks, not branches.
-/// The sine and cosine of `x` (one angle), accurate to 1 ulp for
-/// |x| ≤ 1.6e6 rad; the scalar core of `sin_cos_all`.
+// 1. Fast path, |x| ≤ 1.5e6 rad (Cody and Waite): x = k·π/2 + r with k the
+//    integer nearest x·2/π (rounded by adding and subtracting 1.5·2⁵²) and
+//    π/2 ≈ P1 + P2 + P3, P1 and P2 of 33 significant bits (so k·P1, k·P2
+//    and x − k·P1 are exact for |k| < 2²⁰) and P3 the next 53 bits. r is
+//    kept as rh + rl, |r − (rh + rl)| ≤ 3e-37·|x|, and |rl| ≤ ulp(rh)/2.
+// 2. Slow path, taken only when the fast path's r could have lost digits
+//    (|rh| < 2⁻⁵⁸·|x|: the doubles nearest to multiples of π/2, fewer than
+//    one angle in 10¹¹), |x| > 1.5e6 rad, NaN or ±∞ (Payne and Hanek): the
+//    bits of x·2/π near the binary point from x's 53-bit integer times a
+//    192-bit window of 2/π (1280 bits of it in the table), so r carries
+//    ~125 bits for every finite x.
+// 3. On |r| ≤ π/4: sin r = r + r³·S(r²), cos r = 1 − r²/2 + r⁴·C(r²), S and
+//    C of degree 5, minimax for the error relative to sin and cos
+//    (coefficients by scripts/sin_cos_minimax.py, Remez in 50 digits: max
+//    relative error 1.1e-17 and 1.1e-18 after rounding to f64), evaluated
+//    by Estrin's scheme (short dependency chains). The leading terms r and
+//    1 − r²/2 (with its rounding error kept) are added last.
+// 4. The quadrant k mod 4 picks (±sin r, ±cos r) by bit masks.
+// `sin_cos_array` runs the fast path on two angles at a time, up to three
+// such pairs interleaved step by step (independent chains the processor
+// overlaps): on x86-64 in SSE2 instructions (`sin_cos_pairs`: the same
+// operations as the scalar code, so the same bits), elsewhere as the scalar
+// code, which the compiler may vectorise.
+
+/// The sines and cosines of `x`, entry by entry: within 1 ulp of the exact
+/// values for every finite angle (NaN and ±∞ give NaN); two angles at a
+/// time in vector instructions.
+#[inline]
+pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
+    let mut s = [0.0; N];
+    let mut c = [0.0; N];
+    let mut fast = true;
+    let mut i = 0;
+    while i < N {
+        // Up to six angles a pass, as up to three pairs in 2-lane vector
+        // instructions, interleaved for the processor to overlap (an odd
+        // N's last pair takes its last angle twice).
+        let at = |j: usize| x[if i + j < N { i + j } else { N - 1 }];
+        let ok = match N - i {
+            1 | 2 => sin_cos_pass::<1, N>(i, [[at(0), at(1)]], &mut s, &mut c),
+            3 | 4 => sin_cos_pass::<2, N>(i, [[at(0), at(1)], [at(2), at(3)]], &mut s, &mut c),
+            _ => sin_cos_pass::<3, N>(i, [[at(0), at(1)], [at(2), at(3)], [at(4), at(5)]], &mut s, &mut c),
+        };
+        fast &= ok;
+        i += 6;
+    }
+    if !fast {
+        sin_cos_again(x, &mut s, &mut c);
+    }
+    (s, c)
+}
+
+/// `sin_cos_pairs` on `x`, the results into `s[i..]` and `c[i..]` (what
+/// fits), and whether they are all within 1 ulp.
 #[inline(always)]
-#[allow(clippy::excessive_precision, clippy::unreadable_literal, clippy::approx_constant)]
+fn sin_cos_pass<const P: usize, const N: usize>(
+    i: usize,
+    x: [[f64; 2]; P],
+    s: &mut [f64; N],
+    c: &mut [f64; N],
+) -> bool {
+    let (ps, pc, ok) = sin_cos_pairs(x);
+    for j in 0..2 * P {
+        if i + j < N {
+            (s[i + j], c[i + j]) = (ps[j / 2][j % 2], pc[j / 2][j % 2]);
+        }
+    }
+    ok
+}
+
+/// `sin_cos_fast` on `P` pairs of angles, each pair in 2-lane vector
+/// instructions, the pairs interleaved step by step: on x86-64 spelled out
+/// in SSE2 (part of every x86-64 target; the compiler's own vectoriser takes
+/// the scalar code for some lengths only), the same operations in the same
+/// order as `sin_cos_fast`, so the same bits.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+#[allow(unused_unsafe, clippy::excessive_precision, clippy::approx_constant)]
+fn sin_cos_pairs<const P: usize>(x: [[f64; 2]; P]) -> ([[f64; 2]; P], [[f64; 2]; P], bool) {
+    use core::arch::x86_64::*;
+    // SAFETY: SSE2 is enabled on every x86-64 target; the transmutes are
+    // between __m128d and [f64; 2] (16 bytes, two f64 each).
+    unsafe {
+        let v = |a: f64| _mm_set1_pd(a);
+        fn each<const P: usize>(f: impl FnMut(usize) -> __m128d) -> [__m128d; P] {
+            core::array::from_fn(f)
+        }
+        let add = |a: &[__m128d; P], b: &[__m128d; P]| each(|i| _mm_add_pd(a[i], b[i]));
+        let sub = |a: &[__m128d; P], b: &[__m128d; P]| each(|i| _mm_sub_pd(a[i], b[i]));
+        let mul = |a: &[__m128d; P], b: &[__m128d; P]| each(|i| _mm_mul_pd(a[i], b[i]));
+        let all = |a: f64| [v(a); P];
+        let x: [__m128d; P] = each(|i| _mm_set_pd(x[i][1], x[i][0]));
+        let t = add(&mul(&x, &all(0.6366197723675814)), &all(6755399441055744.0));
+        let k = sub(&t, &all(6755399441055744.0));
+        let t0 = sub(&x, &mul(&k, &all(1.5707963267341256)));
+        let w = mul(&k, &all(6.077100506303966e-11));
+        let a = sub(&t0, &w);
+        let b = sub(&sub(&sub(&t0, &a), &w), &mul(&k, &all(2.0222662487959506e-21)));
+        let rh = add(&a, &b);
+        let rl = sub(&b, &sub(&rh, &a));
+        let m: [__m128d; P] = each(|i| _mm_mul_pd(_mm_andnot_pd(v(-0.0), rh[i]), v(2.8823037615171174e17)));
+        let ok: [__m128d; P] = each(|i| _mm_cmpge_pd(_mm_min_pd(m[i], v(1.5e6)), _mm_andnot_pd(v(-0.0), x[i])));
+        // sin_cos_reduced
+        let z = mul(&rh, &rh);
+        let z2 = mul(&z, &z);
+        let poly = |c: [f64; 6]| {
+            let lo = add(&all(c[0]), &mul(&z, &all(c[1])));
+            let mid = add(&all(c[2]), &mul(&z, &all(c[3])));
+            let hi = add(&all(c[4]), &mul(&z, &all(c[5])));
+            add(&lo, &mul(&z2, &add(&mid, &mul(&z2, &hi))))
+        };
+        let ps = poly([
+            -1.666666666666663e-1,
+            8.333333333322118e-3,
+            -1.9841269829589533e-4,
+            2.7557313621384545e-6,
+            -2.5050747762700404e-8,
+            1.5896230149614662e-10,
+        ]);
+        let pc = poly([
+            4.1666666666666595e-2,
+            -1.3888888888873056e-3,
+            2.4801587288851704e-5,
+            -2.755731417929683e-7,
+            2.08757008419834e-9,
+            -1.1358536521605753e-11,
+        ]);
+        let hz = mul(&all(0.5), &z);
+        let sin_r = add(&rh, &add(&mul(&mul(&rh, &z), &ps), &mul(&rl, &sub(&all(1.0), &hz))));
+        let w = sub(&all(1.0), &hz);
+        let cos_r = add(&w, &add(&sub(&sub(&all(1.0), &w), &hz), &sub(&mul(&z2, &pc), &mul(&rh, &rl))));
+        // sin_cos_quadrant, lane by lane
+        let sign = _mm_castpd_si128(v(-0.0));
+        let out = |i: usize| {
+            let sb = _mm_or_si128(_mm_castpd_si128(sin_r[i]), _mm_and_si128(_mm_castpd_si128(a[i]), sign));
+            let cb = _mm_castpd_si128(cos_r[i]);
+            let q = _mm_castpd_si128(t[i]);
+            let odd = _mm_sub_epi64(_mm_setzero_si128(), _mm_and_si128(q, _mm_set1_epi64x(1)));
+            let d = _mm_and_si128(_mm_xor_si128(sb, cb), odd);
+            let sin_sign = _mm_and_si128(_mm_slli_epi64::<62>(q), sign);
+            let cos_sign = _mm_xor_si128(sin_sign, _mm_slli_epi64::<63>(q));
+            let s = _mm_castsi128_pd(_mm_xor_si128(_mm_xor_si128(sb, d), sin_sign));
+            let c = _mm_castsi128_pd(_mm_xor_si128(_mm_xor_si128(cb, d), cos_sign));
+            (core::mem::transmute::<__m128d, [f64; 2]>(s), core::mem::transmute::<__m128d, [f64; 2]>(c))
+        };
+        let sc: [([f64; 2], [f64; 2]); P] = core::array::from_fn(out);
+        let fast = ok.iter().all(|&ok| _mm_movemask_pd(ok) == 3);
+        (core::array::from_fn(|i| sc[i].0), core::array::from_fn(|i| sc[i].1), fast)
+    }
+}
+
+/// `sin_cos_fast` on `P` pairs of angles (other targets: the compiler's
+/// vectoriser may turn the calls into vector instructions).
+#[cfg(not(target_arch = "x86_64"))]
+#[inline(always)]
+fn sin_cos_pairs<const P: usize>(x: [[f64; 2]; P]) -> ([[f64; 2]; P], [[f64; 2]; P], bool) {
+    let r = x.map(|x| x.map(sin_cos_fast));
+    (r.map(|r| r.map(|r| r.0)), r.map(|r| r.map(|r| r.1)), r.iter().flatten().all(|r| r.2))
+}
+
+/// The rare case of `sin_cos_array`: every angle again, one at a time.
+#[cold]
+#[inline(never)]
+fn sin_cos_again(x: &[f64], s: &mut [f64], c: &mut [f64]) {
+    for ((x, s), c) in x.iter().zip(s).zip(c) {
+        (*s, *c) = sin_cos_kernel(*x);
+    }
+}
+
+/// The sine and cosine of one angle `x`: within 1 ulp of the exact values
+/// for every finite `x` (NaN and ±∞ give NaN).
+#[inline]
 pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
+    match sin_cos_fast(x) {
+        (s, c, true) => (s, c),
+        _ => sin_cos_slow(x),
+    }
+}
+
+/// Step 1 and 3: the sine and cosine, and whether they are within 1 ulp
+/// (false: take `sin_cos_slow`).
+#[inline(always)]
+#[allow(clippy::excessive_precision, clippy::approx_constant)]
+fn sin_cos_fast(x: f64) -> (f64, f64, bool) {
     const FRAC_2_PI: f64 = 0.6366197723675814;
     const ROUND: f64 = 6755399441055744.0; // 1.5·2⁵²: x + ROUND − ROUND rounds x to an integer
     const P1: f64 = 1.5707963267341256;
     const P2: f64 = 6.077100506303966e-11;
-    const P3: f64 = 2.0222662487111665e-21;
-    const P4: f64 = 8.4784276603689e-32;
-    const SPLIT: f64 = 134217729.0; // 2²⁷ + 1: Dekker's split of a double into two halves
+    const P3: f64 = 2.0222662487959506e-21;
     let t = x * FRAC_2_PI + ROUND;
-    let quadrant = t.to_bits() & 3;
     let k = t - ROUND;
-    // r = x − k·π/2 as the double-double rh + rl.
-    let t0 = x - k * P1;
-    let a2 = k * P2;
-    let a3 = k * P3;
-    let h1 = t0 - a2;
-    let b1 = h1 - t0;
-    let e1 = (t0 - (h1 - b1)) + (-a2 - b1);
-    let h2 = h1 - a3;
-    let b2 = h2 - h1;
-    let e2 = (h1 - (h2 - b2)) + (-a3 - b2);
-    let low = (e1 + e2) - k * P4;
-    let rh = h2 + low;
-    let rl = low - (rh - h2);
-    // z = rh² exactly, as zh + zl.
-    let p = rh * SPLIT;
-    let hi = p - (p - rh);
-    let lo = rh - hi;
-    let zh = rh * rh;
-    let zl = ((hi * hi - zh) + 2.0 * hi * lo) + lo * lo;
-    let z = zh;
-    // sin(rh + rl) = rh + rh·z·S(z) + rl·(1 − z/2) + …
-    let ps = -0.16666666666666666
-        + z * (0.008333333333333333
-            + z * (-0.0001984126984126984
-                + z * (2.7557319223985893e-06
-                    + z * (-2.505210838544172e-08
-                        + z * (1.6059043836821613e-10 + z * (-7.647163731819816e-13 + z * 2.8114572543455206e-15))))));
-    let sin_r = rh + (rh * z * ps + rl * (1.0 - 0.5 * z));
-    // cos(rh + rl) = (1 − z/2) + z²·C(z) − rh·rl + …, 1 − z/2 with its rounding error kept.
-    let pc = 0.041666666666666664
-        + z * (-0.001388888888888889
-            + z * (2.48015873015873e-05
-                + z * (-2.755731922398589e-07
-                    + z * (2.08767569878681e-09
-                        + z * (-1.1470745597729725e-11 + z * (4.779477332387385e-14 + z * -1.5619206968586225e-16))))));
-    let hz = 0.5 * zh;
+    let t0 = x - k * P1; // exact
+    let w = k * P2; // exact
+    let a = t0 - w;
+    // The rounding error of t0 − w, exact (|t0| ≥ |w|, or else t0 − w is exact), then − k·P3.
+    let b = ((t0 - a) - w) - k * P3;
+    // Renormalised: |rl| ≤ ulp(rh)/2 (the polynomials need that; |b| ≤ |a| where `ok` below holds).
+    let rh = a + b;
+    let rl = b - (rh - a);
+    // Within 1 ulp if |x| ≤ 1.5e6 and |rh| ≥ 2⁻⁵⁸·|x| (as |r − (rh + rl)| ≤ 3e-37·|x|), which also
+    // holds for k = 0 (rh = x) and fails for NaN and ±∞ (then rh is NaN). One comparison:
+    // min(2⁵⁸·|rh|, 1.5e6) ≥ |x|, the `if` a `min` instruction (a NaN picks 1.5e6).
+    let m = rh.abs() * 2.8823037615171174e17;
+    let ok = (if m < 1.5e6 { m } else { 1.5e6 }) >= x.abs();
+    let (s, c) = sin_cos_reduced(rh, rl, a.to_bits() & (1 << 63), t.to_bits());
+    (s, c, ok)
+}
+
+/// Step 3 and 4: sin and cos of k·π/2 + rh + rl for |rh + rl| ≤ π/4 and
+/// k ≡ `quadrant` (mod 4); `sign` is the sign bit of rh (in place), also
+/// when rh = −0 (which the reduction may turn into +0).
+#[inline(always)]
+#[allow(clippy::excessive_precision)]
+fn sin_cos_reduced(rh: f64, rl: f64, sign: u64, quadrant: u64) -> (f64, f64) {
+    const S0: f64 = -1.666666666666663e-1;
+    const S1: f64 = 8.333333333322118e-3;
+    const S2: f64 = -1.9841269829589533e-4;
+    const S3: f64 = 2.7557313621384545e-6;
+    const S4: f64 = -2.5050747762700404e-8;
+    const S5: f64 = 1.5896230149614662e-10;
+    const C0: f64 = 4.1666666666666595e-2;
+    const C1: f64 = -1.3888888888873056e-3;
+    const C2: f64 = 2.4801587288851704e-5;
+    const C3: f64 = -2.755731417929683e-7;
+    const C4: f64 = 2.08757008419834e-9;
+    const C5: f64 = -1.1358536521605753e-11;
+    let z = rh * rh;
+    let z2 = z * z;
+    let ps = (S0 + z * S1) + z2 * ((S2 + z * S3) + z2 * (S4 + z * S5));
+    let pc = (C0 + z * C1) + z2 * ((C2 + z * C3) + z2 * (C4 + z * C5));
+    let hz = 0.5 * z;
+    // sin(rh + rl) = rh + rh·z·S(z) + rl·(1 − z/2) + …; rh's sign or-ed in keeps sin(−0) = −0.
+    let sin_r = rh + (rh * z * ps + rl * (1.0 - hz));
+    let sb = sin_r.to_bits() | sign;
+    // cos(rh + rl) = (1 − z/2) + z²·C(z) − rh·rl + …, with the rounding error of 1 − z/2.
     let w = 1.0 - hz;
-    let w_err = (1.0 - w) - hz;
-    let cos_r = w + ((w_err - 0.5 * zl) + (z * z * pc - rh * rl));
-    // Quadrant: odd swaps sine and cosine; the sign bits follow k mod 4.
-    let swap = 0u64.wrapping_sub(quadrant & 1);
-    let (sb, cb) = (sin_r.to_bits(), cos_r.to_bits());
-    let sin_bits = (sb & !swap) | (cb & swap);
-    let cos_bits = (cb & !swap) | (sb & swap);
-    let sin_sign = ((quadrant >> 1) & 1) << 63;
-    let cos_sign = (((quadrant + 1) >> 1) & 1) << 63;
-    (f64::from_bits(sin_bits ^ sin_sign), f64::from_bits(cos_bits ^ cos_sign))
+    let cos_r = w + (((1.0 - w) - hz) + (z2 * pc - rh * rl));
+    sin_cos_quadrant(sb, cos_r.to_bits(), quadrant)
+}
+
+/// Step 4: (sin, cos) of k·π/2 + r from the bits `sb`, `cb` of sin r and
+/// cos r and k ≡ `quadrant` (mod 4).
+#[inline(always)]
+fn sin_cos_quadrant(sb: u64, cb: u64, quadrant: u64) -> (f64, f64) {
+    // Odd quadrants swap sine and cosine (d: the bits that differ, or 0);
+    // sin changes sign in quadrants 2 and 3, cos in 1 and 2.
+    let d = (sb ^ cb) & 0u64.wrapping_sub(quadrant & 1);
+    let sin_sign = (quadrant << 62) & (1 << 63);
+    let cos_sign = sin_sign ^ (quadrant << 63);
+    (f64::from_bits(sb ^ d ^ sin_sign), f64::from_bits(cb ^ d ^ cos_sign))
+}
+
+/// Step 2: Payne and Hanek's reduction of any finite `x`, then step 3.
+#[inline(never)]
+#[cold]
+#[allow(clippy::unreadable_literal, clippy::approx_constant)]
+fn sin_cos_slow(x: f64) -> (f64, f64) {
+    // 2/π = Σ FRAC_2_PI_BITS[i]·2^(−64(i+1)) + less than 2⁻¹²⁸⁰.
+    const FRAC_2_PI_BITS: [u64; 20] = [
+        0xa2f9836e4e441529, 0xfc2757d1f534ddc0, 0xdb6295993c439041, 0xfe5163abdebbc561,
+        0xb7246e3a424dd2e0, 0x06492eea09d1921c, 0xfe1deb1cb129a73e, 0xe88235f52ebb4484,
+        0xe99c7026b45f7e41, 0x3991d639835339f4, 0x9c845f8bbdf9283b, 0x1ff897ffde05980f,
+        0xef2f118b5a0a6d1f, 0x6d367ecf27cb09b7, 0x4f463f669e5fea2d, 0x7527bac7ebe5f17b,
+        0x3d0739f78a5292ea, 0x6bfb5fb11f8d5d08, 0x56033046fc7b6bab, 0xf0cfbc209af4361d,
+    ];
+    const PIO2_HI: f64 = 1.5707963267948966;
+    const PIO2_LO: f64 = 6.123233995736766e-17;
+    const SPLIT: f64 = 134217729.0; // 2²⁷ + 1: Dekker's split of a double into two halves
+    if !x.is_finite() {
+        return (f64::NAN, f64::NAN);
+    }
+    let ax = x.abs();
+    if ax < 0.78 {
+        let (s, c) = sin_cos_reduced(ax, 0.0, 0, 0);
+        return (if x < 0.0 { -s } else { s }, c);
+    }
+    // |x| = m·2^e with m < 2⁵³ an integer.
+    let bits = ax.to_bits();
+    let m = (bits & ((1 << 52) - 1)) | (1 << 52);
+    let e = (bits >> 52) as i64 - 1075;
+    // Bits j < j0 of 2/π (weight 2^−j) add multiples of 4 to x·2/π: skip
+    // them. w = the 192 bits from j0 on (the rest adds < 2⁻¹³⁷).
+    let j0 = (e - 1).max(1);
+    let (limb, shift) = (((j0 - 1) / 64) as usize, ((j0 - 1) % 64) as u32);
+    let window = |i: usize| {
+        let two = ((FRAC_2_PI_BITS[limb + i] as u128) << 64) | FRAC_2_PI_BITS[limb + i + 1] as u128;
+        (two >> (64 - shift)) as u64
+    };
+    let (w0, w1, w2) = (window(0), window(1), window(2));
+    // p = m·w (256 bits, p3 on top); x·2/π ≡ p·2^(e − j0 − 191) (mod 4).
+    let m = m as u128;
+    let a2 = m * w2 as u128;
+    let a1 = m * w1 as u128 + (a2 >> 64);
+    let a0 = m * w0 as u128 + (a1 >> 64);
+    let (p1, p2, p3) = (a1 as u64 as u128, a0 as u64 as u128, a0 >> 64);
+    // y = x·2/π mod 4 in units of 2⁻¹²⁶ (the top 2 bits are the integer part).
+    let s = (65 - (e - j0)) as u32 - 64;
+    let y = (((p2 << 64) | p1) >> s) | p3.checked_shl(128 - s).unwrap_or(0);
+    let k = (y.wrapping_add(1 << 125) >> 126) as u64;
+    let f = y.wrapping_sub((k as u128) << 126) as i128; // |f| ≤ 2¹²⁵: r = f·2⁻¹²⁶·π/2
+    let fh = f as f64;
+    let fl = (f - fh as i128) as f64;
+    let scale = f64::from_bits((1023 - 126) << 52);
+    let (fh, fl) = (fh * scale, fl * scale);
+    // r = (fh + fl)·(PIO2_HI + PIO2_LO), fh·PIO2_HI exactly (Dekker).
+    let split = |a: f64| {
+        let p = a * SPLIT;
+        let hi = p - (p - a);
+        (hi, a - hi)
+    };
+    let ((ah, al), (bh, bl)) = (split(fh), split(PIO2_HI));
+    let ph = fh * PIO2_HI;
+    let pl = ((ah * bh - ph) + ah * bl + al * bh) + al * bl;
+    let low = pl + (fh * PIO2_LO + fl * PIO2_HI);
+    let rh = ph + low;
+    let rl = low - (rh - ph);
+    let (s, c) = sin_cos_reduced(rh, rl, rh.to_bits() & (1 << 63), k);
+    (if x < 0.0 { -s } else { s }, c)
 }
