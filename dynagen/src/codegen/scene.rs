@@ -317,7 +317,7 @@ fn trace_unfactored(
         SceneFn::ForwardDynamics if !p => {
             let mut scratch = vec![zero; n];
             match method {
-                ForwardDynamicsMethod::Aba => dynamics::forward_dynamics(
+                ForwardDynamicsMethod::Aba | ForwardDynamicsMethod::Auto => dynamics::forward_dynamics(
                     scene,
                     &mut ws,
                     &args[0],
@@ -573,6 +573,7 @@ fn header(
         } else if options.forward_dynamics == ForwardDynamicsMethod::Ldlt {
             "CRBA with the armature on M's diagonal, RNEA, and a sparse LTDL solve, as asked"
         } else {
+            // Auto too: a scene's bodies are not compared, the ABA is kept.
             "the articulated-body algorithm, armature in D_i = S_i^T U_i + a_i"
         };
         let _ = writeln!(h, "// Forward dynamics: {fd}.");
