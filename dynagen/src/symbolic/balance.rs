@@ -17,6 +17,13 @@
 //! additions or subtractions, and a final negation only where every leaf
 //! is negative, which the original had to pay for too).
 //!
+//! Products are left as traced: rebalancing chains of multiplications the
+//! same way shortened the critical path a little more (UR5 ABA 314 → 310
+//! cycles) but made the compiled UR5 τ body 7 % slower, measured
+//! (`benches/examples/interleaved.rs`), where sums alone made it 10 %
+//! faster: the critical path is not the only limit (register pressure and
+//! the overlap of consecutive calls are others).
+//!
 //! Reassociation changes rounding: `(a + b) + c` and `a + (b + c)` may
 //! differ in the last bits, by at most about `n·ε·Σ|leaf|` for `n` leaves,
 //! the same bound as the left-to-right sum has. It is a value-changing
@@ -76,17 +83,6 @@ pub fn balance(f: &Function, latency: &Latency, rewrites: Rewrites) -> Function 
             }
         }
     }
-    // An inner node of a product tree: a product whose only use is a product.
-    let mut inner_product = vec![false; nodes.len()];
-    for n in nodes {
-        if let Node::Mul(a, b) = *n {
-            for op in [a, b] {
-                if uses[op as usize] == 1 && matches!(nodes[op as usize], Node::Mul(..)) {
-                    inner_product[op as usize] = true;
-                }
-            }
-        }
-    }
     let mut g = Graph::with_rewrites(rewrites);
     let mut ready = Ready { cycles: Vec::new(), latency: *latency };
     let mut new: Vec<NodeId> = Vec::with_capacity(nodes.len());
@@ -124,24 +120,7 @@ pub fn balance(f: &Function, latency: &Latency, rewrites: Rewrites) -> Function 
                     seq += 1;
                 }
             }
-            Node::Mul(a, b) if inner_product[id] => g.mul(m(a), m(b)),
-            Node::Mul(..) => {
-                let mut factors = Vec::new();
-                collect_factors(nodes, &inner_product, id as NodeId, &mut factors);
-                let mut heap = BinaryHeap::new();
-                for (seq, x) in factors.into_iter().enumerate() {
-                    let x = m(x);
-                    heap.push(Reverse((ready.of(&g, x), seq, x)));
-                }
-                let mut seq = heap.len();
-                loop {
-                    let Reverse((_, _, x)) = heap.pop().expect("a product has factors");
-                    let Some(Reverse((_, _, y))) = heap.pop() else { break x };
-                    let z = g.mul(x, y);
-                    heap.push(Reverse((ready.of(&g, z), seq, z)));
-                    seq += 1;
-                }
-            }
+            Node::Mul(a, b) => g.mul(m(a), m(b)),
             Node::Div(a, b) => g.div(m(a), m(b)),
             Node::Sqrt(a) => g.sqrt(m(a)),
             // The pair is rebuilt by its Sin / Cos users; keep a slot.
@@ -184,22 +163,6 @@ fn collect(nodes: &[Node], inner: &[bool], id: NodeId, positive: bool, out: &mut
         }
         Node::Neg(a) => visit(a, !positive, out),
         _ => out.push((id, positive)),
-    }
-}
-
-/// The factors of the product tree under `id`.
-fn collect_factors(nodes: &[Node], inner: &[bool], id: NodeId, out: &mut Vec<NodeId>) {
-    match nodes[id as usize] {
-        Node::Mul(a, b) => {
-            for x in [a, b] {
-                if inner[x as usize] {
-                    collect_factors(nodes, inner, x, out);
-                } else {
-                    out.push(x);
-                }
-            }
-        }
-        _ => out.push(id),
     }
 }
 
@@ -247,8 +210,8 @@ mod tests {
         let f = Function::from_ids("late", &g, &[s, shared]);
         let b = balance(&f, &Latency::default(), Rewrites::default());
         assert_eq!(f.critical_path().cycles, 3 * 4 + 2 * 4);
-        // (x0·x1)·(x2·x3) then one addition of the shared x4 + x5
-        assert_eq!(b.critical_path().cycles, 2 * 4 + 4);
+        // the product as traced, then one addition of the shared x4 + x5
+        assert_eq!(b.critical_path().cycles, 3 * 4 + 4);
         assert_eq!(b.op_count().total(), f.op_count().total() - 1);
         let v = [1.5, -2.0, 3.0, 0.5, 7.0, -1.0];
         assert_eq!(eval(&f, &v), eval(&b, &v));

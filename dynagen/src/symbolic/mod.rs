@@ -53,8 +53,8 @@
 //! elimination) and renumbers the nodes densely; [`factor`] then uses the
 //! now-known use counts to share common factors (`k·u ± k·v → k·(u ± v)`
 //! when both products have no other use) and to move negations out;
-//! [`balance`] (with [`Rewrites::reassociate`]) rebuilds the sums and
-//! products whose inner nodes have no other use as the trees that are
+//! [`balance`] (with [`Rewrites::reassociate`]) rebuilds the sums
+//! whose inner nodes have no other use as the trees that are
 //! ready earliest, which shortens the body's chain of dependent operations
 //! without adding any. The [`OpCount`] of a function counts each kept
 //! operation once; its [`CriticalPath`] is that longest chain, weighted by
