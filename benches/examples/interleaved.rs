@@ -17,6 +17,11 @@ use std::time::Instant;
 
 const CALLS: usize = 2000;
 
+/// One state: q, q̇, q̈, τ, sin q, cos q.
+type State<const N: usize> = [[f64; N]; 6];
+/// A body on a state (one entry of its output).
+type Body<const N: usize> = fn(&State<N>) -> f64;
+
 fn states<const N: usize>(seed: u64) -> Vec<[[f64; N]; 6]> {
     let mut x = seed;
     let mut next = move || {
@@ -38,11 +43,7 @@ fn states<const N: usize>(seed: u64) -> Vec<[[f64; N]; 6]> {
 
 /// Nanoseconds per call of each closure: the minimum over `rounds`
 /// alternating rounds.
-fn race<const N: usize>(
-    rounds: usize,
-    st: &[[[f64; N]; 6]],
-    fs: &mut [&mut dyn FnMut(&[[f64; N]; 6]) -> f64],
-) -> Vec<f64> {
+fn race<const N: usize>(rounds: usize, st: &[[[f64; N]; 6]], fs: &mut [&mut dyn FnMut(&State<N>) -> f64]) -> Vec<f64> {
     let mut best = vec![f64::INFINITY; fs.len()];
     let n = fs.len();
     for r in 0..rounds {
@@ -104,12 +105,7 @@ bodies!(ur5_old, ur5_base, 6);
 bodies!(panda_new, panda_std, 9, q);
 bodies!(panda_old, panda_base, 9, q);
 
-fn robot<const N: usize>(
-    name: &str,
-    rounds: usize,
-    new: [fn(&[[f64; N]; 6]) -> f64; 4],
-    old: [fn(&[[f64; N]; 6]) -> f64; 4],
-) {
+fn robot<const N: usize>(name: &str, rounds: usize, new: [Body<N>; 4], old: [Body<N>; 4]) {
     let model = Model::from_urdf_file(urdf(name)).unwrap();
     let st = states::<N>(0x5eed);
     let mut ws = Workspace::<f64>::new(&model);

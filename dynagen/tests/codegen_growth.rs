@@ -64,8 +64,9 @@ fn op_counts_grow_linearly_for_tau_and_quadratically_for_m() {
 #[test]
 fn bundled_op_counts_do_not_grow() {
     use dynagen::codegen::{generate, CodegenOptions};
-    // (function, operations, critical path of the body in cycles)
-    let limits: [(&str, [(FunctionKind, usize, u32); 6]); 2] = [
+    /// (function, operations, critical path of the body in cycles)
+    type Limit = (FunctionKind, usize, u32);
+    let limits: [(&str, [Limit; 6]); 2] = [
         (
             "ur5",
             [
