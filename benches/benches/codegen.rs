@@ -5,6 +5,7 @@
 //! - `gen_std`: the generated `NAME(q, …)`, sines and cosines by `f64::sin_cos`;
 //! - `gen_sc`: the generated `NAME_sc(s, c, …)`, sines and cosines given (trig excluded);
 //! - `gen_batched`: the generated `NAME(q, …)` of a `Trig::Batched` module (`sin_cos_all`);
+//! - `gen_sc_base`: `NAME_sc` as generated before branch `body` (no reassociation, forward dynamics by ABA);
 //!
 //! and `sin_cos_all` against a loop of `f64::sin_cos` (and the `f32` batch,
 //! `dynagen::codegen::sin_cos_array_f32`, against `f32::sin_cos`). Each benchmark
@@ -86,6 +87,7 @@ macro_rules! robot_benches {
             });
             cycle(c, &format!("{r}/tau/gen_std"), &st, |s| $std::inverse_dynamics(&s.q, &s.qd, &s.qdd));
             cycle(c, &format!("{r}/tau/gen_sc"), &st, |s| sc::$fn_name::tau(s));
+            cycle(c, &format!("{r}/tau/gen_sc_base"), &st, |s| sc::$fn_name::tau_base(s));
             cycle(c, &format!("{r}/tau/gen_batched"), &st, |s| $batched::inverse_dynamics(&s.q, &s.qd, &s.qdd));
             // M
             cycle(c, &format!("{r}/M/generic"), &st, |s| {
@@ -94,6 +96,7 @@ macro_rules! robot_benches {
             });
             cycle(c, &format!("{r}/M/gen_std"), &st, |s| $std::mass_matrix(&s.q));
             cycle(c, &format!("{r}/M/gen_sc"), &st, |s| sc::$fn_name::m(s));
+            cycle(c, &format!("{r}/M/gen_sc_base"), &st, |s| sc::$fn_name::m_base(s));
             cycle(c, &format!("{r}/M/gen_batched"), &st, |s| $batched::mass_matrix(&s.q));
             // h
             cycle(c, &format!("{r}/h/generic"), &st, |s| {
@@ -102,6 +105,7 @@ macro_rules! robot_benches {
             });
             cycle(c, &format!("{r}/h/gen_std"), &st, |s| $std::bias_forces(&s.q, &s.qd));
             cycle(c, &format!("{r}/h/gen_sc"), &st, |s| sc::$fn_name::h(s));
+            cycle(c, &format!("{r}/h/gen_sc_base"), &st, |s| sc::$fn_name::h_base(s));
             cycle(c, &format!("{r}/h/gen_batched"), &st, |s| $batched::bias_forces(&s.q, &s.qd));
             // g
             cycle(c, &format!("{r}/g/generic"), &st, |s| {
@@ -110,6 +114,7 @@ macro_rules! robot_benches {
             });
             cycle(c, &format!("{r}/g/gen_std"), &st, |s| $std::gravity_torques(&s.q));
             cycle(c, &format!("{r}/g/gen_sc"), &st, |s| sc::$fn_name::g(s));
+            cycle(c, &format!("{r}/g/gen_sc_base"), &st, |s| sc::$fn_name::g_base(s));
             cycle(c, &format!("{r}/g/gen_batched"), &st, |s| $batched::gravity_torques(&s.q));
             // forward dynamics (ABA in both)
             cycle(c, &format!("{r}/fd/generic"), &st, |s| {
@@ -118,6 +123,7 @@ macro_rules! robot_benches {
             });
             cycle(c, &format!("{r}/fd/gen_std"), &st, |s| $std::forward_dynamics(&s.q, &s.qd, &s.tau));
             cycle(c, &format!("{r}/fd/gen_sc"), &st, |s| sc::$fn_name::fd(s));
+            cycle(c, &format!("{r}/fd/gen_sc_base"), &st, |s| sc::$fn_name::fd_base(s));
             cycle(c, &format!("{r}/fd/gen_batched"), &st, |s| $batched::forward_dynamics(&s.q, &s.qd, &s.tau));
             // sin/cos of all joints
             cycle(c, &format!("{r}/sincos/std_loop"), &st, |s| {
@@ -147,7 +153,23 @@ macro_rules! robot_benches {
 mod sc {
     pub mod ur5_benches {
         use crate::State;
+        use dynagen_bench::ur5_base as b;
         use dynagen_bench::ur5_std as m;
+        pub fn tau_base(s: &State<6>) -> [f64; 6] {
+            b::inverse_dynamics_sc(&s.s, &s.c, &s.qd, &s.qdd)
+        }
+        pub fn m_base(s: &State<6>) -> [[f64; 6]; 6] {
+            b::mass_matrix_sc(&s.s, &s.c)
+        }
+        pub fn h_base(s: &State<6>) -> [f64; 6] {
+            b::bias_forces_sc(&s.s, &s.c, &s.qd)
+        }
+        pub fn g_base(s: &State<6>) -> [f64; 6] {
+            b::gravity_torques_sc(&s.s, &s.c)
+        }
+        pub fn fd_base(s: &State<6>) -> [f64; 6] {
+            b::forward_dynamics_sc(&s.s, &s.c, &s.qd, &s.tau)
+        }
         pub fn tau(s: &State<6>) -> [f64; 6] {
             m::inverse_dynamics_sc(&s.s, &s.c, &s.qd, &s.qdd)
         }
@@ -166,7 +188,23 @@ mod sc {
     }
     pub mod panda_benches {
         use crate::State;
+        use dynagen_bench::panda_base as b;
         use dynagen_bench::panda_std as m;
+        pub fn tau_base(s: &State<9>) -> [f64; 9] {
+            b::inverse_dynamics_sc(&s.s, &s.c, &s.q, &s.qd, &s.qdd)
+        }
+        pub fn m_base(s: &State<9>) -> [[f64; 9]; 9] {
+            b::mass_matrix_sc(&s.s, &s.c, &s.q)
+        }
+        pub fn h_base(s: &State<9>) -> [f64; 9] {
+            b::bias_forces_sc(&s.s, &s.c, &s.q, &s.qd)
+        }
+        pub fn g_base(s: &State<9>) -> [f64; 9] {
+            b::gravity_torques_sc(&s.s, &s.c, &s.q)
+        }
+        pub fn fd_base(s: &State<9>) -> [f64; 9] {
+            b::forward_dynamics_sc(&s.s, &s.c, &s.q, &s.qd, &s.tau)
+        }
         pub fn tau(s: &State<9>) -> [f64; 9] {
             m::inverse_dynamics_sc(&s.s, &s.c, &s.q, &s.qd, &s.qdd)
         }

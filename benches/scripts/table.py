@@ -21,15 +21,17 @@ for line in open(sys.argv[1], encoding="utf-8"):
         continue
     times[name] = float(m.group(2)) * UNITS[m.group(3)]
 
-print("| robot | function | generic | gen_std | gen_sc (trig excluded) | gen_batched |")
-print("| --- | --- | --- | --- | --- | --- |")
+BASE = any(k.endswith("/gen_sc_base") for k in times)
+VARIANTS = ["gen_std", "gen_sc", "gen_batched"] + (["gen_sc_base"] if BASE else [])
+print("| robot | function | generic | gen_std | gen_sc (trig excluded) | gen_batched |" + (" gen_sc_base (before) |" if BASE else ""))
+print("| --- | --- | --- | --- | --- | --- |" + (" --- |" if BASE else ""))
 for robot in ["ur5", "panda"]:
-    for f, label in [("tau", "τ"), ("M", "M"), ("h", "h"), ("g", "g"), ("fd", "forward dynamics (ABA)")]:
+    for f, label in [("tau", "τ"), ("M", "M"), ("h", "h"), ("g", "g"), ("fd", "forward dynamics")]:
         base = times.get(f"{robot}/{f}/generic")
         if base is None:
             continue
         cells = [f"{base:.0f} ns"]
-        for v in ["gen_std", "gen_sc", "gen_batched"]:
+        for v in VARIANTS:
             t = times[f"{robot}/{f}/{v}"]
             cells.append(f"{t:.0f} ns ({base / t:.1f}x)")
         print(f"| {robot} | {label} | " + " | ".join(cells) + " |")

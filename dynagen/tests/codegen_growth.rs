@@ -33,51 +33,93 @@ fn op_counts_grow_linearly_for_tau_and_quadratically_for_m() {
 }
 
 /// A regression guard on the operation counts of the generated UR5 and
-/// Panda functions (the bundled URDFs, default options): they may fall, not
-/// rise (negations included). The numbers are those reached with the
-/// regrouped inertial parameters, body frames slid along their axes,
-/// Khalil's U matrix and the gyroscopic moment from `ω ωᵀ` in the RNEA,
-/// classic accelerations and exact zeros along S in the ABA (see
-/// `benches/README.md`). Before (commit 6587eda): UR5 τ 422, M 206, h 389,
-/// g 118, ABA 1256. For scale, a CasADi graph of Pinocchio's algorithms
-/// takes 579 (τ), 301 (M) and 134 (g) on the UR5.
+/// Panda functions (the bundled URDFs, default options), and on the
+/// critical paths of their bodies (`NAME_sc`, latency-weighted: add, sub,
+/// mul 4 cycles, div 14): they may fall, not rise (negations included).
+/// The numbers are those reached with the regrouped inertial parameters,
+/// body frames slid along their axes, Khalil's U matrix and the gyroscopic
+/// moment from `ω ωᵀ` in the RNEA, classic accelerations and exact zeros
+/// along S in the ABA, and sums reassociated for a shorter
+/// critical path (see `benches/README.md`). Before (commit 6587eda): UR5 τ
+/// 422, M 206, h 389, g 118, ABA 1256; before reassociation (commit
+/// 32b1f50), critical paths UR5 τ 140, M 76, h 129, ABA 354, LTDL 222 and
+/// Panda τ 212, M 152, h 205, ABA 670, LTDL 362 cycles. For scale, a CasADi
+/// graph of Pinocchio's algorithms takes 579 (τ), 301 (M) and 134 (g) on
+/// the UR5.
 #[test]
 fn bundled_op_counts_do_not_grow() {
     use dynagen::codegen::{generate, CodegenOptions};
-    let limits: [(&str, [(FunctionKind, usize); 5]); 2] = [
+    /// (function, operations, critical path of the body in cycles)
+    type Limit = (FunctionKind, usize, u32);
+    let limits: [(&str, [Limit; 6]); 2] = [
         (
             "ur5",
             [
-                (FunctionKind::InverseDynamics, 289),
-                (FunctionKind::MassMatrix, 173),
-                (FunctionKind::BiasForces, 257),
-                (FunctionKind::GravityTorques, 19),
-                (FunctionKind::ForwardDynamicsAba, 620),
+                (FunctionKind::InverseDynamics, 289, 108),
+                (FunctionKind::MassMatrix, 171, 65),
+                (FunctionKind::BiasForces, 257, 105),
+                (FunctionKind::GravityTorques, 19, 32),
+                (FunctionKind::ForwardDynamicsAba, 620, 314),
+                (FunctionKind::ForwardDynamicsLdlt, 542, 162),
             ],
         ),
         (
             "panda",
             [
-                (FunctionKind::InverseDynamics, 831),
-                (FunctionKind::MassMatrix, 655),
-                (FunctionKind::BiasForces, 804),
-                (FunctionKind::GravityTorques, 225),
-                (FunctionKind::ForwardDynamicsAba, 1874),
+                (FunctionKind::InverseDynamics, 831, 184),
+                (FunctionKind::MassMatrix, 654, 120),
+                (FunctionKind::BiasForces, 804, 185),
+                (FunctionKind::GravityTorques, 222, 124),
+                (FunctionKind::ForwardDynamicsAba, 1872, 574),
+                (FunctionKind::ForwardDynamicsLdlt, 1826, 254),
             ],
         ),
     ];
     for (robot, limits) in limits {
         let path = format!("{}/robots/{robot}.urdf", env!("CARGO_MANIFEST_DIR"));
         let module = generate(&Model::from_urdf_file(&path).unwrap(), &CodegenOptions::default()).unwrap();
-        for (kind, limit) in limits {
-            let count = module.functions.iter().find(|f| f.kind == kind).unwrap().op_count;
-            println!("{robot} {}: {count}", kind.label());
+        for (kind, limit, path_limit) in limits {
+            let f = module.functions.iter().find(|f| f.kind == kind).unwrap();
+            let (count, path) = (f.op_count, f.sin_cos_inputs.function.critical_path());
+            println!("{robot} {}: {count}; body {path}", kind.label());
             assert!(
                 count.total() <= limit,
                 "{robot} {}: {} operations, more than {limit}",
                 kind.label(),
                 count.total()
             );
+            assert!(
+                path.cycles <= path_limit,
+                "{robot} {}: critical path {} cycles, more than {path_limit}",
+                kind.label(),
+                path.cycles
+            );
         }
+    }
+}
+
+/// The forward dynamics a default module emits: CRBA + LTDL on the UR5
+/// (shorter critical path, as accurate), the articulated-body algorithm on
+/// a long chain (where LTDL loses digits); the header says which and why.
+#[test]
+fn forward_dynamics_is_chosen_by_speed_and_accuracy() {
+    use dynagen::codegen::{generate, CodegenOptions, Functions};
+    let only_fd = Functions {
+        inverse_dynamics: false,
+        mass_matrix: false,
+        bias_forces: false,
+        gravity_torques: false,
+        forward_dynamics: true,
+    };
+    let ur5 = Model::from_urdf_file(format!("{}/robots/ur5.urdf", env!("CARGO_MANIFEST_DIR"))).unwrap();
+    for (name, model, want) in
+        [("ur5", ur5, FunctionKind::ForwardDynamicsLdlt), ("chain", chain(40), FunctionKind::ForwardDynamicsAba)]
+    {
+        let module = generate(&model, &CodegenOptions::default().functions(only_fd)).unwrap();
+        let emitted: Vec<FunctionKind> = module.functions.iter().filter(|f| f.emitted).map(|f| f.kind).collect();
+        let line = module.source.lines().find(|l| l.starts_with("// Forward dynamics:")).unwrap();
+        println!("{name}: {line}");
+        assert_eq!(emitted, [want], "{name}: {line}");
+        assert!(line.contains("chosen as"), "{name}: {line}");
     }
 }

@@ -62,6 +62,7 @@
 
 mod builder;
 mod emit;
+pub mod fd_choice;
 mod generic_count;
 mod grouping;
 mod hash;
@@ -100,8 +101,12 @@ pub use crate::scene::ScalarType;
 /// How the generated `forward_dynamics` computes q̈.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum ForwardDynamicsMethod {
-    /// The articulated-body algorithm: the accurate one on long chains.
+    /// Whichever of the two is faster without being less accurate, measured
+    /// on the model when the module is generated (see [`fd_choice`]); a
+    /// scene's module keeps the articulated-body algorithm.
     #[default]
+    Auto,
+    /// The articulated-body algorithm: the accurate one on long chains.
     Aba,
     /// M by CRBA, h by RNEA, then a sparse LᵀDL solve.
     Ldlt,
@@ -199,7 +204,8 @@ pub struct CodegenOptions {
     pub scalar: ScalarType,
     /// Which functions (all five).
     pub functions: Functions,
-    /// The forward-dynamics algorithm emitted (ABA); both are traced and
+    /// The forward-dynamics algorithm emitted (the faster one that is as
+    /// accurate, [`ForwardDynamicsMethod::Auto`]); both are traced and
     /// counted in the header.
     pub forward_dynamics: ForwardDynamicsMethod,
     /// Replace constants that are 0 or ±1 up to rounding (on); see the
@@ -234,7 +240,7 @@ impl Default for CodegenOptions {
         CodegenOptions {
             scalar: ScalarType::F64,
             functions: Functions::default(),
-            forward_dynamics: ForwardDynamicsMethod::Aba,
+            forward_dynamics: ForwardDynamicsMethod::Auto,
             snap_rounding: true,
             regroup_inertia: true,
             rewrites: Rewrites::default(),
@@ -462,51 +468,58 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
         let sc = trace_sin_cos_inputs(m, kind, options.rewrites).map_err(CodegenError::Internal)?;
         let function = sin_cos_from_q(&sc, options.rewrites);
         let op_count = function.op_count();
-        let emitted = match kind {
-            FunctionKind::ForwardDynamicsAba => options.forward_dynamics == ForwardDynamicsMethod::Aba,
-            FunctionKind::ForwardDynamicsLdlt => options.forward_dynamics == ForwardDynamicsMethod::Ldlt,
-            _ => true,
-        };
-        if emitted {
-            let mut params = vec!["s", "c"];
-            if has_prismatic {
-                params.push("q");
-            }
-            params.extend(&kind.inputs()[1..]);
-            let sc_name = format!("{}_sc", kind.fn_name());
-            let params = params.into_iter().map(emit::Param::dof).collect();
-            let signature = emit::Signature { name: sc_name.clone(), params, output: emit::Shape::of(kind) };
-            let doc = format!("{}\n\n{}", doc_of(kind, model, &sc.function.op_count()), sc_doc(has_prismatic));
-            let emitted = emit::emit_function(
-                &sc.function,
-                &signature,
-                options.scalar,
-                options.trig,
-                n,
-                &doc,
-                options.split_lets,
-            )?;
-            if let Some(parts) = split::parts_of(&emitted) {
-                split_functions.push((sc_name.clone(), parts));
-            }
-            items.extend(emitted);
-            if options.trig != Trig::Inputs {
-                let doc = format!(
-                    "{}\n\n The sines and cosines of the joint angles by {}, then [`{sc_name}`].",
-                    doc_of(kind, model, &op_count),
-                    trig_source(options.trig, options.scalar)
-                );
-                let params: Vec<emit::Param> = kind.inputs().iter().map(|p| emit::Param::dof(p)).collect();
-                let ret = emit::return_type(kind, options.scalar);
-                items.push(parse_item(wrapper(kind.fn_name(), &params, ret, &sc, has_prismatic, options, &doc))?);
+        functions.push(GeneratedFunction { kind, emitted: true, function, sin_cos_inputs: sc, op_count });
+    }
+    let fd_method = match options.forward_dynamics {
+        ForwardDynamicsMethod::Auto => {
+            let find = |k: FunctionKind| functions.iter().find(|f| f.kind == k);
+            match (find(FunctionKind::ForwardDynamicsAba), find(FunctionKind::ForwardDynamicsLdlt)) {
+                (Some(aba), Some(ldlt)) => fd_choice::choose(aba, ldlt, n),
+                _ => fd_choice::FdChoice { method: ForwardDynamicsMethod::Aba, why: String::new() },
             }
         }
-        functions.push(GeneratedFunction { kind, emitted, function, sin_cos_inputs: sc, op_count });
+        method => fd_choice::FdChoice { method, why: String::new() },
+    };
+    for f in &mut functions {
+        f.emitted = match f.kind {
+            FunctionKind::ForwardDynamicsAba => fd_method.method == ForwardDynamicsMethod::Aba,
+            FunctionKind::ForwardDynamicsLdlt => fd_method.method == ForwardDynamicsMethod::Ldlt,
+            _ => true,
+        };
+        if !f.emitted {
+            continue;
+        }
+        let (kind, sc, op_count) = (f.kind, &f.sin_cos_inputs, f.op_count);
+        let mut params = vec!["s", "c"];
+        if has_prismatic {
+            params.push("q");
+        }
+        params.extend(&kind.inputs()[1..]);
+        let sc_name = format!("{}_sc", kind.fn_name());
+        let params = params.into_iter().map(emit::Param::dof).collect();
+        let signature = emit::Signature { name: sc_name.clone(), params, output: emit::Shape::of(kind) };
+        let doc = format!("{}\n\n{}", doc_of(kind, model, &sc.function.op_count()), sc_doc(has_prismatic));
+        let emitted =
+            emit::emit_function(&sc.function, &signature, options.scalar, options.trig, n, &doc, options.split_lets)?;
+        if let Some(parts) = split::parts_of(&emitted) {
+            split_functions.push((sc_name.clone(), parts));
+        }
+        items.extend(emitted);
+        if options.trig != Trig::Inputs {
+            let doc = format!(
+                "{}\n\n The sines and cosines of the joint angles by {}, then [`{sc_name}`].",
+                doc_of(kind, model, &op_count),
+                trig_source(options.trig, options.scalar)
+            );
+            let params: Vec<emit::Param> = kind.inputs().iter().map(|p| emit::Param::dof(p)).collect();
+            let ret = emit::return_type(kind, options.scalar);
+            items.push(parse_item(wrapper(kind.fn_name(), &params, ret, sc, has_prismatic, options, &doc))?);
+        }
     }
     let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
     let body = prettyplease::unparse(&file);
     let model_hash = model_hash(model);
-    let header = header(model, options, &functions, &snapped, model_hash)
+    let header = header(model, options, &fd_method, &functions, &snapped, model_hash)
         + &split::header_note(options.split_lets, &split_functions);
     let kernel = sin_cos::kernel_source(options.scalar);
     Ok(GeneratedModule {
@@ -643,6 +656,7 @@ fn wrapper(
 fn header(
     model: &Model,
     options: &CodegenOptions,
+    fd: &fd_choice::FdChoice,
     functions: &[GeneratedFunction],
     snapped: &[SnappedConstant],
     hash: u64,
@@ -664,20 +678,22 @@ fn header(
         ScalarType::F64 => "f64",
         ScalarType::F32 => "f32",
     };
-    let fd = match options.forward_dynamics {
-        ForwardDynamicsMethod::Aba => "articulated-body algorithm",
+    let fd_name = match fd.method {
+        ForwardDynamicsMethod::Aba | ForwardDynamicsMethod::Auto => "articulated-body algorithm",
         ForwardDynamicsMethod::Ldlt => "CRBA + RNEA + sparse LTDL",
     };
+    let fd_how = if options.forward_dynamics == ForwardDynamicsMethod::Auto { " (chosen)" } else { "" };
     let r = options.rewrites;
     let _ = writeln!(
         h,
-        "// Options: scalar {scalar}; forward dynamics by the {fd}; rounding snap {} ({} constants); inertia regrouping {}; like terms {}, constant products {}, constant sums {}.",
+        "// Options: scalar {scalar}; forward dynamics by the {fd_name}{fd_how}; rounding snap {} ({} constants); inertia regrouping {}; like terms {}, constant products {}, constant sums {}, reassociation {}.",
         if options.snap_rounding { "on" } else { "off" },
         snapped.len(),
         if options.regroup_inertia { "on" } else { "off" },
         if r.like_terms { "on" } else { "off" },
         if r.constant_products { "on" } else { "off" },
         if r.constant_sums { "on" } else { "off" },
+        if r.reassociate { "on" } else { "off" },
     );
     let trig = match options.trig {
         Trig::Std => "NAME(q, ...) computes the sines and cosines by std's sin_cos (needs std)",
@@ -688,10 +704,11 @@ fn header(
         Trig::Inputs => "only NAME_sc(s, c, ...): the caller passes the sines and cosines (no_std, no dependency)",
     };
     let _ = writeln!(h, "// Trigonometry: {trig}.");
-    let why = match options.forward_dynamics {
-        ForwardDynamicsMethod::Aba => {
-            "the articulated-body algorithm, although CRBA + LTDL takes fewer operations on short chains: \
-             it is the accurate one (64-joint chain against double-double: 1e-12 against 7e-10)"
+    let why = match fd.method {
+        _ if !fd.why.is_empty() => fd.why.as_str(),
+        ForwardDynamicsMethod::Aba | ForwardDynamicsMethod::Auto => {
+            "the articulated-body algorithm, as asked: the accurate one on long chains (64-joint chain against \
+             double-double: 1e-12 against 7e-10)"
         }
         ForwardDynamicsMethod::Ldlt => "CRBA + LTDL, as asked: fewer operations, less accurate on long chains",
     };
@@ -713,10 +730,20 @@ fn header(
     if !left_out.is_empty() {
         let _ = writeln!(h, "// Left out: {}.", left_out.join(", "));
     }
-    let _ = writeln!(h, "// Operation counts:");
+    let _ = writeln!(
+        h,
+        "// Operation counts; critical path = the longest chain of dependent operations, weighted by latency\n\
+         //   (add, sub, mul 4 cycles, div 14, sqrt 18, neg 1), of the body with the sines and cosines given:"
+    );
     for f in functions {
         let note = if f.emitted { "" } else { " [not emitted]" };
-        let _ = writeln!(h, "//   {}{note}: {}", f.kind.label(), f.op_count);
+        let _ = writeln!(
+            h,
+            "//   {}{note}: {}; body NAME_sc {}",
+            f.kind.label(),
+            f.op_count,
+            f.sin_cos_inputs.function.critical_path()
+        );
     }
     h
 }

@@ -232,7 +232,7 @@ fn trace_unfactored(
         SceneFn::ForwardDynamics if !p => {
             let mut scratch = vec![zero; n];
             match method {
-                ForwardDynamicsMethod::Aba => {
+                ForwardDynamicsMethod::Aba | ForwardDynamicsMethod::Auto => {
                     dynamics::forward_dynamics(scene, &mut ws, q, &args[1], &args[2], g, &tips, &mut scratch, &mut out)
                 }
                 ForwardDynamicsMethod::Ldlt => dynamics::forward_dynamics_ldlt(
@@ -486,6 +486,7 @@ fn header(
         } else if options.forward_dynamics == ForwardDynamicsMethod::Ldlt {
             "CRBA with the armature on M's diagonal, RNEA, and a sparse LTDL solve, as asked"
         } else {
+            // Auto too: a scene's bodies are not compared, the ABA is kept.
             "the articulated-body algorithm, armature in D_i = S_i^T U_i + a_i"
         };
         let _ = writeln!(h, "// Forward dynamics: {fd}.");

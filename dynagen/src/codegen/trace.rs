@@ -3,7 +3,7 @@
 use crate::algorithms::{aba, bias, crba, forward_dynamics, rnea, Workspace};
 use crate::model::Model;
 use crate::spatial::Vec3;
-use crate::symbolic::{factor, Expr, Function, Graph, Node, NodeId, Rewrites, TraceActive, Tracer};
+use crate::symbolic::{balance, factor, Expr, Function, Graph, Latency, Node, NodeId, Rewrites, TraceActive, Tracer};
 use crate::Scalar;
 
 /// The functions of the generated-code contract (DESIGN.md).
@@ -197,7 +197,11 @@ pub fn sin_cos_inputs(f: &Function, n: usize, rewrites: Rewrites) -> Result<SinC
     }
     let mut function = Function::from_ids(f.name(), &g, &outputs);
     function.set_input_names(&names);
-    Ok(SinCosTrace { function: factor(&function, rewrites), angle_scale })
+    let mut function = factor(&function, rewrites);
+    if rewrites.reassociate {
+        function = balance(&function, &Latency::default(), rewrites);
+    }
+    Ok(SinCosTrace { function, angle_scale })
 }
 
 /// The inverse of [`trace_sin_cos_inputs`]: `s[i]` and `c[i]` replaced by the

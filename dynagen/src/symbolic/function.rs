@@ -1,6 +1,6 @@
 //! A traced function: the part of a graph its outputs reach.
 
-use super::count::OpCount;
+use super::count::{CriticalPath, Latency, OpCount};
 use super::expr::Expr;
 use super::graph::Graph;
 use super::node::{Node, NodeId};
@@ -91,5 +91,10 @@ impl Function {
     /// The operation count.
     pub fn op_count(&self) -> OpCount {
         OpCount::of(&self.nodes)
+    }
+    /// The latency-weighted depth with the default [`Latency`] (see
+    /// [`CriticalPath`]).
+    pub fn critical_path(&self) -> CriticalPath {
+        CriticalPath::of(&self.nodes, &self.outputs, &Latency::default())
     }
 }

@@ -17,19 +17,23 @@ pub struct Rewrites {
     /// `(x + a) + b → x + (a + b)` (and with subtractions) for constants
     /// `a`, `b`: one addition fewer, the same possible last-bit difference.
     pub constant_sums: bool,
+    /// Sums reassociated for a shorter critical path after the trace
+    /// ([`balance`](super::balance)): the same number of operations, a
+    /// result that may differ in the last bits.
+    pub reassociate: bool,
 }
 
 impl Default for Rewrites {
-    /// Both rewrites on.
+    /// Every rewrite on.
     fn default() -> Self {
-        Rewrites { like_terms: true, constant_products: true, constant_sums: true }
+        Rewrites { like_terms: true, constant_products: true, constant_sums: true, reassociate: true }
     }
 }
 
 impl Rewrites {
     /// Only the rewrites that never change a value.
     pub fn exact() -> Self {
-        Rewrites { like_terms: false, constant_products: false, constant_sums: false }
+        Rewrites { like_terms: false, constant_products: false, constant_sums: false, reassociate: false }
     }
 }
 

@@ -52,13 +52,19 @@
 //! [`Function::new`] keeps only what the outputs reach (dead code
 //! elimination) and renumbers the nodes densely; [`factor`] then uses the
 //! now-known use counts to share common factors (`k·u ± k·v → k·(u ± v)`
-//! when both products have no other use) and to move negations out; the
-//! [`OpCount`] of a function counts each kept operation once.
+//! when both products have no other use) and to move negations out;
+//! [`balance`] (with [`Rewrites::reassociate`]) rebuilds the sums
+//! whose inner nodes have no other use as the trees that are
+//! ready earliest, which shortens the body's chain of dependent operations
+//! without adding any. The [`OpCount`] of a function counts each kept
+//! operation once; its [`CriticalPath`] is that longest chain, weighted by
+//! [`Latency`].
 //!
 //! Constants that are zero or ±1 up to the rounding of the robot file's
 //! numbers (a `cos(π/2)` of `6e-17`) are decided before tracing, on the
 //! model: see [`crate::codegen`].
 
+mod balance;
 mod count;
 mod eval;
 mod expr;
@@ -68,7 +74,8 @@ mod graph;
 mod node;
 mod tracer;
 
-pub use count::OpCount;
+pub use balance::balance;
+pub use count::{CriticalPath, Latency, OpCount};
 pub use eval::MissingInput;
 pub use expr::Expr;
 pub use factor::factor;

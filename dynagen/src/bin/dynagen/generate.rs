@@ -34,10 +34,14 @@ pub struct Args {
     /// crate), inputs (only the NAME_sc functions, which take them; no_std).
     #[arg(long, value_name = "std|batched|libm|inputs")]
     pub trig: Option<String>,
-    /// Forward dynamics by CRBA + RNEA + a sparse LTDL solve instead of the
-    /// articulated-body algorithm.
-    #[arg(long)]
+    /// Forward dynamics by CRBA + RNEA + a sparse LTDL solve (default: the
+    /// faster of the two that is as accurate, measured when generating).
+    #[arg(long, conflicts_with = "aba")]
     pub ldlt: bool,
+    /// Forward dynamics by the articulated-body algorithm (default: the
+    /// faster of the two that is as accurate, measured when generating).
+    #[arg(long)]
+    pub aba: bool,
     /// Keep constants that are 0 or ±1 up to rounding as they are.
     #[arg(long)]
     pub no_snap: bool,
@@ -92,7 +96,11 @@ fn builder(args: &Args, source: &RobotSource) -> Result<(Builder, dynagen::Model
     let model = source.load()?;
     let mut options = dynagen::codegen::CodegenOptions::default()
         .scalar(if args.f32 { ScalarType::F32 } else { ScalarType::F64 })
-        .forward_dynamics(if args.ldlt { ForwardDynamicsMethod::Ldlt } else { ForwardDynamicsMethod::Aba })
+        .forward_dynamics(match (args.ldlt, args.aba) {
+            (true, _) => ForwardDynamicsMethod::Ldlt,
+            (_, true) => ForwardDynamicsMethod::Aba,
+            _ => ForwardDynamicsMethod::Auto,
+        })
         .snap_rounding(!args.no_snap)
         .trig(trig);
     if let Some(n) = args.split_lets {

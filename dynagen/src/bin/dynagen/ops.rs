@@ -72,7 +72,15 @@ fn full_table(o: &mut String, model: &dynagen::Model, module: &GeneratedModule) 
     }
     let _ = writeln!(o, "\nbreakdown (generated | generic):");
     for f in &module.functions {
-        let _ = writeln!(o, "  {}:\n    {}\n    {}", f.kind.label(), f.op_count, generic_op_count(model, f.kind));
+        let _ = writeln!(
+            o,
+            "  {}:\n    {}\n    {}\n    body with sines and cosines given: {}, {}",
+            f.kind.label(),
+            f.op_count,
+            generic_op_count(model, f.kind),
+            f.sin_cos_inputs.function.op_count(),
+            f.sin_cos_inputs.function.critical_path()
+        );
     }
 }
 

@@ -1,0 +1,155 @@
+//! Before/after on a shared, noisy machine: each generated body
+//! (`NAME_sc`, sines and cosines given) of the UR5 and the Panda against
+//! the same body as generated before branch `body` (`*_base` modules), and
+//! the generic solver, timed in alternating rounds (each call's whole
+//! output goes through `black_box`, so nothing of a body is left out) of 2,000 calls on 8
+//! states; the minimum over rounds per call is reported (interference only
+//! ever adds time, so the minimum is the least disturbed estimate).
+//!
+//! `cargo run --release -p dynagen-bench --example interleaved [ROUNDS]`
+
+use dynagen::algorithms::{aba, bias, crba, rnea, Workspace};
+use dynagen::spatial::Vec3;
+use dynagen::Model;
+use dynagen_bench::urdf;
+use std::hint::black_box;
+use std::time::Instant;
+
+const CALLS: usize = 2000;
+
+/// One state: q, q̇, q̈, τ, sin q, cos q.
+type State<const N: usize> = [[f64; N]; 6];
+/// A body on a state (one entry of its output).
+type Body<const N: usize> = fn(&State<N>) -> f64;
+
+fn states<const N: usize>(seed: u64) -> Vec<[[f64; N]; 6]> {
+    let mut x = seed;
+    let mut next = move || {
+        x ^= x >> 12;
+        x ^= x << 25;
+        x ^= x >> 27;
+        (x.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    };
+    (0..8)
+        .map(|_| {
+            let q: [f64; N] = core::array::from_fn(|_| 2.0 * next());
+            let qd = core::array::from_fn(|_| 2.0 * next());
+            let qdd = core::array::from_fn(|_| 5.0 * next());
+            let tau = core::array::from_fn(|_| 20.0 * next());
+            [q, qd, qdd, tau, q.map(f64::sin), q.map(f64::cos)]
+        })
+        .collect()
+}
+
+/// Nanoseconds per call of each closure: the minimum over `rounds`
+/// alternating rounds.
+fn race<const N: usize>(rounds: usize, st: &[[[f64; N]; 6]], fs: &mut [&mut dyn FnMut(&State<N>) -> f64]) -> Vec<f64> {
+    let mut best = vec![f64::INFINITY; fs.len()];
+    let n = fs.len();
+    for r in 0..rounds {
+        // Alternate the order too, so that no variant always follows another.
+        for j in 0..n {
+            let k = if r % 2 == 0 { j } else { n - 1 - j };
+            let f = &mut fs[k];
+            let t = Instant::now();
+            for i in 0..CALLS {
+                black_box(f(black_box(&st[i & 7])));
+            }
+            best[k] = best[k].min(t.elapsed().as_nanos() as f64 / CALLS as f64);
+        }
+    }
+    best
+}
+
+/// `tau`, `m`, `h`, `fd` of a module's bodies on a state `[q, qd, qdd, tau, s, c]`.
+macro_rules! bodies {
+    ($name:ident, $m:ident, $n:literal) => {
+        mod $name {
+            use dynagen_bench::$m as m;
+            use std::hint::black_box;
+            pub fn tau(s: &[[f64; $n]; 6]) -> f64 {
+                black_box(m::inverse_dynamics_sc(&s[4], &s[5], &s[1], &s[2]))[0]
+            }
+            pub fn m(s: &[[f64; $n]; 6]) -> f64 {
+                black_box(m::mass_matrix_sc(&s[4], &s[5]))[0][0]
+            }
+            pub fn h(s: &[[f64; $n]; 6]) -> f64 {
+                black_box(m::bias_forces_sc(&s[4], &s[5], &s[1]))[0]
+            }
+            pub fn fd(s: &[[f64; $n]; 6]) -> f64 {
+                black_box(m::forward_dynamics_sc(&s[4], &s[5], &s[1], &s[3]))[0]
+            }
+        }
+    };
+    ($name:ident, $m:ident, $n:literal, q) => {
+        mod $name {
+            use dynagen_bench::$m as m;
+            use std::hint::black_box;
+            pub fn tau(s: &[[f64; $n]; 6]) -> f64 {
+                black_box(m::inverse_dynamics_sc(&s[4], &s[5], &s[0], &s[1], &s[2]))[0]
+            }
+            pub fn m(s: &[[f64; $n]; 6]) -> f64 {
+                black_box(m::mass_matrix_sc(&s[4], &s[5], &s[0]))[0][0]
+            }
+            pub fn h(s: &[[f64; $n]; 6]) -> f64 {
+                black_box(m::bias_forces_sc(&s[4], &s[5], &s[0], &s[1]))[0]
+            }
+            pub fn fd(s: &[[f64; $n]; 6]) -> f64 {
+                black_box(m::forward_dynamics_sc(&s[4], &s[5], &s[0], &s[1], &s[3]))[0]
+            }
+        }
+    };
+}
+bodies!(ur5_new, ur5_std, 6);
+bodies!(ur5_old, ur5_base, 6);
+bodies!(panda_new, panda_std, 9, q);
+bodies!(panda_old, panda_base, 9, q);
+
+fn robot<const N: usize>(name: &str, rounds: usize, new: [Body<N>; 4], old: [Body<N>; 4]) {
+    let model = Model::from_urdf_file(urdf(name)).unwrap();
+    let st = states::<N>(0x5eed);
+    let mut ws = Workspace::<f64>::new(&model);
+    let g = Vec3::<f64>::from_f64(&model.gravity);
+    let mut out = vec![0.0; N];
+    let mut mm = vec![0.0; N * N];
+    for (k, f) in ["tau", "M", "h", "fd"].into_iter().enumerate() {
+        let mut generic = |s: &[[f64; N]; 6]| {
+            match k {
+                0 => rnea::rnea(&model, &mut ws, &s[0], Some(&s[1]), Some(&s[2]), Some(&g), &[], &mut out),
+                1 => crba::crba(&model, &mut ws, &s[0], &mut mm),
+                2 => bias::bias_forces(&model, &mut ws, &s[0], &s[1], Some(&g), &mut out),
+                _ => aba::aba(&model, &mut ws, &s[0], &s[1], &s[3], Some(&g), &[], &mut out),
+            }
+            out[0] + mm[0]
+        };
+        let (mut a, mut b) = (new[k], old[k]);
+        let t = race(rounds, &st, &mut [&mut generic, &mut a, &mut b]);
+        println!(
+            "| {name} | {f} | {:.0} ns | {:.1} ns ({:.1}x) | {:.1} ns ({:.1}x) | {:.2} |",
+            t[0],
+            t[1],
+            t[0] / t[1],
+            t[2],
+            t[0] / t[2],
+            t[2] / t[1]
+        );
+    }
+}
+
+fn main() {
+    let rounds: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(200);
+    println!("| robot | function | generic | gen_sc (now) | gen_sc_base (before) | before / now |");
+    println!("| --- | --- | --- | --- | --- | --- |");
+    robot::<6>(
+        "ur5",
+        rounds,
+        [ur5_new::tau, ur5_new::m, ur5_new::h, ur5_new::fd],
+        [ur5_old::tau, ur5_old::m, ur5_old::h, ur5_old::fd],
+    );
+    robot::<9>(
+        "panda",
+        rounds,
+        [panda_new::tau, panda_new::m, panda_new::h, panda_new::fd],
+        [panda_old::tau, panda_old::m, panda_old::h, panda_old::fd],
+    );
+}
