@@ -73,15 +73,7 @@ impl Ready {
 /// the given `rewrites`.
 pub fn balance(f: &Function, latency: &Latency, rewrites: Rewrites) -> Function {
     let nodes = f.nodes();
-    let mut uses = vec![0u32; nodes.len()];
-    for n in nodes {
-        for op in n.operands() {
-            uses[op as usize] += 1;
-        }
-    }
-    for &o in f.outputs() {
-        uses[o as usize] += 1;
-    }
+    let uses = f.use_counts();
     let is_sum = |id: NodeId| matches!(nodes[id as usize], Node::Add(..) | Node::Sub(..) | Node::Neg(_));
     // An inner node of a sum tree: a sum node whose only use is a sum node.
     let mut inner = vec![false; nodes.len()];

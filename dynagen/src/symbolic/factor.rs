@@ -22,15 +22,7 @@ use super::node::{Node, NodeId};
 /// One factoring pass.
 fn pass(f: &Function, rewrites: Rewrites) -> Function {
     let nodes = f.nodes();
-    let mut uses = vec![0u32; nodes.len()];
-    for n in nodes {
-        for op in n.operands() {
-            uses[op as usize] += 1;
-        }
-    }
-    for &o in f.outputs() {
-        uses[o as usize] += 1;
-    }
+    let uses = f.use_counts();
     let mut g = Graph::with_rewrites(rewrites);
     let mut new: Vec<NodeId> = Vec::with_capacity(nodes.len());
     // The two factors of a product used once.

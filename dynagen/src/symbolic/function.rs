@@ -69,6 +69,20 @@ impl Function {
     pub fn outputs(&self) -> &[NodeId] {
         &self.outputs
     }
+    /// How many times each node is read: as an operand of another node,
+    /// or as an output (one count per output slot).
+    pub fn use_counts(&self) -> Vec<u32> {
+        let mut uses = vec![0u32; self.nodes().len()];
+        for n in self.nodes() {
+            for op in n.operands() {
+                uses[op as usize] += 1;
+            }
+        }
+        for &o in self.outputs() {
+            uses[o as usize] += 1;
+        }
+        uses
+    }
     /// The names of the input vectors ([`Node::Input::name`] indexes them).
     pub fn input_names(&self) -> &[String] {
         &self.input_names
