@@ -1,7 +1,10 @@
-//! Before/after on a shared, noisy machine: each generated body
-//! (`NAME_sc`, sines and cosines given) of the UR5 and the Panda against
-//! the same body as generated before branch `body` (`*_base` modules), and
-//! the generic solver, timed in alternating rounds (each call's whole
+//! Generated against generic on a shared, noisy machine: each generated
+//! function of the UR5 and the Panda with its trigonometry (`NAME(q, …)`
+//! of the `Trig::Std` module, by std's `sin_cos`, and of the
+//! `Trig::Batched` module, by the module's `sin_cos_array`), its body alone
+//! (`NAME_sc`, sines and cosines given), the same body as generated before
+//! branch `body` (`*_base` modules), and the generic solver, timed in
+//! alternating rounds (each call's whole
 //! output goes through `black_box`, so nothing of a body is left out) of 2,000 calls on 8
 //! states; the minimum over rounds per call is reported (interference only
 //! ever adds time, so the minimum is the least disturbed estimate).
@@ -100,12 +103,47 @@ macro_rules! bodies {
         }
     };
 }
+/// `tau`, `m`, `h`, `fd` of a module's `NAME(q, …)` functions, the
+/// sines and cosines computed inside.
+macro_rules! with_trig {
+    ($name:ident, $m:ident, $n:literal) => {
+        mod $name {
+            use dynagen_bench::$m as m;
+            use std::hint::black_box;
+            pub fn tau(s: &[[f64; $n]; 6]) -> f64 {
+                black_box(m::inverse_dynamics(&s[0], &s[1], &s[2]))[0]
+            }
+            pub fn m(s: &[[f64; $n]; 6]) -> f64 {
+                black_box(m::mass_matrix(&s[0]))[0][0]
+            }
+            pub fn h(s: &[[f64; $n]; 6]) -> f64 {
+                black_box(m::bias_forces(&s[0], &s[1]))[0]
+            }
+            pub fn fd(s: &[[f64; $n]; 6]) -> f64 {
+                black_box(m::forward_dynamics(&s[0], &s[1], &s[3]))[0]
+            }
+        }
+    };
+}
+with_trig!(ur5_std_trig, ur5_std, 6);
+with_trig!(ur5_batched_trig, ur5_batched, 6);
+with_trig!(panda_std_trig, panda_std, 9);
+with_trig!(panda_batched_trig, panda_batched, 9);
 bodies!(ur5_new, ur5_std, 6);
 bodies!(ur5_old, ur5_base, 6);
 bodies!(panda_new, panda_std, 9, q);
 bodies!(panda_old, panda_base, 9, q);
 
-fn robot<const N: usize>(name: &str, rounds: usize, new: [Body<N>; 4], old: [Body<N>; 4]) {
+/// The functions of one robot: generic, then std trig, batched trig, the
+/// body now, the body before.
+struct Variants<const N: usize> {
+    std: [Body<N>; 4],
+    batched: [Body<N>; 4],
+    new: [Body<N>; 4],
+    old: [Body<N>; 4],
+}
+
+fn robot<const N: usize>(name: &str, rounds: usize, v: Variants<N>) {
     let model = Model::from_urdf_file(urdf(name)).unwrap();
     let st = states::<N>(0x5eed);
     let mut ws = Workspace::<f64>::new(&model);
@@ -122,34 +160,45 @@ fn robot<const N: usize>(name: &str, rounds: usize, new: [Body<N>; 4], old: [Bod
             }
             out[0] + mm[0]
         };
-        let (mut a, mut b) = (new[k], old[k]);
-        let t = race(rounds, &st, &mut [&mut generic, &mut a, &mut b]);
+        let (mut a, mut b, mut c, mut d) = (v.std[k], v.batched[k], v.new[k], v.old[k]);
+        let t = race(rounds, &st, &mut [&mut generic, &mut a, &mut b, &mut c, &mut d]);
+        let cell = |i: usize| format!("{:.1} ns ({:.1}x)", t[i], t[0] / t[i]);
         println!(
-            "| {name} | {f} | {:.0} ns | {:.1} ns ({:.1}x) | {:.1} ns ({:.1}x) | {:.2} |",
+            "| {name} | {f} | {:.0} ns | {} | {} | {} | {} | {:.2} |",
             t[0],
-            t[1],
-            t[0] / t[1],
-            t[2],
-            t[0] / t[2],
-            t[2] / t[1]
+            cell(1),
+            cell(2),
+            cell(3),
+            cell(4),
+            t[4] / t[3]
         );
     }
 }
 
 fn main() {
     let rounds: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(200);
-    println!("| robot | function | generic | gen_sc (now) | gen_sc_base (before) | before / now |");
-    println!("| --- | --- | --- | --- | --- | --- |");
+    println!(
+        "| robot | function | generic | gen_std (std sin_cos) | gen_batched (sin_cos_array) | gen_sc (body, trig excluded) | gen_sc_base (body before) | before / now |"
+    );
+    println!("| --- | --- | --- | --- | --- | --- | --- | --- |");
     robot::<6>(
         "ur5",
         rounds,
-        [ur5_new::tau, ur5_new::m, ur5_new::h, ur5_new::fd],
-        [ur5_old::tau, ur5_old::m, ur5_old::h, ur5_old::fd],
+        Variants {
+            std: [ur5_std_trig::tau, ur5_std_trig::m, ur5_std_trig::h, ur5_std_trig::fd],
+            batched: [ur5_batched_trig::tau, ur5_batched_trig::m, ur5_batched_trig::h, ur5_batched_trig::fd],
+            new: [ur5_new::tau, ur5_new::m, ur5_new::h, ur5_new::fd],
+            old: [ur5_old::tau, ur5_old::m, ur5_old::h, ur5_old::fd],
+        },
     );
     robot::<9>(
         "panda",
         rounds,
-        [panda_new::tau, panda_new::m, panda_new::h, panda_new::fd],
-        [panda_old::tau, panda_old::m, panda_old::h, panda_old::fd],
+        Variants {
+            std: [panda_std_trig::tau, panda_std_trig::m, panda_std_trig::h, panda_std_trig::fd],
+            batched: [panda_batched_trig::tau, panda_batched_trig::m, panda_batched_trig::h, panda_batched_trig::fd],
+            new: [panda_new::tau, panda_new::m, panda_new::h, panda_new::fd],
+            old: [panda_old::tau, panda_old::m, panda_old::h, panda_old::fd],
+        },
     );
 }
