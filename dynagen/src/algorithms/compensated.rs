@@ -8,7 +8,7 @@
 //! with an error of about ε·‖h‖/‖M‖, however small q̈ is. Here the bias
 //! forces h(q, q̇) + J(q)ᵀF_tip (gravity, the sines and cosines of q and the
 //! model's constants included) are computed by the recursive Newton-Euler
-//! algorithm in a precise scalar `P` (normally [`Compensated`](crate::Compensated),
+//! algorithm in a precise scalar `P` (normally [`Compensated`],
 //! ≈ 20 digits at a few times the cost of `f64`; [`DoubleDouble`](crate::DoubleDouble)
 //! works too, slower), u = τ − h is formed in `P` and rounded once to `f64`,
 //! and the articulated-body algorithm solves M q̈ = u in `f64` with zero
@@ -62,7 +62,7 @@ impl<P: Scalar> CompensatedScratch<P> {
 }
 
 /// Forward dynamics with the bias forces and τ − h in the precise scalar `P`
-/// (see the module documentation). Arguments as [`aba`], plus the scratch in
+/// (see the module documentation). Arguments as [`aba`](super::aba::aba), plus the scratch in
 /// `P`; `ws` is the `f64` workspace of the articulated-body solve. Allocates
 /// nothing once `scratch` has seen as many tip wrenches as `tips` holds.
 ///

@@ -51,7 +51,8 @@ fn indices(alignment: AxisAlignment) -> Option<(usize, usize, usize)> {
 }
 
 /// A copy of `model` with the inertial parameters regrouped (see the
-/// [module documentation](self)).
+/// documentation of [`CodegenOptions::regroup_inertia`](super::CodegenOptions::regroup_inertia)
+/// and the comments of `codegen/grouping.rs`).
 pub fn regroup_inertia(model: &Model) -> Model {
     let mut m = model.clone();
     for i in (0..m.bodies.len()).rev() {

@@ -330,7 +330,7 @@ fn doc_of(scene: &SceneModel, f: &SceneFn, count: &OpCount) -> String {
 
 /// Generates the module of an applied scene: only the functions it asks
 /// for, everything it fixes folded in, its run-time inputs as arguments (see
-/// the [module documentation](self)). From `options`: the rounding snap,
+/// [`crate::scene`] for the options, and the comments of `codegen/scene.rs`). From `options`: the rounding snap,
 /// the rewrites, the source for the header, the forward-dynamics method
 /// (without input payloads), and the trigonometry when the scene's target
 /// is std. The scalar is `f32` if the scene or `options` ask for it; a

@@ -69,7 +69,7 @@ impl Ready {
 }
 
 /// `f` with every sum tree rebuilt as the earliest-ready tree of the same
-/// leaves; see the [module documentation](self). The rebuilt graph makes
+/// leaves (the comments of `symbolic/balance.rs` say how). The rebuilt graph makes
 /// the given `rewrites`.
 pub fn balance(f: &Function, latency: &Latency, rewrites: Rewrites) -> Function {
     let nodes = f.nodes();
