@@ -204,7 +204,9 @@ fn check_every_joint_moves_mass(model: &Model) -> Result<Vec<ModelWarning>, Mode
         let f = ic.mul_motion(&crate::spatial::Motion::new(a, l));
         a.dot(&f.ang) + l.dot(&f.lin)
     };
-    let solid: Vec<bool> = model
+    // Whether a body, then (summed up the tree below) its subtree, holds a
+    // positive-definite rotational inertia about a centre of mass.
+    let mut solid: Vec<bool> = model
         .bodies
         .iter()
         .map(|b| {
@@ -229,15 +231,14 @@ fn check_every_joint_moves_mass(model: &Model) -> Result<Vec<ModelWarning>, Mode
             return Err(ModelError::MasslessSubtree(b.joint.name.clone()));
         }
         let revolute = b.joint.kind != JointKind::Prismatic;
-        let provably_positive = !revolute
-            || along(&b.inertia, &s) > 0.0
-            || (i..model.bodies.len()).any(|k| solid[k] && model.is_in_subtree(i, k));
+        let provably_positive = !revolute || along(&b.inertia, &s) > 0.0 || solid[i];
         if !provably_positive {
             warnings.push(ModelWarning::MassMatrixMayBeSingular { joint: b.joint.name.clone() });
         }
         if let Some(p) = b.parent {
             let moved = b.joint.placement.inertia_to_parent(&ic);
             composite[p] = composite[p].add(&moved);
+            solid[p] |= solid[i];
         }
     }
     warnings.reverse();
