@@ -308,7 +308,7 @@ fn constant_and_input_payloads() {
     // a second inverse dynamics for τ, h, g and C(q, q̇)q̇, and for M less
     // than J_bᵀ I J_b, which an earlier version used (the frame's Jacobian,
     // I times each column, ≤ 40 operations, and n(n+1)/2 dot products of 11:
-    // +753 operations on the UR5; now +196).
+    // +753 operations on the UR5; now +197).
     let id = ops(full(), "inverse_dynamics") as i64;
     let bound_m = 40 * n + 11 * n * (n + 1) / 2;
     for f in ["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "coriolis", "forward_dynamics"] {

@@ -40,7 +40,7 @@ use super::{
     module_name, parse_item, prepare_model, sin_cos, trig_source, wrapper, CodegenError, CodegenOptions,
     ForwardDynamicsMethod, GeneratedModule, ScalarType, SnappedConstant, Trig, GENERATOR_VERSION,
 };
-use crate::algorithms::{crba, kinematics, ldlt, rnea, BodyInertia, TipWrench, Workspace};
+use crate::algorithms::{crba, kinematics, rnea, BodyInertia, TipWrench, Workspace};
 use crate::model::{JointKind, Model};
 use crate::scene::{dynamics, Function as SceneFn, ResolvedGravity, SceneModel};
 use crate::spatial::{Force, Inertia, Sym3, Transform, Vec3};
@@ -204,13 +204,8 @@ fn trace_unfactored(
     // SceneRobot's, which adds their values to the model's inertias.
     let (q, pl) = (&args[0], &payloads[..]);
     match f {
-        SceneFn::InverseDynamics if p => {
-            rnea::rnea_with_payloads(model, &mut ws, q, Some(&args[1]), Some(&args[2]), g, &tips, pl, &mut out);
-            dynamics::add_armature_times(scene, &args[2], &mut out);
-            dynamics::add_friction(scene, &args[1], &mut out);
-        }
         SceneFn::InverseDynamics => {
-            dynamics::inverse_dynamics(scene, &mut ws, q, &args[1], &args[2], g, &tips, &mut out);
+            dynamics::inverse_dynamics_with_payloads(scene, &mut ws, q, &args[1], &args[2], g, &tips, pl, &mut out);
         }
         SceneFn::MassMatrix => {
             crba::crba_with_payloads(model, &mut ws, q, pl, &mut out);
@@ -249,20 +244,20 @@ fn trace_unfactored(
             }
         }
         SceneFn::ForwardDynamics => {
-            // (M + diag(armature)) q̈ = τ − friction − h − J_tipᵀF_tip, the
-            // payloads in M and h.
-            let mut m = vec![zero; n * n];
-            crba::crba_with_payloads(model, &mut ws, q, pl, &mut m);
-            dynamics::add_armature_diagonal(scene, &mut m);
-            let mut h = vec![zero; n];
-            rnea::rnea_with_payloads(model, &mut ws, q, Some(&args[1]), None, g, &tips, pl, &mut h);
-            out.copy_from_slice(&args[2]);
-            dynamics::sub_friction(scene, &args[1], &mut out);
-            for (o, hi) in out.iter_mut().zip(&h) {
-                *o -= *hi;
-            }
-            ldlt::factorise(model, &mut m);
-            ldlt::solve(model, &m, &mut out);
+            // The payloads in M and h: through M and LᵀDL (ABA has no payload form).
+            let mut scratch = vec![zero; n];
+            dynamics::forward_dynamics_ldlt_with_payloads(
+                scene,
+                &mut ws,
+                q,
+                &args[1],
+                &args[2],
+                g,
+                &tips,
+                pl,
+                &mut scratch,
+                &mut out,
+            );
         }
         SceneFn::FramePose(name) | SceneFn::FrameJacobian(name) => {
             let frame = model.frame_index(name).expect("checked by Scene::apply");

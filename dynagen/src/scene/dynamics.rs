@@ -8,7 +8,7 @@
 //! state.
 
 use super::SceneModel;
-use crate::algorithms::{aba, bias, crba, ldlt, rnea, TipWrench, Workspace};
+use crate::algorithms::{aba, bias, crba, ldlt, rnea, BodyInertia, TipWrench, Workspace};
 use crate::spatial::Vec3;
 use crate::Scalar;
 
@@ -67,7 +67,24 @@ pub fn inverse_dynamics<S: Scalar>(
     tips: &[TipWrench<S>],
     tau: &mut [S],
 ) {
-    rnea::rnea(&scene.model, ws, q, Some(qd), Some(qdd), gravity, tips, tau);
+    inverse_dynamics_with_payloads(scene, ws, q, qd, qdd, gravity, tips, &[], tau);
+}
+
+/// [`inverse_dynamics`] with extra body inertias (payloads given at run
+/// time, see [`rnea::rnea_with_payloads`]).
+#[allow(clippy::too_many_arguments)]
+pub fn inverse_dynamics_with_payloads<S: Scalar>(
+    scene: &SceneModel,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    qd: &[S],
+    qdd: &[S],
+    gravity: Option<&Vec3<S>>,
+    tips: &[TipWrench<S>],
+    payloads: &[BodyInertia<S>],
+    tau: &mut [S],
+) {
+    rnea::rnea_with_payloads(&scene.model, ws, q, Some(qd), Some(qdd), gravity, tips, payloads, tau);
     add_armature_times(scene, qdd, tau);
     add_friction(scene, qd, tau);
 }
@@ -160,17 +177,36 @@ pub fn forward_dynamics_ldlt<S: Scalar>(
     scratch: &mut [S],
     qdd: &mut [S],
 ) {
+    forward_dynamics_ldlt_with_payloads(scene, ws, q, qd, tau, gravity, tips, &[], scratch, qdd);
+}
+
+/// [`forward_dynamics_ldlt`] with extra body inertias (payloads given at run
+/// time) in M and h ([`crba::crba_with_payloads`],
+/// [`rnea::rnea_with_payloads`]).
+#[allow(clippy::too_many_arguments)]
+pub fn forward_dynamics_ldlt_with_payloads<S: Scalar>(
+    scene: &SceneModel,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    qd: &[S],
+    tau: &[S],
+    gravity: Option<&Vec3<S>>,
+    tips: &[TipWrench<S>],
+    payloads: &[BodyInertia<S>],
+    scratch: &mut [S],
+    qdd: &mut [S],
+) {
     let n = scene.dof();
     assert!(scratch.len() == n && tau.len() == n, "forward_dynamics_ldlt: slices must have the model's {n} joints");
     scratch.copy_from_slice(tau);
     sub_friction(scene, qd, scratch);
     // h + JᵀF_tip into qdd, then the right-hand side.
-    rnea::rnea(&scene.model, ws, q, Some(qd), None, gravity, tips, qdd);
+    rnea::rnea_with_payloads(&scene.model, ws, q, Some(qd), None, gravity, tips, payloads, qdd);
     for i in 0..n {
         qdd[i] = scratch[i] - qdd[i];
     }
     let mut m = std::mem::take(&mut ws.mat);
-    crba::crba(&scene.model, ws, q, &mut m);
+    crba::crba_with_payloads(&scene.model, ws, q, payloads, &mut m);
     add_armature_diagonal(scene, &mut m);
     ldlt::factorise(&scene.model, &mut m);
     ldlt::solve(&scene.model, &m, qdd);
