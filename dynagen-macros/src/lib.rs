@@ -38,8 +38,10 @@
 //! | --- | --- | --- |
 //! | `functions` | `[inverse_dynamics, mass_matrix, bias_forces, gravity_torques, coriolis, forward_dynamics]` (`coriolis` makes it a scene module) | all five |
 //! | `scalar` | `f64`, `f32` | `f64` |
-//! | `forward_dynamics` | `aba`, `ldlt` | `aba` |
+//! | `forward_dynamics` | `auto`, `aba`, `ldlt` | `auto` (the faster of the two unless it is less accurate; the header says which) |
 //! | `snap_rounding` | `true`, `false` | `true` |
+//! | `trig` | `std` (`f64::sin_cos`), `batched` (the module's own `sin_cos_array`: no_std, faster), `libm`, `inputs` (only the `NAME_sc` functions) | `std` |
+//! | `split_lets` | a number of `let`s, or `none` | 2500 (longer bodies become `#[inline(never)]` parts) |
 //!
 //! # Scenes (both macros)
 //!
@@ -81,12 +83,12 @@
 //! joint or a tip not below the root (at the name the error is about; at
 //! the scene file's path for an error in the file).
 
-use dynagen::codegen::{Builder, CodegenOptions, ForwardDynamicsMethod, Functions, ScalarType};
+use dynagen::codegen::{Builder, CodegenOptions, ForwardDynamicsMethod, Functions, ScalarType, Trig};
 use proc_macro2::{Span, TokenStream};
 use quote::quote;
 use syn::parse::{Parse, ParseStream};
 use syn::punctuated::Punctuated;
-use syn::{bracketed, Ident, LitBool, LitStr, Token};
+use syn::{bracketed, Ident, LitBool, LitInt, LitStr, Token};
 
 mod robot;
 mod scene;
@@ -151,6 +153,8 @@ pub(crate) struct MacroOptions {
     scalar: Option<ScalarType>,
     forward_dynamics: Option<ForwardDynamicsMethod>,
     snap_rounding: Option<bool>,
+    trig: Option<Trig>,
+    split_lets: Option<Option<usize>>,
     scene: scene::SceneOptions,
 }
 
@@ -188,12 +192,43 @@ impl MacroOptions {
             "forward_dynamics" => {
                 let v: Ident = input.parse()?;
                 self.forward_dynamics = Some(match v.to_string().as_str() {
+                    "auto" => ForwardDynamicsMethod::Auto,
                     "aba" => ForwardDynamicsMethod::Aba,
                     "ldlt" => ForwardDynamicsMethod::Ldlt,
-                    _ => return Err(syn::Error::new(v.span(), "expected `aba` or `ldlt`")),
+                    _ => return Err(syn::Error::new(v.span(), "expected `auto`, `aba` or `ldlt`")),
                 });
             }
             "snap_rounding" => self.snap_rounding = Some(input.parse::<LitBool>()?.value),
+            "trig" => {
+                let v: Ident = input.parse()?;
+                self.trig = Some(match v.to_string().as_str() {
+                    "std" => Trig::Std,
+                    "batched" => Trig::Batched,
+                    "libm" => Trig::Libm,
+                    "inputs" => Trig::Inputs,
+                    _ => return Err(syn::Error::new(v.span(), "expected `std`, `batched`, `libm` or `inputs`")),
+                });
+            }
+            "split_lets" => {
+                self.split_lets = Some(if input.peek(Ident) {
+                    let v: Ident = input.parse()?;
+                    if v != "none" {
+                        return Err(syn::Error::new(v.span(), "expected a number of lets or `none`"));
+                    }
+                    None
+                } else {
+                    let n: LitInt = input.parse()?;
+                    match n.base10_parse::<usize>()? {
+                        0 => {
+                            return Err(syn::Error::new(
+                                n.span(),
+                                "a part needs at least one `let`; `none` never splits",
+                            ))
+                        }
+                        n => Some(n),
+                    }
+                });
+            }
             _ => return self.scene.parse_value(key, input),
         }
         Ok(true)
@@ -212,6 +247,12 @@ impl MacroOptions {
         }
         if let Some(s) = self.snap_rounding {
             o = o.snap_rounding(s);
+        }
+        if let Some(t) = self.trig {
+            o = o.trig(t);
+        }
+        if let Some(n) = self.split_lets {
+            o = o.split_lets(n);
         }
         let names: Option<Vec<String>> = self.functions.as_ref().map(|f| f.iter().map(Ident::to_string).collect());
         let coriolis = names.as_ref().is_some_and(|n| n.iter().any(|f| f == "coriolis"));
@@ -250,7 +291,8 @@ impl MacroOptions {
 }
 
 /// The options every macro accepts, for error messages.
-pub(crate) const OPTION_NAMES: &str = "functions, scalar, forward_dynamics, snap_rounding, scene, gravity, \
+pub(crate) const OPTION_NAMES: &str =
+    "functions, scalar, forward_dynamics, snap_rounding, trig, split_lets, scene, gravity, \
                                        tip_wrench, subtree, lock, armature, viscous, coulomb, coulomb_velocity, \
                                        payload, payload_input, frame_pose, frame_jacobian, target";
 

@@ -29,6 +29,19 @@ pub mod pendulum_f32 {
     }
 }
 
+/// The same Panda functions with the module's own batched sines and
+/// cosines (no_std), the CRBA + LᵀDL forward dynamics forced, and bodies
+/// over 300 `let`s split into parts.
+pub mod panda_batched {
+    dynagen_macros::urdf!(
+        "../../dynagen/robots/panda.urdf",
+        functions = [mass_matrix, bias_forces, forward_dynamics],
+        trig = batched,
+        forward_dynamics = ldlt,
+        split_lets = 300,
+    );
+}
+
 use panda::DOF;
 
 /// τ = M(q)(q̈_des + Kp e + Kd ė) + h(q, q̇), e = q_des − q.
@@ -68,6 +81,31 @@ mod tests {
             assert!((f64::from(g32) - g).abs() < 1e-5, "{g32}");
         }
         assert_eq!(pendulum::JOINT_NAMES, ["hinge"]);
+    }
+
+    #[test]
+    fn options_batched_trig_ldlt_and_split_bodies_agree_with_the_defaults() {
+        use super::panda_batched as b;
+        let q = [0.3, -1.1, 0.7, -2.0, -0.4, 1.9, 0.8, 0.01, 0.03];
+        let qd = [0.2, -0.1, 0.4, 0.0, 0.3, -0.5, 1.0, 0.02, -0.01];
+        let tau = [1.0, -20.0, 3.0, 10.0, -0.5, 0.2, 0.1, 2.0, -1.0];
+        // `sin_cos_array` exists only in a `trig = batched` module.
+        let (s, c) = b::sin_cos_array(&q);
+        for i in 0..DOF {
+            assert!((s[i] - q[i].sin()).abs() <= 2.3e-16 && (c[i] - q[i].cos()).abs() <= 2.3e-16);
+        }
+        let (m, mb) = (panda::mass_matrix(&q), b::mass_matrix(&q));
+        let (h, hb) = (panda::bias_forces(&q, &qd), b::bias_forces(&q, &qd));
+        let (a, ab) = (panda::forward_dynamics(&q, &qd, &tau), b::forward_dynamics(&q, &qd, &tau));
+        let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let m_norm = norm(&m.concat());
+        for i in 0..DOF {
+            for j in 0..DOF {
+                assert!((m[i][j] - mb[i][j]).abs() <= 1e-12 * m_norm, "M[{i}][{j}]");
+            }
+            assert!((h[i] - hb[i]).abs() <= 1e-12 * norm(&h), "h[{i}]");
+            assert!((a[i] - ab[i]).abs() <= 1e-10 * norm(&a), "q̈[{i}]: {} {}", a[i], ab[i]);
+        }
     }
 
     /// Semi-implicit Euler on the generated forward dynamics, with the
