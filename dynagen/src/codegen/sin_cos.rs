@@ -174,17 +174,29 @@ mod tests {
 
     #[test]
     fn the_pair_is_the_scalar_fast_path_bit_for_bit() {
-        // On x86-64 sin_cos_pairs is SSE2 code of its own: the same operations, so the same bits.
-        let xs = angles();
-        for w in xs.windows(6) {
-            let (s, c, ok) = sin_cos_pairs([[w[0], w[1]], [w[2], w[3]], [w[4], w[5]]]);
-            let want: Vec<(f64, f64, bool)> = w.iter().map(|&x| sin_cos_fast(x)).collect();
-            assert_eq!(ok, want.iter().all(|r| r.2), "{w:?}");
-            for j in 0..6 {
-                assert_eq!(s[j / 2][j % 2].to_bits(), want[j].0.to_bits(), "{w:?}");
-                assert_eq!(c[j / 2][j % 2].to_bits(), want[j].1.to_bits(), "{w:?}");
+        // Registers of two angles (SSE2 on x86-64) and, where the target has AVX2, four: the
+        // same operations lane by lane as one angle at a time, so the same bits.
+        fn check<const W: usize>(xs: &[f64])
+        where
+            [f64; W]: ToLanes,
+        {
+            for w in xs.windows(3 * W).step_by(W) {
+                let regs: [[f64; W]; 3] = core::array::from_fn(|r| core::array::from_fn(|l| w[r * W + l]));
+                let got = sin_cos_lanes(regs.map(<[f64; W]>::to_lanes));
+                for r in 0..3 {
+                    let want: Vec<(f64, f64, bool)> = (0..W).map(|l| sin_cos_lanes([regs[r][l]])[0]).collect();
+                    assert_eq!(got[r].2, want.iter().all(|r| r.2), "{w:?}");
+                    for (l, want) in want.iter().enumerate() {
+                        assert_eq!(got[r].0.lane(l).to_bits(), want.0.to_bits(), "{w:?}");
+                        assert_eq!(got[r].1.lane(l).to_bits(), want.1.to_bits(), "{w:?}");
+                    }
+                }
             }
         }
+        let xs = angles();
+        check::<2>(&xs);
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+        check::<4>(&xs);
     }
 
     #[test]
@@ -288,7 +300,7 @@ mod tests {
             }
         }
         // The fast path takes every angle up to 1.5e6 rad but the few near multiples of π/2.
-        let fast_taken = (0..20000).filter(|_| sin_cos_fast(3e6 * rng.next() - 1.5e6).2).count();
+        let fast_taken = (0..20000).filter(|_| sin_cos_lanes([3e6 * rng.next() - 1.5e6])[0].2).count();
         assert_eq!(fast_taken, 20000);
         let (s, c) = sin_cos_batch(&[0.3, -2.0, 1e5]);
         assert!((s[1] - (-2.0f64).sin()).abs() < 1e-15 && (c[2] - 1e5f64.cos()).abs() < 1e-15);
@@ -366,5 +378,114 @@ mod tests {
         assert!(KERNEL_SOURCE_F32.starts_with(KERNEL_SOURCE));
         assert!(KERNEL_SOURCE_F32.contains("pub fn sin_cos_array_f32<const N: usize>"));
         assert!(!KERNEL_SOURCE_F32.contains("//!"), "inner docs cannot be include!d into a module");
+    }
+
+    /// Defines the items and keeps their text, for a harness that must run the same code.
+    macro_rules! with_source {
+        ($name:ident: $($item:tt)*) => {
+            $($item)*
+            const $name: &str = stringify!($($item)*);
+        };
+    }
+
+    with_source! { HARNESS_ANGLES:
+        /// The angles of `the_avx2_batch_is_the_scalar_kernel_bit_for_bit`, on both sides: random
+        /// ones on several scales, near multiples of π/2, and the slow path's other cases.
+        fn harness_angles() -> Vec<f64> {
+            let mut x = 0x2545_f491_4f6c_dd1du64;
+            let mut next = move || {
+                x ^= x >> 12;
+                x ^= x << 25;
+                x ^= x >> 27;
+                (x.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 11) as f64 / (1u64 << 53) as f64
+            };
+            let mut xs = vec![0.0, -0.0, 5e-324, 1e-300, f64::NAN, f64::INFINITY, 1.5e6, 1.6e6, 1e300];
+            for scale in [1.0, 4.0, 1e3, 1.5e6] {
+                for _ in 0..4000 {
+                    xs.push(scale * (2.0 * next() - 1.0));
+                }
+            }
+            for k in 1..2000 {
+                let x = k as f64 * core::f64::consts::FRAC_PI_2;
+                for d in -2i64..=2 {
+                    xs.push(f64::from_bits((x.to_bits() as i64 + d) as u64));
+                }
+            }
+            xs
+        }
+    }
+
+    /// Where the target has AVX2, `sin_cos_array` takes four angles to a register; CI builds for
+    /// plain x86-64, so this compiles the kernel's text with `rustc -O -C target-feature=+avx2`
+    /// (when this machine has AVX2) and checks that the batches, whole and cut at every length up
+    /// to 11, give the bits of the one-angle kernel of this (SSE2) build.
+    #[test]
+    #[cfg(target_arch = "x86_64")]
+    fn the_avx2_batch_is_the_scalar_kernel_bit_for_bit() {
+        if !std::is_x86_feature_detected!("avx2") {
+            eprintln!("skipped: this machine has no AVX2");
+            return;
+        }
+        let dir = std::env::temp_dir().join(format!("dynagen-avx2-kernel-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let main = format!(
+            "{KERNEL_SOURCE}\n{HARNESS_ANGLES}\n{}",
+            r#"
+fn main() {
+    assert!(cfg!(all(target_arch = "x86_64", target_feature = "avx2")), "built without AVX2");
+    let xs = harness_angles();
+    let mut out = Vec::new();
+    fn batch<const N: usize>(xs: &[f64], out: &mut Vec<u64>) {
+        for w in xs.chunks_exact(N) {
+            let (s, c) = sin_cos_array::<N>(w.try_into().unwrap());
+            for i in 0..N {
+                out.push(s[i].to_bits());
+                out.push(c[i].to_bits());
+            }
+        }
+    }
+    batch::<1>(&xs, &mut out);
+    batch::<3>(&xs, &mut out);
+    batch::<4>(&xs, &mut out);
+    batch::<5>(&xs, &mut out);
+    batch::<8>(&xs, &mut out);
+    batch::<9>(&xs, &mut out);
+    batch::<11>(&xs, &mut out);
+    for b in out {
+        println!("{b:016x}");
+    }
+}
+"#
+        );
+        let src = dir.join("main.rs");
+        std::fs::write(&src, main).unwrap();
+        let exe = dir.join("avx2_kernel");
+        let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
+        let built = std::process::Command::new(rustc)
+            .args(["--edition", "2021", "-O", "-C", "target-feature=+avx2", "-o"])
+            .arg(&exe)
+            .arg(&src)
+            .output()
+            .expect("running rustc");
+        assert!(built.status.success(), "{}", String::from_utf8_lossy(&built.stderr));
+        let ran = std::process::Command::new(&exe).output().unwrap();
+        assert!(ran.status.success(), "{}", String::from_utf8_lossy(&ran.stderr));
+        let got: Vec<u64> =
+            String::from_utf8(ran.stdout).unwrap().lines().map(|l| u64::from_str_radix(l, 16).unwrap()).collect();
+        let xs = harness_angles();
+        let mut want = Vec::new();
+        for n in [1, 3, 4, 5, 8, 9, 11] {
+            for w in xs.chunks_exact(n) {
+                for &x in w {
+                    let (s, c) = sin_cos_kernel(x);
+                    want.push(s.to_bits());
+                    want.push(c.to_bits());
+                }
+            }
+        }
+        assert_eq!(got.len(), want.len());
+        let differ = got.iter().zip(&want).position(|(g, w)| g != w);
+        assert_eq!(differ, None, "first difference at output {differ:?}");
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -20,15 +20,18 @@
 //    by Estrin's scheme (short dependency chains). The leading terms r and
 //    1 − r²/2 (with its rounding error kept) are added last.
 // 4. The quadrant k mod 4 picks (±sin r, ±cos r) by bit masks.
-// `sin_cos_array` runs the fast path on two angles at a time, up to three
-// such pairs interleaved step by step (independent chains the processor
-// overlaps): on x86-64 in SSE2 instructions (`sin_cos_pairs`: the same
-// operations as the scalar code, so the same bits), elsewhere as the scalar
-// code, which the compiler may vectorise.
+// `sin_cos_array` runs the fast path on several angles at once, in vector
+// registers on x86-64: four to a register where the target has AVX2
+// (`-C target-cpu=native` or `x86-64-v3`), else two (SSE2, part of every
+// x86-64 target), up to two or three registers interleaved step by step
+// (independent chains the processor overlaps). Steps 1, 3 and 4 are written
+// once (`sin_cos_lanes`) over the operations of `Lanes`, which `f64`, two-
+// and four-lane registers implement lane by lane: the same operations in
+// the same order, so every width gives the bits of the one-angle code.
 
 /// The sines and cosines of `x`, entry by entry: within 1 ulp of the exact
-/// values for every finite angle (NaN and ±∞ give NaN); two angles at a
-/// time in vector instructions.
+/// values for every finite angle (NaN and ±∞ give NaN); two or four angles
+/// at a time in vector instructions.
 #[inline]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut s = [0.0; N];
@@ -36,17 +39,29 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut fast = true;
     let mut i = 0;
     while i < N {
-        // Up to six angles a pass, as up to three pairs in 2-lane vector
-        // instructions, interleaved for the processor to overlap (an odd
-        // N's last pair takes its last angle twice).
-        let at = |j: usize| x[if i + j < N { i + j } else { N - 1 }];
-        let ok = match N - i {
-            1 | 2 => sin_cos_pass::<1, N>(i, [[at(0), at(1)]], &mut s, &mut c),
-            3 | 4 => sin_cos_pass::<2, N>(i, [[at(0), at(1)], [at(2), at(3)]], &mut s, &mut c),
-            _ => sin_cos_pass::<3, N>(i, [[at(0), at(1)], [at(2), at(3)], [at(4), at(5)]], &mut s, &mut c),
+        // The angles from i on, as many as a pass takes; past the end, the
+        // first ones again (a register of copies of one angle makes the
+        // compiler fall back to scalar code).
+        let at = |j: usize| x[(i + j) % N];
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+        let ok = {
+            let quad = |j: usize| core::array::from_fn(|l| at(j + l));
+            match N - i {
+                1..=4 => sin_cos_pass::<4, 1, N>(i, [quad(0)], &mut s, &mut c),
+                _ => sin_cos_pass::<4, 2, N>(i, [quad(0), quad(4)], &mut s, &mut c),
+            }
+        };
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "avx2")))]
+        let ok = {
+            let pair = |j: usize| [at(j), at(j + 1)];
+            match N - i {
+                1 | 2 => sin_cos_pass::<2, 1, N>(i, [pair(0)], &mut s, &mut c),
+                3 | 4 => sin_cos_pass::<2, 2, N>(i, [pair(0), pair(2)], &mut s, &mut c),
+                _ => sin_cos_pass::<2, 3, N>(i, [pair(0), pair(2), pair(4)], &mut s, &mut c),
+            }
         };
         fast &= ok;
-        i += 6;
+        i += if cfg!(all(target_arch = "x86_64", target_feature = "avx2")) { 8 } else { 6 };
     }
     if !fast {
         sin_cos_again(x, &mut s, &mut c);
@@ -54,112 +69,243 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     (s, c)
 }
 
-/// `sin_cos_pairs` on `x`, the results into `s[i..]` and `c[i..]` (what
-/// fits), and whether they are all within 1 ulp.
+/// `sin_cos_lanes` on `P` registers of `W` angles, interleaved, the
+/// results into `s[i..]` and `c[i..]` (what fits), and whether they are all
+/// within 1 ulp.
 #[inline(always)]
-fn sin_cos_pass<const P: usize, const N: usize>(
+fn sin_cos_pass<const W: usize, const P: usize, const N: usize>(
     i: usize,
-    x: [[f64; 2]; P],
+    x: [[f64; W]; P],
     s: &mut [f64; N],
     c: &mut [f64; N],
-) -> bool {
-    let (ps, pc, ok) = sin_cos_pairs(x);
-    for j in 0..2 * P {
+) -> bool
+where
+    [f64; W]: ToLanes,
+{
+    let r = sin_cos_lanes(x.map(<[f64; W]>::to_lanes));
+    for j in 0..W * P {
         if i + j < N {
-            (s[i + j], c[i + j]) = (ps[j / 2][j % 2], pc[j / 2][j % 2]);
+            (s[i + j], c[i + j]) = (r[j / W].0.lane(j % W), r[j / W].1.lane(j % W));
         }
     }
-    ok
+    r.iter().all(|r| r.2)
 }
 
-/// `sin_cos_fast` on `P` pairs of angles, each pair in 2-lane vector
-/// instructions, the pairs interleaved step by step: on x86-64 spelled out
-/// in SSE2 (part of every x86-64 target; the compiler's own vectoriser takes
-/// the scalar code for some lengths only), the same operations in the same
-/// order as `sin_cos_fast`, so the same bits.
+/// `W` angles as a register: `[f64; 1]` as `f64`, `[f64; 2]` and `[f64; 4]`
+/// on x86-64 as SSE2 and AVX2 registers, elsewhere lane by lane.
+trait ToLanes {
+    /// The register.
+    type V: Lanes;
+    /// The angles loaded.
+    fn to_lanes(self) -> Self::V;
+}
+
+/// What steps 1, 3 and 4 do to angles, lane by lane.
+trait Lanes: Copy {
+    /// `a` in every lane.
+    fn splat(a: f64) -> Self;
+    /// Lane `l`.
+    fn lane(self, l: usize) -> f64;
+    /// `self + b`.
+    fn add(self, b: Self) -> Self;
+    /// `self − b`.
+    fn sub(self, b: Self) -> Self;
+    /// `self · b`.
+    fn mul(self, b: Self) -> Self;
+    /// `|self|`.
+    fn abs(self) -> Self;
+    /// Whether min(`self`, 1.5e6) ≥ `b` in every lane: a NaN `self` takes
+    /// 1.5e6, a NaN `b` fails.
+    fn capped_ge(self, b: Self) -> bool;
+    /// Step 4: (sin, cos) of k·π/2 + r from sin r without its sign bit,
+    /// the sign bit of `signed` or-ed in, cos r, and k ≡ the low bits of
+    /// `quadrant` (mod 4).
+    fn quadrant(sin_r: Self, signed: Self, cos_r: Self, quadrant: Self) -> (Self, Self);
+}
+
+impl ToLanes for [f64; 1] {
+    type V = f64;
+    #[inline(always)]
+    fn to_lanes(self) -> f64 {
+        self[0]
+    }
+}
+
+impl Lanes for f64 {
+    #[inline(always)]
+    fn splat(a: f64) -> f64 {
+        a
+    }
+    #[inline(always)]
+    fn lane(self, _: usize) -> f64 {
+        self
+    }
+    #[inline(always)]
+    fn add(self, b: f64) -> f64 {
+        self + b
+    }
+    #[inline(always)]
+    fn sub(self, b: f64) -> f64 {
+        self - b
+    }
+    #[inline(always)]
+    fn mul(self, b: f64) -> f64 {
+        self * b
+    }
+    #[inline(always)]
+    fn abs(self) -> f64 {
+        f64::from_bits(self.to_bits() & !(1 << 63))
+    }
+    #[inline(always)]
+    fn capped_ge(self, b: f64) -> bool {
+        // The `if` a `min` instruction.
+        (if self < 1.5e6 { self } else { 1.5e6 }) >= b
+    }
+    #[inline(always)]
+    fn quadrant(sin_r: f64, signed: f64, cos_r: f64, quadrant: f64) -> (f64, f64) {
+        let sb = sin_r.to_bits() | (signed.to_bits() & (1 << 63));
+        let (cb, k) = (cos_r.to_bits(), quadrant.to_bits());
+        // Odd quadrants swap sine and cosine (d: the bits that differ, or 0);
+        // sin changes sign in quadrants 2 and 3, cos in 1 and 2.
+        let d = (sb ^ cb) & 0u64.wrapping_sub(k & 1);
+        let sin_sign = (k << 62) & (1 << 63);
+        let cos_sign = sin_sign ^ (k << 63);
+        (f64::from_bits(sb ^ d ^ sin_sign), f64::from_bits(cb ^ d ^ cos_sign))
+    }
+}
+
+/// `Lanes` in SSE2 (two angles) and AVX2 (four) instructions: the
+/// operations of `impl Lanes for f64`, lane by lane.
 #[cfg(target_arch = "x86_64")]
-#[inline(always)]
-#[allow(unused_unsafe, clippy::excessive_precision, clippy::approx_constant)]
-fn sin_cos_pairs<const P: usize>(x: [[f64; 2]; P]) -> ([[f64; 2]; P], [[f64; 2]; P], bool) {
-    use core::arch::x86_64::*;
-    // SAFETY: SSE2 is enabled on every x86-64 target; the transmutes are
-    // between __m128d and [f64; 2] (16 bytes, two f64 each).
-    unsafe {
-        let v = |a: f64| _mm_set1_pd(a);
-        fn each<const P: usize>(f: impl FnMut(usize) -> __m128d) -> [__m128d; P] {
-            core::array::from_fn(f)
+macro_rules! vector_lanes {
+    ($w:literal, $v:ident, $i:ident, $all:literal, $feature:literal, $add:ident, $sub:ident, $mul:ident,
+     $set1:ident, $loadu:ident, $storeu:ident, $andnot:ident, $min:ident, $cmp_ge:expr, $movemask:ident,
+     $to_int:ident, $to_float:ident, $and:ident, $or:ident, $xor:ident, $sub64:ident, $zero:ident, $set1_64:ident,
+     $shl:ident) => {
+        #[cfg(target_feature = $feature)]
+        impl ToLanes for [f64; $w] {
+            type V = core::arch::x86_64::$v;
+            #[inline(always)]
+            #[allow(unused_unsafe)]
+            fn to_lanes(self) -> Self::V {
+                // SAFETY (this and every block below): the target has the
+                // instructions (`cfg(target_feature)`); loads and stores are
+                // of `$w` f64 from and to arrays of `$w` f64.
+                unsafe { core::arch::x86_64::$loadu(self.as_ptr()) }
+            }
         }
-        let add = |a: &[__m128d; P], b: &[__m128d; P]| each(|i| _mm_add_pd(a[i], b[i]));
-        let sub = |a: &[__m128d; P], b: &[__m128d; P]| each(|i| _mm_sub_pd(a[i], b[i]));
-        let mul = |a: &[__m128d; P], b: &[__m128d; P]| each(|i| _mm_mul_pd(a[i], b[i]));
-        let all = |a: f64| [v(a); P];
-        let x: [__m128d; P] = each(|i| _mm_set_pd(x[i][1], x[i][0]));
-        let t = add(&mul(&x, &all(0.6366197723675814)), &all(6755399441055744.0));
-        let k = sub(&t, &all(6755399441055744.0));
-        let t0 = sub(&x, &mul(&k, &all(1.5707963267341256)));
-        let w = mul(&k, &all(6.077100506303966e-11));
-        let a = sub(&t0, &w);
-        let b = sub(&sub(&sub(&t0, &a), &w), &mul(&k, &all(2.0222662487959506e-21)));
-        let rh = add(&a, &b);
-        let rl = sub(&b, &sub(&rh, &a));
-        let m: [__m128d; P] = each(|i| _mm_mul_pd(_mm_andnot_pd(v(-0.0), rh[i]), v(2.8823037615171174e17)));
-        let ok: [__m128d; P] = each(|i| _mm_cmpge_pd(_mm_min_pd(m[i], v(1.5e6)), _mm_andnot_pd(v(-0.0), x[i])));
-        // sin_cos_reduced
-        let z = mul(&rh, &rh);
-        let z2 = mul(&z, &z);
-        let poly = |c: [f64; 6]| {
-            let lo = add(&all(c[0]), &mul(&z, &all(c[1])));
-            let mid = add(&all(c[2]), &mul(&z, &all(c[3])));
-            let hi = add(&all(c[4]), &mul(&z, &all(c[5])));
-            add(&lo, &mul(&z2, &add(&mid, &mul(&z2, &hi))))
-        };
-        let ps = poly([
-            -1.666666666666663e-1,
-            8.333333333322118e-3,
-            -1.9841269829589533e-4,
-            2.7557313621384545e-6,
-            -2.5050747762700404e-8,
-            1.5896230149614662e-10,
-        ]);
-        let pc = poly([
-            4.1666666666666595e-2,
-            -1.3888888888873056e-3,
-            2.4801587288851704e-5,
-            -2.755731417929683e-7,
-            2.08757008419834e-9,
-            -1.1358536521605753e-11,
-        ]);
-        let hz = mul(&all(0.5), &z);
-        let sin_r = add(&rh, &add(&mul(&mul(&rh, &z), &ps), &mul(&rl, &sub(&all(1.0), &hz))));
-        let w = sub(&all(1.0), &hz);
-        let cos_r = add(&w, &add(&sub(&sub(&all(1.0), &w), &hz), &sub(&mul(&z2, &pc), &mul(&rh, &rl))));
-        // sin_cos_quadrant, lane by lane
-        let sign = _mm_castpd_si128(v(-0.0));
-        let out = |i: usize| {
-            let sb = _mm_or_si128(_mm_castpd_si128(sin_r[i]), _mm_and_si128(_mm_castpd_si128(a[i]), sign));
-            let cb = _mm_castpd_si128(cos_r[i]);
-            let q = _mm_castpd_si128(t[i]);
-            let odd = _mm_sub_epi64(_mm_setzero_si128(), _mm_and_si128(q, _mm_set1_epi64x(1)));
-            let d = _mm_and_si128(_mm_xor_si128(sb, cb), odd);
-            let sin_sign = _mm_and_si128(_mm_slli_epi64::<62>(q), sign);
-            let cos_sign = _mm_xor_si128(sin_sign, _mm_slli_epi64::<63>(q));
-            let s = _mm_castsi128_pd(_mm_xor_si128(_mm_xor_si128(sb, d), sin_sign));
-            let c = _mm_castsi128_pd(_mm_xor_si128(_mm_xor_si128(cb, d), cos_sign));
-            (core::mem::transmute::<__m128d, [f64; 2]>(s), core::mem::transmute::<__m128d, [f64; 2]>(c))
-        };
-        let sc: [([f64; 2], [f64; 2]); P] = core::array::from_fn(out);
-        let fast = ok.iter().all(|&ok| _mm_movemask_pd(ok) == 3);
-        (core::array::from_fn(|i| sc[i].0), core::array::from_fn(|i| sc[i].1), fast)
+        #[cfg(target_feature = $feature)]
+        #[allow(unused_unsafe)]
+        impl Lanes for core::arch::x86_64::$v {
+            #[inline(always)]
+            fn splat(a: f64) -> Self {
+                unsafe { core::arch::x86_64::$set1(a) }
+            }
+            #[inline(always)]
+            fn lane(self, l: usize) -> f64 {
+                let mut a = [0.0; $w];
+                unsafe { core::arch::x86_64::$storeu(a.as_mut_ptr(), self) };
+                a[l]
+            }
+            #[inline(always)]
+            fn add(self, b: Self) -> Self {
+                unsafe { core::arch::x86_64::$add(self, b) }
+            }
+            #[inline(always)]
+            fn sub(self, b: Self) -> Self {
+                unsafe { core::arch::x86_64::$sub(self, b) }
+            }
+            #[inline(always)]
+            fn mul(self, b: Self) -> Self {
+                unsafe { core::arch::x86_64::$mul(self, b) }
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                unsafe { core::arch::x86_64::$andnot(Self::splat(-0.0), self) }
+            }
+            #[inline(always)]
+            fn capped_ge(self, b: Self) -> bool {
+                use core::arch::x86_64::*;
+                unsafe { $movemask($cmp_ge($min(self, Self::splat(1.5e6)), b)) == $all }
+            }
+            #[inline(always)]
+            fn quadrant(sin_r: Self, signed: Self, cos_r: Self, quadrant: Self) -> (Self, Self) {
+                use core::arch::x86_64::*;
+                unsafe {
+                    let sign = $to_int(Self::splat(-0.0));
+                    let sb = $or($to_int(sin_r), $and($to_int(signed), sign));
+                    let (cb, k) = ($to_int(cos_r), $to_int(quadrant));
+                    let d = $and($xor(sb, cb), $sub64($zero(), $and(k, $set1_64(1))));
+                    let sin_sign = $and($shl::<62>(k), sign);
+                    let cos_sign = $xor(sin_sign, $shl::<63>(k));
+                    ($to_float($xor($xor(sb, d), sin_sign)), $to_float($xor($xor(cb, d), cos_sign)))
+                }
+            }
+        }
+    };
+}
+
+#[cfg(target_arch = "x86_64")]
+vector_lanes!(2, __m128d, __m128i, 3, "sse2", _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_set1_pd, _mm_loadu_pd,
+    _mm_storeu_pd, _mm_andnot_pd, _mm_min_pd, _mm_cmpge_pd, _mm_movemask_pd, _mm_castpd_si128, _mm_castsi128_pd,
+    _mm_and_si128, _mm_or_si128, _mm_xor_si128, _mm_sub_epi64, _mm_setzero_si128, _mm_set1_epi64x, _mm_slli_epi64);
+#[cfg(target_arch = "x86_64")]
+vector_lanes!(4, __m256d, __m256i, 15, "avx2", _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_set1_pd,
+    _mm256_loadu_pd, _mm256_storeu_pd, _mm256_andnot_pd, _mm256_min_pd, _mm256_cmp_pd::<_CMP_GE_OQ>,
+    _mm256_movemask_pd, _mm256_castpd_si256, _mm256_castsi256_pd, _mm256_and_si256, _mm256_or_si256,
+    _mm256_xor_si256, _mm256_sub_epi64, _mm256_setzero_si256, _mm256_set1_epi64x, _mm256_slli_epi64);
+
+/// Other targets: two angles lane by lane (the compiler may vectorise).
+#[cfg(not(target_arch = "x86_64"))]
+impl ToLanes for [f64; 2] {
+    type V = [f64; 2];
+    #[inline(always)]
+    fn to_lanes(self) -> [f64; 2] {
+        self
     }
 }
 
-/// `sin_cos_fast` on `P` pairs of angles (other targets: the compiler's
-/// vectoriser may turn the calls into vector instructions).
 #[cfg(not(target_arch = "x86_64"))]
+impl Lanes for [f64; 2] {
+    #[inline(always)]
+    fn splat(a: f64) -> Self {
+        [a; 2]
+    }
+    #[inline(always)]
+    fn lane(self, l: usize) -> f64 {
+        self[l]
+    }
+    #[inline(always)]
+    fn add(self, b: Self) -> Self {
+        [self[0] + b[0], self[1] + b[1]]
+    }
+    #[inline(always)]
+    fn sub(self, b: Self) -> Self {
+        [self[0] - b[0], self[1] - b[1]]
+    }
+    #[inline(always)]
+    fn mul(self, b: Self) -> Self {
+        [self[0] * b[0], self[1] * b[1]]
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        [self[0].abs(), self[1].abs()]
+    }
+    #[inline(always)]
+    fn capped_ge(self, b: Self) -> bool {
+        self[0].capped_ge(b[0]) & self[1].capped_ge(b[1])
+    }
+    #[inline(always)]
+    fn quadrant(sin_r: Self, signed: Self, cos_r: Self, quadrant: Self) -> (Self, Self) {
+        let r = [0, 1].map(|l| f64::quadrant(sin_r[l], signed[l], cos_r[l], quadrant[l]));
+        ([r[0].0, r[1].0], [r[0].1, r[1].1])
+    }
+}
+
+/// `[f(0), …, f(P − 1)]`: one step on each of `P` registers.
 #[inline(always)]
-fn sin_cos_pairs<const P: usize>(x: [[f64; 2]; P]) -> ([[f64; 2]; P], [[f64; 2]; P], bool) {
-    let r = x.map(|x| x.map(sin_cos_fast));
-    (r.map(|r| r.map(|r| r.0)), r.map(|r| r.map(|r| r.1)), r.iter().flatten().all(|r| r.2))
+fn each<V, const P: usize>(f: impl FnMut(usize) -> V) -> [V; P] {
+    core::array::from_fn(f)
 }
 
 /// The rare case of `sin_cos_array`: every angle again, one at a time.
@@ -175,83 +321,82 @@ fn sin_cos_again(x: &[f64], s: &mut [f64], c: &mut [f64]) {
 /// for every finite `x` (NaN and ±∞ give NaN).
 #[inline]
 pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
-    match sin_cos_fast(x) {
-        (s, c, true) => (s, c),
+    match sin_cos_lanes([x]) {
+        [(s, c, true)] => (s, c),
         _ => sin_cos_slow(x),
     }
 }
 
-/// Step 1 and 3: the sine and cosine, and whether they are within 1 ulp
-/// (false: take `sin_cos_slow`).
+/// Step 1 and 3 on `P` registers of angles, step by step across them: the
+/// sines and cosines, and whether they are within 1 ulp (false: take
+/// `sin_cos_slow`).
 #[inline(always)]
 #[allow(clippy::excessive_precision, clippy::approx_constant)]
-fn sin_cos_fast(x: f64) -> (f64, f64, bool) {
+fn sin_cos_lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
     const FRAC_2_PI: f64 = 0.6366197723675814;
     const ROUND: f64 = 6755399441055744.0; // 1.5·2⁵²: x + ROUND − ROUND rounds x to an integer
     const P1: f64 = 1.5707963267341256;
     const P2: f64 = 6.077100506303966e-11;
     const P3: f64 = 2.0222662487959506e-21;
-    let t = x * FRAC_2_PI + ROUND;
-    let k = t - ROUND;
-    let t0 = x - k * P1; // exact
-    let w = k * P2; // exact
-    let a = t0 - w;
+    let v = V::splat;
+    let t: [V; P] = each(|i| x[i].mul(v(FRAC_2_PI)).add(v(ROUND)));
+    let k: [V; P] = each(|i| t[i].sub(v(ROUND)));
+    let t0: [V; P] = each(|i| x[i].sub(k[i].mul(v(P1)))); // exact
+    let w: [V; P] = each(|i| k[i].mul(v(P2))); // exact
+    let a: [V; P] = each(|i| t0[i].sub(w[i]));
     // The rounding error of t0 − w, exact (|t0| ≥ |w|, or else t0 − w is exact), then − k·P3.
-    let b = ((t0 - a) - w) - k * P3;
+    let b: [V; P] = each(|i| t0[i].sub(a[i]).sub(w[i]).sub(k[i].mul(v(P3))));
     // Renormalised: |rl| ≤ ulp(rh)/2 (the polynomials need that; |b| ≤ |a| where `ok` below holds).
-    let rh = a + b;
-    let rl = b - (rh - a);
+    let rh: [V; P] = each(|i| a[i].add(b[i]));
+    let rl: [V; P] = each(|i| b[i].sub(rh[i].sub(a[i])));
     // Within 1 ulp if |x| ≤ 1.5e6 and |rh| ≥ 2⁻⁵⁸·|x| (as |r − (rh + rl)| ≤ 3e-37·|x|), which also
-    // holds for k = 0 (rh = x) and fails for NaN and ±∞ (then rh is NaN). One comparison:
-    // min(2⁵⁸·|rh|, 1.5e6) ≥ |x|, the `if` a `min` instruction (a NaN picks 1.5e6).
-    let m = rh.abs() * 2.8823037615171174e17;
-    let ok = (if m < 1.5e6 { m } else { 1.5e6 }) >= x.abs();
-    let (s, c) = sin_cos_reduced(rh, rl, a.to_bits() & (1 << 63), t.to_bits());
-    (s, c, ok)
+    // holds for k = 0 (rh = x) and fails for NaN and ±∞ (then rh is NaN): min(2⁵⁸·|rh|, 1.5e6) ≥ |x|.
+    let ok: [bool; P] = core::array::from_fn(|i| rh[i].abs().mul(v(2.8823037615171174e17)).capped_ge(x[i].abs()));
+    // a's sign is rh's (in place), also when rh = −0 (which the reduction may turn into +0).
+    let r = sin_cos_reduced(rh, rl, a, t);
+    core::array::from_fn(|i| (r[i].0, r[i].1, ok[i]))
 }
 
 /// Step 3 and 4: sin and cos of k·π/2 + rh + rl for |rh + rl| ≤ π/4 and
-/// k ≡ `quadrant` (mod 4); `sign` is the sign bit of rh (in place), also
-/// when rh = −0 (which the reduction may turn into +0).
+/// k ≡ the low bits of `quadrant` (mod 4); the sign bit of `signed` is or-ed
+/// into sin (rh's sign, also when rh = −0).
 #[inline(always)]
 #[allow(clippy::excessive_precision)]
-fn sin_cos_reduced(rh: f64, rl: f64, sign: u64, quadrant: u64) -> (f64, f64) {
-    const S0: f64 = -1.666666666666663e-1;
-    const S1: f64 = 8.333333333322118e-3;
-    const S2: f64 = -1.9841269829589533e-4;
-    const S3: f64 = 2.7557313621384545e-6;
-    const S4: f64 = -2.5050747762700404e-8;
-    const S5: f64 = 1.5896230149614662e-10;
-    const C0: f64 = 4.1666666666666595e-2;
-    const C1: f64 = -1.3888888888873056e-3;
-    const C2: f64 = 2.4801587288851704e-5;
-    const C3: f64 = -2.755731417929683e-7;
-    const C4: f64 = 2.08757008419834e-9;
-    const C5: f64 = -1.1358536521605753e-11;
-    let z = rh * rh;
-    let z2 = z * z;
-    let ps = (S0 + z * S1) + z2 * ((S2 + z * S3) + z2 * (S4 + z * S5));
-    let pc = (C0 + z * C1) + z2 * ((C2 + z * C3) + z2 * (C4 + z * C5));
-    let hz = 0.5 * z;
-    // sin(rh + rl) = rh + rh·z·S(z) + rl·(1 − z/2) + …; rh's sign or-ed in keeps sin(−0) = −0.
-    let sin_r = rh + (rh * z * ps + rl * (1.0 - hz));
-    let sb = sin_r.to_bits() | sign;
+fn sin_cos_reduced<V: Lanes, const P: usize>(rh: [V; P], rl: [V; P], signed: [V; P], quadrant: [V; P]) -> [(V, V); P] {
+    const S: [f64; 6] = [
+        -1.666666666666663e-1,
+        8.333333333322118e-3,
+        -1.9841269829589533e-4,
+        2.7557313621384545e-6,
+        -2.5050747762700404e-8,
+        1.5896230149614662e-10,
+    ];
+    const C: [f64; 6] = [
+        4.1666666666666595e-2,
+        -1.3888888888873056e-3,
+        2.4801587288851704e-5,
+        -2.755731417929683e-7,
+        2.08757008419834e-9,
+        -1.1358536521605753e-11,
+    ];
+    let v = V::splat;
+    let z: [V; P] = each(|i| rh[i].mul(rh[i]));
+    let z2: [V; P] = each(|i| z[i].mul(z[i]));
+    // Estrin: (c0 + z·c1) + z²·((c2 + z·c3) + z²·(c4 + z·c5)).
+    let poly = |c: [f64; 6], i: usize| {
+        let (lo, mid, hi) =
+            (v(c[0]).add(z[i].mul(v(c[1]))), v(c[2]).add(z[i].mul(v(c[3]))), v(c[4]).add(z[i].mul(v(c[5]))));
+        lo.add(z2[i].mul(mid.add(z2[i].mul(hi))))
+    };
+    let ps: [V; P] = each(|i| poly(S, i));
+    let pc: [V; P] = each(|i| poly(C, i));
+    let hz: [V; P] = each(|i| v(0.5).mul(z[i]));
+    // sin(rh + rl) = rh + rh·z·S(z) + rl·(1 − z/2) + …; the sign or-ed in keeps sin(−0) = −0.
+    let sin_r: [V; P] = each(|i| rh[i].add(rh[i].mul(z[i]).mul(ps[i]).add(rl[i].mul(v(1.0).sub(hz[i])))));
     // cos(rh + rl) = (1 − z/2) + z²·C(z) − rh·rl + …, with the rounding error of 1 − z/2.
-    let w = 1.0 - hz;
-    let cos_r = w + (((1.0 - w) - hz) + (z2 * pc - rh * rl));
-    sin_cos_quadrant(sb, cos_r.to_bits(), quadrant)
-}
-
-/// Step 4: (sin, cos) of k·π/2 + r from the bits `sb`, `cb` of sin r and
-/// cos r and k ≡ `quadrant` (mod 4).
-#[inline(always)]
-fn sin_cos_quadrant(sb: u64, cb: u64, quadrant: u64) -> (f64, f64) {
-    // Odd quadrants swap sine and cosine (d: the bits that differ, or 0);
-    // sin changes sign in quadrants 2 and 3, cos in 1 and 2.
-    let d = (sb ^ cb) & 0u64.wrapping_sub(quadrant & 1);
-    let sin_sign = (quadrant << 62) & (1 << 63);
-    let cos_sign = sin_sign ^ (quadrant << 63);
-    (f64::from_bits(sb ^ d ^ sin_sign), f64::from_bits(cb ^ d ^ cos_sign))
+    let w: [V; P] = each(|i| v(1.0).sub(hz[i]));
+    let cos_r: [V; P] = each(|i| w[i].add(v(1.0).sub(w[i]).sub(hz[i]).add(z2[i].mul(pc[i]).sub(rh[i].mul(rl[i])))));
+    core::array::from_fn(|i| V::quadrant(sin_r[i], signed[i], cos_r[i], quadrant[i]))
 }
 
 /// Step 2: Payne and Hanek's reduction of any finite `x`, then step 3.
@@ -275,7 +420,7 @@ fn sin_cos_slow(x: f64) -> (f64, f64) {
     }
     let ax = x.abs();
     if ax < 0.78 {
-        let (s, c) = sin_cos_reduced(ax, 0.0, 0, 0);
+        let [(s, c)] = sin_cos_reduced([ax], [0.0], [0.0], [0.0]);
         return (if x < 0.0 { -s } else { s }, c);
     }
     // |x| = m·2^e with m < 2⁵³ an integer.
@@ -318,6 +463,6 @@ fn sin_cos_slow(x: f64) -> (f64, f64) {
     let low = pl + (fh * PIO2_LO + fl * PIO2_HI);
     let rh = ph + low;
     let rl = low - (rh - ph);
-    let (s, c) = sin_cos_reduced(rh, rl, rh.to_bits() & (1 << 63), k);
+    let [(s, c)] = sin_cos_reduced([rh], [rl], [rh], [f64::from_bits(k)]);
     (if x < 0.0 { -s } else { s }, c)
 }

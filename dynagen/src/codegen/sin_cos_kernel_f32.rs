@@ -70,6 +70,6 @@ fn sin_cos_fast_f32(x: f32) -> (f32, f32, bool) {
     // r·(1 + z·S(z)) keeps sin(−0) = −0.
     let sin_r = r * (1.0 + z * ((S0 + z * S1) + z * z * (S2 + z * S3)));
     let cos_r = (1.0 - 0.5 * z) + z * z * (C0 + z * (C1 + z * C2));
-    let (s, c) = sin_cos_quadrant(sin_r.to_bits(), cos_r.to_bits(), t.to_bits());
+    let (s, c) = <f64 as Lanes>::quadrant(sin_r, sin_r, cos_r, t);
     (s as f32, c as f32, ok)
 }
