@@ -4766,7 +4766,7 @@ impl Lanes for f64 {
 /// operations of `impl Lanes for f64`, lane by lane.
 #[cfg(target_arch = "x86_64")]
 macro_rules! vector_lanes {
-    ($w:literal, $v:ident, $i:ident, $all:literal, $feature:literal, $add:ident, $sub:ident, $mul:ident,
+    ($w:literal, $v:ident, $all:literal, $feature:literal, $add:ident, $sub:ident, $mul:ident,
      $set1:ident, $loadu:ident, $storeu:ident, $andnot:ident, $min:ident, $cmp_ge:expr, $movemask:ident,
      $to_int:ident, $to_float:ident, $and:ident, $or:ident, $xor:ident, $sub64:ident, $zero:ident, $set1_64:ident,
      $shl:ident) => {
@@ -4834,11 +4834,11 @@ macro_rules! vector_lanes {
 }
 
 #[cfg(target_arch = "x86_64")]
-vector_lanes!(2, __m128d, __m128i, 3, "sse2", _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_set1_pd, _mm_loadu_pd,
+vector_lanes!(2, __m128d, 3, "sse2", _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_set1_pd, _mm_loadu_pd,
     _mm_storeu_pd, _mm_andnot_pd, _mm_min_pd, _mm_cmpge_pd, _mm_movemask_pd, _mm_castpd_si128, _mm_castsi128_pd,
     _mm_and_si128, _mm_or_si128, _mm_xor_si128, _mm_sub_epi64, _mm_setzero_si128, _mm_set1_epi64x, _mm_slli_epi64);
 #[cfg(target_arch = "x86_64")]
-vector_lanes!(4, __m256d, __m256i, 15, "avx2", _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_set1_pd,
+vector_lanes!(4, __m256d, 15, "avx2", _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_set1_pd,
     _mm256_loadu_pd, _mm256_storeu_pd, _mm256_andnot_pd, _mm256_min_pd, _mm256_cmp_pd::<_CMP_GE_OQ>,
     _mm256_movemask_pd, _mm256_castpd_si256, _mm256_castsi256_pd, _mm256_and_si256, _mm256_or_si256,
     _mm256_xor_si256, _mm256_sub_epi64, _mm256_setzero_si256, _mm256_set1_epi64x, _mm256_slli_epi64);
