@@ -40,6 +40,7 @@
 //! | `scalar` | `f64`, `f32` | `f64` |
 //! | `forward_dynamics` | `aba`, `ldlt` | `aba` |
 //! | `snap_rounding` | `true`, `false` | `true` |
+//! | `fma` | `true`, `false`: `a*b + c` as `fma(a, b, c)`, one rounding where the target has a fused multiply-add | `true` |
 //!
 //! # Scenes (both macros)
 //!
@@ -151,6 +152,7 @@ pub(crate) struct MacroOptions {
     scalar: Option<ScalarType>,
     forward_dynamics: Option<ForwardDynamicsMethod>,
     snap_rounding: Option<bool>,
+    fma: Option<bool>,
     scene: scene::SceneOptions,
 }
 
@@ -194,6 +196,7 @@ impl MacroOptions {
                 });
             }
             "snap_rounding" => self.snap_rounding = Some(input.parse::<LitBool>()?.value),
+            "fma" => self.fma = Some(input.parse::<LitBool>()?.value),
             _ => return self.scene.parse_value(key, input),
         }
         Ok(true)
@@ -212,6 +215,9 @@ impl MacroOptions {
         }
         if let Some(s) = self.snap_rounding {
             o = o.snap_rounding(s);
+        }
+        if let Some(f) = self.fma {
+            o = o.fma(f);
         }
         let names: Option<Vec<String>> = self.functions.as_ref().map(|f| f.iter().map(Ident::to_string).collect());
         let coriolis = names.as_ref().is_some_and(|n| n.iter().any(|f| f == "coriolis"));
@@ -250,9 +256,9 @@ impl MacroOptions {
 }
 
 /// The options every macro accepts, for error messages.
-pub(crate) const OPTION_NAMES: &str = "functions, scalar, forward_dynamics, snap_rounding, scene, gravity, \
-                                       tip_wrench, subtree, lock, armature, viscous, coulomb, coulomb_velocity, \
-                                       payload, payload_input, frame_pose, frame_jacobian, target";
+pub(crate) const OPTION_NAMES: &str = "functions, scalar, forward_dynamics, snap_rounding, fma, scene, \
+                                       gravity, tip_wrench, subtree, lock, armature, viscous, coulomb, \
+                                       coulomb_velocity, payload, payload_input, frame_pose, frame_jacobian, target";
 
 struct UrdfInput {
     path: LitStr,

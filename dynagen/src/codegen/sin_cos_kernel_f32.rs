@@ -7,6 +7,39 @@
 // 1.2e-10), so the result is within 2⁻³³ relative of the exact value before
 // its one rounding to f32. The slow path is the f64 kernel's.
 
+/// `a·b + c` in `f32` with one rounding (x86-64 with the `fma` feature);
+/// see `fma`.
+#[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
+#[inline(always)]
+#[allow(dead_code, unused_unsafe)]
+fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+    use core::arch::x86_64::{_mm_cvtss_f32, _mm_fmadd_ss, _mm_set_ss};
+    // SAFETY: the cfg above compiles this only where the `fma` target
+    // feature is enabled, so the instruction exists.
+    unsafe { _mm_cvtss_f32(_mm_fmadd_ss(_mm_set_ss(a), _mm_set_ss(b), _mm_set_ss(c))) }
+}
+
+/// `a·b + c` in `f32` with one rounding (aarch64).
+#[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
+#[inline(always)]
+#[allow(dead_code, unused_unsafe)]
+fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+    use core::arch::aarch64::{vdup_n_f32, vfma_f32, vget_lane_f32};
+    // SAFETY: the cfg above compiles this only where NEON is enabled.
+    unsafe { vget_lane_f32::<0>(vfma_f32(vdup_n_f32(c), vdup_n_f32(a), vdup_n_f32(b))) }
+}
+
+/// `a·b + c` in `f32`, rounded twice (targets without a fused multiply-add).
+#[cfg(not(any(
+    all(target_arch = "x86_64", target_feature = "fma"),
+    all(target_arch = "aarch64", target_feature = "neon")
+)))]
+#[inline(always)]
+#[allow(dead_code)]
+fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+    a * b + c
+}
+
 /// The sines and cosines of `x` (`f32`), entry by entry: within 1 ulp of
 /// `f32` for every finite angle (NaN and ±∞ give NaN); two angles at a time
 /// in vector instructions.
