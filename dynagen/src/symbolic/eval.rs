@@ -34,7 +34,17 @@ impl Function {
     /// [`f64::mul_add`] (a single rounding), everything else as
     /// [`Function::eval`].
     pub fn eval_fused(&self, fusion: &Fusion, inputs: &[(&str, &[f64])]) -> Result<Vec<f64>, MissingInput> {
-        self.eval_nodes(inputs, Some((fusion, f64::mul_add)))
+        self.eval_fused_as(fusion, inputs, f64::mul_add)
+    }
+    /// As [`Function::eval_fused`], in the scalar `S` with its fused
+    /// multiply-add `mul_add` (e.g. [`f32::mul_add`]).
+    pub fn eval_fused_as<S: Scalar>(
+        &self,
+        fusion: &Fusion,
+        inputs: &[(&str, &[f64])],
+        mul_add: fn(S, S, S) -> S,
+    ) -> Result<Vec<S>, MissingInput> {
+        self.eval_nodes(inputs, Some((fusion, mul_add)))
     }
     fn eval_nodes<S: Scalar>(
         &self,
