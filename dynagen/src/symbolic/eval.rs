@@ -19,6 +19,9 @@ pub struct MissingInput {
     pub index: usize,
 }
 
+/// A fused multiply-add `a·b + c` in the scalar `S`.
+type MulAdd<S> = fn(S, S, S) -> S;
+
 impl Function {
     /// Evaluates the outputs on `f64` inputs given as `(name, values)`.
     pub fn eval(&self, inputs: &[(&str, &[f64])]) -> Result<Vec<f64>, MissingInput> {
@@ -42,14 +45,14 @@ impl Function {
         &self,
         fusion: &Fusion,
         inputs: &[(&str, &[f64])],
-        mul_add: fn(S, S, S) -> S,
+        mul_add: MulAdd<S>,
     ) -> Result<Vec<S>, MissingInput> {
         self.eval_nodes(inputs, Some((fusion, mul_add)))
     }
     fn eval_nodes<S: Scalar>(
         &self,
         inputs: &[(&str, &[f64])],
-        fused: Option<(&Fusion, fn(S, S, S) -> S)>,
+        fused: Option<(&Fusion, MulAdd<S>)>,
     ) -> Result<Vec<S>, MissingInput> {
         let nodes = self.nodes();
         let mut val: Vec<S> = Vec::with_capacity(nodes.len());
