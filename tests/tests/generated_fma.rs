@@ -12,11 +12,13 @@
 //!   sum (`Function::eval_fused`), differ from the unfused ones (so the
 //!   instructions really are fused: the check cannot pass by compiling
 //!   `a * b + c`), and stay within 1e-12 of the generic solver. The same
-//!   for an `f32` module (`fmaf`), within 1e-5.
+//!   for an `f32` module (`fmaf`), within 1e-5. The module's sine-cosine
+//!   kernel, whose polynomials are fused there too, must stay within 1 ulp
+//!   (of f64; of f32 for `sin_cos_array_f32`) against double-double values.
 
 use dynagen::codegen::{generate, CodegenOptions, FunctionKind, GeneratedFunction, ScalarType};
 use dynagen::symbolic::Function;
-use dynagen::{Model, Robot};
+use dynagen::{DoubleDouble, Model, Robot, Scalar};
 use dynagen_tests::{rel_err, workspace_root, Rng};
 use nalgebra::DVector;
 use std::fmt::Write;
@@ -117,7 +119,9 @@ fn this_build_gives_the_bits_of_its_target() {
 #[test]
 fn without_fma_nothing_is_fused() {
     let module = generate(&ur5_model(), &CodegenOptions::default().fma(false)).unwrap();
-    assert!(!module.source.contains("= fma("), "no body calls fma");
+    let bodies = |src: &str| src.split("// The sine and cosine of joint angles").next().unwrap().to_string();
+    assert_eq!(bodies(&module.source).lines().filter(|l| is_fused_let(l)).count(), 0, "no body calls fma");
+    assert!(on_source_has_fused_lets());
     assert!(module.source.contains("// Fused multiply-adds: off"));
     assert!(module.functions.iter().all(|f| f.op_count.fused == 0 && f.op_count.fp_ops() == f.op_count.arithmetic()));
     let on = generate(&ur5_model(), &CodegenOptions::default()).unwrap();
@@ -126,6 +130,17 @@ fn without_fma_nothing_is_fused() {
         assert_eq!((a.op_count.add, a.op_count.mul), (b.op_count.add, b.op_count.mul));
         assert!(b.op_count.fused > 0 && b.op_count.fp_ops() < b.op_count.arithmetic());
     }
+}
+
+/// A line `let tK = fma(…);` of a body.
+fn is_fused_let(line: &str) -> bool {
+    let rest = line.trim_start().strip_prefix("let t").unwrap_or_default();
+    rest.starts_with(|c: char| c.is_ascii_digit()) && rest.contains(" = fma(")
+}
+
+fn on_source_has_fused_lets() -> bool {
+    let on = generate(&ur5_model(), &CodegenOptions::default()).unwrap();
+    on.source.lines().any(is_fused_let)
 }
 
 /// Whether this machine runs fused multiply-adds.
@@ -143,9 +158,30 @@ fn array_literal(rows: impl Iterator<Item = [f64; N]>) -> String {
     format!("[{}]", rows.join(", "))
 }
 
+/// The kernel's test angles: random ones on a few scales (the fast path)
+/// and the doubles nearest to multiples of π/2 (the slow path).
+fn angles() -> Vec<f64> {
+    let mut rng = Rng::new(73);
+    let mut xs: Vec<f64> = [4.0, 100.0, 1e5].iter().flat_map(|&a| (0..600).map(move |_| a)).collect();
+    for x in &mut xs {
+        *x = rng.range(-*x, *x);
+    }
+    let half_pi = DoubleDouble::new(core::f64::consts::FRAC_PI_2, 6.123233995736766e-17);
+    xs.extend((1..=200).map(|k| half_pi.mul_f64(k as f64).to_f64()));
+    xs
+}
+
+/// |got − exact| in ulps of the exact value's binade.
+fn ulps(got: f64, exact: DoubleDouble) -> f64 {
+    let err = (DoubleDouble::from(got) - exact).to_f64().abs();
+    let ulp = f64::from_bits(exact.hi.abs().to_bits() & 0x7ff0_0000_0000_0000) * f64::EPSILON;
+    err / ulp.max(f64::from_bits(1))
+}
+
 /// A program that prints, for every state and every body of the module
-/// `m64` (f64) and `m32` (f32), a line `k name bits…`.
-fn program(xs: &[State], f64_fns: &[GeneratedFunction], f32_fns: &[GeneratedFunction]) -> String {
+/// `m64` (f64) and `m32` (f32), a line `k name bits…`, then the sines and
+/// cosines of `angles` by both kernels.
+fn program(xs: &[State], f64_fns: &[GeneratedFunction], f32_fns: &[GeneratedFunction], angles: &[f64]) -> String {
     let mut p = String::from(
         "#![allow(dead_code)]\nmod m64 { include!(\"ur5.rs\"); }\nmod m32 { include!(\"ur5_f32.rs\"); }\n",
     );
@@ -179,7 +215,13 @@ fn program(xs: &[State], f64_fns: &[GeneratedFunction], f32_fns: &[GeneratedFunc
             );
         }
     }
-    p.push_str("    }\n}\n");
+    p.push_str("    }\n");
+    let _ = writeln!(p, "    let x: [f64; {}] = {angles:?};", angles.len());
+    p.push_str("    let (s, c) = m64::sin_cos_array(&x);\n");
+    p.push_str("    out(0, \"sin64\", &s.map(f64::to_bits));\n    out(0, \"cos64\", &c.map(f64::to_bits));\n");
+    p.push_str("    let (s, c) = m32::sin_cos_array_f32(&x.map(|v| v as f32));\n");
+    p.push_str("    out(0, \"sin32\", &s.map(f32::to_bits));\n    out(0, \"cos32\", &c.map(f32::to_bits));\n");
+    p.push_str("}\n");
     p
 }
 
@@ -200,7 +242,8 @@ fn the_fused_path_compiled_with_the_fma_feature_rounds_once_and_stays_accurate()
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("ur5.rs"), &f64_module.source).unwrap();
     std::fs::write(dir.join("ur5_f32.rs"), &f32_module.source).unwrap();
-    std::fs::write(dir.join("main.rs"), program(&xs, &f64_fns, &f32_fns)).unwrap();
+    let angles = angles();
+    std::fs::write(dir.join("main.rs"), program(&xs, &f64_fns, &f32_fns, &angles)).unwrap();
     let exe = dir.join("fused");
     let mut rustc = std::process::Command::new(std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into()));
     rustc.args(["--edition", "2021", "-O", "-o"]).arg(&exe).arg(dir.join("main.rs"));
@@ -214,11 +257,32 @@ fn the_fused_path_compiled_with_the_fma_feature_rounds_once_and_stays_accurate()
     let stdout = String::from_utf8(run.stdout).unwrap();
     let mut robot = Robot::from_urdf_file(workspace_root().join("dynagen/robots/ur5.urdf")).unwrap();
     let (mut lines, mut differ, mut worst) = (0, [0usize; 2], [0.0f64; 2]);
+    let (mut kernel_worst, mut kernel_differ) = ([0.0f64; 4], 0);
+    let exact: Vec<(DoubleDouble, DoubleDouble)> = angles.iter().map(|&x| DoubleDouble::from(x).sin_cos()).collect();
+    let unfused = dynagen::codegen::sin_cos_kernel;
     for line in stdout.lines() {
         let mut words = line.split_whitespace();
         let k: usize = words.next().unwrap().parse().unwrap();
         let name = words.next().unwrap();
         let got: Vec<u64> = words.map(|w| u64::from_str_radix(w, 16).unwrap()).collect();
+        if let Some(j) = ["sin64", "cos64", "sin32", "cos32"].iter().position(|n| *n == name) {
+            assert_eq!(got.len(), angles.len());
+            for (i, (&b, &x)) in got.iter().zip(&angles).enumerate() {
+                let u = if j < 2 {
+                    let (e, want) = if j == 0 { (exact[i].0, unfused(x).0) } else { (exact[i].1, unfused(x).1) };
+                    kernel_differ += usize::from(b != want.to_bits());
+                    ulps(f64::from_bits(b), e)
+                } else {
+                    // In ulps of f32 (2²⁹ of f64's) of the exact value of the f32 angle.
+                    let x32 = DoubleDouble::from(f64::from(x as f32)).sin_cos();
+                    let e = if j == 2 { x32.0 } else { x32.1 };
+                    ulps(f64::from(f32::from_bits(b as u32)), e) / (1u64 << 29) as f64
+                };
+                assert!(u <= 1.0, "{name}({x:e}): {u} ulp");
+                kernel_worst[j] = kernel_worst[j].max(u);
+            }
+            continue;
+        }
         let (module, fn_name) = name.split_at(3);
         let fns = if module == "m64" { &f64_fns } else { &f32_fns };
         let f = fns.iter().find(|f| f.kind.fn_name() == &fn_name[1..]).unwrap();
@@ -250,6 +314,17 @@ fn the_fused_path_compiled_with_the_fma_feature_rounds_once_and_stays_accurate()
         lines += 1;
     }
     assert_eq!(lines, xs.len() * (f64_fns.len() + f32_fns.len()), "{stdout}");
+    // The fused kernel rounds differently from the unfused one somewhere
+    // (rarely: the fused operations are the polynomials' small corrections).
+    assert!(kernel_differ > 0, "no fused kernel result differs from the unfused one");
+    println!(
+        "fused sin_cos_array: max error sin {:.3}, cos {:.3} ulp ({kernel_differ} of {} results differ from unfused); f32 {:.3}, {:.3} ulp of f32",
+        kernel_worst[0],
+        kernel_worst[1],
+        2 * angles.len(),
+        kernel_worst[2],
+        kernel_worst[3]
+    );
     // Rounding once changes the last bits of most results: fused
     // instructions ran (with `a * b + c` no result would differ).
     let per_module = xs.len() * f64_fns.len();
