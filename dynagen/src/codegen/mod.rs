@@ -30,6 +30,23 @@
 //! assert!(module.source.contains("pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF]"));
 //! ```
 //!
+//! # Fused multiply-adds
+//!
+//! With [`CodegenOptions::fma`] (on by default) the bodies write the sums
+//! that [`Fusion`](crate::symbolic::Fusion) picks as `fma(a, b, c)`
+//! (`fmaf` in `f32` modules): `a·b + c`, `a·b − c` as `fma(a, b, -c)`,
+//! `c − a·b` as `fma(-a, b, c)`, and a product that only such sums read is
+//! not computed on its own. `fma` is a module-local `#[inline(always)]`
+//! function: one fused multiply-add instruction (a single rounding) where
+//! the target has one, i.e. x86-64 compiled with the `fma` target feature
+//! (`-C target-cpu=native` on a machine that has it, or `-C
+//! target-feature=+fma`) and aarch64, through `core::arch` (no std), and
+//! `a * b + c` elsewhere, which rounds exactly as the unfused expression
+//! did: a default x86-64 build gives the same bits as before. The header
+//! says so and counts the fused operations (the [`OpCount`] totals stay
+//! those of the traced operations; [`OpCount::fp_ops`] counts each fused
+//! one once).
+//!
 //! # Constants that are 0 or ±1 up to rounding
 //!
 //! A robot file that turns a frame by `rpy="0 1.5707963267948966 0"` means
