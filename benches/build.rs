@@ -1,10 +1,9 @@
 //! Generates the benchmarked modules into OUT_DIR: the UR5 and the Panda,
 //! each with std's sin_cos and with the batched `sin_cos_all` (both have the
 //! `NAME_sc` bodies, which take the sines and cosines as inputs), and each
-//! with the bodies as the generator wrote them before branch `body`.
+//! with the same bodies without fused multiply-adds (`*_base`).
 
-use dynagen::codegen::{generate, CodegenOptions, ForwardDynamicsMethod, Trig};
-use dynagen::symbolic::Rewrites;
+use dynagen::codegen::{generate, CodegenOptions, Trig};
 use dynagen::Model;
 use std::path::Path;
 
@@ -21,12 +20,10 @@ fn main() {
             let module = generate(&model, &opts).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
             std::fs::write(Path::new(&out).join(format!("{robot}_{suffix}.rs")), module.source).expect("writing");
         }
-        // The bodies as generated before branch `body` (no reassociation,
-        // forward dynamics by the ABA), for before/after in one run.
-        let base = CodegenOptions::default()
-            .trig(Trig::Inputs)
-            .rewrites(Rewrites { reassociate: false, ..Rewrites::default() })
-            .forward_dynamics(ForwardDynamicsMethod::Aba);
+        // The same bodies without fused multiply-adds, for with/without in
+        // one run (they differ only where the build has the `fma` target
+        // feature, e.g. with RUSTFLAGS="-C target-cpu=native").
+        let base = CodegenOptions::default().trig(Trig::Inputs).fma(false);
         let module = generate(&model, &base).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
         std::fs::write(Path::new(&out).join(format!("{robot}_base.rs")), module.source).expect("writing");
     }

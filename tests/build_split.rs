@@ -1,8 +1,8 @@
 //! Part of `build.rs`: the modules of `tests/generated_split.rs`, on the
 //! skewed chain of `dynagen/tests/support/skewed_chain.rs` (the chain of the
 //! operation-count growth test): 4 joints whole and cut into parts of at
-//! most 150 `let`s (every function split, to compare bit for bit), and 12
-//! joints with the default split (its forward dynamics, over 5,000 `let`s,
+//! most 100 `let`s (every function split, to compare bit for bit), and 12
+//! joints with the default split (its forward dynamics, about 3,900 `let`s,
 //! would overflow rustc's stack in this debug build if it were one
 //! function). The UR5 scene with every run-time input is written again cut
 //! into parts of at most 60 `let`s (`ur5_inputs_split.rs`), for the
@@ -18,7 +18,7 @@ pub fn generate() {
     println!("cargo:rerun-if-changed=build_split.rs");
     println!("cargo:rerun-if-changed=../dynagen/tests/support/skewed_chain.rs");
     let modules =
-        [(4, None, "chain4_whole.rs"), (4, Some(150), "chain4_split.rs"), (12, Some(DEFAULT_SPLIT_LETS), "chain12.rs")];
+        [(4, None, "chain4_whole.rs"), (4, Some(100), "chain4_split.rs"), (12, Some(DEFAULT_SPLIT_LETS), "chain12.rs")];
     for (n, split, file) in modules {
         dynagen::Builder::new()
             .model(skewed_chain::skewed_chain(n))

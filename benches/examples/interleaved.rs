@@ -2,8 +2,9 @@
 //! function of the UR5 and the Panda with its trigonometry (`NAME(q, …)`
 //! of the `Trig::Std` module, by std's `sin_cos`, and of the
 //! `Trig::Batched` module, by the module's `sin_cos_array`), its body alone
-//! (`NAME_sc`, sines and cosines given), the same body as generated before
-//! branch `body` (`*_base` modules), and the generic solver, timed in
+//! (`NAME_sc`, sines and cosines given), the same body without fused
+//! multiply-adds (`*_base` modules: the same code unless the build has the
+//! `fma` target feature), and the generic solver, timed in
 //! alternating rounds (each call's whole
 //! output goes through `black_box`, so nothing of a body is left out) of 2,000 calls on 8
 //! states; the minimum over rounds per call is reported (interference only
@@ -135,7 +136,7 @@ bodies!(panda_new, panda_std, 9, q);
 bodies!(panda_old, panda_base, 9, q);
 
 /// The functions of one robot: generic, then std trig, batched trig, the
-/// body now, the body before.
+/// body, the body without fused multiply-adds.
 struct Variants<const N: usize> {
     std: [Body<N>; 4],
     batched: [Body<N>; 4],
@@ -178,7 +179,7 @@ fn robot<const N: usize>(name: &str, rounds: usize, v: Variants<N>) {
 fn main() {
     let rounds: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(200);
     println!(
-        "| robot | function | generic | gen_std (std sin_cos) | gen_batched (sin_cos_array) | gen_sc (body, trig excluded) | gen_sc_base (body before) | before / now |"
+        "| robot | function | generic | gen_std (std sin_cos) | gen_batched (sin_cos_array) | gen_sc (body, trig excluded) | gen_sc_nofma (body, fma off) | nofma / fma |"
     );
     println!("| --- | --- | --- | --- | --- | --- | --- | --- |");
     robot::<6>(

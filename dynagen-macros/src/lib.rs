@@ -42,6 +42,7 @@
 //! | `snap_rounding` | `true`, `false` | `true` |
 //! | `trig` | `std` (`f64::sin_cos`), `batched` (the module's own `sin_cos_array`: no_std, faster), `libm`, `inputs` (only the `NAME_sc` functions) | `std` |
 //! | `split_lets` | a number of `let`s, or `none` | 2500 (longer bodies become `#[inline(never)]` parts) |
+//! | `fma` | `true`, `false`: `a*b + c` as `fma(a, b, c)`, one rounding where the target has a fused multiply-add | `true` |
 //!
 //! # Scenes (both macros)
 //!
@@ -155,6 +156,7 @@ pub(crate) struct MacroOptions {
     snap_rounding: Option<bool>,
     trig: Option<Trig>,
     split_lets: Option<Option<usize>>,
+    fma: Option<bool>,
     scene: scene::SceneOptions,
 }
 
@@ -229,6 +231,7 @@ impl MacroOptions {
                     }
                 });
             }
+            "fma" => self.fma = Some(input.parse::<LitBool>()?.value),
             _ => return self.scene.parse_value(key, input),
         }
         Ok(true)
@@ -253,6 +256,9 @@ impl MacroOptions {
         }
         if let Some(n) = self.split_lets {
             o = o.split_lets(n);
+        }
+        if let Some(f) = self.fma {
+            o = o.fma(f);
         }
         let names: Option<Vec<String>> = self.functions.as_ref().map(|f| f.iter().map(Ident::to_string).collect());
         let coriolis = names.as_ref().is_some_and(|n| n.iter().any(|f| f == "coriolis"));
@@ -291,10 +297,9 @@ impl MacroOptions {
 }
 
 /// The options every macro accepts, for error messages.
-pub(crate) const OPTION_NAMES: &str =
-    "functions, scalar, forward_dynamics, snap_rounding, trig, split_lets, scene, gravity, \
-                                       tip_wrench, subtree, lock, armature, viscous, coulomb, coulomb_velocity, \
-                                       payload, payload_input, frame_pose, frame_jacobian, target";
+pub(crate) const OPTION_NAMES: &str = "functions, scalar, forward_dynamics, snap_rounding, trig, split_lets, fma, \
+                                       scene, gravity, tip_wrench, subtree, lock, armature, viscous, coulomb, \
+                                       coulomb_velocity, payload, payload_input, frame_pose, frame_jacobian, target";
 
 struct UrdfInput {
     path: LitStr,

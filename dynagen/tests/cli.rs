@@ -665,6 +665,11 @@ fn ops_lists_generated_and_generic_counts() {
         let cols: Vec<&str> = row[f.kind.label().len()..].split_whitespace().collect();
         assert_eq!(cols[0], f.op_count.arithmetic().to_string(), "{row}");
         assert_eq!(cols[1], generic.arithmetic().to_string(), "{row}");
+        // Fused multiply-adds are on by default: how many, and the
+        // operations with each fused one counted once.
+        assert_eq!(cols[5], f.op_count.fused.to_string(), "{row}");
+        assert_eq!(cols[6], f.op_count.fp_ops().to_string(), "{row}");
+        assert!(f.op_count.fused > 0 && f.op_count.fp_ops() < f.op_count.arithmetic(), "{row}");
         // The generic recursion does every multiplication by a model
         // constant at run time: the generated code must do fewer.
         assert!(f.op_count.arithmetic() < generic.arithmetic(), "{row}");

@@ -6,18 +6,21 @@
 // Gravity: [0.0, 0.0, -9.81] m/s^2 in the base frame, folded in.
 // Options: scalar f64; forward dynamics by the CRBA + RNEA + sparse LTDL (chosen); rounding snap on (0 constants); inertia regrouping on; like terms on, constant products on, constant sums on, reassociation on.
 // Trigonometry: NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time (no_std, no dependency).
+// Fused multiply-adds: fma(a, b, c) (fmaf in f32) is a*b + c with one rounding where the target has an FMA
+//   instruction (x86_64 built with target feature fma, e.g. -C target-cpu=native on a machine that has it;
+//   aarch64), and plain a * b + c elsewhere: a default x86_64 build gives the same bits as unfused code.
 // Forward dynamics: CRBA + LTDL, chosen as faster and as accurate (estimated 54 cycles for CRBA + LTDL against 56 for the articulated-body algorithm; worst relative error on 16 states against double-double 3.5e-16 against 3.1e-16).
 // Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]
 //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.
 // sin_cos_all(q): the batched sine and cosine, within 1 ulp for every finite angle, no std.
 // Operation counts; critical path = the longest chain of dependent operations, weighted by latency
-//   (add, sub, mul 4 cycles, div 14, sqrt 18, neg 1), of the body with the sines and cosines given:
-//   inverse_dynamics: 26 ops: 5 add, 5 sub, 14 mul, 0 div, 0 neg, 0 sqrt, 2 sin_cos; body NAME_sc critical path 28 cycles (7 ops)
-//   mass_matrix: 5 ops: 2 add, 0 sub, 2 mul, 0 div, 0 neg, 0 sqrt, 1 sin_cos; body NAME_sc critical path 8 cycles (2 ops)
-//   bias_forces: 18 ops: 3 add, 2 sub, 10 mul, 0 div, 1 neg, 0 sqrt, 2 sin_cos; body NAME_sc critical path 25 cycles (7 ops)
-//   gravity_torques: 12 ops: 0 add, 2 sub, 6 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos; body NAME_sc critical path 20 cycles (5 ops)
-//   forward_dynamics (ABA) [not emitted]: 39 ops: 6 add, 8 sub, 22 mul, 1 div, 0 neg, 0 sqrt, 2 sin_cos; body NAME_sc critical path 56 cycles (14 ops)
-//   forward_dynamics (CRBA + LTDL): 32 ops: 8 add, 4 sub, 16 mul, 2 div, 0 neg, 0 sqrt, 2 sin_cos; body NAME_sc critical path 54 cycles (11 ops)
+//   (add, sub, mul, fma 4 cycles, div 14, sqrt 18, neg 1), of the body with the sines and cosines given:
+//   inverse_dynamics: 26 ops: 5 add, 5 sub, 14 mul, 0 div, 0 neg, 0 sqrt, 2 sin_cos; 7 fused multiply-adds, 19 FP ops with each fused = 1; body NAME_sc critical path 20 cycles (5 ops)
+//   mass_matrix: 5 ops: 2 add, 0 sub, 2 mul, 0 div, 0 neg, 0 sqrt, 1 sin_cos; 2 fused multiply-adds, 3 FP ops with each fused = 1; body NAME_sc critical path 4 cycles (1 ops)
+//   bias_forces: 18 ops: 3 add, 2 sub, 10 mul, 0 div, 1 neg, 0 sqrt, 2 sin_cos; 3 fused multiply-adds, 14 FP ops with each fused = 1; body NAME_sc critical path 21 cycles (6 ops)
+//   gravity_torques: 12 ops: 0 add, 2 sub, 6 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos; 2 fused multiply-adds, 9 FP ops with each fused = 1; body NAME_sc critical path 17 cycles (5 ops)
+//   forward_dynamics (ABA) [not emitted]: 39 ops: 6 add, 8 sub, 22 mul, 1 div, 0 neg, 0 sqrt, 2 sin_cos; 11 fused multiply-adds, 30 FP ops with each fused = 1; body NAME_sc critical path 38 cycles (7 ops)
+//   forward_dynamics (CRBA + LTDL): 32 ops: 8 add, 4 sub, 16 mul, 2 div, 0 neg, 0 sqrt, 2 sin_cos; 11 fused multiply-adds, 22 FP ops with each fused = 1; body NAME_sc critical path 42 cycles (8 ops)
 
 /// The number of degrees of freedom (joints).
 pub const DOF: usize = 2;
@@ -31,7 +34,7 @@ pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
 /// Inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton-Euler algorithm.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 24 ops: 5 add, 5 sub, 14 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos.
+/// 24 ops: 5 add, 5 sub, 14 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 7 fused multiply-adds, 17 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -46,36 +49,29 @@ pub fn inverse_dynamics_sc(
     qd: &[f64; DOF],
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
-    let t0 = 9.81 * c[0];
-    let t1 = 9.81 * s[0];
-    let t2 = 24.525000000000002 * c[0];
-    let t3 = qd[0] * qd[0];
-    let t4 = 2.1666666666666665 * qdd[0];
-    let t5 = t4 - t2;
-    let t6 = t1 + t3;
-    let t7 = t0 - qdd[0];
-    let t8 = c[1] * t7;
-    let t9 = s[1] * t6;
-    let t10 = t8 - t9;
-    let t11 = qd[0] + qd[1];
-    let t12 = qdd[0] + qdd[1];
-    let t13 = 0.6000000000000001 * t10;
-    let t14 = t11 * t11;
-    let t15 = 0.6000000000000001 * t14;
-    let t16 = 0.6000000000000001 * t12;
-    let t17 = 0.32000000000000006 * t12;
-    let t18 = t17 - t13;
-    let t19 = c[1] * t16;
-    let t20 = s[1] * t15;
-    let t21 = t5 + t19;
-    let t22 = t21 - t20;
-    let t23 = t18 + t22;
-    [t23, t18]
+    let t0 = 9.81 * s[0];
+    let t1 = 2.1666666666666665 * qdd[0];
+    let t2 = fma(-24.525000000000002, c[0], t1);
+    let t3 = fma(qd[0], qd[0], t0);
+    let t4 = fma(9.81, c[0], -qdd[0]);
+    let t5 = c[1] * t4;
+    let t6 = fma(-s[1], t3, t5);
+    let t7 = qd[0] + qd[1];
+    let t8 = qdd[0] + qdd[1];
+    let t9 = t7 * t7;
+    let t10 = 0.6000000000000001 * t9;
+    let t11 = 0.6000000000000001 * t8;
+    let t12 = 0.32000000000000006 * t8;
+    let t13 = fma(-0.6000000000000001, t6, t12);
+    let t14 = fma(c[1], t11, t2);
+    let t15 = fma(-s[1], t10, t14);
+    let t16 = t13 + t15;
+    [t16, t13]
 }
 /// Inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton-Euler algorithm.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 26 ops: 5 add, 5 sub, 14 mul, 0 div, 0 neg, 0 sqrt, 2 sin_cos.
+/// 26 ops: 5 add, 5 sub, 14 mul, 0 div, 0 neg, 0 sqrt, 2 sin_cos; 7 fused multiply-adds, 19 FP ops with each fused = 1.
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`inverse_dynamics_sc`].
 #[inline]
@@ -90,7 +86,7 @@ pub fn inverse_dynamics(
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 4 ops: 2 add, 0 sub, 2 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos.
+/// 4 ops: 2 add, 0 sub, 2 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 2 fused multiply-adds, 2 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -101,16 +97,14 @@ pub fn inverse_dynamics(
 )]
 pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let _ = s;
-    let t0 = 0.6000000000000001 * c[1];
-    let t1 = 0.32000000000000006 + t0;
-    let t2 = 1.2000000000000002 * c[1];
-    let t3 = t2 + 2.4866666666666664;
-    [[t3, t1], [t1, 0.32000000000000006]]
+    let t0 = fma(0.6000000000000001, c[1], 0.32000000000000006);
+    let t1 = fma(1.2000000000000002, c[1], 2.4866666666666664);
+    [[t1, t0], [t0, 0.32000000000000006]]
 }
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 5 ops: 2 add, 0 sub, 2 mul, 0 div, 0 neg, 0 sqrt, 1 sin_cos.
+/// 5 ops: 2 add, 0 sub, 2 mul, 0 div, 0 neg, 0 sqrt, 1 sin_cos; 2 fused multiply-adds, 3 FP ops with each fused = 1.
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`mass_matrix_sc`].
 #[inline]
@@ -121,7 +115,7 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 16 ops: 3 add, 2 sub, 10 mul, 0 div, 1 neg, 0 sqrt, 0 sin_cos.
+/// 16 ops: 3 add, 2 sub, 10 mul, 0 div, 1 neg, 0 sqrt, 0 sin_cos; 3 fused multiply-adds, 12 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -134,25 +128,22 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
     let t0 = 9.81 * c[0];
     let t1 = 9.81 * s[0];
     let t2 = 24.525000000000002 * c[0];
-    let t3 = qd[0] * qd[0];
-    let t4 = t1 + t3;
-    let t5 = t0 * c[1];
-    let t6 = s[1] * t4;
-    let t7 = t5 - t6;
-    let t8 = qd[0] + qd[1];
-    let t9 = 0.6000000000000001 * t7;
-    let t10 = -t9;
-    let t11 = t8 * t8;
-    let t12 = 0.6000000000000001 * t11;
-    let t13 = s[1] * t12;
-    let t14 = t2 + t13;
-    let t15 = t10 - t14;
-    [t15, t10]
+    let t3 = fma(qd[0], qd[0], t1);
+    let t4 = t0 * c[1];
+    let t5 = fma(-s[1], t3, t4);
+    let t6 = qd[0] + qd[1];
+    let t7 = 0.6000000000000001 * t5;
+    let t8 = -t7;
+    let t9 = t6 * t6;
+    let t10 = 0.6000000000000001 * t9;
+    let t11 = fma(s[1], t10, t2);
+    let t12 = t8 - t11;
+    [t12, t8]
 }
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 18 ops: 3 add, 2 sub, 10 mul, 0 div, 1 neg, 0 sqrt, 2 sin_cos.
+/// 18 ops: 3 add, 2 sub, 10 mul, 0 div, 1 neg, 0 sqrt, 2 sin_cos; 3 fused multiply-adds, 14 FP ops with each fused = 1.
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`bias_forces_sc`].
 #[inline]
@@ -163,7 +154,7 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 /// The gravity torques g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 10 ops: 0 add, 2 sub, 6 mul, 0 div, 2 neg, 0 sqrt, 0 sin_cos.
+/// 10 ops: 0 add, 2 sub, 6 mul, 0 div, 2 neg, 0 sqrt, 0 sin_cos; 2 fused multiply-adds, 7 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -178,17 +169,16 @@ pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
     let t2 = 24.525000000000002 * c[0];
     let t3 = -t2;
     let t4 = t0 * c[1];
-    let t5 = t1 * s[1];
-    let t6 = t4 - t5;
-    let t7 = 0.6000000000000001 * t6;
-    let t8 = -t7;
-    let t9 = t3 - t7;
-    [t9, t8]
+    let t5 = fma(-t1, s[1], t4);
+    let t6 = 0.6000000000000001 * t5;
+    let t7 = -t6;
+    let t8 = fma(-0.6000000000000001, t5, t3);
+    [t8, t7]
 }
 /// The gravity torques g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 12 ops: 0 add, 2 sub, 6 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos.
+/// 12 ops: 0 add, 2 sub, 6 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos; 2 fused multiply-adds, 9 FP ops with each fused = 1.
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`gravity_torques_sc`].
 #[inline]
@@ -199,7 +189,7 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by CRBA, RNEA and a sparse LᵀDL solve.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 30 ops: 8 add, 4 sub, 16 mul, 2 div, 0 neg, 0 sqrt, 0 sin_cos.
+/// 30 ops: 8 add, 4 sub, 16 mul, 2 div, 0 neg, 0 sqrt, 0 sin_cos; 11 fused multiply-adds, 20 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -216,40 +206,30 @@ pub fn forward_dynamics_sc(
 ) -> [f64; DOF] {
     let t0 = 9.81 * c[0];
     let t1 = 9.81 * s[0];
-    let t2 = 24.525000000000002 * c[0];
-    let t3 = qd[0] * qd[0];
-    let t4 = t1 + t3;
-    let t5 = t0 * c[1];
-    let t6 = s[1] * t4;
-    let t7 = t5 - t6;
-    let t8 = qd[0] + qd[1];
-    let t9 = 0.6000000000000001 * t7;
-    let t10 = t8 * t8;
-    let t11 = 0.6000000000000001 * t10;
-    let t12 = s[1] * t11;
-    let t13 = tau[1] + t9;
-    let t14 = 0.6000000000000001 * c[1];
-    let t15 = 0.32000000000000006 + t14;
-    let t16 = 1.2000000000000002 * c[1];
-    let t17 = t16 + 2.4866666666666664;
-    let t18 = 3.1249999999999996 * t15;
-    let t19 = t15 * t18;
-    let t20 = t17 - t19;
-    let t21 = t13 * t18;
-    let t22 = tau[0] + t2;
-    let t23 = t12 + t22;
-    let t24 = t9 + t23;
-    let t25 = t24 - t21;
-    let t26 = t25 / t20;
-    let t27 = t13 / 0.32000000000000006;
-    let t28 = t18 * t26;
-    let t29 = t27 - t28;
-    [t26, t29]
+    let t2 = fma(qd[0], qd[0], t1);
+    let t3 = t0 * c[1];
+    let t4 = fma(-s[1], t2, t3);
+    let t5 = qd[0] + qd[1];
+    let t6 = t5 * t5;
+    let t7 = 0.6000000000000001 * t6;
+    let t8 = fma(0.6000000000000001, t4, tau[1]);
+    let t9 = fma(0.6000000000000001, c[1], 0.32000000000000006);
+    let t10 = fma(1.2000000000000002, c[1], 2.4866666666666664);
+    let t11 = 3.1249999999999996 * t9;
+    let t12 = fma(-t9, t11, t10);
+    let t13 = fma(24.525000000000002, c[0], tau[0]);
+    let t14 = fma(s[1], t7, t13);
+    let t15 = fma(0.6000000000000001, t4, t14);
+    let t16 = fma(-t8, t11, t15);
+    let t17 = t16 / t12;
+    let t18 = t8 / 0.32000000000000006;
+    let t19 = fma(-t11, t17, t18);
+    [t17, t19]
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by CRBA, RNEA and a sparse LᵀDL solve.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 32 ops: 8 add, 4 sub, 16 mul, 2 div, 0 neg, 0 sqrt, 2 sin_cos.
+/// 32 ops: 8 add, 4 sub, 16 mul, 2 div, 0 neg, 0 sqrt, 2 sin_cos; 11 fused multiply-adds, 22 FP ops with each fused = 1.
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`forward_dynamics_sc`].
 #[inline]
@@ -283,6 +263,15 @@ pub fn forward_dynamics(
 //    relative error 1.1e-17 and 1.1e-18 after rounding to f64), evaluated
 //    by Estrin's scheme (short dependency chains). The leading terms r and
 //    1 − r²/2 (with its rounding error kept) are added last.
+//    Where the target has fused multiply-adds (`fma` below), each `a·b + c`
+//    of the polynomials and of the final sums is one, rounded once instead
+//    of twice: every rounding error of the fused evaluation is one of the
+//    unfused evaluation's (a fused product adds none), so the error bound
+//    and the 1-ulp result hold for both (the tests measure both: max 0.73
+//    ulp unfused, see `tests/tests/generated_fma.rs` for the fused build).
+//    x − k·P1 is written fused too (exact either way); the other steps of
+//    the reduction are left as they are, so k and the fast-path test are
+//    the same on every target.
 // 4. The quadrant k mod 4 picks (±sin r, ±cos r) by bit masks.
 // `sin_cos_array` runs the fast path on several angles at once, in vector
 // registers on x86-64: four to a register where the target has AVX2
@@ -292,6 +281,46 @@ pub fn forward_dynamics(
 // once (`sin_cos_lanes`) over the operations of `Lanes`, which `f64`, two-
 // and four-lane registers implement lane by lane: the same operations in
 // the same order, so every width gives the bits of the one-angle code.
+
+// `fma(a, b, c)`: a·b + c. Where the target has a fused multiply-add
+// (x86-64 compiled with the `fma` target feature, e.g. by
+// `-C target-cpu=native` on a processor that has it; aarch64 with NEON, which
+// every aarch64 Linux, macOS and Windows target has) it is one instruction
+// with a single rounding; elsewhere it is `a * b + c`, two roundings, bit for
+// bit the unfused expression (plain x86-64 builds give the same results as
+// code without `fma`).
+
+/// `a·b + c` with one rounding (x86-64 with the `fma` feature).
+#[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
+#[inline(always)]
+#[allow(dead_code, unused_unsafe)]
+fn fma(a: f64, b: f64, c: f64) -> f64 {
+    use core::arch::x86_64::{_mm_cvtsd_f64, _mm_fmadd_sd, _mm_set_sd};
+    // SAFETY: the cfg above compiles this only where the `fma` target
+    // feature is enabled, so the instruction exists.
+    unsafe { _mm_cvtsd_f64(_mm_fmadd_sd(_mm_set_sd(a), _mm_set_sd(b), _mm_set_sd(c))) }
+}
+
+/// `a·b + c` with one rounding (aarch64).
+#[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
+#[inline(always)]
+#[allow(dead_code, unused_unsafe)]
+fn fma(a: f64, b: f64, c: f64) -> f64 {
+    use core::arch::aarch64::{vdup_n_f64, vfma_f64, vget_lane_f64};
+    // SAFETY: the cfg above compiles this only where NEON is enabled.
+    unsafe { vget_lane_f64::<0>(vfma_f64(vdup_n_f64(c), vdup_n_f64(a), vdup_n_f64(b))) }
+}
+
+/// `a·b + c`, rounded twice (targets without a fused multiply-add).
+#[cfg(not(any(
+    all(target_arch = "x86_64", target_feature = "fma"),
+    all(target_arch = "aarch64", target_feature = "neon")
+)))]
+#[inline(always)]
+#[allow(dead_code)]
+fn fma(a: f64, b: f64, c: f64) -> f64 {
+    a * b + c
+}
 
 /// The sines and cosines of `x`, entry by entry: within 1 ulp of the exact
 /// values for every finite angle (NaN and ±∞ give NaN); two or four angles
@@ -376,6 +405,10 @@ trait Lanes: Copy {
     fn sub(self, b: Self) -> Self;
     /// `self · b`.
     fn mul(self, b: Self) -> Self;
+    /// `self · b + c`, fused where the scalar `fma` is.
+    fn mul_add(self, b: Self, c: Self) -> Self;
+    /// `−self`.
+    fn neg(self) -> Self;
     /// `|self|`.
     fn abs(self) -> Self;
     /// Whether min(`self`, 1.5e6) ≥ `b` in every lane: a NaN `self` takes
@@ -417,6 +450,14 @@ impl Lanes for f64 {
         self * b
     }
     #[inline(always)]
+    fn mul_add(self, b: f64, c: f64) -> f64 {
+        fma(self, b, c)
+    }
+    #[inline(always)]
+    fn neg(self) -> f64 {
+        -self
+    }
+    #[inline(always)]
     fn abs(self) -> f64 {
         f64::from_bits(self.to_bits() & !(1 << 63))
     }
@@ -442,7 +483,7 @@ impl Lanes for f64 {
 /// operations of `impl Lanes for f64`, lane by lane.
 #[cfg(target_arch = "x86_64")]
 macro_rules! vector_lanes {
-    ($w:literal, $v:ident, $all:literal, $feature:literal, $add:ident, $sub:ident, $mul:ident,
+    ($w:literal, $v:ident, $all:literal, $feature:literal, $add:ident, $sub:ident, $mul:ident, $fmadd:ident, $xor_pd:ident,
      $set1:ident, $loadu:ident, $storeu:ident, $andnot:ident, $min:ident, $cmp_ge:expr, $movemask:ident,
      $to_int:ident, $to_float:ident, $and:ident, $or:ident, $xor:ident, $sub64:ident, $zero:ident, $set1_64:ident,
      $shl:ident) => {
@@ -484,6 +525,18 @@ macro_rules! vector_lanes {
                 unsafe { core::arch::x86_64::$mul(self, b) }
             }
             #[inline(always)]
+            fn mul_add(self, b: Self, c: Self) -> Self {
+                #[cfg(target_feature = "fma")]
+                let r = unsafe { core::arch::x86_64::$fmadd(self, b, c) };
+                #[cfg(not(target_feature = "fma"))]
+                let r = self.mul(b).add(c);
+                r
+            }
+            #[inline(always)]
+            fn neg(self) -> Self {
+                unsafe { core::arch::x86_64::$xor_pd(self, Self::splat(-0.0)) }
+            }
+            #[inline(always)]
             fn abs(self) -> Self {
                 unsafe { core::arch::x86_64::$andnot(Self::splat(-0.0), self) }
             }
@@ -510,11 +563,11 @@ macro_rules! vector_lanes {
 }
 
 #[cfg(target_arch = "x86_64")]
-vector_lanes!(2, __m128d, 3, "sse2", _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_set1_pd, _mm_loadu_pd,
+vector_lanes!(2, __m128d, 3, "sse2", _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_fmadd_pd, _mm_xor_pd, _mm_set1_pd, _mm_loadu_pd,
     _mm_storeu_pd, _mm_andnot_pd, _mm_min_pd, _mm_cmpge_pd, _mm_movemask_pd, _mm_castpd_si128, _mm_castsi128_pd,
     _mm_and_si128, _mm_or_si128, _mm_xor_si128, _mm_sub_epi64, _mm_setzero_si128, _mm_set1_epi64x, _mm_slli_epi64);
 #[cfg(target_arch = "x86_64")]
-vector_lanes!(4, __m256d, 15, "avx2", _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_set1_pd,
+vector_lanes!(4, __m256d, 15, "avx2", _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_fmadd_pd, _mm256_xor_pd, _mm256_set1_pd,
     _mm256_loadu_pd, _mm256_storeu_pd, _mm256_andnot_pd, _mm256_min_pd, _mm256_cmp_pd::<_CMP_GE_OQ>,
     _mm256_movemask_pd, _mm256_castpd_si256, _mm256_castsi256_pd, _mm256_and_si256, _mm256_or_si256,
     _mm256_xor_si256, _mm256_sub_epi64, _mm256_setzero_si256, _mm256_set1_epi64x, _mm256_slli_epi64);
@@ -550,6 +603,14 @@ impl Lanes for [f64; 2] {
     #[inline(always)]
     fn mul(self, b: Self) -> Self {
         [self[0] * b[0], self[1] * b[1]]
+    }
+    #[inline(always)]
+    fn mul_add(self, b: Self, c: Self) -> Self {
+        [fma(self[0], b[0], c[0]), fma(self[1], b[1], c[1])]
+    }
+    #[inline(always)]
+    fn neg(self) -> Self {
+        [-self[0], -self[1]]
     }
     #[inline(always)]
     fn abs(self) -> Self {
@@ -605,7 +666,7 @@ fn sin_cos_lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
     let v = V::splat;
     let t: [V; P] = each(|i| x[i].mul(v(FRAC_2_PI)).add(v(ROUND)));
     let k: [V; P] = each(|i| t[i].sub(v(ROUND)));
-    let t0: [V; P] = each(|i| x[i].sub(k[i].mul(v(P1)))); // exact
+    let t0: [V; P] = each(|i| k[i].neg().mul_add(v(P1), x[i])); // exact, fused or not
     let w: [V; P] = each(|i| k[i].mul(v(P2))); // exact
     let a: [V; P] = each(|i| t0[i].sub(w[i]));
     // The rounding error of t0 − w, exact (|t0| ≥ |w|, or else t0 − w is exact), then − k·P3.
@@ -648,18 +709,17 @@ fn sin_cos_reduced<V: Lanes, const P: usize>(rh: [V; P], rl: [V; P], signed: [V;
     let z2: [V; P] = each(|i| z[i].mul(z[i]));
     // Estrin: (c0 + z·c1) + z²·((c2 + z·c3) + z²·(c4 + z·c5)).
     let poly = |c: [f64; 6], i: usize| {
-        let (lo, mid, hi) =
-            (v(c[0]).add(z[i].mul(v(c[1]))), v(c[2]).add(z[i].mul(v(c[3]))), v(c[4]).add(z[i].mul(v(c[5]))));
-        lo.add(z2[i].mul(mid.add(z2[i].mul(hi))))
+        let (lo, mid, hi) = (z[i].mul_add(v(c[1]), v(c[0])), z[i].mul_add(v(c[3]), v(c[2])), z[i].mul_add(v(c[5]), v(c[4])));
+        z2[i].mul_add(z2[i].mul_add(hi, mid), lo)
     };
     let ps: [V; P] = each(|i| poly(S, i));
     let pc: [V; P] = each(|i| poly(C, i));
     let hz: [V; P] = each(|i| v(0.5).mul(z[i]));
     // sin(rh + rl) = rh + rh·z·S(z) + rl·(1 − z/2) + …; the sign or-ed in keeps sin(−0) = −0.
-    let sin_r: [V; P] = each(|i| rh[i].add(rh[i].mul(z[i]).mul(ps[i]).add(rl[i].mul(v(1.0).sub(hz[i])))));
+    let sin_r: [V; P] = each(|i| rh[i].add(rh[i].mul(z[i]).mul_add(ps[i], rl[i].mul(v(1.0).sub(hz[i])))));
     // cos(rh + rl) = (1 − z/2) + z²·C(z) − rh·rl + …, with the rounding error of 1 − z/2.
     let w: [V; P] = each(|i| v(1.0).sub(hz[i]));
-    let cos_r: [V; P] = each(|i| w[i].add(v(1.0).sub(w[i]).sub(hz[i]).add(z2[i].mul(pc[i]).sub(rh[i].mul(rl[i])))));
+    let cos_r: [V; P] = each(|i| w[i].add(v(1.0).sub(w[i]).sub(hz[i]).add(z2[i].mul_add(pc[i], rh[i].mul(rl[i]).neg()))));
     core::array::from_fn(|i| V::quadrant(sin_r[i], signed[i], cos_r[i], quadrant[i]))
 }
 

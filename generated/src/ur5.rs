@@ -6,18 +6,21 @@
 // Gravity: [0.0, 0.0, -9.81] m/s^2 in the base frame, folded in.
 // Options: scalar f64; forward dynamics by the CRBA + RNEA + sparse LTDL (chosen); rounding snap on (6 constants); inertia regrouping on; like terms on, constant products on, constant sums on, reassociation on.
 // Trigonometry: NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time (no_std, no dependency).
+// Fused multiply-adds: fma(a, b, c) (fmaf in f32) is a*b + c with one rounding where the target has an FMA
+//   instruction (x86_64 built with target feature fma, e.g. -C target-cpu=native on a machine that has it;
+//   aarch64), and plain a * b + c elsewhere: a default x86_64 build gives the same bits as unfused code.
 // Forward dynamics: CRBA + LTDL, chosen as faster and as accurate (estimated 269 cycles for CRBA + LTDL against 314 for the articulated-body algorithm; worst relative error on 16 states against double-double 3.8e-16 against 1.8e-16).
 // Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]
 //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.
 // sin_cos_all(q): the batched sine and cosine, within 1 ulp for every finite angle, no std.
 // Operation counts; critical path = the longest chain of dependent operations, weighted by latency
-//   (add, sub, mul 4 cycles, div 14, sqrt 18, neg 1), of the body with the sines and cosines given:
-//   inverse_dynamics: 289 ops: 68 add, 50 sub, 166 mul, 0 div, 0 neg, 0 sqrt, 5 sin_cos; body NAME_sc critical path 108 cycles (27 ops)
-//   mass_matrix: 171 ops: 36 add, 30 sub, 97 mul, 0 div, 3 neg, 0 sqrt, 5 sin_cos; body NAME_sc critical path 65 cycles (17 ops)
-//   bias_forces: 257 ops: 58 add, 39 sub, 152 mul, 0 div, 3 neg, 0 sqrt, 5 sin_cos; body NAME_sc critical path 105 cycles (27 ops)
-//   gravity_torques: 19 ops: 2 add, 3 sub, 11 mul, 0 div, 0 neg, 0 sqrt, 3 sin_cos; body NAME_sc critical path 32 cycles (8 ops)
-//   forward_dynamics (ABA) [not emitted]: 620 ops: 121 add, 127 sub, 362 mul, 5 div, 0 neg, 0 sqrt, 5 sin_cos; body NAME_sc critical path 314 cycles (66 ops)
-//   forward_dynamics (CRBA + LTDL): 542 ops: 107 add, 120 sub, 298 mul, 10 div, 2 neg, 0 sqrt, 5 sin_cos; body NAME_sc critical path 162 cycles (28 ops)
+//   (add, sub, mul, fma 4 cycles, div 14, sqrt 18, neg 1), of the body with the sines and cosines given:
+//   inverse_dynamics: 289 ops: 68 add, 50 sub, 166 mul, 0 div, 0 neg, 0 sqrt, 5 sin_cos; 105 fused multiply-adds, 191 FP ops with each fused = 1; body NAME_sc critical path 84 cycles (21 ops)
+//   mass_matrix: 171 ops: 36 add, 30 sub, 97 mul, 0 div, 3 neg, 0 sqrt, 5 sin_cos; 58 fused multiply-adds, 123 FP ops with each fused = 1; body NAME_sc critical path 57 cycles (15 ops)
+//   bias_forces: 257 ops: 58 add, 39 sub, 152 mul, 0 div, 3 neg, 0 sqrt, 5 sin_cos; 88 fused multiply-adds, 169 FP ops with each fused = 1; body NAME_sc critical path 85 cycles (22 ops)
+//   gravity_torques: 19 ops: 2 add, 3 sub, 11 mul, 0 div, 0 neg, 0 sqrt, 3 sin_cos; 5 fused multiply-adds, 14 FP ops with each fused = 1; body NAME_sc critical path 32 cycles (8 ops)
+//   forward_dynamics (ABA) [not emitted]: 620 ops: 121 add, 127 sub, 362 mul, 5 div, 0 neg, 0 sqrt, 5 sin_cos; 213 fused multiply-adds, 421 FP ops with each fused = 1; body NAME_sc critical path 234 cycles (46 ops)
+//   forward_dynamics (CRBA + LTDL): 542 ops: 107 add, 120 sub, 298 mul, 10 div, 2 neg, 0 sqrt, 5 sin_cos; 204 fused multiply-adds, 369 FP ops with each fused = 1; body NAME_sc critical path 126 cycles (19 ops)
 
 /// The number of degrees of freedom (joints).
 pub const DOF: usize = 6;
@@ -38,7 +41,7 @@ pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
 /// Inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton-Euler algorithm.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 284 ops: 68 add, 50 sub, 166 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos.
+/// 284 ops: 68 add, 50 sub, 166 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 105 fused multiply-adds, 186 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -57,292 +60,194 @@ pub fn inverse_dynamics_sc(
     let t1 = 2.7690351387572503 * qdd[0];
     let t2 = 0.10915 * qdd[0];
     let t3 = 0.10915 * t0;
-    let t4 = qdd[0] * c[1];
-    let t5 = qdd[0] * s[1];
-    let t6 = qd[0] * c[1];
-    let t7 = qd[0] * s[1];
-    let t8 = s[1] * t2;
-    let t9 = 9.81 * c[1];
-    let t10 = t8 - t9;
-    let t11 = c[1] * t2;
-    let t12 = 9.81 * s[1];
-    let t13 = t11 + t12;
-    let t14 = qd[1] * t6;
-    let t15 = qd[1] * t7;
-    let t16 = t15 - t4;
-    let t17 = t5 + t14;
-    let t18 = 0.483853490875 * t0;
-    let t19 = 4.4329225 * t10;
-    let t20 = t6 * t6;
-    let t21 = qd[1] * qd[1];
-    let t22 = t7 * t7;
-    let t23 = t6 * t7;
-    let t24 = t4 - t15;
-    let t25 = t20 + t21;
-    let t26 = qdd[1] + t23;
-    let t27 = t24 - t15;
-    let t28 = 4.4329225 * t26;
-    let t29 = 4.4329225 * t25;
-    let t30 = 1.77012693841 * qdd[1];
-    let t31 = 0.075354282 * t17;
-    let t32 = 0.075354282 * qdd[1];
-    let t33 = 1.75501953841 * t17;
-    let t34 = t32 + t33;
-    let t35 = t21 - t22;
-    let t36 = 0.075354282 * t35;
-    let t37 = 3.52514647682 * t15;
-    let t38 = 0.075354282 * t14;
-    let t39 = 1.75501953841 * t23;
-    let t40 = 0.075354282 * t23;
-    let t41 = 1.77012693841 * t14;
-    let t42 = t40 - t41;
-    let t43 = t34 + t42;
-    let t44 = 0.425 * t26;
-    let t45 = 0.425 * t27;
-    let t46 = 0.425 * t25;
-    let t47 = t10 + t44;
-    let t48 = t45 - t3;
-    let t49 = t13 + t46;
-    let t50 = t17 * c[2];
-    let t51 = t16 * s[2];
-    let t52 = t51 - t50;
-    let t53 = t17 * s[2];
-    let t54 = t16 * c[2];
-    let t55 = t53 + t54;
-    let t56 = t7 * c[2];
-    let t57 = t6 * s[2];
-    let t58 = t56 + t57;
-    let t59 = t7 * s[2];
-    let t60 = t6 * c[2];
-    let t61 = t59 - t60;
-    let t62 = c[2] * t49;
-    let t63 = s[2] * t47;
-    let t64 = t63 - t62;
-    let t65 = s[2] * t49;
-    let t66 = c[2] * t47;
-    let t67 = t65 + t66;
-    let t68 = qd[1] + qd[2];
-    let t69 = qd[2] * t61;
-    let t70 = qd[2] * t58;
-    let t71 = t55 + t70;
-    let t72 = t52 + t69;
-    let t73 = qdd[1] + qdd[2];
-    let t74 = 1.598759275 * t48;
-    let t75 = 1.598759275 * t67;
-    let t76 = t61 * t61;
-    let t77 = t68 * t68;
-    let t78 = t58 * t58;
-    let t79 = t61 * t68;
-    let t80 = t58 * t61;
-    let t81 = t58 * t68;
-    let t82 = t76 + t77;
-    let t83 = t73 - t80;
-    let t84 = t71 + t81;
-    let t85 = 1.598759275 * t83;
-    let t86 = 1.598759275 * t84;
-    let t87 = 1.598759275 * t82;
-    let t88 = 0.5956519516747499 * t73;
-    let t89 = 0.09736195575 * t72;
-    let t90 = 0.09736195575 * t73;
-    let t91 = 0.5915569516747499 * t72;
-    let t92 = t77 - t78;
-    let t93 = 0.09736195575 * t92;
-    let t94 = 1.1872089033494997 * t81;
-    let t95 = t93 + t94;
-    let t96 = 0.09736195575 * t79;
-    let t97 = 0.5915569516747499 * t80;
-    let t98 = 0.09736195575 * t80;
-    let t99 = 0.5956519516747499 * t79;
-    let t100 = t95 - t74;
-    let t101 = 0.39225 * t83;
-    let t102 = 0.39225 * t84;
-    let t103 = 0.39225 * t82;
-    let t104 = t67 + t101;
-    let t105 = t48 - t102;
-    let t106 = t64 - t103;
-    let t107 = t71 * s[3];
-    let t108 = t72 * c[3];
-    let t109 = t107 + t108;
-    let t110 = t71 * c[3];
-    let t111 = t72 * s[3];
-    let t112 = t110 - t111;
-    let t113 = t61 * s[3];
-    let t114 = t58 * c[3];
-    let t115 = t114 - t113;
-    let t116 = t61 * c[3];
-    let t117 = t58 * s[3];
-    let t118 = t116 + t117;
-    let t119 = s[3] * t104;
-    let t120 = c[3] * t106;
-    let t121 = t119 + t120;
-    let t122 = qd[3] + t68;
-    let t123 = qd[3] * t115;
-    let t124 = qd[3] * t118;
-    let t125 = t109 + t124;
-    let t126 = t112 + t123;
-    let t127 = qdd[3] + t73;
-    let t128 = 0.01778473500000001 * t105;
-    let t129 = 0.01778473500000001 * t121;
-    let t130 = t115 * t115;
-    let t131 = t122 * t122;
-    let t132 = t115 * t122;
-    let t133 = t115 * t118;
-    let t134 = t118 * t122;
-    let t135 = t130 + t131;
-    let t136 = t127 + t133;
-    let t137 = t125 + t134;
-    let t138 = 0.01778473500000001 * t136;
-    let t139 = 0.01778473500000001 * t137;
-    let t140 = 0.01778473500000001 * t135;
-    let t141 = 0.22402883622975 * t127;
-    let t142 = 0.004608836229749974 * t126;
-    let t143 = 0.22863767245949998 * t134;
-    let t144 = 0.004608836229749974 * t133;
-    let t145 = 0.22402883622975 * t132;
-    let t146 = t128 + t143;
-    let t147 = t145 - t142;
-    let t148 = t125 * c[4];
-    let t149 = t127 * s[4];
-    let t150 = t125 * s[4];
-    let t151 = t127 * c[4];
-    let t152 = t115 * c[4];
-    let t153 = t122 * s[4];
-    let t154 = t152 + t153;
-    let t155 = t115 * s[4];
-    let t156 = t122 * c[4];
-    let t157 = t156 - t155;
-    let t158 = qd[4] + t118;
-    let t159 = qd[4] * t157;
-    let t160 = qd[4] * t154;
-    let t161 = t149 + t159;
-    let t162 = t161 - t148;
-    let t163 = qdd[4] + t126;
-    let t164 = t154 * t157;
-    let t165 = t154 * t158;
-    let t166 = t157 * t158;
-    let t167 = 0.017136473145399997 * t162;
-    let t168 = 0.23655647314540001 * t163;
-    let t169 = 0.23655647314540001 * t166;
-    let t170 = 0.21942 * t165;
-    let t171 = 0.017136473145399997 * t164;
-    let t172 = t167 + t169;
-    let t173 = t168 - t171;
-    let t174 = t163 * c[5];
-    let t175 = t162 * s[5];
-    let t176 = t158 * c[5];
-    let t177 = t154 * s[5];
-    let t178 = t176 + t177;
-    let t179 = t158 * s[5];
-    let t180 = t154 * c[5];
-    let t181 = t180 - t179;
-    let t182 = qd[5] + t157;
-    let t183 = qd[5] * t181;
-    let t184 = t174 + t183;
-    let t185 = t175 + t184;
-    let t186 = qdd[5] + t151;
-    let t187 = t186 - t160;
-    let t188 = t150 + t187;
-    let t189 = t181 * t182;
-    let t190 = t178 * t181;
-    let t191 = t178 * t182;
-    let t192 = 0.0171364731454 * t188;
-    let t193 = 0.016685526854599998 * t185;
-    let t194 = 0.0004509462908000028 * t191;
-    let t195 = 0.016685526854599998 * t190;
-    let t196 = 0.0171364731454 * t189;
-    let t197 = t192 - t195;
-    let t198 = t193 + t196;
-    let t199 = c[5] * t198;
-    let t200 = s[5] * t194;
-    let t201 = s[5] * t198;
-    let t202 = c[5] * t194;
-    let t203 = t172 - t202;
-    let t204 = t201 + t203;
-    let t205 = t197 - t170;
-    let t206 = t173 + t200;
-    let t207 = t199 + t206;
-    let t208 = c[4] * t204;
-    let t209 = s[4] * t205;
-    let t210 = s[4] * t204;
-    let t211 = c[4] * t205;
-    let t212 = t146 + t209;
-    let t213 = t208 - t212;
-    let t214 = t141 + t144;
-    let t215 = t214 - t129;
-    let t216 = t211 + t215;
-    let t217 = t210 + t216;
-    let t218 = t147 + t207;
-    let t219 = s[3] * t138;
-    let t220 = c[3] * t140;
-    let t221 = t219 + t220;
-    let t222 = c[3] * t138;
-    let t223 = s[3] * t140;
-    let t224 = t223 - t222;
-    let t225 = s[3] * t213;
-    let t226 = c[3] * t218;
-    let t227 = c[3] * t213;
-    let t228 = s[3] * t218;
-    let t229 = 0.006976062303750003 * t137;
-    let t230 = 0.39225 * t221;
-    let t231 = t100 - t229;
-    let t232 = t226 + t231;
-    let t233 = t232 - t225;
-    let t234 = t88 - t96;
-    let t235 = t234 - t97;
-    let t236 = t89 + t235;
-    let t237 = t75 + t236;
-    let t238 = t237 - t230;
-    let t239 = t217 + t238;
-    let t240 = t90 + t99;
-    let t241 = t240 - t98;
-    let t242 = t241 - t91;
-    let t243 = t242 - t228;
-    let t244 = t243 - t227;
-    let t245 = t85 - t221;
-    let t246 = t139 - t86;
-    let t247 = t224 - t87;
-    let t248 = c[2] * t247;
-    let t249 = s[2] * t245;
-    let t250 = t248 - t249;
-    let t251 = s[2] * t247;
-    let t252 = c[2] * t245;
-    let t253 = t251 + t252;
-    let t254 = c[2] * t244;
-    let t255 = s[2] * t233;
-    let t256 = t254 - t255;
-    let t257 = s[2] * t244;
-    let t258 = c[2] * t233;
-    let t259 = 0.425 * t246;
-    let t260 = 0.425 * t253;
-    let t261 = t18 + t37;
-    let t262 = t36 + t261;
-    let t263 = t262 - t259;
-    let t264 = t257 + t263;
-    let t265 = t258 + t264;
-    let t266 = t30 + t38;
-    let t267 = t19 + t39;
-    let t268 = t266 - t31;
-    let t269 = t267 + t268;
-    let t270 = t260 + t269;
-    let t271 = t239 + t270;
-    let t272 = t43 + t256;
-    let t273 = t28 + t253;
-    let t274 = t250 - t29;
-    let t275 = s[1] * t273;
-    let t276 = c[1] * t274;
-    let t277 = t276 - t275;
-    let t278 = c[1] * t265;
-    let t279 = s[1] * t272;
-    let t280 = 0.10915 * t277;
-    let t281 = t1 - t280;
-    let t282 = t281 - t278;
-    let t283 = t282 - t279;
-    [t283, t271, t239, t217, t207, t197]
+    let t4 = qd[0] * c[1];
+    let t5 = qd[0] * s[1];
+    let t6 = 9.81 * c[1];
+    let t7 = fma(s[1], t2, -t6);
+    let t8 = 9.81 * s[1];
+    let t9 = fma(c[1], t2, t8);
+    let t10 = qd[1] * t4;
+    let t11 = qd[1] * t5;
+    let t12 = fma(-qdd[0], c[1], t11);
+    let t13 = fma(qdd[0], s[1], t10);
+    let t14 = 0.483853490875 * t0;
+    let t15 = 4.4329225 * t7;
+    let t16 = qd[1] * qd[1];
+    let t17 = t4 * t5;
+    let t18 = fma(qdd[0], c[1], -t11);
+    let t19 = fma(t4, t4, t16);
+    let t20 = fma(t4, t5, qdd[1]);
+    let t21 = fma(-qd[1], t5, t18);
+    let t22 = 1.77012693841 * qdd[1];
+    let t23 = 0.075354282 * qdd[1];
+    let t24 = fma(1.75501953841, t13, t23);
+    let t25 = fma(-t5, t5, t16);
+    let t26 = 0.075354282 * t17;
+    let t27 = fma(-1.77012693841, t10, t26);
+    let t28 = t24 + t27;
+    let t29 = fma(0.425, t20, t7);
+    let t30 = fma(0.425, t21, -t3);
+    let t31 = fma(0.425, t19, t9);
+    let t32 = t12 * s[2];
+    let t33 = fma(-t13, c[2], t32);
+    let t34 = t13 * s[2];
+    let t35 = fma(t12, c[2], t34);
+    let t36 = t5 * c[2];
+    let t37 = fma(t4, s[2], t36);
+    let t38 = t5 * s[2];
+    let t39 = fma(-t4, c[2], t38);
+    let t40 = s[2] * t29;
+    let t41 = fma(-c[2], t31, t40);
+    let t42 = s[2] * t31;
+    let t43 = fma(c[2], t29, t42);
+    let t44 = qd[1] + qd[2];
+    let t45 = fma(qd[2], t37, t35);
+    let t46 = fma(qd[2], t39, t33);
+    let t47 = qdd[1] + qdd[2];
+    let t48 = t44 * t44;
+    let t49 = t39 * t44;
+    let t50 = t37 * t39;
+    let t51 = t37 * t44;
+    let t52 = fma(t39, t39, t48);
+    let t53 = fma(-t37, t39, t47);
+    let t54 = fma(t37, t44, t45);
+    let t55 = 1.598759275 * t54;
+    let t56 = 0.5956519516747499 * t47;
+    let t57 = 0.09736195575 * t47;
+    let t58 = fma(-t37, t37, t48);
+    let t59 = 0.09736195575 * t58;
+    let t60 = fma(1.1872089033494997, t51, t59);
+    let t61 = fma(-1.598759275, t30, t60);
+    let t62 = fma(0.39225, t53, t43);
+    let t63 = fma(-0.39225, t54, t30);
+    let t64 = fma(-0.39225, t52, t41);
+    let t65 = t45 * s[3];
+    let t66 = fma(t46, c[3], t65);
+    let t67 = t45 * c[3];
+    let t68 = fma(-t46, s[3], t67);
+    let t69 = t37 * c[3];
+    let t70 = fma(-t39, s[3], t69);
+    let t71 = t39 * c[3];
+    let t72 = fma(t37, s[3], t71);
+    let t73 = s[3] * t62;
+    let t74 = fma(c[3], t64, t73);
+    let t75 = qd[3] + t44;
+    let t76 = fma(qd[3], t72, t66);
+    let t77 = fma(qd[3], t70, t68);
+    let t78 = qdd[3] + t47;
+    let t79 = t75 * t75;
+    let t80 = t70 * t75;
+    let t81 = t70 * t72;
+    let t82 = t72 * t75;
+    let t83 = fma(t70, t70, t79);
+    let t84 = fma(t70, t72, t78);
+    let t85 = fma(t72, t75, t76);
+    let t86 = 0.01778473500000001 * t84;
+    let t87 = 0.01778473500000001 * t83;
+    let t88 = 0.22402883622975 * t78;
+    let t89 = 0.22863767245949998 * t82;
+    let t90 = 0.22402883622975 * t80;
+    let t91 = fma(0.01778473500000001, t63, t89);
+    let t92 = fma(-0.004608836229749974, t77, t90);
+    let t93 = t78 * s[4];
+    let t94 = t75 * s[4];
+    let t95 = fma(t70, c[4], t94);
+    let t96 = t75 * c[4];
+    let t97 = fma(-t70, s[4], t96);
+    let t98 = qd[4] + t72;
+    let t99 = fma(qd[4], t97, t93);
+    let t100 = fma(-t76, c[4], t99);
+    let t101 = qdd[4] + t77;
+    let t102 = t95 * t97;
+    let t103 = t95 * t98;
+    let t104 = t97 * t98;
+    let t105 = 0.23655647314540001 * t104;
+    let t106 = 0.017136473145399997 * t102;
+    let t107 = fma(0.017136473145399997, t100, t105);
+    let t108 = fma(0.23655647314540001, t101, -t106);
+    let t109 = t98 * c[5];
+    let t110 = fma(t95, s[5], t109);
+    let t111 = t95 * c[5];
+    let t112 = fma(-t98, s[5], t111);
+    let t113 = qd[5] + t97;
+    let t114 = qd[5] * t112;
+    let t115 = fma(t101, c[5], t114);
+    let t116 = fma(t100, s[5], t115);
+    let t117 = fma(t78, c[4], qdd[5]);
+    let t118 = fma(-qd[4], t95, t117);
+    let t119 = fma(t76, s[4], t118);
+    let t120 = t112 * t113;
+    let t121 = t110 * t112;
+    let t122 = t110 * t113;
+    let t123 = 0.0004509462908000028 * t122;
+    let t124 = 0.016685526854599998 * t121;
+    let t125 = 0.0171364731454 * t120;
+    let t126 = fma(0.0171364731454, t119, -t124);
+    let t127 = fma(0.016685526854599998, t116, t125);
+    let t128 = fma(-c[5], t123, t107);
+    let t129 = fma(s[5], t127, t128);
+    let t130 = fma(-0.21942, t103, t126);
+    let t131 = fma(s[5], t123, t108);
+    let t132 = fma(c[5], t127, t131);
+    let t133 = fma(s[4], t130, t91);
+    let t134 = fma(c[4], t129, -t133);
+    let t135 = fma(0.004608836229749974, t81, t88);
+    let t136 = fma(-0.01778473500000001, t74, t135);
+    let t137 = fma(c[4], t130, t136);
+    let t138 = fma(s[4], t129, t137);
+    let t139 = t92 + t132;
+    let t140 = s[3] * t86;
+    let t141 = fma(c[3], t87, t140);
+    let t142 = s[3] * t87;
+    let t143 = fma(-c[3], t86, t142);
+    let t144 = fma(-0.006976062303750003, t85, t61);
+    let t145 = fma(c[3], t139, t144);
+    let t146 = fma(-s[3], t134, t145);
+    let t147 = fma(-0.09736195575, t49, t56);
+    let t148 = fma(-0.5915569516747499, t50, t147);
+    let t149 = fma(0.09736195575, t46, t148);
+    let t150 = fma(1.598759275, t43, t149);
+    let t151 = fma(-0.39225, t141, t150);
+    let t152 = t138 + t151;
+    let t153 = fma(0.5956519516747499, t49, t57);
+    let t154 = fma(-0.09736195575, t50, t153);
+    let t155 = fma(-0.5915569516747499, t46, t154);
+    let t156 = fma(-s[3], t139, t155);
+    let t157 = fma(-c[3], t134, t156);
+    let t158 = fma(1.598759275, t53, -t141);
+    let t159 = fma(0.01778473500000001, t85, -t55);
+    let t160 = fma(-1.598759275, t52, t143);
+    let t161 = c[2] * t160;
+    let t162 = fma(-s[2], t158, t161);
+    let t163 = s[2] * t160;
+    let t164 = fma(c[2], t158, t163);
+    let t165 = c[2] * t157;
+    let t166 = fma(-s[2], t146, t165);
+    let t167 = fma(3.52514647682, t11, t14);
+    let t168 = fma(0.075354282, t25, t167);
+    let t169 = fma(-0.425, t159, t168);
+    let t170 = fma(s[2], t157, t169);
+    let t171 = fma(c[2], t146, t170);
+    let t172 = fma(0.075354282, t10, t22);
+    let t173 = fma(1.75501953841, t17, t15);
+    let t174 = fma(-0.075354282, t13, t172);
+    let t175 = t173 + t174;
+    let t176 = fma(0.425, t164, t175);
+    let t177 = t152 + t176;
+    let t178 = t28 + t166;
+    let t179 = fma(4.4329225, t20, t164);
+    let t180 = fma(-4.4329225, t19, t162);
+    let t181 = c[1] * t180;
+    let t182 = fma(-s[1], t179, t181);
+    let t183 = fma(-0.10915, t182, t1);
+    let t184 = fma(-c[1], t171, t183);
+    let t185 = fma(-s[1], t178, t184);
+    [t185, t177, t152, t138, t132, t126]
 }
 /// Inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton-Euler algorithm.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 289 ops: 68 add, 50 sub, 166 mul, 0 div, 0 neg, 0 sqrt, 5 sin_cos.
+/// 289 ops: 68 add, 50 sub, 166 mul, 0 div, 0 neg, 0 sqrt, 5 sin_cos; 105 fused multiply-adds, 191 FP ops with each fused = 1.
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`inverse_dynamics_sc`].
 #[inline]
@@ -362,7 +267,7 @@ pub fn inverse_dynamics(
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 166 ops: 36 add, 30 sub, 97 mul, 0 div, 3 neg, 0 sqrt, 0 sin_cos.
+/// 166 ops: 36 add, 30 sub, 97 mul, 0 div, 3 neg, 0 sqrt, 0 sin_cos; 58 fused multiply-adds, 118 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -377,180 +282,135 @@ pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let t2 = s[3] * t0;
     let t3 = c[3] * t0;
     let t4 = c[2] * t3;
-    let t5 = s[2] * t2;
-    let t6 = t4 - t5;
-    let t7 = s[2] * t3;
-    let t8 = c[2] * t2;
-    let t9 = t7 + t8;
-    let t10 = c[1] * t9;
-    let t11 = s[1] * t6;
-    let t12 = t10 + t11;
-    let t13 = -t12;
-    let t14 = c[5] * c[5];
-    let t15 = s[5] * s[5];
-    let t16 = s[5] * c[5];
-    let t17 = 0.016685526854599998 * t14;
-    let t18 = 0.016685526854599998 * t15;
-    let t19 = 0.016685526854599998 * t16;
-    let t20 = 0.23655647314540001 + t17;
-    let t21 = c[4] * t19;
-    let t22 = s[4] * t19;
-    let t23 = s[3] * t21;
-    let t24 = c[3] * t20;
-    let t25 = t24 - t23;
-    let t26 = c[3] * t21;
-    let t27 = -t26;
-    let t28 = s[3] * t20;
-    let t29 = t27 - t28;
-    let t30 = c[2] * t29;
-    let t31 = s[2] * t25;
-    let t32 = t30 - t31;
-    let t33 = s[2] * t29;
-    let t34 = c[2] * t25;
-    let t35 = t33 + t34;
-    let t36 = c[1] * t35;
-    let t37 = s[1] * t32;
-    let t38 = t36 + t37;
-    let t39 = -t38;
-    let t40 = c[4] * c[4];
-    let t41 = s[4] * s[4];
-    let t42 = s[4] * c[4];
-    let t43 = t18 * t40;
-    let t44 = 0.0171364731454 + t43;
-    let t45 = t18 * t41;
-    let t46 = t18 * t42;
-    let t47 = t45 + 0.24116530937515002;
-    let t48 = t17 + 0.23194763691565004;
-    let t49 = 0.01778473500000001 * s[3];
-    let t50 = 0.01778473500000001 * c[3];
-    let t51 = s[3] * t46;
-    let t52 = c[3] * t22;
-    let t53 = t52 - t51;
-    let t54 = c[3] * t46;
-    let t55 = s[3] * t22;
-    let t56 = t54 + t55;
-    let t57 = 0.006976062303750003 * s[3];
-    let t58 = t47 - t57;
-    let t59 = c[2] * t50;
-    let t60 = s[2] * t49;
-    let t61 = t60 - t59;
-    let t62 = s[2] * t50;
-    let t63 = c[2] * t49;
-    let t64 = t62 + t63;
-    let t65 = c[2] * t56;
-    let t66 = s[2] * t53;
-    let t67 = t65 + t66;
-    let t68 = s[2] * t56;
-    let t69 = c[2] * t53;
-    let t70 = t69 - t68;
-    let t71 = 0.425 * t64;
-    let t72 = t58 - t71;
-    let t73 = s[1] * t64;
-    let t74 = c[1] * t61;
-    let t75 = t73 + t74;
-    let t76 = c[1] * t70;
-    let t77 = s[1] * t67;
-    let t78 = 0.10915 * t75;
-    let t79 = t76 + t78;
-    let t80 = t77 - t79;
-    let t81 = s[3] * t44;
-    let t82 = t26 - t81;
-    let t83 = c[3] * t48;
-    let t84 = t83 - t23;
-    let t85 = c[3] * t44;
-    let t86 = t23 + t85;
-    let t87 = s[3] * t48;
-    let t88 = t27 - t87;
-    let t89 = s[3] * t82;
-    let t90 = c[3] * t84;
-    let t91 = c[3] * t86;
-    let t92 = s[3] * t88;
-    let t93 = c[3] * t82;
-    let t94 = s[3] * t84;
-    let t95 = 0.013952124607500007 * s[3];
-    let t96 = 0.006976062303750003 * c[3];
-    let t97 = t90 - t95;
-    let t98 = t97 - t89;
-    let t99 = t94 + t96;
-    let t100 = t93 + t99;
-    let t101 = 1.598759275 - t49;
-    let t102 = 0.5956519516747499 - t95;
-    let t103 = t47 + t102;
-    let t104 = 0.09736195575 - t56;
-    let t105 = s[2] * t101;
-    let t106 = t59 + t105;
-    let t107 = c[2] * t101;
-    let t108 = t107 - t62;
-    let t109 = c[2] * t104;
-    let t110 = t109 - t66;
-    let t111 = s[2] * t104;
-    let t112 = t69 + t111;
-    let t113 = 0.425 * t108;
-    let t114 = t103 + t113;
-    let t115 = s[1] * t108;
-    let t116 = c[1] * t106;
-    let t117 = t115 + t116;
-    let t118 = c[1] * t112;
-    let t119 = s[1] * t110;
-    let t120 = 0.10915 * t117;
-    let t121 = t120 - t119;
-    let t122 = t121 - t118;
-    let t123 = c[2] * c[2];
-    let t124 = s[2] * s[2];
-    let t125 = s[2] * c[2];
-    let t126 = 2.0 * t125;
-    let t127 = t123 - t124;
-    let t128 = t92 + 0.5915569516747499;
-    let t129 = t91 - t128;
-    let t130 = t129 - t98;
-    let t131 = t123 * t130;
-    let t132 = t100 * t126;
-    let t133 = t124 * t130;
-    let t134 = t125 * t130;
-    let t135 = t100 * t127;
-    let t136 = 0.85 * t108;
-    let t137 = 0.425 * t106;
-    let t138 = t98 + t136;
-    let t139 = t138 - t132;
-    let t140 = t133 + t139;
-    let t141 = t103 + t136;
-    let t142 = t135 + t137;
-    let t143 = t134 - t142;
-    let t144 = 4.4329225 + t108;
-    let t145 = 1.77012693841 + t141;
-    let t146 = t98 - 1.75501953841;
-    let t147 = t132 + t146;
-    let t148 = t131 + t147;
-    let t149 = 0.075354282 + t110;
-    let t150 = s[1] * t144;
-    let t151 = t116 + t150;
-    let t152 = s[1] * t149;
-    let t153 = 0.10915 * t151;
-    let t154 = t153 - t118;
-    let t155 = t154 - t152;
-    let t156 = c[1] * t143;
-    let t157 = s[1] * t143;
-    let t158 = c[1] * t140;
-    let t159 = t157 + t158;
-    let t160 = s[1] * t148;
-    let t161 = t156 + t160;
-    let t162 = c[1] * t159;
-    let t163 = s[1] * t161;
-    let t164 = t162 + t163;
-    let t165 = 2.7690351387572503 + t164;
+    let t5 = fma(-s[2], t2, t4);
+    let t6 = s[2] * t3;
+    let t7 = fma(c[2], t2, t6);
+    let t8 = c[1] * t7;
+    let t9 = fma(s[1], t5, t8);
+    let t10 = -t9;
+    let t11 = c[5] * c[5];
+    let t12 = s[5] * s[5];
+    let t13 = s[5] * c[5];
+    let t14 = 0.016685526854599998 * t12;
+    let t15 = 0.016685526854599998 * t13;
+    let t16 = fma(0.016685526854599998, t11, 0.23655647314540001);
+    let t17 = c[4] * t15;
+    let t18 = s[4] * t15;
+    let t19 = s[3] * t17;
+    let t20 = c[3] * t16;
+    let t21 = fma(-s[3], t17, t20);
+    let t22 = c[3] * t17;
+    let t23 = -t22;
+    let t24 = fma(-s[3], t16, t23);
+    let t25 = s[2] * t21;
+    let t26 = fma(c[2], t24, -t25);
+    let t27 = c[2] * t21;
+    let t28 = fma(s[2], t24, t27);
+    let t29 = c[1] * t28;
+    let t30 = fma(s[1], t26, t29);
+    let t31 = -t30;
+    let t32 = c[4] * c[4];
+    let t33 = s[4] * s[4];
+    let t34 = s[4] * c[4];
+    let t35 = fma(t14, t32, 0.0171364731454);
+    let t36 = t14 * t34;
+    let t37 = fma(t14, t33, 0.24116530937515002);
+    let t38 = fma(0.016685526854599998, t11, 0.23194763691565004);
+    let t39 = 0.01778473500000001 * s[3];
+    let t40 = 0.01778473500000001 * c[3];
+    let t41 = c[3] * t18;
+    let t42 = fma(-s[3], t36, t41);
+    let t43 = c[3] * t36;
+    let t44 = fma(s[3], t18, t43);
+    let t45 = fma(-0.006976062303750003, s[3], t37);
+    let t46 = c[2] * t40;
+    let t47 = s[2] * t39;
+    let t48 = fma(-c[2], t40, t47);
+    let t49 = s[2] * t40;
+    let t50 = fma(c[2], t39, t49);
+    let t51 = c[2] * t44;
+    let t52 = s[2] * t42;
+    let t53 = fma(s[2], t42, t51);
+    let t54 = c[2] * t42;
+    let t55 = fma(-s[2], t44, t54);
+    let t56 = fma(-0.425, t50, t45);
+    let t57 = s[1] * t50;
+    let t58 = fma(c[1], t48, t57);
+    let t59 = 0.10915 * t58;
+    let t60 = fma(c[1], t55, t59);
+    let t61 = fma(s[1], t53, -t60);
+    let t62 = fma(-s[3], t35, t22);
+    let t63 = c[3] * t38;
+    let t64 = fma(-s[3], t17, t63);
+    let t65 = fma(c[3], t35, t19);
+    let t66 = fma(-s[3], t38, t23);
+    let t67 = 0.013952124607500007 * s[3];
+    let t68 = 0.006976062303750003 * c[3];
+    let t69 = fma(c[3], t64, -t67);
+    let t70 = fma(-s[3], t62, t69);
+    let t71 = fma(s[3], t64, t68);
+    let t72 = fma(c[3], t62, t71);
+    let t73 = fma(-0.01778473500000001, s[3], 1.598759275);
+    let t74 = fma(-0.013952124607500007, s[3], 0.5956519516747499);
+    let t75 = t37 + t74;
+    let t76 = 0.09736195575 - t44;
+    let t77 = fma(s[2], t73, t46);
+    let t78 = c[2] * t73;
+    let t79 = fma(-s[2], t40, t78);
+    let t80 = fma(c[2], t76, -t52);
+    let t81 = fma(s[2], t76, t54);
+    let t82 = fma(0.425, t79, t75);
+    let t83 = s[1] * t79;
+    let t84 = c[1] * t77;
+    let t85 = fma(c[1], t77, t83);
+    let t86 = 0.10915 * t85;
+    let t87 = fma(-s[1], t80, t86);
+    let t88 = fma(-c[1], t81, t87);
+    let t89 = c[2] * c[2];
+    let t90 = s[2] * s[2];
+    let t91 = s[2] * c[2];
+    let t92 = 2.0 * t91;
+    let t93 = fma(-s[2], s[2], t89);
+    let t94 = fma(s[3], t66, 0.5915569516747499);
+    let t95 = fma(c[3], t65, -t94);
+    let t96 = t95 - t70;
+    let t97 = 0.425 * t77;
+    let t98 = fma(0.85, t79, t70);
+    let t99 = fma(-t72, t92, t98);
+    let t100 = fma(t90, t96, t99);
+    let t101 = fma(0.85, t79, t75);
+    let t102 = fma(t72, t93, t97);
+    let t103 = fma(t91, t96, -t102);
+    let t104 = 4.4329225 + t79;
+    let t105 = 1.77012693841 + t101;
+    let t106 = t70 - 1.75501953841;
+    let t107 = fma(t72, t92, t106);
+    let t108 = fma(t89, t96, t107);
+    let t109 = 0.075354282 + t80;
+    let t110 = fma(s[1], t104, t84);
+    let t111 = 0.10915 * t110;
+    let t112 = fma(-c[1], t81, t111);
+    let t113 = fma(-s[1], t109, t112);
+    let t114 = c[1] * t103;
+    let t115 = s[1] * t103;
+    let t116 = fma(c[1], t100, t115);
+    let t117 = fma(s[1], t108, t114);
+    let t118 = c[1] * t116;
+    let t119 = fma(s[1], t117, t118);
+    let t120 = 2.7690351387572503 + t119;
     [
-        [t165, t155, t122, t80, t39, t13],
-        [t155, t145, t114, t72, t22, t1],
-        [t122, t114, t103, t58, t22, t1],
-        [t80, t72, t58, t47, t22, t1],
-        [t39, t22, t22, t22, t20, 0.0],
-        [t13, t1, t1, t1, 0.0, 0.0171364731454],
+        [t120, t113, t88, t61, t31, t10],
+        [t113, t105, t82, t56, t18, t1],
+        [t88, t82, t75, t45, t18, t1],
+        [t61, t56, t45, t37, t18, t1],
+        [t31, t18, t18, t18, t16, 0.0],
+        [t10, t1, t1, t1, 0.0, 0.0171364731454],
     ]
 }
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 171 ops: 36 add, 30 sub, 97 mul, 0 div, 3 neg, 0 sqrt, 5 sin_cos.
+/// 171 ops: 36 add, 30 sub, 97 mul, 0 div, 3 neg, 0 sqrt, 5 sin_cos; 58 fused multiply-adds, 123 FP ops with each fused = 1.
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`mass_matrix_sc`].
 #[inline]
@@ -564,7 +424,7 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 252 ops: 58 add, 39 sub, 152 mul, 0 div, 3 neg, 0 sqrt, 0 sin_cos.
+/// 252 ops: 58 add, 39 sub, 152 mul, 0 div, 3 neg, 0 sqrt, 0 sin_cos; 88 fused multiply-adds, 164 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -584,254 +444,169 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
     let t7 = qd[1] * t3;
     let t8 = 0.483853490875 * t0;
     let t9 = 43.486969725 * c[1];
-    let t10 = t2 * t2;
-    let t11 = qd[1] * qd[1];
-    let t12 = t3 * t3;
-    let t13 = t2 * t3;
-    let t14 = t10 + t11;
-    let t15 = 4.4329225 * t13;
-    let t16 = 4.4329225 * t14;
-    let t17 = 0.075354282 * t6;
-    let t18 = 1.75501953841 * t6;
-    let t19 = t11 - t12;
-    let t20 = 0.075354282 * t19;
-    let t21 = 3.52514647682 * t7;
-    let t22 = 1.75501953841 * t13;
-    let t23 = 0.075354282 * t13;
-    let t24 = 1.77012693841 * t6;
-    let t25 = t23 - t24;
-    let t26 = t18 + t25;
-    let t27 = 0.425 * t13;
-    let t28 = 0.85 * t7;
-    let t29 = 0.425 * t14;
-    let t30 = t27 - t4;
-    let t31 = t1 + t28;
-    let t32 = t5 + t29;
-    let t33 = t6 * c[2];
-    let t34 = t7 * s[2];
-    let t35 = t34 - t33;
-    let t36 = t6 * s[2];
-    let t37 = t7 * c[2];
-    let t38 = t36 + t37;
-    let t39 = t3 * c[2];
-    let t40 = t2 * s[2];
-    let t41 = t39 + t40;
-    let t42 = t3 * s[2];
-    let t43 = t2 * c[2];
-    let t44 = t42 - t43;
-    let t45 = c[2] * t32;
-    let t46 = s[2] * t30;
-    let t47 = t46 - t45;
-    let t48 = s[2] * t32;
-    let t49 = c[2] * t30;
-    let t50 = t48 + t49;
-    let t51 = qd[1] + qd[2];
-    let t52 = qd[2] * t44;
-    let t53 = qd[2] * t41;
-    let t54 = t38 + t53;
-    let t55 = t35 + t52;
-    let t56 = 1.598759275 * t31;
-    let t57 = 1.598759275 * t50;
-    let t58 = t44 * t44;
-    let t59 = t51 * t51;
-    let t60 = t41 * t41;
-    let t61 = t44 * t51;
-    let t62 = t41 * t44;
-    let t63 = t41 * t51;
-    let t64 = -t54;
-    let t65 = t58 + t59;
-    let t66 = t64 - t63;
-    let t67 = 1.598759275 * t62;
-    let t68 = 1.598759275 * t66;
-    let t69 = 1.598759275 * t65;
-    let t70 = 0.09736195575 * t55;
-    let t71 = 0.5915569516747499 * t55;
-    let t72 = t59 - t60;
-    let t73 = 0.09736195575 * t72;
-    let t74 = 1.1872089033494997 * t63;
-    let t75 = 0.09736195575 * t61;
-    let t76 = 0.5915569516747499 * t62;
-    let t77 = t75 + t76;
-    let t78 = 0.09736195575 * t62;
-    let t79 = 0.5956519516747499 * t61;
-    let t80 = t79 - t78;
-    let t81 = t80 - t71;
-    let t82 = 0.39225 * t62;
-    let t83 = 0.39225 * t66;
-    let t84 = 0.39225 * t65;
-    let t85 = t50 - t82;
-    let t86 = t83 - t31;
-    let t87 = t47 - t84;
-    let t88 = t54 * s[3];
-    let t89 = t55 * c[3];
-    let t90 = t88 + t89;
-    let t91 = t54 * c[3];
-    let t92 = t55 * s[3];
-    let t93 = t91 - t92;
-    let t94 = t44 * s[3];
-    let t95 = t41 * c[3];
-    let t96 = t95 - t94;
-    let t97 = t44 * c[3];
-    let t98 = t41 * s[3];
-    let t99 = t97 + t98;
-    let t100 = s[3] * t85;
-    let t101 = c[3] * t87;
-    let t102 = t100 + t101;
-    let t103 = qd[3] + t51;
-    let t104 = qd[3] * t96;
-    let t105 = qd[3] * t99;
-    let t106 = t90 + t105;
-    let t107 = t93 + t104;
-    let t108 = 0.01778473500000001 * t86;
-    let t109 = 0.01778473500000001 * t102;
-    let t110 = t96 * t96;
-    let t111 = t103 * t103;
-    let t112 = t96 * t103;
-    let t113 = t96 * t99;
-    let t114 = t99 * t103;
-    let t115 = t110 + t111;
-    let t116 = t106 + t114;
-    let t117 = 0.01778473500000001 * t113;
-    let t118 = 0.01778473500000001 * t116;
-    let t119 = 0.01778473500000001 * t115;
-    let t120 = 0.004608836229749974 * t107;
-    let t121 = 0.22863767245949998 * t114;
-    let t122 = 0.004608836229749974 * t113;
-    let t123 = 0.22402883622975 * t112;
-    let t124 = t108 + t121;
-    let t125 = t122 - t109;
-    let t126 = t123 - t120;
-    let t127 = t106 * c[4];
-    let t128 = t106 * s[4];
-    let t129 = t96 * c[4];
-    let t130 = t103 * s[4];
-    let t131 = t129 + t130;
-    let t132 = t96 * s[4];
-    let t133 = t103 * c[4];
-    let t134 = t133 - t132;
-    let t135 = qd[4] + t99;
-    let t136 = qd[4] * t134;
-    let t137 = qd[4] * t131;
-    let t138 = t136 - t127;
-    let t139 = t137 - t128;
-    let t140 = t131 * t134;
-    let t141 = t131 * t135;
-    let t142 = t134 * t135;
-    let t143 = 0.017136473145399997 * t138;
-    let t144 = 0.23655647314540001 * t107;
-    let t145 = 0.23655647314540001 * t142;
-    let t146 = 0.21942 * t141;
-    let t147 = 0.017136473145399997 * t140;
-    let t148 = t143 + t145;
-    let t149 = t144 - t147;
-    let t150 = t107 * c[5];
-    let t151 = t138 * s[5];
-    let t152 = t135 * c[5];
-    let t153 = t131 * s[5];
+    let t10 = qd[1] * qd[1];
+    let t11 = t2 * t3;
+    let t12 = fma(t2, t2, t10);
+    let t13 = 4.4329225 * t12;
+    let t14 = fma(-t3, t3, t10);
+    let t15 = 1.75501953841 * t11;
+    let t16 = 0.075354282 * t11;
+    let t17 = fma(-1.77012693841, t6, t16);
+    let t18 = fma(1.75501953841, t6, t17);
+    let t19 = fma(0.425, t11, -t4);
+    let t20 = fma(0.85, t7, t1);
+    let t21 = fma(0.425, t12, t5);
+    let t22 = t7 * s[2];
+    let t23 = fma(-t6, c[2], t22);
+    let t24 = t6 * s[2];
+    let t25 = fma(t7, c[2], t24);
+    let t26 = t3 * c[2];
+    let t27 = fma(t2, s[2], t26);
+    let t28 = t3 * s[2];
+    let t29 = fma(-t2, c[2], t28);
+    let t30 = s[2] * t19;
+    let t31 = fma(-c[2], t21, t30);
+    let t32 = s[2] * t21;
+    let t33 = fma(c[2], t19, t32);
+    let t34 = qd[1] + qd[2];
+    let t35 = fma(qd[2], t27, t25);
+    let t36 = fma(qd[2], t29, t23);
+    let t37 = 1.598759275 * t20;
+    let t38 = t34 * t34;
+    let t39 = t29 * t34;
+    let t40 = t27 * t29;
+    let t41 = t27 * t34;
+    let t42 = -t35;
+    let t43 = fma(t29, t29, t38);
+    let t44 = fma(-t27, t34, t42);
+    let t45 = 1.598759275 * t44;
+    let t46 = 1.598759275 * t43;
+    let t47 = fma(-t27, t27, t38);
+    let t48 = 0.09736195575 * t39;
+    let t49 = fma(0.5915569516747499, t40, t48);
+    let t50 = 0.5956519516747499 * t39;
+    let t51 = fma(-0.09736195575, t40, t50);
+    let t52 = fma(-0.5915569516747499, t36, t51);
+    let t53 = fma(-0.39225, t40, t33);
+    let t54 = fma(0.39225, t44, -t20);
+    let t55 = fma(-0.39225, t43, t31);
+    let t56 = t35 * s[3];
+    let t57 = fma(t36, c[3], t56);
+    let t58 = t35 * c[3];
+    let t59 = fma(-t36, s[3], t58);
+    let t60 = t27 * c[3];
+    let t61 = fma(-t29, s[3], t60);
+    let t62 = t29 * c[3];
+    let t63 = fma(t27, s[3], t62);
+    let t64 = s[3] * t53;
+    let t65 = fma(c[3], t55, t64);
+    let t66 = qd[3] + t34;
+    let t67 = fma(qd[3], t63, t57);
+    let t68 = fma(qd[3], t61, t59);
+    let t69 = t66 * t66;
+    let t70 = t61 * t66;
+    let t71 = t61 * t63;
+    let t72 = t63 * t66;
+    let t73 = fma(t61, t61, t69);
+    let t74 = fma(t63, t66, t67);
+    let t75 = 0.01778473500000001 * t71;
+    let t76 = 0.01778473500000001 * t73;
+    let t77 = 0.22863767245949998 * t72;
+    let t78 = 0.004608836229749974 * t71;
+    let t79 = 0.22402883622975 * t70;
+    let t80 = fma(0.01778473500000001, t54, t77);
+    let t81 = fma(-0.01778473500000001, t65, t78);
+    let t82 = fma(-0.004608836229749974, t68, t79);
+    let t83 = t66 * s[4];
+    let t84 = fma(t61, c[4], t83);
+    let t85 = t66 * c[4];
+    let t86 = fma(-t61, s[4], t85);
+    let t87 = qd[4] + t63;
+    let t88 = qd[4] * t86;
+    let t89 = qd[4] * t84;
+    let t90 = fma(-t67, c[4], t88);
+    let t91 = fma(-t67, s[4], t89);
+    let t92 = t84 * t86;
+    let t93 = t84 * t87;
+    let t94 = t86 * t87;
+    let t95 = 0.23655647314540001 * t94;
+    let t96 = 0.017136473145399997 * t92;
+    let t97 = fma(0.017136473145399997, t90, t95);
+    let t98 = fma(0.23655647314540001, t68, -t96);
+    let t99 = t68 * c[5];
+    let t100 = t87 * c[5];
+    let t101 = fma(t84, s[5], t100);
+    let t102 = t84 * c[5];
+    let t103 = fma(-t87, s[5], t102);
+    let t104 = qd[5] + t86;
+    let t105 = fma(qd[5], t103, t99);
+    let t106 = fma(t90, s[5], t105);
+    let t107 = t103 * t104;
+    let t108 = t101 * t103;
+    let t109 = t101 * t104;
+    let t110 = 0.0171364731454 * t91;
+    let t111 = 0.0004509462908000028 * t109;
+    let t112 = 0.0171364731454 * t107;
+    let t113 = fma(0.016685526854599998, t108, t110);
+    let t114 = -t113;
+    let t115 = fma(0.016685526854599998, t106, t112);
+    let t116 = fma(-c[5], t111, t97);
+    let t117 = fma(s[5], t115, t116);
+    let t118 = fma(-0.21942, t93, t114);
+    let t119 = fma(s[5], t111, t98);
+    let t120 = fma(c[5], t115, t119);
+    let t121 = fma(s[4], t118, t80);
+    let t122 = fma(c[4], t117, -t121);
+    let t123 = fma(c[4], t118, t81);
+    let t124 = fma(s[4], t117, t123);
+    let t125 = t82 + t120;
+    let t126 = s[3] * t75;
+    let t127 = fma(c[3], t76, t126);
+    let t128 = fma(1.1872089033494997, t41, t37);
+    let t129 = fma(0.09736195575, t47, t128);
+    let t130 = fma(-0.006976062303750003, t74, t129);
+    let t131 = fma(c[3], t125, t130);
+    let t132 = fma(-s[3], t122, t131);
+    let t133 = fma(0.09736195575, t36, -t49);
+    let t134 = fma(1.598759275, t33, t133);
+    let t135 = fma(-0.39225, t127, t134);
+    let t136 = t124 + t135;
+    let t137 = fma(-s[3], t125, t52);
+    let t138 = fma(-c[3], t122, t137);
+    let t139 = fma(1.598759275, t40, t127);
+    let t140 = fma(0.01778473500000001, t74, t45);
+    let t141 = fma(c[3], t75, t46);
+    let t142 = fma(s[3], t76, -t141);
+    let t143 = s[2] * t142;
+    let t144 = fma(-c[2], t139, t143);
+    let t145 = c[2] * t138;
+    let t146 = fma(-s[2], t132, t145);
+    let t147 = fma(3.52514647682, t7, t8);
+    let t148 = fma(0.075354282, t14, t147);
+    let t149 = fma(-0.425, t140, t148);
+    let t150 = fma(s[2], t138, t149);
+    let t151 = fma(c[2], t132, t150);
+    let t152 = fma(0.075354282, t6, -t9);
+    let t153 = fma(-0.075354282, t6, t15);
     let t154 = t152 + t153;
-    let t155 = t135 * s[5];
-    let t156 = t131 * c[5];
-    let t157 = t156 - t155;
-    let t158 = qd[5] + t134;
-    let t159 = qd[5] * t157;
-    let t160 = t150 + t159;
-    let t161 = t151 + t160;
-    let t162 = t157 * t158;
-    let t163 = t154 * t157;
-    let t164 = t154 * t158;
-    let t165 = 0.0171364731454 * t139;
-    let t166 = 0.016685526854599998 * t161;
-    let t167 = 0.0004509462908000028 * t164;
-    let t168 = 0.016685526854599998 * t163;
-    let t169 = 0.0171364731454 * t162;
-    let t170 = t165 + t168;
-    let t171 = -t170;
-    let t172 = t166 + t169;
-    let t173 = c[5] * t172;
-    let t174 = s[5] * t167;
-    let t175 = s[5] * t172;
-    let t176 = c[5] * t167;
-    let t177 = t148 - t176;
-    let t178 = t175 + t177;
-    let t179 = t171 - t146;
-    let t180 = t149 + t174;
-    let t181 = t173 + t180;
-    let t182 = c[4] * t178;
-    let t183 = s[4] * t179;
-    let t184 = s[4] * t178;
-    let t185 = c[4] * t179;
-    let t186 = t124 + t183;
-    let t187 = t182 - t186;
-    let t188 = t125 + t185;
-    let t189 = t184 + t188;
-    let t190 = t126 + t181;
-    let t191 = s[3] * t117;
-    let t192 = c[3] * t119;
-    let t193 = t191 + t192;
-    let t194 = c[3] * t117;
-    let t195 = s[3] * t119;
-    let t196 = s[3] * t187;
-    let t197 = c[3] * t190;
-    let t198 = c[3] * t187;
-    let t199 = s[3] * t190;
-    let t200 = 0.006976062303750003 * t116;
-    let t201 = 0.39225 * t193;
-    let t202 = t56 + t74;
-    let t203 = t73 + t202;
-    let t204 = t203 - t200;
-    let t205 = t197 + t204;
-    let t206 = t205 - t196;
-    let t207 = t70 - t77;
-    let t208 = t57 + t207;
-    let t209 = t208 - t201;
-    let t210 = t189 + t209;
-    let t211 = t81 - t199;
-    let t212 = t211 - t198;
-    let t213 = t67 + t193;
-    let t214 = t68 + t118;
-    let t215 = t69 + t194;
-    let t216 = t195 - t215;
-    let t217 = c[2] * t216;
-    let t218 = s[2] * t213;
-    let t219 = s[2] * t216;
-    let t220 = c[2] * t213;
-    let t221 = t219 - t220;
-    let t222 = c[2] * t212;
-    let t223 = s[2] * t206;
-    let t224 = t222 - t223;
-    let t225 = s[2] * t212;
-    let t226 = c[2] * t206;
-    let t227 = 0.425 * t214;
-    let t228 = 0.425 * t221;
-    let t229 = t8 + t21;
-    let t230 = t20 + t229;
-    let t231 = t230 - t227;
-    let t232 = t225 + t231;
-    let t233 = t226 + t232;
-    let t234 = t17 - t9;
-    let t235 = t22 - t17;
-    let t236 = t234 + t235;
-    let t237 = t228 + t236;
-    let t238 = t210 + t237;
-    let t239 = t26 + t224;
-    let t240 = t15 + t221;
-    let t241 = t217 - t16;
-    let t242 = t218 + t241;
-    let t243 = s[1] * t240;
-    let t244 = c[1] * t242;
-    let t245 = t244 - t243;
-    let t246 = c[1] * t233;
-    let t247 = s[1] * t239;
-    let t248 = t246 + t247;
-    let t249 = 0.10915 * t245;
-    let t250 = t248 + t249;
-    let t251 = -t250;
-    [t251, t238, t210, t189, t181, t171]
+    let t155 = fma(0.425, t144, t154);
+    let t156 = t136 + t155;
+    let t157 = t18 + t146;
+    let t158 = fma(4.4329225, t11, t144);
+    let t159 = fma(c[2], t142, -t13);
+    let t160 = fma(s[2], t139, t159);
+    let t161 = c[1] * t160;
+    let t162 = fma(-s[1], t158, t161);
+    let t163 = c[1] * t151;
+    let t164 = fma(s[1], t157, t163);
+    let t165 = fma(0.10915, t162, t164);
+    let t166 = -t165;
+    [t166, t156, t136, t124, t120, t114]
 }
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 257 ops: 58 add, 39 sub, 152 mul, 0 div, 3 neg, 0 sqrt, 5 sin_cos.
+/// 257 ops: 58 add, 39 sub, 152 mul, 0 div, 3 neg, 0 sqrt, 5 sin_cos; 88 fused multiply-adds, 169 FP ops with each fused = 1.
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`bias_forces_sc`].
 #[inline]
@@ -846,7 +621,7 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 /// The gravity torques g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 16 ops: 2 add, 3 sub, 11 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos.
+/// 16 ops: 2 add, 3 sub, 11 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 5 fused multiply-adds, 11 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -858,26 +633,21 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
     let t0 = 9.81 * c[1];
     let t1 = 9.81 * s[1];
-    let t2 = 43.486969725 * c[1];
-    let t3 = t1 * c[2];
-    let t4 = t0 * s[2];
-    let t5 = t3 + t4;
-    let t6 = t1 * s[2];
-    let t7 = t0 * c[2];
-    let t8 = t6 - t7;
-    let t9 = 1.598759275 * t8;
-    let t10 = t8 * s[3];
-    let t11 = t5 * c[3];
-    let t12 = t11 - t10;
-    let t13 = 0.01778473500000001 * t12;
-    let t14 = t9 + t13;
-    let t15 = t14 - t2;
-    [0.0, t15, t14, t13, 0.0, 0.0]
+    let t2 = t1 * c[2];
+    let t3 = fma(t0, s[2], t2);
+    let t4 = t1 * s[2];
+    let t5 = fma(-t0, c[2], t4);
+    let t6 = t3 * c[3];
+    let t7 = fma(-t5, s[3], t6);
+    let t8 = 0.01778473500000001 * t7;
+    let t9 = fma(1.598759275, t5, t8);
+    let t10 = fma(-43.486969725, c[1], t9);
+    [0.0, t10, t9, t8, 0.0, 0.0]
 }
 /// The gravity torques g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 19 ops: 2 add, 3 sub, 11 mul, 0 div, 0 neg, 0 sqrt, 3 sin_cos.
+/// 19 ops: 2 add, 3 sub, 11 mul, 0 div, 0 neg, 0 sqrt, 3 sin_cos; 5 fused multiply-adds, 14 FP ops with each fused = 1.
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`gravity_torques_sc`].
 #[inline]
@@ -891,7 +661,7 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by CRBA, RNEA and a sparse LᵀDL solve.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 537 ops: 107 add, 120 sub, 298 mul, 10 div, 2 neg, 0 sqrt, 0 sin_cos.
+/// 537 ops: 107 add, 120 sub, 298 mul, 10 div, 2 neg, 0 sqrt, 0 sin_cos; 204 fused multiply-adds, 364 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -915,540 +685,369 @@ pub fn forward_dynamics_sc(
     let t6 = qd[1] * t2;
     let t7 = qd[1] * t3;
     let t8 = 0.483853490875 * t0;
-    let t9 = 43.486969725 * c[1];
-    let t10 = t2 * t2;
-    let t11 = qd[1] * qd[1];
-    let t12 = t3 * t3;
-    let t13 = t2 * t3;
-    let t14 = t10 + t11;
-    let t15 = 4.4329225 * t13;
-    let t16 = 4.4329225 * t14;
-    let t17 = 0.075354282 * t6;
-    let t18 = 1.75501953841 * t6;
-    let t19 = t11 - t12;
-    let t20 = 0.075354282 * t19;
-    let t21 = 3.52514647682 * t7;
-    let t22 = 1.75501953841 * t13;
-    let t23 = 0.075354282 * t13;
-    let t24 = 1.77012693841 * t6;
-    let t25 = t23 - t24;
-    let t26 = t18 + t25;
-    let t27 = 0.425 * t13;
-    let t28 = 0.85 * t7;
-    let t29 = 0.425 * t14;
-    let t30 = t27 - t4;
-    let t31 = t1 + t28;
-    let t32 = t5 + t29;
-    let t33 = t6 * c[2];
-    let t34 = t7 * s[2];
-    let t35 = t34 - t33;
-    let t36 = t6 * s[2];
-    let t37 = t7 * c[2];
-    let t38 = t36 + t37;
-    let t39 = t3 * c[2];
-    let t40 = t2 * s[2];
-    let t41 = t39 + t40;
-    let t42 = t3 * s[2];
-    let t43 = t2 * c[2];
-    let t44 = t42 - t43;
-    let t45 = c[2] * t32;
-    let t46 = s[2] * t30;
-    let t47 = t46 - t45;
-    let t48 = s[2] * t32;
-    let t49 = c[2] * t30;
-    let t50 = t48 + t49;
-    let t51 = qd[1] + qd[2];
-    let t52 = qd[2] * t44;
-    let t53 = qd[2] * t41;
-    let t54 = t38 + t53;
-    let t55 = t35 + t52;
-    let t56 = 1.598759275 * t31;
-    let t57 = 1.598759275 * t50;
-    let t58 = t44 * t44;
-    let t59 = t51 * t51;
-    let t60 = t41 * t41;
-    let t61 = t44 * t51;
-    let t62 = t41 * t44;
-    let t63 = t41 * t51;
-    let t64 = t58 + t59;
-    let t65 = t54 + t63;
-    let t66 = 1.598759275 * t62;
-    let t67 = 1.598759275 * t65;
-    let t68 = 1.598759275 * t64;
-    let t69 = 0.09736195575 * t55;
-    let t70 = 0.5915569516747499 * t55;
-    let t71 = t59 - t60;
-    let t72 = 0.09736195575 * t71;
-    let t73 = 1.1872089033494997 * t63;
-    let t74 = 0.09736195575 * t61;
-    let t75 = 0.5915569516747499 * t62;
-    let t76 = t74 + t75;
-    let t77 = 0.09736195575 * t62;
-    let t78 = 0.5956519516747499 * t61;
-    let t79 = t78 - t77;
-    let t80 = t79 - t70;
-    let t81 = 0.39225 * t62;
-    let t82 = 0.39225 * t65;
-    let t83 = 0.39225 * t64;
-    let t84 = t50 - t81;
-    let t85 = t31 + t82;
-    let t86 = t47 - t83;
-    let t87 = t54 * s[3];
-    let t88 = t55 * c[3];
-    let t89 = t87 + t88;
-    let t90 = t54 * c[3];
-    let t91 = t55 * s[3];
-    let t92 = t90 - t91;
-    let t93 = t44 * s[3];
-    let t94 = t41 * c[3];
-    let t95 = t94 - t93;
-    let t96 = t44 * c[3];
-    let t97 = t41 * s[3];
-    let t98 = t96 + t97;
-    let t99 = s[3] * t84;
-    let t100 = c[3] * t86;
-    let t101 = t99 + t100;
-    let t102 = qd[3] + t51;
-    let t103 = qd[3] * t95;
-    let t104 = qd[3] * t98;
-    let t105 = t89 + t104;
-    let t106 = t92 + t103;
-    let t107 = 0.01778473500000001 * t85;
-    let t108 = 0.01778473500000001 * t101;
-    let t109 = t95 * t95;
-    let t110 = t102 * t102;
-    let t111 = t95 * t102;
-    let t112 = t95 * t98;
-    let t113 = t98 * t102;
-    let t114 = t109 + t110;
-    let t115 = t105 + t113;
-    let t116 = 0.01778473500000001 * t112;
-    let t117 = 0.01778473500000001 * t115;
-    let t118 = 0.01778473500000001 * t114;
-    let t119 = 0.004608836229749974 * t106;
-    let t120 = 0.22863767245949998 * t113;
-    let t121 = 0.004608836229749974 * t112;
-    let t122 = 0.22402883622975 * t111;
-    let t123 = t121 - t108;
-    let t124 = t122 - t119;
-    let t125 = t105 * c[4];
-    let t126 = t105 * s[4];
-    let t127 = t95 * c[4];
-    let t128 = t102 * s[4];
-    let t129 = t127 + t128;
-    let t130 = t95 * s[4];
-    let t131 = t102 * c[4];
-    let t132 = t131 - t130;
-    let t133 = qd[4] + t98;
-    let t134 = qd[4] * t132;
-    let t135 = qd[4] * t129;
-    let t136 = t134 - t125;
-    let t137 = t135 - t126;
-    let t138 = t129 * t132;
-    let t139 = t129 * t133;
-    let t140 = t132 * t133;
-    let t141 = 0.017136473145399997 * t136;
-    let t142 = 0.23655647314540001 * t106;
-    let t143 = 0.23655647314540001 * t140;
-    let t144 = 0.21942 * t139;
-    let t145 = 0.017136473145399997 * t138;
-    let t146 = t141 + t143;
-    let t147 = t142 - t145;
-    let t148 = t106 * c[5];
-    let t149 = t136 * s[5];
-    let t150 = t133 * c[5];
-    let t151 = t129 * s[5];
-    let t152 = t150 + t151;
-    let t153 = t133 * s[5];
-    let t154 = t129 * c[5];
-    let t155 = t154 - t153;
-    let t156 = qd[5] + t132;
-    let t157 = qd[5] * t155;
-    let t158 = t148 + t157;
-    let t159 = t149 + t158;
-    let t160 = t155 * t156;
-    let t161 = t152 * t155;
-    let t162 = t152 * t156;
-    let t163 = 0.0171364731454 * t137;
-    let t164 = 0.016685526854599998 * t159;
-    let t165 = 0.0004509462908000028 * t162;
-    let t166 = 0.016685526854599998 * t161;
-    let t167 = 0.0171364731454 * t160;
-    let t168 = t163 + t166;
-    let t169 = t164 + t167;
-    let t170 = c[5] * t169;
-    let t171 = s[5] * t165;
-    let t172 = s[5] * t169;
-    let t173 = c[5] * t165;
-    let t174 = t146 - t173;
-    let t175 = t172 + t174;
-    let t176 = t144 + t168;
-    let t177 = t147 + t171;
-    let t178 = t170 + t177;
-    let t179 = c[4] * t175;
-    let t180 = s[4] * t176;
-    let t181 = s[4] * t175;
-    let t182 = c[4] * t176;
-    let t183 = t107 - t120;
-    let t184 = t180 + t183;
-    let t185 = t179 + t184;
-    let t186 = t123 - t182;
-    let t187 = t181 + t186;
-    let t188 = t124 + t178;
-    let t189 = s[3] * t116;
-    let t190 = c[3] * t118;
-    let t191 = t189 + t190;
-    let t192 = c[3] * t116;
-    let t193 = s[3] * t118;
-    let t194 = s[3] * t185;
-    let t195 = c[3] * t188;
-    let t196 = c[3] * t185;
-    let t197 = s[3] * t188;
-    let t198 = 0.006976062303750003 * t115;
-    let t199 = 0.39225 * t191;
-    let t200 = t56 + t73;
-    let t201 = t72 + t200;
-    let t202 = t201 - t198;
-    let t203 = t195 + t202;
-    let t204 = t203 - t194;
-    let t205 = t69 - t76;
-    let t206 = t57 + t205;
-    let t207 = t206 - t199;
-    let t208 = t187 + t207;
-    let t209 = t80 - t197;
-    let t210 = t209 - t196;
-    let t211 = t66 + t191;
-    let t212 = t117 - t67;
-    let t213 = t68 + t192;
-    let t214 = t193 - t213;
-    let t215 = c[2] * t214;
-    let t216 = s[2] * t211;
-    let t217 = s[2] * t214;
-    let t218 = c[2] * t211;
-    let t219 = t217 - t218;
-    let t220 = c[2] * t210;
-    let t221 = s[2] * t204;
-    let t222 = t220 - t221;
-    let t223 = s[2] * t210;
-    let t224 = c[2] * t204;
-    let t225 = 0.425 * t212;
-    let t226 = 0.425 * t219;
-    let t227 = t8 + t21;
-    let t228 = t20 + t227;
-    let t229 = t228 - t225;
-    let t230 = t223 + t229;
-    let t231 = t224 + t230;
-    let t232 = t26 + t222;
-    let t233 = t15 + t219;
-    let t234 = t215 - t16;
-    let t235 = t216 + t234;
-    let t236 = s[1] * t233;
-    let t237 = c[1] * t235;
-    let t238 = t237 - t236;
-    let t239 = c[1] * t231;
-    let t240 = s[1] * t232;
-    let t241 = t239 + t240;
-    let t242 = 0.10915 * t238;
-    let t243 = tau[4] - t178;
-    let t244 = tau[5] + t168;
-    let t245 = 0.0171364731454 * s[4];
-    let t246 = 0.0171364731454 * c[4];
-    let t247 = s[3] * t245;
-    let t248 = c[3] * t245;
-    let t249 = c[2] * t248;
-    let t250 = s[2] * t247;
-    let t251 = t249 - t250;
-    let t252 = s[2] * t248;
-    let t253 = c[2] * t247;
-    let t254 = t252 + t253;
-    let t255 = c[1] * t254;
-    let t256 = s[1] * t251;
-    let t257 = t255 + t256;
-    let t258 = c[5] * c[5];
-    let t259 = s[5] * s[5];
-    let t260 = s[5] * c[5];
-    let t261 = 0.016685526854599998 * t258;
-    let t262 = 0.016685526854599998 * t259;
-    let t263 = 0.016685526854599998 * t260;
-    let t264 = 0.23655647314540001 + t261;
-    let t265 = c[4] * t263;
-    let t266 = s[4] * t263;
-    let t267 = s[3] * t265;
-    let t268 = c[3] * t264;
-    let t269 = t268 - t267;
-    let t270 = c[3] * t265;
-    let t271 = -t270;
-    let t272 = s[3] * t264;
-    let t273 = t271 - t272;
-    let t274 = c[2] * t273;
-    let t275 = s[2] * t269;
-    let t276 = t274 - t275;
-    let t277 = s[2] * t273;
-    let t278 = c[2] * t269;
-    let t279 = t277 + t278;
-    let t280 = c[1] * t279;
-    let t281 = s[1] * t276;
-    let t282 = t280 + t281;
-    let t283 = c[4] * c[4];
-    let t284 = s[4] * s[4];
-    let t285 = s[4] * c[4];
-    let t286 = t262 * t283;
-    let t287 = 0.0171364731454 + t286;
-    let t288 = t262 * t284;
-    let t289 = t262 * t285;
-    let t290 = t288 + 0.24116530937515002;
-    let t291 = t261 + 0.23194763691565004;
-    let t292 = 0.01778473500000001 * s[3];
-    let t293 = 0.01778473500000001 * c[3];
-    let t294 = s[3] * t289;
-    let t295 = c[3] * t266;
-    let t296 = t295 - t294;
-    let t297 = c[3] * t289;
-    let t298 = s[3] * t266;
-    let t299 = t297 + t298;
-    let t300 = 0.006976062303750003 * s[3];
-    let t301 = t290 - t300;
-    let t302 = c[2] * t293;
-    let t303 = s[2] * t292;
-    let t304 = t303 - t302;
-    let t305 = s[2] * t293;
-    let t306 = c[2] * t292;
-    let t307 = t305 + t306;
-    let t308 = c[2] * t299;
-    let t309 = s[2] * t296;
-    let t310 = t308 + t309;
-    let t311 = s[2] * t299;
-    let t312 = c[2] * t296;
-    let t313 = t312 - t311;
-    let t314 = 0.425 * t307;
-    let t315 = t301 - t314;
-    let t316 = s[1] * t307;
-    let t317 = c[1] * t304;
-    let t318 = t316 + t317;
-    let t319 = c[1] * t313;
-    let t320 = s[1] * t310;
-    let t321 = 0.10915 * t318;
-    let t322 = s[3] * t287;
-    let t323 = t270 - t322;
-    let t324 = c[3] * t291;
-    let t325 = t324 - t267;
-    let t326 = c[3] * t287;
-    let t327 = t267 + t326;
-    let t328 = s[3] * t291;
-    let t329 = t271 - t328;
-    let t330 = s[3] * t323;
-    let t331 = c[3] * t325;
-    let t332 = c[3] * t327;
-    let t333 = s[3] * t329;
-    let t334 = c[3] * t323;
-    let t335 = s[3] * t325;
-    let t336 = 0.013952124607500007 * s[3];
-    let t337 = 0.006976062303750003 * c[3];
-    let t338 = t331 - t336;
-    let t339 = t338 - t330;
-    let t340 = t335 + t337;
-    let t341 = t334 + t340;
-    let t342 = 1.598759275 - t292;
-    let t343 = 0.5956519516747499 - t336;
-    let t344 = t290 + t343;
-    let t345 = 0.09736195575 - t299;
-    let t346 = s[2] * t342;
-    let t347 = t302 + t346;
-    let t348 = c[2] * t342;
-    let t349 = t348 - t305;
-    let t350 = c[2] * t345;
-    let t351 = t350 - t309;
-    let t352 = s[2] * t345;
-    let t353 = t312 + t352;
-    let t354 = 0.425 * t349;
-    let t355 = t344 + t354;
-    let t356 = s[1] * t349;
-    let t357 = c[1] * t347;
-    let t358 = t356 + t357;
-    let t359 = c[1] * t353;
-    let t360 = -t359;
-    let t361 = s[1] * t351;
-    let t362 = t360 - t361;
-    let t363 = 0.10915 * t358;
-    let t364 = t362 + t363;
-    let t365 = c[2] * c[2];
-    let t366 = s[2] * s[2];
-    let t367 = s[2] * c[2];
-    let t368 = 2.0 * t367;
-    let t369 = t365 - t366;
-    let t370 = 0.5915569516747499 + t333;
-    let t371 = t332 - t370;
-    let t372 = t371 - t339;
-    let t373 = t365 * t372;
-    let t374 = t341 * t368;
-    let t375 = t366 * t372;
-    let t376 = t367 * t372;
-    let t377 = t341 * t369;
-    let t378 = 0.85 * t349;
-    let t379 = 0.425 * t347;
-    let t380 = t339 + t378;
-    let t381 = t380 - t374;
-    let t382 = t375 + t381;
-    let t383 = t344 + t378;
-    let t384 = t377 + t379;
-    let t385 = t376 - t384;
-    let t386 = 4.4329225 + t349;
-    let t387 = 1.77012693841 + t383;
-    let t388 = t339 - 1.75501953841;
-    let t389 = t374 + t388;
-    let t390 = t373 + t389;
-    let t391 = 0.075354282 + t351;
-    let t392 = s[1] * t386;
-    let t393 = t357 + t392;
-    let t394 = s[1] * t391;
-    let t395 = t360 - t394;
-    let t396 = 0.10915 * t393;
-    let t397 = t395 + t396;
-    let t398 = c[1] * t385;
-    let t399 = s[1] * t385;
-    let t400 = c[1] * t382;
-    let t401 = t399 + t400;
-    let t402 = s[1] * t390;
-    let t403 = t398 + t402;
-    let t404 = c[1] * t401;
-    let t405 = s[1] * t403;
-    let t406 = t404 + t405;
-    let t407 = 2.7690351387572503 + t406;
-    let t408 = c[4] * t246;
-    let t409 = t290 - t408;
-    let t410 = t301 - t408;
-    let t411 = t315 - t408;
-    let t412 = c[4] * t257;
-    let t413 = t344 - t408;
-    let t414 = t355 - t408;
-    let t415 = t364 + t412;
-    let t416 = t387 - t408;
-    let t417 = t397 + t412;
-    let t418 = 58.355064750790525 * t257;
-    let t419 = t257 * t418;
-    let t420 = t407 - t419;
-    let t421 = 1.0 / t264;
-    let t422 = t266 * t421;
-    let t423 = t266 * t422;
-    let t424 = t409 - t423;
-    let t425 = t410 - t423;
-    let t426 = t411 - t423;
-    let t427 = t282 * t422;
-    let t428 = t412 - t321;
-    let t429 = t320 - t319;
-    let t430 = t428 + t429;
-    let t431 = t427 + t430;
-    let t432 = t413 - t423;
-    let t433 = t414 - t423;
-    let t434 = t415 + t427;
-    let t435 = t416 - t423;
-    let t436 = t417 + t427;
-    let t437 = t282 * t421;
-    let t438 = t282 * t437;
-    let t439 = t420 - t438;
-    let t440 = 1.0 / t424;
-    let t441 = t425 * t440;
-    let t442 = t425 * t441;
-    let t443 = t432 - t442;
-    let t444 = t426 * t441;
-    let t445 = t433 - t444;
-    let t446 = t431 * t441;
-    let t447 = t434 - t446;
-    let t448 = t426 * t440;
-    let t449 = t426 * t448;
-    let t450 = t435 - t449;
-    let t451 = t431 * t448;
-    let t452 = t436 - t451;
-    let t453 = t431 * t440;
-    let t454 = t431 * t453;
-    let t455 = t439 - t454;
-    let t456 = 1.0 / t443;
-    let t457 = t445 * t456;
-    let t458 = t445 * t457;
-    let t459 = t450 - t458;
-    let t460 = t447 * t457;
-    let t461 = t452 - t460;
-    let t462 = t447 * t456;
-    let t463 = t447 * t462;
-    let t464 = t455 - t463;
-    let t465 = 1.0 / t459;
-    let t466 = t461 * t465;
-    let t467 = t461 * t466;
-    let t468 = t464 - t467;
-    let t469 = c[4] * t244;
-    let t470 = t244 * t418;
-    let t471 = t243 * t422;
-    let t472 = tau[3] - t469;
-    let t473 = t472 - t187;
-    let t474 = t473 - t471;
-    let t475 = t243 * t437;
-    let t476 = t441 * t474;
-    let t477 = tau[2] - t469;
-    let t478 = t477 - t471;
-    let t479 = t478 - t208;
-    let t480 = t479 - t476;
-    let t481 = t448 * t474;
-    let t482 = t453 * t474;
-    let t483 = t457 * t480;
-    let t484 = tau[1] + t9;
-    let t485 = t484 - t17;
-    let t486 = t17 - t22;
-    let t487 = t485 + t486;
-    let t488 = t487 - t226;
-    let t489 = t488 - t469;
-    let t490 = t489 - t471;
-    let t491 = t490 - t208;
-    let t492 = t491 - t481;
-    let t493 = t492 - t483;
-    let t494 = t462 * t480;
-    let t495 = t466 * t493;
-    let t496 = tau[0] + t470;
-    let t497 = t242 + t496;
-    let t498 = t475 + t497;
-    let t499 = t498 - t482;
-    let t500 = t499 - t494;
-    let t501 = t241 + t500;
-    let t502 = t501 - t495;
-    let t503 = t502 / t468;
-    let t504 = t493 / t459;
-    let t505 = t480 / t443;
-    let t506 = t474 / t424;
-    let t507 = t243 / t264;
-    let t508 = t244 / 0.0171364731454;
-    let t509 = t466 * t503;
-    let t510 = t504 - t509;
-    let t511 = t457 * t510;
-    let t512 = t462 * t503;
-    let t513 = t505 - t512;
-    let t514 = t513 - t511;
-    let t515 = t441 * t514;
-    let t516 = t448 * t510;
-    let t517 = t453 * t503;
-    let t518 = t506 - t517;
-    let t519 = t518 - t516;
-    let t520 = t519 - t515;
-    let t521 = t422 * t520;
-    let t522 = t422 * t514;
-    let t523 = t422 * t510;
-    let t524 = t437 * t503;
-    let t525 = t507 + t524;
-    let t526 = t525 - t523;
-    let t527 = t526 - t522;
-    let t528 = t527 - t521;
-    let t529 = c[4] * t520;
-    let t530 = c[4] * t514;
-    let t531 = c[4] * t510;
-    let t532 = t418 * t503;
-    let t533 = t508 + t532;
-    let t534 = t533 - t531;
-    let t535 = t534 - t530;
-    let t536 = t535 - t529;
-    [t503, t510, t514, t520, t528, t536]
+    let t9 = qd[1] * qd[1];
+    let t10 = t2 * t3;
+    let t11 = fma(t2, t2, t9);
+    let t12 = 4.4329225 * t11;
+    let t13 = 0.075354282 * t6;
+    let t14 = fma(-t3, t3, t9);
+    let t15 = 0.075354282 * t10;
+    let t16 = fma(-1.77012693841, t6, t15);
+    let t17 = fma(1.75501953841, t6, t16);
+    let t18 = fma(0.425, t10, -t4);
+    let t19 = fma(0.85, t7, t1);
+    let t20 = fma(0.425, t11, t5);
+    let t21 = t7 * s[2];
+    let t22 = fma(-t6, c[2], t21);
+    let t23 = t6 * s[2];
+    let t24 = fma(t7, c[2], t23);
+    let t25 = t3 * c[2];
+    let t26 = fma(t2, s[2], t25);
+    let t27 = t3 * s[2];
+    let t28 = fma(-t2, c[2], t27);
+    let t29 = s[2] * t18;
+    let t30 = fma(-c[2], t20, t29);
+    let t31 = s[2] * t20;
+    let t32 = fma(c[2], t18, t31);
+    let t33 = qd[1] + qd[2];
+    let t34 = fma(qd[2], t26, t24);
+    let t35 = fma(qd[2], t28, t22);
+    let t36 = 1.598759275 * t19;
+    let t37 = t33 * t33;
+    let t38 = t28 * t33;
+    let t39 = t26 * t28;
+    let t40 = t26 * t33;
+    let t41 = fma(t28, t28, t37);
+    let t42 = fma(t26, t33, t34);
+    let t43 = 1.598759275 * t42;
+    let t44 = 1.598759275 * t41;
+    let t45 = fma(-t26, t26, t37);
+    let t46 = 0.09736195575 * t38;
+    let t47 = fma(0.5915569516747499, t39, t46);
+    let t48 = 0.5956519516747499 * t38;
+    let t49 = fma(-0.09736195575, t39, t48);
+    let t50 = fma(-0.5915569516747499, t35, t49);
+    let t51 = fma(-0.39225, t39, t32);
+    let t52 = fma(0.39225, t42, t19);
+    let t53 = fma(-0.39225, t41, t30);
+    let t54 = t34 * s[3];
+    let t55 = fma(t35, c[3], t54);
+    let t56 = t34 * c[3];
+    let t57 = fma(-t35, s[3], t56);
+    let t58 = t26 * c[3];
+    let t59 = fma(-t28, s[3], t58);
+    let t60 = t28 * c[3];
+    let t61 = fma(t26, s[3], t60);
+    let t62 = s[3] * t51;
+    let t63 = fma(c[3], t53, t62);
+    let t64 = qd[3] + t33;
+    let t65 = fma(qd[3], t61, t55);
+    let t66 = fma(qd[3], t59, t57);
+    let t67 = t64 * t64;
+    let t68 = t59 * t64;
+    let t69 = t59 * t61;
+    let t70 = t61 * t64;
+    let t71 = fma(t59, t59, t67);
+    let t72 = fma(t61, t64, t65);
+    let t73 = 0.01778473500000001 * t69;
+    let t74 = 0.01778473500000001 * t71;
+    let t75 = 0.22863767245949998 * t70;
+    let t76 = 0.004608836229749974 * t69;
+    let t77 = 0.22402883622975 * t68;
+    let t78 = fma(-0.01778473500000001, t63, t76);
+    let t79 = fma(-0.004608836229749974, t66, t77);
+    let t80 = t64 * s[4];
+    let t81 = fma(t59, c[4], t80);
+    let t82 = t64 * c[4];
+    let t83 = fma(-t59, s[4], t82);
+    let t84 = qd[4] + t61;
+    let t85 = qd[4] * t83;
+    let t86 = qd[4] * t81;
+    let t87 = fma(-t65, c[4], t85);
+    let t88 = fma(-t65, s[4], t86);
+    let t89 = t81 * t83;
+    let t90 = t81 * t84;
+    let t91 = t83 * t84;
+    let t92 = 0.23655647314540001 * t91;
+    let t93 = 0.017136473145399997 * t89;
+    let t94 = fma(0.017136473145399997, t87, t92);
+    let t95 = fma(0.23655647314540001, t66, -t93);
+    let t96 = t66 * c[5];
+    let t97 = t84 * c[5];
+    let t98 = fma(t81, s[5], t97);
+    let t99 = t81 * c[5];
+    let t100 = fma(-t84, s[5], t99);
+    let t101 = qd[5] + t83;
+    let t102 = fma(qd[5], t100, t96);
+    let t103 = fma(t87, s[5], t102);
+    let t104 = t100 * t101;
+    let t105 = t98 * t100;
+    let t106 = t98 * t101;
+    let t107 = 0.0171364731454 * t88;
+    let t108 = 0.0004509462908000028 * t106;
+    let t109 = 0.0171364731454 * t104;
+    let t110 = fma(0.016685526854599998, t105, t107);
+    let t111 = fma(0.016685526854599998, t103, t109);
+    let t112 = fma(-c[5], t108, t94);
+    let t113 = fma(s[5], t111, t112);
+    let t114 = fma(0.21942, t90, t110);
+    let t115 = fma(s[5], t108, t95);
+    let t116 = fma(c[5], t111, t115);
+    let t117 = fma(0.01778473500000001, t52, -t75);
+    let t118 = fma(s[4], t114, t117);
+    let t119 = fma(c[4], t113, t118);
+    let t120 = fma(-c[4], t114, t78);
+    let t121 = fma(s[4], t113, t120);
+    let t122 = t79 + t116;
+    let t123 = s[3] * t73;
+    let t124 = fma(c[3], t74, t123);
+    let t125 = fma(1.1872089033494997, t40, t36);
+    let t126 = fma(0.09736195575, t45, t125);
+    let t127 = fma(-0.006976062303750003, t72, t126);
+    let t128 = fma(c[3], t122, t127);
+    let t129 = fma(-s[3], t119, t128);
+    let t130 = fma(0.09736195575, t35, -t47);
+    let t131 = fma(1.598759275, t32, t130);
+    let t132 = fma(-0.39225, t124, t131);
+    let t133 = t121 + t132;
+    let t134 = fma(-s[3], t122, t50);
+    let t135 = fma(-c[3], t119, t134);
+    let t136 = fma(1.598759275, t39, t124);
+    let t137 = fma(0.01778473500000001, t72, -t43);
+    let t138 = fma(c[3], t73, t44);
+    let t139 = fma(s[3], t74, -t138);
+    let t140 = s[2] * t139;
+    let t141 = fma(-c[2], t136, t140);
+    let t142 = c[2] * t135;
+    let t143 = fma(-s[2], t129, t142);
+    let t144 = fma(3.52514647682, t7, t8);
+    let t145 = fma(0.075354282, t14, t144);
+    let t146 = fma(-0.425, t137, t145);
+    let t147 = fma(s[2], t135, t146);
+    let t148 = fma(c[2], t129, t147);
+    let t149 = t17 + t143;
+    let t150 = fma(4.4329225, t10, t141);
+    let t151 = fma(c[2], t139, -t12);
+    let t152 = fma(s[2], t136, t151);
+    let t153 = c[1] * t152;
+    let t154 = fma(-s[1], t150, t153);
+    let t155 = c[1] * t148;
+    let t156 = fma(s[1], t149, t155);
+    let t157 = tau[4] - t116;
+    let t158 = tau[5] + t110;
+    let t159 = 0.0171364731454 * s[4];
+    let t160 = 0.0171364731454 * c[4];
+    let t161 = s[3] * t159;
+    let t162 = c[3] * t159;
+    let t163 = c[2] * t162;
+    let t164 = fma(-s[2], t161, t163);
+    let t165 = s[2] * t162;
+    let t166 = fma(c[2], t161, t165);
+    let t167 = c[1] * t166;
+    let t168 = fma(s[1], t164, t167);
+    let t169 = c[5] * c[5];
+    let t170 = s[5] * s[5];
+    let t171 = s[5] * c[5];
+    let t172 = 0.016685526854599998 * t170;
+    let t173 = 0.016685526854599998 * t171;
+    let t174 = fma(0.016685526854599998, t169, 0.23655647314540001);
+    let t175 = c[4] * t173;
+    let t176 = s[4] * t173;
+    let t177 = s[3] * t175;
+    let t178 = c[3] * t174;
+    let t179 = fma(-s[3], t175, t178);
+    let t180 = c[3] * t175;
+    let t181 = -t180;
+    let t182 = fma(-s[3], t174, t181);
+    let t183 = s[2] * t179;
+    let t184 = fma(c[2], t182, -t183);
+    let t185 = c[2] * t179;
+    let t186 = fma(s[2], t182, t185);
+    let t187 = c[1] * t186;
+    let t188 = fma(s[1], t184, t187);
+    let t189 = c[4] * c[4];
+    let t190 = s[4] * s[4];
+    let t191 = s[4] * c[4];
+    let t192 = fma(t172, t189, 0.0171364731454);
+    let t193 = t172 * t191;
+    let t194 = fma(t172, t190, 0.24116530937515002);
+    let t195 = fma(0.016685526854599998, t169, 0.23194763691565004);
+    let t196 = 0.01778473500000001 * s[3];
+    let t197 = 0.01778473500000001 * c[3];
+    let t198 = c[3] * t176;
+    let t199 = fma(-s[3], t193, t198);
+    let t200 = c[3] * t193;
+    let t201 = fma(s[3], t176, t200);
+    let t202 = fma(-0.006976062303750003, s[3], t194);
+    let t203 = c[2] * t197;
+    let t204 = s[2] * t196;
+    let t205 = fma(-c[2], t197, t204);
+    let t206 = s[2] * t197;
+    let t207 = fma(c[2], t196, t206);
+    let t208 = c[2] * t201;
+    let t209 = s[2] * t199;
+    let t210 = fma(s[2], t199, t208);
+    let t211 = c[2] * t199;
+    let t212 = fma(-s[2], t201, t211);
+    let t213 = fma(-0.425, t207, t202);
+    let t214 = s[1] * t207;
+    let t215 = fma(c[1], t205, t214);
+    let t216 = s[1] * t210;
+    let t217 = 0.10915 * t215;
+    let t218 = fma(-s[3], t192, t180);
+    let t219 = c[3] * t195;
+    let t220 = fma(-s[3], t175, t219);
+    let t221 = fma(c[3], t192, t177);
+    let t222 = fma(-s[3], t195, t181);
+    let t223 = 0.013952124607500007 * s[3];
+    let t224 = 0.006976062303750003 * c[3];
+    let t225 = fma(c[3], t220, -t223);
+    let t226 = fma(-s[3], t218, t225);
+    let t227 = fma(s[3], t220, t224);
+    let t228 = fma(c[3], t218, t227);
+    let t229 = fma(-0.01778473500000001, s[3], 1.598759275);
+    let t230 = fma(-0.013952124607500007, s[3], 0.5956519516747499);
+    let t231 = t194 + t230;
+    let t232 = 0.09736195575 - t201;
+    let t233 = fma(s[2], t229, t203);
+    let t234 = c[2] * t229;
+    let t235 = fma(-s[2], t197, t234);
+    let t236 = fma(c[2], t232, -t209);
+    let t237 = fma(s[2], t232, t211);
+    let t238 = fma(0.425, t235, t231);
+    let t239 = s[1] * t235;
+    let t240 = c[1] * t233;
+    let t241 = fma(c[1], t233, t239);
+    let t242 = c[1] * t237;
+    let t243 = -t242;
+    let t244 = fma(-s[1], t236, t243);
+    let t245 = fma(0.10915, t241, t244);
+    let t246 = c[2] * c[2];
+    let t247 = s[2] * s[2];
+    let t248 = s[2] * c[2];
+    let t249 = 2.0 * t248;
+    let t250 = fma(-s[2], s[2], t246);
+    let t251 = fma(s[3], t222, 0.5915569516747499);
+    let t252 = fma(c[3], t221, -t251);
+    let t253 = t252 - t226;
+    let t254 = 0.425 * t233;
+    let t255 = fma(0.85, t235, t226);
+    let t256 = fma(-t228, t249, t255);
+    let t257 = fma(t247, t253, t256);
+    let t258 = fma(0.85, t235, t231);
+    let t259 = fma(t228, t250, t254);
+    let t260 = fma(t248, t253, -t259);
+    let t261 = 4.4329225 + t235;
+    let t262 = 1.77012693841 + t258;
+    let t263 = t226 - 1.75501953841;
+    let t264 = fma(t228, t249, t263);
+    let t265 = fma(t246, t253, t264);
+    let t266 = 0.075354282 + t236;
+    let t267 = fma(s[1], t261, t240);
+    let t268 = fma(-s[1], t266, t243);
+    let t269 = fma(0.10915, t267, t268);
+    let t270 = c[1] * t260;
+    let t271 = s[1] * t260;
+    let t272 = fma(c[1], t257, t271);
+    let t273 = fma(s[1], t265, t270);
+    let t274 = c[1] * t272;
+    let t275 = fma(s[1], t273, t274);
+    let t276 = 2.7690351387572503 + t275;
+    let t277 = fma(-c[4], t160, t194);
+    let t278 = fma(-c[4], t160, t202);
+    let t279 = fma(-c[4], t160, t213);
+    let t280 = fma(-c[4], t160, t231);
+    let t281 = fma(-c[4], t160, t238);
+    let t282 = fma(c[4], t168, t245);
+    let t283 = fma(-c[4], t160, t262);
+    let t284 = fma(c[4], t168, t269);
+    let t285 = 58.355064750790525 * t168;
+    let t286 = fma(-t168, t285, t276);
+    let t287 = 1.0 / t174;
+    let t288 = t176 * t287;
+    let t289 = fma(-t176, t288, t277);
+    let t290 = fma(-t176, t288, t278);
+    let t291 = fma(-t176, t288, t279);
+    let t292 = fma(c[4], t168, -t217);
+    let t293 = fma(-c[1], t212, t216);
+    let t294 = t292 + t293;
+    let t295 = fma(t188, t288, t294);
+    let t296 = fma(-t176, t288, t280);
+    let t297 = fma(-t176, t288, t281);
+    let t298 = fma(t188, t288, t282);
+    let t299 = fma(-t176, t288, t283);
+    let t300 = fma(t188, t288, t284);
+    let t301 = t188 * t287;
+    let t302 = fma(-t188, t301, t286);
+    let t303 = 1.0 / t289;
+    let t304 = t290 * t303;
+    let t305 = fma(-t290, t304, t296);
+    let t306 = fma(-t291, t304, t297);
+    let t307 = fma(-t295, t304, t298);
+    let t308 = t291 * t303;
+    let t309 = fma(-t291, t308, t299);
+    let t310 = fma(-t295, t308, t300);
+    let t311 = t295 * t303;
+    let t312 = fma(-t295, t311, t302);
+    let t313 = 1.0 / t305;
+    let t314 = t306 * t313;
+    let t315 = fma(-t306, t314, t309);
+    let t316 = fma(-t307, t314, t310);
+    let t317 = t307 * t313;
+    let t318 = fma(-t307, t317, t312);
+    let t319 = 1.0 / t315;
+    let t320 = t316 * t319;
+    let t321 = fma(-t316, t320, t318);
+    let t322 = fma(-c[4], t158, tau[3]);
+    let t323 = t322 - t121;
+    let t324 = fma(-t157, t288, t323);
+    let t325 = fma(-c[4], t158, tau[2]);
+    let t326 = fma(-t157, t288, t325);
+    let t327 = t326 - t133;
+    let t328 = fma(-t304, t324, t327);
+    let t329 = fma(43.486969725, c[1], tau[1]);
+    let t330 = fma(-0.075354282, t6, t329);
+    let t331 = fma(-1.75501953841, t10, t13);
+    let t332 = t330 + t331;
+    let t333 = fma(-0.425, t141, t332);
+    let t334 = fma(-c[4], t158, t333);
+    let t335 = fma(-t157, t288, t334);
+    let t336 = t335 - t133;
+    let t337 = fma(-t308, t324, t336);
+    let t338 = fma(-t314, t328, t337);
+    let t339 = fma(t158, t285, tau[0]);
+    let t340 = fma(0.10915, t154, t339);
+    let t341 = fma(t157, t301, t340);
+    let t342 = fma(-t311, t324, t341);
+    let t343 = fma(-t317, t328, t342);
+    let t344 = t156 + t343;
+    let t345 = fma(-t320, t338, t344);
+    let t346 = t345 / t321;
+    let t347 = t338 / t315;
+    let t348 = t328 / t305;
+    let t349 = t324 / t289;
+    let t350 = t157 / t174;
+    let t351 = t158 / 0.0171364731454;
+    let t352 = fma(-t320, t346, t347);
+    let t353 = fma(-t317, t346, t348);
+    let t354 = fma(-t314, t352, t353);
+    let t355 = fma(-t311, t346, t349);
+    let t356 = fma(-t308, t352, t355);
+    let t357 = fma(-t304, t354, t356);
+    let t358 = fma(t301, t346, t350);
+    let t359 = fma(-t288, t352, t358);
+    let t360 = fma(-t288, t354, t359);
+    let t361 = fma(-t288, t357, t360);
+    let t362 = fma(t285, t346, t351);
+    let t363 = fma(-c[4], t352, t362);
+    let t364 = fma(-c[4], t354, t363);
+    let t365 = fma(-c[4], t357, t364);
+    [t346, t352, t354, t357, t361, t365]
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by CRBA, RNEA and a sparse LᵀDL solve.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 542 ops: 107 add, 120 sub, 298 mul, 10 div, 2 neg, 0 sqrt, 5 sin_cos.
+/// 542 ops: 107 add, 120 sub, 298 mul, 10 div, 2 neg, 0 sqrt, 5 sin_cos; 204 fused multiply-adds, 369 FP ops with each fused = 1.
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`forward_dynamics_sc`].
 #[inline]
@@ -1487,6 +1086,15 @@ pub fn forward_dynamics(
 //    relative error 1.1e-17 and 1.1e-18 after rounding to f64), evaluated
 //    by Estrin's scheme (short dependency chains). The leading terms r and
 //    1 − r²/2 (with its rounding error kept) are added last.
+//    Where the target has fused multiply-adds (`fma` below), each `a·b + c`
+//    of the polynomials and of the final sums is one, rounded once instead
+//    of twice: every rounding error of the fused evaluation is one of the
+//    unfused evaluation's (a fused product adds none), so the error bound
+//    and the 1-ulp result hold for both (the tests measure both: max 0.73
+//    ulp unfused, see `tests/tests/generated_fma.rs` for the fused build).
+//    x − k·P1 is written fused too (exact either way); the other steps of
+//    the reduction are left as they are, so k and the fast-path test are
+//    the same on every target.
 // 4. The quadrant k mod 4 picks (±sin r, ±cos r) by bit masks.
 // `sin_cos_array` runs the fast path on several angles at once, in vector
 // registers on x86-64: four to a register where the target has AVX2
@@ -1496,6 +1104,46 @@ pub fn forward_dynamics(
 // once (`sin_cos_lanes`) over the operations of `Lanes`, which `f64`, two-
 // and four-lane registers implement lane by lane: the same operations in
 // the same order, so every width gives the bits of the one-angle code.
+
+// `fma(a, b, c)`: a·b + c. Where the target has a fused multiply-add
+// (x86-64 compiled with the `fma` target feature, e.g. by
+// `-C target-cpu=native` on a processor that has it; aarch64 with NEON, which
+// every aarch64 Linux, macOS and Windows target has) it is one instruction
+// with a single rounding; elsewhere it is `a * b + c`, two roundings, bit for
+// bit the unfused expression (plain x86-64 builds give the same results as
+// code without `fma`).
+
+/// `a·b + c` with one rounding (x86-64 with the `fma` feature).
+#[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
+#[inline(always)]
+#[allow(dead_code, unused_unsafe)]
+fn fma(a: f64, b: f64, c: f64) -> f64 {
+    use core::arch::x86_64::{_mm_cvtsd_f64, _mm_fmadd_sd, _mm_set_sd};
+    // SAFETY: the cfg above compiles this only where the `fma` target
+    // feature is enabled, so the instruction exists.
+    unsafe { _mm_cvtsd_f64(_mm_fmadd_sd(_mm_set_sd(a), _mm_set_sd(b), _mm_set_sd(c))) }
+}
+
+/// `a·b + c` with one rounding (aarch64).
+#[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
+#[inline(always)]
+#[allow(dead_code, unused_unsafe)]
+fn fma(a: f64, b: f64, c: f64) -> f64 {
+    use core::arch::aarch64::{vdup_n_f64, vfma_f64, vget_lane_f64};
+    // SAFETY: the cfg above compiles this only where NEON is enabled.
+    unsafe { vget_lane_f64::<0>(vfma_f64(vdup_n_f64(c), vdup_n_f64(a), vdup_n_f64(b))) }
+}
+
+/// `a·b + c`, rounded twice (targets without a fused multiply-add).
+#[cfg(not(any(
+    all(target_arch = "x86_64", target_feature = "fma"),
+    all(target_arch = "aarch64", target_feature = "neon")
+)))]
+#[inline(always)]
+#[allow(dead_code)]
+fn fma(a: f64, b: f64, c: f64) -> f64 {
+    a * b + c
+}
 
 /// The sines and cosines of `x`, entry by entry: within 1 ulp of the exact
 /// values for every finite angle (NaN and ±∞ give NaN); two or four angles
@@ -1580,6 +1228,10 @@ trait Lanes: Copy {
     fn sub(self, b: Self) -> Self;
     /// `self · b`.
     fn mul(self, b: Self) -> Self;
+    /// `self · b + c`, fused where the scalar `fma` is.
+    fn mul_add(self, b: Self, c: Self) -> Self;
+    /// `−self`.
+    fn neg(self) -> Self;
     /// `|self|`.
     fn abs(self) -> Self;
     /// Whether min(`self`, 1.5e6) ≥ `b` in every lane: a NaN `self` takes
@@ -1621,6 +1273,14 @@ impl Lanes for f64 {
         self * b
     }
     #[inline(always)]
+    fn mul_add(self, b: f64, c: f64) -> f64 {
+        fma(self, b, c)
+    }
+    #[inline(always)]
+    fn neg(self) -> f64 {
+        -self
+    }
+    #[inline(always)]
     fn abs(self) -> f64 {
         f64::from_bits(self.to_bits() & !(1 << 63))
     }
@@ -1646,7 +1306,7 @@ impl Lanes for f64 {
 /// operations of `impl Lanes for f64`, lane by lane.
 #[cfg(target_arch = "x86_64")]
 macro_rules! vector_lanes {
-    ($w:literal, $v:ident, $all:literal, $feature:literal, $add:ident, $sub:ident, $mul:ident,
+    ($w:literal, $v:ident, $all:literal, $feature:literal, $add:ident, $sub:ident, $mul:ident, $fmadd:ident, $xor_pd:ident,
      $set1:ident, $loadu:ident, $storeu:ident, $andnot:ident, $min:ident, $cmp_ge:expr, $movemask:ident,
      $to_int:ident, $to_float:ident, $and:ident, $or:ident, $xor:ident, $sub64:ident, $zero:ident, $set1_64:ident,
      $shl:ident) => {
@@ -1688,6 +1348,18 @@ macro_rules! vector_lanes {
                 unsafe { core::arch::x86_64::$mul(self, b) }
             }
             #[inline(always)]
+            fn mul_add(self, b: Self, c: Self) -> Self {
+                #[cfg(target_feature = "fma")]
+                let r = unsafe { core::arch::x86_64::$fmadd(self, b, c) };
+                #[cfg(not(target_feature = "fma"))]
+                let r = self.mul(b).add(c);
+                r
+            }
+            #[inline(always)]
+            fn neg(self) -> Self {
+                unsafe { core::arch::x86_64::$xor_pd(self, Self::splat(-0.0)) }
+            }
+            #[inline(always)]
             fn abs(self) -> Self {
                 unsafe { core::arch::x86_64::$andnot(Self::splat(-0.0), self) }
             }
@@ -1714,11 +1386,11 @@ macro_rules! vector_lanes {
 }
 
 #[cfg(target_arch = "x86_64")]
-vector_lanes!(2, __m128d, 3, "sse2", _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_set1_pd, _mm_loadu_pd,
+vector_lanes!(2, __m128d, 3, "sse2", _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_fmadd_pd, _mm_xor_pd, _mm_set1_pd, _mm_loadu_pd,
     _mm_storeu_pd, _mm_andnot_pd, _mm_min_pd, _mm_cmpge_pd, _mm_movemask_pd, _mm_castpd_si128, _mm_castsi128_pd,
     _mm_and_si128, _mm_or_si128, _mm_xor_si128, _mm_sub_epi64, _mm_setzero_si128, _mm_set1_epi64x, _mm_slli_epi64);
 #[cfg(target_arch = "x86_64")]
-vector_lanes!(4, __m256d, 15, "avx2", _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_set1_pd,
+vector_lanes!(4, __m256d, 15, "avx2", _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_fmadd_pd, _mm256_xor_pd, _mm256_set1_pd,
     _mm256_loadu_pd, _mm256_storeu_pd, _mm256_andnot_pd, _mm256_min_pd, _mm256_cmp_pd::<_CMP_GE_OQ>,
     _mm256_movemask_pd, _mm256_castpd_si256, _mm256_castsi256_pd, _mm256_and_si256, _mm256_or_si256,
     _mm256_xor_si256, _mm256_sub_epi64, _mm256_setzero_si256, _mm256_set1_epi64x, _mm256_slli_epi64);
@@ -1754,6 +1426,14 @@ impl Lanes for [f64; 2] {
     #[inline(always)]
     fn mul(self, b: Self) -> Self {
         [self[0] * b[0], self[1] * b[1]]
+    }
+    #[inline(always)]
+    fn mul_add(self, b: Self, c: Self) -> Self {
+        [fma(self[0], b[0], c[0]), fma(self[1], b[1], c[1])]
+    }
+    #[inline(always)]
+    fn neg(self) -> Self {
+        [-self[0], -self[1]]
     }
     #[inline(always)]
     fn abs(self) -> Self {
@@ -1809,7 +1489,7 @@ fn sin_cos_lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
     let v = V::splat;
     let t: [V; P] = each(|i| x[i].mul(v(FRAC_2_PI)).add(v(ROUND)));
     let k: [V; P] = each(|i| t[i].sub(v(ROUND)));
-    let t0: [V; P] = each(|i| x[i].sub(k[i].mul(v(P1)))); // exact
+    let t0: [V; P] = each(|i| k[i].neg().mul_add(v(P1), x[i])); // exact, fused or not
     let w: [V; P] = each(|i| k[i].mul(v(P2))); // exact
     let a: [V; P] = each(|i| t0[i].sub(w[i]));
     // The rounding error of t0 − w, exact (|t0| ≥ |w|, or else t0 − w is exact), then − k·P3.
@@ -1852,18 +1532,17 @@ fn sin_cos_reduced<V: Lanes, const P: usize>(rh: [V; P], rl: [V; P], signed: [V;
     let z2: [V; P] = each(|i| z[i].mul(z[i]));
     // Estrin: (c0 + z·c1) + z²·((c2 + z·c3) + z²·(c4 + z·c5)).
     let poly = |c: [f64; 6], i: usize| {
-        let (lo, mid, hi) =
-            (v(c[0]).add(z[i].mul(v(c[1]))), v(c[2]).add(z[i].mul(v(c[3]))), v(c[4]).add(z[i].mul(v(c[5]))));
-        lo.add(z2[i].mul(mid.add(z2[i].mul(hi))))
+        let (lo, mid, hi) = (z[i].mul_add(v(c[1]), v(c[0])), z[i].mul_add(v(c[3]), v(c[2])), z[i].mul_add(v(c[5]), v(c[4])));
+        z2[i].mul_add(z2[i].mul_add(hi, mid), lo)
     };
     let ps: [V; P] = each(|i| poly(S, i));
     let pc: [V; P] = each(|i| poly(C, i));
     let hz: [V; P] = each(|i| v(0.5).mul(z[i]));
     // sin(rh + rl) = rh + rh·z·S(z) + rl·(1 − z/2) + …; the sign or-ed in keeps sin(−0) = −0.
-    let sin_r: [V; P] = each(|i| rh[i].add(rh[i].mul(z[i]).mul(ps[i]).add(rl[i].mul(v(1.0).sub(hz[i])))));
+    let sin_r: [V; P] = each(|i| rh[i].add(rh[i].mul(z[i]).mul_add(ps[i], rl[i].mul(v(1.0).sub(hz[i])))));
     // cos(rh + rl) = (1 − z/2) + z²·C(z) − rh·rl + …, with the rounding error of 1 − z/2.
     let w: [V; P] = each(|i| v(1.0).sub(hz[i]));
-    let cos_r: [V; P] = each(|i| w[i].add(v(1.0).sub(w[i]).sub(hz[i]).add(z2[i].mul(pc[i]).sub(rh[i].mul(rl[i])))));
+    let cos_r: [V; P] = each(|i| w[i].add(v(1.0).sub(w[i]).sub(hz[i]).add(z2[i].mul_add(pc[i], rh[i].mul(rl[i]).neg()))));
     core::array::from_fn(|i| V::quadrant(sin_r[i], signed[i], cos_r[i], quadrant[i]))
 }
 

@@ -260,6 +260,12 @@ impl Builder {
         self.options.split_lets = lets;
         self
     }
+    /// Write `a·b ± c` as fused multiply-adds (on); see
+    /// [`CodegenOptions::fma`].
+    pub fn fma(mut self, on: bool) -> Self {
+        self.options.fma = on;
+        self
+    }
     /// All code-generation options at once (replaces the scalar, forward
     /// dynamics, snap and function choices made so far).
     pub fn options(mut self, options: CodegenOptions) -> Self {

@@ -9,7 +9,7 @@ use super::literal::float_literal_text;
 use super::split::{self, Body, Line, PartParam};
 use super::trace::FunctionKind;
 use super::{CodegenError, ScalarType, Trig};
-use crate::symbolic::{Function, Node};
+use crate::symbolic::{Function, Fusion, Node};
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
 use syn::punctuated::Punctuated;
@@ -67,7 +67,7 @@ fn method(receiver: &Expr, name: &str) -> Expr {
         args: Punctuated::new(),
     })
 }
-fn call(segments: &[&str], arg: &Expr) -> Expr {
+fn call(segments: &[&str], args: &[&Expr]) -> Expr {
     let path = syn::Path {
         leading_colon: None,
         segments: segments.iter().map(|s| syn::PathSegment::from(ident(s))).collect(),
@@ -76,7 +76,7 @@ fn call(segments: &[&str], arg: &Expr) -> Expr {
         attrs: vec![],
         func: Box::new(Expr::Path(syn::ExprPath { attrs: vec![], qself: None, path })),
         paren_token: Default::default(),
-        args: std::iter::once(arg.clone()).collect(),
+        args: args.iter().map(|&a| a.clone()).collect(),
     })
 }
 pub(super) fn pat(id: Ident) -> Pat {
@@ -205,10 +205,36 @@ pub(crate) fn return_type(kind: FunctionKind, scalar: ScalarType) -> TokenStream
     Shape::of(kind).tokens(scalar)
 }
 
+/// How bodies are written: split into parts, fused multiply-adds.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BodyStyle {
+    /// [`CodegenOptions::split_lets`](super::CodegenOptions::split_lets).
+    pub split_lets: Option<usize>,
+    /// [`CodegenOptions::fma`](super::CodegenOptions::fma).
+    pub fma: bool,
+}
+
+impl BodyStyle {
+    /// The style `options` ask for.
+    pub(crate) fn of(options: &super::CodegenOptions) -> BodyStyle {
+        BodyStyle { split_lets: options.split_lets, fma: options.fma }
+    }
+}
+
+/// The `−x` of an emitted expression (`x` itself for a negated one).
+fn negated(x: &Expr) -> Expr {
+    match x {
+        Expr::Unary(syn::ExprUnary { op: UnOp::Neg(_), expr, .. }) => (**expr).clone(),
+        _ => unary(UnOp::Neg(Default::default()), x.clone()),
+    }
+}
+
 /// `pub fn name(inputs…) -> output { let …; [outputs] }`: one `let` per kept
 /// operation, named `t{k}` in order (`s{k}`/`c{k}` for a sine and cosine),
-/// constants written in place as literals, inputs read as `q[i]`. A body of
-/// more than `split_lets` `let`s is cut into private parts ([`split`]).
+/// constants written in place as literals, inputs read as `q[i]`. With
+/// `style.fma`, the sums of [`Fusion`] are `fma(a, b, c)` (`fmaf` in `f32`)
+/// and the products only they read are not written. A body of more than
+/// `style.split_lets` `let`s is cut into private parts ([`split`]).
 pub(crate) fn emit_function(
     f: &Function,
     signature: &Signature,
@@ -216,12 +242,13 @@ pub(crate) fn emit_function(
     trig: Trig,
     n: usize,
     doc: &str,
-    split_lets: Option<usize>,
+    style: BodyStyle,
 ) -> Result<Vec<syn::Item>, CodegenError> {
-    let libm_sqrt = match scalar {
-        ScalarType::F64 => "sqrt",
-        ScalarType::F32 => "sqrtf",
+    let (libm_sqrt, fma) = match scalar {
+        ScalarType::F64 => ("sqrt", "fma"),
+        ScalarType::F32 => ("sqrtf", "fmaf"),
     };
+    let fusion = if style.fma { f.fusion() } else { Fusion::none(f) };
     let nodes = f.nodes();
     // How each node is referred to by its users (for a SinCos node: its
     // sine; the cosine's name is kept in `cos_ref`).
@@ -247,10 +274,19 @@ pub(crate) fn emit_function(
     let mut k = 0usize;
     for (id, node) in nodes.iter().enumerate() {
         let r = |i: u32| &refs[i as usize];
-        let uses: Vec<u32> = node.operands().filter_map(|a| value[a as usize]).collect();
-        let inputs: Vec<u32> = node.operands().filter_map(|a| input[a as usize]).collect();
+        let fused = fusion.sum(id as u32);
+        let operands: Vec<u32> = match fused {
+            Some(fu) => vec![fu.a, fu.b, fu.c],
+            None => node.operands().collect(),
+        };
+        let mut uses: Vec<u32> = operands.iter().filter_map(|&a| value[a as usize]).collect();
+        uses.sort_unstable();
+        uses.dedup();
+        let inputs: Vec<u32> = operands.iter().filter_map(|&a| input[a as usize]).collect();
         let (mut this_value, mut this_input) = (None, None);
         let reference = match *node {
+            // Only fused sums read it, from its factors: not written.
+            Node::Mul(a, b) if fusion.is_folded(id as u32) => binary(r(a), BinOp::Mul(Default::default()), r(b)),
             Node::Const(_) => {
                 let x = node.constant().unwrap_or_default();
                 float(x, scalar)
@@ -299,15 +335,20 @@ pub(crate) fn emit_function(
             _ => {
                 let t = format_ident!("t{}", k);
                 k += 1;
-                let e = match *node {
-                    Node::Add(a, b) => binary(r(a), BinOp::Add(Default::default()), r(b)),
-                    Node::Sub(a, b) => binary(r(a), BinOp::Sub(Default::default()), r(b)),
-                    Node::Mul(a, b) => binary(r(a), BinOp::Mul(Default::default()), r(b)),
-                    Node::Div(a, b) => binary(r(a), BinOp::Div(Default::default()), r(b)),
-                    Node::Neg(a) => unary(UnOp::Neg(Default::default()), r(a).clone()),
-                    Node::Sqrt(a) => match trig {
+                let e = match (*node, fused) {
+                    (_, Some(fu)) => {
+                        let a = if fu.negate_product { negated(r(fu.a)) } else { r(fu.a).clone() };
+                        let c = if fu.negate_addend { negated(r(fu.c)) } else { r(fu.c).clone() };
+                        call(&[fma], &[&a, r(fu.b), &c])
+                    }
+                    (Node::Add(a, b), _) => binary(r(a), BinOp::Add(Default::default()), r(b)),
+                    (Node::Sub(a, b), _) => binary(r(a), BinOp::Sub(Default::default()), r(b)),
+                    (Node::Mul(a, b), _) => binary(r(a), BinOp::Mul(Default::default()), r(b)),
+                    (Node::Div(a, b), _) => binary(r(a), BinOp::Div(Default::default()), r(b)),
+                    (Node::Neg(a), _) => unary(UnOp::Neg(Default::default()), r(a).clone()),
+                    (Node::Sqrt(a), _) => match trig {
                         Trig::Std => method(r(a), "sqrt"),
-                        Trig::Libm => call(&["libm", libm_sqrt], r(a)),
+                        Trig::Libm => call(&["libm", libm_sqrt], &[r(a)]),
                         Trig::Batched | Trig::Inputs => {
                             return Err(CodegenError::NeedsStd { function: f.name().to_string(), what: "sqrt" })
                         }
@@ -360,5 +401,5 @@ pub(crate) fn emit_function(
         })
         .collect();
     let body = Body { lines, names, outputs };
-    split::assemble(item, body, &part_params, &scalar_type(scalar), split_lets, result)
+    split::assemble(item, body, &part_params, &scalar_type(scalar), style.split_lets, result)
 }

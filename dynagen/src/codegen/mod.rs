@@ -30,6 +30,23 @@
 //! assert!(module.source.contains("pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF]"));
 //! ```
 //!
+//! # Fused multiply-adds
+//!
+//! With [`CodegenOptions::fma`] (on by default) the bodies write the sums
+//! that [`Fusion`](crate::symbolic::Fusion) picks as `fma(a, b, c)`
+//! (`fmaf` in `f32` modules): `a·b + c`, `a·b − c` as `fma(a, b, -c)`,
+//! `c − a·b` as `fma(-a, b, c)`, and a product that only such sums read is
+//! not computed on its own. `fma` is a module-local `#[inline(always)]`
+//! function: one fused multiply-add instruction (a single rounding) where
+//! the target has one, i.e. x86-64 compiled with the `fma` target feature
+//! (`-C target-cpu=native` on a machine that has it, or `-C
+//! target-feature=+fma`) and aarch64, through `core::arch` (no std), and
+//! `a * b + c` elsewhere, which rounds exactly as the unfused expression
+//! did: a default x86-64 build gives the same bits as before. The header
+//! says so and counts the fused operations (the [`OpCount`] totals stay
+//! those of the traced operations; [`OpCount::fp_ops`] counts each fused
+//! one once).
+//!
 //! # Constants that are 0 or ±1 up to rounding
 //!
 //! A robot file that turns a frame by `rpy="0 1.5707963267948966 0"` means
@@ -227,6 +244,18 @@ pub struct CodegenOptions {
     /// LLVM's super-linear passes in release builds; the results are bit
     /// for bit those of the unsplit body.
     pub split_lets: Option<usize>,
+    /// Write `a·b ± c` as `fma(a, b, ±c)` (on): one fused multiply-add
+    /// with a single rounding where the target has one (x86-64 built with
+    /// the `fma` target feature, aarch64), else `a * b + c`, bit for bit
+    /// the unfused code; see [`crate::symbolic::Fusion`] for which sums.
+    /// On by default: it costs nothing where the target has no fused
+    /// multiply-add (the same bits, the same instructions), and where it
+    /// has, the bodies, bound by the floating-point ports, run fewer
+    /// operations (`benches/README.md`, "Run 7"). Off, the bodies give the
+    /// same bits on every target. (The module's `sin_cos_array` fuses its
+    /// polynomials wherever the target has FMA, either way: within 1 ulp
+    /// both ways.)
+    pub fma: bool,
 }
 
 /// The default [`CodegenOptions::split_lets`]: 2,500 `let`s. rustc with
@@ -247,6 +276,7 @@ impl Default for CodegenOptions {
             source: None,
             trig: Trig::default(),
             split_lets: Some(DEFAULT_SPLIT_LETS),
+            fma: true,
         }
     }
 }
@@ -290,6 +320,11 @@ impl CodegenOptions {
     /// Sets the longest body emitted as one function (`None`: no limit).
     pub fn split_lets(mut self, lets: Option<usize>) -> Self {
         self.split_lets = lets;
+        self
+    }
+    /// Turns fused multiply-adds on or off.
+    pub fn fma(mut self, on: bool) -> Self {
+        self.fma = on;
         self
     }
     /// Names the model's source for the header.
@@ -467,7 +502,7 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
         }
         let sc = trace_sin_cos_inputs(m, kind, options.rewrites).map_err(CodegenError::Internal)?;
         let function = sin_cos_from_q(&sc, options.rewrites);
-        let op_count = function.op_count();
+        let op_count = counted(&function, options.fma);
         functions.push(GeneratedFunction { kind, emitted: true, function, sin_cos_inputs: sc, op_count });
     }
     let fd_method = match options.forward_dynamics {
@@ -498,9 +533,9 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
         let sc_name = format!("{}_sc", kind.fn_name());
         let params = params.into_iter().map(emit::Param::dof).collect();
         let signature = emit::Signature { name: sc_name.clone(), params, output: emit::Shape::of(kind) };
-        let doc = format!("{}\n\n{}", doc_of(kind, model, &sc.function.op_count()), sc_doc(has_prismatic));
-        let emitted =
-            emit::emit_function(&sc.function, &signature, options.scalar, options.trig, n, &doc, options.split_lets)?;
+        let doc = format!("{}\n\n{}", doc_of(kind, model, &counted(&sc.function, options.fma)), sc_doc(has_prismatic));
+        let style = emit::BodyStyle::of(options);
+        let emitted = emit::emit_function(&sc.function, &signature, options.scalar, options.trig, n, &doc, style)?;
         if let Some(parts) = split::parts_of(&emitted) {
             split_functions.push((sc_name.clone(), parts));
         }
@@ -529,6 +564,26 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
         snapped,
         model_hash,
     })
+}
+
+/// The operation count of `f`, with its fused multiply-adds if `fma`.
+pub(crate) fn counted(f: &Function, fma: bool) -> OpCount {
+    if fma {
+        f.fusion().op_count(f)
+    } else {
+        f.op_count()
+    }
+}
+
+/// The header's line on fused multiply-adds.
+pub(crate) fn fma_note(fma: bool) -> &'static str {
+    if fma {
+        "// Fused multiply-adds: fma(a, b, c) (fmaf in f32) is a*b + c with one rounding where the target has an FMA\n\
+         //   instruction (x86_64 built with target feature fma, e.g. -C target-cpu=native on a machine that has it;\n\
+         //   aarch64), and plain a * b + c elsewhere: a default x86_64 build gives the same bits as unfused code.\n"
+    } else {
+        "// Fused multiply-adds: off (every a*b + c rounded twice, on every target).\n"
+    }
 }
 
 fn parse_item(tokens: proc_macro2::TokenStream) -> Result<syn::Item, CodegenError> {
@@ -704,6 +759,7 @@ fn header(
         Trig::Inputs => "only NAME_sc(s, c, ...): the caller passes the sines and cosines (no_std, no dependency)",
     };
     let _ = writeln!(h, "// Trigonometry: {trig}.");
+    h.push_str(fma_note(options.fma));
     let why = match fd.method {
         _ if !fd.why.is_empty() => fd.why.as_str(),
         ForwardDynamicsMethod::Aba | ForwardDynamicsMethod::Auto => {
@@ -733,17 +789,13 @@ fn header(
     let _ = writeln!(
         h,
         "// Operation counts; critical path = the longest chain of dependent operations, weighted by latency\n\
-         //   (add, sub, mul 4 cycles, div 14, sqrt 18, neg 1), of the body with the sines and cosines given:"
+         //   (add, sub, mul, fma 4 cycles, div 14, sqrt 18, neg 1), of the body with the sines and cosines given:"
     );
     for f in functions {
         let note = if f.emitted { "" } else { " [not emitted]" };
-        let _ = writeln!(
-            h,
-            "//   {}{note}: {}; body NAME_sc {}",
-            f.kind.label(),
-            f.op_count,
-            f.sin_cos_inputs.function.critical_path()
-        );
+        let body = &f.sin_cos_inputs.function;
+        let path = if options.fma { body.fusion().critical_path() } else { body.critical_path() };
+        let _ = writeln!(h, "//   {}{note}: {}; body NAME_sc {path}", f.kind.label(), f.op_count);
     }
     h
 }

@@ -381,7 +381,7 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
         let traced = trace_unfactored(scene, &model, f, options.forward_dynamics, options.rewrites)?;
         let sc = sin_cos_inputs(&traced, n, options.rewrites).map_err(CodegenError::Internal)?;
         let function = sin_cos_from_q(&sc, options.rewrites);
-        let op_count = function.op_count();
+        let op_count = super::counted(&function, options.fma);
         let ps = params(scene, f);
         let mut sc_params = vec![Param::dof("s"), Param::dof("c")];
         if has_prismatic {
@@ -390,8 +390,10 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
         sc_params.extend(ps[1..].iter().cloned());
         let sc_name = format!("{name}_sc");
         let signature = emit::Signature { name: sc_name.clone(), params: sc_params, output: shape(f) };
-        let doc = format!("{}\n\n{}", doc_of(scene, f, &sc.function.op_count()), super::sc_doc(has_prismatic));
-        let emitted = emit::emit_function(&sc.function, &signature, scalar, trig, n, &doc, options.split_lets)?;
+        let sc_count = super::counted(&sc.function, options.fma);
+        let doc = format!("{}\n\n{}", doc_of(scene, f, &sc_count), super::sc_doc(has_prismatic));
+        let style = emit::BodyStyle::of(options);
+        let emitted = emit::emit_function(&sc.function, &signature, scalar, trig, n, &doc, style)?;
         if let Some(parts) = super::split::parts_of(&emitted) {
             split_functions.push((sc_name.clone(), parts));
         }
@@ -475,6 +477,7 @@ fn header(
             Trig::Inputs => "only NAME_sc(s, c, ...), the caller passes the sines and cosines (no_std)",
         }
     );
+    h.push_str(super::fma_note(options.fma));
     if scene.functions.contains(&SceneFn::ForwardDynamics) {
         let fd = if !scene.input_payloads.is_empty() {
             "M + J_b^T I J_b of the input payloads, h by RNEA, and a sparse LTDL solve"

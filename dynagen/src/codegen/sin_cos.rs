@@ -415,77 +415,81 @@ mod tests {
         }
     }
 
-    /// Where the target has AVX2, `sin_cos_array` takes four angles to a register; CI builds for
-    /// plain x86-64, so this compiles the kernel's text with `rustc -O -C target-feature=+avx2`
-    /// (when this machine has AVX2) and checks that the batches, whole and cut at every length up
-    /// to 11, give the bits of the one-angle kernel of this (SSE2) build.
+    /// Where the target has AVX2, `sin_cos_array` takes four angles to a register, and where it has
+    /// FMA the polynomials are fused. CI builds for plain x86-64, so this compiles the kernel's text
+    /// with `rustc -O` and `-C target-feature=` `+avx2`, `+fma` and `+avx2,+fma` (those this machine
+    /// has) and checks, in each binary, that the batches, whole and cut at lengths 1 to 11, give
+    /// the bits of that binary's one-angle kernel; and that the `+avx2` binary gives the bits of
+    /// this (SSE2, unfused) build. (That the fused kernel stays within 1 ulp is
+    /// `tests/tests/generated_fma.rs`.)
     #[test]
     #[cfg(target_arch = "x86_64")]
-    fn the_avx2_batch_is_the_scalar_kernel_bit_for_bit() {
-        if !std::is_x86_feature_detected!("avx2") {
-            eprintln!("skipped: this machine has no AVX2");
-            return;
-        }
-        let dir = std::env::temp_dir().join(format!("dynagen-avx2-kernel-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let main = format!(
+    fn the_avx2_and_fma_batches_are_the_scalar_kernel_bit_for_bit() {
+        let harness = format!(
             "{KERNEL_SOURCE}\n{HARNESS_ANGLES}\n{}",
             r#"
 fn main() {
-    assert!(cfg!(all(target_arch = "x86_64", target_feature = "avx2")), "built without AVX2");
     let xs = harness_angles();
-    let mut out = Vec::new();
-    fn batch<const N: usize>(xs: &[f64], out: &mut Vec<u64>) {
+    fn batch<const N: usize>(xs: &[f64]) {
         for w in xs.chunks_exact(N) {
             let (s, c) = sin_cos_array::<N>(w.try_into().unwrap());
             for i in 0..N {
-                out.push(s[i].to_bits());
-                out.push(c[i].to_bits());
+                let (ks, kc) = sin_cos_kernel(w[i]);
+                assert!(s[i].to_bits() == ks.to_bits() && c[i].to_bits() == kc.to_bits(), "N {N} at {}", w[i]);
             }
         }
     }
-    batch::<1>(&xs, &mut out);
-    batch::<3>(&xs, &mut out);
-    batch::<4>(&xs, &mut out);
-    batch::<5>(&xs, &mut out);
-    batch::<8>(&xs, &mut out);
-    batch::<9>(&xs, &mut out);
-    batch::<11>(&xs, &mut out);
-    for b in out {
-        println!("{b:016x}");
+    batch::<1>(&xs);
+    batch::<2>(&xs);
+    batch::<3>(&xs);
+    batch::<4>(&xs);
+    batch::<5>(&xs);
+    batch::<6>(&xs);
+    batch::<7>(&xs);
+    batch::<8>(&xs);
+    batch::<9>(&xs);
+    batch::<11>(&xs);
+    println!("avx2 {} fma {}", cfg!(target_feature = "avx2"), cfg!(target_feature = "fma"));
+    for x in xs {
+        let (s, c) = sin_cos_kernel(x);
+        println!("{:016x} {:016x}", s.to_bits(), c.to_bits());
     }
 }
 "#
         );
+        let dir = std::env::temp_dir().join(format!("dynagen-kernel-features-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
         let src = dir.join("main.rs");
-        std::fs::write(&src, main).unwrap();
-        let exe = dir.join("avx2_kernel");
+        std::fs::write(&src, harness).unwrap();
         let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
-        let built = std::process::Command::new(rustc)
-            .args(["--edition", "2021", "-O", "-C", "target-feature=+avx2", "-o"])
-            .arg(&exe)
-            .arg(&src)
-            .output()
-            .expect("running rustc");
-        assert!(built.status.success(), "{}", String::from_utf8_lossy(&built.stderr));
-        let ran = std::process::Command::new(&exe).output().unwrap();
-        assert!(ran.status.success(), "{}", String::from_utf8_lossy(&ran.stderr));
-        let got: Vec<u64> =
-            String::from_utf8(ran.stdout).unwrap().lines().map(|l| u64::from_str_radix(l, 16).unwrap()).collect();
-        let xs = harness_angles();
-        let mut want = Vec::new();
-        for n in [1, 3, 4, 5, 8, 9, 11] {
-            for w in xs.chunks_exact(n) {
-                for &x in w {
+        let mut ran = 0;
+        for (features, avx2, fma) in [("+avx2", true, false), ("+fma", false, true), ("+avx2,+fma", true, true)] {
+            if (avx2 && !std::is_x86_feature_detected!("avx2")) || (fma && !std::is_x86_feature_detected!("fma")) {
+                eprintln!("skipped {features}: this machine lacks it");
+                continue;
+            }
+            let exe = dir.join(features.replace([',', '+'], "_"));
+            let built = std::process::Command::new(&rustc)
+                .args(["--edition", "2021", "-O", "-C", &format!("target-feature={features}"), "-o"])
+                .arg(&exe)
+                .arg(&src)
+                .output()
+                .expect("running rustc");
+            assert!(built.status.success(), "{features}: {}", String::from_utf8_lossy(&built.stderr));
+            let out = std::process::Command::new(&exe).output().unwrap();
+            assert!(out.status.success(), "{features}: {}", String::from_utf8_lossy(&out.stderr));
+            let out = String::from_utf8(out.stdout).unwrap();
+            let mut lines = out.lines();
+            assert_eq!(lines.next(), Some(format!("avx2 {avx2} fma {fma}").as_str()), "{features}: not built as asked");
+            if !fma {
+                for (x, line) in harness_angles().into_iter().zip(lines) {
                     let (s, c) = sin_cos_kernel(x);
-                    want.push(s.to_bits());
-                    want.push(c.to_bits());
+                    assert_eq!(line, format!("{:016x} {:016x}", s.to_bits(), c.to_bits()), "{features} at x = {x:e}");
                 }
             }
+            ran += 1;
         }
-        assert_eq!(got.len(), want.len());
-        let differ = got.iter().zip(&want).position(|(g, w)| g != w);
-        assert_eq!(differ, None, "first difference at output {differ:?}");
+        eprintln!("{ran} of 3 feature sets built and checked");
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -22,6 +22,15 @@ pub struct OpCount {
     pub sqrt: usize,
     /// Sine-and-cosine evaluations (one per angle).
     pub sin_cos: usize,
+    /// Of the additions and subtractions, those emitted as a fused
+    /// multiply-add with one of their products ([`Fusion`](super::Fusion));
+    /// 0 for a function counted without fusion. The counts above stay those
+    /// of the traced operations (a fused operation counts as its
+    /// multiplication and its addition), comparable to other tools'.
+    pub fused: usize,
+    /// Of the multiplications, those that only fed fused multiply-adds and
+    /// so are not computed on their own.
+    pub mul_folded: usize,
 }
 
 impl OpCount {
@@ -41,6 +50,13 @@ impl OpCount {
             }
         }
         c
+    }
+    /// The floating-point operations the emitted code performs when a fused
+    /// multiply-add is one operation: [`OpCount::arithmetic`] less the
+    /// multiplications folded into fused multiply-adds (each fused sum
+    /// stays one operation).
+    pub fn fp_ops(&self) -> usize {
+        self.arithmetic() - self.mul_folded
     }
     /// Every operation, negations included.
     pub fn total(&self) -> usize {
@@ -65,6 +81,8 @@ impl Add for OpCount {
             neg: self.neg + o.neg,
             sqrt: self.sqrt + o.sqrt,
             sin_cos: self.sin_cos + o.sin_cos,
+            fused: self.fused + o.fused,
+            mul_folded: self.mul_folded + o.mul_folded,
         }
     }
 }
@@ -82,7 +100,11 @@ impl fmt::Display for OpCount {
             self.neg,
             self.sqrt,
             self.sin_cos
-        )
+        )?;
+        if self.fused > 0 {
+            write!(f, "; {} fused multiply-adds, {} FP ops with each fused = 1", self.fused, self.fp_ops())?;
+        }
+        Ok(())
     }
 }
 
@@ -103,14 +125,16 @@ pub struct Latency {
     pub sqrt: u32,
     /// A sine and cosine of one angle.
     pub sin_cos: u32,
+    /// A fused multiply-add.
+    pub fma: u32,
 }
 
 impl Default for Latency {
-    /// Typical of a current x86-64 core with SSE2 doubles: add and multiply
-    /// 4 cycles, divide 14, square root 18, a sign flip 1, a library
-    /// `sin_cos` about 40.
+    /// Typical of a current x86-64 core with SSE2 doubles: add, multiply
+    /// and fused multiply-add 4 cycles, divide 14, square root 18, a sign
+    /// flip 1, a library `sin_cos` about 40.
     fn default() -> Self {
-        Latency { add: 4, mul: 4, div: 14, neg: 1, sqrt: 18, sin_cos: 40 }
+        Latency { add: 4, mul: 4, div: 14, neg: 1, sqrt: 18, sin_cos: 40, fma: 4 }
     }
 }
 
@@ -150,10 +174,23 @@ impl CriticalPath {
         // (cycles, ops) at which each node's value is ready.
         let mut ready: Vec<(u32, u32)> = Vec::with_capacity(nodes.len());
         for n in nodes {
-            let (c, o) = n.operands().map(|a| ready[a as usize]).max().unwrap_or((0, 0));
-            let l = latency.of(n);
-            ready.push((c + l, o + u32::from(l > 0)));
+            ready.push(Self::ready_after(&ready, n.operands(), latency.of(n)));
         }
+        Self::to_outputs(&ready, outputs)
+    }
+    /// When an operation of latency `latency` (none if 0) on `operands` is
+    /// ready, as (cycles, operations on the longest chain), given when
+    /// each earlier node is `ready`.
+    pub(crate) fn ready_after(
+        ready: &[(u32, u32)],
+        operands: impl Iterator<Item = super::node::NodeId>,
+        latency: u32,
+    ) -> (u32, u32) {
+        let (c, o) = operands.map(|a| ready[a as usize]).max().unwrap_or((0, 0));
+        (c + latency, o + u32::from(latency > 0))
+    }
+    /// The longest of the `ready` times of `outputs`.
+    pub(crate) fn to_outputs(ready: &[(u32, u32)], outputs: &[super::node::NodeId]) -> Self {
         let (cycles, ops) = outputs.iter().map(|&o| ready[o as usize]).max().unwrap_or((0, 0));
         CriticalPath { cycles, ops }
     }

@@ -3,6 +3,7 @@
 //! generic solver without compiling the generated code.
 
 use super::function::Function;
+use super::fuse::Fusion;
 use super::node::Node;
 use crate::Scalar;
 
@@ -18,6 +19,9 @@ pub struct MissingInput {
     pub index: usize,
 }
 
+/// A fused multiply-add `a·b + c` in the scalar `S`.
+type MulAdd<S> = fn(S, S, S) -> S;
+
 impl Function {
     /// Evaluates the outputs on `f64` inputs given as `(name, values)`.
     pub fn eval(&self, inputs: &[(&str, &[f64])]) -> Result<Vec<f64>, MissingInput> {
@@ -26,9 +30,39 @@ impl Function {
     /// Evaluates the outputs in the scalar `S` (e.g. `f32`), each constant
     /// converted with [`Scalar::from_f64`].
     pub fn eval_as<S: Scalar>(&self, inputs: &[(&str, &[f64])]) -> Result<Vec<S>, MissingInput> {
+        self.eval_nodes(inputs, None)
+    }
+    /// Evaluates the outputs as the code emitted with `fusion` computes them
+    /// on a target with fused multiply-adds: each fused sum by one
+    /// [`f64::mul_add`] (a single rounding), everything else as
+    /// [`Function::eval`].
+    pub fn eval_fused(&self, fusion: &Fusion, inputs: &[(&str, &[f64])]) -> Result<Vec<f64>, MissingInput> {
+        self.eval_fused_as(fusion, inputs, f64::mul_add)
+    }
+    /// As [`Function::eval_fused`], in the scalar `S` with its fused
+    /// multiply-add `mul_add` (e.g. [`f32::mul_add`]).
+    pub fn eval_fused_as<S: Scalar>(
+        &self,
+        fusion: &Fusion,
+        inputs: &[(&str, &[f64])],
+        mul_add: MulAdd<S>,
+    ) -> Result<Vec<S>, MissingInput> {
+        self.eval_nodes(inputs, Some((fusion, mul_add)))
+    }
+    fn eval_nodes<S: Scalar>(
+        &self,
+        inputs: &[(&str, &[f64])],
+        fused: Option<(&Fusion, MulAdd<S>)>,
+    ) -> Result<Vec<S>, MissingInput> {
         let nodes = self.nodes();
         let mut val: Vec<S> = Vec::with_capacity(nodes.len());
-        for node in nodes {
+        for (id, node) in nodes.iter().enumerate() {
+            if let Some((fu, mul_add)) = fused.and_then(|(fusion, m)| fusion.sum(id as u32).map(|fu| (fu, m))) {
+                let sign = |x: S, negate: bool| if negate { -x } else { x };
+                let a = sign(val[fu.a as usize], fu.negate_product);
+                val.push(mul_add(a, val[fu.b as usize], sign(val[fu.c as usize], fu.negate_addend)));
+                continue;
+            }
             let v = match *node {
                 Node::Const(_) => S::from_f64(node.constant().unwrap_or_default()),
                 Node::Input { name, index } => {

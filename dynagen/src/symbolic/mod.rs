@@ -56,8 +56,9 @@
 //! [`balance`] (with [`Rewrites::reassociate`]) rebuilds the sums
 //! whose inner nodes have no other use as the trees that are
 //! ready earliest, which shortens the body's chain of dependent operations
-//! without adding any. The [`OpCount`] of a function counts each kept
-//! operation once; its [`CriticalPath`] is that longest chain, weighted by
+//! without adding any. [`Fusion`] picks the sums that code generation emits
+//! as fused multiply-adds (the graph is left as it is). The [`OpCount`] of
+//! a function counts each kept operation once; its [`CriticalPath`] is that longest chain, weighted by
 //! [`Latency`].
 //!
 //! Constants that are zero or ±1 up to the rounding of the robot file's
@@ -70,6 +71,7 @@ mod eval;
 mod expr;
 mod factor;
 mod function;
+mod fuse;
 mod graph;
 mod node;
 mod tracer;
@@ -80,6 +82,7 @@ pub use eval::MissingInput;
 pub use expr::Expr;
 pub use factor::factor;
 pub use function::Function;
+pub use fuse::{Fused, Fusion};
 pub use graph::{Graph, Rewrites};
 pub use node::{Node, NodeId};
 pub use tracer::{TraceActive, Tracer};

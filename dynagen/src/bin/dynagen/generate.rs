@@ -45,6 +45,12 @@ pub struct Args {
     /// Keep constants that are 0 or ±1 up to rounding as they are.
     #[arg(long)]
     pub no_snap: bool,
+    /// Write every a*b + c as a*b + c rounded twice, also where the target
+    /// has fused multiply-adds (default: fma(a, b, c), one rounding on
+    /// x86_64 built with the fma target feature and on aarch64, the same
+    /// bits as a*b + c elsewhere).
+    #[arg(long)]
+    pub no_fma: bool,
     /// Cut a function body of more than N `let`s into private parts of at
     /// most N (default 2500; 0: never cut). Long bodies overflow rustc's
     /// stack in debug builds and compile slowly in release builds.
@@ -102,6 +108,7 @@ fn builder(args: &Args, source: &RobotSource) -> Result<(Builder, dynagen::Model
             _ => ForwardDynamicsMethod::Auto,
         })
         .snap_rounding(!args.no_snap)
+        .fma(!args.no_fma)
         .trig(trig);
     if let Some(n) = args.split_lets {
         options.split_lets = (n > 0).then_some(n);

@@ -49,37 +49,43 @@ pub fn run(args: &Args) -> Result<Output, CliError> {
 fn full_table(o: &mut String, model: &dynagen::Model, module: &GeneratedModule) {
     let _ = writeln!(
         o,
-        "operations per call (+ - * / sqrt sin_cos; negations apart, in the last two columns): generated vs the generic recursion"
+        "operations per call (+ - * / sqrt sin_cos; negations apart, in columns 4 and 5): generated vs the generic recursion;\n\
+         fused: the generated sums emitted as fused multiply-adds, FP ops: the generated operations with each fused one = 1"
     );
     let _ = writeln!(
         o,
-        "{:<32} {:>10} {:>10} {:>7}   {:>13} {:>11}",
-        "function", "generated", "generic", "ratio", "generated neg", "generic neg"
+        "{:<32} {:>10} {:>10} {:>7}   {:>13} {:>11}   {:>6} {:>7}",
+        "function", "generated", "generic", "ratio", "generated neg", "generic neg", "fused", "FP ops"
     );
     for f in &module.functions {
         let generic = generic_op_count(model, f.kind);
         let (g, r) = (f.op_count.arithmetic(), generic.arithmetic());
         let _ = writeln!(
             o,
-            "{:<32} {:>10} {:>10} {:>6.2}x   {:>13} {:>11}",
+            "{:<32} {:>10} {:>10} {:>6.2}x   {:>13} {:>11}   {:>6} {:>7}",
             f.kind.label(),
             g,
             r,
             r as f64 / g.max(1) as f64,
             f.op_count.neg,
-            generic.neg
+            generic.neg,
+            f.op_count.fused,
+            f.op_count.fp_ops()
         );
     }
     let _ = writeln!(o, "\nbreakdown (generated | generic):");
     for f in &module.functions {
+        let body = &f.sin_cos_inputs.function;
+        let fusion = body.fusion();
         let _ = writeln!(
             o,
-            "  {}:\n    {}\n    {}\n    body with sines and cosines given: {}, {}",
+            "  {}:\n    {}\n    {}\n    body with sines and cosines given: {}, {} ({} unfused)",
             f.kind.label(),
             f.op_count,
             generic_op_count(model, f.kind),
-            f.sin_cos_inputs.function.op_count(),
-            f.sin_cos_inputs.function.critical_path()
+            fusion.op_count(body),
+            fusion.critical_path(),
+            body.critical_path().cycles
         );
     }
 }

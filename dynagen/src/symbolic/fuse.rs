@@ -1,0 +1,236 @@
+//! Fused multiply-adds: which sums of a function absorb one of their
+//! products.
+//!
+//! The generated bodies are bound by the processor's floating-point ports
+//! (about two operations per cycle), and Rust never contracts `a * b + c`
+//! into one fused multiply-add by itself. [`Fusion::of`] picks, for every
+//! addition or subtraction that has a product among its operands, one such
+//! product to fuse with: `a·b + c`, `a·b − c` and `c − a·b` become one
+//! operation `(±a)·b + (±c)` with a single rounding where the target has
+//! one (code generation emits `fma(a, b, c)`, see [`crate::codegen`]).
+//!
+//! - A product that feeds several sums is fused into each of them: when
+//!   every use of the product is fused, the multiplication is not computed
+//!   on its own any more ("folded"), and each folded multiplication is one
+//!   floating-point operation less ([`OpCount::fp_ops`]). A product with
+//!   another use (an output, a factor of another product) is still computed;
+//!   fusing it into its sums then costs nothing and shortens their chains.
+//! - When both operands of a sum are products, the one that can be folded
+//!   (every use of it is a sum's operand) is fused, as that saves an
+//!   operation; between two that both can or both cannot, the one ready
+//!   later (by the latency-weighted depth of [`Latency`], with the fusions
+//!   already chosen before it), so that its multiplication leaves the
+//!   critical path.
+//!
+//! The graph itself is not changed: [`Fusion`] is a plan beside the
+//! [`Function`], read by the emitter, by the operation count
+//! ([`Fusion::op_count`]) and by [`Function::eval_fused`] (the interpreter
+//! with a fused multiply-add, [`f64::mul_add`], for every fused sum).
+//!
+//! On a target without fused multiply-adds the emitted `fma(a, b, c)` is
+//! `a * b + c`, bit for bit the unfused sum: `c − a·b` is written with the
+//! product's first factor negated, and `x + (−y)`, `(−a)·b + c` round
+//! exactly as `x − y`, `c − a·b` do (negation is exact).
+
+use super::count::{CriticalPath, Latency, OpCount};
+use super::function::Function;
+use super::node::{Node, NodeId};
+
+/// One sum computed as a fused multiply-add: `(±a)·b + (±c)`, rounded once.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Fused {
+    /// The product's first factor.
+    pub a: NodeId,
+    /// The product's second factor.
+    pub b: NodeId,
+    /// Whether the product is subtracted (`c − a·b`).
+    pub negate_product: bool,
+    /// The other operand of the sum.
+    pub c: NodeId,
+    /// Whether the other operand is subtracted (`a·b − c`).
+    pub negate_addend: bool,
+}
+
+/// Which sums of a function are fused multiply-adds, and which products
+/// are then not computed on their own (the module documentation says how
+/// they are chosen).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Fusion {
+    /// For each node: how it is fused, if it is a fused sum.
+    sums: Vec<Option<Fused>>,
+    /// For each node: whether it is a product that only fused sums read.
+    folded: Vec<bool>,
+    /// The critical path of the function so computed.
+    path: CriticalPath,
+}
+
+impl Fusion {
+    /// The fused multiply-adds of `f`, chosen with the latencies `latency`.
+    pub fn of(f: &Function, latency: &Latency) -> Fusion {
+        let nodes = f.nodes();
+        let uses = f.use_counts();
+        // How many uses of each node are as an operand of a sum (of two
+        // different operands: `p + p` is left alone).
+        let mut sum_uses = vec![0u32; nodes.len()];
+        for n in nodes {
+            if let Node::Add(x, y) | Node::Sub(x, y) = *n {
+                if x != y {
+                    sum_uses[x as usize] += 1;
+                    sum_uses[y as usize] += 1;
+                }
+            }
+        }
+        let factors = |p: NodeId| match nodes[p as usize] {
+            Node::Mul(a, b) => Some((a, b)),
+            _ => None,
+        };
+        let foldable = |p: NodeId| sum_uses[p as usize] == uses[p as usize];
+        let mut sums = vec![None; nodes.len()];
+        let mut fused_uses = vec![0u32; nodes.len()];
+        let mut ready: Vec<(u32, u32)> = Vec::with_capacity(nodes.len());
+        for (id, n) in nodes.iter().enumerate() {
+            let (x, y, subtract) = match *n {
+                Node::Add(x, y) if x != y => (x, y, false),
+                Node::Sub(x, y) if x != y => (x, y, true),
+                _ => {
+                    ready.push(CriticalPath::ready_after(&ready, n.operands(), latency.of(n)));
+                    continue;
+                }
+            };
+            let pick = match (factors(x).is_some(), factors(y).is_some()) {
+                (true, true) => match (foldable(x), foldable(y)) {
+                    (true, false) => Some(x),
+                    (false, true) => Some(y),
+                    // The later one (the second on a tie).
+                    _ if ready[x as usize] > ready[y as usize] => Some(x),
+                    _ => Some(y),
+                },
+                (true, false) => Some(x),
+                (false, true) => Some(y),
+                (false, false) => None,
+            };
+            let Some(p) = pick else {
+                ready.push(CriticalPath::ready_after(&ready, n.operands(), latency.of(n)));
+                continue;
+            };
+            let (a, b) = factors(p).expect("a product");
+            let c = if p == x { y } else { x };
+            let fused = Fused { a, b, negate_product: subtract && p == y, c, negate_addend: subtract && p == x };
+            sums[id] = Some(fused);
+            fused_uses[p as usize] += 1;
+            ready.push(CriticalPath::ready_after(&ready, [a, b, c].into_iter(), latency.fma));
+        }
+        let folded: Vec<bool> = (0..nodes.len())
+            .map(|p| factors(p as NodeId).is_some() && fused_uses[p] > 0 && fused_uses[p] == uses[p])
+            .collect();
+        let path = CriticalPath::to_outputs(&ready, f.outputs());
+        Fusion { sums, folded, path }
+    }
+    /// No fusion at all, for a function of `len` nodes.
+    pub fn none(f: &Function) -> Fusion {
+        let len = f.nodes().len();
+        Fusion { sums: vec![None; len], folded: vec![false; len], path: f.critical_path() }
+    }
+    /// How node `id` is fused, if it is a fused sum.
+    pub fn sum(&self, id: NodeId) -> Option<Fused> {
+        self.sums.get(id as usize).copied().flatten()
+    }
+    /// Whether node `id` is a product that is not computed on its own
+    /// (every use of it is fused).
+    pub fn is_folded(&self, id: NodeId) -> bool {
+        self.folded.get(id as usize).copied().unwrap_or(false)
+    }
+    /// `f`'s operation count ([`Function::op_count`]) with the fused sums
+    /// and folded products counted ([`OpCount::fused`],
+    /// [`OpCount::mul_folded`]).
+    pub fn op_count(&self, f: &Function) -> OpCount {
+        OpCount {
+            fused: self.sums.iter().flatten().count(),
+            mul_folded: self.folded.iter().filter(|&&x| x).count(),
+            ..f.op_count()
+        }
+    }
+    /// The critical path with the fused sums as one operation each, of
+    /// latency [`Latency::fma`].
+    pub fn critical_path(&self) -> CriticalPath {
+        self.path
+    }
+}
+
+impl Function {
+    /// Its fused multiply-adds with the default [`Latency`].
+    pub fn fusion(&self) -> Fusion {
+        Fusion::of(self, &Latency::default())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::symbolic::Graph;
+
+    /// x0·x1 + x2, x2 − x0·x1 (the product shared, so fused into both and
+    /// folded), x3·x4 − x5 with x3·x4 also an output (fused, not folded),
+    /// and (x0·x1 + x2)·x2 + x3·x4: both products, the later one is fused.
+    fn example() -> Function {
+        let mut g = Graph::new();
+        let x: Vec<NodeId> = (0..6).map(|i| g.input("x", i)).collect();
+        let p = g.mul(x[0], x[1]);
+        let s1 = g.add(p, x[2]);
+        let s2 = g.sub(x[2], p);
+        let r = g.mul(x[3], x[4]);
+        let s3 = g.sub(r, x[5]);
+        let late = g.mul(s1, x[2]);
+        let s4 = g.add(late, r);
+        Function::from_ids("example", &g, &[s1, s2, s3, r, s4])
+    }
+
+    #[test]
+    fn sums_absorb_their_products_and_shared_products_are_folded() {
+        let f = example();
+        let fusion = f.fusion();
+        let count = fusion.op_count(&f);
+        // 4 sums, all fused; x0·x1 folded (both its uses fused), and the
+        // late product (its one use fused); x3·x4 kept (an output).
+        assert_eq!((count.add + count.sub, count.mul), (4, 3));
+        assert_eq!((count.fused, count.mul_folded), (4, 2));
+        assert_eq!(count.fp_ops(), count.arithmetic() - 2);
+        let nodes = f.nodes();
+        let id = |want: Node| nodes.iter().position(|n| *n == want).unwrap() as NodeId;
+        let p = nodes.iter().position(|n| matches!(n, Node::Mul(..))).unwrap() as NodeId;
+        assert!(fusion.is_folded(p));
+        let Node::Mul(a, b) = nodes[p as usize] else { unreachable!() };
+        // x2 − x0·x1: the product negated
+        let Node::Input { .. } = nodes[a as usize] else { panic!("x0") };
+        let s2 = nodes.iter().position(|n| matches!(n, Node::Sub(_, q) if *q == p)).unwrap() as NodeId;
+        assert_eq!(fusion.sum(s2).unwrap(), Fused { a, b, negate_product: true, c: 2, negate_addend: false });
+        // x3·x4 + (x0·x1 + x2)·x2: the later product, the one that can be
+        // folded, is fused; x3·x4 is the addend
+        let late = id(Node::Mul(2, f.outputs()[0]));
+        let s4 = f.outputs()[4];
+        assert_eq!(fusion.sum(s4).map(|u| (u.a, u.b)), Some((2, f.outputs()[0])));
+        assert!(fusion.is_folded(late) && !fusion.is_folded(f.outputs()[3]));
+        // The chain x0·x1 → + → · → + is two fused operations.
+        assert_eq!(f.critical_path().cycles, 4 * 4);
+        assert_eq!(fusion.critical_path().cycles, 2 * 4);
+    }
+
+    #[test]
+    fn the_fused_interpreter_rounds_once() {
+        let f = example();
+        let fusion = f.fusion();
+        // x0·x1 + x2 with x0·x1 = (1 + ε)(1 + 2ε) = 1 + 3ε + 2ε² (not a
+        // double) and x2 = −1: unfused the product rounds to 1 + 3ε, fused
+        // the sum keeps the 2ε².
+        let e = f64::EPSILON;
+        let x = [1.0 + e, 1.0 + 2.0 * e, -1.0, 3.0, 5.0, 7.0];
+        let plain = f.eval(&[("x", &x)]).unwrap();
+        let fused = f.eval_fused(&fusion, &[("x", &x)]).unwrap();
+        assert_eq!(plain[0], 3.0 * e);
+        assert_eq!(fused[0], 3.0 * e + 2.0 * e * e);
+        assert_eq!(fused[1], (-x[0]).mul_add(x[1], x[2]));
+        assert_eq!((fused[2], fused[3]), (8.0, 15.0));
+        // With no fusion, the same bits as the plain interpreter.
+        assert_eq!(f.eval_fused(&Fusion::none(&f), &[("x", &x)]).unwrap(), plain);
+    }
+}

@@ -1,0 +1,333 @@
+//! Fused multiply-adds in generated code (`CodegenOptions::fma`, on by
+//! default), on both sides of the `cfg`:
+//!
+//! - this test binary's own build (no target-cpu flags, so no `fma` target
+//!   feature on x86-64): the UR5 module of `build.rs` gives, bit for bit,
+//!   what the traced functions give evaluated operation by operation
+//!   without fusion (`Function::eval`), i.e. what the code gave before
+//!   `fma(a, b, c)` was emitted;
+//! - the fused path: when the host has FMA, the same module is compiled by
+//!   `rustc -O -C target-feature=+fma` and run. Its results must equal, bit
+//!   for bit, the traced functions evaluated with one `mul_add` per fused
+//!   sum (`Function::eval_fused`), differ from the unfused ones (so the
+//!   instructions really are fused: the check cannot pass by compiling
+//!   `a * b + c`), and stay within 1e-12 of the generic solver. The same
+//!   for an `f32` module (`fmaf`), within 1e-5. The module's sine-cosine
+//!   kernel, whose polynomials are fused there too, must stay within 1 ulp
+//!   (of f64; of f32 for `sin_cos_array_f32`) against double-double values.
+
+use dynagen::codegen::{generate, CodegenOptions, FunctionKind, GeneratedFunction, ScalarType};
+use dynagen::symbolic::Function;
+use dynagen::{DoubleDouble, Model, Robot, Scalar};
+use dynagen_tests::{rel_err, workspace_root, Rng};
+use nalgebra::DVector;
+use std::fmt::Write;
+
+#[allow(dead_code)]
+mod ur5 {
+    include!(concat!(env!("OUT_DIR"), "/ur5_f64.rs"));
+}
+
+const N: usize = 6;
+
+/// Random states: (s, c, q, qd, qdd, tau), the sines and cosines by std.
+struct State {
+    s: [f64; N],
+    c: [f64; N],
+    q: [f64; N],
+    qd: [f64; N],
+    qdd: [f64; N],
+    tau: [f64; N],
+}
+
+fn states(count: usize, seed: u64) -> Vec<State> {
+    let mut rng = Rng::new(seed);
+    (0..count)
+        .map(|_| {
+            let mut arr = |a: f64| -> [f64; N] { core::array::from_fn(|_| rng.range(-a, a)) };
+            let (q, qd, qdd, tau) = (arr(3.0), arr(2.0), arr(5.0), arr(30.0));
+            State { s: q.map(f64::sin), c: q.map(f64::cos), q, qd, qdd, tau }
+        })
+        .collect()
+}
+
+fn ur5_model() -> Model {
+    Model::from_urdf_file(workspace_root().join("dynagen/robots/ur5.urdf")).unwrap()
+}
+
+/// The inputs of an emitted body `NAME_sc` at state `x`.
+fn inputs(x: &State) -> Vec<(&'static str, &[f64])> {
+    vec![("s", &x.s), ("c", &x.c), ("q", &x.q), ("qd", &x.qd), ("qdd", &x.qdd), ("tau", &x.tau)]
+}
+
+fn bits(x: &[f64]) -> Vec<u64> {
+    x.iter().map(|v| v.to_bits()).collect()
+}
+
+fn emitted(options: &CodegenOptions) -> Vec<GeneratedFunction> {
+    let module = generate(&ur5_model(), options).unwrap();
+    module.functions.into_iter().filter(|f| f.emitted).collect()
+}
+
+/// What the generic solver gives for `kind` at `x` (M row-major).
+fn generic(robot: &mut Robot, kind: FunctionKind, x: &State) -> Vec<f64> {
+    let v = |a: &[f64; N]| DVector::from_column_slice(a);
+    let (q, qd) = (v(&x.q), v(&x.qd));
+    match kind {
+        FunctionKind::InverseDynamics => robot.inverse_dynamics(&q, &qd, &v(&x.qdd)).unwrap().as_slice().to_vec(),
+        FunctionKind::MassMatrix => robot.mass_matrix(&q).unwrap().transpose().as_slice().to_vec(),
+        FunctionKind::BiasForces => robot.bias_forces(&q, &qd).unwrap().as_slice().to_vec(),
+        FunctionKind::GravityTorques => robot.gravity_torques(&q).unwrap().as_slice().to_vec(),
+        FunctionKind::ForwardDynamicsAba | FunctionKind::ForwardDynamicsLdlt => {
+            robot.forward_dynamics(&q, &qd, &v(&x.tau)).unwrap().as_slice().to_vec()
+        }
+    }
+}
+
+/// The body `NAME_sc` of this test binary's UR5 module at `x`.
+fn compiled_here(kind: FunctionKind, x: &State) -> Vec<f64> {
+    let (s, c, qd, qdd, tau) = (&x.s, &x.c, &x.qd, &x.qdd, &x.tau);
+    match kind {
+        FunctionKind::InverseDynamics => ur5::inverse_dynamics_sc(s, c, qd, qdd).to_vec(),
+        FunctionKind::MassMatrix => ur5::mass_matrix_sc(s, c).concat(),
+        FunctionKind::BiasForces => ur5::bias_forces_sc(s, c, qd).to_vec(),
+        FunctionKind::GravityTorques => ur5::gravity_torques_sc(s, c).to_vec(),
+        FunctionKind::ForwardDynamicsAba | FunctionKind::ForwardDynamicsLdlt => {
+            ur5::forward_dynamics_sc(s, c, qd, tau).to_vec()
+        }
+    }
+}
+
+#[test]
+fn this_build_gives_the_bits_of_its_target() {
+    let functions = emitted(&CodegenOptions::default());
+    assert_eq!(functions.len(), 5);
+    let fused_target = cfg!(any(
+        all(target_arch = "x86_64", target_feature = "fma"),
+        all(target_arch = "aarch64", target_feature = "neon")
+    ));
+    for x in &states(200, 71) {
+        for f in &functions {
+            let body = &f.sin_cos_inputs.function;
+            let want =
+                if fused_target { body.eval_fused(&body.fusion(), &inputs(x)) } else { body.eval(&inputs(x)) }.unwrap();
+            assert_eq!(bits(&compiled_here(f.kind, x)), bits(&want), "{}", f.kind.label());
+        }
+    }
+}
+
+#[test]
+fn without_fma_nothing_is_fused() {
+    let module = generate(&ur5_model(), &CodegenOptions::default().fma(false)).unwrap();
+    let bodies = |src: &str| src.split("// The sine and cosine of joint angles").next().unwrap().to_string();
+    assert_eq!(bodies(&module.source).lines().filter(|l| is_fused_let(l)).count(), 0, "no body calls fma");
+    assert!(on_source_has_fused_lets());
+    assert!(module.source.contains("// Fused multiply-adds: off"));
+    assert!(module.functions.iter().all(|f| f.op_count.fused == 0 && f.op_count.fp_ops() == f.op_count.arithmetic()));
+    let on = generate(&ur5_model(), &CodegenOptions::default()).unwrap();
+    for (a, b) in module.functions.iter().zip(&on.functions) {
+        // The same traced operations, counted the same; fused on top.
+        assert_eq!((a.op_count.add, a.op_count.mul), (b.op_count.add, b.op_count.mul));
+        assert!(b.op_count.fused > 0 && b.op_count.fp_ops() < b.op_count.arithmetic());
+    }
+}
+
+/// A line `let tK = fma(…);` of a body.
+fn is_fused_let(line: &str) -> bool {
+    let rest = line.trim_start().strip_prefix("let t").unwrap_or_default();
+    rest.starts_with(|c: char| c.is_ascii_digit()) && rest.contains(" = fma(")
+}
+
+fn on_source_has_fused_lets() -> bool {
+    let on = generate(&ur5_model(), &CodegenOptions::default()).unwrap();
+    on.source.lines().any(is_fused_let)
+}
+
+/// Whether this machine runs fused multiply-adds.
+fn host_has_fma() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    return std::is_x86_feature_detected!("fma");
+    #[cfg(target_arch = "aarch64")]
+    return true;
+    #[allow(unreachable_code)]
+    false
+}
+
+fn array_literal(rows: impl Iterator<Item = [f64; N]>) -> String {
+    let rows: Vec<String> = rows.map(|r| format!("{r:?}")).collect();
+    format!("[{}]", rows.join(", "))
+}
+
+/// The kernel's test angles: random ones on a few scales (the fast path)
+/// and the doubles nearest to multiples of π/2 (the slow path).
+fn angles() -> Vec<f64> {
+    let mut rng = Rng::new(73);
+    let mut xs: Vec<f64> = [4.0, 100.0, 1e5].iter().flat_map(|&a| (0..600).map(move |_| a)).collect();
+    for x in &mut xs {
+        *x = rng.range(-*x, *x);
+    }
+    let half_pi = DoubleDouble::new(core::f64::consts::FRAC_PI_2, 6.123233995736766e-17);
+    xs.extend((1..=200).map(|k| half_pi.mul_f64(k as f64).to_f64()));
+    xs
+}
+
+/// |got − exact| in ulps of the exact value's binade.
+fn ulps(got: f64, exact: DoubleDouble) -> f64 {
+    let err = (DoubleDouble::from(got) - exact).to_f64().abs();
+    let ulp = f64::from_bits(exact.hi.abs().to_bits() & 0x7ff0_0000_0000_0000) * f64::EPSILON;
+    err / ulp.max(f64::from_bits(1))
+}
+
+/// A program that prints, for every state and every body of the module
+/// `m64` (f64) and `m32` (f32), a line `k name bits…`, then the sines and
+/// cosines of `angles` by both kernels.
+fn program(xs: &[State], f64_fns: &[GeneratedFunction], f32_fns: &[GeneratedFunction], angles: &[f64]) -> String {
+    let mut p = String::from(
+        "#![allow(dead_code)]\nmod m64 { include!(\"ur5.rs\"); }\nmod m32 { include!(\"ur5_f32.rs\"); }\n",
+    );
+    for (name, pick) in [
+        ("S", (|x: &State| x.s) as fn(&State) -> [f64; N]),
+        ("C", |x| x.c),
+        ("QD", |x| x.qd),
+        ("QDD", |x| x.qdd),
+        ("TAU", |x| x.tau),
+    ] {
+        let _ = writeln!(p, "const {name}: [[f64; {N}]; {}] = {};", xs.len(), array_literal(xs.iter().map(pick)));
+    }
+    p.push_str("fn out<T: core::fmt::LowerHex>(k: usize, name: &str, x: &[T]) {\n");
+    p.push_str("    print!(\"{k} {name}\");\n    for v in x { print!(\" {v:x}\"); }\n    println!();\n}\n");
+    p.push_str("fn f32s(x: &[f64; 6]) -> [f32; 6] { x.map(|v| v as f32) }\n");
+    p.push_str("fn main() {\n    for k in 0..S.len() {\n");
+    for (module, fns, conv, bits) in [("m64", f64_fns, "", "f64::to_bits"), ("m32", f32_fns, "&f32s(", "f32::to_bits")]
+    {
+        for f in fns {
+            let close = if conv.is_empty() { "" } else { ")" };
+            let mut args = vec![format!("{conv}&S[k]{close}"), format!("{conv}&C[k]{close}")];
+            for input in &f.kind.inputs()[1..] {
+                args.push(format!("{conv}&{}[k]{close}", input.to_uppercase()));
+            }
+            let call = format!("{module}::{}_sc({})", f.kind.fn_name(), args.join(", "));
+            let flat = if f.kind.is_matrix() { ".as_flattened().to_vec()" } else { ".to_vec()" };
+            let _ = writeln!(
+                p,
+                "        out(k, \"{module}_{}\", &{call}{flat}.into_iter().map({bits}).collect::<Vec<_>>());",
+                f.kind.fn_name()
+            );
+        }
+    }
+    p.push_str("    }\n");
+    let _ = writeln!(p, "    let x: [f64; {}] = {angles:?};", angles.len());
+    p.push_str("    let (s, c) = m64::sin_cos_array(&x);\n");
+    p.push_str("    out(0, \"sin64\", &s.map(f64::to_bits));\n    out(0, \"cos64\", &c.map(f64::to_bits));\n");
+    p.push_str("    let (s, c) = m32::sin_cos_array_f32(&x.map(|v| v as f32));\n");
+    p.push_str("    out(0, \"sin32\", &s.map(f32::to_bits));\n    out(0, \"cos32\", &c.map(f32::to_bits));\n");
+    p.push_str("}\n");
+    p
+}
+
+#[test]
+fn the_fused_path_compiled_with_the_fma_feature_rounds_once_and_stays_accurate() {
+    if !host_has_fma() {
+        eprintln!("this machine has no fused multiply-add: the fused path is not run here");
+        return;
+    }
+    let f64_module = generate(&ur5_model(), &CodegenOptions::default()).unwrap();
+    let f32_module = generate(&ur5_model(), &CodegenOptions::default().scalar(ScalarType::F32)).unwrap();
+    let pick = |m: &dynagen::codegen::GeneratedModule| -> Vec<GeneratedFunction> {
+        m.functions.iter().filter(|f| f.emitted).cloned().collect()
+    };
+    let (f64_fns, f32_fns) = (pick(&f64_module), pick(&f32_module));
+    let xs = states(40, 72);
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("generated_fma");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("ur5.rs"), &f64_module.source).unwrap();
+    std::fs::write(dir.join("ur5_f32.rs"), &f32_module.source).unwrap();
+    let angles = angles();
+    std::fs::write(dir.join("main.rs"), program(&xs, &f64_fns, &f32_fns, &angles)).unwrap();
+    let exe = dir.join("fused");
+    let mut rustc = std::process::Command::new(std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into()));
+    rustc.args(["--edition", "2021", "-O", "-o"]).arg(&exe).arg(dir.join("main.rs"));
+    if cfg!(target_arch = "x86_64") {
+        rustc.args(["-C", "target-feature=+fma"]);
+    }
+    let built = rustc.output().expect("running rustc");
+    assert!(built.status.success(), "rustc failed:\n{}", String::from_utf8_lossy(&built.stderr));
+    let run = std::process::Command::new(&exe).output().expect("running the fused program");
+    assert!(run.status.success());
+    let stdout = String::from_utf8(run.stdout).unwrap();
+    let mut robot = Robot::from_urdf_file(workspace_root().join("dynagen/robots/ur5.urdf")).unwrap();
+    let (mut lines, mut differ, mut worst) = (0, [0usize; 2], [0.0f64; 2]);
+    let (mut kernel_worst, mut kernel_differ) = ([0.0f64; 4], 0);
+    let exact: Vec<(DoubleDouble, DoubleDouble)> = angles.iter().map(|&x| DoubleDouble::from(x).sin_cos()).collect();
+    let unfused = dynagen::codegen::sin_cos_kernel;
+    for line in stdout.lines() {
+        let mut words = line.split_whitespace();
+        let k: usize = words.next().unwrap().parse().unwrap();
+        let name = words.next().unwrap();
+        let got: Vec<u64> = words.map(|w| u64::from_str_radix(w, 16).unwrap()).collect();
+        if let Some(j) = ["sin64", "cos64", "sin32", "cos32"].iter().position(|n| *n == name) {
+            assert_eq!(got.len(), angles.len());
+            for (i, (&b, &x)) in got.iter().zip(&angles).enumerate() {
+                let u = if j < 2 {
+                    let (e, want) = if j == 0 { (exact[i].0, unfused(x).0) } else { (exact[i].1, unfused(x).1) };
+                    kernel_differ += usize::from(b != want.to_bits());
+                    ulps(f64::from_bits(b), e)
+                } else {
+                    // In ulps of f32 (2²⁹ of f64's) of the exact value of the f32 angle.
+                    let x32 = DoubleDouble::from(f64::from(x as f32)).sin_cos();
+                    let e = if j == 2 { x32.0 } else { x32.1 };
+                    ulps(f64::from(f32::from_bits(b as u32)), e) / (1u64 << 29) as f64
+                };
+                assert!(u <= 1.0, "{name}({x:e}): {u} ulp");
+                kernel_worst[j] = kernel_worst[j].max(u);
+            }
+            continue;
+        }
+        let (module, fn_name) = name.split_at(3);
+        let fns = if module == "m64" { &f64_fns } else { &f32_fns };
+        let f = fns.iter().find(|f| f.kind.fn_name() == &fn_name[1..]).unwrap();
+        let body: &Function = &f.sin_cos_inputs.function;
+        let (x, fusion) = (&xs[k], body.fusion());
+        let want = generic(&mut robot, f.kind, x);
+        if module == "m64" {
+            let got: Vec<f64> = got.into_iter().map(f64::from_bits).collect();
+            let fused = body.eval_fused(&fusion, &inputs(x)).unwrap();
+            assert_eq!(bits(&got), bits(&fused), "{name} at state {k}: not the fused interpreter's bits");
+            differ[0] += usize::from(bits(&got) != bits(&body.eval(&inputs(x)).unwrap()));
+            let e = rel_err(&got, &want, 1.0);
+            assert!(e < 1e-12, "{name} at state {k}: relative error {e:e}");
+            worst[0] = worst[0].max(e);
+        } else {
+            let got: Vec<f32> = got.into_iter().map(|b| f32::from_bits(b as u32)).collect();
+            let x32 = |a: &[f64; N]| a.map(|v| f64::from(v as f32));
+            let (s, c, qd, qdd, tau) = (x32(&x.s), x32(&x.c), x32(&x.qd), x32(&x.qdd), x32(&x.tau));
+            let inputs32 = [("s", &s[..]), ("c", &c), ("qd", &qd), ("qdd", &qdd), ("tau", &tau)];
+            let fused = body.eval_fused_as::<f32>(&fusion, &inputs32, f32::mul_add).unwrap();
+            let b32 = |v: &[f32]| v.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+            assert_eq!(b32(&got), b32(&fused), "{name} at state {k}: not the fused interpreter's bits");
+            differ[1] += usize::from(b32(&got) != b32(&body.eval_as::<f32>(&inputs32).unwrap()));
+            let got: Vec<f64> = got.into_iter().map(f64::from).collect();
+            let e = rel_err(&got, &want, 1.0);
+            assert!(e < 1e-5, "{name} at state {k}: relative error {e:e}");
+            worst[1] = worst[1].max(e);
+        }
+        lines += 1;
+    }
+    assert_eq!(lines, xs.len() * (f64_fns.len() + f32_fns.len()), "{stdout}");
+    // The fused kernel rounds differently from the unfused one somewhere
+    // (rarely: the fused operations are the polynomials' small corrections).
+    assert!(kernel_differ > 0, "no fused kernel result differs from the unfused one");
+    println!(
+        "fused sin_cos_array: max error sin {:.3}, cos {:.3} ulp ({kernel_differ} of {} results differ from unfused); f32 {:.3}, {:.3} ulp of f32",
+        kernel_worst[0],
+        kernel_worst[1],
+        2 * angles.len(),
+        kernel_worst[2],
+        kernel_worst[3]
+    );
+    // Rounding once changes the last bits of most results: fused
+    // instructions ran (with `a * b + c` no result would differ).
+    let per_module = xs.len() * f64_fns.len();
+    assert!(differ.iter().all(|&d| d > per_module / 2), "{differ:?} of {per_module} results differ from unfused");
+    println!("fused UR5 module: {differ:?} of {per_module} results (f64, f32) differ from unfused; worst relative error against the generic solver {worst:?}");
+}
