@@ -1152,6 +1152,33 @@ fn fma(a: f64, b: f64, c: f64) -> f64 {
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut s = [0.0; N];
     let mut c = [0.0; N];
+    if !sin_cos_batches::<Precise, N>(x, &mut s, &mut c) {
+        sin_cos_again(x, &mut s, &mut c);
+    }
+    (s, c)
+}
+
+/// A fast path over registers of angles: (sin, cos, within 1 ulp) per
+/// register.
+trait FastPath {
+    /// The fast path on `P` registers, step by step across them.
+    fn lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P];
+}
+
+/// `sin_cos_lanes`: within 1 ulp of `f64`.
+struct Precise;
+
+impl FastPath for Precise {
+    #[inline(always)]
+    fn lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
+        sin_cos_lanes(x)
+    }
+}
+
+/// `K`'s fast path on every angle of `x`, the results into `s` and `c`, and
+/// whether they are all within 1 ulp (false: redo them on the slow path).
+#[inline(always)]
+fn sin_cos_batches<K: FastPath, const N: usize>(x: &[f64; N], s: &mut [f64; N], c: &mut [f64; N]) -> bool {
     let mut fast = true;
     let mut i = 0;
     while i < N {
@@ -1163,33 +1190,30 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
         let ok = {
             let quad = |j: usize| core::array::from_fn(|l| at(j + l));
             match N - i {
-                1..=4 => sin_cos_pass::<4, 1, N>(i, [quad(0)], &mut s, &mut c),
-                _ => sin_cos_pass::<4, 2, N>(i, [quad(0), quad(4)], &mut s, &mut c),
+                1..=4 => sin_cos_pass::<K, 4, 1, N>(i, [quad(0)], s, c),
+                _ => sin_cos_pass::<K, 4, 2, N>(i, [quad(0), quad(4)], s, c),
             }
         };
         #[cfg(not(all(target_arch = "x86_64", target_feature = "avx2")))]
         let ok = {
             let pair = |j: usize| [at(j), at(j + 1)];
             match N - i {
-                1 | 2 => sin_cos_pass::<2, 1, N>(i, [pair(0)], &mut s, &mut c),
-                3 | 4 => sin_cos_pass::<2, 2, N>(i, [pair(0), pair(2)], &mut s, &mut c),
-                _ => sin_cos_pass::<2, 3, N>(i, [pair(0), pair(2), pair(4)], &mut s, &mut c),
+                1 | 2 => sin_cos_pass::<K, 2, 1, N>(i, [pair(0)], s, c),
+                3 | 4 => sin_cos_pass::<K, 2, 2, N>(i, [pair(0), pair(2)], s, c),
+                _ => sin_cos_pass::<K, 2, 3, N>(i, [pair(0), pair(2), pair(4)], s, c),
             }
         };
         fast &= ok;
         i += if cfg!(all(target_arch = "x86_64", target_feature = "avx2")) { 8 } else { 6 };
     }
-    if !fast {
-        sin_cos_again(x, &mut s, &mut c);
-    }
-    (s, c)
+    fast
 }
 
-/// `sin_cos_lanes` on `P` registers of `W` angles, interleaved, the
-/// results into `s[i..]` and `c[i..]` (what fits), and whether they are all
-/// within 1 ulp.
+/// `K`'s fast path on `P` registers of `W` angles, interleaved, the results
+/// into `s[i..]` and `c[i..]` (what fits), and whether they are all within 1
+/// ulp.
 #[inline(always)]
-fn sin_cos_pass<const W: usize, const P: usize, const N: usize>(
+fn sin_cos_pass<K: FastPath, const W: usize, const P: usize, const N: usize>(
     i: usize,
     x: [[f64; W]; P],
     s: &mut [f64; N],
@@ -1198,7 +1222,7 @@ fn sin_cos_pass<const W: usize, const P: usize, const N: usize>(
 where
     [f64; W]: ToLanes,
 {
-    let r = sin_cos_lanes(x.map(<[f64; W]>::to_lanes));
+    let r = K::lanes(x.map(<[f64; W]>::to_lanes));
     for j in 0..W * P {
         if i + j < N {
             (s[i + j], c[i + j]) = (r[j / W].0.lane(j % W), r[j / W].1.lane(j % W));

@@ -356,6 +356,31 @@ mod tests {
         assert!(s.iter().chain(&c).all(|v| v.is_nan()));
         let (s, c) = sin_cos_array_f32(&[-0.0, 0.0]);
         assert!(s[0] == 0.0 && s[0].is_sign_negative() && s[1].is_sign_positive() && c == [1.0, 1.0]);
+        // Batches of every length give each angle's own result, also beside a slow angle.
+        let near = (core::f64::consts::FRAC_PI_2 * 7.0) as f32;
+        for slow in [None, Some(f32::NAN), Some(near), Some(3e7)] {
+            for at in 0..9 {
+                let mut q: [f32; 9] = core::array::from_fn(|i| xs[100 + 7 * i]);
+                if let Some(x) = slow {
+                    q[at] = x;
+                }
+                fn check<const N: usize>(q: &[f32]) {
+                    let q: [f32; N] = q[..N].try_into().unwrap();
+                    let (s, c) = sin_cos_array_f32(&q);
+                    for i in 0..N {
+                        let (ks, kc) = sin_cos_kernel_f32(q[i]);
+                        assert!(s[i].to_bits() == ks.to_bits() && c[i].to_bits() == kc.to_bits(), "N {N}, {q:?}");
+                    }
+                }
+                check::<1>(&q);
+                check::<2>(&q);
+                check::<3>(&q);
+                check::<4>(&q);
+                check::<5>(&q);
+                check::<7>(&q);
+                check::<9>(&q);
+            }
+        }
         // Beyond the fast path: the f64 kernel, rounded.
         for x in [2e6f32, -3.5e7, 1e20, f32::MAX] {
             let (s, c) = sin_cos_array_f32(&[x]);
@@ -366,7 +391,8 @@ mod tests {
         for k in 1..=63662 {
             let x = (k as f64 * core::f64::consts::FRAC_PI_2) as f32;
             for d in -1i32..=1 {
-                assert!(sin_cos_fast_f32(f32::from_bits((x.to_bits() as i32 + d) as u32)).2, "k = {k}");
+                let x = f32::from_bits((x.to_bits() as i32 + d) as u32);
+                assert!(sin_cos_lanes_f32([f64::from(x)])[0].2, "k = {k}");
             }
         }
     }
@@ -415,7 +441,7 @@ mod tests {
         }
     }
 
-    /// Where the target has AVX2, `sin_cos_array` takes four angles to a register, and where it has
+    /// Where the target has AVX2, `sin_cos_array` (and `sin_cos_array_f32`) takes four angles to a register, and where it has
     /// FMA the polynomials are fused. CI builds for plain x86-64, so this compiles the kernel's text
     /// with `rustc -O` and `-C target-feature=` `+avx2`, `+fma` and `+avx2,+fma` (those this machine
     /// has) and checks, in each binary, that the batches, whole and cut at lengths 1 to 11, give
@@ -426,7 +452,7 @@ mod tests {
     #[cfg(target_arch = "x86_64")]
     fn the_avx2_and_fma_batches_are_the_scalar_kernel_bit_for_bit() {
         let harness = format!(
-            "{KERNEL_SOURCE}\n{HARNESS_ANGLES}\n{}",
+            "{KERNEL_SOURCE_F32}\n{HARNESS_ANGLES}\n{}",
             r#"
 fn main() {
     let xs = harness_angles();
@@ -449,10 +475,26 @@ fn main() {
     batch::<8>(&xs);
     batch::<9>(&xs);
     batch::<11>(&xs);
+    fn batch_f32<const N: usize>(xs: &[f64]) {
+        for w in xs.chunks_exact(N) {
+            let w: [f32; N] = core::array::from_fn(|i| w[i] as f32);
+            let (s, c) = sin_cos_array_f32::<N>(&w);
+            for i in 0..N {
+                let (ks, kc) = sin_cos_kernel_f32(w[i]);
+                assert!(s[i].to_bits() == ks.to_bits() && c[i].to_bits() == kc.to_bits(), "f32 N {N} at {}", w[i]);
+            }
+        }
+    }
+    batch_f32::<1>(&xs);
+    batch_f32::<3>(&xs);
+    batch_f32::<5>(&xs);
+    batch_f32::<8>(&xs);
+    batch_f32::<9>(&xs);
     println!("avx2 {} fma {}", cfg!(target_feature = "avx2"), cfg!(target_feature = "fma"));
     for x in xs {
         let (s, c) = sin_cos_kernel(x);
-        println!("{:016x} {:016x}", s.to_bits(), c.to_bits());
+        let (s32, c32) = sin_cos_kernel_f32(x as f32);
+        println!("{:016x} {:016x} {:08x} {:08x}", s.to_bits(), c.to_bits(), s32.to_bits(), c32.to_bits());
     }
 }
 "#
@@ -483,8 +525,15 @@ fn main() {
             assert_eq!(lines.next(), Some(format!("avx2 {avx2} fma {fma}").as_str()), "{features}: not built as asked");
             if !fma {
                 for (x, line) in harness_angles().into_iter().zip(lines) {
-                    let (s, c) = sin_cos_kernel(x);
-                    assert_eq!(line, format!("{:016x} {:016x}", s.to_bits(), c.to_bits()), "{features} at x = {x:e}");
+                    let ((s, c), (s32, c32)) = (sin_cos_kernel(x), sin_cos_kernel_f32(x as f32));
+                    let want = format!(
+                        "{:016x} {:016x} {:08x} {:08x}",
+                        s.to_bits(),
+                        c.to_bits(),
+                        s32.to_bits(),
+                        c32.to_bits()
+                    );
+                    assert_eq!(line, want, "{features} at x = {x:e}");
                 }
             }
             ran += 1;

@@ -43,47 +43,49 @@ fn fmaf(a: f32, b: f32, c: f32) -> f32 {
 }
 
 /// The sines and cosines of `x` (`f32`), entry by entry: within 1 ulp of
-/// `f32` for every finite angle (NaN and ±∞ give NaN); two angles at a time
-/// in vector instructions.
+/// `f32` for every finite angle (NaN and ±∞ give NaN); two or four angles
+/// at a time in vector instructions, like `sin_cos_array`.
 #[inline]
 pub fn sin_cos_array_f32<const N: usize>(x: &[f32; N]) -> ([f32; N], [f32; N]) {
     let mut s = [0.0; N];
     let mut c = [0.0; N];
-    let mut fast = true;
-    let mut i = 0;
-    while i + 2 <= N {
-        let (s0, c0, ok0) = sin_cos_fast_f32(x[i]);
-        let (s1, c1, ok1) = sin_cos_fast_f32(x[i + 1]);
-        (s[i], s[i + 1], c[i], c[i + 1]) = (s0, s1, c0, c1);
-        fast &= ok0 & ok1;
-        i += 2;
-    }
-    if i < N {
-        let ok;
-        (s[i], c[i], ok) = sin_cos_fast_f32(x[i]);
-        fast &= ok;
-    }
-    if !fast {
-        sin_cos_again_f32(x, &mut s, &mut c);
-    }
-    (s, c)
-}
-
-/// The rare case of `sin_cos_array_f32`: every angle again by `sin_cos_kernel`.
-#[cold]
-#[inline(never)]
-fn sin_cos_again_f32(x: &[f32], s: &mut [f32], c: &mut [f32]) {
-    for ((x, s), c) in x.iter().zip(s).zip(c) {
-        let (a, b) = sin_cos_kernel(f64::from(*x));
-        (*s, *c) = (a as f32, b as f32);
+    if sin_cos_batches::<Single, N>(&x.map(f64::from), &mut s, &mut c) {
+        (s.map(|s| s as f32), c.map(|c| c as f32))
+    } else {
+        let one = x.map(sin_cos_kernel_f32);
+        (one.map(|r| r.0), one.map(|r| r.1))
     }
 }
 
-/// The sine and cosine of one `f32` angle, and whether they are within 1
-/// ulp (false: take `sin_cos_kernel`).
+/// The sine and cosine of one `f32` angle: within 1 ulp of `f32` for every
+/// finite angle (NaN and ±∞ give NaN).
+#[inline]
+pub fn sin_cos_kernel_f32(x: f32) -> (f32, f32) {
+    match sin_cos_lanes_f32([f64::from(x)]) {
+        [(s, c, true)] => (s as f32, c as f32),
+        _ => {
+            let (s, c) = sin_cos_kernel(f64::from(x));
+            (s as f32, c as f32)
+        }
+    }
+}
+
+/// `sin_cos_lanes_f32`: within 1 ulp of `f32` once rounded to it.
+struct Single;
+
+impl FastPath for Single {
+    #[inline(always)]
+    fn lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
+        sin_cos_lanes_f32(x)
+    }
+}
+
+/// The fast path for `f32` angles (in `f64`) on `P` registers: the sines
+/// and cosines before their rounding to `f32`, and whether they are within
+/// 1 ulp of `f32` once rounded (false: take `sin_cos_kernel`).
 #[inline(always)]
 #[allow(clippy::excessive_precision, clippy::approx_constant)]
-fn sin_cos_fast_f32(x: f32) -> (f32, f32, bool) {
+fn sin_cos_lanes_f32<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
     const FRAC_2_PI: f64 = 0.6366197723675814;
     const ROUND: f64 = 6755399441055744.0;
     const P1: f64 = 1.5707963267341256;
@@ -95,16 +97,23 @@ fn sin_cos_fast_f32(x: f32) -> (f32, f32, bool) {
     const C0: f64 = 4.166664568297395e-2;
     const C1: f64 = -1.388731625430343e-3;
     const C2: f64 = 2.4433157053129838e-5;
-    let x = f64::from(x);
-    let t = x * FRAC_2_PI + ROUND;
-    let k = t - ROUND;
-    let r = fma(-k, P2, fma(-k, P1, x));
-    let m = r.abs() * 3.5184372088832e13; // 2⁴⁵
-    let ok = (if m < 1.5e6 { m } else { 1.5e6 }) >= x.abs();
-    let z = r * r;
+    let v = V::splat;
+    let t: [V; P] = each(|i| x[i].mul(v(FRAC_2_PI)).add(v(ROUND)));
+    let k: [V; P] = each(|i| t[i].sub(v(ROUND)));
+    let r: [V; P] = each(|i| k[i].neg().mul_add(v(P2), k[i].neg().mul_add(v(P1), x[i])));
+    // Within 1 ulp of f32 if |x| ≤ 1.5e6 and |r| ≥ 2⁻⁴⁵·|x|: min(2⁴⁵·|r|, 1.5e6) ≥ |x|.
+    let ok: [bool; P] = core::array::from_fn(|i| r[i].abs().mul(v(3.5184372088832e13)).capped_ge(x[i].abs()));
+    let z: [V; P] = each(|i| r[i].mul(r[i]));
+    let z2: [V; P] = each(|i| z[i].mul(z[i]));
     // r·(1 + z·S(z)) keeps sin(−0) = −0.
-    let sin_r = r * fma(z, fma(z * z, fma(z, S3, S2), fma(z, S1, S0)), 1.0);
-    let cos_r = fma(z * z, fma(z, fma(z, C2, C1), C0), fma(-0.5, z, 1.0));
-    let (s, c) = <f64 as Lanes>::quadrant(sin_r, sin_r, cos_r, t);
-    (s as f32, c as f32, ok)
+    let sin_r: [V; P] = each(|i| {
+        r[i].mul(z[i].mul_add(z2[i].mul_add(z[i].mul_add(v(S3), v(S2)), z[i].mul_add(v(S1), v(S0))), v(1.0)))
+    });
+    let cos_r: [V; P] = each(|i| {
+        z2[i].mul_add(z[i].mul_add(z[i].mul_add(v(C2), v(C1)), v(C0)), v(-0.5).mul_add(z[i], v(1.0)))
+    });
+    core::array::from_fn(|i| {
+        let (s, c) = V::quadrant(sin_r[i], sin_r[i], cos_r[i], t[i]);
+        (s, c, ok[i])
+    })
 }
