@@ -31,8 +31,8 @@ use crate::algorithms::joint::{
 };
 use crate::algorithms::rnea::update_joint_transforms;
 use crate::algorithms::Workspace;
-use crate::model::Model;
-use crate::spatial::{Force, Inertia, Motion};
+use crate::model::{AxisAlignment, Joint, JointKind, Model};
+use crate::spatial::{Force, Inertia, Mat3, Motion, Transform, Vec3};
 use crate::symbolic::{Expr, Function, Node, Rewrites, TraceActive, Tracer};
 use crate::Scalar;
 
@@ -70,6 +70,40 @@ fn quadratic_form<S: Scalar>(i: &Inertia<S>, s: &Motion<S>) -> S {
     w.dot(&i.ibar.mul_vec(w)) + i.h.dot(&v.cross(w)) * S::from_f64(2.0) + v.dot(v) * i.mass
 }
 
+/// Whether every entry of a rotation is 0 or ±1 (a quarter-turn placement,
+/// after the rounding snap).
+fn is_signed_permutation(r: &Mat3<f64>) -> bool {
+    r.0.iter().flatten().all(|&x| x == 0.0 || x.abs() == 1.0)
+}
+
+/// [`inertia_to_parent`] for a joint's transform `x = (P·R_K(θ), p)`. When
+/// the joint turns about a coordinate axis and its placement rotation `P`
+/// is a signed permutation, the inertia is turned about the axis first
+/// (the short rotation of an inertia about a coordinate axis), then by `P`
+/// (which only permutes and negates entries), then shifted by `p`: the
+/// generic product with the dense `P·R_K(θ)` does not see that structure.
+/// The same inertia up to rounding.
+#[inline(always)]
+fn composite_to_parent<S: Scalar>(joint: &Joint, x: &Transform<S>, i: &Inertia<S>) -> Inertia<S> {
+    let permuted = matches!(joint.kind, JointKind::Revolute | JointKind::Continuous)
+        && joint.alignment != AxisAlignment::General
+        && !joint.placement_rotation_is_identity
+        && is_signed_permutation(&joint.placement.rot);
+    if !permuted {
+        return inertia_to_parent(joint, x, i);
+    }
+    let p = S::rotation_constant(&joint.placement.rot);
+    // The joint's own turn R_K(θ) = Pᵀ·(P·R_K(θ)), about its axis.
+    let turn = Transform { rot: p.transpose().mul_mat(&x.rot), trans: Vec3::zero() };
+    let about = Joint {
+        placement: crate::spatial::Transform::identity(),
+        placement_rotation_is_identity: true,
+        ..joint.clone()
+    };
+    let turned = inertia_to_parent(&about, &turn, i);
+    Transform { rot: p, trans: x.trans }.inertia_to_parent(&turned)
+}
+
 /// Every way of computing each entry that reaches at most `reach` levels
 /// below the entry's upper joint, in the order of the [`Plan`]'s choices;
 /// empty lists for joints on different branches. Leaves the composite
@@ -82,7 +116,7 @@ fn candidates<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], reach: u
     ws.inertia[..n].copy_from_slice(&own);
     for i in (0..n).rev() {
         if let Some(p) = model.bodies[i].parent {
-            let ic = inertia_to_parent(&model.bodies[i].joint, &ws.x[i], &ws.inertia[i]);
+            let ic = composite_to_parent(&model.bodies[i].joint, &ws.x[i], &ws.inertia[i]);
             ws.inertia[p] = ws.inertia[p].add(&ic);
         }
     }
@@ -230,38 +264,64 @@ pub(crate) fn plan(model: &Model, rewrites: Rewrites) -> Result<Plan, TraceActiv
             uses[x as usize] += 1;
         }
     }
-    // Diagonal entries first (their choices decide which axes are carried),
-    // then the rest, row by row.
-    let mut order: Vec<usize> = (0..n).map(|i| i * n + i).collect();
-    order.extend((0..n).flat_map(|i| (i + 1..n).map(move |j| i * n + j)));
+    // Moves: one entry to another choice, or a whole row's off-diagonal
+    // entries to the same level below their joint (carrying the row's axis
+    // pays only when several entries share it). Diagonal entries first
+    // (their choices decide which axes are carried), then the rest.
+    let mut moves: Vec<Vec<(usize, usize)>> = Vec::new();
+    let singles = |e: usize| (1..cones[e].len()).map(move |alt| vec![(e, alt)]);
+    for i in 0..n {
+        moves.extend(singles(i * n + i));
+    }
+    for i in 0..n {
+        for level in 1..n {
+            let row: Vec<(usize, usize)> = (i + 1..n)
+                .map(|j| i * n + j)
+                .filter(|&e| cones[e].len() > 1)
+                .map(|e| (e, level.min(cones[e].len() - 1)))
+                .collect();
+            if row.len() > 1 {
+                moves.push(row);
+            }
+        }
+        for j in i + 1..n {
+            moves.extend(singles(i * n + j));
+        }
+    }
     for _sweep in 0..4 {
         let mut improved = false;
-        for &e in &order {
-            for alt in 0..cones[e].len() {
-                let cur = plan.choice[e];
-                if alt == cur {
-                    continue;
-                }
-                // Operations freed by dropping the current choice, and added
-                // by taking the other one.
-                let mut freed = 0i64;
-                for &x in &cones[e][cur] {
+        for m in &moves {
+            let m: Vec<(usize, usize)> = m.iter().copied().filter(|&(e, alt)| plan.choice[e] != alt).collect();
+            if m.is_empty() {
+                continue;
+            }
+            // Operations freed by dropping the current choices, and added by
+            // taking the others.
+            let mut freed = 0i64;
+            for &(e, _) in &m {
+                for &x in &cones[e][plan.choice[e]] {
                     uses[x as usize] -= 1;
                     freed += i64::from(uses[x as usize] == 0);
                 }
-                let mut added = 0i64;
+            }
+            let mut added = 0i64;
+            for &(e, alt) in &m {
                 for &x in &cones[e][alt] {
                     added += i64::from(uses[x as usize] == 0);
                     uses[x as usize] += 1;
                 }
-                if added < freed {
+            }
+            if added < freed {
+                for &(e, alt) in &m {
                     plan.choice[e] = alt;
-                    improved = true;
-                } else {
+                }
+                improved = true;
+            } else {
+                for &(e, alt) in &m {
                     for &x in &cones[e][alt] {
                         uses[x as usize] -= 1;
                     }
-                    for &x in &cones[e][cur] {
+                    for &x in &cones[e][plan.choice[e]] {
                         uses[x as usize] += 1;
                     }
                 }
