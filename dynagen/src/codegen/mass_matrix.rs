@@ -31,8 +31,8 @@ use crate::algorithms::joint::{
 };
 use crate::algorithms::rnea::update_joint_transforms;
 use crate::algorithms::Workspace;
-use crate::model::{AxisAlignment, Joint, JointKind, Model};
-use crate::spatial::{Force, Inertia, Mat3, Motion, Transform, Vec3};
+use crate::model::Model;
+use crate::spatial::{Force, Inertia, Motion};
 use crate::symbolic::{Expr, Function, Node, Rewrites, TraceActive, Tracer};
 use crate::Scalar;
 
@@ -70,40 +70,6 @@ fn quadratic_form<S: Scalar>(i: &Inertia<S>, s: &Motion<S>) -> S {
     w.dot(&i.ibar.mul_vec(w)) + i.h.dot(&v.cross(w)) * S::from_f64(2.0) + v.dot(v) * i.mass
 }
 
-/// Whether every entry of a rotation is 0 or ±1 (a quarter-turn placement,
-/// after the rounding snap).
-fn is_signed_permutation(r: &Mat3<f64>) -> bool {
-    r.0.iter().flatten().all(|&x| x == 0.0 || x.abs() == 1.0)
-}
-
-/// [`inertia_to_parent`] for a joint's transform `x = (P·R_K(θ), p)`. When
-/// the joint turns about a coordinate axis and its placement rotation `P`
-/// is a signed permutation, the inertia is turned about the axis first
-/// (the short rotation of an inertia about a coordinate axis), then by `P`
-/// (which only permutes and negates entries), then shifted by `p`: the
-/// generic product with the dense `P·R_K(θ)` does not see that structure.
-/// The same inertia up to rounding.
-#[inline(always)]
-fn composite_to_parent<S: Scalar>(joint: &Joint, x: &Transform<S>, i: &Inertia<S>) -> Inertia<S> {
-    let permuted = matches!(joint.kind, JointKind::Revolute | JointKind::Continuous)
-        && joint.alignment != AxisAlignment::General
-        && !joint.placement_rotation_is_identity
-        && is_signed_permutation(&joint.placement.rot);
-    if !permuted {
-        return inertia_to_parent(joint, x, i);
-    }
-    let p = S::rotation_constant(&joint.placement.rot);
-    // The joint's own turn R_K(θ) = Pᵀ·(P·R_K(θ)), about its axis.
-    let turn = Transform { rot: p.transpose().mul_mat(&x.rot), trans: Vec3::zero() };
-    let about = Joint {
-        placement: crate::spatial::Transform::identity(),
-        placement_rotation_is_identity: true,
-        ..joint.clone()
-    };
-    let turned = inertia_to_parent(&about, &turn, i);
-    Transform { rot: p, trans: x.trans }.inertia_to_parent(&turned)
-}
-
 /// Every way of computing each entry that reaches at most `reach` levels
 /// below the entry's upper joint, in the order of the [`Plan`]'s choices;
 /// empty lists for joints on different branches. Leaves the composite
@@ -116,7 +82,7 @@ fn candidates<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], reach: u
     ws.inertia[..n].copy_from_slice(&own);
     for i in (0..n).rev() {
         if let Some(p) = model.bodies[i].parent {
-            let ic = composite_to_parent(&model.bodies[i].joint, &ws.x[i], &ws.inertia[i]);
+            let ic = inertia_to_parent(&model.bodies[i].joint, &ws.x[i], &ws.inertia[i]);
             ws.inertia[p] = ws.inertia[p].add(&ic);
         }
     }
