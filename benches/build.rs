@@ -1,10 +1,10 @@
 //! Generates the benchmarked modules into OUT_DIR: the UR5 and the Panda,
 //! each with std's sin_cos and with the batched `sin_cos_all` (both have the
 //! `NAME_sc` bodies, which take the sines and cosines as inputs), and each
-//! with the bodies as the generator wrote them before branch `body`.
+//! as vendored in generated/ (the generator's output when that was last
+//! regenerated: "before" a change to the generator).
 
-use dynagen::codegen::{generate, CodegenOptions, ForwardDynamicsMethod, Trig};
-use dynagen::symbolic::Rewrites;
+use dynagen::codegen::{generate, CodegenOptions, Trig};
 use dynagen::Model;
 use std::path::Path;
 
@@ -21,13 +21,12 @@ fn main() {
             let module = generate(&model, &opts).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
             std::fs::write(Path::new(&out).join(format!("{robot}_{suffix}.rs")), module.source).expect("writing");
         }
-        // The bodies as generated before branch `body` (no reassociation,
-        // forward dynamics by the ABA), for before/after in one run.
-        let base = CodegenOptions::default()
-            .trig(Trig::Inputs)
-            .rewrites(Rewrites { reassociate: false, ..Rewrites::default() })
-            .forward_dynamics(ForwardDynamicsMethod::Aba);
-        let module = generate(&model, &base).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
-        std::fs::write(Path::new(&out).join(format!("{robot}_base.rs")), module.source).expect("writing");
+        // The bodies as the vendored module in generated/ has them (the
+        // generator's output when generated/ was last regenerated), for
+        // before/after in one run.
+        let vendored = robots.join(format!("../../generated/src/{robot}.rs"));
+        println!("cargo:rerun-if-changed={}", vendored.display());
+        std::fs::copy(&vendored, Path::new(&out).join(format!("{robot}_base.rs")))
+            .unwrap_or_else(|e| panic!("{}: {e}", vendored.display()));
     }
 }

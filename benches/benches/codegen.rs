@@ -5,7 +5,7 @@
 //! - `gen_std`: the generated `NAME(q, …)`, sines and cosines by `f64::sin_cos`;
 //! - `gen_sc`: the generated `NAME_sc(s, c, …)`, sines and cosines given (trig excluded);
 //! - `gen_batched`: the generated `NAME(q, …)` of a `Trig::Batched` module (`sin_cos_all`);
-//! - `gen_sc_base`: `NAME_sc` as generated before branch `body` (no reassociation, forward dynamics by ABA);
+//! - `gen_sc_base`: `NAME_sc` as vendored in generated/ (the generator's output when generated/ was last regenerated);
 //!
 //! and `sin_cos_all` against a loop of `f64::sin_cos` (and the `f32` batch,
 //! `dynagen::codegen::sin_cos_array_f32`, against `f32::sin_cos`). Each benchmark

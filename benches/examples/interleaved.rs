@@ -2,8 +2,10 @@
 //! function of the UR5 and the Panda with its trigonometry (`NAME(q, …)`
 //! of the `Trig::Std` module, by std's `sin_cos`, and of the
 //! `Trig::Batched` module, by the module's `sin_cos_array`), its body alone
-//! (`NAME_sc`, sines and cosines given), the same body as generated before
-//! branch `body` (`*_base` modules), and the generic solver, timed in
+//! (`NAME_sc`, sines and cosines given), the same body as vendored in
+//! generated/ (`*_base` modules: the generator's output when generated/ was
+//! last regenerated, i.e. before a change to the generator), and the generic
+//! solver, timed in
 //! alternating rounds (each call's whole
 //! output goes through `black_box`, so nothing of a body is left out) of 2,000 calls on 8
 //! states; the minimum over rounds per call is reported (interference only

@@ -26,24 +26,6 @@ pub fn forward_dynamics_ldlt<S: Scalar>(
     tips: &[TipWrench<S>],
     qdd: &mut [S],
 ) {
-    forward_dynamics_ldlt_with(model, ws, q, qd, tau, gravity, tips, qdd, crba);
-}
-
-/// [`forward_dynamics_ldlt`] with M(q) computed by `mass_matrix` (arguments
-/// as [`crba`]); code generation passes its own variant of CRBA.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-pub(crate) fn forward_dynamics_ldlt_with<S: Scalar>(
-    model: &Model,
-    ws: &mut Workspace<S>,
-    q: &[S],
-    qd: &[S],
-    tau: &[S],
-    gravity: Option<&Vec3<S>>,
-    tips: &[TipWrench<S>],
-    qdd: &mut [S],
-    mass_matrix: impl FnOnce(&Model, &mut Workspace<S>, &[S], &mut [S]),
-) {
     let n = model.dof();
     assert!(tau.len() == n && qdd.len() == n, "forward_dynamics_ldlt: slices must have the model's {n} joints");
     // h + JᵀF_tip into qdd, then the right-hand side τ − that.
@@ -52,7 +34,7 @@ pub(crate) fn forward_dynamics_ldlt_with<S: Scalar>(
         qdd[i] = tau[i] - qdd[i];
     }
     let mut m = std::mem::take(&mut ws.mat);
-    mass_matrix(model, ws, q, &mut m);
+    crba(model, ws, q, &mut m);
     ldlt::factorise(model, &mut m);
     ldlt::solve(model, &m, qdd);
     ws.mat = m;

@@ -1,7 +1,7 @@
 //! The functions of a generated module, traced from the generic algorithms.
 
 use super::mass_matrix;
-use crate::algorithms::{aba, bias, crba, forward_dynamics, rnea, Workspace};
+use crate::algorithms::{aba, bias, crba, forward_dynamics, ldlt, rnea, Workspace};
 use crate::model::Model;
 use crate::spatial::Vec3;
 use crate::symbolic::{balance, factor, Expr, Function, Graph, Latency, Node, NodeId, Rewrites, TraceActive, Tracer};
@@ -115,17 +115,18 @@ fn trace_unfactored(model: &Model, kind: FunctionKind, rewrites: Rewrites) -> Re
         FunctionKind::ForwardDynamicsLdlt => {
             let plan = mass_matrix::plan(model, rewrites)?;
             trace_run(model, kind, rewrites, |ws, args, g, out| {
-                forward_dynamics::forward_dynamics_ldlt_with(
-                    model,
-                    ws,
-                    &args[0],
-                    &args[1],
-                    &args[2],
-                    Some(g),
-                    &[],
-                    out,
-                    |model, ws, q, m| mass_matrix::mass_matrix(model, ws, q, &plan, m),
-                )
+                // The steps of forward_dynamics::forward_dynamics_ldlt, with
+                // this M (that function is left as it is: passing it the
+                // mass matrix cost the f64 solver instructions).
+                let (n, q, tau) = (model.dof(), &args[0], &args[2]);
+                rnea::rnea(model, ws, q, Some(&args[1]), None, Some(g), &[], out);
+                for i in 0..n {
+                    out[i] = tau[i] - out[i];
+                }
+                let mut m = vec![Expr::zero(); n * n];
+                mass_matrix::mass_matrix(model, ws, q, &plan, &mut m);
+                ldlt::factorise(model, &mut m);
+                ldlt::solve(model, &m, out);
             })
         }
         _ => trace_run(model, kind, rewrites, |ws, args, g, out| kind.run(model, ws, args, g, out)),
