@@ -30,7 +30,7 @@ use crate::algorithms::joint::{
     force_to_parent, inertia_times_subspace, inertia_to_parent, motion, motion_to_child, project,
 };
 use crate::algorithms::rnea::update_joint_transforms;
-use crate::algorithms::Workspace;
+use crate::algorithms::{BodyInertia, Workspace};
 use crate::model::Model;
 use crate::spatial::{Force, Inertia, Motion};
 use crate::symbolic::{Expr, Function, Node, Rewrites, TraceActive, Tracer};
@@ -74,11 +74,20 @@ fn quadratic_form<S: Scalar>(i: &Inertia<S>, s: &Motion<S>) -> S {
 /// below the entry's upper joint, in the order of the [`Plan`]'s choices;
 /// empty lists for joints on different branches. Leaves the composite
 /// inertias in `ws`.
-fn candidates<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], reach: usize) -> Vec<Vec<S>> {
+fn candidates<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    payloads: &[BodyInertia<S>],
+    reach: usize,
+) -> Vec<Vec<S>> {
     let n = model.dof();
     assert!(q.len() == n && ws.dof() == n, "mass_matrix: q must have the model's {n} joints");
     update_joint_transforms(model, ws, q);
-    let own: Vec<Inertia<S>> = model.bodies.iter().map(|b| Inertia::from_f64(&b.inertia)).collect();
+    let mut own: Vec<Inertia<S>> = model.bodies.iter().map(|b| Inertia::from_f64(&b.inertia)).collect();
+    for p in payloads {
+        own[p.body] = own[p.body].add(&p.inertia);
+    }
     ws.inertia[..n].copy_from_slice(&own);
     for i in (0..n).rev() {
         if let Some(p) = model.bodies[i].parent {
@@ -154,14 +163,24 @@ fn candidates<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], reach: u
 }
 
 /// M(q), row-major into `m` (n×n, both triangles), each entry computed as
-/// `plan` says.
+/// `plan` says, with extra body inertias `payloads` added to their bodies'
+/// as [`crba_with_payloads`](crate::algorithms::crba::crba_with_payloads)
+/// does (every plan is exact whatever the inertias).
 ///
 /// # Panics
 /// If the slices do not fit the model, or `plan` is not one of its.
-pub(crate) fn mass_matrix<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], plan: &Plan, m: &mut [S]) {
+pub(crate) fn mass_matrix<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    payloads: &[BodyInertia<S>],
+    plan: &Plan,
+    m: &mut [S],
+) {
     let n = model.dof();
     assert!(m.len() == n * n && plan.choice.len() == n * n, "mass_matrix: m and the plan must be {n}×{n}");
-    let all = candidates(model, ws, q, plan.reach());
+    assert!(payloads.iter().all(|p| p.body < n), "mass_matrix: a payload's body is not one of the model's {n}");
+    let all = candidates(model, ws, q, payloads, plan.reach());
     m.fill(S::zero());
     for i in 0..n {
         for j in i..n {
@@ -186,7 +205,7 @@ pub(crate) fn plan(model: &Model, rewrites: Rewrites) -> Result<Plan, TraceActiv
     let tracer = Tracer::start_with(rewrites)?;
     let q = tracer.inputs("q", n);
     let mut ws = Workspace::<Expr>::new(model);
-    let all = candidates(model, &mut ws, &q, n);
+    let all = candidates(model, &mut ws, &q, &[], n);
     drop(ws);
     let graph = tracer.finish();
     let flat: Vec<Expr> = all.iter().flatten().copied().collect();
@@ -322,7 +341,7 @@ mod tests {
                 let q: Vec<f64> = (0..n).map(|i| 0.3 + 0.7 * i as f64 - 0.11 * (i * i) as f64).collect();
                 let mut want = vec![0.0; n * n];
                 crba(&model, &mut Workspace::new(&model), &q, &mut want);
-                let all = candidates(&model, &mut Workspace::new(&model), &q, n);
+                let all = candidates(&model, &mut Workspace::new(&model), &q, &[], n);
                 let scale = want.iter().fold(0.0f64, |a, x| a.max(x.abs()));
                 let mut checked = 0;
                 for i in 0..n {
@@ -344,9 +363,33 @@ mod tests {
                 // and through a plan
                 let p = plan(&model, opts.rewrites).unwrap();
                 let mut got = vec![0.0; n * n];
-                mass_matrix(&model, &mut Workspace::new(&model), &q, &p, &mut got);
+                mass_matrix(&model, &mut Workspace::new(&model), &q, &[], &p, &mut got);
                 for (x, y) in got.iter().zip(&want) {
                     assert!((x - y).abs() <= 1e-13 * scale, "{name}: {x} vs {y}");
+                }
+                // with payloads on two bodies
+                let payloads: Vec<BodyInertia<f64>> = [(n - 1, 0.7), (n / 2, 1.9)]
+                    .iter()
+                    .map(|&(body, mass)| BodyInertia {
+                        body,
+                        inertia: Inertia::from_mass_com_inertia(
+                            mass,
+                            crate::spatial::Vec3([0.05, -0.1, 0.2]),
+                            crate::spatial::Sym3([0.02, 0.03, 0.01, 0.001, -0.002, 0.0005]),
+                        ),
+                    })
+                    .collect();
+                crate::algorithms::crba::crba_with_payloads(
+                    &model,
+                    &mut Workspace::new(&model),
+                    &q,
+                    &payloads,
+                    &mut want,
+                );
+                mass_matrix(&model, &mut Workspace::new(&model), &q, &payloads, &p, &mut got);
+                let scale = want.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+                for (x, y) in got.iter().zip(&want) {
+                    assert!((x - y).abs() <= 1e-13 * scale, "{name} with payloads: {x} vs {y}");
                 }
             }
         }

@@ -109,7 +109,7 @@ fn trace_unfactored(model: &Model, kind: FunctionKind, rewrites: Rewrites) -> Re
         FunctionKind::MassMatrix => {
             let plan = mass_matrix::plan(model, rewrites)?;
             trace_run(model, kind, rewrites, |ws, args, _, out| {
-                mass_matrix::mass_matrix(model, ws, &args[0], &plan, out)
+                mass_matrix::mass_matrix(model, ws, &args[0], &[], &plan, out)
             })
         }
         FunctionKind::ForwardDynamicsLdlt => {
@@ -124,7 +124,7 @@ fn trace_unfactored(model: &Model, kind: FunctionKind, rewrites: Rewrites) -> Re
                     out[i] = tau[i] - out[i];
                 }
                 let mut m = vec![Expr::zero(); n * n];
-                mass_matrix::mass_matrix(model, ws, q, &plan, &mut m);
+                mass_matrix::mass_matrix(model, ws, q, &[], &plan, &mut m);
                 ldlt::factorise(model, &mut m);
                 ldlt::solve(model, &m, out);
             })
