@@ -39,7 +39,13 @@ fn op_counts_grow_linearly_for_tau_and_quadratically_for_m() {
 /// The numbers are those reached with the regrouped inertial parameters,
 /// body frames slid along their axes, Khalil's U matrix and the gyroscopic
 /// moment from `ω ωᵀ` in the RNEA, classic accelerations and exact zeros
-/// along S in the ABA, and sums reassociated for a shorter
+/// along S in the ABA, each mass-matrix entry formed where it is cheapest
+/// (`codegen/mass_matrix.rs`; UR5 M was 171, LTDL 542; Panda M 654, LTDL
+/// 1826), inertias turned about the joint axis before a quarter-turn
+/// placement when traced (`joint::Permuted`; ABA UR5 620, Panda 1872), the
+/// traced RNEA's moment grouped by the entries of `Ī` (`rnea::inertial_moment`;
+/// τ UR5 289, Panda 831; h 257, 804), and sums
+/// reassociated for a shorter
 /// critical path (see `benches/README.md`). Before (commit 6587eda): UR5 τ
 /// 422, M 206, h 389, g 118, ABA 1256; before reassociation (commit
 /// 32b1f50), critical paths UR5 τ 140, M 76, h 129, ABA 354, LTDL 222 and
@@ -55,23 +61,23 @@ fn bundled_op_counts_do_not_grow() {
         (
             "ur5",
             [
-                (FunctionKind::InverseDynamics, 289, 108),
-                (FunctionKind::MassMatrix, 171, 65),
-                (FunctionKind::BiasForces, 257, 105),
+                (FunctionKind::InverseDynamics, 282, 108),
+                (FunctionKind::MassMatrix, 131, 44),
+                (FunctionKind::BiasForces, 253, 105),
                 (FunctionKind::GravityTorques, 19, 32),
-                (FunctionKind::ForwardDynamicsAba, 620, 314),
-                (FunctionKind::ForwardDynamicsLdlt, 542, 162),
+                (FunctionKind::ForwardDynamicsAba, 610, 310),
+                (FunctionKind::ForwardDynamicsLdlt, 498, 162),
             ],
         ),
         (
             "panda",
             [
-                (FunctionKind::InverseDynamics, 831, 184),
-                (FunctionKind::MassMatrix, 654, 120),
-                (FunctionKind::BiasForces, 804, 185),
+                (FunctionKind::InverseDynamics, 785, 184),
+                (FunctionKind::MassMatrix, 616, 96),
+                (FunctionKind::BiasForces, 758, 185),
                 (FunctionKind::GravityTorques, 222, 124),
-                (FunctionKind::ForwardDynamicsAba, 1872, 574),
-                (FunctionKind::ForwardDynamicsLdlt, 1826, 254),
+                (FunctionKind::ForwardDynamicsAba, 1779, 542),
+                (FunctionKind::ForwardDynamicsLdlt, 1742, 254),
             ],
         ),
     ];

@@ -317,9 +317,11 @@ fn constant_and_input_payloads() {
         // payload whose centre of mass is off the flange's axis gives the
         // last body mass and first moments again, which every joint then
         // carries (g: 19 → 46). That is bounded by a second full body on
-        // the chain, well under half of the function.
+        // the chain, under half of the function (M: +57 on 131 since the
+        // mass matrix is planned, codegen/mass_matrix.rs; it was under 2/5
+        // of the 171 before).
         let full_ops = ops(full(), f) as i64;
-        assert!(delta(&dc, f) > 0 && delta(&dc, f) <= full_ops.max(100) * 2 / 5, "{f}: {}", delta(&dc, f));
+        assert!(delta(&dc, f) > 0 && delta(&dc, f) <= full_ops.max(100) / 2, "{f}: {}", delta(&dc, f));
         assert!(delta(&di, f) > delta(&dc, f), "{f}");
         let bound = match f {
             "mass_matrix" => bound_m,

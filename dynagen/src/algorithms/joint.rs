@@ -354,9 +354,114 @@ impl<S: Scalar, const K: usize, const I: usize, const J: usize> Rotation<S> for 
     }
 }
 
+/// A rotation whose entries are all 0 or ±1 (a quarter-turn placement):
+/// row `a` has `sign[a]` in column `col[a]`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SignedPermutation {
+    col: [usize; 3],
+    negative: [bool; 3],
+}
+
+impl SignedPermutation {
+    /// `r` as a signed permutation, if it is one.
+    #[inline(always)]
+    pub(crate) fn of(r: &Mat3<f64>) -> Option<SignedPermutation> {
+        let mut col = [0; 3];
+        let mut negative = [false; 3];
+        for a in 0..3 {
+            let row = &r.0[a];
+            let mut found = None;
+            for (b, &x) in row.iter().enumerate() {
+                if x == 1.0 || x == -1.0 {
+                    if found.is_some() {
+                        return None;
+                    }
+                    found = Some(b);
+                    negative[a] = x < 0.0;
+                } else if x != 0.0 {
+                    return None;
+                }
+            }
+            col[a] = found?;
+        }
+        (col[0] != col[1] && col[1] != col[2] && col[0] != col[2]).then_some(SignedPermutation { col, negative })
+    }
+    #[inline(always)]
+    fn signed<S: Scalar>(negative: bool, x: S) -> S {
+        if negative {
+            -x
+        } else {
+            x
+        }
+    }
+    /// `P·M·Pᵀ`: entry (a, b) is `±M[col a][col b]`.
+    #[inline(always)]
+    fn conjugate<S: Scalar>(&self, m: &Mat3<S>) -> Mat3<S> {
+        Mat3(std::array::from_fn(|a| {
+            std::array::from_fn(|b| Self::signed(self.negative[a] != self.negative[b], m.0[self.col[a]][self.col[b]]))
+        }))
+    }
+    /// `Pᵀ·M`.
+    #[inline(always)]
+    fn tr_mul_mat<S: Scalar>(&self, m: &Mat3<S>) -> Mat3<S> {
+        let mut o = *m;
+        for a in 0..3 {
+            o.0[self.col[a]] = m.0[a].map(|x| Self::signed(self.negative[a], x));
+        }
+        o
+    }
+}
+
+/// A rotation `P·R_K(θ)`: a signed permutation `P` after a turn about
+/// `e_K`. Vectors are rotated by the product itself, as [`Dense`] does;
+/// inertias and 3×3 blocks are turned about `e_K` first (the short products
+/// of [`AboutAxis`] on `turn = Pᵀ·rot`), then permuted, which the dense
+/// products with `P·R_K(θ)` cannot see.
+pub(crate) struct Permuted<'a, S, const K: usize, const I: usize, const J: usize> {
+    rot: &'a Mat3<S>,
+    p: SignedPermutation,
+    turn: Mat3<S>,
+}
+
+impl<'a, S: Scalar, const K: usize, const I: usize, const J: usize> Permuted<'a, S, K, I, J> {
+    #[inline(always)]
+    pub(crate) fn new(p: SignedPermutation, rot: &'a Mat3<S>) -> Self {
+        Permuted { rot, p, turn: p.tr_mul_mat(rot) }
+    }
+}
+
+impl<S: Scalar, const K: usize, const I: usize, const J: usize> Rotation<S> for Permuted<'_, S, K, I, J> {
+    #[inline(always)]
+    fn mul(&self, v: &Vec3<S>) -> Vec3<S> {
+        self.rot.mul_vec(v)
+    }
+    #[inline(always)]
+    fn tr_mul(&self, v: &Vec3<S>) -> Vec3<S> {
+        self.rot.tr_mul_vec(v)
+    }
+    #[inline(always)]
+    fn rotate_sym(&self, s: &Sym3<S>) -> Sym3<S> {
+        let t = AboutAxis::<S, K, I, J>(&self.turn).rotate_sym(s);
+        Sym3::from_mat_upper(&self.p.conjugate(&t.to_mat()))
+    }
+    #[inline(always)]
+    fn rotate_mat(&self, m: &Mat3<S>) -> Mat3<S> {
+        self.p.conjugate(&AboutAxis::<S, K, I, J>(&self.turn).rotate_mat(m))
+    }
+}
+
+/// [`Scalar::TRACED`] of a matrix's scalar.
+#[inline(always)]
+pub(crate) fn traced<S: Scalar>(_: &Mat3<S>) -> bool {
+    S::TRACED
+}
+
 /// Runs `$body` with `$r` bound to the [`Rotation`] of the joint's transform
 /// `$x` (a `Transform` computed by [`joint_transform`] for this joint),
-/// chosen from the model's constants.
+/// chosen from the model's constants. A quarter-turn placement before an
+/// aligned axis is taken as [`Permuted`] only when tracing
+/// ([`Scalar::TRACED`]): on `f64` the extra arms made the generic CRBA 13 %
+/// slower in instructions (code size), and there the arm is compiled out.
 macro_rules! with_rotation {
     ($joint:expr, $x:expr, |$r:ident| $body:expr) => {{
         use $crate::algorithms::joint::{AboutAxis, Dense};
@@ -379,6 +484,26 @@ macro_rules! with_rotation {
             (true, _, AxisAlignment::Z) => {
                 let $r = AboutAxis::<_, 2, 0, 1>(rot);
                 $body
+            }
+            (false, _, alignment) if $crate::algorithms::joint::traced(rot) => {
+                match ($crate::algorithms::joint::SignedPermutation::of(&joint.placement.rot), alignment) {
+                    (Some(p), AxisAlignment::X) => {
+                        let $r = $crate::algorithms::joint::Permuted::<_, 0, 1, 2>::new(p, rot);
+                        $body
+                    }
+                    (Some(p), AxisAlignment::Y) => {
+                        let $r = $crate::algorithms::joint::Permuted::<_, 1, 2, 0>::new(p, rot);
+                        $body
+                    }
+                    (Some(p), AxisAlignment::Z) => {
+                        let $r = $crate::algorithms::joint::Permuted::<_, 2, 0, 1>::new(p, rot);
+                        $body
+                    }
+                    _ => {
+                        let $r = Dense(rot);
+                        $body
+                    }
+                }
             }
             _ => {
                 let $r = Dense(rot);
@@ -462,6 +587,7 @@ mod tests {
         let v = Motion::from_array([0.3, -0.7, 0.5, 0.2, 0.9, -0.4]);
         let f = Force::from_array([1.5, -0.3, 0.8, -2.0, 0.6, 1.1]);
         let mut cases = 0;
+        let mut permuted = 0;
         for k in 0..3 {
             for sign in [1.0, -1.0] {
                 for len in [1.0, 0.6] {
@@ -496,6 +622,31 @@ mod tests {
                                 let dense = got.rot.mul_mat(&b).mul_mat(&got.rot.transpose());
                                 let sparse = with_rotation!(&j, got, |r| r.rotate_mat(&b));
                                 assert_close(&flat(&sparse), &flat(&dense), "rotate_mat");
+                                // The traced form of a quarter-turn placement, on f64.
+                                if let (Some(p), false) =
+                                    (SignedPermutation::of(&place.rot), kind == JointKind::Prismatic)
+                                {
+                                    let s3 = crate::spatial::Sym3([0.3, 0.25, 0.2, 0.01, -0.02, 0.015]);
+                                    fn check<R: Rotation<f64>>(r: R, s3: &Sym3<f64>, b: &Mat3<f64>) -> [Vec<f64>; 4] {
+                                        let v = Vec3([0.4, -1.1, 0.7]);
+                                        [
+                                            r.rotate_sym(s3).0.to_vec(),
+                                            r.rotate_mat(b).0.concat(),
+                                            r.mul(&v).0.to_vec(),
+                                            r.tr_mul(&v).0.to_vec(),
+                                        ]
+                                    }
+                                    let got_p = match k {
+                                        0 => check(Permuted::<f64, 0, 1, 2>::new(p, &got.rot), &s3, &b),
+                                        1 => check(Permuted::<f64, 1, 2, 0>::new(p, &got.rot), &s3, &b),
+                                        _ => check(Permuted::<f64, 2, 0, 1>::new(p, &got.rot), &s3, &b),
+                                    };
+                                    let want_p = check(Dense(&got.rot), &s3, &b);
+                                    for (g, w) in got_p.iter().zip(&want_p) {
+                                        assert_close(g, w, "permuted");
+                                    }
+                                    permuted += 1;
+                                }
                             }
                             // S·x, Sᵀf, v ×ₘ S·x, I·S, m + S·x against the dense forms
                             let s = Motion::from_array(j.motion_subspace());
@@ -517,5 +668,7 @@ mod tests {
             }
         }
         assert_eq!(cases, 144);
+        // identity and the two quarter turns, revolute and continuous, 5 angles
+        assert_eq!(permuted, 3 * 2 * 2 * 3 * 2 * 5);
     }
 }

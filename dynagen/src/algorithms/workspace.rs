@@ -44,7 +44,8 @@ pub struct Workspace<S> {
     pub(crate) u: Vec<Mat3<S>>,
     /// Per body, whether `ω × (Ī ω)` is computed from the products `ω ωᵀ`
     /// (decided once from the model's `Ī`, see `rnea::use_products_for_gyroscopic`;
-    /// either form gives the same value up to rounding).
+    /// either form gives the same value up to rounding; a traced RNEA groups
+    /// the whole moment by `Ī`'s entries instead).
     pub(crate) gyro_products: Vec<bool>,
     /// Composite or articulated quantities, per body.
     pub(crate) inertia: Vec<Inertia<S>>,

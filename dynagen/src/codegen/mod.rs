@@ -84,6 +84,7 @@ mod generic_count;
 mod grouping;
 mod hash;
 mod literal;
+mod mass_matrix;
 mod rounding;
 mod scene;
 mod sin_cos;

@@ -40,7 +40,7 @@ use super::{
     module_name, parse_item, prepare_model, sin_cos, trig_source, wrapper, CodegenError, CodegenOptions,
     ForwardDynamicsMethod, GeneratedModule, ScalarType, SnappedConstant, Trig, GENERATOR_VERSION,
 };
-use crate::algorithms::{crba, kinematics, rnea, BodyInertia, TipWrench, Workspace};
+use crate::algorithms::{kinematics, rnea, BodyInertia, TipWrench, Workspace};
 use crate::model::{JointKind, Model};
 use crate::scene::{dynamics, Function as SceneFn, ResolvedGravity, SceneModel};
 use crate::spatial::{Force, Inertia, Sym3, Transform, Vec3};
@@ -145,6 +145,12 @@ fn trace_unfactored(
     rewrites: Rewrites,
 ) -> Result<Function, TraceActive> {
     let n = model.dof();
+    // M by the codegen variant of CRBA, as the plain module's (planned
+    // before this trace starts).
+    let plan = match f {
+        SceneFn::MassMatrix => Some(super::mass_matrix::plan(model, rewrites)?),
+        _ => None,
+    };
     let tracer = Tracer::start_with(rewrites)?;
     let args: Vec<Vec<Expr>> = vectors(f).iter().map(|name| tracer.inputs(name, n)).collect();
     let x = extras(f);
@@ -200,7 +206,8 @@ fn trace_unfactored(
     let mut out = vec![zero; out_len];
     let p = !payloads.is_empty();
     // The input payloads enter the recursions as extra body inertias
-    // (rnea_with_payloads, crba_with_payloads): the same dynamics as
+    // (rnea_with_payloads, and in M codegen/mass_matrix.rs as crba_with_payloads
+    // does): the same dynamics as
     // SceneRobot's, which adds their values to the model's inertias.
     let (q, pl) = (&args[0], &payloads[..]);
     match f {
@@ -208,7 +215,8 @@ fn trace_unfactored(
             dynamics::inverse_dynamics_with_payloads(scene, &mut ws, q, &args[1], &args[2], g, &tips, pl, &mut out);
         }
         SceneFn::MassMatrix => {
-            crba::crba_with_payloads(model, &mut ws, q, pl, &mut out);
+            let plan = plan.as_ref().expect("planned above");
+            super::mass_matrix::mass_matrix(model, &mut ws, q, pl, plan, &mut out);
             dynamics::add_armature_diagonal(scene, &mut out);
         }
         SceneFn::BiasForces if p => {

@@ -1,6 +1,7 @@
 //! The functions of a generated module, traced from the generic algorithms.
 
-use crate::algorithms::{aba, bias, crba, forward_dynamics, rnea, Workspace};
+use super::mass_matrix;
+use crate::algorithms::{aba, bias, crba, forward_dynamics, ldlt, rnea, Workspace};
 use crate::model::Model;
 use crate::spatial::Vec3;
 use crate::symbolic::{balance, factor, Expr, Function, Graph, Latency, Node, NodeId, Rewrites, TraceActive, Tracer};
@@ -99,7 +100,47 @@ pub fn trace(model: &Model, kind: FunctionKind, rewrites: Rewrites) -> Result<Fu
     Ok(factor(&trace_unfactored(model, kind, rewrites)?, rewrites))
 }
 
+/// The mass matrix, in `MassMatrix` and the LᵀDL forward dynamics, is
+/// traced from the codegen variant of CRBA ([`mass_matrix`](super::mass_matrix)),
+/// with the choices [`plan`](super::mass_matrix::plan) makes for this model;
+/// every other function from the generic algorithm ([`FunctionKind::run`]).
 fn trace_unfactored(model: &Model, kind: FunctionKind, rewrites: Rewrites) -> Result<Function, TraceActive> {
+    match kind {
+        FunctionKind::MassMatrix => {
+            let plan = mass_matrix::plan(model, rewrites)?;
+            trace_run(model, kind, rewrites, |ws, args, _, out| {
+                mass_matrix::mass_matrix(model, ws, &args[0], &[], &plan, out)
+            })
+        }
+        FunctionKind::ForwardDynamicsLdlt => {
+            let plan = mass_matrix::plan(model, rewrites)?;
+            trace_run(model, kind, rewrites, |ws, args, g, out| {
+                // The steps of forward_dynamics::forward_dynamics_ldlt, with
+                // this M (that function is left as it is: passing it the
+                // mass matrix cost the f64 solver instructions).
+                let (n, q, tau) = (model.dof(), &args[0], &args[2]);
+                rnea::rnea(model, ws, q, Some(&args[1]), None, Some(g), &[], out);
+                for i in 0..n {
+                    out[i] = tau[i] - out[i];
+                }
+                let mut m = vec![Expr::zero(); n * n];
+                mass_matrix::mass_matrix(model, ws, q, &[], &plan, &mut m);
+                ldlt::factorise(model, &mut m);
+                ldlt::solve(model, &m, out);
+            })
+        }
+        _ => trace_run(model, kind, rewrites, |ws, args, g, out| kind.run(model, ws, args, g, out)),
+    }
+}
+
+/// Traces `run` (an algorithm computing `kind`'s outputs, with `kind`'s
+/// inputs) on symbolic inputs, unfactored.
+fn trace_run(
+    model: &Model,
+    kind: FunctionKind,
+    rewrites: Rewrites,
+    run: impl FnOnce(&mut Workspace<Expr>, &[Vec<Expr>], &Vec3<Expr>, &mut [Expr]),
+) -> Result<Function, TraceActive> {
     let n = model.dof();
     let tracer = Tracer::start_with(rewrites)?;
     let args: Vec<Vec<Expr>> = kind.inputs().iter().map(|name| tracer.inputs(name, n)).collect();
@@ -107,7 +148,7 @@ fn trace_unfactored(model: &Model, kind: FunctionKind, rewrites: Rewrites) -> Re
     let g = Vec3::<Expr>::from_f64(&model.gravity);
     let zero = tracer.constant(0.0);
     let mut out = vec![zero; if kind.is_matrix() { n * n } else { n }];
-    kind.run(model, &mut ws, &args, &g, &mut out);
+    run(&mut ws, &args, &g, &mut out);
     drop(ws);
     let graph = tracer.finish();
     Ok(Function::new(kind.fn_name(), &graph, &out))
@@ -257,4 +298,31 @@ pub fn sin_cos_from_q(sc: &SinCosTrace, rewrites: Rewrites) -> Function {
     let names: Vec<String> = f.input_names().iter().filter(|n| *n != "s" && *n != "c").cloned().collect();
     out.set_input_names(&names);
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::codegen::{prepare_model, CodegenOptions};
+
+    /// The codegen variant of CRBA never needs more operations than the
+    /// generic one it replaces in the trace.
+    #[test]
+    fn the_planned_mass_matrix_is_no_costlier_than_the_generic_crba() {
+        let opts = CodegenOptions::default();
+        for name in ["ur5", "panda", "torso_two_arms", "planar_2link"] {
+            let path = format!("{}/robots/{name}.urdf", env!("CARGO_MANIFEST_DIR"));
+            let (model, _) = prepare_model(&Model::from_urdf_file(path).unwrap(), &opts);
+            for kind in [FunctionKind::MassMatrix, FunctionKind::ForwardDynamicsLdlt] {
+                let count = |f: Function| sin_cos_inputs(&f, model.dof(), opts.rewrites).unwrap().function.op_count();
+                let generic = count(
+                    trace_run(&model, kind, opts.rewrites, |ws, args, g, out| kind.run(&model, ws, args, g, out))
+                        .unwrap(),
+                );
+                let planned = count(trace_unfactored(&model, kind, opts.rewrites).unwrap());
+                println!("{name} {kind:?}: generic CRBA {generic}, planned {planned}");
+                assert!(planned.total() <= generic.total(), "{name} {kind:?}: {planned} vs {generic}");
+            }
+        }
+    }
 }

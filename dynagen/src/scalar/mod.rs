@@ -28,6 +28,15 @@ pub trait Scalar:
     + MulAssign
     + 'static
 {
+    /// Whether the scalar traces the algorithm for code generation (the
+    /// symbolic [`Expr`](crate::symbolic::Expr)): each operation is then
+    /// emitted once, with products by the model's zeros and ones folded
+    /// away, so a formulation with fewer operations pays even where, run as
+    /// a generic loop over numbers, it would only add code. An algorithm may
+    /// choose such a formulation on this constant; both give the same
+    /// results up to rounding (tested on `f64` directly). `false` by default.
+    const TRACED: bool = false;
+
     /// Converts a model constant (always stored as `f64`) to this scalar.
     fn from_f64(x: f64) -> Self;
     /// The value as `f64`, when the scalar has one (a symbolic scalar has one

@@ -90,6 +90,8 @@ impl MulAssign for Expr {
 }
 
 impl Scalar for Expr {
+    const TRACED: bool = true;
+
     /// A constant of the trace active on this thread.
     fn from_f64(x: f64) -> Self {
         let trace = active_trace();
