@@ -753,7 +753,7 @@ fn header(
     let trig = match options.trig {
         Trig::Std => "NAME(q, ...) computes the sines and cosines by std's sin_cos (needs std)",
         Trig::Batched => {
-            "NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time (no_std, no dependency)"
+            "NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two (with AVX2 four) at a time (no_std, no dependency)"
         }
         Trig::Libm => "NAME(q, ...) computes the sines and cosines by libm::sincos (no_std; needs the `libm` crate)",
         Trig::Inputs => "only NAME_sc(s, c, ...): the caller passes the sines and cosines (no_std, no dependency)",

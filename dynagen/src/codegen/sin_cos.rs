@@ -15,8 +15,10 @@
 //! `sin_cos_array` on the angles that `NAME_sc` reads, no others. Two
 //! angles at a time go through the same branch-free code: on x86-64 written
 //! out in SSE2 intrinsics (part of the default target; LLVM's own
-//! vectoriser took the scalar code for some lengths only), elsewhere the
-//! scalar code. A rare slow path (angles within ~1e-17·|q| of a multiple of
+//! vectoriser took the scalar code for some lengths only), four at a time
+//! in AVX2 where the target has it, elsewhere the scalar code; the
+//! polynomials use fused multiply-adds where the target has them (see
+//! [`CodegenOptions::fma`](super::CodegenOptions::fma)). A rare slow path (angles within ~1e-17·|q| of a multiple of
 //! π/2, |q| > 1.5e6 rad, NaN, ±∞) redoes the batch one angle at a time with
 //! an exact (Payne–Hanek) reduction. Accuracy: within
 //! 1 ulp of the exact sine and cosine for every finite angle (measured by
@@ -73,7 +75,7 @@ pub(crate) fn sin_cos_all_item(scalar: ScalarType) -> TokenStream {
     let batch = batch_function(scalar);
     let doc = match scalar {
         ScalarType::F64 => {
-            " The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time."
+            " The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two (with AVX2 four) at a time."
         }
         ScalarType::F32 => {
             " The sines and cosines of `q`, joint by joint: within 1 ulp of `f32` for every finite angle (computed in `f64`), no std, two at a time."
@@ -173,16 +175,16 @@ mod tests {
     }
 
     #[test]
-    fn the_pair_is_the_scalar_fast_path_bit_for_bit() {
-        // On x86-64 sin_cos_pairs is SSE2 code of its own: the same operations, so the same bits.
+    fn the_vectors_are_the_scalar_fast_path_bit_for_bit() {
+        // On x86-64 sin_cos_lanes is SSE2 (or AVX2) code of its own: the same operations, so the same bits.
         let xs = angles();
-        for w in xs.windows(6) {
-            let (s, c, ok) = sin_cos_pairs([[w[0], w[1]], [w[2], w[3]], [w[4], w[5]]]);
+        for w in xs.windows(3 * LANES) {
+            let (s, c, ok) = sin_cos_lanes::<3>(core::array::from_fn(|v| core::array::from_fn(|l| w[v * LANES + l])));
             let want: Vec<(f64, f64, bool)> = w.iter().map(|&x| sin_cos_fast(x)).collect();
             assert_eq!(ok, want.iter().all(|r| r.2), "{w:?}");
-            for j in 0..6 {
-                assert_eq!(s[j / 2][j % 2].to_bits(), want[j].0.to_bits(), "{w:?}");
-                assert_eq!(c[j / 2][j % 2].to_bits(), want[j].1.to_bits(), "{w:?}");
+            for j in 0..3 * LANES {
+                assert_eq!(s[j / LANES][j % LANES].to_bits(), want[j].0.to_bits(), "{w:?}");
+                assert_eq!(c[j / LANES][j % LANES].to_bits(), want[j].1.to_bits(), "{w:?}");
             }
         }
     }

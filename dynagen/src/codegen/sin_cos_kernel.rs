@@ -29,11 +29,12 @@
 //    the reduction are left as they are, so k and the fast-path test are
 //    the same on every target.
 // 4. The quadrant k mod 4 picks (±sin r, ±cos r) by bit masks.
-// `sin_cos_array` runs the fast path on two angles at a time, up to three
-// such pairs interleaved step by step (independent chains the processor
-// overlaps): on x86-64 in SSE2 instructions (`sin_cos_pairs`: the same
-// operations as the scalar code, so the same bits), elsewhere as the scalar
-// code, which the compiler may vectorise.
+// `sin_cos_array` runs the fast path on LANES angles at a time, up to three
+// such vectors interleaved step by step (independent chains the processor
+// overlaps): on x86-64 in SSE2 instructions, two angles a vector, or AVX2,
+// four, where the target has it (`sin_cos_lanes`: the same operations as
+// the scalar code, so the same bits), elsewhere as the scalar code on pairs,
+// which the compiler may vectorise.
 
 // `fma(a, b, c)`: a·b + c. Where the target has a fused multiply-add
 // (x86-64 compiled with the `fma` target feature, e.g. by
@@ -76,8 +77,8 @@ fn fma(a: f64, b: f64, c: f64) -> f64 {
 }
 
 /// The sines and cosines of `x`, entry by entry: within 1 ulp of the exact
-/// values for every finite angle (NaN and ±∞ give NaN); two angles at a
-/// time in vector instructions.
+/// values for every finite angle (NaN and ±∞ give NaN); `LANES` angles at
+/// a time in vector instructions.
 #[inline]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut s = [0.0; N];
@@ -85,17 +86,17 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut fast = true;
     let mut i = 0;
     while i < N {
-        // Up to six angles a pass, as up to three pairs in 2-lane vector
-        // instructions, interleaved for the processor to overlap (an odd
-        // N's last pair takes its last angle twice).
+        // Up to three vectors of LANES angles a pass, interleaved for the
+        // processor to overlap (the last vector takes the last angle again
+        // where N runs out).
         let at = |j: usize| x[if i + j < N { i + j } else { N - 1 }];
         let ok = match N - i {
-            1 | 2 => sin_cos_pass::<1, N>(i, [[at(0), at(1)]], &mut s, &mut c),
-            3 | 4 => sin_cos_pass::<2, N>(i, [[at(0), at(1)], [at(2), at(3)]], &mut s, &mut c),
-            _ => sin_cos_pass::<3, N>(i, [[at(0), at(1)], [at(2), at(3)], [at(4), at(5)]], &mut s, &mut c),
+            k if k <= LANES => sin_cos_pass::<1, N>(i, core::array::from_fn(|v| core::array::from_fn(|l| at(v * LANES + l))), &mut s, &mut c),
+            k if k <= 2 * LANES => sin_cos_pass::<2, N>(i, core::array::from_fn(|v| core::array::from_fn(|l| at(v * LANES + l))), &mut s, &mut c),
+            _ => sin_cos_pass::<3, N>(i, core::array::from_fn(|v| core::array::from_fn(|l| at(v * LANES + l))), &mut s, &mut c),
         };
         fast &= ok;
-        i += 6;
+        i += 3 * LANES;
     }
     if !fast {
         sin_cos_again(x, &mut s, &mut c);
@@ -103,54 +104,90 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     (s, c)
 }
 
-/// `sin_cos_pairs` on `x`, the results into `s[i..]` and `c[i..]` (what
+/// How many angles one vector of `sin_cos_lanes` holds: 4 with AVX2 (256
+/// bits), else 2 (SSE2 on x86-64, 128 bits; elsewhere pairs of scalars).
+#[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+const LANES: usize = 4;
+#[cfg(not(all(target_arch = "x86_64", target_feature = "avx2")))]
+const LANES: usize = 2;
+
+/// `sin_cos_lanes` on `x`, the results into `s[i..]` and `c[i..]` (what
 /// fits), and whether they are all within 1 ulp.
 #[inline(always)]
 fn sin_cos_pass<const P: usize, const N: usize>(
     i: usize,
-    x: [[f64; 2]; P],
+    x: [[f64; LANES]; P],
     s: &mut [f64; N],
     c: &mut [f64; N],
 ) -> bool {
-    let (ps, pc, ok) = sin_cos_pairs(x);
-    for j in 0..2 * P {
+    let (ps, pc, ok) = sin_cos_lanes(x);
+    for j in 0..LANES * P {
         if i + j < N {
-            (s[i + j], c[i + j]) = (ps[j / 2][j % 2], pc[j / 2][j % 2]);
+            (s[i + j], c[i + j]) = (ps[j / LANES][j % LANES], pc[j / LANES][j % LANES]);
         }
     }
     ok
 }
 
-/// `sin_cos_fast` on `P` pairs of angles, each pair in 2-lane vector
-/// instructions, the pairs interleaved step by step: on x86-64 spelled out
-/// in SSE2 (part of every x86-64 target; the compiler's own vectoriser takes
-/// the scalar code for some lengths only; FMA where the target has it), the
-/// same operations in the same order as `sin_cos_fast`, so the same bits.
+/// `sin_cos_fast` on `P` vectors of `LANES` angles, the vectors interleaved
+/// step by step: on x86-64 spelled out in SSE2 (part of every x86-64
+/// target; the compiler's own vectoriser takes the scalar code for some
+/// lengths only), or AVX2 where the target has it, with FMA where it has
+/// that: the same operations in the same order as `sin_cos_fast`, so the
+/// same bits.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 #[allow(unused_unsafe, clippy::excessive_precision, clippy::approx_constant)]
-fn sin_cos_pairs<const P: usize>(x: [[f64; 2]; P]) -> ([[f64; 2]; P], [[f64; 2]; P], bool) {
-    use core::arch::x86_64::*;
-    // SAFETY: SSE2 is enabled on every x86-64 target, and the FMA
-    // instruction is used only where the `fma` target feature is (the
-    // cfg); the transmutes are between __m128d and [f64; 2] (16 bytes,
-    // two f64 each).
+fn sin_cos_lanes<const P: usize>(x: [[f64; LANES]; P]) -> ([[f64; LANES]; P], [[f64; LANES]; P], bool) {
+    // The vector instructions of `sin_cos_lanes`, by one name for both widths.
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+    use core::arch::x86_64::{
+        __m256d as F64s, _mm256_add_pd as add_pd, _mm256_and_si256 as and_si, _mm256_andnot_pd as andnot_pd,
+        _mm256_castpd_si256 as castpd_si, _mm256_castsi256_pd as castsi_pd, _mm256_loadu_pd as loadu_pd,
+        _mm256_min_pd as min_pd, _mm256_movemask_pd as movemask_pd, _mm256_mul_pd as mul_pd, _mm256_or_si256 as or_si,
+        _mm256_set1_epi64x as set1_epi64x, _mm256_set1_pd as set1_pd, _mm256_setzero_si256 as setzero_si,
+        _mm256_slli_epi64 as slli_epi64, _mm256_storeu_pd as storeu_pd, _mm256_sub_epi64 as sub_epi64,
+        _mm256_sub_pd as sub_pd, _mm256_xor_pd as xor_pd, _mm256_xor_si256 as xor_si,
+    };
+    #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
+    use core::arch::x86_64::{
+        __m128d as F64s, _mm_add_pd as add_pd, _mm_and_si128 as and_si, _mm_andnot_pd as andnot_pd,
+        _mm_castpd_si128 as castpd_si, _mm_castsi128_pd as castsi_pd, _mm_loadu_pd as loadu_pd, _mm_min_pd as min_pd,
+        _mm_movemask_pd as movemask_pd, _mm_mul_pd as mul_pd, _mm_or_si128 as or_si, _mm_set1_epi64x as set1_epi64x,
+        _mm_set1_pd as set1_pd, _mm_setzero_si128 as setzero_si, _mm_slli_epi64 as slli_epi64, _mm_storeu_pd as storeu_pd,
+        _mm_sub_epi64 as sub_epi64, _mm_sub_pd as sub_pd, _mm_xor_pd as xor_pd, _mm_xor_si128 as xor_si,
+    };
+    // SAFETY: SSE2 is enabled on every x86-64 target, and the AVX2 and FMA
+    // instructions are used only where their target features are (the
+    // cfgs); the loads and stores read and write LANES f64 of arrays of
+    // LANES f64.
     unsafe {
-        let v = |a: f64| _mm_set1_pd(a);
-        fn each<const P: usize>(f: impl FnMut(usize) -> __m128d) -> [__m128d; P] {
+        let v = |a: f64| set1_pd(a);
+        fn each<const P: usize>(f: impl FnMut(usize) -> F64s) -> [F64s; P] {
             core::array::from_fn(f)
         }
-        let add = |a: &[__m128d; P], b: &[__m128d; P]| each(|i| _mm_add_pd(a[i], b[i]));
-        let sub = |a: &[__m128d; P], b: &[__m128d; P]| each(|i| _mm_sub_pd(a[i], b[i]));
-        let mul = |a: &[__m128d; P], b: &[__m128d; P]| each(|i| _mm_mul_pd(a[i], b[i]));
+        let add = |a: &[F64s; P], b: &[F64s; P]| each(|i| add_pd(a[i], b[i]));
+        let sub = |a: &[F64s; P], b: &[F64s; P]| each(|i| sub_pd(a[i], b[i]));
+        let mul = |a: &[F64s; P], b: &[F64s; P]| each(|i| mul_pd(a[i], b[i]));
         // a·b + c: fused where the scalar `fma` is.
-        #[cfg(target_feature = "fma")]
-        let fma = |a: &[__m128d; P], b: &[__m128d; P], c: &[__m128d; P]| each(|i| _mm_fmadd_pd(a[i], b[i], c[i]));
+        #[cfg(all(target_feature = "fma", target_feature = "avx2"))]
+        let fma = |a: &[F64s; P], b: &[F64s; P], c: &[F64s; P]| {
+            each(|i| core::arch::x86_64::_mm256_fmadd_pd(a[i], b[i], c[i]))
+        };
+        #[cfg(all(target_feature = "fma", not(target_feature = "avx2")))]
+        let fma = |a: &[F64s; P], b: &[F64s; P], c: &[F64s; P]| {
+            each(|i| core::arch::x86_64::_mm_fmadd_pd(a[i], b[i], c[i]))
+        };
         #[cfg(not(target_feature = "fma"))]
-        let fma = |a: &[__m128d; P], b: &[__m128d; P], c: &[__m128d; P]| add(&mul(a, b), c);
-        let neg = |a: &[__m128d; P]| each(|i| _mm_xor_pd(a[i], v(-0.0)));
+        let fma = |a: &[F64s; P], b: &[F64s; P], c: &[F64s; P]| add(&mul(a, b), c);
+        // a ≥ b (false if either is NaN)
+        #[cfg(target_feature = "avx2")]
+        let ge = |a: F64s, b: F64s| core::arch::x86_64::_mm256_cmp_pd::<{ core::arch::x86_64::_CMP_GE_OQ }>(a, b);
+        #[cfg(not(target_feature = "avx2"))]
+        let ge = |a: F64s, b: F64s| core::arch::x86_64::_mm_cmpge_pd(a, b);
+        let neg = |a: &[F64s; P]| each(|i| xor_pd(a[i], v(-0.0)));
         let all = |a: f64| [v(a); P];
-        let x: [__m128d; P] = each(|i| _mm_set_pd(x[i][1], x[i][0]));
+        let x: [F64s; P] = each(|i| loadu_pd(x[i].as_ptr()));
         let t = add(&mul(&x, &all(0.6366197723675814)), &all(6755399441055744.0));
         let k = sub(&t, &all(6755399441055744.0));
         let t0 = fma(&neg(&k), &all(1.5707963267341256), &x);
@@ -159,8 +196,8 @@ fn sin_cos_pairs<const P: usize>(x: [[f64; 2]; P]) -> ([[f64; 2]; P], [[f64; 2];
         let b = sub(&sub(&sub(&t0, &a), &w), &mul(&k, &all(2.0222662487959506e-21)));
         let rh = add(&a, &b);
         let rl = sub(&b, &sub(&rh, &a));
-        let m: [__m128d; P] = each(|i| _mm_mul_pd(_mm_andnot_pd(v(-0.0), rh[i]), v(2.8823037615171174e17)));
-        let ok: [__m128d; P] = each(|i| _mm_cmpge_pd(_mm_min_pd(m[i], v(1.5e6)), _mm_andnot_pd(v(-0.0), x[i])));
+        let m: [F64s; P] = each(|i| mul_pd(andnot_pd(v(-0.0), rh[i]), v(2.8823037615171174e17)));
+        let ok: [F64s; P] = each(|i| ge(min_pd(m[i], v(1.5e6)), andnot_pd(v(-0.0), x[i])));
         // sin_cos_reduced
         let z = mul(&rh, &rh);
         let z2 = mul(&z, &z);
@@ -191,30 +228,31 @@ fn sin_cos_pairs<const P: usize>(x: [[f64; 2]; P]) -> ([[f64; 2]; P], [[f64; 2];
         let w = sub(&all(1.0), &hz);
         let cos_r = add(&w, &add(&sub(&sub(&all(1.0), &w), &hz), &fma(&z2, &pc, &neg(&mul(&rh, &rl)))));
         // sin_cos_quadrant, lane by lane
-        let sign = _mm_castpd_si128(v(-0.0));
+        let sign = castpd_si(v(-0.0));
         let out = |i: usize| {
-            let sb = _mm_or_si128(_mm_castpd_si128(sin_r[i]), _mm_and_si128(_mm_castpd_si128(a[i]), sign));
-            let cb = _mm_castpd_si128(cos_r[i]);
-            let q = _mm_castpd_si128(t[i]);
-            let odd = _mm_sub_epi64(_mm_setzero_si128(), _mm_and_si128(q, _mm_set1_epi64x(1)));
-            let d = _mm_and_si128(_mm_xor_si128(sb, cb), odd);
-            let sin_sign = _mm_and_si128(_mm_slli_epi64::<62>(q), sign);
-            let cos_sign = _mm_xor_si128(sin_sign, _mm_slli_epi64::<63>(q));
-            let s = _mm_castsi128_pd(_mm_xor_si128(_mm_xor_si128(sb, d), sin_sign));
-            let c = _mm_castsi128_pd(_mm_xor_si128(_mm_xor_si128(cb, d), cos_sign));
-            (core::mem::transmute::<__m128d, [f64; 2]>(s), core::mem::transmute::<__m128d, [f64; 2]>(c))
+            let sb = or_si(castpd_si(sin_r[i]), and_si(castpd_si(a[i]), sign));
+            let cb = castpd_si(cos_r[i]);
+            let q = castpd_si(t[i]);
+            let odd = sub_epi64(setzero_si(), and_si(q, set1_epi64x(1)));
+            let d = and_si(xor_si(sb, cb), odd);
+            let sin_sign = and_si(slli_epi64::<62>(q), sign);
+            let cos_sign = xor_si(sin_sign, slli_epi64::<63>(q));
+            let (mut s, mut c) = ([0.0; LANES], [0.0; LANES]);
+            storeu_pd(s.as_mut_ptr(), castsi_pd(xor_si(xor_si(sb, d), sin_sign)));
+            storeu_pd(c.as_mut_ptr(), castsi_pd(xor_si(xor_si(cb, d), cos_sign)));
+            (s, c)
         };
-        let sc: [([f64; 2], [f64; 2]); P] = core::array::from_fn(out);
-        let fast = ok.iter().all(|&ok| _mm_movemask_pd(ok) == 3);
+        let sc: [([f64; LANES], [f64; LANES]); P] = core::array::from_fn(out);
+        let fast = ok.iter().all(|&ok| movemask_pd(ok) == (1 << LANES) - 1);
         (core::array::from_fn(|i| sc[i].0), core::array::from_fn(|i| sc[i].1), fast)
     }
 }
 
-/// `sin_cos_fast` on `P` pairs of angles (other targets: the compiler's
-/// vectoriser may turn the calls into vector instructions).
+/// `sin_cos_fast` on `P` vectors of `LANES` angles (other targets: the
+/// compiler's vectoriser may turn the calls into vector instructions).
 #[cfg(not(target_arch = "x86_64"))]
 #[inline(always)]
-fn sin_cos_pairs<const P: usize>(x: [[f64; 2]; P]) -> ([[f64; 2]; P], [[f64; 2]; P], bool) {
+fn sin_cos_lanes<const P: usize>(x: [[f64; LANES]; P]) -> ([[f64; LANES]; P], [[f64; LANES]; P], bool) {
     let r = x.map(|x| x.map(sin_cos_fast));
     (r.map(|r| r.map(|r| r.0)), r.map(|r| r.map(|r| r.1)), r.iter().flatten().all(|r| r.2))
 }
