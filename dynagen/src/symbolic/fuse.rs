@@ -126,7 +126,7 @@ impl Fusion {
         let path = CriticalPath::to_outputs(&ready, f.outputs());
         Fusion { sums, folded, path }
     }
-    /// No fusion at all, for a function of `len` nodes.
+    /// No fusion at all in `f`.
     pub fn none(f: &Function) -> Fusion {
         let len = f.nodes().len();
         Fusion { sums: vec![None; len], folded: vec![false; len], path: f.critical_path() }
