@@ -4,8 +4,9 @@
 //! The generated bodies are bound by the processor's floating-point ports
 //! (about two operations per cycle), and Rust never contracts `a * b + c`
 //! into one fused multiply-add by itself. [`Fusion::of`] picks, for every
-//! addition or subtraction that has a product among its operands, one such
-//! product to fuse with: `a·b + c`, `a·b − c` and `c − a·b` become one
+//! addition or subtraction that has a product among its operands, at most
+//! one such product to fuse with (rules below): `a·b + c`, `a·b − c` and
+//! `c − a·b` become one
 //! operation `(±a)·b + (±c)` with a single rounding where the target has
 //! one (code generation emits `fma(a, b, c)`, see [`crate::codegen`]).
 //!
