@@ -18,8 +18,8 @@
 //   inverse_dynamics: 26 ops: 5 add, 5 sub, 14 mul, 0 div, 0 neg, 0 sqrt, 2 sin_cos; 7 fused multiply-adds, 19 FP ops with each fused = 1; body NAME_sc critical path 20 cycles (5 ops)
 //   mass_matrix: 5 ops: 2 add, 0 sub, 2 mul, 0 div, 0 neg, 0 sqrt, 1 sin_cos; 2 fused multiply-adds, 3 FP ops with each fused = 1; body NAME_sc critical path 4 cycles (1 ops)
 //   bias_forces: 18 ops: 3 add, 2 sub, 10 mul, 0 div, 1 neg, 0 sqrt, 2 sin_cos; 3 fused multiply-adds, 14 FP ops with each fused = 1; body NAME_sc critical path 21 cycles (6 ops)
-//   gravity_torques: 12 ops: 0 add, 2 sub, 6 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos; 2 fused multiply-adds, 9 FP ops with each fused = 1; body NAME_sc critical path 17 cycles (5 ops)
-//   forward_dynamics (ABA) [not emitted]: 39 ops: 6 add, 8 sub, 22 mul, 1 div, 0 neg, 0 sqrt, 2 sin_cos; 11 fused multiply-adds, 30 FP ops with each fused = 1; body NAME_sc critical path 38 cycles (7 ops)
+//   gravity_torques: 12 ops: 0 add, 2 sub, 6 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos; 1 fused multiply-adds, 9 FP ops with each fused = 1; body NAME_sc critical path 20 cycles (5 ops)
+//   forward_dynamics (ABA) [not emitted]: 39 ops: 6 add, 8 sub, 22 mul, 1 div, 0 neg, 0 sqrt, 2 sin_cos; 10 fused multiply-adds, 30 FP ops with each fused = 1; body NAME_sc critical path 42 cycles (8 ops)
 //   forward_dynamics (CRBA + LTDL): 32 ops: 8 add, 4 sub, 16 mul, 2 div, 0 neg, 0 sqrt, 2 sin_cos; 11 fused multiply-adds, 22 FP ops with each fused = 1; body NAME_sc critical path 42 cycles (8 ops)
 
 /// The number of degrees of freedom (joints).
@@ -154,7 +154,7 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 /// The gravity torques g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 10 ops: 0 add, 2 sub, 6 mul, 0 div, 2 neg, 0 sqrt, 0 sin_cos; 2 fused multiply-adds, 7 FP ops with each fused = 1.
+/// 10 ops: 0 add, 2 sub, 6 mul, 0 div, 2 neg, 0 sqrt, 0 sin_cos; 1 fused multiply-adds, 7 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -172,13 +172,13 @@ pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
     let t5 = fma(-t1, s[1], t4);
     let t6 = 0.6000000000000001 * t5;
     let t7 = -t6;
-    let t8 = fma(-0.6000000000000001, t5, t3);
+    let t8 = t3 - t6;
     [t8, t7]
 }
 /// The gravity torques g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 12 ops: 0 add, 2 sub, 6 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos; 2 fused multiply-adds, 9 FP ops with each fused = 1.
+/// 12 ops: 0 add, 2 sub, 6 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos; 1 fused multiply-adds, 9 FP ops with each fused = 1.
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`gravity_torques_sc`].
 #[inline]

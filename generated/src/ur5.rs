@@ -15,12 +15,12 @@
 // sin_cos_all(q): the batched sine and cosine, within 1 ulp for every finite angle, no std.
 // Operation counts; critical path = the longest chain of dependent operations, weighted by latency
 //   (add, sub, mul, fma 4 cycles, div 14, sqrt 18, neg 1), of the body with the sines and cosines given:
-//   inverse_dynamics: 282 ops: 65 add, 50 sub, 162 mul, 0 div, 0 neg, 0 sqrt, 5 sin_cos; 104 fused multiply-adds, 187 FP ops with each fused = 1; body NAME_sc critical path 80 cycles (20 ops)
-//   mass_matrix: 131 ops: 27 add, 20 sub, 78 mul, 0 div, 1 neg, 0 sqrt, 5 sin_cos; 40 fused multiply-adds, 95 FP ops with each fused = 1; body NAME_sc critical path 40 cycles (10 ops)
-//   bias_forces: 253 ops: 56 add, 39 sub, 150 mul, 0 div, 3 neg, 0 sqrt, 5 sin_cos; 87 fused multiply-adds, 166 FP ops with each fused = 1; body NAME_sc critical path 85 cycles (22 ops)
+//   inverse_dynamics: 282 ops: 65 add, 50 sub, 162 mul, 0 div, 0 neg, 0 sqrt, 5 sin_cos; 96 fused multiply-adds, 187 FP ops with each fused = 1; body NAME_sc critical path 84 cycles (21 ops)
+//   mass_matrix: 131 ops: 27 add, 20 sub, 78 mul, 0 div, 1 neg, 0 sqrt, 5 sin_cos; 37 fused multiply-adds, 94 FP ops with each fused = 1; body NAME_sc critical path 40 cycles (10 ops)
+//   bias_forces: 253 ops: 56 add, 39 sub, 150 mul, 0 div, 3 neg, 0 sqrt, 5 sin_cos; 84 fused multiply-adds, 166 FP ops with each fused = 1; body NAME_sc critical path 85 cycles (22 ops)
 //   gravity_torques: 19 ops: 2 add, 3 sub, 11 mul, 0 div, 0 neg, 0 sqrt, 3 sin_cos; 5 fused multiply-adds, 14 FP ops with each fused = 1; body NAME_sc critical path 32 cycles (8 ops)
-//   forward_dynamics (ABA) [not emitted]: 610 ops: 126 add, 128 sub, 346 mul, 5 div, 0 neg, 0 sqrt, 5 sin_cos; 212 fused multiply-adds, 412 FP ops with each fused = 1; body NAME_sc critical path 222 cycles (43 ops)
-//   forward_dynamics (CRBA + LTDL): 498 ops: 91 add, 115 sub, 277 mul, 10 div, 0 neg, 0 sqrt, 5 sin_cos; 184 fused multiply-adds, 340 FP ops with each fused = 1; body NAME_sc critical path 126 cycles (19 ops)
+//   forward_dynamics (ABA) [not emitted]: 610 ops: 126 add, 128 sub, 346 mul, 5 div, 0 neg, 0 sqrt, 5 sin_cos; 201 fused multiply-adds, 412 FP ops with each fused = 1; body NAME_sc critical path 234 cycles (46 ops)
+//   forward_dynamics (CRBA + LTDL): 498 ops: 91 add, 115 sub, 277 mul, 10 div, 0 neg, 0 sqrt, 5 sin_cos; 178 fused multiply-adds, 339 FP ops with each fused = 1; body NAME_sc critical path 126 cycles (19 ops)
 
 /// The number of degrees of freedom (joints).
 pub const DOF: usize = 6;
@@ -41,7 +41,7 @@ pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
 /// Inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton-Euler algorithm.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 277 ops: 65 add, 50 sub, 162 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 104 fused multiply-adds, 182 FP ops with each fused = 1.
+/// 277 ops: 65 add, 50 sub, 162 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 96 fused multiply-adds, 182 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -70,14 +70,14 @@ pub fn inverse_dynamics_sc(
     let t11 = qd[1] * t5;
     let t12 = qd[1] * t6;
     let t13 = fma(-qdd[0], c[1], t12);
-    let t14 = fma(qd[1], t5, t4);
+    let t14 = t4 + t11;
     let t15 = 0.483853490875 * t0;
     let t16 = qd[1] * qd[1];
     let t17 = t5 * t6;
     let t18 = fma(qdd[0], c[1], -t12);
     let t19 = fma(t5, t5, t16);
-    let t20 = fma(t5, t6, qdd[1]);
-    let t21 = fma(-qd[1], t6, t18);
+    let t20 = qdd[1] + t17;
+    let t21 = t18 - t12;
     let t22 = fma(-t6, t6, t16);
     let t23 = 1.77012693841 * qdd[1];
     let t24 = fma(-0.075354282, t4, t23);
@@ -89,16 +89,16 @@ pub fn inverse_dynamics_sc(
     let t30 = fma(0.425, t20, t8);
     let t31 = fma(0.425, t21, -t3);
     let t32 = fma(0.425, t19, t10);
-    let t33 = t14 * c[2];
-    let t34 = fma(t13, s[2], -t33);
+    let t33 = t13 * s[2];
+    let t34 = fma(-t14, c[2], t33);
     let t35 = t14 * s[2];
     let t36 = fma(t13, c[2], t35);
     let t37 = t6 * c[2];
     let t38 = fma(t5, s[2], t37);
     let t39 = t6 * s[2];
     let t40 = fma(-t5, c[2], t39);
-    let t41 = s[2] * t30;
-    let t42 = fma(-c[2], t32, t41);
+    let t41 = c[2] * t32;
+    let t42 = fma(s[2], t30, -t41);
     let t43 = s[2] * t32;
     let t44 = fma(c[2], t30, t43);
     let t45 = qd[1] + qd[2];
@@ -110,15 +110,15 @@ pub fn inverse_dynamics_sc(
     let t51 = t38 * t40;
     let t52 = t38 * t45;
     let t53 = fma(t40, t40, t49);
-    let t54 = fma(t40, t45, -t47);
-    let t55 = fma(-t38, t40, t48);
-    let t56 = fma(t38, t45, t46);
+    let t54 = t50 - t47;
+    let t55 = t48 - t51;
+    let t56 = t46 + t52;
     let t57 = 1.598759275 * t56;
     let t58 = fma(-t38, t38, t49);
     let t59 = 0.09736195575 * t58;
     let t60 = fma(1.1872089033494997, t52, t59);
     let t61 = 0.5956519516747499 * t48;
-    let t62 = 0.09736195575 * t55;
+    let t62 = 0.5956519516747499 * t50;
     let t63 = fma(-1.598759275, t31, t60);
     let t64 = fma(0.39225, t55, t44);
     let t65 = fma(-0.39225, t56, t31);
@@ -142,8 +142,8 @@ pub fn inverse_dynamics_sc(
     let t83 = t72 * t74;
     let t84 = t74 * t77;
     let t85 = fma(t72, t72, t81);
-    let t86 = fma(t72, t74, t80);
-    let t87 = fma(t74, t77, t78);
+    let t86 = t80 + t83;
+    let t87 = t78 + t84;
     let t88 = 0.01778473500000001 * t86;
     let t89 = 0.01778473500000001 * t85;
     let t90 = 0.22863767245949998 * t84;
@@ -184,8 +184,8 @@ pub fn inverse_dynamics_sc(
     let t125 = t114 * t116;
     let t126 = t114 * t117;
     let t127 = 0.0004509462908000028 * t126;
-    let t128 = 0.0171364731454 * t123;
-    let t129 = fma(-0.016685526854599998, t125, t128);
+    let t128 = 0.016685526854599998 * t125;
+    let t129 = fma(0.0171364731454, t123, -t128);
     let t130 = 0.0171364731454 * t124;
     let t131 = fma(0.016685526854599998, t120, t130);
     let t132 = fma(-c[5], t127, t110);
@@ -198,8 +198,8 @@ pub fn inverse_dynamics_sc(
     let t139 = fma(c[4], t134, t96);
     let t140 = fma(s[4], t133, t139);
     let t141 = t94 + t136;
-    let t142 = s[3] * t88;
-    let t143 = fma(c[3], t89, t142);
+    let t142 = c[3] * t89;
+    let t143 = fma(s[3], t88, t142);
     let t144 = s[3] * t89;
     let t145 = fma(-c[3], t88, t144);
     let t146 = fma(-0.006976062303750003, t87, t63);
@@ -210,7 +210,7 @@ pub fn inverse_dynamics_sc(
     let t151 = fma(-0.09736195575, t54, t150);
     let t152 = fma(-0.39225, t143, t151);
     let t153 = t140 + t152;
-    let t154 = fma(0.5956519516747499, t50, t62);
+    let t154 = fma(0.09736195575, t55, t62);
     let t155 = fma(-0.5915569516747499, t47, t154);
     let t156 = fma(-s[3], t141, t155);
     let t157 = fma(-c[3], t138, t156);
@@ -243,7 +243,7 @@ pub fn inverse_dynamics_sc(
 /// Inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton-Euler algorithm.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 282 ops: 65 add, 50 sub, 162 mul, 0 div, 0 neg, 0 sqrt, 5 sin_cos; 104 fused multiply-adds, 187 FP ops with each fused = 1.
+/// 282 ops: 65 add, 50 sub, 162 mul, 0 div, 0 neg, 0 sqrt, 5 sin_cos; 96 fused multiply-adds, 187 FP ops with each fused = 1.
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`inverse_dynamics_sc`].
 #[inline]
@@ -263,7 +263,7 @@ pub fn inverse_dynamics(
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 126 ops: 27 add, 20 sub, 78 mul, 0 div, 1 neg, 0 sqrt, 0 sin_cos; 40 fused multiply-adds, 90 FP ops with each fused = 1.
+/// 126 ops: 27 add, 20 sub, 78 mul, 0 div, 1 neg, 0 sqrt, 0 sin_cos; 37 fused multiply-adds, 89 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -294,89 +294,88 @@ pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let t18 = fma(-s[3], t12, t17);
     let t19 = s[3] * t10;
     let t20 = fma(c[3], t12, t19);
-    let t21 = fma(-0.01778473500000001, s[3], 1.598759275);
+    let t21 = 1.598759275 - t16;
     let t22 = fma(-0.013952124607500007, s[3], 0.5956519516747499);
     let t23 = t13 + t22;
     let t24 = 0.09736195575 - t20;
-    let t25 = c[2] * t21;
-    let t26 = s[2] * t15;
-    let t27 = fma(-s[2], t15, t25);
-    let t28 = s[2] * t21;
-    let t29 = fma(c[2], t15, t28);
-    let t30 = c[2] * t18;
-    let t31 = fma(s[2], t24, t30);
-    let t32 = fma(0.85, t27, t23);
-    let t33 = 4.4329225 + t27;
-    let t34 = 1.77012693841 + t32;
-    let t35 = fma(-s[2], t18, 0.075354282);
-    let t36 = fma(c[2], t24, t35);
-    let t37 = s[1] * t36;
-    let t38 = 0.10915 * s[1];
-    let t39 = 0.10915 * c[1];
-    let t40 = s[1] * c[2];
-    let t41 = fma(c[1], s[2], t40);
-    let t42 = s[1] * s[2];
-    let t43 = fma(-c[1], c[2], t42);
-    let t44 = 0.425 * c[1];
-    let t45 = s[2] * t38;
-    let t46 = fma(-c[2], t39, t45);
-    let t47 = s[2] * t39;
-    let t48 = fma(c[2], t38, t47);
-    let t49 = c[3] * t41;
-    let t50 = fma(-s[3], t43, t49);
-    let t51 = c[3] * t43;
-    let t52 = fma(s[3], t41, t51);
-    let t53 = fma(-0.39225, t43, t44);
-    let t54 = fma(c[1], t31, t37);
-    let t55 = 1.75501953841 * s[1];
-    let t56 = fma(-s[1], t55, 2.7690351387572503);
-    let t57 = t18 * t43;
-    let t58 = t43 * t44;
-    let t59 = 0.5915569516747499 * t41;
-    let t60 = t11 * t50;
-    let t61 = fma(t9, t52, t60);
-    let t62 = t9 * t50;
-    let t63 = fma(t14, t52, t62);
-    let t64 = t50 * t61;
-    let t65 = fma(t52, t63, t64);
-    let t66 = t50 * t53;
-    let t67 = fma(-t41, t59, t56);
-    let t68 = fma(-3.19751855, t58, t67);
-    let t69 = fma(-0.03556947000000002, t66, t68);
-    let t70 = t65 + t69;
-    let t71 = 0.0171364731454 * c[4];
-    let t72 = t29 * t39;
-    let t73 = fma(t33, t38, t72);
-    let t74 = t73 - t54;
-    let t75 = fma(0.425, t27, t23);
-    let t76 = t21 * t48;
-    let t77 = t15 * t46;
-    let t78 = fma(-t15, t46, t76);
-    let t79 = fma(t18, t43, t78);
-    let t80 = fma(-t24, t41, t79);
-    let t81 = fma(-0.006976062303750003, s[3], t13);
-    let t82 = fma(c[2], t16, t26);
-    let t83 = fma(-0.425, t82, t81);
-    let t84 = fma(t20, t41, t57);
-    let t85 = fma(t16, t48, t77);
-    let t86 = t84 - t85;
-    let t87 = fma(t5, t52, t62);
-    let t88 = 0.0171364731454 * s[4];
-    let t89 = t50 * t88;
-    let t90 = -t89;
+    let t25 = s[2] * t15;
+    let t26 = fma(c[2], t21, -t25);
+    let t27 = c[2] * t15;
+    let t28 = fma(s[2], t21, t27);
+    let t29 = c[2] * t18;
+    let t30 = fma(s[2], t24, t29);
+    let t31 = fma(0.85, t26, t23);
+    let t32 = 4.4329225 + t26;
+    let t33 = 1.77012693841 + t31;
+    let t34 = fma(-s[2], t18, 0.075354282);
+    let t35 = fma(c[2], t24, t34);
+    let t36 = s[1] * t35;
+    let t37 = 0.10915 * s[1];
+    let t38 = 0.10915 * c[1];
+    let t39 = s[1] * c[2];
+    let t40 = fma(c[1], s[2], t39);
+    let t41 = s[1] * s[2];
+    let t42 = fma(-c[1], c[2], t41);
+    let t43 = 0.425 * c[1];
+    let t44 = s[2] * t37;
+    let t45 = fma(-c[2], t38, t44);
+    let t46 = s[2] * t38;
+    let t47 = fma(c[2], t37, t46);
+    let t48 = c[3] * t40;
+    let t49 = fma(-s[3], t42, t48);
+    let t50 = c[3] * t42;
+    let t51 = fma(s[3], t40, t50);
+    let t52 = fma(-0.39225, t42, t43);
+    let t53 = fma(c[1], t30, t36);
+    let t54 = 1.75501953841 * s[1];
+    let t55 = fma(-s[1], t54, 2.7690351387572503);
+    let t56 = t18 * t42;
+    let t57 = t42 * t43;
+    let t58 = 0.5915569516747499 * t40;
+    let t59 = t11 * t49;
+    let t60 = fma(t9, t51, t59);
+    let t61 = t9 * t49;
+    let t62 = fma(t14, t51, t61);
+    let t63 = t49 * t60;
+    let t64 = fma(t51, t62, t63);
+    let t65 = t49 * t52;
+    let t66 = fma(-t40, t58, t55);
+    let t67 = fma(-3.19751855, t57, t66);
+    let t68 = fma(-0.03556947000000002, t65, t67);
+    let t69 = t64 + t68;
+    let t70 = 0.0171364731454 * c[4];
+    let t71 = t28 * t38;
+    let t72 = fma(t32, t37, t71);
+    let t73 = t72 - t53;
+    let t74 = fma(0.425, t26, t23);
+    let t75 = t21 * t47;
+    let t76 = t15 * t45;
+    let t77 = t75 - t76;
+    let t78 = t56 + t77;
+    let t79 = fma(-t24, t40, t78);
+    let t80 = fma(-0.006976062303750003, s[3], t13);
+    let t81 = fma(c[2], t16, t25);
+    let t82 = fma(-0.425, t81, t80);
+    let t83 = fma(t20, t40, t56);
+    let t84 = fma(t16, t47, t76);
+    let t85 = t83 - t84;
+    let t86 = fma(t5, t51, t61);
+    let t87 = 0.0171364731454 * s[4];
+    let t88 = t49 * t87;
+    let t89 = -t88;
     [
-        [t70, t74, t80, t86, t87, t90],
-        [t74, t34, t75, t83, t10, t71],
-        [t80, t75, t23, t81, t10, t71],
-        [t86, t83, t81, t13, t10, t71],
-        [t87, t10, t10, t10, t5, 0.0],
-        [t90, t71, t71, t71, 0.0, 0.0171364731454],
+        [t69, t73, t79, t85, t86, t89],
+        [t73, t33, t74, t82, t10, t70],
+        [t79, t74, t23, t80, t10, t70],
+        [t85, t82, t80, t13, t10, t70],
+        [t86, t10, t10, t10, t5, 0.0],
+        [t89, t70, t70, t70, 0.0, 0.0171364731454],
     ]
 }
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 131 ops: 27 add, 20 sub, 78 mul, 0 div, 1 neg, 0 sqrt, 5 sin_cos; 40 fused multiply-adds, 95 FP ops with each fused = 1.
+/// 131 ops: 27 add, 20 sub, 78 mul, 0 div, 1 neg, 0 sqrt, 5 sin_cos; 37 fused multiply-adds, 94 FP ops with each fused = 1.
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`mass_matrix_sc`].
 #[inline]
@@ -390,7 +389,7 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 248 ops: 56 add, 39 sub, 150 mul, 0 div, 3 neg, 0 sqrt, 0 sin_cos; 87 fused multiply-adds, 161 FP ops with each fused = 1.
+/// 248 ops: 56 add, 39 sub, 150 mul, 0 div, 3 neg, 0 sqrt, 0 sin_cos; 84 fused multiply-adds, 161 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -444,8 +443,8 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
     let t41 = t27 * t34;
     let t42 = -t35;
     let t43 = fma(t29, t29, t38);
-    let t44 = fma(t29, t34, -t36);
-    let t45 = fma(-t27, t34, t42);
+    let t44 = t39 - t36;
+    let t45 = t42 - t41;
     let t46 = 1.598759275 * t45;
     let t47 = 1.598759275 * t43;
     let t48 = fma(-t27, t27, t38);
@@ -474,7 +473,7 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
     let t71 = t61 * t63;
     let t72 = t63 * t66;
     let t73 = fma(t61, t61, t69);
-    let t74 = fma(t63, t66, t67);
+    let t74 = t67 + t72;
     let t75 = 0.01778473500000001 * t71;
     let t76 = 0.01778473500000001 * t73;
     let t77 = 0.22863767245949998 * t72;
@@ -569,7 +568,7 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 253 ops: 56 add, 39 sub, 150 mul, 0 div, 3 neg, 0 sqrt, 5 sin_cos; 87 fused multiply-adds, 166 FP ops with each fused = 1.
+/// 253 ops: 56 add, 39 sub, 150 mul, 0 div, 3 neg, 0 sqrt, 5 sin_cos; 84 fused multiply-adds, 166 FP ops with each fused = 1.
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`bias_forces_sc`].
 #[inline]
@@ -624,7 +623,7 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by CRBA, RNEA and a sparse LᵀDL solve.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 493 ops: 91 add, 115 sub, 277 mul, 10 div, 0 neg, 0 sqrt, 0 sin_cos; 184 fused multiply-adds, 335 FP ops with each fused = 1.
+/// 493 ops: 91 add, 115 sub, 277 mul, 10 div, 0 neg, 0 sqrt, 0 sin_cos; 178 fused multiply-adds, 334 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -680,8 +679,8 @@ pub fn forward_dynamics_sc(
     let t38 = t25 * t27;
     let t39 = t25 * t32;
     let t40 = fma(t27, t27, t36);
-    let t41 = fma(t27, t32, -t34);
-    let t42 = fma(t25, t32, t33);
+    let t41 = t37 - t34;
+    let t42 = t33 + t39;
     let t43 = 1.598759275 * t42;
     let t44 = 1.598759275 * t40;
     let t45 = fma(-t25, t25, t36);
@@ -710,7 +709,7 @@ pub fn forward_dynamics_sc(
     let t68 = t58 * t60;
     let t69 = t60 * t63;
     let t70 = fma(t58, t58, t66);
-    let t71 = fma(t60, t63, t64);
+    let t71 = t64 + t69;
     let t72 = 0.01778473500000001 * t68;
     let t73 = 0.01778473500000001 * t70;
     let t74 = 0.22863767245949998 * t69;
@@ -818,168 +817,167 @@ pub fn forward_dynamics_sc(
     let t176 = fma(-s[3], t170, t175);
     let t177 = s[3] * t168;
     let t178 = fma(c[3], t170, t177);
-    let t179 = fma(-0.01778473500000001, s[3], 1.598759275);
+    let t179 = 1.598759275 - t174;
     let t180 = fma(-0.013952124607500007, s[3], 0.5956519516747499);
     let t181 = t171 + t180;
     let t182 = 0.09736195575 - t178;
-    let t183 = c[2] * t179;
-    let t184 = s[2] * t173;
-    let t185 = fma(-s[2], t173, t183);
-    let t186 = s[2] * t179;
-    let t187 = fma(c[2], t173, t186);
-    let t188 = c[2] * t176;
-    let t189 = fma(s[2], t182, t188);
-    let t190 = fma(0.85, t185, t181);
-    let t191 = 4.4329225 + t185;
-    let t192 = 1.77012693841 + t190;
-    let t193 = fma(-s[2], t176, 0.075354282);
-    let t194 = fma(c[2], t182, t193);
-    let t195 = s[1] * t194;
-    let t196 = 0.10915 * s[1];
-    let t197 = 0.10915 * c[1];
-    let t198 = s[1] * c[2];
-    let t199 = fma(c[1], s[2], t198);
-    let t200 = s[1] * s[2];
-    let t201 = fma(-c[1], c[2], t200);
-    let t202 = 0.425 * c[1];
-    let t203 = s[2] * t196;
-    let t204 = fma(-c[2], t197, t203);
-    let t205 = s[2] * t197;
-    let t206 = fma(c[2], t196, t205);
-    let t207 = c[3] * t199;
-    let t208 = fma(-s[3], t201, t207);
-    let t209 = c[3] * t201;
-    let t210 = fma(s[3], t199, t209);
-    let t211 = fma(-0.39225, t201, t202);
-    let t212 = fma(c[1], t189, t195);
-    let t213 = 1.75501953841 * s[1];
-    let t214 = fma(-s[1], t213, 2.7690351387572503);
-    let t215 = t176 * t201;
-    let t216 = fma(-t182, t199, t215);
-    let t217 = t201 * t202;
-    let t218 = 0.5915569516747499 * t199;
-    let t219 = t199 * t218;
-    let t220 = fma(3.19751855, t217, t219);
-    let t221 = t214 - t220;
-    let t222 = t169 * t208;
-    let t223 = fma(t167, t210, t222);
-    let t224 = t167 * t208;
-    let t225 = fma(t172, t210, t224);
-    let t226 = t208 * t223;
-    let t227 = fma(t210, t225, t226);
-    let t228 = t208 * t211;
-    let t229 = fma(-0.03556947000000002, t228, t227);
-    let t230 = t221 + t229;
-    let t231 = 0.0171364731454 * c[4];
-    let t232 = t187 * t197;
-    let t233 = fma(t191, t196, t232);
-    let t234 = t233 - t212;
-    let t235 = fma(0.425, t185, t181);
-    let t236 = t179 * t206;
-    let t237 = t173 * t204;
-    let t238 = fma(-t173, t204, t236);
-    let t239 = t216 + t238;
-    let t240 = fma(-0.006976062303750003, s[3], t171);
-    let t241 = fma(c[2], t174, t184);
-    let t242 = fma(-0.425, t241, t240);
-    let t243 = t178 * t199;
-    let t244 = fma(t174, t206, t237);
-    let t245 = fma(t163, t210, t224);
-    let t246 = 0.0171364731454 * s[4];
-    let t247 = t208 * t246;
-    let t248 = fma(-c[4], t231, t171);
-    let t249 = fma(-c[4], t231, t240);
-    let t250 = fma(-c[4], t231, t242);
-    let t251 = fma(-c[4], t231, t181);
-    let t252 = fma(-c[4], t231, t235);
-    let t253 = fma(c[4], t247, t239);
-    let t254 = fma(-c[4], t231, t192);
-    let t255 = fma(c[4], t247, t234);
-    let t256 = 58.355064750790525 * t247;
-    let t257 = fma(-t247, t256, t230);
-    let t258 = 1.0 / t163;
-    let t259 = t168 * t258;
-    let t260 = fma(-t168, t259, t248);
-    let t261 = fma(-t168, t259, t249);
-    let t262 = fma(-t168, t259, t250);
-    let t263 = fma(t176, t201, -t244);
-    let t264 = fma(c[4], t247, t243);
-    let t265 = t263 + t264;
-    let t266 = fma(-t245, t259, t265);
-    let t267 = fma(-t168, t259, t251);
-    let t268 = fma(-t168, t259, t252);
-    let t269 = fma(-t245, t259, t253);
-    let t270 = fma(-t168, t259, t254);
-    let t271 = fma(-t245, t259, t255);
-    let t272 = t245 * t258;
-    let t273 = fma(-t245, t272, t257);
-    let t274 = 1.0 / t260;
-    let t275 = t261 * t274;
-    let t276 = fma(-t261, t275, t267);
-    let t277 = fma(-t262, t275, t268);
-    let t278 = fma(-t266, t275, t269);
-    let t279 = t262 * t274;
-    let t280 = fma(-t262, t279, t270);
-    let t281 = fma(-t266, t279, t271);
-    let t282 = t266 * t274;
-    let t283 = fma(-t266, t282, t273);
-    let t284 = 1.0 / t276;
-    let t285 = t277 * t284;
-    let t286 = fma(-t277, t285, t280);
-    let t287 = fma(-t278, t285, t281);
-    let t288 = t278 * t284;
-    let t289 = fma(-t278, t288, t283);
-    let t290 = 1.0 / t286;
-    let t291 = t287 * t290;
-    let t292 = fma(-t287, t291, t289);
-    let t293 = fma(-c[4], t157, tau[3]);
-    let t294 = t293 - t120;
-    let t295 = fma(-t156, t259, t294);
-    let t296 = fma(-c[4], t157, tau[2]);
-    let t297 = fma(-t156, t259, t296);
-    let t298 = t297 - t130;
-    let t299 = fma(-t275, t295, t298);
-    let t300 = fma(43.486969725, c[1], tau[1]);
-    let t301 = fma(-1.75501953841, t10, t300);
-    let t302 = fma(-0.425, t140, t301);
-    let t303 = fma(-c[4], t157, t302);
-    let t304 = fma(-t156, t259, t303);
-    let t305 = t304 - t130;
-    let t306 = fma(-t279, t295, t305);
-    let t307 = fma(-t285, t299, t306);
-    let t308 = fma(t157, t256, tau[0]);
-    let t309 = fma(0.10915, t153, t308);
-    let t310 = fma(-t156, t272, t309);
-    let t311 = fma(-t282, t295, t310);
-    let t312 = fma(-t288, t299, t311);
-    let t313 = t155 + t312;
-    let t314 = fma(-t291, t307, t313);
-    let t315 = t314 / t292;
-    let t316 = t307 / t286;
-    let t317 = t299 / t276;
-    let t318 = t295 / t260;
-    let t319 = t156 / t163;
-    let t320 = t157 / 0.0171364731454;
-    let t321 = fma(-t291, t315, t316);
-    let t322 = fma(-t288, t315, t317);
-    let t323 = fma(-t285, t321, t322);
-    let t324 = fma(-t282, t315, t318);
-    let t325 = fma(-t279, t321, t324);
-    let t326 = fma(-t275, t323, t325);
-    let t327 = fma(-t272, t315, t319);
-    let t328 = fma(-t259, t321, t327);
-    let t329 = fma(-t259, t323, t328);
-    let t330 = fma(-t259, t326, t329);
-    let t331 = fma(t256, t315, t320);
-    let t332 = fma(-c[4], t321, t331);
-    let t333 = fma(-c[4], t323, t332);
-    let t334 = fma(-c[4], t326, t333);
-    [t315, t321, t323, t326, t330, t334]
+    let t183 = s[2] * t173;
+    let t184 = fma(c[2], t179, -t183);
+    let t185 = c[2] * t173;
+    let t186 = fma(s[2], t179, t185);
+    let t187 = c[2] * t176;
+    let t188 = fma(s[2], t182, t187);
+    let t189 = fma(0.85, t184, t181);
+    let t190 = 4.4329225 + t184;
+    let t191 = 1.77012693841 + t189;
+    let t192 = fma(-s[2], t176, 0.075354282);
+    let t193 = fma(c[2], t182, t192);
+    let t194 = s[1] * t193;
+    let t195 = 0.10915 * s[1];
+    let t196 = 0.10915 * c[1];
+    let t197 = s[1] * c[2];
+    let t198 = fma(c[1], s[2], t197);
+    let t199 = s[1] * s[2];
+    let t200 = fma(-c[1], c[2], t199);
+    let t201 = 0.425 * c[1];
+    let t202 = s[2] * t195;
+    let t203 = fma(-c[2], t196, t202);
+    let t204 = s[2] * t196;
+    let t205 = fma(c[2], t195, t204);
+    let t206 = c[3] * t198;
+    let t207 = fma(-s[3], t200, t206);
+    let t208 = c[3] * t200;
+    let t209 = fma(s[3], t198, t208);
+    let t210 = fma(-0.39225, t200, t201);
+    let t211 = fma(c[1], t188, t194);
+    let t212 = 1.75501953841 * s[1];
+    let t213 = fma(-s[1], t212, 2.7690351387572503);
+    let t214 = t176 * t200;
+    let t215 = fma(-t182, t198, t214);
+    let t216 = t200 * t201;
+    let t217 = 0.5915569516747499 * t198;
+    let t218 = t198 * t217;
+    let t219 = fma(3.19751855, t216, t218);
+    let t220 = t213 - t219;
+    let t221 = t169 * t207;
+    let t222 = fma(t167, t209, t221);
+    let t223 = t167 * t207;
+    let t224 = fma(t172, t209, t223);
+    let t225 = t207 * t222;
+    let t226 = fma(t209, t224, t225);
+    let t227 = t207 * t210;
+    let t228 = fma(-0.03556947000000002, t227, t226);
+    let t229 = t220 + t228;
+    let t230 = 0.0171364731454 * c[4];
+    let t231 = t186 * t196;
+    let t232 = fma(t190, t195, t231);
+    let t233 = t232 - t211;
+    let t234 = fma(0.425, t184, t181);
+    let t235 = t179 * t205;
+    let t236 = t173 * t203;
+    let t237 = t235 - t236;
+    let t238 = t215 + t237;
+    let t239 = fma(-0.006976062303750003, s[3], t171);
+    let t240 = fma(c[2], t174, t183);
+    let t241 = fma(-0.425, t240, t239);
+    let t242 = t178 * t198;
+    let t243 = fma(t174, t205, t236);
+    let t244 = fma(t163, t209, t223);
+    let t245 = 0.0171364731454 * s[4];
+    let t246 = t207 * t245;
+    let t247 = fma(-c[4], t230, t171);
+    let t248 = fma(-c[4], t230, t239);
+    let t249 = fma(-c[4], t230, t241);
+    let t250 = fma(-c[4], t230, t181);
+    let t251 = fma(-c[4], t230, t234);
+    let t252 = fma(c[4], t246, t238);
+    let t253 = fma(-c[4], t230, t191);
+    let t254 = fma(c[4], t246, t233);
+    let t255 = 58.355064750790525 * t246;
+    let t256 = fma(-t246, t255, t229);
+    let t257 = 1.0 / t163;
+    let t258 = t168 * t257;
+    let t259 = fma(-t168, t258, t247);
+    let t260 = fma(-t168, t258, t248);
+    let t261 = fma(-t168, t258, t249);
+    let t262 = t214 - t243;
+    let t263 = fma(c[4], t246, t242);
+    let t264 = t262 + t263;
+    let t265 = fma(-t244, t258, t264);
+    let t266 = fma(-t168, t258, t250);
+    let t267 = fma(-t168, t258, t251);
+    let t268 = fma(-t244, t258, t252);
+    let t269 = fma(-t168, t258, t253);
+    let t270 = fma(-t244, t258, t254);
+    let t271 = t244 * t257;
+    let t272 = fma(-t244, t271, t256);
+    let t273 = 1.0 / t259;
+    let t274 = t260 * t273;
+    let t275 = fma(-t260, t274, t266);
+    let t276 = fma(-t261, t274, t267);
+    let t277 = fma(-t265, t274, t268);
+    let t278 = t261 * t273;
+    let t279 = fma(-t261, t278, t269);
+    let t280 = fma(-t265, t278, t270);
+    let t281 = t265 * t273;
+    let t282 = fma(-t265, t281, t272);
+    let t283 = 1.0 / t275;
+    let t284 = t276 * t283;
+    let t285 = fma(-t276, t284, t279);
+    let t286 = fma(-t277, t284, t280);
+    let t287 = t277 * t283;
+    let t288 = fma(-t277, t287, t282);
+    let t289 = 1.0 / t285;
+    let t290 = t286 * t289;
+    let t291 = fma(-t286, t290, t288);
+    let t292 = fma(-c[4], t157, tau[3]);
+    let t293 = t292 - t120;
+    let t294 = fma(-t156, t258, t293);
+    let t295 = fma(-c[4], t157, tau[2]);
+    let t296 = fma(-t156, t258, t295);
+    let t297 = t296 - t130;
+    let t298 = fma(-t274, t294, t297);
+    let t299 = fma(43.486969725, c[1], tau[1]);
+    let t300 = fma(-1.75501953841, t10, t299);
+    let t301 = fma(-0.425, t140, t300);
+    let t302 = fma(-c[4], t157, t301);
+    let t303 = fma(-t156, t258, t302);
+    let t304 = t303 - t130;
+    let t305 = fma(-t278, t294, t304);
+    let t306 = fma(-t284, t298, t305);
+    let t307 = fma(t157, t255, tau[0]);
+    let t308 = fma(0.10915, t153, t307);
+    let t309 = fma(-t156, t271, t308);
+    let t310 = fma(-t281, t294, t309);
+    let t311 = fma(-t287, t298, t310);
+    let t312 = t155 + t311;
+    let t313 = fma(-t290, t306, t312);
+    let t314 = t313 / t291;
+    let t315 = t306 / t285;
+    let t316 = t298 / t275;
+    let t317 = t294 / t259;
+    let t318 = t156 / t163;
+    let t319 = t157 / 0.0171364731454;
+    let t320 = fma(-t290, t314, t315);
+    let t321 = fma(-t287, t314, t316);
+    let t322 = fma(-t284, t320, t321);
+    let t323 = fma(-t281, t314, t317);
+    let t324 = fma(-t278, t320, t323);
+    let t325 = fma(-t274, t322, t324);
+    let t326 = fma(-t271, t314, t318);
+    let t327 = fma(-t258, t320, t326);
+    let t328 = fma(-t258, t322, t327);
+    let t329 = fma(-t258, t325, t328);
+    let t330 = fma(t255, t314, t319);
+    let t331 = fma(-c[4], t320, t330);
+    let t332 = fma(-c[4], t322, t331);
+    let t333 = fma(-c[4], t325, t332);
+    [t314, t320, t322, t325, t329, t333]
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by CRBA, RNEA and a sparse LᵀDL solve.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 498 ops: 91 add, 115 sub, 277 mul, 10 div, 0 neg, 0 sqrt, 5 sin_cos; 184 fused multiply-adds, 340 FP ops with each fused = 1.
+/// 498 ops: 91 add, 115 sub, 277 mul, 10 div, 0 neg, 0 sqrt, 5 sin_cos; 178 fused multiply-adds, 339 FP ops with each fused = 1.
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`forward_dynamics_sc`].
 #[inline]

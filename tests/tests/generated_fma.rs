@@ -14,7 +14,9 @@
 //!   `a * b + c`), and stay within 1e-12 of the generic solver. The same
 //!   for an `f32` module (`fmaf`), within 1e-5. The module's sine-cosine
 //!   kernel, whose polynomials are fused there too, must stay within 1 ulp
-//!   (of f64; of f32 for `sin_cos_array_f32`) against double-double values.
+//!   (of f64; of f32 for `sin_cos_array_f32`) against double-double values,
+//!   and its vector path (AVX2 too, where the host has it) must give the
+//!   one-angle kernel's bits.
 
 use dynagen::codegen::{generate, CodegenOptions, FunctionKind, GeneratedFunction, ScalarType};
 use dynagen::symbolic::Function;
@@ -219,6 +221,9 @@ fn program(xs: &[State], f64_fns: &[GeneratedFunction], f32_fns: &[GeneratedFunc
     let _ = writeln!(p, "    let x: [f64; {}] = {angles:?};", angles.len());
     p.push_str("    let (s, c) = m64::sin_cos_array(&x);\n");
     p.push_str("    out(0, \"sin64\", &s.map(f64::to_bits));\n    out(0, \"cos64\", &c.map(f64::to_bits));\n");
+    p.push_str("    out(0, \"sin64_one\", &x.map(|v| m64::sin_cos_kernel(v).0.to_bits()));\n");
+    p.push_str("    out(0, \"avx2_one\", &[u64::from(cfg!(target_feature = \"avx2\"))]);\n");
+    p.push_str("    out(0, \"cos64_one\", &x.map(|v| m64::sin_cos_kernel(v).1.to_bits()));\n");
     p.push_str("    let (s, c) = m32::sin_cos_array_f32(&x.map(|v| v as f32));\n");
     p.push_str("    out(0, \"sin32\", &s.map(f32::to_bits));\n    out(0, \"cos32\", &c.map(f32::to_bits));\n");
     p.push_str("}\n");
@@ -247,9 +252,14 @@ fn the_fused_path_compiled_with_the_fma_feature_rounds_once_and_stays_accurate()
     let exe = dir.join("fused");
     let mut rustc = std::process::Command::new(std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into()));
     rustc.args(["--edition", "2021", "-O", "-o"]).arg(&exe).arg(dir.join("main.rs"));
-    if cfg!(target_arch = "x86_64") {
-        rustc.args(["-C", "target-feature=+fma"]);
-    }
+    // With AVX2 too where the host has it: sin_cos_array then runs four
+    // angles a vector (`sin_cos_lanes`), which must give the bits of the
+    // one-angle kernel.
+    #[cfg(target_arch = "x86_64")]
+    rustc.args([
+        "-C",
+        if std::is_x86_feature_detected!("avx2") { "target-feature=+fma,+avx2" } else { "target-feature=+fma" },
+    ]);
     let built = rustc.output().expect("running rustc");
     assert!(built.status.success(), "rustc failed:\n{}", String::from_utf8_lossy(&built.stderr));
     let run = std::process::Command::new(&exe).output().expect("running the fused program");
@@ -260,11 +270,18 @@ fn the_fused_path_compiled_with_the_fma_feature_rounds_once_and_stays_accurate()
     let (mut kernel_worst, mut kernel_differ) = ([0.0f64; 4], 0);
     let exact: Vec<(DoubleDouble, DoubleDouble)> = angles.iter().map(|&x| DoubleDouble::from(x).sin_cos()).collect();
     let unfused = dynagen::codegen::sin_cos_kernel;
+    let mut one_by_one = std::collections::BTreeMap::new();
     for line in stdout.lines() {
         let mut words = line.split_whitespace();
         let k: usize = words.next().unwrap().parse().unwrap();
         let name = words.next().unwrap();
         let got: Vec<u64> = words.map(|w| u64::from_str_radix(w, 16).unwrap()).collect();
+        if name.ends_with("_one") || name == "sin64" || name == "cos64" {
+            one_by_one.insert(name.to_string(), got.clone());
+        }
+        if name.ends_with("_one") {
+            continue;
+        }
         if let Some(j) = ["sin64", "cos64", "sin32", "cos32"].iter().position(|n| *n == name) {
             assert_eq!(got.len(), angles.len());
             for (i, (&b, &x)) in got.iter().zip(&angles).enumerate() {
@@ -314,6 +331,12 @@ fn the_fused_path_compiled_with_the_fma_feature_rounds_once_and_stays_accurate()
         lines += 1;
     }
     assert_eq!(lines, xs.len() * (f64_fns.len() + f32_fns.len()), "{stdout}");
+    // The vector path of sin_cos_array is the one-angle kernel, bit for bit.
+    assert_eq!(one_by_one.len(), 5, "{stdout}");
+    #[cfg(target_arch = "x86_64")]
+    assert_eq!(one_by_one["avx2_one"], [u64::from(std::is_x86_feature_detected!("avx2"))], "built with AVX2");
+    assert_eq!(one_by_one["sin64"], one_by_one["sin64_one"]);
+    assert_eq!(one_by_one["cos64"], one_by_one["cos64_one"]);
     // The fused kernel rounds differently from the unfused one somewhere
     // (rarely: the fused operations are the polynomials' small corrections).
     assert!(kernel_differ > 0, "no fused kernel result differs from the unfused one");

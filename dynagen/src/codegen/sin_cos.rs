@@ -12,11 +12,13 @@
 //! ```
 //!
 //! and its `NAME(q, …)` of [`Trig::Batched`](super::Trig::Batched) call
-//! `sin_cos_array` on the angles that `NAME_sc` reads, no others. Two
+//! `sin_cos_array` on the angles that `NAME_sc` reads, no others. Two or four
 //! angles at a time go through the same branch-free code: on x86-64 written
 //! out in SSE2 intrinsics (part of the default target; LLVM's own
-//! vectoriser took the scalar code for some lengths only), elsewhere the
-//! scalar code. A rare slow path (angles within ~1e-17·|q| of a multiple of
+//! vectoriser took the scalar code for some lengths only), four at a time
+//! in AVX2 where the target has it, elsewhere the scalar code; the
+//! polynomials use fused multiply-adds where the target has them (see
+//! [`CodegenOptions::fma`](super::CodegenOptions::fma)). A rare slow path (angles within ~1e-17·|q| of a multiple of
 //! π/2, |q| > 1.5e6 rad, NaN, ±∞) redoes the batch one angle at a time with
 //! an exact (Payne–Hanek) reduction. Accuracy: within
 //! 1 ulp of the exact sine and cosine for every finite angle (measured by

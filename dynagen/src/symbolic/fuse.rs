@@ -4,23 +4,26 @@
 //! The generated bodies are bound by the processor's floating-point ports
 //! (about two operations per cycle), and Rust never contracts `a * b + c`
 //! into one fused multiply-add by itself. [`Fusion::of`] picks, for every
-//! addition or subtraction that has a product among its operands, one such
-//! product to fuse with: `a·b + c`, `a·b − c` and `c − a·b` become one
+//! addition or subtraction that has a product among its operands, at most
+//! one such product to fuse with (rules below): `a·b + c`, `a·b − c` and
+//! `c − a·b` become one
 //! operation `(±a)·b + (±c)` with a single rounding where the target has
 //! one (code generation emits `fma(a, b, c)`, see [`crate::codegen`]).
 //!
-//! - A product that feeds several sums is fused into each of them: when
-//!   every use of the product is fused, the multiplication is not computed
-//!   on its own any more ("folded"), and each folded multiplication is one
-//!   floating-point operation less ([`OpCount::fp_ops`]). A product with
-//!   another use (an output, a factor of another product) is still computed;
-//!   fusing it into its sums then costs nothing and shortens their chains.
-//! - When both operands of a sum are products, the one that can be folded
-//!   (every use of it is a sum's operand) is fused, as that saves an
-//!   operation; between two that both can or both cannot, the one ready
-//!   later (by the latency-weighted depth of [`Latency`], with the fusions
-//!   already chosen before it), so that its multiplication leaves the
-//!   critical path.
+//! - A product that feeds several sums is fused into each of them, and its
+//!   multiplication is then not computed on its own any more ("folded"):
+//!   each folded multiplication is one floating-point operation less
+//!   ([`OpCount::fp_ops`]).
+//! - Only products that can be folded are fused: every use of them is a
+//!   sum's operand. A product with another use (an output, a factor of
+//!   another product) is computed anyway, so fusing it saves nothing; it
+//!   would only shorten chains, and fusing such products too measured
+//!   slower on the mass matrices (UR5 and Panda, `benches/README.md`,
+//!   run 7).
+//! - When both operands of a sum can be folded, the one ready later (by
+//!   the latency-weighted depth of [`Latency`]) is fused, so that its
+//!   multiplication leaves the critical path; the other is then computed
+//!   anyway, and its other sums stay unfused too.
 //!
 //! The graph itself is not changed: [`Fusion`] is a plan beside the
 //! [`Function`], read by the emitter, by the operation count
@@ -84,49 +87,65 @@ impl Fusion {
             Node::Mul(a, b) => Some((a, b)),
             _ => None,
         };
-        let foldable = |p: NodeId| sum_uses[p as usize] == uses[p as usize];
+        // A product can be folded if every use of it is a sum's operand.
+        let foldable = |p: NodeId| factors(p).is_some() && sum_uses[p as usize] == uses[p as usize];
         let mut sums = vec![None; nodes.len()];
-        let mut fused_uses = vec![0u32; nodes.len()];
+        // The product each fused sum took.
+        let mut product = vec![NodeId::MAX; nodes.len()];
         let mut ready: Vec<(u32, u32)> = Vec::with_capacity(nodes.len());
         for (id, n) in nodes.iter().enumerate() {
-            let (x, y, subtract) = match *n {
-                Node::Add(x, y) if x != y => (x, y, false),
-                Node::Sub(x, y) if x != y => (x, y, true),
-                _ => {
-                    ready.push(CriticalPath::ready_after(&ready, n.operands(), latency.of(n)));
-                    continue;
-                }
-            };
-            let pick = match (factors(x).is_some(), factors(y).is_some()) {
-                (true, true) => match (foldable(x), foldable(y)) {
-                    (true, false) => Some(x),
-                    (false, true) => Some(y),
+            let pick = match *n {
+                Node::Add(x, y) | Node::Sub(x, y) if x != y => match (foldable(x), foldable(y)) {
                     // The later one (the second on a tie).
-                    _ if ready[x as usize] > ready[y as usize] => Some(x),
-                    _ => Some(y),
+                    (true, true) if ready[x as usize] > ready[y as usize] => Some((x, y)),
+                    (true, true) | (false, true) => Some((y, x)),
+                    (true, false) => Some((x, y)),
+                    (false, false) => None,
                 },
-                (true, false) => Some(x),
-                (false, true) => Some(y),
-                (false, false) => None,
+                _ => None,
             };
-            let Some(p) = pick else {
+            let Some((p, c)) = pick else {
                 ready.push(CriticalPath::ready_after(&ready, n.operands(), latency.of(n)));
                 continue;
             };
             let (a, b) = factors(p).expect("a product");
-            let c = if p == x { y } else { x };
-            let fused = Fused { a, b, negate_product: subtract && p == y, c, negate_addend: subtract && p == x };
-            sums[id] = Some(fused);
-            fused_uses[p as usize] += 1;
+            let subtract = matches!(n, Node::Sub(..));
+            let first = matches!(*n, Node::Add(x, _) | Node::Sub(x, _) if x == p);
+            sums[id] = Some(Fused { a, b, negate_product: subtract && !first, c, negate_addend: subtract && first });
+            product[id] = p;
             ready.push(CriticalPath::ready_after(&ready, [a, b, c].into_iter(), latency.fma));
         }
-        let folded: Vec<bool> = (0..nodes.len())
-            .map(|p| factors(p as NodeId).is_some() && fused_uses[p] > 0 && fused_uses[p] == uses[p])
-            .collect();
+        // A product that a sum with two products did not take is computed
+        // anyway: its other sums then gain nothing from fusing it (the same
+        // number of operations; measured slower on the mass matrices), so
+        // they are left unfused, until every fused product is folded.
+        let folded = loop {
+            let mut fused_uses = vec![0u32; nodes.len()];
+            for &p in product.iter().filter(|&&p| p != NodeId::MAX) {
+                fused_uses[p as usize] += 1;
+            }
+            let folded: Vec<bool> = (0..nodes.len()).map(|p| fused_uses[p] > 0 && fused_uses[p] == uses[p]).collect();
+            let mut changed = false;
+            for (s, p) in sums.iter_mut().zip(product.iter_mut()) {
+                if *p != NodeId::MAX && !folded[*p as usize] {
+                    (*s, *p, changed) = (None, NodeId::MAX, true);
+                }
+            }
+            if !changed {
+                break folded;
+            }
+        };
+        let mut ready: Vec<(u32, u32)> = Vec::with_capacity(nodes.len());
+        for (n, s) in nodes.iter().zip(&sums) {
+            ready.push(match s {
+                Some(fu) => CriticalPath::ready_after(&ready, [fu.a, fu.b, fu.c].into_iter(), latency.fma),
+                None => CriticalPath::ready_after(&ready, n.operands(), latency.of(n)),
+            });
+        }
         let path = CriticalPath::to_outputs(&ready, f.outputs());
         Fusion { sums, folded, path }
     }
-    /// No fusion at all, for a function of `len` nodes.
+    /// No fusion at all in `f`.
     pub fn none(f: &Function) -> Fusion {
         let len = f.nodes().len();
         Fusion { sums: vec![None; len], folded: vec![false; len], path: f.critical_path() }
@@ -170,8 +189,9 @@ mod tests {
     use crate::symbolic::Graph;
 
     /// x0·x1 + x2, x2 − x0·x1 (the product shared, so fused into both and
-    /// folded), x3·x4 − x5 with x3·x4 also an output (fused, not folded),
-    /// and (x0·x1 + x2)·x2 + x3·x4: both products, the later one is fused.
+    /// folded), x3·x4 − x5 with x3·x4 also an output (not fused: it is
+    /// computed anyway), and (x0·x1 + x2)·x2 + x3·x4: both products, the
+    /// one that can be folded is fused.
     fn example() -> Function {
         let mut g = Graph::new();
         let x: Vec<NodeId> = (0..6).map(|i| g.input("x", i)).collect();
@@ -190,10 +210,11 @@ mod tests {
         let f = example();
         let fusion = f.fusion();
         let count = fusion.op_count(&f);
-        // 4 sums, all fused; x0·x1 folded (both its uses fused), and the
-        // late product (its one use fused); x3·x4 kept (an output).
+        // 3 of the 4 sums fused; x0·x1 folded (both its uses fused), and the
+        // late product (its one use fused); x3·x4 kept (an output), and
+        // x3·x4 − x5 not fused.
         assert_eq!((count.add + count.sub, count.mul), (4, 3));
-        assert_eq!((count.fused, count.mul_folded), (4, 2));
+        assert_eq!((count.fused, count.mul_folded), (3, 2));
         assert_eq!(count.fp_ops(), count.arithmetic() - 2);
         let nodes = f.nodes();
         let id = |want: Node| nodes.iter().position(|n| *n == want).unwrap() as NodeId;
@@ -210,6 +231,7 @@ mod tests {
         let s4 = f.outputs()[4];
         assert_eq!(fusion.sum(s4).map(|u| (u.a, u.b)), Some((2, f.outputs()[0])));
         assert!(fusion.is_folded(late) && !fusion.is_folded(f.outputs()[3]));
+        assert_eq!(fusion.sum(f.outputs()[2]), None, "x3·x4 − x5");
         // The chain x0·x1 → + → · → + is two fused operations.
         assert_eq!(f.critical_path().cycles, 4 * 4);
         assert_eq!(fusion.critical_path().cycles, 2 * 4);

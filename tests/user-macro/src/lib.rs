@@ -17,12 +17,14 @@ pub mod pendulum {
     }
 }
 
-/// The pendulum's gravity torque in f32, from the same inline robot.
+/// The pendulum's gravity torque in f32, from the same inline robot,
+/// without fused multiply-adds.
 pub mod pendulum_f32 {
     dynagen_macros::robot! {
         name: pendulum,
         functions: [gravity_torques],
         scalar: f32,
+        fma: false,
         link base {},
         link arm { mass: 2.0, com: [0, 0, -0.5], inertia: [0.1, 0.1, 0.01, 0, 0, 0] },
         joint hinge: revolute(base -> arm) { axis: [0, 1, 0] },
