@@ -42,7 +42,8 @@ fn main() {
         let urdf = robots.join(format!("{robot}.urdf"));
         println!("cargo:rerun-if-changed={}", urdf.display());
         let model = Model::from_urdf_file(&urdf).unwrap_or_else(|e| panic!("{}: {e}", urdf.display()));
-        let base = CodegenOptions::default().source(rel.clone());
+        // Forward dynamics by the ABA here, so that its row is that algorithm's (the default picks per robot).
+        let base = CodegenOptions::default().source(rel.clone()).forward_dynamics(ForwardDynamicsMethod::Aba);
         let variants = [
             ("f64", base.clone()),
             ("f64_batched", base.clone().trig(Trig::Batched)),

@@ -631,7 +631,8 @@ pub fn run(report: &mut Report) {
          in f64 — with std's `sin_cos` (the default), with the batched `sin_cos_all` (`Trig::Batched`, what \
          the vendored `generated/` modules use), or with the sines and cosines passed in (`NAME_sc`, their \
          cost not counted) — and in f32. Forward dynamics appears twice: by the articulated-body algorithm \
-         (the default) and by CRBA + RNEA + sparse LᵀDL (`--ldlt`).\n\n\
+         (`--aba`) and by CRBA + RNEA + sparse LᵀDL (`--ldlt`); by default the generator picks one per robot \
+         (the module header says which).\n\n\
          **Time** per call: {reps} repetitions; in each, every variant of the function runs one batch \
          (≈ {batch} µs, passes over {timing} ordinary states), the variants in turn, so they share the \
          machine's state; median and minimum over the repetitions. Inputs go through `std::hint::black_box`. \
