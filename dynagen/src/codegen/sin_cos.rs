@@ -268,6 +268,34 @@ mod tests {
         }
     }
 
+    /// Bit patterns of `f64` and `f32`, to compare results exactly.
+    trait Bits: Copy + core::fmt::Debug {
+        fn bits(self) -> u64;
+    }
+    impl Bits for f64 {
+        fn bits(self) -> u64 {
+            self.to_bits()
+        }
+    }
+    impl Bits for f32 {
+        fn bits(self) -> u64 {
+            u64::from(self.to_bits())
+        }
+    }
+
+    /// A batch function: the sines and cosines of `N` angles.
+    type Batch<T, const N: usize> = fn(&[T; N]) -> ([T; N], [T; N]);
+
+    /// `batch` on the first `N` angles of `q` gives `one`'s bits, angle by angle.
+    fn batch_is_one_angle_at_a_time<T: Bits, const N: usize>(q: &[T], batch: Batch<T, N>, one: fn(T) -> (T, T)) {
+        let q: [T; N] = core::array::from_fn(|i| q[i]);
+        let (s, c) = batch(&q);
+        for i in 0..N {
+            let (ks, kc) = one(q[i]);
+            assert!(s[i].bits() == ks.bits() && c[i].bits() == kc.bits(), "N {N}, {q:?}");
+        }
+    }
+
     #[test]
     fn batch_is_the_kernel_entry_by_entry_for_every_length() {
         // Fast angles, then slow ones (NaN, a near multiple of π/2, a huge one)
@@ -282,23 +310,16 @@ mod tests {
                 if let Some(x) = slow {
                     q[at] = x;
                 }
-                fn check<const N: usize>(q: &[f64]) {
-                    let q: [f64; N] = q[..N].try_into().unwrap();
-                    let (s, c) = sin_cos_array(&q);
-                    for i in 0..N {
-                        let (ks, kc) = sin_cos_kernel(q[i]);
-                        assert!(s[i].to_bits() == ks.to_bits() && c[i].to_bits() == kc.to_bits(), "N {N}, {q:?}");
-                    }
-                }
-                check::<1>(&q);
-                check::<2>(&q);
-                check::<3>(&q);
-                check::<4>(&q);
-                check::<5>(&q);
-                check::<6>(&q);
-                check::<7>(&q);
-                check::<8>(&q);
-                check::<9>(&q);
+                let one = sin_cos_kernel;
+                batch_is_one_angle_at_a_time::<f64, 1>(&q, sin_cos_array, one);
+                batch_is_one_angle_at_a_time::<f64, 2>(&q, sin_cos_array, one);
+                batch_is_one_angle_at_a_time::<f64, 3>(&q, sin_cos_array, one);
+                batch_is_one_angle_at_a_time::<f64, 4>(&q, sin_cos_array, one);
+                batch_is_one_angle_at_a_time::<f64, 5>(&q, sin_cos_array, one);
+                batch_is_one_angle_at_a_time::<f64, 6>(&q, sin_cos_array, one);
+                batch_is_one_angle_at_a_time::<f64, 7>(&q, sin_cos_array, one);
+                batch_is_one_angle_at_a_time::<f64, 8>(&q, sin_cos_array, one);
+                batch_is_one_angle_at_a_time::<f64, 9>(&q, sin_cos_array, one);
             }
         }
         // The fast path takes every angle up to 1.5e6 rad but the few near multiples of π/2.
@@ -366,21 +387,14 @@ mod tests {
                 if let Some(x) = slow {
                     q[at] = x;
                 }
-                fn check<const N: usize>(q: &[f32]) {
-                    let q: [f32; N] = q[..N].try_into().unwrap();
-                    let (s, c) = sin_cos_array_f32(&q);
-                    for i in 0..N {
-                        let (ks, kc) = sin_cos_kernel_f32(q[i]);
-                        assert!(s[i].to_bits() == ks.to_bits() && c[i].to_bits() == kc.to_bits(), "N {N}, {q:?}");
-                    }
-                }
-                check::<1>(&q);
-                check::<2>(&q);
-                check::<3>(&q);
-                check::<4>(&q);
-                check::<5>(&q);
-                check::<7>(&q);
-                check::<9>(&q);
+                let one = sin_cos_kernel_f32;
+                batch_is_one_angle_at_a_time::<f32, 1>(&q, sin_cos_array_f32, one);
+                batch_is_one_angle_at_a_time::<f32, 2>(&q, sin_cos_array_f32, one);
+                batch_is_one_angle_at_a_time::<f32, 3>(&q, sin_cos_array_f32, one);
+                batch_is_one_angle_at_a_time::<f32, 4>(&q, sin_cos_array_f32, one);
+                batch_is_one_angle_at_a_time::<f32, 5>(&q, sin_cos_array_f32, one);
+                batch_is_one_angle_at_a_time::<f32, 7>(&q, sin_cos_array_f32, one);
+                batch_is_one_angle_at_a_time::<f32, 9>(&q, sin_cos_array_f32, one);
             }
         }
         // Beyond the fast path: the f64 kernel, rounded.
