@@ -32,7 +32,7 @@ use crate::algorithms::joint::{
 use crate::algorithms::rnea::update_joint_transforms;
 use crate::algorithms::{BodyInertia, Workspace};
 use crate::model::Model;
-use crate::spatial::{Force, Inertia, Motion};
+use crate::spatial::{Force, Inertia, Motion, Transform, Vec3};
 use crate::symbolic::{Expr, Function, Node, Rewrites, TraceActive, Tracer};
 use crate::Scalar;
 
@@ -147,7 +147,17 @@ fn candidates<S: Scalar>(
         let mut cols = vec![f];
         let mut k = j;
         while let Some(p) = model.bodies[k].parent {
-            f = force_to_parent(&model.bodies[k].joint, &ws.x[k], &f);
+            let joint = &model.bodies[k].joint;
+            f = if k == j && !joint.is_revolute() {
+                // A prismatic joint's own column `Iᶜ S = (h × s; m s)` has its
+                // force along the axis `s`, so the translation `s·q` of the
+                // joint adds `q s × m s = 0` to its moment: only the
+                // placement carries it to the parent (no product with q).
+                let place = Transform { rot: ws.x[k].rot, trans: Vec3::from_f64(&joint.placement.trans) };
+                force_to_parent(joint, &place, &f)
+            } else {
+                force_to_parent(joint, &ws.x[k], &f)
+            };
             k = p;
             path.push(k);
             cols.push(f);
