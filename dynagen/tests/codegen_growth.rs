@@ -48,7 +48,8 @@ fn op_counts_grow_linearly_for_tau_and_quadratically_for_m() {
 /// leaves) as point masses at their origins placed without rotation
 /// (`grouping::center_prismatic_leaves`; Panda τ 785, M 616, h 758, g 222,
 /// ABA 1779, LTDL 1742; M's critical path rose from 96 to 104 cycles, the
-/// others fell), and sums
+/// others fell), the second finger's column of M the first's negated
+/// (`mass_matrix::mirrored_column`; Panda M 564, LTDL 1592), and sums
 /// reassociated for a shorter
 /// critical path (see `benches/README.md`). Before (commit 6587eda): UR5 τ
 /// 422, M 206, h 389, g 118, ABA 1256; before reassociation (commit
@@ -77,11 +78,11 @@ fn bundled_op_counts_do_not_grow() {
             "panda",
             [
                 (FunctionKind::InverseDynamics, 692, 160),
-                (FunctionKind::MassMatrix, 564, 104),
+                (FunctionKind::MassMatrix, 515, 104),
                 (FunctionKind::BiasForces, 661, 161),
                 (FunctionKind::GravityTorques, 189, 108),
                 (FunctionKind::ForwardDynamicsAba, 1639, 514),
-                (FunctionKind::ForwardDynamicsLdlt, 1592, 242),
+                (FunctionKind::ForwardDynamicsLdlt, 1508, 242),
             ],
         ),
     ];
