@@ -19,7 +19,9 @@
 //! zeros the symbolic graph folds away. A part that reaches the fixed base
 //! is dropped. For a prismatic joint the body does not turn relative to its
 //! parent, and a rotational inertia without mass is the same about every
-//! point: its whole `Ī` moves to the parent. This is the regrouping of
+//! point: its whole `Ī` moves to the parent (so that a prismatic body
+//! without children, its frame first moved to its centre of mass by
+//! [`center_prismatic_leaves`], keeps only a point mass). This is the regrouping of
 //! inertial parameters of Khalil and Kleinfinger (the "base parameters"),
 //! written as a transformation of the model's spatial inertias.
 //!
