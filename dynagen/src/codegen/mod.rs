@@ -83,6 +83,7 @@ pub mod fd_choice;
 mod generic_count;
 mod grouping;
 mod hash;
+mod leaves;
 mod literal;
 mod mass_matrix;
 mod rounding;
