@@ -152,7 +152,7 @@ pub fn slide_origins_along_axes(model: &Model) -> Model {
 /// With `Q = R_placeᵀ` and `c` the centre of mass, the new placement is the
 /// translation to the centre of mass at `q = 0`, the axis is `R_place·a`
 /// (components equal up to the rounding of that product are made equal,
-/// [`equal_magnitudes`]) and the body's first moment is zero. Once
+/// `equal_magnitudes`) and the body's first moment is zero. Once
 /// [`regroup_inertia`] has moved its whole rotational inertia to the parent,
 /// the body is a point mass at its origin: its wrench is `m·a` with no
 /// moment, the products of its angular velocity are never needed, no
