@@ -14,7 +14,10 @@
 //! moment `m q d × a` alone. [`fold_for_gravity`] makes that model and
 //! [`gravity_torques`] runs the generic recursion on it with the first
 //! moments as payloads ([`rnea_with_payloads`]), then sets each folded
-//! joint's torque to `m d·a`. The other functions move the masses, and
+//! joint's torque to `m d·a`. (The leaves are point masses at their origins
+//! only in a model prepared with the regrouping, or in a model written so;
+//! the fold regroups what it moved, also in the latter.) The other
+//! functions move the masses, and
 //! there the fold does not pay (their finger terms are near the minimum
 //! already); they keep the model as it is.
 
