@@ -425,6 +425,17 @@ fn branched_and_prismatic_robots() {
         .viscous("panda_finger_joint1", 3.0);
     let (applied, _) = check(&panda, &scene, 3, 1e-12);
     assert_eq!(applied.dof(), 8);
+    // A finger's frame, a wrench and a payload on it: code generation moves
+    // the finger's frame to its centre of mass (`center_prismatic_leaves`),
+    // the frame keeps its pose and the payload its place; with a payload the
+    // second finger's column of M is no longer the first's mirror image.
+    let scene = Scene::new()
+        .function(Function::FramePose("panda_leftfinger".into()))
+        .function(Function::FrameJacobian("panda_rightfinger".into()))
+        .tip_wrench("panda_leftfinger")
+        .payload_input("panda_rightfinger");
+    let (applied, _) = check(&panda, &scene, 3, 1e-12);
+    assert_eq!(applied.dof(), 9);
     let torso = Model::from_urdf_file(format!("{dir}torso_two_arms.urdf")).unwrap();
     let scene = Scene::new()
         .subtree("torso", &["left_hand"])
