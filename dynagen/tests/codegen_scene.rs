@@ -186,7 +186,14 @@ fn the_full_scene_is_the_plain_module() {
     }
     let why = |source: &str| source.lines().find(|l| l.starts_with("// Forward dynamics: ")).map(str::to_string);
     assert!(why(&plain.source).unwrap().contains("CRBA + LTDL, chosen as faster and as accurate"));
-    assert_eq!(why(&full().source), why(&plain.source));
+    // The same choice for the same estimated cycles; the errors may differ
+    // in their last digit: the scene's functions are traced by another path
+    // (codegen/scene.rs), and the double-double reference is itself a traced
+    // ABA whose model constants were folded in f64 (the distributed ABA of
+    // traced code made plain 3.8e-16 and scene 3.7e-16 for LᵀDL).
+    let choice = |source: &str| why(source).unwrap().split("; worst relative error").next().unwrap().to_string();
+    assert_eq!(choice(&full().source), choice(&plain.source));
+    assert!(why(&full().source).unwrap().contains("; worst relative error on 16 states against double-double"));
     deltas("full scene", full());
 }
 

@@ -166,6 +166,17 @@ impl<S: Scalar> ArticulatedInertia<S> {
     }
 }
 
+/// The index of an axis-aligned joint's axis, `None` for a general axis.
+#[inline(always)]
+fn axis_index(joint: &Joint) -> Option<usize> {
+    match joint.alignment {
+        AxisAlignment::X => Some(0),
+        AxisAlignment::Y => Some(1),
+        AxisAlignment::Z => Some(2),
+        AxisAlignment::General => None,
+    }
+}
+
 /// Forward dynamics by the articulated-body algorithm.
 ///
 /// `tau` are the joint torques/forces, `gravity` is in the base frame
@@ -212,7 +223,7 @@ pub fn aba_with_armature<S: Scalar>(
     armature: Option<&[f64]>,
     qdd: &mut [S],
 ) {
-    aba_impl(model, ws, q, Some(qd), tau, gravity, tips, armature, qdd)
+    aba_impl(model, ws, q, Some(qd), tau, gravity, tips, armature, qdd, S::TRACED)
 }
 
 /// M(q)⁻¹τ: the articulated-body algorithm at rest (q̇ = 0) and without
@@ -225,10 +236,24 @@ pub fn aba_with_armature<S: Scalar>(
 /// # Panics
 /// If a slice's length is not the model's number of joints.
 pub fn aba_at_rest<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], tau: &[S], qdd: &mut [S]) {
-    aba_impl(model, ws, q, None, tau, None, &[], None, qdd)
+    aba_impl(model, ws, q, None, tau, None, &[], None, qdd, S::TRACED)
 }
 
 /// The articulated-body algorithm; `qd: None` is at rest (see [`aba_at_rest`]).
+///
+/// `distributed` (what traced code uses, [`Scalar::TRACED`]) shortens the
+/// dependency chain across the joints without changing the result in exact
+/// arithmetic. The inward pass passes to the parent
+/// `X(Iᴬ − U Uᵀ/D)Xᵀ = X Iᴬ Xᵀ − (XU)(XU)ᵀ/D` and
+/// `X(pᴬ + Iᵃc + U u/D) = X(pᴬ + Iᴬc) + XU·(u − Uᵀc)/D` (with
+/// `Iᵃ = Iᴬ − U Uᵀ/D`), so everything but one scaling and the rank-one
+/// subtraction is computed while the division runs, instead of the whole
+/// transform waiting for it. The outward pass uses
+/// `Uᵀ(X a_p + c) = (XU)ᵀa_p + Uᵀc`, so q̈ does not wait for the transform
+/// of the parent's acceleration. It costs operations (the rank-one update
+/// is made on the dense transformed inertia, without the exact zeros of
+/// [`ArticulatedInertia::clear_subspace`]); on `f64` the compact arm is
+/// kept, since there the operation count, not the chain, sets the speed.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn aba_impl<S: Scalar>(
@@ -241,6 +266,7 @@ fn aba_impl<S: Scalar>(
     tips: &[TipWrench<S>],
     armature: Option<&[f64]>,
     qdd: &mut [S],
+    distributed: bool,
 ) {
     let n = model.dof();
     assert!(
@@ -308,8 +334,76 @@ fn aba_impl<S: Scalar>(
         let d = if arm == 0.0 { d } else { d + S::from_f64(arm) };
         let d_inv = S::one() / d;
         let ui = tau[i] - project(&body.joint, &ws.f[i]);
-        ws.u6[i] = u;
         ws.s1[i] = d_inv;
+        if distributed {
+            // The transform distributed over the rank-one update (exact
+            // algebra, see the function's documentation): what does not
+            // wait for 1/d (X Iᴬ Xᵀ, X U, X(pᴬ + Iᴬc), u − Uᵀc) runs
+            // beside the division, and only the scaling and the rank-one
+            // subtraction follow it.
+            let x = ws.x[i];
+            // Without armature, along an axis-aligned joint's direction k,
+            // Iᴬ − U Uᵀ/d has an exact zero row and column, so it equals
+            // Iᴬ₀ − U₀U₀ᵀ/d with row/column k cleared from Iᴬ and entry k
+            // from U (fewer operations, and the exact zeros kept). Then
+            // pᴬ + Iᵃc + U u/d = pᴬ + Iᴬ₀c + U₀(u − U₀ᵀc)/d + e_k U_k u/d,
+            // and U_k/d = 1/a for the axis component a (d = a U_k).
+            let cleared = match (axis_index(&body.joint), arm == 0.0) {
+                (Some(k), true) => Some(k),
+                _ => None,
+            };
+            let (art0, u0, along) = match cleared {
+                Some(k) => {
+                    let mut art0 = ws.art[i];
+                    art0.clear_subspace(&body.joint);
+                    let mut u0 = u;
+                    let mut along = Force::zero();
+                    let a_inv = S::from_f64(1.0 / body.joint.axis.0[k]);
+                    match body.joint.kind {
+                        JointKind::Revolute | JointKind::Continuous => {
+                            u0.ang.0[k] = S::zero();
+                            along.ang.0[k] = ui * a_inv;
+                        }
+                        JointKind::Prismatic => {
+                            u0.lin.0[k] = S::zero();
+                            along.lin.0[k] = ui * a_inv;
+                        }
+                    }
+                    (art0, u0, Some((u, along)))
+                }
+                None => (ws.art[i], u, None),
+            };
+            let u0_p = force_to_parent(&body.joint, &x, &u0);
+            // The outward pass needs the whole U in the parent's frame.
+            ws.u6[i] = match along {
+                Some((u, _)) => u0_p + force_to_parent(&body.joint, &x, &(u - u0)),
+                None => u0_p,
+            };
+            // u − U₀ᵀc, and the outward pass's u − Uᵀc = u − U₀ᵀc − U_k c_k.
+            let s0 = match qd {
+                Some(_) => ui - ws.a[i].dot(&u0),
+                None => ui,
+            };
+            ws.s2[i] = match (qd, along) {
+                (Some(_), Some((u, _))) => s0 - ws.a[i].dot(&(u - u0)),
+                _ => s0,
+            };
+            if let Some(p) = body.parent {
+                let art_p = with_rotation!(&body.joint, x, |r| art0.expressed_in_parent(&r, &x.trans));
+                let g = match qd {
+                    Some(_) => ws.f[i] + art0.mul_motion(&ws.a[i]),
+                    None => ws.f[i],
+                };
+                let g = match along {
+                    Some((_, along)) => g + along,
+                    None => g,
+                };
+                ws.art[p] = ws.art[p].add(&art_p.sub_outer(&u0_p, d_inv));
+                ws.f[p] += force_to_parent(&body.joint, &x, &g) + u0_p.scale(s0 * d_inv);
+            }
+            continue;
+        }
+        ws.u6[i] = u;
         ws.s2[i] = ui;
         if let Some(p) = body.parent {
             let mut ia = ws.art[i].sub_outer(&u, d_inv);
@@ -336,9 +430,107 @@ fn aba_impl<S: Scalar>(
             None => a0,
         };
         let a = motion_to_child(&body.joint, &ws.x[i], &a_parent) + ws.a[i];
-        let qddi = (ws.s2[i] - a.dot(&ws.u6[i])) * ws.s1[i];
+        let qddi = if distributed {
+            // Uᵀ(X a_p + c) = (XᵀU)ᵀ a_p + Uᵀc, with u − Uᵀc from the
+            // inward pass: q̈ no longer waits for the transform of a_p.
+            (ws.s2[i] - a_parent.dot(&ws.u6[i])) * ws.s1[i]
+        } else {
+            (ws.s2[i] - a.dot(&ws.u6[i])) * ws.s1[i]
+        };
         qdd[i] = qddi;
         ws.a[i] = a;
         add_motion(&body.joint, &mut ws.a[i], qddi);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{Inertial, JointDescription, RobotBuilder};
+
+    /// A tree with every case of the distributed arm: general and
+    /// axis-aligned (non-unit) revolute and prismatic joints, turned
+    /// placements, two children on one body, a leaf on the root body.
+    fn mixed_tree() -> Model {
+        let body = |m: f64, c: [f64; 3]| Some(Inertial::new(m, c, [0.03, 0.02, 0.025, 0.004, -0.003, 0.002]));
+        RobotBuilder::new("mixed")
+            .link("base", None)
+            .link("l1", body(2.0, [0.1, 0.0, 0.2]))
+            .link("l2", body(1.5, [0.0, 0.3, -0.1]))
+            .link("l3", body(0.8, [0.05, -0.02, 0.1]))
+            .link("l4", body(0.6, [-0.1, 0.04, 0.0]))
+            .link("l5", body(0.4, [0.02, 0.01, 0.03]))
+            .link("l6", body(0.3, [0.0, 0.0, 0.05]))
+            .joint(JointDescription::revolute("j1", "base", "l1", [0.0, 0.0, 1.0]).origin([0.0, 0.0, 0.3], [0.0; 3]))
+            .joint(
+                JointDescription::revolute("j2", "l1", "l2", [0.3, -0.5, 0.8])
+                    .origin([0.1, 0.2, 0.3], [0.4, -0.2, 1.1]),
+            )
+            .joint(
+                JointDescription::prismatic("j3", "l2", "l3", [0.0, -2.0, 0.0])
+                    .origin([0.0, 0.4, 0.0], [1.3, 0.0, 0.3]),
+            )
+            .joint(
+                JointDescription::continuous("j4", "l3", "l4", [2.0, 0.0, 0.0])
+                    .origin([0.2, 0.0, 0.1], [0.0, 0.7, 0.0]),
+            )
+            .joint(
+                JointDescription::prismatic("j5", "l2", "l5", [0.6, 0.0, 0.8])
+                    .origin([0.0, -0.1, 0.2], [0.2, 0.0, 0.0]),
+            )
+            .joint(
+                JointDescription::revolute("j6", "l1", "l6", [0.0, 1.0, 0.0]).origin([-0.1, 0.0, 0.1], [0.0, 0.0, 0.5]),
+            )
+            .build()
+            .unwrap()
+    }
+
+    fn bundled(name: &str) -> Model {
+        Model::from_urdf_file(format!("{}/robots/{name}.urdf", env!("CARGO_MANIFEST_DIR"))).unwrap()
+    }
+
+    /// The distributed arm (what traced code runs) and the compact one give
+    /// the same q̈ on f64, with and without velocities, tip wrenches and
+    /// armature, to rounding.
+    #[test]
+    fn distributed_arm_matches_compact_arm() {
+        for model in [mixed_tree(), bundled("panda"), bundled("ur5")] {
+            let n = model.dof();
+            let mut ws = Workspace::<f64>::new(&model);
+            let val = |k: usize, scale: f64| scale * (0.37 * k as f64 + 0.2).sin();
+            let q: Vec<f64> = (0..n).map(|k| val(k, 2.0)).collect();
+            let qd: Vec<f64> = (0..n).map(|k| val(k + 11, 1.5)).collect();
+            let tau: Vec<f64> = (0..n).map(|k| val(k + 23, 10.0)).collect();
+            let armature: Vec<f64> = (0..n).map(|k| if k % 2 == 0 { 0.05 * (k + 1) as f64 } else { 0.0 }).collect();
+            let g = Vec3([0.0, 0.0, -9.81]);
+            let last = model.frames.len() - 1;
+            let tips = [TipWrench { frame: last, wrench: Force::new(Vec3([0.3, -0.2, 0.5]), Vec3([4.0, -1.0, 2.5])) }];
+            /// (q̇, armature, gravity, tip wrenches)
+            type Case<'a> = (Option<&'a [f64]>, Option<&'a [f64]>, Option<&'a Vec3<f64>>, &'a [TipWrench<f64>]);
+            let cases: [Case; 3] = [
+                (Some(&qd), None, Some(&g), &tips),
+                (Some(&qd), Some(&armature), Some(&g), &[]),
+                (None, None, None, &[]),
+            ];
+            for (case, (qd, arm, g, tips)) in cases.into_iter().enumerate() {
+                let mut run = |distributed: bool| {
+                    let mut qdd = vec![0.0; n];
+                    aba_impl(&model, &mut ws, &q, qd, &tau, g, tips, arm, &mut qdd, distributed);
+                    qdd
+                };
+                let (compact, distributed) = (run(false), run(true));
+                let scale = compact.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                assert!(scale > 1e-3, "{} case {case}: q̈ is not trivial", model.name);
+                for k in 0..n {
+                    assert!(
+                        (compact[k] - distributed[k]).abs() <= 1e-12 * scale,
+                        "{} case {case} q̈[{k}]: {} vs {}",
+                        model.name,
+                        compact[k],
+                        distributed[k]
+                    );
+                }
+            }
+        }
     }
 }
