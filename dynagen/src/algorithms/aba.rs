@@ -250,10 +250,15 @@ pub fn aba_at_rest<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], tau
 /// subtraction is computed while the division runs, instead of the whole
 /// transform waiting for it. The outward pass uses
 /// `Uᵀ(X a_p + c) = (XU)ᵀa_p + Uᵀc`, so q̈ does not wait for the transform
-/// of the parent's acceleration. It costs operations (the rank-one update
-/// is made on the dense transformed inertia, without the exact zeros of
-/// [`ArticulatedInertia::clear_subspace`]); on `f64` the compact arm is
-/// kept, since there the operation count, not the chain, sets the speed.
+/// of the parent's acceleration. Without armature, along an axis-aligned
+/// joint, the exact zeros of `clear_subspace` are kept (the inertia and U
+/// are cleared before the transform, and the joint's own force enters as
+/// `e_k u/a`). It costs a few operations (U is transformed on its own, and
+/// the rank-one update is made on the dense transformed inertia): the
+/// generated ABA's critical path fell from 514 to 324 cycles on the Panda
+/// (1639 to 1661 operations), from 310 to 202 on the UR5 (610 to 644). On
+/// `f64` the compact arm is kept: there the operation count, not the chain,
+/// sets the speed.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn aba_impl<S: Scalar>(
