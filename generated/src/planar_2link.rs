@@ -4,12 +4,12 @@
 // Model source: dynagen/robots/planar_2link.urdf
 // Model content hash (FNV-1a 64 of its canonical text): d6d04477035bb72d
 // Gravity: [0.0, 0.0, -9.81] m/s^2 in the base frame, folded in.
-// Options: scalar f64; forward dynamics by the CRBA + RNEA + sparse LTDL (chosen); rounding snap on (0 constants); inertia regrouping on; like terms on, constant products on, constant sums on, reassociation on.
+// Options: scalar f64; forward dynamics by the articulated-body algorithm (chosen); rounding snap on (0 constants); inertia regrouping on; like terms on, constant products on, constant sums on, reassociation on.
 // Trigonometry: NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time, four where the target has AVX2 (no_std, no dependency).
 // Fused multiply-adds: fma(a, b, c) (fmaf in f32) is a*b + c with one rounding where the target has an FMA
 //   instruction (x86_64 built with target feature fma, e.g. -C target-cpu=native on a machine that has it;
 //   aarch64), and plain a * b + c elsewhere: a default x86_64 build gives the same bits as unfused code.
-// Forward dynamics: CRBA + LTDL, chosen as faster and as accurate (estimated 54 cycles for CRBA + LTDL against 56 for the articulated-body algorithm; worst relative error on 16 states against double-double 3.5e-16 against 3.1e-16).
+// Forward dynamics: the articulated-body algorithm, chosen as the faster (estimated 54 cycles for CRBA + LTDL against 48 for the articulated-body algorithm; worst relative error on 16 states against double-double 3.5e-16 against 2.7e-16).
 // Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]
 //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.
 // sin_cos_all(q): the batched sine and cosine, within 1 ulp for every finite angle, no std.
@@ -19,8 +19,8 @@
 //   mass_matrix: 5 ops: 2 add, 0 sub, 2 mul, 0 div, 0 neg, 0 sqrt, 1 sin_cos; 2 fused multiply-adds, 3 FP ops with each fused = 1; body NAME_sc critical path 4 cycles (1 ops)
 //   bias_forces: 18 ops: 3 add, 2 sub, 10 mul, 0 div, 1 neg, 0 sqrt, 2 sin_cos; 3 fused multiply-adds, 14 FP ops with each fused = 1; body NAME_sc critical path 21 cycles (6 ops)
 //   gravity_torques: 12 ops: 0 add, 2 sub, 6 mul, 0 div, 2 neg, 0 sqrt, 2 sin_cos; 1 fused multiply-adds, 9 FP ops with each fused = 1; body NAME_sc critical path 20 cycles (5 ops)
-//   forward_dynamics (ABA) [not emitted]: 39 ops: 6 add, 8 sub, 22 mul, 1 div, 0 neg, 0 sqrt, 2 sin_cos; 10 fused multiply-adds, 30 FP ops with each fused = 1; body NAME_sc critical path 42 cycles (8 ops)
-//   forward_dynamics (CRBA + LTDL): 32 ops: 8 add, 4 sub, 16 mul, 2 div, 0 neg, 0 sqrt, 2 sin_cos; 11 fused multiply-adds, 22 FP ops with each fused = 1; body NAME_sc critical path 42 cycles (8 ops)
+//   forward_dynamics (ABA): 41 ops: 4 add, 9 sub, 25 mul, 1 div, 0 neg, 0 sqrt, 2 sin_cos; 9 fused multiply-adds, 32 FP ops with each fused = 1; body NAME_sc critical path 38 cycles (7 ops)
+//   forward_dynamics (CRBA + LTDL) [not emitted]: 32 ops: 8 add, 4 sub, 16 mul, 2 div, 0 neg, 0 sqrt, 2 sin_cos; 11 fused multiply-adds, 22 FP ops with each fused = 1; body NAME_sc critical path 42 cycles (8 ops)
 
 /// The number of degrees of freedom (joints).
 pub const DOF: usize = 2;
@@ -186,10 +186,10 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
     let (s, c) = sin_cos_all(q);
     gravity_torques_sc(&s, &c)
 }
-/// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by CRBA, RNEA and a sparse LᵀDL solve.
+/// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by the articulated-body algorithm.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 30 ops: 8 add, 4 sub, 16 mul, 2 div, 0 neg, 0 sqrt, 0 sin_cos; 11 fused multiply-adds, 20 FP ops with each fused = 1.
+/// 39 ops: 4 add, 9 sub, 25 mul, 1 div, 0 neg, 0 sqrt, 0 sin_cos; 9 fused multiply-adds, 30 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(
@@ -204,32 +204,42 @@ pub fn forward_dynamics_sc(
     qd: &[f64; DOF],
     tau: &[f64; DOF],
 ) -> [f64; DOF] {
-    let t0 = 9.81 * c[0];
-    let t1 = 9.81 * s[0];
-    let t2 = fma(qd[0], qd[0], t1);
-    let t3 = t0 * c[1];
-    let t4 = fma(-s[1], t2, t3);
-    let t5 = qd[0] + qd[1];
-    let t6 = t5 * t5;
-    let t7 = 0.6000000000000001 * t6;
-    let t8 = fma(0.6000000000000001, t4, tau[1]);
-    let t9 = fma(1.2000000000000002, c[1], 2.4866666666666664);
-    let t10 = fma(0.6000000000000001, c[1], 0.32000000000000006);
-    let t11 = 3.1249999999999996 * t10;
-    let t12 = fma(-t10, t11, t9);
-    let t13 = fma(24.525000000000002, c[0], tau[0]);
-    let t14 = fma(s[1], t7, t13);
-    let t15 = fma(0.6000000000000001, t4, t14);
-    let t16 = fma(-t8, t11, t15);
-    let t17 = t16 / t12;
-    let t18 = t8 / 0.32000000000000006;
-    let t19 = fma(-t11, t17, t18);
-    [t17, t19]
+    let t0 = qd[0] * qd[0];
+    let t1 = t0 * s[1];
+    let t2 = qd[0] + qd[1];
+    let t3 = t2 * t2;
+    let t4 = 0.6000000000000001 * t3;
+    let t5 = 0.6000000000000001 * c[1];
+    let t6 = 0.6000000000000001 * s[1];
+    let t7 = 0.32000000000000006 + t5;
+    let t8 = fma(-0.6000000000000001, t1, tau[1]);
+    let t9 = 1.875 * c[1];
+    let t10 = t6 * t9;
+    let t11 = t5 * t5;
+    let t12 = fma(t5, t9, -2.5);
+    let t13 = fma(-3.1249999999999996, t11, 2.1666666666666665);
+    let t14 = 3.1249999999999996 * t8;
+    let t15 = 1.0 / t13;
+    let t16 = c[0] * t12;
+    let t17 = fma(-s[0], t10, t16);
+    let t18 = 9.81 * c[0];
+    let t19 = 9.81 * s[0];
+    let t20 = tau[0] - tau[1];
+    let t21 = fma(s[1], t4, t20);
+    let t22 = fma(-t5, t14, t21);
+    let t23 = fma(-9.81, t17, t22);
+    let t24 = t15 * t23;
+    let t25 = t5 * t18;
+    let t26 = fma(-t6, t19, t25);
+    let t27 = t8 + t26;
+    let t28 = fma(-t7, t24, t27);
+    let t29 = 3.1249999999999996 * t28;
+    [t24, t29]
 }
-/// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by CRBA, RNEA and a sparse LᵀDL solve.
+/// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by the articulated-body algorithm.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 32 ops: 8 add, 4 sub, 16 mul, 2 div, 0 neg, 0 sqrt, 2 sin_cos; 11 fused multiply-adds, 22 FP ops with each fused = 1.
+/// 41 ops: 4 add, 9 sub, 25 mul, 1 div, 0 neg, 0 sqrt, 2 sin_cos; 9 fused multiply-adds, 32 FP ops with each fused = 1.
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`forward_dynamics_sc`].
 #[inline]

@@ -9,7 +9,7 @@
 // Fused multiply-adds: fma(a, b, c) (fmaf in f32) is a*b + c with one rounding where the target has an FMA
 //   instruction (x86_64 built with target feature fma, e.g. -C target-cpu=native on a machine that has it;
 //   aarch64), and plain a * b + c elsewhere: a default x86_64 build gives the same bits as unfused code.
-// Forward dynamics: CRBA + LTDL, chosen as faster and as accurate (estimated 689 cycles for CRBA + LTDL against 1051 for the articulated-body algorithm; worst relative error on 16 states against double-double 2.8e-16 against 2.5e-16).
+// Forward dynamics: CRBA + LTDL, chosen as faster and as accurate (estimated 689 cycles for CRBA + LTDL against 1024 for the articulated-body algorithm; worst relative error on 16 states against double-double 3.0e-16 against 3.4e-16).
 // Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]
 //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.
 // sin_cos_all(q): the batched sine and cosine, within 1 ulp for every finite angle, no std.
@@ -19,7 +19,7 @@
 //   mass_matrix: 606 ops: 166 add, 87 sub, 347 mul, 0 div, 0 neg, 0 sqrt, 6 sin_cos; 215 fused multiply-adds, 396 FP ops with each fused = 1; body NAME_sc critical path 56 cycles (14 ops)
 //   bias_forces: 707 ops: 183 add, 128 sub, 390 mul, 0 div, 0 neg, 0 sqrt, 6 sin_cos; 229 fused multiply-adds, 492 FP ops with each fused = 1; body NAME_sc critical path 96 cycles (24 ops)
 //   gravity_torques: 231 ops: 50 add, 37 sub, 138 mul, 0 div, 0 neg, 0 sqrt, 6 sin_cos; 74 fused multiply-adds, 158 FP ops with each fused = 1; body NAME_sc critical path 56 cycles (14 ops)
-//   forward_dynamics (ABA) [not emitted]: 2107 ops: 523 add, 404 sub, 1169 mul, 5 div, 0 neg, 0 sqrt, 6 sin_cos; 749 fused multiply-adds, 1390 FP ops with each fused = 1; body NAME_sc critical path 258 cycles (57 ops)
+//   forward_dynamics (ABA) [not emitted]: 2054 ops: 505 add, 387 sub, 1151 mul, 5 div, 0 neg, 0 sqrt, 6 sin_cos; 715 fused multiply-adds, 1363 FP ops with each fused = 1; body NAME_sc critical path 156 cycles (34 ops)
 //   forward_dynamics (CRBA + LTDL): 1383 ops: 344 add, 257 sub, 765 mul, 11 div, 0 neg, 0 sqrt, 6 sin_cos; 477 fused multiply-adds, 925 FP ops with each fused = 1; body NAME_sc critical path 126 cycles (29 ops)
 
 /// The number of degrees of freedom (joints).

@@ -9,7 +9,7 @@
 // Fused multiply-adds: fma(a, b, c) (fmaf in f32) is a*b + c with one rounding where the target has an FMA
 //   instruction (x86_64 built with target feature fma, e.g. -C target-cpu=native on a machine that has it;
 //   aarch64), and plain a * b + c elsewhere: a default x86_64 build gives the same bits as unfused code.
-// Forward dynamics: CRBA + LTDL, chosen as faster and as accurate (estimated 247 cycles for CRBA + LTDL against 310 for the articulated-body algorithm; worst relative error on 16 states against double-double 3.8e-16 against 1.8e-16).
+// Forward dynamics: CRBA + LTDL, chosen as faster and as accurate (estimated 247 cycles for CRBA + LTDL against 320 for the articulated-body algorithm; worst relative error on 16 states against double-double 3.8e-16 against 1.7e-16).
 // Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]
 //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.
 // sin_cos_all(q): the batched sine and cosine, within 1 ulp for every finite angle, no std.
@@ -19,7 +19,7 @@
 //   mass_matrix: 131 ops: 27 add, 20 sub, 78 mul, 0 div, 1 neg, 0 sqrt, 5 sin_cos; 37 fused multiply-adds, 94 FP ops with each fused = 1; body NAME_sc critical path 40 cycles (10 ops)
 //   bias_forces: 253 ops: 56 add, 39 sub, 150 mul, 0 div, 3 neg, 0 sqrt, 5 sin_cos; 84 fused multiply-adds, 166 FP ops with each fused = 1; body NAME_sc critical path 85 cycles (22 ops)
 //   gravity_torques: 19 ops: 2 add, 3 sub, 11 mul, 0 div, 0 neg, 0 sqrt, 3 sin_cos; 5 fused multiply-adds, 14 FP ops with each fused = 1; body NAME_sc critical path 32 cycles (8 ops)
-//   forward_dynamics (ABA) [not emitted]: 610 ops: 126 add, 128 sub, 346 mul, 5 div, 0 neg, 0 sqrt, 5 sin_cos; 201 fused multiply-adds, 412 FP ops with each fused = 1; body NAME_sc critical path 234 cycles (46 ops)
+//   forward_dynamics (ABA) [not emitted]: 644 ops: 127 add, 133 sub, 374 mul, 5 div, 0 neg, 0 sqrt, 5 sin_cos; 206 fused multiply-adds, 440 FP ops with each fused = 1; body NAME_sc critical path 160 cycles (30 ops)
 //   forward_dynamics (CRBA + LTDL): 498 ops: 91 add, 115 sub, 277 mul, 10 div, 0 neg, 0 sqrt, 5 sin_cos; 178 fused multiply-adds, 339 FP ops with each fused = 1; body NAME_sc critical path 126 cycles (19 ops)
 
 /// The number of degrees of freedom (joints).
