@@ -98,7 +98,7 @@ pub use hash::{canonical_text, fnv1a64, model_hash};
 pub use literal::float_literal_text;
 pub use rounding::{snap_rounding, SnappedConstant, ROUNDING_TOLERANCE};
 pub use scene::{generate_scene, payload_argument, scene_function_name, trace_scene, SceneFunction};
-pub use sin_cos::{sin_cos_array, sin_cos_array_f32, sin_cos_batch, sin_cos_kernel};
+pub use sin_cos::{sin_cos_array, sin_cos_array_f32, sin_cos_batch, sin_cos_kernel, sin_cos_kernel_f32};
 pub use trace::{sin_cos_from_q, sin_cos_inputs, trace, trace_sin_cos_inputs, FunctionKind, SinCosTrace};
 
 use crate::model::Model;
@@ -257,6 +257,20 @@ pub struct CodegenOptions {
     /// polynomials wherever the target has FMA, either way: within 1 ulp
     /// both ways.)
     pub fma: bool,
+    /// On x86-64 builds without the `avx2` and `fma` target features (a
+    /// default `cargo build`), compile every public function twice, once
+    /// for the build's target and once for AVX2 and FMA, and pick the copy
+    /// at run time by what the processor has (on): see the [module
+    /// documentation](self). Builds that have both features, and other
+    /// targets, get one copy, as without it. On by default, because most
+    /// x86-64 processors in use have both and the bodies are bound by the
+    /// floating-point ports: a default build then runs as fast as a native
+    /// one. The price: a default build's results differ in the last bits
+    /// between machines with and without FMA (on both they are within the
+    /// accuracy the tests check, 1e-12 of the generic solver), and the
+    /// bodies are compiled twice. Off, a build gives the same bits on every
+    /// x86-64 machine.
+    pub runtime_dispatch: bool,
 }
 
 /// The default [`CodegenOptions::split_lets`]: 2,500 `let`s. rustc with
@@ -278,6 +292,7 @@ impl Default for CodegenOptions {
             trig: Trig::default(),
             split_lets: Some(DEFAULT_SPLIT_LETS),
             fma: true,
+            runtime_dispatch: true,
         }
     }
 }
@@ -326,6 +341,11 @@ impl CodegenOptions {
     /// Turns fused multiply-adds on or off.
     pub fn fma(mut self, on: bool) -> Self {
         self.fma = on;
+        self
+    }
+    /// Turns the run-time choice of AVX2 and FMA copies on or off.
+    pub fn runtime_dispatch(mut self, on: bool) -> Self {
+        self.runtime_dispatch = on;
         self
     }
     /// Names the model's source for the header.
@@ -553,11 +573,11 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
         }
     }
     let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
-    let body = prettyplease::unparse(&file);
+    let body = emit::tidy_dispatch(&prettyplease::unparse(&file));
     let model_hash = model_hash(model);
     let header = header(model, options, &fd_method, &functions, &snapped, model_hash)
         + &split::header_note(options.split_lets, &split_functions);
-    let kernel = sin_cos::kernel_source(options.scalar);
+    let kernel = sin_cos::kernel_source(options.scalar, options.runtime_dispatch);
     Ok(GeneratedModule {
         source: format!("{header}\n{body}\n{kernel}"),
         functions,
@@ -576,15 +596,25 @@ pub(crate) fn counted(f: &Function, fma: bool) -> OpCount {
     }
 }
 
-/// The header's line on fused multiply-adds.
-pub(crate) fn fma_note(fma: bool) -> &'static str {
-    if fma {
+/// The header's lines on fused multiply-adds and the run-time dispatch.
+pub(crate) fn fma_note(options: &CodegenOptions) -> String {
+    let fma = if options.fma {
         "// Fused multiply-adds: fma(a, b, c) (fmaf in f32) is a*b + c with one rounding where the target has an FMA\n\
          //   instruction (x86_64 built with target feature fma, e.g. -C target-cpu=native on a machine that has it;\n\
          //   aarch64), and plain a * b + c elsewhere: a default x86_64 build gives the same bits as unfused code.\n"
     } else {
         "// Fused multiply-adds: off (every a*b + c rounded twice, on every target).\n"
-    }
+    };
+    let dispatch = if options.runtime_dispatch {
+        "// Run-time dispatch: on. On x86_64 builds without target features avx2 and fma (a default build), every\n\
+         //   public function also has a copy compiled for AVX2 and FMA (NAME_avx2_fma, from the one generic body\n\
+         //   NAME_on) and runs it where the processor has both (cpuid, asked once): as fast as a native build, and\n\
+         //   with its bits, so results differ in the last bits between machines with and without FMA (within the\n\
+         //   accuracy the tests check). Off: runtime_dispatch(false), the same bits on every x86_64 machine.\n"
+    } else {
+        "// Run-time dispatch: off (the build's target features only: the same bits on every x86_64 machine).\n"
+    };
+    format!("{fma}{dispatch}")
 }
 
 fn parse_item(tokens: proc_macro2::TokenStream) -> Result<syn::Item, CodegenError> {
@@ -760,7 +790,7 @@ fn header(
         Trig::Inputs => "only NAME_sc(s, c, ...): the caller passes the sines and cosines (no_std, no dependency)",
     };
     let _ = writeln!(h, "// Trigonometry: {trig}.");
-    h.push_str(fma_note(options.fma));
+    h.push_str(&fma_note(options));
     let why = match fd.method {
         _ if !fd.why.is_empty() => fd.why.as_str(),
         ForwardDynamicsMethod::Aba | ForwardDynamicsMethod::Auto => {
