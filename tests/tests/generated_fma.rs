@@ -190,6 +190,27 @@ fn host_has_fma() -> bool {
     false
 }
 
+/// The functions of an x86-64 assembly listing whose names contain
+/// `_avx2_fma` (the copies of the run-time dispatch), with their code.
+fn avx2_fma_copies(asm: &str) -> Vec<(String, String)> {
+    let mut copies: Vec<(String, String)> = Vec::new();
+    let mut inside = false;
+    for line in asm.lines() {
+        let label = !line.starts_with(['.', ' ', '\t', '#']) && line.ends_with(':');
+        if label {
+            inside = line.contains("_avx2_fma");
+            if inside {
+                copies.push((line.trim_end_matches(':').to_string(), String::new()));
+            }
+        } else if inside {
+            let code = &mut copies.last_mut().unwrap().1;
+            code.push_str(line);
+            code.push('\n');
+        }
+    }
+    copies
+}
+
 fn array_literal(rows: impl Iterator<Item = [f64; N]>) -> String {
     let rows: Vec<String> = rows.map(|r| format!("{r:?}")).collect();
     format!("[{}]", rows.join(", "))
@@ -302,9 +323,10 @@ fn the_fused_path_compiled_with_the_fma_feature_rounds_once_and_stays_accurate()
     let stdout = String::from_utf8(run.stdout).unwrap();
     if host_has_avx2_and_fma() {
         // The same program without target features: every function runs its AVX2 and FMA copy.
-        let exe = dir.join("dispatched");
+        let (exe, asm) = (dir.join("dispatched"), dir.join("dispatched.s"));
         let mut rustc = std::process::Command::new(std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into()));
-        rustc.args(["--edition", "2021", "-O", "-o"]).arg(&exe).arg(dir.join("main.rs"));
+        rustc.args(["--edition", "2021", "-O", "--emit"]).arg(format!("link={}", exe.display()));
+        rustc.arg("--emit").arg(format!("asm={}", asm.display())).arg(dir.join("main.rs"));
         let built = rustc.output().expect("running rustc");
         assert!(built.status.success(), "rustc failed:\n{}", String::from_utf8_lossy(&built.stderr));
         let run = std::process::Command::new(&exe).output().expect("running the dispatched program");
@@ -319,6 +341,30 @@ fn the_fused_path_compiled_with_the_fma_feature_rounds_once_and_stays_accurate()
             assert!(a == b, "built with +fma,+avx2: {a}\ndispatched at run time: {b}");
         }
         println!("run-time dispatch: {} lines, the +fma,+avx2 build's bits", native.len());
+        let copies = avx2_fma_copies(&std::fs::read_to_string(&asm).unwrap());
+        println!("{} AVX2 and FMA copies in the release assembly", copies.len());
+        assert!(copies.len() >= 2 * f64_fns.len(), "{:?}", copies.iter().map(|c| &c.0).collect::<Vec<_>>());
+        for (name, code) in &copies {
+            // Everything inlined: a call left out of line would run outside the copy's target
+            // features (an intrinsic's wrapper, a closure passing vector registers through memory).
+            // Only the kernel's rare slow path is called, and libc's memcpy and memset (the test's
+            // batch of 2,000 angles is copied), also through a register loaded with their address.
+            let named = ["sin_cos_again", "sin_cos_slow", "memcpy", "memset"];
+            let registers: Vec<String> = code
+                .lines()
+                .filter(|l| l.contains("memcpy@GOTPCREL") || l.contains("memset@GOTPCREL"))
+                .filter_map(|l| l.rsplit(", ").next().map(|reg| format!("*{reg}")))
+                .collect();
+            let allowed = |l: &str| named.iter().any(|n| l.contains(n)) || registers.iter().any(|r| l.ends_with(r));
+            let calls: Vec<&str> =
+                code.lines().filter(|l| l.trim_start().starts_with("call") && !allowed(l.trim_end())).collect();
+            assert!(calls.is_empty(), "{name} calls out of line: {calls:?}");
+            let fused = code.lines().filter(|l| l.trim_start().starts_with("vf") && l.contains("madd")).count();
+            assert!(fused > 0, "{name}: no fused multiply-add");
+            if name.contains("sin_cos_array") {
+                assert!(code.contains("ymm"), "{name}: four angles to a register");
+            }
+        }
     } else {
         eprintln!("this machine lacks AVX2 or FMA: the run-time dispatch is not run here");
     }

@@ -261,6 +261,28 @@ fn sin_cos_array_on<I: Isa, const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]
     (s, c)
 }
 
+/// `[e(0), …, e(P − 1)]` for `each!(i => e(i))`: one step on each of the
+/// `P ≥ 1` registers of the function it is used in. A macro, not a function
+/// taking a closure: LLVM leaves closures (and `core::array::from_fn`) that
+/// return vector registers out of line when their caller is a
+/// `#[target_feature]` function (`Avx2Fma` code), and out of line they are
+/// compiled without its features; so the fast path calls nothing that is
+/// not `#[inline(always)]` (checked in the release assembly).
+macro_rules! each {
+    ($i:ident => $e:expr) => {{
+        let mut out = [{
+            let $i = 0;
+            $e
+        }; P];
+        let mut $i = 1;
+        while $i < P {
+            out[$i] = $e;
+            $i += 1;
+        }
+        out
+    }};
+}
+
 /// A fast path over registers of angles: (sin, cos, within 1 ulp) per
 /// register.
 trait FastPath {
@@ -285,28 +307,36 @@ fn sin_cos_batches<I: Isa, K: FastPath, const N: usize>(x: &[f64; N], s: &mut [f
     let mut fast = true;
     let mut i = 0;
     while i < N {
-        // The angles from i on, as many as a pass takes; past the end, the
-        // first ones again (a register of copies of one angle makes the
-        // compiler fall back to scalar code).
-        let at = |j: usize| x[(i + j) % N];
         if I::QUADS {
-            let quad = |j: usize| core::array::from_fn(|l| at(j + l));
             fast &= match N - i {
-                1..=4 => sin_cos_pass::<I, K, 4, 1, N>(i, [quad(0)], s, c),
-                _ => sin_cos_pass::<I, K, 4, 2, N>(i, [quad(0), quad(4)], s, c),
+                1..=4 => sin_cos_pass::<I, K, 4, 1, N>(i, [angles(x, i)], s, c),
+                _ => sin_cos_pass::<I, K, 4, 2, N>(i, [angles(x, i), angles(x, i + 4)], s, c),
             };
             i += 8;
         } else {
-            let pair = |j: usize| [at(j), at(j + 1)];
             fast &= match N - i {
-                1 | 2 => sin_cos_pass::<I, K, 2, 1, N>(i, [pair(0)], s, c),
-                3 | 4 => sin_cos_pass::<I, K, 2, 2, N>(i, [pair(0), pair(2)], s, c),
-                _ => sin_cos_pass::<I, K, 2, 3, N>(i, [pair(0), pair(2), pair(4)], s, c),
+                1 | 2 => sin_cos_pass::<I, K, 2, 1, N>(i, [angles(x, i)], s, c),
+                3 | 4 => sin_cos_pass::<I, K, 2, 2, N>(i, [angles(x, i), angles(x, i + 2)], s, c),
+                _ => sin_cos_pass::<I, K, 2, 3, N>(i, [angles(x, i), angles(x, i + 2), angles(x, i + 4)], s, c),
             };
             i += 6;
         }
     }
     fast
+}
+
+/// The `W` angles of `x` from `from` on; past the end, the first ones again
+/// (a register of copies of one angle makes the compiler fall back to scalar
+/// code).
+#[inline(always)]
+fn angles<const W: usize, const N: usize>(x: &[f64; N], from: usize) -> [f64; W] {
+    let mut out = [0.0; W];
+    let mut l = 0;
+    while l < W {
+        out[l] = x[(from + l) % N];
+        l += 1;
+    }
+    out
 }
 
 /// `K`'s fast path on `P` registers of `W` angles, interleaved, the results
@@ -322,13 +352,16 @@ fn sin_cos_pass<I: Isa, K: FastPath, const W: usize, const P: usize, const N: us
 where
     [f64; W]: ToLanes,
 {
-    let r = K::lanes::<I, _, P>(x.map(<[f64; W]>::to_lanes));
-    for j in 0..W * P {
+    let r = K::lanes::<I, _, P>(each!(p => x[p].to_lanes()));
+    let (mut j, mut fast) = (0, true);
+    while j < W * P {
         if i + j < N {
             (s[i + j], c[i + j]) = (r[j / W].0.lane(j % W), r[j / W].1.lane(j % W));
         }
+        fast &= r[j / W].2;
+        j += 1;
     }
-    r.iter().all(|r| r.2)
+    fast
 }
 
 /// `W` angles as a register: `[f64; 1]` as `f64`, `[f64; 2]` and `[f64; 4]`
@@ -585,12 +618,6 @@ impl<const W: usize> Lanes for [f64; W] {
     }
 }
 
-/// `[f(0), …, f(P − 1)]`: one step on each of `P` registers.
-#[inline(always)]
-fn each<V, const P: usize>(f: impl FnMut(usize) -> V) -> [V; P] {
-    core::array::from_fn(f)
-}
-
 /// The rare case of `sin_cos_array`: every angle again, one at a time.
 #[cold]
 #[inline(never)]
@@ -640,22 +667,22 @@ fn sin_cos_lanes<I: Isa, V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); 
     const P2: f64 = 6.077100506303966e-11;
     const P3: f64 = 2.0222662487959506e-21;
     let v = V::splat;
-    let t: [V; P] = each(|i| x[i].mul(v(FRAC_2_PI)).add(v(ROUND)));
-    let k: [V; P] = each(|i| t[i].sub(v(ROUND)));
-    let t0: [V; P] = each(|i| k[i].neg().mul_add::<I>(v(P1), x[i])); // exact, fused or not
-    let w: [V; P] = each(|i| k[i].mul(v(P2))); // exact
-    let a: [V; P] = each(|i| t0[i].sub(w[i]));
+    let t: [V; P] = each!(i => x[i].mul(v(FRAC_2_PI)).add(v(ROUND)));
+    let k: [V; P] = each!(i => t[i].sub(v(ROUND)));
+    let t0: [V; P] = each!(i => k[i].neg().mul_add::<I>(v(P1), x[i])); // exact, fused or not
+    let w: [V; P] = each!(i => k[i].mul(v(P2))); // exact
+    let a: [V; P] = each!(i => t0[i].sub(w[i]));
     // The rounding error of t0 − w, exact (|t0| ≥ |w|, or else t0 − w is exact), then − k·P3.
-    let b: [V; P] = each(|i| t0[i].sub(a[i]).sub(w[i]).sub(k[i].mul(v(P3))));
+    let b: [V; P] = each!(i => t0[i].sub(a[i]).sub(w[i]).sub(k[i].mul(v(P3))));
     // Renormalised: |rl| ≤ ulp(rh)/2 (the polynomials need that; |b| ≤ |a| where `ok` below holds).
-    let rh: [V; P] = each(|i| a[i].add(b[i]));
-    let rl: [V; P] = each(|i| b[i].sub(rh[i].sub(a[i])));
+    let rh: [V; P] = each!(i => a[i].add(b[i]));
+    let rl: [V; P] = each!(i => b[i].sub(rh[i].sub(a[i])));
     // Within 1 ulp if |x| ≤ 1.5e6 and |rh| ≥ 2⁻⁵⁸·|x| (as |r − (rh + rl)| ≤ 3e-37·|x|), which also
     // holds for k = 0 (rh = x) and fails for NaN and ±∞ (then rh is NaN): min(2⁵⁸·|rh|, 1.5e6) ≥ |x|.
-    let ok: [bool; P] = core::array::from_fn(|i| rh[i].abs().mul(v(2.8823037615171174e17)).capped_ge(x[i].abs()));
+    let ok: [bool; P] = each!(i => rh[i].abs().mul(v(2.8823037615171174e17)).capped_ge(x[i].abs()));
     // a's sign is rh's (in place), also when rh = −0 (which the reduction may turn into +0).
     let r = sin_cos_reduced::<I, V, P>(rh, rl, a, t);
-    core::array::from_fn(|i| (r[i].0, r[i].1, ok[i]))
+    each!(i => (r[i].0, r[i].1, ok[i]))
 }
 
 /// Step 3 and 4: sin and cos of k·π/2 + rh + rl for |rh + rl| ≤ π/4 and
@@ -681,8 +708,8 @@ fn sin_cos_reduced<I: Isa, V: Lanes, const P: usize>(rh: [V; P], rl: [V; P], sig
         -1.1358536521605753e-11,
     ];
     let v = V::splat;
-    let z: [V; P] = each(|i| rh[i].mul(rh[i]));
-    let z2: [V; P] = each(|i| z[i].mul(z[i]));
+    let z: [V; P] = each!(i => rh[i].mul(rh[i]));
+    let z2: [V; P] = each!(i => z[i].mul(z[i]));
     // Estrin: (c0 + z·c1) + z²·((c2 + z·c3) + z²·(c4 + z·c5)). (A function, not a closure: called
     // four times, a closure would stay out of line, outside a `#[target_feature]` caller's features.)
     #[inline(always)]
@@ -692,16 +719,16 @@ fn sin_cos_reduced<I: Isa, V: Lanes, const P: usize>(rh: [V; P], rl: [V; P], sig
         let (mid, hi) = (z.mul_add::<I>(v(c[3]), v(c[2])), z.mul_add::<I>(v(c[5]), v(c[4])));
         z2.mul_add::<I>(z2.mul_add::<I>(hi, mid), lo)
     }
-    let ps: [V; P] = each(|i| poly::<I, V>(S, z[i], z2[i]));
-    let pc: [V; P] = each(|i| poly::<I, V>(C, z[i], z2[i]));
-    let hz: [V; P] = each(|i| v(0.5).mul(z[i]));
+    let ps: [V; P] = each!(i => poly::<I, V>(S, z[i], z2[i]));
+    let pc: [V; P] = each!(i => poly::<I, V>(C, z[i], z2[i]));
+    let hz: [V; P] = each!(i => v(0.5).mul(z[i]));
     // sin(rh + rl) = rh + rh·z·S(z) + rl·(1 − z/2) + …; the sign or-ed in keeps sin(−0) = −0.
-    let sin_r: [V; P] = each(|i| rh[i].add(rh[i].mul(z[i]).mul_add::<I>(ps[i], rl[i].mul(v(1.0).sub(hz[i])))));
+    let sin_r: [V; P] = each!(i => rh[i].add(rh[i].mul(z[i]).mul_add::<I>(ps[i], rl[i].mul(v(1.0).sub(hz[i])))));
     // cos(rh + rl) = (1 − z/2) + z²·C(z) − rh·rl + …, with the rounding error of 1 − z/2.
-    let w: [V; P] = each(|i| v(1.0).sub(hz[i]));
+    let w: [V; P] = each!(i => v(1.0).sub(hz[i]));
     let cos_r: [V; P] =
-        each(|i| w[i].add(v(1.0).sub(w[i]).sub(hz[i]).add(z2[i].mul_add::<I>(pc[i], rh[i].mul(rl[i]).neg()))));
-    core::array::from_fn(|i| V::quadrant(sin_r[i], signed[i], cos_r[i], quadrant[i]))
+        each!(i => w[i].add(v(1.0).sub(w[i]).sub(hz[i]).add(z2[i].mul_add::<I>(pc[i], rh[i].mul(rl[i]).neg()))));
+    each!(i => V::quadrant(sin_r[i], signed[i], cos_r[i], quadrant[i]))
 }
 
 /// Step 2: Payne and Hanek's reduction of any finite `x`, then step 3.

@@ -34,12 +34,29 @@ unsafe fn sin_cos_array_f32_avx2_fma<const N: usize>(x: &[f32; N]) -> ([f32; N],
 fn sin_cos_array_f32_on<I: Isa, const N: usize>(x: &[f32; N]) -> ([f32; N], [f32; N]) {
     let mut s = [0.0; N];
     let mut c = [0.0; N];
-    if sin_cos_batches::<I, Single, N>(&x.map(f64::from), &mut s, &mut c) {
-        (s.map(|s| s as f32), c.map(|c| c as f32))
+    if sin_cos_batches::<I, Single, N>(&each_of(x, f64::from), &mut s, &mut c) {
+        (each_of(&s, |s| s as f32), each_of(&c, |c| c as f32))
     } else {
-        let one = x.map(sin_cos_kernel_f32_on::<I>);
-        (one.map(|r| r.0), one.map(|r| r.1))
+        let (mut s, mut c) = ([0.0; N], [0.0; N]);
+        let mut i = 0;
+        while i < N {
+            (s[i], c[i]) = sin_cos_kernel_f32_on::<I>(x[i]);
+            i += 1;
+        }
+        (s, c)
     }
+}
+
+/// `[f(x[0]), …, f(x[N − 1])]` for scalars `T` and `U` (see `each!`).
+#[inline(always)]
+fn each_of<T: Copy, U: Copy + Default, const N: usize>(x: &[T; N], f: impl Fn(T) -> U) -> [U; N] {
+    let mut out = [U::default(); N];
+    let mut i = 0;
+    while i < N {
+        out[i] = f(x[i]);
+        i += 1;
+    }
+    out
 }
 
 /// The sine and cosine of one `f32` angle: within 1 ulp of `f32` for every
@@ -101,21 +118,21 @@ fn sin_cos_lanes_f32<I: Isa, V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, boo
     const C1: f64 = -1.388731625430343e-3;
     const C2: f64 = 2.4433157053129838e-5;
     let v = V::splat;
-    let t: [V; P] = each(|i| x[i].mul(v(FRAC_2_PI)).add(v(ROUND)));
-    let k: [V; P] = each(|i| t[i].sub(v(ROUND)));
-    let r: [V; P] = each(|i| k[i].neg().mul_add::<I>(v(P2), k[i].neg().mul_add::<I>(v(P1), x[i])));
+    let t: [V; P] = each!(i => x[i].mul(v(FRAC_2_PI)).add(v(ROUND)));
+    let k: [V; P] = each!(i => t[i].sub(v(ROUND)));
+    let r: [V; P] = each!(i => k[i].neg().mul_add::<I>(v(P2), k[i].neg().mul_add::<I>(v(P1), x[i])));
     // Within 1 ulp of f32 if |x| ≤ 1.5e6 and |r| ≥ 2⁻⁴⁵·|x|: min(2⁴⁵·|r|, 1.5e6) ≥ |x|.
-    let ok: [bool; P] = core::array::from_fn(|i| r[i].abs().mul(v(3.5184372088832e13)).capped_ge(x[i].abs()));
-    let z: [V; P] = each(|i| r[i].mul(r[i]));
-    let z2: [V; P] = each(|i| z[i].mul(z[i]));
+    let ok: [bool; P] = each!(i => r[i].abs().mul(v(3.5184372088832e13)).capped_ge(x[i].abs()));
+    let z: [V; P] = each!(i => r[i].mul(r[i]));
+    let z2: [V; P] = each!(i => z[i].mul(z[i]));
     // r·(1 + z·S(z)) keeps sin(−0) = −0.
-    let sin_r: [V; P] = each(|i| {
+    let sin_r: [V; P] = each!(i => {
         r[i].mul(z[i].mul_add::<I>(z2[i].mul_add::<I>(z[i].mul_add::<I>(v(S3), v(S2)), z[i].mul_add::<I>(v(S1), v(S0))), v(1.0)))
     });
-    let cos_r: [V; P] = each(|i| {
+    let cos_r: [V; P] = each!(i => {
         z2[i].mul_add::<I>(z[i].mul_add::<I>(z[i].mul_add::<I>(v(C2), v(C1)), v(C0)), v(-0.5).mul_add::<I>(z[i], v(1.0)))
     });
-    core::array::from_fn(|i| {
+    each!(i => {
         let (s, c) = V::quadrant(sin_r[i], sin_r[i], cos_r[i], t[i]);
         (s, c, ok[i])
     })
