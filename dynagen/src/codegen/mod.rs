@@ -42,10 +42,35 @@
 //! (`-C target-cpu=native` on a machine that has it, or `-C
 //! target-feature=+fma`) and aarch64, through `core::arch` (no std), and
 //! `a * b + c` elsewhere, which rounds exactly as the unfused expression
-//! did: a default x86-64 build gives the same bits as before. The header
+//! did: a default x86-64 build gives the same bits as before (unless the
+//! run-time dispatch below picks its AVX2 and FMA copy). The header
 //! says so and counts the fused operations (the [`OpCount`] totals stay
 //! those of the traced operations; [`OpCount::fp_ops`] counts each fused
 //! one once).
+//!
+//! # Run-time dispatch
+//!
+//! A default x86-64 build (`cargo build` without `RUSTFLAGS`) targets SSE2:
+//! no fused multiply-add, two angles to a vector register. With
+//! [`CodegenOptions::runtime_dispatch`] (on by default) every public
+//! function of the module — `NAME`, `NAME_sc`, `sin_cos_all`, the kernel's
+//! `sin_cos_array`, `sin_cos_kernel` (and their `f32` versions), scene
+//! functions — is written once, generic over the instructions it is compiled
+//! for (`NAME_on<I: Isa>`, `#[inline(always)]`, its sums `I::fma(a, b, c)`),
+//! and instantiated twice on x86-64 builds without the `avx2` and `fma`
+//! target features: for `Baseline` (the build's own target, the code a
+//! module without dispatch has) in `NAME`, and for `Avx2Fma` in
+//! `NAME_avx2_fma`, an `unsafe fn` with `#[target_feature(enable =
+//! "avx2,fma")]` that `NAME` calls when the processor has AVX2 and FMA and
+//! the OS saves the 256-bit registers (`cpuid` leaves 1 and 7 and `xgetbv`,
+//! asked once and kept in an atomic: `core::arch` only, so the module stays
+//! `#![no_std]` and without dependencies). A body split into parts is
+//! dispatched part by part. Builds that have both features, and other
+//! targets, compile `Baseline` alone: the same code as with the option off.
+//! The AVX2 and FMA copy gives the bits of a build with those features
+//! (`tests/tests/generated_fma.rs` checks it bit for bit), so a default
+//! build's results differ in the last bits between processors with and
+//! without FMA; off, they are the same on every x86-64 machine.
 //!
 //! # Constants that are 0 or ±1 up to rounding
 //!
@@ -252,7 +277,9 @@ pub struct CodegenOptions {
     /// On by default: it costs nothing where the target has no fused
     /// multiply-add (the same bits, the same instructions), and where it
     /// has, the bodies, bound by the floating-point ports, run fewer
-    /// operations (`benches/README.md`, "Run 7"). Off, the bodies give the
+    /// operations (`benches/README.md`, "Run 7"); with
+    /// [`runtime_dispatch`](Self::runtime_dispatch) a default x86-64 build
+    /// has a copy with FMA too. Off, the bodies give the
     /// same bits on every target. (The module's `sin_cos_array` fuses its
     /// polynomials wherever the target has FMA, either way: within 1 ulp
     /// both ways.)
@@ -784,7 +811,7 @@ fn header(
     let trig = match options.trig {
         Trig::Std => "NAME(q, ...) computes the sines and cosines by std's sin_cos (needs std)",
         Trig::Batched => {
-            "NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time, four where the target has AVX2 (no_std, no dependency)"
+            "NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time, four where the target (or, with run-time dispatch, the processor) has AVX2 (no_std, no dependency)"
         }
         Trig::Libm => "NAME(q, ...) computes the sines and cosines by libm::sincos (no_std; needs the `libm` crate)",
         Trig::Inputs => "only NAME_sc(s, c, ...): the caller passes the sines and cosines (no_std, no dependency)",
