@@ -232,11 +232,12 @@ fn dispatch_cfg() -> TokenStream {
 /// The comment put above each call of a function's AVX2 and FMA copy.
 const SAFETY_COMMENT: &str = "// SAFETY: this processor has AVX2 and FMA (checked just above).";
 
-/// The comment above the calls of a split body's AVX2 and FMA parts.
+/// The comment above the calls of AVX2 and FMA copies from another (a split
+/// body's parts, `NAME_sc_avx2_fma` from `NAME_avx2_fma`).
 const SAFETY_COMMENT_PARTS: &str = "// SAFETY: this processor has AVX2 and FMA (the caller checked).";
 
 /// `source` as a person would write the dispatch: [`SAFETY_COMMENT`] above
-/// every `return unsafe {` and [`SAFETY_COMMENT_PARTS`] above every
+/// every `return unsafe {` and [`SAFETY_COMMENT_PARTS`] above every other
 /// `unsafe {` (the calls of the AVX2 and FMA copies; `syn` trees carry no
 /// comments), and each `#[cfg(…)]` on one line (prettyplease
 /// breaks them over six).
@@ -264,7 +265,7 @@ pub(crate) fn tidy_dispatch(source: &str) -> String {
         }
         let safety = match code {
             _ if code.starts_with("return unsafe {") => Some(SAFETY_COMMENT),
-            "unsafe {" => Some(SAFETY_COMMENT_PARTS),
+            _ if code.starts_with("unsafe {") => Some(SAFETY_COMMENT_PARTS),
             _ => None,
         };
         if let Some(comment) = safety {

@@ -596,7 +596,7 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
             );
             let params: Vec<emit::Param> = kind.inputs().iter().map(|p| emit::Param::dof(p)).collect();
             let ret = emit::return_type(kind, options.scalar);
-            items.push(parse_item(wrapper(kind.fn_name(), &params, ret, sc, has_prismatic, options, &doc))?);
+            items.extend(parse_items(wrapper(kind.fn_name(), &params, ret, sc, has_prismatic, options, &doc))?);
         }
     }
     let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
@@ -694,17 +694,22 @@ fn wrapper(
             quote!(q[#i] * #k)
         }
     };
-    let body = if options.trig == Trig::Batched {
+    // The batched trigonometry, then `NAME_sc`: `all` computes every sine and cosine, `some` those
+    // of the angles it is given, `sc` calls the body.
+    let batched = |all: proc_macro2::TokenStream,
+                   some: &dyn Fn(usize) -> proc_macro2::TokenStream,
+                   sc_call: &dyn Fn(proc_macro2::TokenStream) -> proc_macro2::TokenStream| {
         // Only the angles NAME_sc reads (the UR5's g reads 3 of 6, the Panda's functions 7 of 9).
         let read: Vec<(usize, f64)> =
             sc.angle_scale.iter().enumerate().filter_map(|(i, k)| k.map(|k| (i, k))).collect();
         if read.len() == sc.angle_scale.len() && read.iter().all(|&(_, k)| k == 1.0) {
+            let call = sc_call(quote!(&s, &c, #q_arg #(#rest),*));
             quote! {
-                let (s, c) = sin_cos_all(q);
-                #sc_name(&s, &c, #q_arg #(#rest),*)
+                let (s, c) = #all;
+                #call
             }
         } else {
-            let batch = sin_cos::batch_function(options.scalar);
+            let batch = some(read.len());
             let angles = read.iter().map(|&(i, k)| angle(i, k));
             let mut s_entries = Vec::new();
             let mut c_entries = Vec::new();
@@ -721,11 +726,16 @@ fn wrapper(
                 }
             }
             let call = if read.is_empty() { quote!() } else { quote!(let (s, c) = #batch(&[#(#angles),*]);) };
+            let sc_call = sc_call(quote!(&[#(#s_entries),*], &[#(#c_entries),*], #q_arg #(#rest),*));
             quote! {
                 #call
-                #sc_name(&[#(#s_entries),*], &[#(#c_entries),*], #q_arg #(#rest),*)
+                #sc_call
             }
         }
+    };
+    let body = if options.trig == Trig::Batched {
+        let batch = sin_cos::batch_function(options.scalar);
+        batched(quote!(sin_cos_all(q)), &|_| batch.clone(), &|args| quote!(#sc_name(#args)))
     } else {
         let mut stmts = Vec::new();
         let mut s_entries = Vec::new();
@@ -757,13 +767,56 @@ fn wrapper(
         }
     };
     let doc = doc.lines();
+    if !(options.runtime_dispatch && options.trig == Trig::Batched) {
+        return quote! {
+            #(#[doc = #doc])*
+            #[inline]
+            pub fn #name(#(#typed),*) -> #ret {
+                #body
+            }
+        };
+    }
+    // With run-time dispatch, the batched sines and cosines are inlined into an AVX2 and FMA copy
+    // of `NAME`, which calls that of `NAME_sc`: no second check, no call of the kernel (with its
+    // arguments through memory), as in a native build.
+    let fast = quote::format_ident!("{}_avx2_fma", fn_name);
+    let sc_fast = quote::format_ident!("{}_sc_avx2_fma", fn_name);
+    let on = match options.scalar {
+        ScalarType::F64 => quote!(sin_cos_array_on),
+        ScalarType::F32 => quote!(sin_cos_array_f32_on),
+    };
+    let fast_body = batched(
+        quote!(#on::<Avx2Fma, DOF>(q)),
+        &|n| {
+            let n = proc_macro2::Literal::usize_unsuffixed(n);
+            quote!(#on::<Avx2Fma, #n>)
+        },
+        &|args| quote!(unsafe { #sc_fast(#args) }),
+    );
+    let args = params.iter().map(|p| quote::format_ident!("{}", p.name));
+    let fast_doc = format!(" [`{fn_name}`] compiled for processors with AVX2 and FMA.");
     quote! {
         #(#[doc = #doc])*
         #[inline]
         pub fn #name(#(#typed),*) -> #ret {
+            #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+            if has_avx2_and_fma() {
+                return unsafe { #fast(#(#args),*) };
+            }
             #body
         }
+        #[doc = #fast_doc]
+        #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+        #[target_feature(enable = "avx2,fma")]
+        unsafe fn #fast(#(#typed),*) -> #ret {
+            #fast_body
+        }
     }
+}
+
+/// The items of `tokens`.
+fn parse_items(tokens: proc_macro2::TokenStream) -> Result<Vec<syn::Item>, CodegenError> {
+    syn::parse2::<syn::File>(tokens).map(|f| f.items).map_err(|e| CodegenError::Internal(e.to_string()))
 }
 
 fn header(

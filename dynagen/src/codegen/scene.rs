@@ -413,7 +413,7 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
                 trig_source(trig, scalar)
             );
             let ret = shape(f).tokens(scalar);
-            items.push(parse_item(wrapper(&name, &ps, ret, &sc, has_prismatic, &opts, &doc))?);
+            items.extend(super::parse_items(wrapper(&name, &ps, ret, &sc, has_prismatic, &opts, &doc))?);
         }
         let inputs = ps.iter().map(|p| (p.name.clone(), p.len_value(n))).collect();
         functions.push(SceneFunction {
