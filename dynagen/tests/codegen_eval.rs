@@ -101,6 +101,43 @@ fn interpreter_matches_generic_solver_on_a_skewed_chain() {
     check_model(&skewed_chain(), &CodegenOptions::default(), 20, 1e-12);
 }
 
+/// A two-joint arm with a skewed two-finger gripper: prismatic leaves on
+/// rotated placements along a non-aligned axis, mirror images of each
+/// other, with full inertias off their axes, and a third prismatic leaf on
+/// the first link (code generation centres them, mirrors M's column and
+/// folds their weights in g).
+#[test]
+fn interpreter_matches_generic_solver_on_a_skewed_gripper() {
+    use dynagen::model::{Inertial, JointDescription, RobotBuilder};
+    let inertia = [0.003, 0.004, 0.002, 0.0001, -0.0002, 0.0003];
+    let mirrored = [0.003, 0.004, 0.002, -0.0001, 0.0002, 0.0003];
+    let model = RobotBuilder::new("gripper")
+        .link("base", None)
+        .link("l1", Some(Inertial::new(2.0, [0.05, 0.02, 0.2], [0.03, 0.04, 0.02, 0.001, -0.002, 0.003])))
+        .link("hand", Some(Inertial::new(0.8, [0.01, -0.02, 0.05], [0.01, 0.02, 0.015, 0.001, 0.0, -0.002])))
+        .link("left", Some(Inertial::new(0.05, [0.01, 0.02, 0.03], inertia)))
+        .link("right", Some(Inertial::new(0.05, [-0.01, 0.02, -0.03], mirrored)))
+        .link("slider", Some(Inertial::new(0.3, [0.0, 0.05, 0.0], inertia)))
+        .joint(JointDescription::revolute("j1", "base", "l1", [0.0, 0.0, 1.0]).origin([0.0, 0.0, 0.3], [0.0; 3]))
+        .joint(
+            JointDescription::revolute("j2", "l1", "hand", [1.0, 2.0, 2.0]).origin([0.1, 0.02, 0.4], [0.3, -0.2, 0.5]),
+        )
+        .joint(
+            JointDescription::prismatic("f1", "hand", "left", [0.6, 0.0, 0.8])
+                .origin([0.02, 0.03, 0.1], [0.4, 0.1, -0.7]),
+        )
+        .joint(
+            JointDescription::prismatic("f2", "hand", "right", [-0.6, 0.0, -0.8])
+                .origin([0.02, 0.03, 0.1], [0.4, 0.1, -0.7]),
+        )
+        .joint(
+            JointDescription::prismatic("s", "l1", "slider", [0.0, 1.0, 0.0]).origin([0.0, 0.1, 0.05], [0.0, 0.0, 0.9]),
+        )
+        .build()
+        .unwrap();
+    check_model(&model, &CodegenOptions::default(), 20, 1e-12);
+}
+
 #[test]
 fn interpreter_matches_without_snap_or_rewrites() {
     let model = Model::from_urdf_file(robot_path("ur5")).unwrap();

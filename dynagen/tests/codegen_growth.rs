@@ -44,7 +44,14 @@ fn op_counts_grow_linearly_for_tau_and_quadratically_for_m() {
 /// 1826), inertias turned about the joint axis before a quarter-turn
 /// placement when traced (`joint::Permuted`; ABA UR5 620, Panda 1872), the
 /// traced RNEA's moment grouped by the entries of `Ī` (`rnea::inertial_moment`;
-/// τ UR5 289, Panda 831; h 257, 804), and sums
+/// τ UR5 289, Panda 831; h 257, 804), the Panda's fingers (prismatic
+/// leaves) as point masses at their origins placed without rotation
+/// (`grouping::center_prismatic_leaves`; Panda τ 785, M 616, h 758, g 222,
+/// ABA 1779, LTDL 1742; M's critical path rose from 96 to 104 cycles, the
+/// others fell), the second finger's column of M the first's negated
+/// (`mass_matrix::mirrored_column`; Panda M 564, LTDL 1592), the fingers'
+/// weights in g split into masses fixed to the hand, regrouped, and first
+/// moments `m d q` (`codegen/leaves.rs`; Panda g 189, 108 cycles), and sums
 /// reassociated for a shorter
 /// critical path (see `benches/README.md`). Before (commit 6587eda): UR5 τ
 /// 422, M 206, h 389, g 118, ABA 1256; before reassociation (commit
@@ -72,12 +79,12 @@ fn bundled_op_counts_do_not_grow() {
         (
             "panda",
             [
-                (FunctionKind::InverseDynamics, 785, 184),
-                (FunctionKind::MassMatrix, 616, 96),
-                (FunctionKind::BiasForces, 758, 185),
-                (FunctionKind::GravityTorques, 222, 124),
-                (FunctionKind::ForwardDynamicsAba, 1779, 542),
-                (FunctionKind::ForwardDynamicsLdlt, 1742, 254),
+                (FunctionKind::InverseDynamics, 692, 160),
+                (FunctionKind::MassMatrix, 515, 104),
+                (FunctionKind::BiasForces, 661, 161),
+                (FunctionKind::GravityTorques, 122, 96),
+                (FunctionKind::ForwardDynamicsAba, 1639, 514),
+                (FunctionKind::ForwardDynamicsLdlt, 1508, 242),
             ],
         ),
     ];

@@ -171,17 +171,22 @@ fn delta(d: &[(&str, i64)], f: &str) -> i64 {
 fn the_full_scene_is_the_plain_module() {
     // The full scene's contract functions count what generate(&Model) does:
     // the scene path adds nothing when the scene asks for nothing.
+    // The forward dynamics is chosen between ABA and CRBA + LᵀDL as the
+    // plain module's is (the UR5 gets LᵀDL, with the same sentence why).
     let plain = dynagen::codegen::generate(&ur5(), &CodegenOptions::default()).unwrap();
-    for (kind, name) in [
-        (FunctionKind::InverseDynamics, "inverse_dynamics"),
-        (FunctionKind::MassMatrix, "mass_matrix"),
-        (FunctionKind::BiasForces, "bias_forces"),
-        (FunctionKind::GravityTorques, "gravity_torques"),
-        (FunctionKind::ForwardDynamicsAba, "forward_dynamics"),
+    for (kinds, name) in [
+        (&[FunctionKind::InverseDynamics][..], "inverse_dynamics"),
+        (&[FunctionKind::MassMatrix], "mass_matrix"),
+        (&[FunctionKind::BiasForces], "bias_forces"),
+        (&[FunctionKind::GravityTorques], "gravity_torques"),
+        (&[FunctionKind::ForwardDynamicsAba, FunctionKind::ForwardDynamicsLdlt], "forward_dynamics"),
     ] {
-        let p = plain.functions.iter().find(|f| f.kind == kind).unwrap().op_count;
-        assert_eq!(full().scene_function(name).unwrap().op_count, p, "{name}");
+        let p = plain.functions.iter().find(|f| kinds.contains(&f.kind) && f.emitted).unwrap();
+        assert_eq!(full().scene_function(name).unwrap().op_count, p.op_count, "{name}");
     }
+    let why = |source: &str| source.lines().find(|l| l.starts_with("// Forward dynamics: ")).map(str::to_string);
+    assert!(why(&plain.source).unwrap().contains("CRBA + LTDL, chosen as faster and as accurate"));
+    assert_eq!(why(&full().source), why(&plain.source));
     deltas("full scene", full());
 }
 
@@ -299,6 +304,11 @@ fn constant_and_input_payloads() {
     let (_, input) = check(&ur5(), &full_scene().payload_input("ee_link"), 5, 1e-12);
     let di = deltas("input payload on ee_link", &input);
     assert!(input.source.contains("payload_ee_link: &[f64; 10]"));
+    // With a payload input the forward dynamics can only be CRBA + LᵀDL (ABA
+    // has no payload form); a constant payload is folded in and both are
+    // compared as for a plain module.
+    assert!(input.source.contains("// Forward dynamics: CRBA with the input payloads' inertias"));
+    assert!(constant.source.contains("chosen as"));
     let n = 6;
     // As an input, the payload is one more inertia on its link's body
     // (`rnea_with_payloads`, `crba_with_payloads`): its ten parameters moved
@@ -415,6 +425,17 @@ fn branched_and_prismatic_robots() {
         .viscous("panda_finger_joint1", 3.0);
     let (applied, _) = check(&panda, &scene, 3, 1e-12);
     assert_eq!(applied.dof(), 8);
+    // A finger's frame, a wrench and a payload on it: code generation moves
+    // the finger's frame to its centre of mass (`center_prismatic_leaves`),
+    // the frame keeps its pose and the payload its place; with a payload the
+    // second finger's column of M is no longer the first's mirror image.
+    let scene = Scene::new()
+        .function(Function::FramePose("panda_leftfinger".into()))
+        .function(Function::FrameJacobian("panda_rightfinger".into()))
+        .tip_wrench("panda_leftfinger")
+        .payload_input("panda_rightfinger");
+    let (applied, _) = check(&panda, &scene, 3, 1e-12);
+    assert_eq!(applied.dof(), 9);
     let torso = Model::from_urdf_file(format!("{dir}torso_two_arms.urdf")).unwrap();
     let scene = Scene::new()
         .subtree("torso", &["left_hand"])

@@ -1003,9 +1003,12 @@ pub fn forward_dynamics(
 //    integer nearest x·2/π (rounded by adding and subtracting 1.5·2⁵²) and
 //    π/2 ≈ P1 + P2 + P3, P1 and P2 of 33 significant bits (so k·P1, k·P2
 //    and x − k·P1 are exact for |k| < 2²⁰) and P3 the next 53 bits. r is
-//    kept as rh + rl, |r − (rh + rl)| ≤ 3e-37·|x|, and |rl| ≤ ulp(rh)/2.
+//    kept as a + b, |r − (a + b)| ≤ 3e-37·|x|: a = (x − k·P1) − k·P2
+//    rounded, b its rounding error (exact) − k·P3, so |b| ≤ ulp(a)/2 + 2e-15.
+//    The pair is not renormalised: step 3 starts from a at once, and b
+//    catches up (it is needed only in the last terms).
 // 2. Slow path, taken only when the fast path's r could have lost digits
-//    (|rh| < 2⁻⁵⁸·|x|: the doubles nearest to multiples of π/2, fewer than
+//    (|a| < 2⁻⁵⁸·|x|: the doubles nearest to multiples of π/2, fewer than
 //    one angle in 10¹¹), |x| > 1.5e6 rad, NaN or ±∞ (Payne and Hanek): the
 //    bits of x·2/π near the binary point from x's 53-bit integer times a
 //    192-bit window of 2/π (1280 bits of it in the table), so r carries
@@ -1014,17 +1017,21 @@ pub fn forward_dynamics(
 //    C of degree 5, minimax for the error relative to sin and cos
 //    (coefficients by scripts/sin_cos_minimax.py, Remez in 50 digits: max
 //    relative error 1.1e-17 and 1.1e-18 after rounding to f64), evaluated
-//    by Estrin's scheme (short dependency chains). The leading terms r and
-//    1 − r²/2 (with its rounding error kept) are added last.
+//    by Estrin's scheme (short dependency chains), at r's high part rh (a);
+//    its low part rl (b) enters as rl·cos rh and −rl·sin rh, each to
+//    O(rl·rh⁶) (1 − rh²/2 + rh⁴/24, rh − rh³/6 + rh⁵/120), which keeps
+//    |rl| up to 2e-15 far below an ulp. The leading terms rh and 1 − rh²/2
+//    (with its rounding error kept) are added last.
 //    Where the target has fused multiply-adds (`fma` below), each `a·b + c`
 //    of the polynomials and of the final sums is one, rounded once instead
 //    of twice: every rounding error of the fused evaluation is one of the
 //    unfused evaluation's (a fused product adds none), so the error bound
 //    and the 1-ulp result hold for both (the tests measure both: max 0.73
 //    ulp unfused, see `tests/tests/generated_fma.rs` for the fused build).
-//    x − k·P1 is written fused too (exact either way); the other steps of
-//    the reduction are left as they are, so k and the fast-path test are
-//    the same on every target.
+//    x − k·P1 is written fused too (exact either way), and so is x·2/π +
+//    1.5·2⁵²: fused, k is the integer nearest the exact x·2/π, which can
+//    differ from the unfused k next to a half-integer; |r| then exceeds π/4
+//    by an ulp or so, where the polynomials are as accurate.
 // 4. The quadrant k mod 4 picks (±sin r, ±cos r) by bit masks.
 // `sin_cos_array` runs the fast path on several angles at once, in vector
 // registers on x86-64: four to a register where the target has AVX2
@@ -1441,21 +1448,20 @@ fn sin_cos_lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
     const P2: f64 = 6.077100506303966e-11;
     const P3: f64 = 2.0222662487959506e-21;
     let v = V::splat;
-    let t: [V; P] = each(|i| x[i].mul(v(FRAC_2_PI)).add(v(ROUND)));
+    let t: [V; P] = each(|i| x[i].mul_add(v(FRAC_2_PI), v(ROUND)));
     let k: [V; P] = each(|i| t[i].sub(v(ROUND)));
     let t0: [V; P] = each(|i| k[i].neg().mul_add(v(P1), x[i])); // exact, fused or not
     let w: [V; P] = each(|i| k[i].mul(v(P2))); // exact
     let a: [V; P] = each(|i| t0[i].sub(w[i]));
-    // The rounding error of t0 − w, exact (|t0| ≥ |w|, or else t0 − w is exact), then − k·P3.
+    // r ≈ a + b: the rounding error of t0 − w, exact (|t0| ≥ |w|, or else t0 − w is exact), then − k·P3.
+    // Not renormalised, so that the polynomials start from a without waiting for b: |b| ≤ ulp(a)/2 +
+    // |k|·P3 ≤ 2e-15, which step 3 allows for.
     let b: [V; P] = each(|i| t0[i].sub(a[i]).sub(w[i]).sub(k[i].mul(v(P3))));
-    // Renormalised: |rl| ≤ ulp(rh)/2 (the polynomials need that; |b| ≤ |a| where `ok` below holds).
-    let rh: [V; P] = each(|i| a[i].add(b[i]));
-    let rl: [V; P] = each(|i| b[i].sub(rh[i].sub(a[i])));
-    // Within 1 ulp if |x| ≤ 1.5e6 and |rh| ≥ 2⁻⁵⁸·|x| (as |r − (rh + rl)| ≤ 3e-37·|x|), which also
-    // holds for k = 0 (rh = x) and fails for NaN and ±∞ (then rh is NaN): min(2⁵⁸·|rh|, 1.5e6) ≥ |x|.
-    let ok: [bool; P] = core::array::from_fn(|i| rh[i].abs().mul(v(2.8823037615171174e17)).capped_ge(x[i].abs()));
-    // a's sign is rh's (in place), also when rh = −0 (which the reduction may turn into +0).
-    let r = sin_cos_reduced(rh, rl, a, t);
+    // Within 1 ulp if |x| ≤ 1.5e6 and |a| ≥ 2⁻⁵⁸·|x| (as |r − (a + b)| ≤ 3e-37·|x|), which also
+    // holds for k = 0 (a = x) and fails for NaN and ±∞ (then a is NaN): min(2⁵⁸·|a|, 1.5e6) ≥ |x|.
+    let ok: [bool; P] = core::array::from_fn(|i| a[i].abs().mul(v(2.8823037615171174e17)).capped_ge(x[i].abs()));
+    // a's sign is r's, also when a = −0 (x = −0).
+    let r = sin_cos_reduced(a, b, a, t);
     core::array::from_fn(|i| (r[i].0, r[i].1, ok[i]))
 }
 
@@ -1492,11 +1498,16 @@ fn sin_cos_reduced<V: Lanes, const P: usize>(rh: [V; P], rl: [V; P], signed: [V;
     let ps: [V; P] = each(|i| poly(S, i));
     let pc: [V; P] = each(|i| poly(C, i));
     let hz: [V; P] = each(|i| v(0.5).mul(z[i]));
-    // sin(rh + rl) = rh + rh·z·S(z) + rl·(1 − z/2) + …; the sign or-ed in keeps sin(−0) = −0.
-    let sin_r: [V; P] = each(|i| rh[i].add(rh[i].mul(z[i]).mul_add(ps[i], rl[i].mul(v(1.0).sub(hz[i])))));
-    // cos(rh + rl) = (1 − z/2) + z²·C(z) − rh·rl + …, with the rounding error of 1 − z/2.
     let w: [V; P] = each(|i| v(1.0).sub(hz[i]));
-    let cos_r: [V; P] = each(|i| w[i].add(v(1.0).sub(w[i]).sub(hz[i]).add(z2[i].mul_add(pc[i], rh[i].mul(rl[i]).neg()))));
+    // rl·cos rh and rl·sin rh to O(rl·rh⁶): 1 − z/2 + z²/24 and rh·(1 − z/6 + z²/120), so that rl
+    // may be up to 2e-15 (the fast path's b) without costing digits.
+    let cos_rh: [V; P] = each(|i| z2[i].mul_add(v(1.0 / 24.0), w[i]));
+    let sin_rh: [V; P] = each(|i| rh[i].mul(z2[i].mul_add(v(1.0 / 120.0), z[i].mul_add(v(-1.0 / 6.0), v(1.0)))));
+    // sin(rh + rl) = rh + rh·z·S(z) + rl·cos rh + …; the sign or-ed in keeps sin(−0) = −0.
+    let sin_r: [V; P] = each(|i| rh[i].add(rh[i].mul(z[i]).mul_add(ps[i], rl[i].mul(cos_rh[i]))));
+    // cos(rh + rl) = (1 − z/2) + z²·C(z) − rl·sin rh + …, with the rounding error of 1 − z/2.
+    let cos_r: [V; P] =
+        each(|i| w[i].add(z2[i].mul_add(pc[i], v(1.0).sub(w[i]).sub(hz[i])).sub(rl[i].mul(sin_rh[i]))));
     core::array::from_fn(|i| V::quadrant(sin_r[i], signed[i], cos_r[i], quadrant[i]))
 }
 

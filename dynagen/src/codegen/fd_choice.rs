@@ -10,9 +10,9 @@
 //!
 //! - **accuracy**: each of the two traced functions is evaluated in `f64`
 //!   on [`STATES`] fixed pseudo-random states (q in ±π rad, q̇ in ±2 rad/s,
-//!   τ in ±20 N·m) and compared with the ABA evaluated in double-double;
-//!   the error of a state is the norm of the difference over the norm of
-//!   the reference;
+//!   τ in ±20 N·m, a scene's gravity and tip wrench in ±10) and compared
+//!   with the ABA evaluated in double-double; the error of a state is the
+//!   norm of the difference over the norm of the reference;
 //! - **speed**: estimated cycles of the body, the larger of its
 //!   [`CriticalPath`](crate::symbolic::CriticalPath) and its operation
 //!   count over two (a core that issues two floating-point operations a
@@ -46,8 +46,22 @@ pub(crate) fn estimated_cycles(body: &Function) -> usize {
     (body.critical_path().cycles as usize).max(body.op_count().total().div_ceil(2))
 }
 
-/// The worst relative errors (ABA, LᵀDL) against the double-double ABA.
-fn errors(aba: &Function, ldlt: &Function, n: usize) -> (f64, f64) {
+/// The scale of the pseudo-random values an input of this name gets: q in
+/// ±π rad, q̇ in ±2 rad/s, τ in ±20 N·m, anything else (a scene's gravity,
+/// tip wrench) in ±10.
+fn scale_of(name: &str) -> f64 {
+    match name {
+        "q" => core::f64::consts::PI,
+        "qd" => 2.0,
+        "tau" => 20.0,
+        _ => 10.0,
+    }
+}
+
+/// The worst relative errors (ABA, LᵀDL) against the double-double ABA,
+/// both functions taking `inputs` (names and lengths, in the order their
+/// values are drawn).
+fn errors(aba: &Function, ldlt: &Function, inputs: &[(String, usize)]) -> (f64, f64) {
     let mut state = 0x9e37_79b9_7f4a_7c15u64;
     let mut next = move |scale: f64| {
         state ^= state >> 12;
@@ -58,12 +72,11 @@ fn errors(aba: &Function, ldlt: &Function, n: usize) -> (f64, f64) {
     };
     let (mut e_aba, mut e_ldlt) = (0.0f64, 0.0f64);
     for _ in 0..STATES {
-        let q: Vec<f64> = (0..n).map(|_| next(core::f64::consts::PI)).collect();
-        let qd: Vec<f64> = (0..n).map(|_| next(2.0)).collect();
-        let tau: Vec<f64> = (0..n).map(|_| next(20.0)).collect();
-        let inputs: [(&str, &[f64]); 3] = [("q", &q), ("qd", &qd), ("tau", &tau)];
-        let (Ok(reference), Ok(a), Ok(l)) =
-            (aba.eval_as::<DoubleDouble>(&inputs), aba.eval(&inputs), ldlt.eval(&inputs))
+        let values: Vec<Vec<f64>> =
+            inputs.iter().map(|(name, len)| (0..*len).map(|_| next(scale_of(name))).collect()).collect();
+        let named: Vec<(&str, &[f64])> =
+            inputs.iter().zip(&values).map(|((name, _), v)| (name.as_str(), v.as_slice())).collect();
+        let (Ok(reference), Ok(a), Ok(l)) = (aba.eval_as::<DoubleDouble>(&named), aba.eval(&named), ldlt.eval(&named))
         else {
             return (0.0, f64::INFINITY);
         };
@@ -80,8 +93,21 @@ fn errors(aba: &Function, ldlt: &Function, n: usize) -> (f64, f64) {
 
 /// Chooses between the traced ABA and LᵀDL of an `n`-joint model.
 pub(crate) fn choose(aba: &GeneratedFunction, ldlt: &GeneratedFunction, n: usize) -> FdChoice {
-    let (ca, cl) = (estimated_cycles(&aba.sin_cos_inputs.function), estimated_cycles(&ldlt.sin_cos_inputs.function));
-    let (ea, el) = errors(&aba.function, &ldlt.function, n);
+    let inputs = ["q", "qd", "tau"].map(|name| (name.to_string(), n));
+    choose_between(
+        [&aba.function, &aba.sin_cos_inputs.function],
+        [&ldlt.function, &ldlt.sin_cos_inputs.function],
+        &inputs,
+    )
+}
+
+/// Chooses between a traced ABA and LᵀDL, each given as (the function of
+/// `q`, its body with the sines and cosines as inputs), both taking
+/// `inputs` (a scene's forward dynamics may take a gravity vector and a tip
+/// wrench after q, q̇ and τ).
+pub(crate) fn choose_between(aba: [&Function; 2], ldlt: [&Function; 2], inputs: &[(String, usize)]) -> FdChoice {
+    let (ca, cl) = (estimated_cycles(aba[1]), estimated_cycles(ldlt[1]));
+    let (ea, el) = errors(aba[0], ldlt[0], inputs);
     let accurate = el <= 2.0 * ea + 2.0 * f64::EPSILON;
     let method = if cl < ca && accurate { ForwardDynamicsMethod::Ldlt } else { ForwardDynamicsMethod::Aba };
     let measured = format!(

@@ -19,7 +19,9 @@
 //! zeros the symbolic graph folds away. A part that reaches the fixed base
 //! is dropped. For a prismatic joint the body does not turn relative to its
 //! parent, and a rotational inertia without mass is the same about every
-//! point: its whole `Ī` moves to the parent. This is the regrouping of
+//! point: its whole `Ī` moves to the parent (so that a prismatic body
+//! without children, its frame first moved to its centre of mass by
+//! [`center_prismatic_leaves`], keeps only a point mass). This is the regrouping of
 //! inertial parameters of Khalil and Kleinfinger (the "base parameters"),
 //! written as a transformation of the model's spatial inertias.
 //!
@@ -37,7 +39,7 @@
 
 use super::rounding::ROUNDING_TOLERANCE;
 use crate::model::{AxisAlignment, JointKind, Model};
-use crate::spatial::{Inertia, Sym3, Vec3};
+use crate::spatial::{Inertia, Mat3, Sym3, Transform, Vec3};
 
 /// The index of the aligned axis and the other two, in `Sym3` storage
 /// order `[xx, yy, zz, xy, xz, yz]`: `(K, I, J)`.
@@ -139,10 +141,75 @@ pub fn slide_origins_along_axes(model: &Model) -> Model {
     m
 }
 
+/// A copy of `model` in which the frame of every body on a prismatic joint
+/// that has no children (a gripper's finger) sits at the body's centre of
+/// mass with its parent's axes: the joint's placement loses its rotation,
+/// which turns the joint's axis instead.
+///
+/// A prismatic joint translates its body without turning it, so the body's
+/// frame may be any frame fixed to the body: with `T_BB' = (Q, c)` (the new
+/// frame in the old), `T_place·Trans(a q)·T_BB' = (T_place·T_BB')·Trans(Qᵀa q)`.
+/// With `Q = R_placeᵀ` and `c` the centre of mass, the new placement is the
+/// translation to the centre of mass at `q = 0`, the axis is `R_place·a`
+/// (components equal up to the rounding of that product are made equal,
+/// `equal_magnitudes`) and the body's first moment is zero. Once
+/// [`regroup_inertia`] has moved its whole rotational inertia to the parent,
+/// the body is a point mass at its origin: its wrench is `m·a` with no
+/// moment, the products of its angular velocity are never needed, no
+/// rotation is applied between it and its parent, and the parent receives
+/// `p × f`. The frames attached to the body keep their poses (the
+/// children it has none of would have to move). The Lagrangian is the
+/// same: only coordinates fixed to the body change.
+pub fn center_prismatic_leaves(model: &Model) -> Model {
+    let mut m = model.clone();
+    for i in 0..m.bodies.len() {
+        let (joint0, inertia0) = (m.bodies[i].joint.clone(), m.bodies[i].inertia);
+        if joint0.kind != JointKind::Prismatic || inertia0.mass <= 0.0 || m.bodies.iter().any(|b| b.parent == Some(i)) {
+            continue;
+        }
+        let place = joint0.placement;
+        let to_new = Transform::new(place.rot.transpose(), inertia0.h.scale(1.0 / inertia0.mass));
+        let back = to_new.inverse();
+        let mut inertia = back.inertia_to_parent(&inertia0);
+        // m·c − m·(h/m): zero up to rounding
+        inertia.h = Vec3::zero();
+        let joint = &mut m.bodies[i].joint;
+        joint.placement = Transform::new(Mat3::identity(), equal_magnitudes(place.compose(&to_new).trans));
+        joint.axis = equal_magnitudes(place.rot.mul_vec(&joint0.axis));
+        joint.unit_axis = equal_magnitudes(place.rot.mul_vec(&joint0.unit_axis));
+        joint.refresh_derived();
+        m.bodies[i].inertia = inertia;
+        for f in m.frames.iter_mut().filter(|f| f.body == Some(i)) {
+            f.placement = back.compose(&f.placement);
+        }
+    }
+    m
+}
+
+/// `v` with components whose magnitudes differ only by rounding (within
+/// [`ROUNDING_TOLERANCE`] of the largest) given one magnitude, the larger:
+/// `Rz(−π/4)·e_y` is `(0.7071067811865475, 0.7071067811865476, 0)`, and
+/// with equal components its products with `q` are one.
+fn equal_magnitudes(mut v: Vec3<f64>) -> Vec3<f64> {
+    let scale = v.0.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    for a in 0..3 {
+        for b in a + 1..3 {
+            let (x, y) = (v.0[a], v.0[b]);
+            if x != 0.0 && x.abs() != y.abs() && (x.abs() - y.abs()).abs() <= ROUNDING_TOLERANCE * scale {
+                let m = x.abs().max(y.abs());
+                v.0[a] = m.copysign(x);
+                v.0[b] = m.copysign(y);
+            }
+        }
+    }
+    v
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::algorithms::{crba, rnea, Workspace};
+    use crate::model::AxisAlignment;
 
     fn ur5() -> Model {
         Model::from_urdf_file(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/ur5.urdf")).unwrap()
@@ -157,7 +224,7 @@ mod tests {
         for name in ["ur5", "panda", "torso_two_arms"] {
             let path = format!("{}/robots/{name}.urdf", env!("CARGO_MANIFEST_DIR"));
             let model = Model::from_urdf_file(&path).unwrap();
-            let slid = slide_origins_along_axes(&model);
+            let slid = slide_origins_along_axes(&center_prismatic_leaves(&model));
             let q: Vec<f64> = (0..model.dof()).map(|i| 0.3 + 0.8 * i as f64).collect();
             let (mut wa, mut wb) = (Workspace::new(&model), Workspace::new(&slid));
             forward_kinematics(&model, &mut wa, &q);
@@ -174,12 +241,75 @@ mod tests {
         }
     }
 
+    /// The Panda's fingers become point masses at their origins, placed
+    /// without rotation, mirror images of each other to the bit; a finger
+    /// frame keeps its pose; and the centred (not yet regrouped) model has
+    /// the original's τ, M and ABA forward dynamics.
+    #[test]
+    fn prismatic_leaves_become_point_masses() {
+        use crate::algorithms::aba::aba;
+        use crate::algorithms::kinematics::{forward_kinematics, frame_pose};
+        let path = format!("{}/robots/panda.urdf", env!("CARGO_MANIFEST_DIR"));
+        let model = Model::from_urdf_file(&path).unwrap();
+        let centred = center_prismatic_leaves(&model);
+        let grouped = regroup_inertia(&slide_origins_along_axes(&centred));
+        let (f1, f2) = (model.dof() - 2, model.dof() - 1);
+        for f in [f1, f2] {
+            let (b, c) = (&grouped.bodies[f], &centred.bodies[f]);
+            assert_eq!(b.joint.kind, JointKind::Prismatic);
+            assert_eq!((b.inertia.mass, b.inertia.h.0, b.inertia.ibar.0), (0.015, [0.0; 3], [0.0; 6]), "finger {f}");
+            assert!(b.joint.placement_rotation_is_identity && b.joint.alignment == AxisAlignment::General);
+            // the axis is the hand's ±y, both components 1/√2 exactly alike
+            let a = c.joint.axis.0;
+            assert_eq!(a[0].abs(), a[1].abs());
+            assert!((a[0].abs() - std::f64::consts::FRAC_1_SQRT_2).abs() < 1e-16 && a[2] == 0.0);
+            assert_eq!(c.inertia.h.0, [0.0; 3]);
+        }
+        let (p1, p2) = (&centred.bodies[f1].joint, &centred.bodies[f2].joint);
+        assert_eq!(p1.axis.0, (-p2.axis).0);
+        assert_eq!(p1.placement.trans.0[..2], (-p2.placement.trans).0[..2]);
+        assert_eq!(p1.placement.trans.0[2], p2.placement.trans.0[2]);
+        let n = model.dof();
+        let q: Vec<f64> = (0..n).map(|i| 0.4 * i as f64 - 1.0 + if i >= f1 { 1.01 } else { 0.0 }).collect();
+        let qd: Vec<f64> = (0..n).map(|i| 0.9 - 0.3 * i as f64).collect();
+        let qdd: Vec<f64> = (0..n).map(|i| -0.5 + 0.7 * (i % 4) as f64).collect();
+        let (mut wa, mut wb) = (Workspace::new(&model), Workspace::new(&centred));
+        forward_kinematics(&model, &mut wa, &q);
+        forward_kinematics(&centred, &mut wb, &q);
+        let tcp = model.frame_index("panda_leftfinger").unwrap();
+        let (a, b) = (frame_pose(&model, &wa, tcp), frame_pose(&centred, &wb, tcp));
+        for (x, y) in
+            a.trans.0.iter().chain(a.rot.0.iter().flatten()).zip(b.trans.0.iter().chain(b.rot.0.iter().flatten()))
+        {
+            assert!((x - y).abs() < 1e-15, "finger frame: {x} vs {y}");
+        }
+        let g = model.gravity;
+        let close = |a: &[f64], b: &[f64], what: &str| {
+            let norm = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            for (x, y) in a.iter().zip(b) {
+                assert!((x - y).abs() <= 1e-13 * norm, "{what}: {x} vs {y}");
+            }
+        };
+        let (mut ta, mut tb) = (vec![0.0; n], vec![0.0; n]);
+        rnea::rnea(&model, &mut wa, &q, Some(&qd), Some(&qdd), Some(&g), &[], &mut ta);
+        rnea::rnea(&centred, &mut wb, &q, Some(&qd), Some(&qdd), Some(&g), &[], &mut tb);
+        close(&ta, &tb, "τ");
+        let (mut ma, mut mb) = (vec![0.0; n * n], vec![0.0; n * n]);
+        crba::crba(&model, &mut wa, &q, &mut ma);
+        crba::crba(&centred, &mut wb, &q, &mut mb);
+        close(&ma, &mb, "M");
+        aba(&model, &mut wa, &q, &qd, &ta, Some(&g), &[], &mut ma[..n]);
+        aba(&centred, &mut wb, &q, &qd, &ta, Some(&g), &[], &mut mb[..n]);
+        close(&ma[..n], &mb[..n], "q̈");
+        close(&ma[..n], &qdd, "q̈ = the q̈ τ was made of");
+    }
+
     #[test]
     fn regrouped_model_has_the_same_dynamics() {
         for name in ["ur5", "panda", "torso_two_arms"] {
             let path = format!("{}/robots/{name}.urdf", env!("CARGO_MANIFEST_DIR"));
             let model = Model::from_urdf_file(&path).unwrap();
-            let grouped = regroup_inertia(&slide_origins_along_axes(&model));
+            let grouped = regroup_inertia(&slide_origins_along_axes(&center_prismatic_leaves(&model)));
             let n = model.dof();
             let (mut wa, mut wb) = (Workspace::new(&model), Workspace::new(&grouped));
             let q: Vec<f64> = (0..n).map(|i| 0.7 * i as f64 - 1.1).collect();

@@ -32,13 +32,16 @@ use crate::algorithms::joint::{
 use crate::algorithms::rnea::update_joint_transforms;
 use crate::algorithms::{BodyInertia, Workspace};
 use crate::model::Model;
-use crate::spatial::{Force, Inertia, Motion};
+use crate::spatial::{Force, Inertia, Motion, Transform, Vec3};
 use crate::symbolic::{Expr, Function, Node, Rewrites, TraceActive, Tracer};
 use crate::Scalar;
 
-/// Above this many joints [`plan`] keeps the generic algorithm's choices
-/// (tracing every choice grows as n³).
-pub(crate) const MAX_PLANNED_DOF: usize = 12;
+/// Above this many joints [`plan`] keeps the generic algorithm's choices:
+/// tracing every choice grows as n³. On the skewed chains of
+/// `tests/codegen_growth.rs` (debug build) planning takes about 3 s at 16
+/// joints and 12 s at 32, for 8 % fewer operations in M at 16 joints (6,422
+/// → 5,917) and 5 % at 32 (23,824 → 22,696).
+pub(crate) const MAX_PLANNED_DOF: usize = 24;
 
 /// For each entry `(i, j)` with `i ≤ j` (row-major index `i·n + j`), which
 /// of its ways to compute it [`mass_matrix`] takes:
@@ -141,13 +144,34 @@ fn candidates<S: Scalar>(
                 break;
             }
         }
+        // A mirror image of an earlier column (the second finger of a
+        // gripper): every entry above the parent is that column's, negated.
+        if let Some(k) = mirrored_column(model, payloads, j) {
+            let mut b = k;
+            while let Some(p) = model.bodies[b].parent {
+                let negated: Vec<S> = out[p * n + k].iter().map(|&x| -x).collect();
+                out[p * n + j] = negated;
+                b = p;
+            }
+            continue;
+        }
         // Up the path to the root: the column carried, and each ancestor's
         // entry formed at the bodies on the way.
         let mut path = vec![j];
         let mut cols = vec![f];
         let mut k = j;
         while let Some(p) = model.bodies[k].parent {
-            f = force_to_parent(&model.bodies[k].joint, &ws.x[k], &f);
+            let joint = &model.bodies[k].joint;
+            f = if k == j && !joint.is_revolute() {
+                // A prismatic joint's own column `Iᶜ S = (h × s; m s)` has its
+                // force along the axis `s`, so the translation `s·q` of the
+                // joint adds `q s × m s = 0` to its moment: only the
+                // placement carries it to the parent (no product with q).
+                let place = Transform { rot: ws.x[k].rot, trans: Vec3::from_f64(&joint.placement.trans) };
+                force_to_parent(joint, &place, &f)
+            } else {
+                force_to_parent(joint, &ws.x[k], &f)
+            };
             k = p;
             path.push(k);
             cols.push(f);
@@ -160,6 +184,35 @@ fn candidates<S: Scalar>(
         }
     }
     out
+}
+
+/// The column `Iᶜ_j S_j` of a prismatic joint `j` without children (and
+/// without payloads), carried to its parent: a model constant, since the
+/// joint's translation along `S_j` does not change it (see [`candidates`]).
+fn leaf_column_at_parent(model: &Model, payloads: &[BodyInertia<impl Scalar>], j: usize) -> Option<Force<f64>> {
+    let body = &model.bodies[j];
+    let leaf = !body.joint.is_revolute()
+        && body.parent.is_some()
+        && !model.bodies.iter().any(|b| b.parent == Some(j))
+        && !payloads.iter().any(|p| p.body == j);
+    leaf.then(|| {
+        let place = Transform::<f64>::from_f64(&body.joint.placement);
+        force_to_parent(&body.joint, &place, &inertia_times_subspace(&body.joint, &body.inertia))
+    })
+}
+
+/// An earlier joint `k` whose column is exactly the negation of joint `j`'s
+/// at their common parent ([`leaf_column_at_parent`]): the two fingers of
+/// a gripper, mirror images of each other. Every entry of `j`'s column
+/// above the parent is then `k`'s negated, to the bit (each operation that
+/// carries and projects a column is odd, and IEEE rounding is symmetric).
+fn mirrored_column(model: &Model, payloads: &[BodyInertia<impl Scalar>], j: usize) -> Option<usize> {
+    let fj = leaf_column_at_parent(model, payloads, j)?.to_array();
+    (0..j).find(|&k| {
+        model.bodies[k].parent == model.bodies[j].parent
+            && leaf_column_at_parent(model, payloads, k)
+                .is_some_and(|fk| fk.to_array().iter().zip(&fj).all(|(a, b)| *a == -*b))
+    })
 }
 
 /// M(q), row-major into `m` (n×n, both triangles), each entry computed as
@@ -360,6 +413,13 @@ mod tests {
                     }
                 }
                 assert!(checked > n * (n + 1) / 2, "{name}: more than one choice somewhere");
+                // the Panda's second finger mirrors the first
+                let mirrors: Vec<Option<usize>> =
+                    (0..n).map(|j| mirrored_column(&model, &[] as &[BodyInertia<f64>], j)).collect();
+                let want_mirrors = if name == "panda" { vec![(8, 7)] } else { vec![] };
+                let got_mirrors: Vec<(usize, usize)> =
+                    mirrors.iter().enumerate().filter_map(|(j, k)| k.map(|k| (j, k))).collect();
+                assert_eq!(got_mirrors, want_mirrors, "{name}");
                 // and through a plan
                 let p = plan(&model, opts.rewrites).unwrap();
                 let mut got = vec![0.0; n * n];

@@ -108,6 +108,7 @@ pub mod fd_choice;
 mod generic_count;
 mod grouping;
 mod hash;
+mod leaves;
 mod literal;
 mod mass_matrix;
 mod rounding;
@@ -118,7 +119,7 @@ mod trace;
 
 pub use builder::{module_name, BuildError, Builder, GeneratedFile};
 pub use generic_count::generic_op_count;
-pub use grouping::{regroup_inertia, slide_origins_along_axes};
+pub use grouping::{center_prismatic_leaves, regroup_inertia, slide_origins_along_axes};
 pub use hash::{canonical_text, fnv1a64, model_hash};
 pub use literal::float_literal_text;
 pub use rounding::{snap_rounding, SnappedConstant, ROUNDING_TOLERANCE};
@@ -255,7 +256,8 @@ pub struct CodegenOptions {
     /// [module documentation](self).
     pub snap_rounding: bool,
     /// Move the inertia a joint cannot move to its parent (on); see
-    /// [`regroup_inertia`].
+    /// [`regroup_inertia`] (with the body frames moved first:
+    /// [`center_prismatic_leaves`], [`slide_origins_along_axes`]).
     pub regroup_inertia: bool,
     /// The value-changing graph rewrites (on); see [`Rewrites`].
     pub rewrites: Rewrites,
@@ -502,13 +504,15 @@ fn doc_of(kind: FunctionKind, model: &Model, count: &OpCount) -> String {
 
 /// The model code is generated from: `model` with the rounding snap and the
 /// inertia regrouping the options ask for (both exact within the file's
-/// precision, see [`snap_rounding`] and [`regroup_inertia`]), and the
+/// precision, see [`snap_rounding`] and [`regroup_inertia`]; with the
+/// regrouping, body frames first move where they cost less, see
+/// [`center_prismatic_leaves`] and [`slide_origins_along_axes`]), and the
 /// constants the snap changed. Plain and scene modules both start here.
 pub(crate) fn prepare_model(model: &Model, options: &CodegenOptions) -> (Model, Vec<SnappedConstant>) {
     let (snapped_model, snapped) =
         if options.snap_rounding { snap_rounding(model) } else { (model.clone(), Vec::new()) };
     let prepared = if options.regroup_inertia {
-        regroup_inertia(&slide_origins_along_axes(&snapped_model))
+        regroup_inertia(&slide_origins_along_axes(&center_prismatic_leaves(&snapped_model)))
     } else {
         snapped_model
     };

@@ -22,25 +22,28 @@
 //! Jacobian, rows (ω; v), in the frame) nothing.
 //!
 //! **Input payloads.** The algorithms read a body's inertia as a model
-//! constant, so a payload given at run time cannot be traced through them
-//! directly. A payload fixed to a link is, for the rest of the robot, the
-//! wrench the link must apply to it: F = I·A + V ×* I·V, with I its inertia
-//! (from the arguments) and V, A the link frame's twist and acceleration
-//! (gravity included), computed by a forward pass along the link's path. So
-//! τ, h, g and C(q, q̇)q̇ are the recursive Newton-Euler algorithm with that
-//! wrench as one more tip wrench, and the mass matrix is M(q) + J_bᵀ I J_b,
-//! J_b the link frame's body Jacobian. Forward dynamics with an input
-//! payload solves (M + J_bᵀ I J_b) q̈ = τ − friction − h − Jᵀ(F_tip, F) by
-//! the sparse LᵀDL factorisation (the articulated-body algorithm would need
-//! the payload in its articulated inertias).
+//! constant, so a payload given at run time enters them as one more body
+//! inertia on its link's body, from the arguments moved into the body's
+//! frame: τ, h, g and C(q, q̇)q̇ by `rnea_with_payloads`, M by the planned
+//! mass matrix (`codegen/mass_matrix.rs`) with the payloads in its
+//! composite inertias. Forward dynamics with an input payload solves
+//! (M + diag(armature)) q̈ = τ − friction − h − JᵀF_tip by the sparse LᵀDL
+//! factorisation (the articulated-body algorithm would need the payload in
+//! its articulated inertias).
+//!
+//! **Forward dynamics.** Without input payloads and with
+//! [`ForwardDynamicsMethod::Auto`] (the default), both the articulated-body
+//! algorithm and CRBA + LᵀDL are traced and one is kept by the rule of a
+//! plain module ([`fd_choice`](super::fd_choice)): LᵀDL where it is
+//! estimated faster and as accurate. The header says which and why.
 
 use super::emit::{self, Dim, Param, Shape};
 use super::trace::{sin_cos_from_q, sin_cos_inputs, SinCosTrace};
 use super::{
-    module_name, parse_item, prepare_model, sin_cos, trig_source, wrapper, CodegenError, CodegenOptions,
+    fd_choice, module_name, parse_item, prepare_model, sin_cos, trig_source, wrapper, CodegenError, CodegenOptions,
     ForwardDynamicsMethod, GeneratedModule, ScalarType, SnappedConstant, Trig, GENERATOR_VERSION,
 };
-use crate::algorithms::{kinematics, rnea, BodyInertia, TipWrench, Workspace};
+use crate::algorithms::{kinematics, ldlt, rnea, BodyInertia, TipWrench, Workspace};
 use crate::model::{JointKind, Model};
 use crate::scene::{dynamics, Function as SceneFn, ResolvedGravity, SceneModel};
 use crate::spatial::{Force, Inertia, Sym3, Transform, Vec3};
@@ -146,9 +149,13 @@ fn trace_unfactored(
 ) -> Result<Function, TraceActive> {
     let n = model.dof();
     // M by the codegen variant of CRBA, as the plain module's (planned
-    // before this trace starts).
+    // before this trace starts), in the mass matrix and in the LᵀDL forward
+    // dynamics (always taken with input payloads: ABA has no payload form).
+    let use_ldlt =
+        f == &SceneFn::ForwardDynamics && (method == ForwardDynamicsMethod::Ldlt || !scene.input_payloads.is_empty());
     let plan = match f {
         SceneFn::MassMatrix => Some(super::mass_matrix::plan(model, rewrites)?),
+        _ if use_ldlt => Some(super::mass_matrix::plan(model, rewrites)?),
         _ => None,
     };
     let tracer = Tracer::start_with(rewrites)?;
@@ -232,40 +239,26 @@ fn trace_unfactored(
             rnea::rnea_with_payloads(model, &mut ws, q, Some(&args[1]), None, None, &[], pl, &mut out);
         }
         SceneFn::Coriolis => dynamics::coriolis(scene, &mut ws, q, &args[1], &mut out),
-        SceneFn::ForwardDynamics if !p => {
-            let mut scratch = vec![zero; n];
-            match method {
-                ForwardDynamicsMethod::Aba | ForwardDynamicsMethod::Auto => {
-                    dynamics::forward_dynamics(scene, &mut ws, q, &args[1], &args[2], g, &tips, &mut scratch, &mut out)
-                }
-                ForwardDynamicsMethod::Ldlt => dynamics::forward_dynamics_ldlt(
-                    scene,
-                    &mut ws,
-                    q,
-                    &args[1],
-                    &args[2],
-                    g,
-                    &tips,
-                    &mut scratch,
-                    &mut out,
-                ),
+        SceneFn::ForwardDynamics if use_ldlt => {
+            // The steps of dynamics::forward_dynamics_ldlt_with_payloads, with
+            // the planned M (as the plain module's LᵀDL, codegen/trace.rs).
+            let plan = plan.as_ref().expect("planned above");
+            let (n, qd, tau) = (model.dof(), &args[1], &args[2]);
+            rnea::rnea_with_payloads(model, &mut ws, q, Some(qd), None, g, &tips, pl, &mut out);
+            let mut rhs = tau.clone();
+            dynamics::sub_friction(scene, qd, &mut rhs);
+            for i in 0..n {
+                out[i] = rhs[i] - out[i];
             }
+            let mut m = vec![zero; n * n];
+            super::mass_matrix::mass_matrix(model, &mut ws, q, pl, plan, &mut m);
+            dynamics::add_armature_diagonal(scene, &mut m);
+            ldlt::factorise(model, &mut m);
+            ldlt::solve(model, &m, &mut out);
         }
         SceneFn::ForwardDynamics => {
-            // The payloads in M and h: through M and LᵀDL (ABA has no payload form).
             let mut scratch = vec![zero; n];
-            dynamics::forward_dynamics_ldlt_with_payloads(
-                scene,
-                &mut ws,
-                q,
-                &args[1],
-                &args[2],
-                g,
-                &tips,
-                pl,
-                &mut scratch,
-                &mut out,
-            );
+            dynamics::forward_dynamics(scene, &mut ws, q, &args[1], &args[2], g, &tips, &mut scratch, &mut out)
         }
         SceneFn::FramePose(name) | SceneFn::FrameJacobian(name) => {
             let frame = model.frame_index(name).expect("checked by Scene::apply");
@@ -384,13 +377,34 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
     let has_prismatic = model.bodies.iter().any(|b| b.joint.kind == JointKind::Prismatic);
     let mut functions = Vec::new();
     let mut split_functions = Vec::new();
+    let mut fd_why = String::new();
     for f in &scene.functions {
         let name = scene_function_name(f);
-        let traced = trace_unfactored(scene, &model, f, options.forward_dynamics, options.rewrites)?;
-        let sc = sin_cos_inputs(&traced, n, options.rewrites).map_err(CodegenError::Internal)?;
-        let function = sin_cos_from_q(&sc, options.rewrites);
-        let op_count = super::counted(&function, options.fma);
         let ps = params(scene, f);
+        let traced_as = |method| -> Result<(SinCosTrace, Function), CodegenError> {
+            let traced = trace_unfactored(scene, &model, f, method, options.rewrites)?;
+            let sc = sin_cos_inputs(&traced, n, options.rewrites).map_err(CodegenError::Internal)?;
+            let function = sin_cos_from_q(&sc, options.rewrites);
+            Ok((sc, function))
+        };
+        let (sc, function) = match options.forward_dynamics {
+            // Both traced and compared, as for a plain module (fd_choice.rs);
+            // with input payloads only LᵀDL exists.
+            ForwardDynamicsMethod::Auto if f == &SceneFn::ForwardDynamics && scene.input_payloads.is_empty() => {
+                let aba = traced_as(ForwardDynamicsMethod::Aba)?;
+                let ldlt = traced_as(ForwardDynamicsMethod::Ldlt)?;
+                let inputs: Vec<(String, usize)> = ps.iter().map(|p| (p.name.clone(), p.len_value(n))).collect();
+                let choice = fd_choice::choose_between([&aba.1, &aba.0.function], [&ldlt.1, &ldlt.0.function], &inputs);
+                fd_why = choice.why;
+                if choice.method == ForwardDynamicsMethod::Ldlt {
+                    ldlt
+                } else {
+                    aba
+                }
+            }
+            method => traced_as(method)?,
+        };
+        let op_count = super::counted(&function, options.fma);
         let mut sc_params = vec![Param::dof("s"), Param::dof("c")];
         if has_prismatic {
             sc_params.push(Param::dof("q"));
@@ -428,7 +442,7 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
     let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
     let body = emit::tidy_dispatch(&prettyplease::unparse(&file));
     let model_hash = super::model_hash(&scene.model);
-    let header = header(scene, &opts, &functions, &snapped, model_hash)
+    let header = header(scene, &opts, &fd_why, &functions, &snapped, model_hash)
         + &super::split::header_note(options.split_lets, &split_functions);
     let kernel = sin_cos::kernel_source(scalar, options.runtime_dispatch);
     Ok(GeneratedModule {
@@ -451,6 +465,7 @@ fn list(items: &[String]) -> String {
 fn header(
     scene: &SceneModel,
     options: &CodegenOptions,
+    fd_why: &str,
     functions: &[SceneFunction],
     snapped: &[SnappedConstant],
     hash: u64,
@@ -488,12 +503,13 @@ fn header(
     h.push_str(&super::fma_note(options));
     if scene.functions.contains(&SceneFn::ForwardDynamics) {
         let fd = if !scene.input_payloads.is_empty() {
-            "M + J_b^T I J_b of the input payloads, h by RNEA, and a sparse LTDL solve"
+            "CRBA with the input payloads' inertias and the armature on M's diagonal, RNEA, and a sparse LTDL solve"
+        } else if !fd_why.is_empty() {
+            fd_why
         } else if options.forward_dynamics == ForwardDynamicsMethod::Ldlt {
             "CRBA with the armature on M's diagonal, RNEA, and a sparse LTDL solve, as asked"
         } else {
-            // Auto too: a scene's bodies are not compared, the ABA is kept.
-            "the articulated-body algorithm, armature in D_i = S_i^T U_i + a_i"
+            "the articulated-body algorithm, armature in D_i = S_i^T U_i + a_i, as asked"
         };
         let _ = writeln!(h, "// Forward dynamics: {fd}.");
     }

@@ -1,6 +1,6 @@
 //! The functions of a generated module, traced from the generic algorithms.
 
-use super::mass_matrix;
+use super::{leaves, mass_matrix};
 use crate::algorithms::{aba, bias, crba, forward_dynamics, ldlt, rnea, Workspace};
 use crate::model::Model;
 use crate::spatial::Vec3;
@@ -129,6 +129,14 @@ fn trace_unfactored(model: &Model, kind: FunctionKind, rewrites: Rewrites) -> Re
                 ldlt::solve(model, &m, out);
             })
         }
+        FunctionKind::GravityTorques => match leaves::fold_for_gravity(model) {
+            // Point masses on prismatic leaves folded into their parents
+            // (codegen/leaves.rs); the model's own workspace does not fit.
+            Some((folded, list)) => trace_run(&folded, kind, rewrites, |ws, args, g, out| {
+                leaves::gravity_torques(&folded, &list, ws, &args[0], g, out)
+            }),
+            None => trace_run(model, kind, rewrites, |ws, args, g, out| kind.run(model, ws, args, g, out)),
+        },
         _ => trace_run(model, kind, rewrites, |ws, args, g, out| kind.run(model, ws, args, g, out)),
     }
 }
