@@ -1,7 +1,7 @@
 //! Generates the benchmarked modules into OUT_DIR: the UR5 and the Panda,
 //! each with std's sin_cos and with the batched `sin_cos_all` (both have the
 //! `NAME_sc` bodies, which take the sines and cosines as inputs), and each
-//! with the same bodies without fused multiply-adds (`*_base`).
+//! with the same bodies without fused multiply-adds and run-time dispatch (`*_base`).
 
 use dynagen::codegen::{generate, CodegenOptions, Trig};
 use dynagen::Model;
@@ -20,10 +20,12 @@ fn main() {
             let module = generate(&model, &opts).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
             std::fs::write(Path::new(&out).join(format!("{robot}_{suffix}.rs")), module.source).expect("writing");
         }
-        // The same bodies without fused multiply-adds, for with/without in
-        // one run (they differ only where the build has the `fma` target
-        // feature, e.g. with RUSTFLAGS="-C target-cpu=native").
-        let base = CodegenOptions::default().trig(Trig::Inputs).fma(false);
+        // The same bodies without fused multiply-adds and without run-time
+        // dispatch, for with/without in one run: on a default build, what
+        // the bodies ran before either (SSE2, unfused); on a build with the
+        // `fma` and `avx2` target features (RUSTFLAGS="-C target-cpu=native"),
+        // where dispatch compiles out, the unfused body alone.
+        let base = CodegenOptions::default().trig(Trig::Inputs).fma(false).runtime_dispatch(false);
         let module = generate(&model, &base).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
         std::fs::write(Path::new(&out).join(format!("{robot}_base.rs")), module.source).expect("writing");
     }

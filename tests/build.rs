@@ -1,6 +1,6 @@
 //! Generates into OUT_DIR with [`dynagen::Builder`]: the UR5 module in f32,
 //! for `tests/generated_bundled.rs` (the f64 modules are the committed ones
-//! in `generated/`), and in f64 for `tests/generated_fma.rs`, and three scene modules for `tests/generated_scene.rs`:
+//! in `generated/`), and in f64 (with and without run-time dispatch) for `tests/generated_fma.rs`, and three scene modules for `tests/generated_scene.rs`:
 //! the bundled `ur5_controller` scene (from its TOML file), a UR5 with every
 //! run-time input (gravity, tip wrench, a payload) and a lock, and an f32
 //! UR5 with only τ and no gravity; the stiff robots (`build_stiff.rs`) and
@@ -17,6 +17,13 @@ fn main() {
     let ur5 = "../dynagen/robots/ur5.urdf";
     // Default options (fused multiply-adds on), for tests/generated_fma.rs.
     dynagen::Builder::new().urdf(ur5).file_name("ur5_f64.rs").generate().expect("generating the UR5 module");
+    // The same without run-time dispatch: the build's target features only.
+    dynagen::Builder::new()
+        .urdf(ur5)
+        .runtime_dispatch(false)
+        .file_name("ur5_f64_baseline.rs")
+        .generate()
+        .expect("generating the UR5 module without dispatch");
     dynagen::Builder::new()
         .urdf(ur5)
         .scalar(ScalarType::F32)

@@ -5,7 +5,8 @@
 //! - `gen_std`: the generated `NAME(q, …)`, sines and cosines by `f64::sin_cos`;
 //! - `gen_sc`: the generated `NAME_sc(s, c, …)`, sines and cosines given (trig excluded);
 //! - `gen_batched`: the generated `NAME(q, …)` of a `Trig::Batched` module (`sin_cos_all`);
-//! - `gen_sc_base`: `NAME_sc` without fused multiply-adds (`CodegenOptions::fma(false)`; the same code unless built with the `fma` target feature);
+//! - `gen_sc_base`: `NAME_sc` without fused multiply-adds and run-time dispatch (`CodegenOptions::fma(false)`,
+//!   `runtime_dispatch(false)`: on a default build the SSE2 body that ran before either, on a native build the unfused body);
 //!
 //! and `sin_cos_all` against a loop of `f64::sin_cos` (and the `f32` batch,
 //! `dynagen::codegen::sin_cos_array_f32`, against `f32::sin_cos`). Each benchmark

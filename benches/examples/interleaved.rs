@@ -3,8 +3,9 @@
 //! of the `Trig::Std` module, by std's `sin_cos`, and of the
 //! `Trig::Batched` module, by the module's `sin_cos_array`), its body alone
 //! (`NAME_sc`, sines and cosines given), the same body without fused
-//! multiply-adds (`*_base` modules: the same code unless the build has the
-//! `fma` target feature), and the generic solver, timed in
+//! multiply-adds and without run-time dispatch (`*_base` modules: on a
+//! default build the SSE2 code that ran before either, on a native build the
+//! unfused body), and the generic solver, timed in
 //! alternating rounds (each call's whole
 //! output goes through `black_box`, so nothing of a body is left out) of 2,000 calls on 8
 //! states; the minimum over rounds per call is reported (interference only
@@ -136,7 +137,7 @@ bodies!(panda_new, panda_std, 9, q);
 bodies!(panda_old, panda_base, 9, q);
 
 /// The functions of one robot: generic, then std trig, batched trig, the
-/// body, the body without fused multiply-adds.
+/// body, the body without fused multiply-adds and run-time dispatch.
 struct Variants<const N: usize> {
     std: [Body<N>; 4],
     batched: [Body<N>; 4],
@@ -179,7 +180,7 @@ fn robot<const N: usize>(name: &str, rounds: usize, v: Variants<N>) {
 fn main() {
     let rounds: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(200);
     println!(
-        "| robot | function | generic | gen_std (std sin_cos) | gen_batched (sin_cos_array) | gen_sc (body, trig excluded) | gen_sc_nofma (body, fma off) | nofma / fma |"
+        "| robot | function | generic | gen_std (std sin_cos) | gen_batched (sin_cos_array) | gen_sc (body, trig excluded) | gen_sc_base (body, fma and dispatch off) | base / gen_sc |"
     );
     println!("| --- | --- | --- | --- | --- | --- | --- | --- |");
     robot::<6>(

@@ -23,7 +23,7 @@ for line in open(sys.argv[1], encoding="utf-8"):
 
 BASE = any(k.endswith("/gen_sc_base") for k in times)
 VARIANTS = ["gen_std", "gen_sc", "gen_batched"] + (["gen_sc_base"] if BASE else [])
-print("| robot | function | generic | gen_std | gen_sc (trig excluded) | gen_batched |" + (" gen_sc_base (fma off) |" if BASE else ""))
+print("| robot | function | generic | gen_std | gen_sc (trig excluded) | gen_batched |" + (" gen_sc_base (fma and dispatch off) |" if BASE else ""))
 print("| --- | --- | --- | --- | --- | --- |" + (" --- |" if BASE else ""))
 for robot in ["ur5", "panda"]:
     for f, label in [("tau", "τ"), ("M", "M"), ("h", "h"), ("g", "g"), ("fd", "forward dynamics")]:

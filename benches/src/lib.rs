@@ -15,8 +15,12 @@ macro_rules! generated {
 generated!(ur5_std, "ur5_std.rs", "The UR5, `NAME(q, …)` by std's `sin_cos`.");
 generated!(ur5_batched, "ur5_batched.rs", "The UR5, `NAME(q, …)` by `sin_cos_all`.");
 generated!(panda_std, "panda_std.rs", "The Panda, `NAME(q, …)` by std's `sin_cos`.");
-generated!(ur5_base, "ur5_base.rs", "The UR5's `NAME_sc` bodies without fused multiply-adds.");
-generated!(panda_base, "panda_base.rs", "The Panda's `NAME_sc` bodies without fused multiply-adds.");
+generated!(ur5_base, "ur5_base.rs", "The UR5's `NAME_sc` bodies without fused multiply-adds and run-time dispatch.");
+generated!(
+    panda_base,
+    "panda_base.rs",
+    "The Panda's `NAME_sc` bodies without fused multiply-adds and run-time dispatch."
+);
 generated!(panda_batched, "panda_batched.rs", "The Panda, `NAME(q, …)` by `sin_cos_all`.");
 
 /// The URDF of a bundled robot.

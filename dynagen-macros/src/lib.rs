@@ -43,6 +43,7 @@
 //! | `trig` | `std` (`f64::sin_cos`), `batched` (the module's own `sin_cos_array`: no_std, faster), `libm`, `inputs` (only the `NAME_sc` functions) | `std` |
 //! | `split_lets` | a number of `let`s, or `none` | 2500 (longer bodies become `#[inline(never)]` parts) |
 //! | `fma` | `true`, `false`: `a*b + c` as `fma(a, b, c)`, one rounding where the target has a fused multiply-add | `true` |
+//! | `dispatch` | `true`, `false`: on x86-64 builds without the `avx2` and `fma` target features, also compile each function for AVX2 and FMA and run that copy where the processor has both (results differ in the last bits between machines) | `true` |
 //!
 //! # Scenes (both macros)
 //!
@@ -157,6 +158,7 @@ pub(crate) struct MacroOptions {
     trig: Option<Trig>,
     split_lets: Option<Option<usize>>,
     fma: Option<bool>,
+    dispatch: Option<bool>,
     scene: scene::SceneOptions,
 }
 
@@ -232,6 +234,7 @@ impl MacroOptions {
                 });
             }
             "fma" => self.fma = Some(input.parse::<LitBool>()?.value),
+            "dispatch" => self.dispatch = Some(input.parse::<LitBool>()?.value),
             _ => return self.scene.parse_value(key, input),
         }
         Ok(true)
@@ -259,6 +262,9 @@ impl MacroOptions {
         }
         if let Some(f) = self.fma {
             o = o.fma(f);
+        }
+        if let Some(d) = self.dispatch {
+            o = o.runtime_dispatch(d);
         }
         let names: Option<Vec<String>> = self.functions.as_ref().map(|f| f.iter().map(Ident::to_string).collect());
         let coriolis = names.as_ref().is_some_and(|n| n.iter().any(|f| f == "coriolis"));
@@ -298,7 +304,7 @@ impl MacroOptions {
 
 /// The options every macro accepts, for error messages.
 pub(crate) const OPTION_NAMES: &str = "functions, scalar, forward_dynamics, snap_rounding, trig, split_lets, fma, \
-                                       scene, gravity, tip_wrench, subtree, lock, armature, viscous, coulomb, \
+                                       dispatch, scene, gravity, tip_wrench, subtree, lock, armature, viscous, coulomb, \
                                        coulomb_velocity, payload, payload_input, frame_pose, frame_jacobian, target";
 
 struct UrdfInput {

@@ -591,6 +591,14 @@ fn generate_to_stdout_and_to_a_file_equal_the_library_output() {
     assert!(written.contains("pub fn mass_matrix(q: &[f32; DOF]) -> [[f32; DOF]; DOF]"));
     assert!(!written.contains("pub fn inverse_dynamics"));
 
+    // --no-dispatch and --no-fma: the library's source with those options off.
+    let stdout = succeeds(dynagen().arg("generate").arg(&urdf).args(["--no-dispatch", "--no-fma"]));
+    let opts = CodegenOptions::default().source(urdf.clone()).runtime_dispatch(false).fma(false);
+    assert_eq!(stdout, generate(&model, &opts).unwrap().source);
+    let (bodies, kernel) = stdout.split_once("const RUNTIME_DISPATCH: bool = false;").expect("the kernel's switch off");
+    assert!(bodies.contains("// Run-time dispatch: off") && !bodies.contains("_avx2_fma("), "{bodies}");
+    assert!(kernel.contains("if RUNTIME_DISPATCH && has_avx2_and_fma()"));
+
     // Without a file: the bundled UR5, named as such in the header.
     let stdout = succeeds(dynagen().arg("generate").current_dir(&dir));
     assert!(stdout.contains("// Model source: ur5.urdf (bundled)") && stdout.contains("pub const DOF: usize = 6;"));

@@ -64,17 +64,24 @@ fn the_module_follows_the_contract_and_parses() {
     // one let per kept operation in the body (NAME_sc), one sine and cosine
     // per joint angle in NAME, which adds them to the body's count
     for f in module.functions.iter().filter(|f| f.emitted) {
-        let split = |name: &str| src.split(&format!("pub fn {name}(")).nth(1).unwrap().split("\n}\n").next().unwrap();
-        let body = split(&format!("{}_sc", f.kind.fn_name()));
+        let split = |head: &str| src.split(head).nth(1).unwrap().split("\n}\n").next().unwrap();
+        // run-time dispatch (on by default): the body is the generic `NAME_sc_on`, which the public
+        // `NAME_sc` runs for the baseline and `NAME_sc_avx2_fma` for AVX2 and FMA
+        let name = format!("{}_sc", f.kind.fn_name());
+        let public = split(&format!("pub fn {name}("));
+        assert!(public.contains(&format!("return unsafe {{ {name}_avx2_fma(")), "{public}");
+        assert!(public.contains(&format!("{name}_on::<Baseline>(")), "{public}");
+        assert!(src.contains(&format!("unsafe fn {name}_avx2_fma(")));
+        let body = split(&format!("fn {name}_on<I: Isa>("));
         let sc = f.sin_cos_inputs.function.op_count();
         // fused multiply-adds (on by default): a product that only fused
         // sums read has no `let` of its own
         let fused = f.sin_cos_inputs.function.fusion().op_count(&f.sin_cos_inputs.function);
         assert!(fused.fused > 0 && fused.mul_folded > 0);
         assert_eq!(body.matches("let t").count(), sc.total() - fused.mul_folded);
-        assert_eq!(body.matches(" = fma(").count(), fused.fused);
+        assert_eq!(body.matches(" = I::fma(").count(), fused.fused);
         assert_eq!(sc.sin_cos, 0);
-        let wrapper = split(f.kind.fn_name());
+        let wrapper = split(&format!("pub fn {}(", f.kind.fn_name()));
         assert_eq!(wrapper.matches(".sin_cos()").count(), f.op_count.sin_cos);
         assert_eq!(sc.total() + f.op_count.sin_cos, f.op_count.total());
     }

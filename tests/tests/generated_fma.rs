@@ -1,11 +1,14 @@
 //! Fused multiply-adds in generated code (`CodegenOptions::fma`, on by
-//! default), on both sides of the `cfg`:
+//! default), on both sides of the `cfg`, and the run-time choice of the
+//! AVX2 and FMA copies (`CodegenOptions::runtime_dispatch`, on by default):
 //!
 //! - this test binary's own build (no target-cpu flags, so no `fma` target
-//!   feature on x86-64): the UR5 module of `build.rs` gives, bit for bit,
-//!   what the traced functions give evaluated operation by operation
-//!   without fusion (`Function::eval`), i.e. what the code gave before
-//!   `fma(a, b, c)` was emitted;
+//!   feature on x86-64): the UR5 module of `build.rs` without dispatch gives,
+//!   bit for bit, what the traced functions give evaluated operation by
+//!   operation without fusion (`Function::eval`), i.e. what the code gave
+//!   before `fma(a, b, c)` was emitted; the same module with dispatch (the
+//!   default) gives that where the processor lacks AVX2 or FMA, and where it
+//!   has both (this CI machine) the fused bits (`Function::eval_fused`);
 //! - the fused path: when the host has FMA, the same module is compiled by
 //!   `rustc -O -C target-feature=+fma` and run. Its results must equal, bit
 //!   for bit, the traced functions evaluated with one `mul_add` per fused
@@ -16,7 +19,10 @@
 //!   kernel, whose polynomials are fused there too, must stay within 1 ulp
 //!   (of f64; of f32 for `sin_cos_array_f32`) against double-double values,
 //!   and its vector path (AVX2 too, where the host has it) must give the
-//!   one-angle kernel's bits.
+//!   one-angle kernel's bits. Where the host has AVX2 and FMA, the same
+//!   program is also compiled by `rustc -O` without target features: its
+//!   functions then pick their AVX2 and FMA copies at run time and must
+//!   print the same bits as the `+fma,+avx2` build, every line.
 
 use dynagen::codegen::{generate, CodegenOptions, FunctionKind, GeneratedFunction, ScalarType};
 use dynagen::symbolic::Function;
@@ -28,6 +34,11 @@ use std::fmt::Write;
 #[allow(dead_code)]
 mod ur5 {
     include!(concat!(env!("OUT_DIR"), "/ur5_f64.rs"));
+}
+
+#[allow(dead_code)]
+mod ur5_baseline {
+    include!(concat!(env!("OUT_DIR"), "/ur5_f64_baseline.rs"));
 }
 
 const N: usize = 6;
@@ -86,36 +97,60 @@ fn generic(robot: &mut Robot, kind: FunctionKind, x: &State) -> Vec<f64> {
     }
 }
 
-/// The body `NAME_sc` of this test binary's UR5 module at `x`.
-fn compiled_here(kind: FunctionKind, x: &State) -> Vec<f64> {
-    let (s, c, qd, qdd, tau) = (&x.s, &x.c, &x.qd, &x.qdd, &x.tau);
-    match kind {
-        FunctionKind::InverseDynamics => ur5::inverse_dynamics_sc(s, c, qd, qdd).to_vec(),
-        FunctionKind::MassMatrix => ur5::mass_matrix_sc(s, c).concat(),
-        FunctionKind::BiasForces => ur5::bias_forces_sc(s, c, qd).to_vec(),
-        FunctionKind::GravityTorques => ur5::gravity_torques_sc(s, c).to_vec(),
-        FunctionKind::ForwardDynamicsAba | FunctionKind::ForwardDynamicsLdlt => {
-            ur5::forward_dynamics_sc(s, c, qd, tau).to_vec()
+/// The body `NAME_sc` of this test binary's UR5 module at `x`, with run-time
+/// dispatch (`ur5`) or without (`ur5_baseline`).
+macro_rules! compiled_here {
+    ($module:ident, $kind:expr, $x:expr) => {{
+        let (s, c, qd, qdd, tau) = (&$x.s, &$x.c, &$x.qd, &$x.qdd, &$x.tau);
+        match $kind {
+            FunctionKind::InverseDynamics => $module::inverse_dynamics_sc(s, c, qd, qdd).to_vec(),
+            FunctionKind::MassMatrix => $module::mass_matrix_sc(s, c).concat(),
+            FunctionKind::BiasForces => $module::bias_forces_sc(s, c, qd).to_vec(),
+            FunctionKind::GravityTorques => $module::gravity_torques_sc(s, c).to_vec(),
+            FunctionKind::ForwardDynamicsAba | FunctionKind::ForwardDynamicsLdlt => {
+                $module::forward_dynamics_sc(s, c, qd, tau).to_vec()
+            }
         }
-    }
+    }};
+}
+
+/// Whether this machine has AVX2 and FMA (what the run-time dispatch asks).
+fn host_has_avx2_and_fma() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    return std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma");
+    #[allow(unreachable_code)]
+    false
 }
 
 #[test]
-fn this_build_gives_the_bits_of_its_target() {
+fn this_build_gives_the_bits_of_its_target_or_of_its_processor() {
     let functions = emitted(&CodegenOptions::default());
     assert_eq!(functions.len(), 5);
     let fused_target = cfg!(any(
         all(target_arch = "x86_64", target_feature = "fma"),
         all(target_arch = "aarch64", target_feature = "neon")
     ));
+    // With dispatch, an x86-64 build runs the AVX2 and FMA copies where the processor has both.
+    let fused_dispatched = fused_target || (cfg!(target_arch = "x86_64") && host_has_avx2_and_fma());
+    if !fused_dispatched {
+        eprintln!("this machine lacks AVX2 or FMA: the dispatched module runs its baseline copy here");
+    }
+    let mut differ = 0;
     for x in &states(200, 71) {
         for f in &functions {
             let body = &f.sin_cos_inputs.function;
-            let want =
-                if fused_target { body.eval_fused(&body.fusion(), &inputs(x)) } else { body.eval(&inputs(x)) }.unwrap();
-            assert_eq!(bits(&compiled_here(f.kind, x)), bits(&want), "{}", f.kind.label());
+            let fused = body.eval_fused(&body.fusion(), &inputs(x)).unwrap();
+            let unfused = body.eval(&inputs(x)).unwrap();
+            let label = f.kind.label();
+            let want = if fused_dispatched { &fused } else { &unfused };
+            assert_eq!(bits(&compiled_here!(ur5, f.kind, x)), bits(want), "{label}, dispatched");
+            let want = if fused_target { &fused } else { &unfused };
+            assert_eq!(bits(&compiled_here!(ur5_baseline, f.kind, x)), bits(want), "{label}, no dispatch");
+            differ += usize::from(bits(&fused) != bits(&unfused));
         }
     }
+    // Most results differ between fused and unfused: the checks above tell them apart.
+    assert!(differ > 500, "{differ} of 1000");
 }
 
 #[test]
@@ -134,10 +169,10 @@ fn without_fma_nothing_is_fused() {
     }
 }
 
-/// A line `let tK = fma(…);` of a body.
+/// A line `let tK = fma(…);` (`I::fma(…)` in a dispatched body) of a body.
 fn is_fused_let(line: &str) -> bool {
     let rest = line.trim_start().strip_prefix("let t").unwrap_or_default();
-    rest.starts_with(|c: char| c.is_ascii_digit()) && rest.contains(" = fma(")
+    rest.starts_with(|c: char| c.is_ascii_digit()) && (rest.contains(" = fma(") || rest.contains(" = I::fma("))
 }
 
 fn on_source_has_fused_lets() -> bool {
@@ -153,6 +188,27 @@ fn host_has_fma() -> bool {
     return true;
     #[allow(unreachable_code)]
     false
+}
+
+/// The functions of an x86-64 assembly listing whose names contain
+/// `_avx2_fma` (the copies of the run-time dispatch), with their code.
+fn avx2_fma_copies(asm: &str) -> Vec<(String, String)> {
+    let mut copies: Vec<(String, String)> = Vec::new();
+    let mut inside = false;
+    for line in asm.lines() {
+        let label = !line.starts_with(['.', ' ', '\t', '#']) && line.ends_with(':');
+        if label {
+            inside = line.contains("_avx2_fma");
+            if inside {
+                copies.push((line.trim_end_matches(':').to_string(), String::new()));
+            }
+        } else if inside {
+            let code = &mut copies.last_mut().unwrap().1;
+            code.push_str(line);
+            code.push('\n');
+        }
+    }
+    copies
 }
 
 fn array_literal(rows: impl Iterator<Item = [f64; N]>) -> String {
@@ -265,6 +321,53 @@ fn the_fused_path_compiled_with_the_fma_feature_rounds_once_and_stays_accurate()
     let run = std::process::Command::new(&exe).output().expect("running the fused program");
     assert!(run.status.success());
     let stdout = String::from_utf8(run.stdout).unwrap();
+    if host_has_avx2_and_fma() {
+        // The same program without target features: every function runs its AVX2 and FMA copy.
+        let (exe, asm) = (dir.join("dispatched"), dir.join("dispatched.s"));
+        let mut rustc = std::process::Command::new(std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into()));
+        rustc.args(["--edition", "2021", "-O", "--emit"]).arg(format!("link={}", exe.display()));
+        rustc.arg("--emit").arg(format!("asm={}", asm.display())).arg(dir.join("main.rs"));
+        let built = rustc.output().expect("running rustc");
+        assert!(built.status.success(), "rustc failed:\n{}", String::from_utf8_lossy(&built.stderr));
+        let run = std::process::Command::new(&exe).output().expect("running the dispatched program");
+        assert!(run.status.success());
+        let dispatched = String::from_utf8(run.stdout).unwrap();
+        // All but the line that says whether the build has AVX2 (it has not).
+        let lines =
+            |out: &str| out.lines().filter(|l| !l.starts_with("0 avx2_one")).map(String::from).collect::<Vec<_>>();
+        let (native, dispatched) = (lines(&stdout), lines(&dispatched));
+        assert_eq!(native.len(), dispatched.len());
+        for (a, b) in native.iter().zip(&dispatched) {
+            assert!(a == b, "built with +fma,+avx2: {a}\ndispatched at run time: {b}");
+        }
+        println!("run-time dispatch: {} lines, the +fma,+avx2 build's bits", native.len());
+        let copies = avx2_fma_copies(&std::fs::read_to_string(&asm).unwrap());
+        println!("{} AVX2 and FMA copies in the release assembly", copies.len());
+        assert!(copies.len() >= 2 * f64_fns.len(), "{:?}", copies.iter().map(|c| &c.0).collect::<Vec<_>>());
+        for (name, code) in &copies {
+            // Everything inlined: a call left out of line would run outside the copy's target
+            // features (an intrinsic's wrapper, a closure passing vector registers through memory).
+            // Only the kernel's rare slow path is called, and libc's memcpy and memset (the test's
+            // batch of 2,000 angles is copied), also through a register loaded with their address.
+            let named = ["sin_cos_again", "sin_cos_slow", "memcpy", "memset"];
+            let registers: Vec<String> = code
+                .lines()
+                .filter(|l| l.contains("memcpy@GOTPCREL") || l.contains("memset@GOTPCREL"))
+                .filter_map(|l| l.rsplit(", ").next().map(|reg| format!("*{reg}")))
+                .collect();
+            let allowed = |l: &str| named.iter().any(|n| l.contains(n)) || registers.iter().any(|r| l.ends_with(r));
+            let calls: Vec<&str> =
+                code.lines().filter(|l| l.trim_start().starts_with("call") && !allowed(l.trim_end())).collect();
+            assert!(calls.is_empty(), "{name} calls out of line: {calls:?}");
+            let fused = code.lines().filter(|l| l.trim_start().starts_with("vf") && l.contains("madd")).count();
+            assert!(fused > 0, "{name}: no fused multiply-add");
+            if name.contains("sin_cos_array") {
+                assert!(code.contains("ymm"), "{name}: four angles to a register");
+            }
+        }
+    } else {
+        eprintln!("this machine lacks AVX2 or FMA: the run-time dispatch is not run here");
+    }
     let mut robot = Robot::from_urdf_file(workspace_root().join("dynagen/robots/ur5.urdf")).unwrap();
     let (mut lines, mut differ, mut worst) = (0, [0usize; 2], [0.0f64; 2]);
     let (mut kernel_worst, mut kernel_differ) = ([0.0f64; 4], 0);

@@ -266,6 +266,13 @@ impl Builder {
         self.options.fma = on;
         self
     }
+    /// Compile the functions also for AVX2 and FMA, picked at run time on
+    /// x86-64 builds without those target features (on); see
+    /// [`CodegenOptions::runtime_dispatch`].
+    pub fn runtime_dispatch(mut self, on: bool) -> Self {
+        self.options.runtime_dispatch = on;
+        self
+    }
     /// All code-generation options at once (replaces the scalar, forward
     /// dynamics, snap and function choices made so far).
     pub fn options(mut self, options: CodegenOptions) -> Self {

@@ -205,20 +205,78 @@ pub(crate) fn return_type(kind: FunctionKind, scalar: ScalarType) -> TokenStream
     Shape::of(kind).tokens(scalar)
 }
 
-/// How bodies are written: split into parts, fused multiply-adds.
+/// How bodies are written: split into parts, fused multiply-adds, copies
+/// for AVX2 and FMA chosen at run time.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct BodyStyle {
     /// [`CodegenOptions::split_lets`](super::CodegenOptions::split_lets).
     pub split_lets: Option<usize>,
     /// [`CodegenOptions::fma`](super::CodegenOptions::fma).
     pub fma: bool,
+    /// [`CodegenOptions::runtime_dispatch`](super::CodegenOptions::runtime_dispatch).
+    pub dispatch: bool,
 }
 
 impl BodyStyle {
     /// The style `options` ask for.
     pub(crate) fn of(options: &super::CodegenOptions) -> BodyStyle {
-        BodyStyle { split_lets: options.split_lets, fma: options.fma }
+        BodyStyle { split_lets: options.split_lets, fma: options.fma, dispatch: options.runtime_dispatch }
     }
+}
+
+/// The `cfg` of the run-time dispatch: x86-64 builds without AVX2 and FMA.
+fn dispatch_cfg() -> TokenStream {
+    quote!(#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))])
+}
+
+/// The comment put above each call of a function's AVX2 and FMA copy.
+const SAFETY_COMMENT: &str = "// SAFETY: this processor has AVX2 and FMA (checked just above).";
+
+/// The comment above the calls of AVX2 and FMA copies from another (a split
+/// body's parts, `NAME_sc_avx2_fma` from `NAME_avx2_fma`).
+const SAFETY_COMMENT_PARTS: &str = "// SAFETY: this processor has AVX2 and FMA (the caller checked).";
+
+/// `source` as a person would write the dispatch: [`SAFETY_COMMENT`] above
+/// every `return unsafe {` and [`SAFETY_COMMENT_PARTS`] above every other
+/// `unsafe {` (the calls of the AVX2 and FMA copies; `syn` trees carry no
+/// comments), and each `#[cfg(…)]` on one line (prettyplease
+/// breaks them over six).
+pub(crate) fn tidy_dispatch(source: &str) -> String {
+    let mut out = String::with_capacity(source.len() + 1024);
+    let mut lines = source.lines();
+    while let Some(line) = lines.next() {
+        let code = line.trim_start();
+        let indent = &line[..line.len() - code.len()];
+        if code == "#[cfg(" {
+            out.push_str(indent);
+            out.push_str("#[cfg(");
+            for piece in lines.by_ref() {
+                let piece = piece.trim();
+                if piece == ")]" {
+                    break;
+                }
+                out.push_str(piece);
+                if piece.ends_with(',') {
+                    out.push(' ');
+                }
+            }
+            out.push_str(")]\n");
+            continue;
+        }
+        let safety = match code {
+            _ if code.starts_with("return unsafe {") => Some(SAFETY_COMMENT),
+            _ if code.starts_with("unsafe {") => Some(SAFETY_COMMENT_PARTS),
+            _ => None,
+        };
+        if let Some(comment) = safety {
+            out.push_str(indent);
+            out.push_str(comment);
+            out.push('\n');
+        }
+        out.push_str(line);
+        out.push('\n');
+    }
+    out
 }
 
 /// The `−x` of an emitted expression (`x` itself for a negated one).
@@ -235,6 +293,15 @@ fn negated(x: &Expr) -> Expr {
 /// `style.fma`, the sums of [`Fusion`] are `fma(a, b, c)` (`fmaf` in `f32`)
 /// and the products only they read are not written. A body of more than
 /// `style.split_lets` `let`s is cut into private parts ([`split`]).
+///
+/// With `style.dispatch`, a body that is not split is written once as a
+/// generic `NAME_on<I: Isa>` (`#[inline(always)]`, its sums `I::fma(a, b,
+/// c)`), instantiated in `NAME` for `Baseline` and in `NAME_avx2_fma`
+/// (`#[target_feature(enable = "avx2,fma")]`) for `Avx2Fma`, which `NAME`
+/// calls where the processor has both; on x86-64 builds that have both, and
+/// on other targets, `NAME` is the `Baseline` body alone (see the kernel
+/// text, `sin_cos_kernel.rs`). A split body is dispatched part by part
+/// ([`split::assemble`]).
 pub(crate) fn emit_function(
     f: &Function,
     signature: &Signature,
@@ -244,9 +311,137 @@ pub(crate) fn emit_function(
     doc: &str,
     style: BodyStyle,
 ) -> Result<Vec<syn::Item>, CodegenError> {
-    let (libm_sqrt, fma) = match scalar {
-        ScalarType::F64 => ("sqrt", "fma"),
-        ScalarType::F32 => ("sqrtf", "fmaf"),
+    let fma = match scalar {
+        ScalarType::F64 => "fma",
+        ScalarType::F32 => "fmaf",
+    };
+    let fma_path: &[&str] = if style.dispatch { &["I", fma] } else { &[fma] };
+    let body = body_of(f, scalar, trig, style, fma_path)?;
+    if style.dispatch && style.split_lets.is_none_or(|max| body.lines.len() <= max) {
+        return dispatched(f, signature, scalar, n, doc, body);
+    }
+    let shell = quote! {
+        #[allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal, clippy::too_many_lines)]
+        pub fn name() {}
+    };
+    let mut item: syn::ItemFn = syn::parse2(shell).map_err(|e| CodegenError::Internal(e.to_string()))?;
+    let (attrs, sig) = signature_of(signature, scalar, doc)?;
+    item.attrs.splice(0..0, attrs);
+    item.sig = sig;
+    item.block.stmts = unused_params(f, signature)?;
+    let part_params: Vec<PartParam> = signature
+        .params
+        .iter()
+        .map(|p| PartParam {
+            name: ident(&p.name),
+            typed: p.tokens(scalar),
+            input: f.input_names().iter().position(|x| *x == p.name).map(|i| i as u32),
+        })
+        .collect();
+    let result = result_of(signature.output, n);
+    split::assemble(item, body, &part_params, &scalar_type(scalar), style.split_lets, result, style.dispatch)
+}
+
+/// How the outputs are arranged into the returned array.
+fn result_of(output: Shape, n: usize) -> impl Fn(Vec<Expr>) -> Expr {
+    move |out: Vec<Expr>| match output {
+        Shape::Matrix(r, c) => {
+            let (r, c) = (r.value(n), c.value(n));
+            array(out.chunks(c.max(1)).take(r).map(|row| array(row.iter().cloned())))
+        }
+        Shape::Vector(_) => array(out),
+    }
+}
+
+/// The documentation attributes and the signature `fn name(params) -> ret`.
+fn signature_of(
+    signature: &Signature,
+    scalar: ScalarType,
+    doc: &str,
+) -> Result<(Vec<syn::Attribute>, syn::Signature), CodegenError> {
+    let params = signature.params.iter().map(|p| p.tokens(scalar));
+    let ret = signature.output.tokens(scalar);
+    let name = ident(&signature.name);
+    let doc = doc.lines();
+    let item: syn::ItemFn = syn::parse2(quote! {
+        #(#[doc = #doc])*
+        pub fn #name(#(#params),*) -> #ret {}
+    })
+    .map_err(|e| CodegenError::Internal(e.to_string()))?;
+    Ok((item.attrs, item.sig))
+}
+
+/// `let _ = p;` for each parameter `f` does not read.
+fn unused_params(f: &Function, signature: &Signature) -> Result<Vec<Stmt>, CodegenError> {
+    signature
+        .params
+        .iter()
+        .filter(|p| !f.uses_input(&p.name))
+        .map(|p| {
+            let name = ident(&p.name);
+            syn::parse2(quote!(let _ = #name;)).map_err(|e| CodegenError::Internal(e.to_string()))
+        })
+        .collect()
+}
+
+/// A body that is not split, written for run-time dispatch: the public
+/// `NAME`, which calls `NAME_avx2_fma` where the processor has AVX2 and FMA
+/// and else runs `NAME_on::<Baseline>`; `NAME_avx2_fma`; and the generic
+/// body `NAME_on`.
+fn dispatched(
+    f: &Function,
+    signature: &Signature,
+    scalar: ScalarType,
+    n: usize,
+    doc: &str,
+    body: Body,
+) -> Result<Vec<syn::Item>, CodegenError> {
+    let name = ident(&signature.name);
+    let (on, fast) = (format_ident!("{}_on", signature.name), format_ident!("{}_avx2_fma", signature.name));
+    let params: Vec<TokenStream> = signature.params.iter().map(|p| p.tokens(scalar)).collect();
+    let args: Vec<Ident> = signature.params.iter().map(|p| ident(&p.name)).collect();
+    let ret = signature.output.tokens(scalar);
+    let cfg = dispatch_cfg();
+    let doc = doc.lines();
+    let on_doc = format!(" The body of [`{name}`], in the instructions of `I`.");
+    let fast_doc = format!(" [`{name}`] compiled for processors with AVX2 and FMA.");
+    let items = quote! {
+        #(#[doc = #doc])*
+        pub fn #name(#(#params),*) -> #ret {
+            #cfg
+            if has_avx2_and_fma() {
+                return unsafe { #fast(#(#args),*) };
+            }
+            #on::<Baseline>(#(#args),*)
+        }
+        #[doc = #fast_doc]
+        #cfg
+        #[target_feature(enable = "avx2,fma")]
+        unsafe fn #fast(#(#params),*) -> #ret {
+            #on::<Avx2Fma>(#(#args),*)
+        }
+        #[doc = #on_doc]
+        #[inline(always)]
+        #[allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal, clippy::too_many_lines)]
+        fn #on<I: Isa>(#(#params),*) -> #ret {}
+    };
+    let file: syn::File = syn::parse2(items).map_err(|e| CodegenError::Internal(e.to_string()))?;
+    let mut items = file.items;
+    let Some(syn::Item::Fn(body_fn)) = items.last_mut() else {
+        return Err(CodegenError::Internal("no body function".into()));
+    };
+    body_fn.block.stmts = unused_params(f, signature)?;
+    body_fn.block.stmts.extend(body.lines.into_iter().map(|l| l.stmt));
+    let outputs = body.outputs.into_iter().map(|(e, _)| e).collect();
+    body_fn.block.stmts.push(Stmt::Expr(result_of(signature.output, n)(outputs), None));
+    Ok(items)
+}
+
+/// The statements of `f`'s body, its sums fused as `fma_path(a, b, c)`.
+fn body_of(f: &Function, scalar: ScalarType, trig: Trig, style: BodyStyle, fma: &[&str]) -> Result<Body, CodegenError> {
+    let libm_sqrt = match scalar {
+        ScalarType::F64 => "sqrt",
+        ScalarType::F32 => "sqrtf",
     };
     let fusion = if style.fma { f.fusion() } else { Fusion::none(f) };
     let nodes = f.nodes();
@@ -339,7 +534,7 @@ pub(crate) fn emit_function(
                     (_, Some(fu)) => {
                         let a = if fu.negate_product { negated(r(fu.a)) } else { r(fu.a).clone() };
                         let c = if fu.negate_addend { negated(r(fu.c)) } else { r(fu.c).clone() };
-                        call(&[fma], &[&a, r(fu.b), &c])
+                        call(fma, &[&a, r(fu.b), &c])
                     }
                     (Node::Add(a, b), _) => binary(r(a), BinOp::Add(Default::default()), r(b)),
                     (Node::Sub(a, b), _) => binary(r(a), BinOp::Sub(Default::default()), r(b)),
@@ -367,39 +562,5 @@ pub(crate) fn emit_function(
     }
     let outputs: Vec<(Expr, Option<u32>)> =
         f.outputs().iter().map(|&o| (refs[o as usize].clone(), value[o as usize])).collect();
-    let output = signature.output;
-    let result = move |out: Vec<Expr>| match output {
-        Shape::Matrix(r, c) => {
-            let (r, c) = (r.value(n), c.value(n));
-            array(out.chunks(c.max(1)).take(r).map(|row| array(row.iter().cloned())))
-        }
-        Shape::Vector(_) => array(out),
-    };
-    let params = signature.params.iter().map(|p| p.tokens(scalar));
-    let unused = signature.params.iter().filter(|p| !f.uses_input(&p.name)).map(|p| {
-        let name = ident(&p.name);
-        quote!(let _ = #name;)
-    });
-    let ret = signature.output.tokens(scalar);
-    let name = ident(&signature.name);
-    let doc = doc.lines();
-    let shell = quote! {
-        #(#[doc = #doc])*
-        #[allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal, clippy::too_many_lines)]
-        pub fn #name(#(#params),*) -> #ret {
-            #(#unused)*
-        }
-    };
-    let item: syn::ItemFn = syn::parse2(shell).map_err(|e| CodegenError::Internal(e.to_string()))?;
-    let part_params: Vec<PartParam> = signature
-        .params
-        .iter()
-        .map(|p| PartParam {
-            name: ident(&p.name),
-            typed: p.tokens(scalar),
-            input: f.input_names().iter().position(|x| *x == p.name).map(|i| i as u32),
-        })
-        .collect();
-    let body = Body { lines, names, outputs };
-    split::assemble(item, body, &part_params, &scalar_type(scalar), style.split_lets, result)
+    Ok(Body { lines, names, outputs })
 }

@@ -42,10 +42,35 @@
 //! (`-C target-cpu=native` on a machine that has it, or `-C
 //! target-feature=+fma`) and aarch64, through `core::arch` (no std), and
 //! `a * b + c` elsewhere, which rounds exactly as the unfused expression
-//! did: a default x86-64 build gives the same bits as before. The header
+//! did: a default x86-64 build gives the same bits as before (unless the
+//! run-time dispatch below picks its AVX2 and FMA copy). The header
 //! says so and counts the fused operations (the [`OpCount`] totals stay
 //! those of the traced operations; [`OpCount::fp_ops`] counts each fused
 //! one once).
+//!
+//! # Run-time dispatch
+//!
+//! A default x86-64 build (`cargo build` without `RUSTFLAGS`) targets SSE2:
+//! no fused multiply-add, two angles to a vector register. With
+//! [`CodegenOptions::runtime_dispatch`] (on by default) every public
+//! function of the module — `NAME`, `NAME_sc`, `sin_cos_all`, the kernel's
+//! `sin_cos_array`, `sin_cos_kernel` (and their `f32` versions), scene
+//! functions — is written once, generic over the instructions it is compiled
+//! for (`NAME_on<I: Isa>`, `#[inline(always)]`, its sums `I::fma(a, b, c)`),
+//! and instantiated twice on x86-64 builds without the `avx2` and `fma`
+//! target features: for `Baseline` (the build's own target, the code a
+//! module without dispatch has) in `NAME`, and for `Avx2Fma` in
+//! `NAME_avx2_fma`, an `unsafe fn` with `#[target_feature(enable =
+//! "avx2,fma")]` that `NAME` calls when the processor has AVX2 and FMA and
+//! the OS saves the 256-bit registers (`cpuid` leaves 1 and 7 and `xgetbv`,
+//! asked once and kept in an atomic: `core::arch` only, so the module stays
+//! `#![no_std]` and without dependencies). A body split into parts is
+//! dispatched part by part. Builds that have both features, and other
+//! targets, compile `Baseline` alone: the same code as with the option off.
+//! The AVX2 and FMA copy gives the bits of a build with those features
+//! (`tests/tests/generated_fma.rs` checks it bit for bit), so a default
+//! build's results differ in the last bits between processors with and
+//! without FMA; off, they are the same on every x86-64 machine.
 //!
 //! # Constants that are 0 or ±1 up to rounding
 //!
@@ -99,7 +124,7 @@ pub use hash::{canonical_text, fnv1a64, model_hash};
 pub use literal::float_literal_text;
 pub use rounding::{snap_rounding, SnappedConstant, ROUNDING_TOLERANCE};
 pub use scene::{generate_scene, payload_argument, scene_function_name, trace_scene, SceneFunction};
-pub use sin_cos::{sin_cos_array, sin_cos_array_f32, sin_cos_batch, sin_cos_kernel};
+pub use sin_cos::{sin_cos_array, sin_cos_array_f32, sin_cos_batch, sin_cos_kernel, sin_cos_kernel_f32};
 pub use trace::{sin_cos_from_q, sin_cos_inputs, trace, trace_sin_cos_inputs, FunctionKind, SinCosTrace};
 
 use crate::model::Model;
@@ -254,11 +279,27 @@ pub struct CodegenOptions {
     /// On by default: it costs nothing where the target has no fused
     /// multiply-add (the same bits, the same instructions), and where it
     /// has, the bodies, bound by the floating-point ports, run fewer
-    /// operations (`benches/README.md`, "Run 7"). Off, the bodies give the
+    /// operations (`benches/README.md`, "Run 7"); with
+    /// [`runtime_dispatch`](Self::runtime_dispatch) a default x86-64 build
+    /// has a copy with FMA too. Off, the bodies give the
     /// same bits on every target. (The module's `sin_cos_array` fuses its
     /// polynomials wherever the target has FMA, either way: within 1 ulp
     /// both ways.)
     pub fma: bool,
+    /// On x86-64 builds without the `avx2` and `fma` target features (a
+    /// default `cargo build`), compile every public function twice, once
+    /// for the build's target and once for AVX2 and FMA, and pick the copy
+    /// at run time by what the processor has (on): see the [module
+    /// documentation](self). Builds that have both features, and other
+    /// targets, get one copy, as without it. On by default, because most
+    /// x86-64 processors in use have both and the bodies are bound by the
+    /// floating-point ports: a default build then runs as fast as a native
+    /// one. The price: a default build's results differ in the last bits
+    /// between machines with and without FMA (on both they are within the
+    /// accuracy the tests check, 1e-12 of the generic solver), and the
+    /// bodies are compiled twice. Off, a build gives the same bits on every
+    /// x86-64 machine.
+    pub runtime_dispatch: bool,
 }
 
 /// The default [`CodegenOptions::split_lets`]: 2,500 `let`s. rustc with
@@ -280,6 +321,7 @@ impl Default for CodegenOptions {
             trig: Trig::default(),
             split_lets: Some(DEFAULT_SPLIT_LETS),
             fma: true,
+            runtime_dispatch: true,
         }
     }
 }
@@ -328,6 +370,11 @@ impl CodegenOptions {
     /// Turns fused multiply-adds on or off.
     pub fn fma(mut self, on: bool) -> Self {
         self.fma = on;
+        self
+    }
+    /// Turns the run-time choice of AVX2 and FMA copies on or off.
+    pub fn runtime_dispatch(mut self, on: bool) -> Self {
+        self.runtime_dispatch = on;
         self
     }
     /// Names the model's source for the header.
@@ -553,15 +600,15 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
             );
             let params: Vec<emit::Param> = kind.inputs().iter().map(|p| emit::Param::dof(p)).collect();
             let ret = emit::return_type(kind, options.scalar);
-            items.push(parse_item(wrapper(kind.fn_name(), &params, ret, sc, has_prismatic, options, &doc))?);
+            items.extend(parse_items(wrapper(kind.fn_name(), &params, ret, sc, has_prismatic, options, &doc))?);
         }
     }
     let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
-    let body = prettyplease::unparse(&file);
+    let body = emit::tidy_dispatch(&prettyplease::unparse(&file));
     let model_hash = model_hash(model);
     let header = header(model, options, &fd_method, &functions, &snapped, model_hash)
         + &split::header_note(options.split_lets, &split_functions);
-    let kernel = sin_cos::kernel_source(options.scalar);
+    let kernel = sin_cos::kernel_source(options.scalar, options.runtime_dispatch);
     Ok(GeneratedModule {
         source: format!("{header}\n{body}\n{kernel}"),
         functions,
@@ -580,15 +627,25 @@ pub(crate) fn counted(f: &Function, fma: bool) -> OpCount {
     }
 }
 
-/// The header's line on fused multiply-adds.
-pub(crate) fn fma_note(fma: bool) -> &'static str {
-    if fma {
+/// The header's lines on fused multiply-adds and the run-time dispatch.
+pub(crate) fn fma_note(options: &CodegenOptions) -> String {
+    let fma = if options.fma {
         "// Fused multiply-adds: fma(a, b, c) (fmaf in f32) is a*b + c with one rounding where the target has an FMA\n\
          //   instruction (x86_64 built with target feature fma, e.g. -C target-cpu=native on a machine that has it;\n\
          //   aarch64), and plain a * b + c elsewhere: a default x86_64 build gives the same bits as unfused code.\n"
     } else {
         "// Fused multiply-adds: off (every a*b + c rounded twice, on every target).\n"
-    }
+    };
+    let dispatch = if options.runtime_dispatch {
+        "// Run-time dispatch: on. On x86_64 builds without target features avx2 and fma (a default build), every\n\
+         //   public function also has a copy compiled for AVX2 and FMA (NAME_avx2_fma, from the one generic body\n\
+         //   NAME_on) and runs it where the processor has both (cpuid, asked once): as fast as a native build, and\n\
+         //   with its bits, so results differ in the last bits between machines with and without FMA (within the\n\
+         //   accuracy the tests check). Off: runtime_dispatch(false), the same bits on every x86_64 machine.\n"
+    } else {
+        "// Run-time dispatch: off (the build's target features only: the same bits on every x86_64 machine).\n"
+    };
+    format!("{fma}{dispatch}")
 }
 
 fn parse_item(tokens: proc_macro2::TokenStream) -> Result<syn::Item, CodegenError> {
@@ -641,17 +698,22 @@ fn wrapper(
             quote!(q[#i] * #k)
         }
     };
-    let body = if options.trig == Trig::Batched {
+    // The batched trigonometry, then `NAME_sc`: `all` computes every sine and cosine, `some` those
+    // of the angles it is given, `sc` calls the body.
+    let batched = |all: proc_macro2::TokenStream,
+                   some: &dyn Fn(usize) -> proc_macro2::TokenStream,
+                   sc_call: &dyn Fn(proc_macro2::TokenStream) -> proc_macro2::TokenStream| {
         // Only the angles NAME_sc reads (the UR5's g reads 3 of 6, the Panda's functions 7 of 9).
         let read: Vec<(usize, f64)> =
             sc.angle_scale.iter().enumerate().filter_map(|(i, k)| k.map(|k| (i, k))).collect();
         if read.len() == sc.angle_scale.len() && read.iter().all(|&(_, k)| k == 1.0) {
+            let call = sc_call(quote!(&s, &c, #q_arg #(#rest),*));
             quote! {
-                let (s, c) = sin_cos_all(q);
-                #sc_name(&s, &c, #q_arg #(#rest),*)
+                let (s, c) = #all;
+                #call
             }
         } else {
-            let batch = sin_cos::batch_function(options.scalar);
+            let batch = some(read.len());
             let angles = read.iter().map(|&(i, k)| angle(i, k));
             let mut s_entries = Vec::new();
             let mut c_entries = Vec::new();
@@ -668,11 +730,16 @@ fn wrapper(
                 }
             }
             let call = if read.is_empty() { quote!() } else { quote!(let (s, c) = #batch(&[#(#angles),*]);) };
+            let sc_call = sc_call(quote!(&[#(#s_entries),*], &[#(#c_entries),*], #q_arg #(#rest),*));
             quote! {
                 #call
-                #sc_name(&[#(#s_entries),*], &[#(#c_entries),*], #q_arg #(#rest),*)
+                #sc_call
             }
         }
+    };
+    let body = if options.trig == Trig::Batched {
+        let batch = sin_cos::batch_function(options.scalar);
+        batched(quote!(sin_cos_all(q)), &|_| batch.clone(), &|args| quote!(#sc_name(#args)))
     } else {
         let mut stmts = Vec::new();
         let mut s_entries = Vec::new();
@@ -704,13 +771,56 @@ fn wrapper(
         }
     };
     let doc = doc.lines();
+    if !(options.runtime_dispatch && options.trig == Trig::Batched) {
+        return quote! {
+            #(#[doc = #doc])*
+            #[inline]
+            pub fn #name(#(#typed),*) -> #ret {
+                #body
+            }
+        };
+    }
+    // With run-time dispatch, the batched sines and cosines are inlined into an AVX2 and FMA copy
+    // of `NAME`, which calls that of `NAME_sc`: no second check, no call of the kernel (with its
+    // arguments through memory), as in a native build.
+    let fast = quote::format_ident!("{}_avx2_fma", fn_name);
+    let sc_fast = quote::format_ident!("{}_sc_avx2_fma", fn_name);
+    let on = match options.scalar {
+        ScalarType::F64 => quote!(sin_cos_array_on),
+        ScalarType::F32 => quote!(sin_cos_array_f32_on),
+    };
+    let fast_body = batched(
+        quote!(#on::<Avx2Fma, DOF>(q)),
+        &|n| {
+            let n = proc_macro2::Literal::usize_unsuffixed(n);
+            quote!(#on::<Avx2Fma, #n>)
+        },
+        &|args| quote!(unsafe { #sc_fast(#args) }),
+    );
+    let args = params.iter().map(|p| quote::format_ident!("{}", p.name));
+    let fast_doc = format!(" [`{fn_name}`] compiled for processors with AVX2 and FMA.");
     quote! {
         #(#[doc = #doc])*
         #[inline]
         pub fn #name(#(#typed),*) -> #ret {
+            #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+            if has_avx2_and_fma() {
+                return unsafe { #fast(#(#args),*) };
+            }
             #body
         }
+        #[doc = #fast_doc]
+        #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+        #[target_feature(enable = "avx2,fma")]
+        unsafe fn #fast(#(#typed),*) -> #ret {
+            #fast_body
+        }
     }
+}
+
+/// The items of `tokens`.
+fn parse_items(tokens: proc_macro2::TokenStream) -> Result<Vec<syn::Item>, CodegenError> {
+    syn::parse2::<syn::File>(tokens).map(|f| f.items).map_err(|e| CodegenError::Internal(e.to_string()))
 }
 
 fn header(
@@ -758,13 +868,13 @@ fn header(
     let trig = match options.trig {
         Trig::Std => "NAME(q, ...) computes the sines and cosines by std's sin_cos (needs std)",
         Trig::Batched => {
-            "NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time, four where the target has AVX2 (no_std, no dependency)"
+            "NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time, four where the target (or, with run-time dispatch, the processor) has AVX2 (no_std, no dependency)"
         }
         Trig::Libm => "NAME(q, ...) computes the sines and cosines by libm::sincos (no_std; needs the `libm` crate)",
         Trig::Inputs => "only NAME_sc(s, c, ...): the caller passes the sines and cosines (no_std, no dependency)",
     };
     let _ = writeln!(h, "// Trigonometry: {trig}.");
-    h.push_str(fma_note(options.fma));
+    h.push_str(&fma_note(options));
     let why = match fd.method {
         _ if !fd.why.is_empty() => fd.why.as_str(),
         ForwardDynamicsMethod::Aba | ForwardDynamicsMethod::Auto => {

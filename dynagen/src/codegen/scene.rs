@@ -427,7 +427,7 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
                 trig_source(trig, scalar)
             );
             let ret = shape(f).tokens(scalar);
-            items.push(parse_item(wrapper(&name, &ps, ret, &sc, has_prismatic, &opts, &doc))?);
+            items.extend(super::parse_items(wrapper(&name, &ps, ret, &sc, has_prismatic, &opts, &doc))?);
         }
         let inputs = ps.iter().map(|p| (p.name.clone(), p.len_value(n))).collect();
         functions.push(SceneFunction {
@@ -440,11 +440,11 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
         });
     }
     let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
-    let body = prettyplease::unparse(&file);
+    let body = emit::tidy_dispatch(&prettyplease::unparse(&file));
     let model_hash = super::model_hash(&scene.model);
     let header = header(scene, &opts, &fd_why, &functions, &snapped, model_hash)
         + &super::split::header_note(options.split_lets, &split_functions);
-    let kernel = sin_cos::kernel_source(scalar);
+    let kernel = sin_cos::kernel_source(scalar, options.runtime_dispatch);
     Ok(GeneratedModule {
         source: format!("{header}\n{body}\n{kernel}"),
         functions: Vec::new(),
@@ -500,7 +500,7 @@ fn header(
             Trig::Inputs => "only NAME_sc(s, c, ...), the caller passes the sines and cosines (no_std)",
         }
     );
-    h.push_str(super::fma_note(options.fma));
+    h.push_str(&super::fma_note(options));
     if scene.functions.contains(&SceneFn::ForwardDynamics) {
         let fd = if !scene.input_payloads.is_empty() {
             "CRBA with the input payloads' inertias and the armature on M's diagonal, RNEA, and a sparse LTDL solve"

@@ -18,7 +18,11 @@
 //! vectoriser took the scalar code for some lengths only), four at a time
 //! in AVX2 where the target has it, elsewhere the scalar code; the
 //! polynomials use fused multiply-adds where the target has them (see
-//! [`CodegenOptions::fma`](super::CodegenOptions::fma)). A rare slow path (angles within ~1e-17·|q| of a multiple of
+//! [`CodegenOptions::fma`](super::CodegenOptions::fma)). With run-time
+//! dispatch ([`CodegenOptions::runtime_dispatch`](super::CodegenOptions::runtime_dispatch)),
+//! an x86-64 build without AVX2 and FMA also has a copy of each public
+//! function compiled for them, run where the processor has both: four
+//! angles at a time, fused, the bits of a build with those features. A rare slow path (angles within ~1e-17·|q| of a multiple of
 //! π/2, |q| > 1.5e6 rad, NaN, ±∞) redoes the batch one angle at a time with
 //! an exact (Payne–Hanek) reduction. Accuracy: within
 //! 1 ulp of the exact sine and cosine for every finite angle (measured by
@@ -32,6 +36,11 @@ use super::ScalarType;
 use proc_macro2::TokenStream;
 use quote::quote;
 
+/// dynagen's own copy of the kernel is the baseline on every machine (a
+/// module's `CodegenOptions::runtime_dispatch`, off): what the tests compare
+/// the modules' run-time AVX2 and FMA copies against.
+const RUNTIME_DISPATCH: bool = false;
+
 include!("sin_cos_kernel.rs");
 include!("sin_cos_kernel_f32.rs");
 
@@ -42,12 +51,20 @@ pub(crate) const KERNEL_SOURCE: &str = include_str!("sin_cos_kernel.rs");
 pub(crate) const KERNEL_SOURCE_F32: &str =
     concat!(include_str!("sin_cos_kernel.rs"), include_str!("sin_cos_kernel_f32.rs"));
 
-/// The kernel text a module of scalar `scalar` carries.
-pub(crate) fn kernel_source(scalar: ScalarType) -> &'static str {
-    match scalar {
+/// The kernel text a module of scalar `scalar` carries, after the constant
+/// `RUNTIME_DISPATCH` ([`CodegenOptions::runtime_dispatch`](super::CodegenOptions::runtime_dispatch)).
+pub(crate) fn kernel_source(scalar: ScalarType, runtime_dispatch: bool) -> String {
+    let kernel = match scalar {
         ScalarType::F64 => KERNEL_SOURCE,
         ScalarType::F32 => KERNEL_SOURCE_F32,
-    }
+    };
+    format!(
+        "/// Whether `sin_cos_array` and the other public functions of the kernel below pick, on x86-64\n\
+         /// builds without the `avx2` and `fma` target features, their copies compiled for AVX2 and FMA\n\
+         /// where the processor has both (`CodegenOptions::runtime_dispatch`).\n\
+         #[allow(dead_code)]\n\
+         const RUNTIME_DISPATCH: bool = {runtime_dispatch};\n\n{kernel}"
+    )
 }
 
 /// The name of the batch function of a module of scalar `scalar`.
@@ -75,7 +92,7 @@ pub(crate) fn sin_cos_all_item(scalar: ScalarType) -> TokenStream {
     let batch = batch_function(scalar);
     let doc = match scalar {
         ScalarType::F64 => {
-            " The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target has AVX2)."
+            " The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target, or with run-time dispatch the processor, has AVX2)."
         }
         ScalarType::F32 => {
             " The sines and cosines of `q`, joint by joint: within 1 ulp of `f32` for every finite angle (computed in `f64`), no std, two at a time."
@@ -184,9 +201,10 @@ mod tests {
         {
             for w in xs.windows(3 * W).step_by(W) {
                 let regs: [[f64; W]; 3] = core::array::from_fn(|r| core::array::from_fn(|l| w[r * W + l]));
-                let got = sin_cos_lanes(regs.map(<[f64; W]>::to_lanes));
+                let got = sin_cos_lanes::<Baseline, _, 3>(regs.map(<[f64; W]>::to_lanes));
                 for r in 0..3 {
-                    let want: Vec<(f64, f64, bool)> = (0..W).map(|l| sin_cos_lanes([regs[r][l]])[0]).collect();
+                    let want: Vec<(f64, f64, bool)> =
+                        (0..W).map(|l| sin_cos_lanes::<Baseline, f64, 1>([regs[r][l]])[0]).collect();
                     assert_eq!(got[r].2, want.iter().all(|r| r.2), "{w:?}");
                     for (l, want) in want.iter().enumerate() {
                         assert_eq!(got[r].0.lane(l).to_bits(), want.0.to_bits(), "{w:?}");
@@ -323,7 +341,8 @@ mod tests {
             }
         }
         // The fast path takes every angle up to 1.5e6 rad but the few near multiples of π/2.
-        let fast_taken = (0..20000).filter(|_| sin_cos_lanes([3e6 * rng.next() - 1.5e6])[0].2).count();
+        let fast_taken =
+            (0..20000).filter(|_| sin_cos_lanes::<Baseline, f64, 1>([3e6 * rng.next() - 1.5e6])[0].2).count();
         assert_eq!(fast_taken, 20000);
         let (s, c) = sin_cos_batch(&[0.3, -2.0, 1e5]);
         assert!((s[1] - (-2.0f64).sin()).abs() < 1e-15 && (c[2] - 1e5f64.cos()).abs() < 1e-15);
@@ -408,7 +427,7 @@ mod tests {
             let x = (k as f64 * core::f64::consts::FRAC_PI_2) as f32;
             for d in -1i32..=1 {
                 let x = f32::from_bits((x.to_bits() as i32 + d) as u32);
-                assert!(sin_cos_lanes_f32([f64::from(x)])[0].2, "k = {k}");
+                assert!(sin_cos_lanes_f32::<Baseline, f64, 1>([f64::from(x)])[0].2, "k = {k}");
             }
         }
     }
@@ -460,15 +479,18 @@ mod tests {
     /// Where the target has AVX2, `sin_cos_array` (and `sin_cos_array_f32`) takes four angles to a register, and where it has
     /// FMA the polynomials are fused. CI builds for plain x86-64, so this compiles the kernel's text
     /// with `rustc -O` and `-C target-feature=` `+avx2`, `+fma` and `+avx2,+fma` (those this machine
-    /// has) and checks, in each binary, that the batches, whole and cut at lengths 1 to 11, give
+    /// has; `RUNTIME_DISPATCH` off) and checks, in each binary, that the batches, whole and cut at lengths 1 to 11, give
     /// the bits of that binary's one-angle kernel; and that the `+avx2` binary gives the bits of
-    /// this (SSE2, unfused) build. (That the fused kernel stays within 1 ulp is
+    /// this (SSE2, unfused) build. Then once more without target features and with
+    /// `RUNTIME_DISPATCH` on, where the machine has AVX2 and FMA: the functions pick their AVX2 and
+    /// FMA copies at run time, and must give the `+avx2,+fma` binary's bits (and, again, batches
+    /// the one-angle kernel's). (That the fused kernel stays within 1 ulp is
     /// `tests/tests/generated_fma.rs`.)
     #[test]
     #[cfg(target_arch = "x86_64")]
     fn the_avx2_and_fma_batches_are_the_scalar_kernel_bit_for_bit() {
         let harness = format!(
-            "{KERNEL_SOURCE_F32}\n{HARNESS_ANGLES}\n{}",
+            "const RUNTIME_DISPATCH: bool = DISPATCH;\n{KERNEL_SOURCE_F32}\n{HARNESS_ANGLES}\n{}",
             r#"
 fn main() {
     let xs = harness_angles();
@@ -517,16 +539,28 @@ fn main() {
         );
         let dir = std::env::temp_dir().join(format!("dynagen-kernel-features-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
-        let src = dir.join("main.rs");
-        std::fs::write(&src, harness).unwrap();
         let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
+        let has = |f: &str| match f {
+            "avx2" => std::is_x86_feature_detected!("avx2"),
+            _ => std::is_x86_feature_detected!("fma"),
+        };
         let mut ran = 0;
-        for (features, avx2, fma) in [("+avx2", true, false), ("+fma", false, true), ("+avx2,+fma", true, true)] {
-            if (avx2 && !std::is_x86_feature_detected!("avx2")) || (fma && !std::is_x86_feature_detected!("fma")) {
-                eprintln!("skipped {features}: this machine lacks it");
+        let mut native_bits: Option<String> = None;
+        // (target features, run-time dispatch, whether the code runs with AVX2 and with FMA)
+        for (features, dispatch, avx2, fma) in [
+            ("+avx2", false, true, false),
+            ("+fma", false, false, true),
+            ("+avx2,+fma", false, true, true),
+            ("", true, true, true),
+        ] {
+            if (avx2 && !has("avx2")) || (fma && !has("fma")) {
+                eprintln!("skipped {features:?} (run-time dispatch {dispatch}): this machine lacks AVX2 or FMA");
                 continue;
             }
-            let exe = dir.join(features.replace([',', '+'], "_"));
+            let name = if dispatch { "dispatch".to_string() } else { features.replace([',', '+'], "_") };
+            let src = dir.join(format!("{name}.rs"));
+            std::fs::write(&src, harness.replace("DISPATCH;", &format!("{dispatch};"))).unwrap();
+            let exe = dir.join(&name);
             let built = std::process::Command::new(&rustc)
                 .args(["--edition", "2021", "-O", "-C", &format!("target-feature={features}"), "-o"])
                 .arg(&exe)
@@ -535,12 +569,13 @@ fn main() {
                 .expect("running rustc");
             assert!(built.status.success(), "{features}: {}", String::from_utf8_lossy(&built.stderr));
             let out = std::process::Command::new(&exe).output().unwrap();
-            assert!(out.status.success(), "{features}: {}", String::from_utf8_lossy(&out.stderr));
+            assert!(out.status.success(), "{name}: {}", String::from_utf8_lossy(&out.stderr));
             let out = String::from_utf8(out.stdout).unwrap();
-            let mut lines = out.lines();
-            assert_eq!(lines.next(), Some(format!("avx2 {avx2} fma {fma}").as_str()), "{features}: not built as asked");
+            let (first, bits) = out.split_once('\n').unwrap();
+            let built_for = format!("avx2 {} fma {}", avx2 && !dispatch, fma && !dispatch);
+            assert_eq!(first, built_for, "{name}: not built as asked");
             if !fma {
-                for (x, line) in harness_angles().into_iter().zip(lines) {
+                for (x, line) in harness_angles().into_iter().zip(bits.lines()) {
                     let ((s, c), (s32, c32)) = (sin_cos_kernel(x), sin_cos_kernel_f32(x as f32));
                     let want = format!(
                         "{:016x} {:016x} {:08x} {:08x}",
@@ -552,9 +587,27 @@ fn main() {
                     assert_eq!(line, want, "{features} at x = {x:e}");
                 }
             }
+            if avx2 && fma && !dispatch {
+                native_bits = Some(bits.to_string());
+            }
+            if dispatch {
+                let native = native_bits.as_deref().expect("the +avx2,+fma binary ran");
+                assert!(bits == native, "the run-time AVX2 and FMA copies differ from the +avx2,+fma build");
+                assert!(bits.lines().count() == harness_angles().len());
+                let baseline = harness_angles().into_iter().map(|x| {
+                    let ((s, c), (s32, c32)) = (sin_cos_kernel(x), sin_cos_kernel_f32(x as f32));
+                    format!("{:016x} {:016x} {:08x} {:08x}", s.to_bits(), c.to_bits(), s32.to_bits(), c32.to_bits())
+                });
+                let differ = bits.lines().zip(baseline).filter(|(a, b)| a != b).count();
+                assert!(differ > 0, "the run-time copies give this (unfused) build's bits: not fused");
+                eprintln!(
+                    "run-time AVX2 and FMA copies: {differ} of {} angles differ from unfused",
+                    bits.lines().count()
+                );
+            }
             ran += 1;
         }
-        eprintln!("{ran} of 3 feature sets built and checked");
+        eprintln!("{ran} of 4 builds checked");
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

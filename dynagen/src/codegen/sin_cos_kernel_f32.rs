@@ -9,62 +9,82 @@
 // round once where the unfused code rounds twice: the bound holds for
 // both). The slow path is the f64 kernel's.
 
-/// `a·b + c` in `f32` with one rounding (x86-64 with the `fma` feature);
-/// see `fma`.
-#[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
-#[inline(always)]
-#[allow(dead_code, unused_unsafe)]
-fn fmaf(a: f32, b: f32, c: f32) -> f32 {
-    use core::arch::x86_64::{_mm_cvtss_f32, _mm_fmadd_ss, _mm_set_ss};
-    // SAFETY: the cfg above compiles this only where the `fma` target
-    // feature is enabled, so the instruction exists.
-    unsafe { _mm_cvtss_f32(_mm_fmadd_ss(_mm_set_ss(a), _mm_set_ss(b), _mm_set_ss(c))) }
-}
-
-/// `a·b + c` in `f32` with one rounding (aarch64).
-#[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
-#[inline(always)]
-#[allow(dead_code, unused_unsafe)]
-fn fmaf(a: f32, b: f32, c: f32) -> f32 {
-    use core::arch::aarch64::{vdup_n_f32, vfma_f32, vget_lane_f32};
-    // SAFETY: the cfg above compiles this only where NEON is enabled.
-    unsafe { vget_lane_f32::<0>(vfma_f32(vdup_n_f32(c), vdup_n_f32(a), vdup_n_f32(b))) }
-}
-
-/// `a·b + c` in `f32`, rounded twice (targets without a fused multiply-add).
-#[cfg(not(any(
-    all(target_arch = "x86_64", target_feature = "fma"),
-    all(target_arch = "aarch64", target_feature = "neon")
-)))]
-#[inline(always)]
-#[allow(dead_code)]
-fn fmaf(a: f32, b: f32, c: f32) -> f32 {
-    a * b + c
-}
-
 /// The sines and cosines of `x` (`f32`), entry by entry: within 1 ulp of
 /// `f32` for every finite angle (NaN and ±∞ give NaN); two or four angles
 /// at a time in vector instructions, like `sin_cos_array`.
 #[inline]
 pub fn sin_cos_array_f32<const N: usize>(x: &[f32; N]) -> ([f32; N], [f32; N]) {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if RUNTIME_DISPATCH && has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { sin_cos_array_f32_avx2_fma(x) };
+    }
+    sin_cos_array_f32_on::<Baseline, N>(x)
+}
+
+/// `sin_cos_array_f32` compiled for AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn sin_cos_array_f32_avx2_fma<const N: usize>(x: &[f32; N]) -> ([f32; N], [f32; N]) {
+    sin_cos_array_f32_on::<Avx2Fma, N>(x)
+}
+
+/// `sin_cos_array_f32` in the instructions of `I`.
+#[inline(always)]
+fn sin_cos_array_f32_on<I: Isa, const N: usize>(x: &[f32; N]) -> ([f32; N], [f32; N]) {
     let mut s = [0.0; N];
     let mut c = [0.0; N];
-    if sin_cos_batches::<Single, N>(&x.map(f64::from), &mut s, &mut c) {
-        (s.map(|s| s as f32), c.map(|c| c as f32))
+    if sin_cos_batches::<I, Single, N>(&each_of(x, f64::from), &mut s, &mut c) {
+        (each_of(&s, |s| s as f32), each_of(&c, |c| c as f32))
     } else {
-        let one = x.map(sin_cos_kernel_f32);
-        (one.map(|r| r.0), one.map(|r| r.1))
+        let (mut s, mut c) = ([0.0; N], [0.0; N]);
+        let mut i = 0;
+        while i < N {
+            (s[i], c[i]) = sin_cos_kernel_f32_on::<I>(x[i]);
+            i += 1;
+        }
+        (s, c)
     }
+}
+
+/// `[f(x[0]), …, f(x[N − 1])]` for scalars `T` and `U` (see `each!`).
+#[inline(always)]
+fn each_of<T: Copy, U: Copy + Default, const N: usize>(x: &[T; N], f: impl Fn(T) -> U) -> [U; N] {
+    let mut out = [U::default(); N];
+    let mut i = 0;
+    while i < N {
+        out[i] = f(x[i]);
+        i += 1;
+    }
+    out
 }
 
 /// The sine and cosine of one `f32` angle: within 1 ulp of `f32` for every
 /// finite angle (NaN and ±∞ give NaN).
 #[inline]
 pub fn sin_cos_kernel_f32(x: f32) -> (f32, f32) {
-    match sin_cos_lanes_f32([f64::from(x)]) {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if RUNTIME_DISPATCH && has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { sin_cos_kernel_f32_avx2_fma(x) };
+    }
+    sin_cos_kernel_f32_on::<Baseline>(x)
+}
+
+/// `sin_cos_kernel_f32` compiled for AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn sin_cos_kernel_f32_avx2_fma(x: f32) -> (f32, f32) {
+    sin_cos_kernel_f32_on::<Avx2Fma>(x)
+}
+
+/// `sin_cos_kernel_f32` in the instructions of `I`.
+#[inline(always)]
+fn sin_cos_kernel_f32_on<I: Isa>(x: f32) -> (f32, f32) {
+    match sin_cos_lanes_f32::<I, f64, 1>([f64::from(x)]) {
         [(s, c, true)] => (s as f32, c as f32),
         _ => {
-            let (s, c) = sin_cos_kernel(f64::from(x));
+            let (s, c) = sin_cos_kernel_on::<I>(f64::from(x));
             (s as f32, c as f32)
         }
     }
@@ -75,8 +95,8 @@ struct Single;
 
 impl FastPath for Single {
     #[inline(always)]
-    fn lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
-        sin_cos_lanes_f32(x)
+    fn lanes<I: Isa, V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
+        sin_cos_lanes_f32::<I, V, P>(x)
     }
 }
 
@@ -85,7 +105,7 @@ impl FastPath for Single {
 /// 1 ulp of `f32` once rounded (false: take `sin_cos_kernel`).
 #[inline(always)]
 #[allow(clippy::excessive_precision, clippy::approx_constant)]
-fn sin_cos_lanes_f32<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
+fn sin_cos_lanes_f32<I: Isa, V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
     const FRAC_2_PI: f64 = 0.6366197723675814;
     const ROUND: f64 = 6755399441055744.0;
     const P1: f64 = 1.5707963267341256;
@@ -98,21 +118,21 @@ fn sin_cos_lanes_f32<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
     const C1: f64 = -1.388731625430343e-3;
     const C2: f64 = 2.4433157053129838e-5;
     let v = V::splat;
-    let t: [V; P] = each(|i| x[i].mul(v(FRAC_2_PI)).add(v(ROUND)));
-    let k: [V; P] = each(|i| t[i].sub(v(ROUND)));
-    let r: [V; P] = each(|i| k[i].neg().mul_add(v(P2), k[i].neg().mul_add(v(P1), x[i])));
+    let t: [V; P] = each!(i => x[i].mul(v(FRAC_2_PI)).add(v(ROUND)));
+    let k: [V; P] = each!(i => t[i].sub(v(ROUND)));
+    let r: [V; P] = each!(i => k[i].neg().mul_add::<I>(v(P2), k[i].neg().mul_add::<I>(v(P1), x[i])));
     // Within 1 ulp of f32 if |x| ≤ 1.5e6 and |r| ≥ 2⁻⁴⁵·|x|: min(2⁴⁵·|r|, 1.5e6) ≥ |x|.
-    let ok: [bool; P] = core::array::from_fn(|i| r[i].abs().mul(v(3.5184372088832e13)).capped_ge(x[i].abs()));
-    let z: [V; P] = each(|i| r[i].mul(r[i]));
-    let z2: [V; P] = each(|i| z[i].mul(z[i]));
+    let ok: [bool; P] = each!(i => r[i].abs().mul(v(3.5184372088832e13)).capped_ge(x[i].abs()));
+    let z: [V; P] = each!(i => r[i].mul(r[i]));
+    let z2: [V; P] = each!(i => z[i].mul(z[i]));
     // r·(1 + z·S(z)) keeps sin(−0) = −0.
-    let sin_r: [V; P] = each(|i| {
-        r[i].mul(z[i].mul_add(z2[i].mul_add(z[i].mul_add(v(S3), v(S2)), z[i].mul_add(v(S1), v(S0))), v(1.0)))
+    let sin_r: [V; P] = each!(i => {
+        r[i].mul(z[i].mul_add::<I>(z2[i].mul_add::<I>(z[i].mul_add::<I>(v(S3), v(S2)), z[i].mul_add::<I>(v(S1), v(S0))), v(1.0)))
     });
-    let cos_r: [V; P] = each(|i| {
-        z2[i].mul_add(z[i].mul_add(z[i].mul_add(v(C2), v(C1)), v(C0)), v(-0.5).mul_add(z[i], v(1.0)))
+    let cos_r: [V; P] = each!(i => {
+        z2[i].mul_add::<I>(z[i].mul_add::<I>(z[i].mul_add::<I>(v(C2), v(C1)), v(C0)), v(-0.5).mul_add::<I>(z[i], v(1.0)))
     });
-    core::array::from_fn(|i| {
+    each!(i => {
         let (s, c) = V::quadrant(sin_r[i], sin_r[i], cos_r[i], t[i]);
         (s, c, ok[i])
     })

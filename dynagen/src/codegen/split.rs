@@ -71,6 +71,13 @@ pub(crate) struct Body {
 /// one item when the body has at most `max_lets` `let`s (or `max_lets` is
 /// `None`), else the public function and its parts. `result` arranges the
 /// output expressions into the returned array.
+///
+/// With `dispatch` (the body's sums written `I::fma`), each part is a
+/// generic `NAME_partK_on<I: Isa>` called by `NAME_partK` for `Baseline` and
+/// by `NAME_partK_avx2_fma` (`#[target_feature(enable = "avx2,fma")]`) for
+/// `Avx2Fma`, and the public function calls `NAME_avx2_fma`, the chain of
+/// the AVX2 and FMA parts, where the processor has both (see
+/// [`emit_function`](super::emit::emit_function)).
 pub(crate) fn assemble(
     mut shell: syn::ItemFn,
     body: Body,
@@ -78,24 +85,36 @@ pub(crate) fn assemble(
     scalar: &TokenStream,
     max_lets: Option<usize>,
     result: impl Fn(Vec<Expr>) -> Expr,
+    dispatch: bool,
 ) -> Result<Vec<syn::Item>, CodegenError> {
     let Some(max) = max_lets.filter(|&m| body.lines.len() > m) else {
         shell.block.stmts.extend(body.lines.into_iter().map(|l| l.stmt));
         shell.block.stmts.push(Stmt::Expr(result(body.outputs.into_iter().map(|(e, _)| e).collect()), None));
         return Ok(vec![syn::Item::Fn(shell)]);
     };
+    let parse = |tokens: TokenStream| -> Result<syn::ItemFn, CodegenError> {
+        syn::parse2(tokens).map_err(|e| CodegenError::Internal(e.to_string()))
+    };
+    let cfg = quote!(#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]);
+    let allow = quote!(#[allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal, clippy::too_many_lines, clippy::too_many_arguments)]);
     // Below 3, a statement reading two carried values would not fit.
     let max = max.max(3);
     let plan = Plan::new(&body, max);
     let name = shell.sig.ident.to_string();
     let k = proc_macro2::Literal::usize_unsuffixed(plan.slots.max(1));
     let n_parts = plan.parts.len();
-    let mut items = Vec::with_capacity(n_parts + 1);
+    let mut items = Vec::with_capacity(3 * n_parts + 2);
     let mut lines = body.lines.into_iter();
+    // The calls of the parts, in order: `NAME_partK(args, &mut carry);` (and
+    // `NAME_partK_avx2_fma(…)`).
+    let mut chain: Vec<Stmt> = Vec::new();
+    let mut fast_chain: Vec<Stmt> = Vec::new();
     for (p, part) in plan.parts.iter().enumerate() {
         let part_name = format_ident!("{name}_part{}", p + 1);
         let own = lines.by_ref().take(part.len);
-        let typed = params.iter().filter(|q| q.input.is_some_and(|i| part.inputs.contains(&i))).map(|q| &q.typed);
+        let used = || params.iter().filter(|q| q.input.is_some_and(|i| part.inputs.contains(&i)));
+        let typed: Vec<&TokenStream> = used().map(|q| &q.typed).collect();
+        let args: Vec<&Ident> = used().map(|q| &q.name).collect();
         let doc = format!(
             " Part {} of {n_parts} of [`{name}`]: its statements {} to {}, with the values of earlier parts \
              loaded from `carry` and those later parts read stored into it.",
@@ -103,14 +122,7 @@ pub(crate) fn assemble(
             part.first + 1,
             part.first + part.len
         );
-        let shell = quote! {
-            #[doc = #doc]
-            #[inline(never)]
-            #[allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal, clippy::too_many_lines, clippy::too_many_arguments)]
-            fn #part_name(#(#typed,)* carry: &mut [#scalar; #k]) {}
-        };
-        let mut f: syn::ItemFn = syn::parse2(shell).map_err(|e| CodegenError::Internal(e.to_string()))?;
-        let stmts = &mut f.block.stmts;
+        let mut stmts: Vec<Stmt> = Vec::new();
         for &v in &part.loads {
             stmts.push(let_stmt(pat(body.names[v as usize].clone()), index("carry", plan.slot[v as usize])));
         }
@@ -124,15 +136,48 @@ pub(crate) fn assemble(
             };
             stmts.push(Stmt::Expr(Expr::Assign(store), Some(Default::default())));
         }
+        chain.push(syn::parse_quote!(#part_name(#(#args,)* &mut carry);));
+        let mut f = if dispatch {
+            let (on, fast) = (format_ident!("{part_name}_on"), format_ident!("{part_name}_avx2_fma"));
+            let fast_doc = format!(" [`{part_name}`] compiled for processors with AVX2 and FMA.");
+            let on_doc = format!(" The body of [`{part_name}`], in the instructions of `I`.");
+            items.push(syn::Item::Fn(parse(quote! {
+                #[doc = #doc]
+                #[inline(never)]
+                #[allow(clippy::too_many_arguments)]
+                fn #part_name(#(#typed,)* carry: &mut [#scalar; #k]) {
+                    #on::<Baseline>(#(#args,)* carry)
+                }
+            })?));
+            items.push(syn::Item::Fn(parse(quote! {
+                #[doc = #fast_doc]
+                #cfg
+                #[target_feature(enable = "avx2,fma")]
+                #[inline(never)]
+                #[allow(clippy::too_many_arguments)]
+                unsafe fn #fast(#(#typed,)* carry: &mut [#scalar; #k]) {
+                    #on::<Avx2Fma>(#(#args,)* carry)
+                }
+            })?));
+            fast_chain.push(syn::parse_quote!(#fast(#(#args,)* &mut carry);));
+            parse(quote! {
+                #[doc = #on_doc]
+                #[inline(always)]
+                #allow
+                fn #on<I: Isa>(#(#typed,)* carry: &mut [#scalar; #k]) {}
+            })?
+        } else {
+            parse(quote! {
+                #[doc = #doc]
+                #[inline(never)]
+                #allow
+                fn #part_name(#(#typed,)* carry: &mut [#scalar; #k]) {}
+            })?
+        };
+        f.block.stmts = stmts;
         items.push(syn::Item::Fn(f));
     }
-    shell.block.stmts.push(syn::parse_quote!(let mut carry = [0.0; #k];));
-    for (p, part) in plan.parts.iter().enumerate() {
-        let part_name = format_ident!("{name}_part{}", p + 1);
-        let args = params.iter().filter(|q| q.input.is_some_and(|i| part.inputs.contains(&i))).map(|q| &q.name);
-        shell.block.stmts.push(syn::parse_quote!(#part_name(#(#args,)* &mut carry);));
-    }
-    let outputs = body
+    let outputs: Vec<Expr> = body
         .outputs
         .into_iter()
         .map(|(e, v)| match v {
@@ -140,6 +185,40 @@ pub(crate) fn assemble(
             None => e,
         })
         .collect();
+    if dispatch {
+        // `NAME_avx2_fma`: the same chain of the parts' AVX2 and FMA copies.
+        let fast = format_ident!("{name}_avx2_fma");
+        let args = shell.sig.inputs.iter().filter_map(|arg| match arg {
+            syn::FnArg::Typed(t) => Some(t.pat.clone()),
+            syn::FnArg::Receiver(_) => None,
+        });
+        let check: Stmt = syn::parse_quote! {
+            #cfg
+            if has_avx2_and_fma() {
+                return unsafe { #fast(#(#args),*) };
+            }
+        };
+        let (inputs, output, unused) = (&shell.sig.inputs, &shell.sig.output, &shell.block.stmts);
+        let doc = format!(" [`{name}`] compiled for processors with AVX2 and FMA: its parts' copies.");
+        let result = result(outputs.clone());
+        let f = parse(quote! {
+            #[doc = #doc]
+            #cfg
+            #[target_feature(enable = "avx2,fma")]
+            unsafe fn #fast(#inputs) #output {
+                #(#unused)*
+                let mut carry = [0.0; #k];
+                unsafe {
+                    #(#fast_chain)*
+                }
+                #result
+            }
+        })?;
+        items.insert(0, syn::Item::Fn(f));
+        shell.block.stmts.insert(0, check);
+    }
+    shell.block.stmts.push(syn::parse_quote!(let mut carry = [0.0; #k];));
+    shell.block.stmts.extend(chain);
     shell.block.stmts.push(Stmt::Expr(result(outputs), None));
     items.insert(0, syn::Item::Fn(shell));
     Ok(items)
@@ -264,5 +343,11 @@ pub(crate) fn header_note(max_lets: Option<usize>, split: &[(String, usize)]) ->
 /// The number of parts of the items [`assemble`] made for one function, if
 /// it was split.
 pub(crate) fn parts_of(items: &[syn::Item]) -> Option<usize> {
-    (items.len() > 1).then(|| items.len() - 1)
+    let name = |item: &syn::Item| match item {
+        syn::Item::Fn(f) => f.sig.ident.to_string(),
+        _ => String::new(),
+    };
+    let prefix = format!("{}_part", name(items.first()?));
+    let parts = items.iter().filter(|item| name(item).starts_with(&prefix)).count();
+    (parts > 0).then_some(parts)
 }

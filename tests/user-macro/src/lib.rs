@@ -44,6 +44,12 @@ pub mod panda_batched {
     );
 }
 
+/// The Panda's mass matrix without run-time dispatch: the build's target
+/// features only, the same bits on every x86-64 machine.
+pub mod panda_no_dispatch {
+    dynagen_macros::urdf!("../../dynagen/robots/panda.urdf", functions = [mass_matrix], dispatch = false);
+}
+
 use panda::DOF;
 
 /// τ = M(q)(q̈_des + Kp e + Kd ė) + h(q, q̇), e = q_des − q.
@@ -83,6 +89,23 @@ mod tests {
             assert!((f64::from(g32) - g).abs() < 1e-5, "{g32}");
         }
         assert_eq!(pendulum::JOINT_NAMES, ["hinge"]);
+    }
+
+    #[test]
+    fn dispatch_false_keeps_the_baseline_bits() {
+        // A default x86-64 build has no FMA; with dispatch (the default) the Panda's M runs its
+        // fused AVX2 and FMA copy where the processor has both, without it the unfused baseline.
+        let fused_here = cfg!(target_arch = "x86_64")
+            && !cfg!(target_feature = "fma")
+            && std::is_x86_feature_detected!("avx2")
+            && std::is_x86_feature_detected!("fma");
+        let q = [0.3, -1.1, 0.7, -2.0, -0.4, 1.9, 0.8, 0.01, 0.03];
+        let (m, m0) = (panda::mass_matrix(&q).concat(), super::panda_no_dispatch::mass_matrix(&q).concat());
+        let differ = m.iter().zip(&m0).filter(|(a, b)| a.to_bits() != b.to_bits()).count();
+        assert_eq!(differ > 0, fused_here, "{differ} entries differ");
+        for (a, b) in m.iter().zip(&m0) {
+            assert!((a - b).abs() <= 1e-14 * (1.0 + a.abs()));
+        }
     }
 
     #[test]

@@ -51,6 +51,12 @@ pub struct Args {
     /// bits as a*b + c elsewhere).
     #[arg(long)]
     pub no_fma: bool,
+    /// Compile each function for the build's target only (default: x86_64
+    /// builds without the avx2 and fma target features also get a copy for
+    /// AVX2 and FMA, run where the processor has both; its results differ
+    /// in the last bits from the baseline's).
+    #[arg(long)]
+    pub no_dispatch: bool,
     /// Cut a function body of more than N `let`s into private parts of at
     /// most N (default 2500; 0: never cut). Long bodies overflow rustc's
     /// stack in debug builds and compile slowly in release builds.
@@ -109,6 +115,7 @@ fn builder(args: &Args, source: &RobotSource) -> Result<(Builder, dynagen::Model
         })
         .snap_rounding(!args.no_snap)
         .fma(!args.no_fma)
+        .runtime_dispatch(!args.no_dispatch)
         .trig(trig);
     if let Some(n) = args.split_lets {
         options.split_lets = (n > 0).then_some(n);
