@@ -5,10 +5,15 @@
 // Model content hash (FNV-1a 64 of its canonical text): 05d2134012bdd4bf
 // Gravity: [0.0, 0.0, -9.81] m/s^2 in the base frame, folded in.
 // Options: scalar f64; forward dynamics by the articulated-body algorithm (chosen); rounding snap on (12 constants); inertia regrouping on; like terms on, constant products on, constant sums on, reassociation on.
-// Trigonometry: NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time, four where the target has AVX2 (no_std, no dependency).
+// Trigonometry: NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time, four where the target (or, with run-time dispatch, the processor) has AVX2 (no_std, no dependency).
 // Fused multiply-adds: fma(a, b, c) (fmaf in f32) is a*b + c with one rounding where the target has an FMA
 //   instruction (x86_64 built with target feature fma, e.g. -C target-cpu=native on a machine that has it;
 //   aarch64), and plain a * b + c elsewhere: a default x86_64 build gives the same bits as unfused code.
+// Run-time dispatch: on. On x86_64 builds without target features avx2 and fma (a default build), every
+//   public function also has a copy compiled for AVX2 and FMA (NAME_avx2_fma, from the one generic body
+//   NAME_on) and runs it where the processor has both (cpuid, asked once): as fast as a native build, and
+//   with its bits, so results differ in the last bits between machines with and without FMA (within the
+//   accuracy the tests check). Off: runtime_dispatch(false), the same bits on every x86_64 machine.
 // Forward dynamics: the articulated-body algorithm, chosen as the more accurate (estimated 751 cycles for CRBA + LTDL against 828 for the articulated-body algorithm; worst relative error on 16 states against double-double 2.3e-15 against 4.0e-16).
 // Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]
 //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.
@@ -36,7 +41,7 @@ pub const JOINT_NAMES: [&str; DOF] = [
     "panda_finger_joint1",
     "panda_finger_joint2",
 ];
-/// The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target has AVX2).
+/// The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target, or with run-time dispatch the processor, has AVX2).
 #[inline]
 pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
     sin_cos_array(q)
@@ -47,13 +52,41 @@ pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
 /// 686 ops: 171 add, 167 sub, 347 mul, 0 div, 1 neg, 0 sqrt, 0 sin_cos; 224 fused multiply-adds, 479 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read. `q` is read for the prismatic joints only.
+pub fn inverse_dynamics_sc(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+    qdd: &[f64; DOF],
+) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { inverse_dynamics_sc_avx2_fma(s, c, q, qd, qdd) };
+    }
+    inverse_dynamics_sc_on::<Baseline>(s, c, q, qd, qdd)
+}
+/// [`inverse_dynamics_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn inverse_dynamics_sc_avx2_fma(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+    qdd: &[f64; DOF],
+) -> [f64; DOF] {
+    inverse_dynamics_sc_on::<Avx2Fma>(s, c, q, qd, qdd)
+}
+/// The body of [`inverse_dynamics_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn inverse_dynamics_sc(
+fn inverse_dynamics_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
     q: &[f64; DOF],
@@ -71,7 +104,7 @@ pub fn inverse_dynamics_sc(
     let t8 = qd[1] * t3;
     let t9 = t1 + t7;
     let t10 = 0.01993386669246 * c[1];
-    let t11 = fma(-32.71654662685272, s[1], t10);
+    let t11 = I::fma(-32.71654662685272, s[1], t10);
     let t12 = t3 * t3;
     let t13 = qd[1] * qd[1];
     let t14 = t3 * t4;
@@ -81,143 +114,143 @@ pub fn inverse_dynamics_sc(
     let t18 = qdd[1] + t14;
     let t19 = t15 - t8;
     let t20 = t7 + t9;
-    let t21 = fma(t4, t4, -t13);
+    let t21 = I::fma(t4, t4, -t13);
     let t22 = 0.0007689361029464 * t21;
     let t23 = 1.1136424972533403 * t7;
     let t24 = 0.0007689361029464 * t17;
-    let t25 = fma(-0.00398335888393552, t20, t24);
+    let t25 = I::fma(-0.00398335888393552, t20, t24);
     let t26 = t13 - t12;
-    let t27 = fma(0.01026110182100817, t26, -t25);
-    let t28 = fma(0.046155764989863624, t8, t27);
+    let t27 = I::fma(0.01026110182100817, t26, -t25);
+    let t28 = I::fma(0.046155764989863624, t8, t27);
     let t29 = 1.1136424972533403 * qdd[1];
-    let t30 = fma(-0.0007689361029464, t2, t29);
-    let t31 = fma(-t4, t4, t12);
+    let t30 = I::fma(-0.0007689361029464, t2, t29);
+    let t31 = I::fma(-t4, t4, t12);
     let t32 = 0.316 * t20;
-    let t33 = fma(0.316, t17, t5);
+    let t33 = I::fma(0.316, t17, t5);
     let t34 = qdd[1] * s[2];
-    let t35 = fma(-t9, c[2], t34);
+    let t35 = I::fma(-t9, c[2], t34);
     let t36 = qdd[1] * c[2];
-    let t37 = fma(t9, s[2], t36);
+    let t37 = I::fma(t9, s[2], t36);
     let t38 = qd[1] * s[2];
-    let t39 = fma(-t3, c[2], t38);
+    let t39 = I::fma(-t3, c[2], t38);
     let t40 = qd[1] * c[2];
-    let t41 = fma(t3, s[2], t40);
+    let t41 = I::fma(t3, s[2], t40);
     let t42 = c[2] * t33;
-    let t43 = fma(s[2], t32, -t42);
+    let t43 = I::fma(s[2], t32, -t42);
     let t44 = s[2] * t33;
-    let t45 = fma(c[2], t32, t44);
-    let t46 = fma(-0.316, t16, t6);
+    let t45 = I::fma(c[2], t32, t44);
+    let t46 = I::fma(-0.316, t16, t6);
     let t47 = qd[2] + t4;
-    let t48 = fma(qd[2], t41, t35);
+    let t48 = I::fma(qd[2], t41, t35);
     let t49 = qdd[2] + t15;
     let t50 = 0.028227094878000014 * t46;
     let t51 = 0.744382959872 * t46;
     let t52 = 0.744382959872 * t45;
-    let t53 = fma(-0.028227094878000014, t43, t52);
+    let t53 = I::fma(-0.028227094878000014, t43, t52);
     let t54 = t39 * t39;
     let t55 = t41 * t41;
     let t56 = t47 * t47;
     let t57 = t39 * t41;
     let t58 = t39 * t47;
     let t59 = t41 * t47;
-    let t60 = fma(qd[2], t39, -t37);
+    let t60 = I::fma(qd[2], t39, -t37);
     let t61 = t55 + t56;
     let t62 = t54 + t56;
     let t63 = t57 - t49;
     let t64 = t49 + t57;
-    let t65 = fma(-qd[2], t39, t58);
+    let t65 = I::fma(-qd[2], t39, t58);
     let t66 = t37 + t65;
     let t67 = t58 + t60;
     let t68 = t59 - t48;
     let t69 = t48 + t59;
     let t70 = 0.744382959872 * t61;
-    let t71 = fma(0.028227094878000014, t63, -t70);
+    let t71 = I::fma(0.028227094878000014, t63, -t70);
     let t72 = 0.028227094878000014 * t62;
-    let t73 = fma(0.744382959872, t64, -t72);
+    let t73 = I::fma(0.744382959872, t64, -t72);
     let t74 = t55 - t56;
     let t75 = 0.004377257121839584 * t74;
     let t76 = t56 - t54;
     let t77 = 0.1227964670530554 * t58;
     let t78 = t54 - t55;
     let t79 = 0.011595864095166095 * t57;
-    let t80 = fma(-0.0825, t61, t43);
-    let t81 = fma(0.0825, t64, t45);
-    let t82 = fma(0.0825, t67, t46);
+    let t80 = I::fma(-0.0825, t61, t43);
+    let t81 = I::fma(0.0825, t64, t45);
+    let t82 = I::fma(0.0825, t67, t46);
     let t83 = t49 * s[3];
     let t84 = t49 * c[3];
-    let t85 = fma(-t48, s[3], t84);
+    let t85 = I::fma(-t48, s[3], t84);
     let t86 = t39 * c[3];
-    let t87 = fma(t47, s[3], t86);
+    let t87 = I::fma(t47, s[3], t86);
     let t88 = t47 * c[3];
-    let t89 = fma(-t39, s[3], t88);
+    let t89 = I::fma(-t39, s[3], t88);
     let t90 = c[3] * t80;
-    let t91 = fma(s[3], t82, t90);
+    let t91 = I::fma(s[3], t82, t90);
     let t92 = c[3] * t82;
-    let t93 = fma(-s[3], t80, t92);
+    let t93 = I::fma(-s[3], t80, t92);
     let t94 = qd[3] - t41;
-    let t95 = fma(qd[3], t89, t83);
-    let t96 = fma(t48, c[3], t95);
-    let t97 = fma(-qd[3], t87, t85);
+    let t95 = I::fma(qd[3], t89, t83);
+    let t96 = I::fma(t48, c[3], t95);
+    let t97 = I::fma(-qd[3], t87, t85);
     let t98 = qdd[3] + t60;
     let t99 = 0.5503052746499999 * t93;
-    let t100 = fma(2.0010035536029998, t91, t99);
+    let t100 = I::fma(2.0010035536029998, t91, t99);
     let t101 = t87 * t87;
     let t102 = t94 * t94;
     let t103 = t87 * t89;
     let t104 = t87 * t94;
     let t105 = t89 * t94;
-    let t106 = fma(t89, t89, t102);
+    let t106 = I::fma(t89, t89, t102);
     let t107 = t101 + t102;
     let t108 = t103 - t98;
     let t109 = t98 + t103;
     let t110 = t97 + t104;
-    let t111 = fma(qd[3], t87, t104);
+    let t111 = I::fma(qd[3], t87, t104);
     let t112 = t111 - t85;
     let t113 = t105 - t96;
     let t114 = t96 + t105;
     let t115 = 0.5503052746499999 * t106;
-    let t116 = fma(2.0010035536029998, t108, t115);
+    let t116 = I::fma(2.0010035536029998, t108, t115);
     let t117 = 2.0010035536029998 * t107;
-    let t118 = fma(0.5503052746499999, t109, t117);
+    let t118 = I::fma(0.5503052746499999, t109, t117);
     let t119 = 0.5503052746499999 * t112;
-    let t120 = fma(2.0010035536029998, t114, -t119);
+    let t120 = I::fma(2.0010035536029998, t114, -t119);
     let t121 = 0.6435036024391828 * t96;
-    let t122 = fma(0.0039053550262761003, t109, t121);
-    let t123 = fma(-0.16189047268546083, t112, t122);
-    let t124 = fma(t89, t89, -t102);
+    let t122 = I::fma(0.0039053550262761003, t109, t121);
+    let t123 = I::fma(-0.16189047268546083, t112, t122);
+    let t124 = I::fma(t89, t89, -t102);
     let t125 = 0.7451354997528139 * t105;
     let t126 = 0.0016444875773692705 * t108;
     let t127 = t102 - t101;
     let t128 = 0.0039053550262761003 * t127;
-    let t129 = fma(-t89, t89, t101);
+    let t129 = I::fma(-t89, t89, t101);
     let t130 = 0.6435036024391828 * t103;
     let t131 = 0.0825 * t106;
-    let t132 = fma(0.384, t108, t131);
+    let t132 = I::fma(0.384, t108, t131);
     let t133 = 0.384 * t107;
-    let t134 = fma(0.0825, t109, t133);
+    let t134 = I::fma(0.0825, t109, t133);
     let t135 = 0.0825 * t112;
-    let t136 = fma(0.384, t114, -t135);
+    let t136 = I::fma(0.384, t114, -t135);
     let t137 = t91 + t132;
     let t138 = t93 - t134;
     let t139 = t136 - t81;
     let t140 = t94 * s[4];
-    let t141 = fma(t87, c[4], -t140);
+    let t141 = I::fma(t87, c[4], -t140);
     let t142 = t94 * c[4];
-    let t143 = fma(t87, s[4], t142);
+    let t143 = I::fma(t87, s[4], t142);
     let t144 = c[4] * t137;
-    let t145 = fma(-s[4], t139, t144);
+    let t145 = I::fma(-s[4], t139, t144);
     let t146 = s[4] * t137;
-    let t147 = fma(c[4], t139, t146);
+    let t147 = I::fma(c[4], t139, t146);
     let t148 = qd[4] + t89;
     let t149 = qd[4] * t143;
     let t150 = qd[4] * t141;
-    let t151 = fma(t98, s[4], t149);
-    let t152 = fma(t96, c[4], -t151);
-    let t153 = fma(t98, c[4], t150);
-    let t154 = fma(t96, s[4], t153);
+    let t151 = I::fma(t98, s[4], t149);
+    let t152 = I::fma(t96, c[4], -t151);
+    let t153 = I::fma(t98, c[4], t150);
+    let t154 = I::fma(t96, s[4], t153);
     let t155 = qdd[4] + t97;
     let t156 = 0.014653732538 * t147;
-    let t157 = fma(-0.067870631425, t145, t156);
+    let t157 = I::fma(-0.067870631425, t145, t156);
     let t158 = t141 * t141;
     let t159 = t143 * t143;
     let t160 = t148 * t148;
@@ -233,45 +266,45 @@ pub fn inverse_dynamics_sc(
     let t170 = t152 + t163;
     let t171 = t152 - t163;
     let t172 = 0.014653732538 * t164;
-    let t173 = fma(-0.067870631425, t166, t172);
+    let t173 = I::fma(-0.067870631425, t166, t172);
     let t174 = 0.067870631425 * t165;
-    let t175 = fma(0.014653732538, t167, t174);
+    let t175 = I::fma(0.014653732538, t167, t174);
     let t176 = 0.067870631425 * t171;
-    let t177 = fma(-0.014653732538, t169, t176);
+    let t177 = I::fma(-0.014653732538, t169, t176);
     let t178 = 0.029883967133882083 * t152;
-    let t179 = fma(-0.004600245517563105, t167, t178);
-    let t180 = fma(0.0015152444733270301, t169, t179);
+    let t179 = I::fma(-0.004600245517563105, t167, t178);
+    let t180 = I::fma(0.0015152444733270301, t169, t179);
     let t181 = t159 - t160;
-    let t182 = fma(0.0021640520520981297, t181, t180);
-    let t183 = fma(-0.032786279263935514, t163, t182);
+    let t182 = I::fma(0.0021640520520981297, t181, t180);
+    let t183 = I::fma(-0.032786279263935514, t163, t182);
     let t184 = 0.0015152444733270301 * t171;
-    let t185 = fma(-0.0021640520520981297, t166, t184);
+    let t185 = I::fma(-0.0021640520520981297, t166, t184);
     let t186 = t160 - t158;
-    let t187 = fma(0.004600245517563105, t186, t185);
-    let t188 = fma(0.0029023121300534305, t162, t187);
+    let t187 = I::fma(0.004600245517563105, t186, t185);
+    let t188 = I::fma(0.0029023121300534305, t162, t187);
     let t189 = 0.032786279263935514 * t155;
-    let t190 = fma(0.0021640520520981297, t168, t189);
-    let t191 = fma(-0.004600245517563105, t170, t190);
+    let t190 = I::fma(0.0021640520520981297, t168, t189);
+    let t191 = I::fma(-0.004600245517563105, t170, t190);
     let t192 = t158 - t159;
-    let t193 = fma(-0.0015152444733270301, t192, t191);
-    let t194 = fma(0.029883967133882083, t161, t193);
-    let t195 = fma(0.067870631425, t138, t183);
-    let t196 = fma(0.014653732538, t138, -t188);
+    let t193 = I::fma(-0.0015152444733270301, t192, t191);
+    let t194 = I::fma(0.029883967133882083, t161, t193);
+    let t195 = I::fma(0.067870631425, t138, t183);
+    let t196 = I::fma(0.014653732538, t138, -t188);
     let t197 = t157 + t194;
     let t198 = t152 * c[5];
-    let t199 = fma(t155, s[5], t198);
+    let t199 = I::fma(t155, s[5], t198);
     let t200 = t155 * c[5];
-    let t201 = fma(-t152, s[5], t200);
+    let t201 = I::fma(-t152, s[5], t200);
     let t202 = t141 * c[5];
-    let t203 = fma(t148, s[5], t202);
+    let t203 = I::fma(t148, s[5], t202);
     let t204 = t148 * c[5];
-    let t205 = fma(-t141, s[5], t204);
+    let t205 = I::fma(-t141, s[5], t204);
     let t206 = t138 * s[5];
-    let t207 = fma(t145, c[5], t206);
+    let t207 = I::fma(t145, c[5], t206);
     let t208 = t138 * c[5];
-    let t209 = fma(-t145, s[5], t208);
+    let t209 = I::fma(-t145, s[5], t208);
     let t210 = qd[5] + t143;
-    let t211 = fma(qd[5], t205, t199);
+    let t211 = I::fma(qd[5], t205, t199);
     let t212 = qdd[5] + t154;
     let t213 = 0.168842705569 * t147;
     let t214 = t203 * t203;
@@ -279,267 +312,267 @@ pub fn inverse_dynamics_sc(
     let t216 = t203 * t205;
     let t217 = t203 * t210;
     let t218 = t205 * t210;
-    let t219 = fma(qd[5], t203, -t201);
-    let t220 = fma(t205, t205, t215);
+    let t219 = I::fma(qd[5], t203, -t201);
+    let t220 = I::fma(t205, t205, t215);
     let t221 = t214 + t215;
     let t222 = t216 - t212;
     let t223 = t212 + t216;
-    let t224 = fma(-qd[5], t203, t217);
+    let t224 = I::fma(-qd[5], t203, t217);
     let t225 = t201 + t224;
     let t226 = t217 + t219;
     let t227 = t218 - t211;
     let t228 = t211 + t218;
     let t229 = 0.229207552695 * t220;
-    let t230 = fma(0.168842705569, t222, t229);
+    let t230 = I::fma(0.168842705569, t222, t229);
     let t231 = 0.168842705569 * t221;
-    let t232 = fma(0.229207552695, t223, t231);
-    let t233 = fma(t205, t205, -t215);
+    let t232 = I::fma(0.229207552695, t223, t231);
+    let t233 = I::fma(t205, t205, -t215);
     let t234 = 9.3569097314605e-5 * t233;
     let t235 = t215 - t214;
     let t236 = 0.00010375891721868492 * t235;
-    let t237 = fma(-t205, t205, t214);
+    let t237 = I::fma(-t205, t205, t214);
     let t238 = 0.0088313764694922 * t216;
     let t239 = 0.088 * t220;
-    let t240 = fma(0.19039999999999999, t222, t239);
+    let t240 = I::fma(0.19039999999999999, t222, t239);
     let t241 = 0.19039999999999999 * t221;
-    let t242 = fma(0.088, t223, t241);
+    let t242 = I::fma(0.088, t223, t241);
     let t243 = 0.088 * t226;
-    let t244 = fma(-0.19039999999999999, t228, t243);
+    let t244 = I::fma(-0.19039999999999999, t228, t243);
     let t245 = t207 - t240;
     let t246 = t209 + t242;
     let t247 = t147 + t244;
     let t248 = t212 * c[6];
-    let t249 = fma(-t211, s[6], t248);
+    let t249 = I::fma(-t211, s[6], t248);
     let t250 = t210 * s[6];
-    let t251 = fma(t203, c[6], t250);
+    let t251 = I::fma(t203, c[6], t250);
     let t252 = t210 * c[6];
-    let t253 = fma(-t203, s[6], t252);
+    let t253 = I::fma(-t203, s[6], t252);
     let t254 = c[6] * t245;
-    let t255 = fma(s[6], t247, t254);
+    let t255 = I::fma(s[6], t247, t254);
     let t256 = s[6] * t245;
-    let t257 = fma(c[6], t247, -t256);
+    let t257 = I::fma(c[6], t247, -t256);
     let t258 = qd[6] - t204;
-    let t259 = fma(t141, s[5], t258);
+    let t259 = I::fma(t141, s[5], t258);
     let t260 = qd[6] * t253;
-    let t261 = fma(t212, s[6], t260);
-    let t262 = fma(t211, c[6], t261);
+    let t261 = I::fma(t212, s[6], t260);
+    let t262 = I::fma(t211, c[6], t261);
     let t263 = qdd[6] + t219;
     let t264 = 0.002573605371338203 * t257;
-    let t265 = fma(-0.0020344399586617965, t255, t264);
+    let t265 = I::fma(-0.0020344399586617965, t255, t264);
     let t266 = t251 * t251;
     let t267 = t259 * t259;
     let t268 = t251 * t253;
     let t269 = t251 * t259;
     let t270 = t253 * t259;
-    let t271 = fma(t253, t253, t267);
+    let t271 = I::fma(t253, t253, t267);
     let t272 = t266 + t267;
     let t273 = t268 - t263;
     let t274 = t263 + t268;
-    let t275 = fma(-qd[6], t251, t269);
+    let t275 = I::fma(-qd[6], t251, t269);
     let t276 = t249 + t275;
-    let t277 = fma(qd[6], t251, t269);
+    let t277 = I::fma(qd[6], t251, t269);
     let t278 = t277 - t249;
     let t279 = t270 - t262;
     let t280 = t262 + t270;
     let t281 = 0.002573605371338203 * t271;
-    let t282 = fma(0.0020344399586617965, t273, -t281);
+    let t282 = I::fma(0.0020344399586617965, t273, -t281);
     let t283 = 0.0020344399586617965 * t272;
-    let t284 = fma(0.002573605371338203, t274, -t283);
+    let t284 = I::fma(0.002573605371338203, t274, -t283);
     let t285 = 0.002573605371338203 * t278;
-    let t286 = fma(0.0020344399586617965, t280, t285);
+    let t286 = I::fma(0.0020344399586617965, t280, t285);
     let t287 = 0.0024209437785212284 * t262;
-    let t288 = fma(-0.000475290707216318, t274, t287);
-    let t289 = fma(0.001465108718315752, t278, t288);
-    let t290 = fma(t253, t253, -t267);
-    let t291 = fma(-0.000868179230143692, t290, t289);
-    let t292 = fma(0.007634651967360946, t270, t291);
+    let t288 = I::fma(-0.000475290707216318, t274, t287);
+    let t289 = I::fma(0.001465108718315752, t278, t288);
+    let t290 = I::fma(t253, t253, -t267);
+    let t291 = I::fma(-0.000868179230143692, t290, t289);
+    let t292 = I::fma(0.007634651967360946, t270, t291);
     let t293 = 0.000868179230143692 * t273;
-    let t294 = fma(-0.001465108718315752, t280, t293);
+    let t294 = I::fma(-0.001465108718315752, t280, t293);
     let t295 = t267 - t266;
-    let t296 = fma(-0.000475290707216318, t295, t294);
-    let t297 = fma(-0.005213708188839717, t269, t296);
+    let t296 = I::fma(-0.000475290707216318, t295, t294);
+    let t297 = I::fma(-0.005213708188839717, t269, t296);
     let t298 = 0.007634651967360946 * t263;
-    let t299 = fma(-0.000868179230143692, t276, t298);
-    let t300 = fma(0.000475290707216318, t279, t299);
-    let t301 = fma(-t253, t253, t266);
-    let t302 = fma(-0.001465108718315752, t301, t300);
-    let t303 = fma(-0.0024209437785212284, t268, t302);
-    let t304 = fma(-0.0020344399586617965, t246, t292);
-    let t305 = fma(0.002573605371338203, t246, t297);
+    let t299 = I::fma(-0.000868179230143692, t276, t298);
+    let t300 = I::fma(0.000475290707216318, t279, t299);
+    let t301 = I::fma(-t253, t253, t266);
+    let t302 = I::fma(-0.001465108718315752, t301, t300);
+    let t303 = I::fma(-0.0024209437785212284, t268, t302);
+    let t304 = I::fma(-0.0020344399586617965, t246, t292);
+    let t305 = I::fma(0.002573605371338203, t246, t297);
     let t306 = t265 + t303;
-    let t307 = fma(0.7071067811865476, q[7], 0.006717514421272202);
+    let t307 = I::fma(0.7071067811865476, q[7], 0.006717514421272202);
     let t308 = t273 - t271;
     let t309 = t274 - t272;
     let t310 = t278 + t280;
     let t311 = 1.4142135623730951 * qd[7];
     let t312 = t251 - t253;
-    let t313 = fma(t311, t312, -t246);
-    let t314 = fma(t307, t310, t313);
+    let t313 = I::fma(t311, t312, -t246);
+    let t314 = I::fma(t307, t310, t313);
     let t315 = 0.7071067811865476 * qdd[7];
-    let t316 = fma(-t259, t311, t315);
-    let t317 = fma(t307, t308, t316);
+    let t316 = I::fma(-t259, t311, t315);
+    let t317 = I::fma(t307, t308, t316);
     let t318 = t255 + t317;
-    let t319 = fma(t259, t311, t315);
-    let t320 = fma(t307, t309, t319);
+    let t319 = I::fma(t259, t311, t315);
+    let t320 = I::fma(t307, t309, t319);
     let t321 = t257 + t320;
     let t322 = 0.015 * t321;
     let t323 = 0.015 * t314;
-    let t324 = fma(0.7071067811865476, q[8], 0.006717514421272202);
+    let t324 = I::fma(0.7071067811865476, q[8], 0.006717514421272202);
     let t325 = 1.4142135623730951 * qd[8];
     let t326 = t253 - t251;
-    let t327 = fma(t325, t326, -t246);
-    let t328 = fma(-t310, t324, t327);
+    let t327 = I::fma(t325, t326, -t246);
+    let t328 = I::fma(-t310, t324, t327);
     let t329 = 0.7071067811865476 * qdd[8];
-    let t330 = fma(t259, t325, -t329);
-    let t331 = fma(-t308, t324, t330);
+    let t330 = I::fma(t259, t325, -t329);
+    let t331 = I::fma(-t308, t324, t330);
     let t332 = t255 + t331;
-    let t333 = fma(t259, t325, t329);
-    let t334 = fma(t309, t324, t333);
+    let t333 = I::fma(t259, t325, t329);
+    let t334 = I::fma(t309, t324, t333);
     let t335 = t257 - t334;
     let t336 = 0.015 * t335;
     let t337 = 0.015 * t328;
     let t338 = t332 + t335;
     let t339 = 0.010606601717798213 * t338;
     let t340 = -t339;
-    let t341 = fma(-0.015, t332, t336);
-    let t342 = fma(-t324, t337, t304);
-    let t343 = fma(t324, t337, t305);
-    let t344 = fma(-t324, t341, t306);
-    let t345 = fma(0.015, t332, t282);
+    let t341 = I::fma(-0.015, t332, t336);
+    let t342 = I::fma(-t324, t337, t304);
+    let t343 = I::fma(t324, t337, t305);
+    let t344 = I::fma(-t324, t341, t306);
+    let t345 = I::fma(0.015, t332, t282);
     let t346 = t284 + t336;
     let t347 = t286 + t337;
     let t348 = t318 + t321;
     let t349 = 0.010606601717798213 * t348;
-    let t350 = fma(-0.015, t318, t322);
-    let t351 = fma(t307, t323, t342);
-    let t352 = fma(-t307, t323, t343);
-    let t353 = fma(t307, t350, t344);
-    let t354 = fma(0.015, t318, t345);
+    let t350 = I::fma(-0.015, t318, t322);
+    let t351 = I::fma(t307, t323, t342);
+    let t352 = I::fma(-t307, t323, t343);
+    let t353 = I::fma(t307, t350, t344);
+    let t354 = I::fma(0.015, t318, t345);
     let t355 = t322 + t346;
     let t356 = t323 + t347;
     let t357 = c[6] * t354;
-    let t358 = fma(-s[6], t355, t357);
+    let t358 = I::fma(-s[6], t355, t357);
     let t359 = s[6] * t354;
-    let t360 = fma(c[6], t355, t359);
+    let t360 = I::fma(c[6], t355, t359);
     let t361 = s[6] * t351;
-    let t362 = fma(c[6], t352, t361);
-    let t363 = fma(0.05141124721066731, t218, t234);
-    let t364 = fma(-0.00010375891721868492, t223, t363);
-    let t365 = fma(0.0088313764694922, t211, t364);
-    let t366 = fma(0.014311914382675317, t226, t213);
+    let t362 = I::fma(c[6], t352, t361);
+    let t363 = I::fma(0.05141124721066731, t218, t234);
+    let t364 = I::fma(-0.00010375891721868492, t223, t363);
+    let t365 = I::fma(0.0088313764694922, t211, t364);
+    let t366 = I::fma(0.014311914382675317, t226, t213);
     let t367 = t365 - t366;
-    let t368 = fma(c[6], t351, t367);
-    let t369 = fma(-s[6], t352, t368);
-    let t370 = fma(-0.19039999999999999, t360, t369);
-    let t371 = fma(0.04257987074117511, t217, t236);
-    let t372 = fma(9.3569097314605e-5, t222, t371);
-    let t373 = fma(0.014311914382675317, t228, -t372);
-    let t374 = fma(-0.229207552695, t147, t373);
+    let t368 = I::fma(c[6], t351, t367);
+    let t369 = I::fma(-s[6], t352, t368);
+    let t370 = I::fma(-0.19039999999999999, t360, t369);
+    let t371 = I::fma(0.04257987074117511, t217, t236);
+    let t372 = I::fma(9.3569097314605e-5, t222, t371);
+    let t373 = I::fma(0.014311914382675317, t228, -t372);
+    let t374 = I::fma(-0.229207552695, t147, t373);
     let t375 = t374 - t353;
-    let t376 = fma(-0.088, t360, t375);
-    let t377 = fma(0.05141124721066731, t212, -t238);
-    let t378 = fma(0.014311914382675317, t237, t377);
-    let t379 = fma(9.3569097314605e-5, t225, t378);
-    let t380 = fma(0.00010375891721868492, t227, t379);
-    let t381 = fma(0.229207552695, t209, t380);
-    let t382 = fma(0.168842705569, t207, t381);
-    let t383 = fma(-0.088, t356, t382);
+    let t376 = I::fma(-0.088, t360, t375);
+    let t377 = I::fma(0.05141124721066731, t212, -t238);
+    let t378 = I::fma(0.014311914382675317, t237, t377);
+    let t379 = I::fma(9.3569097314605e-5, t225, t378);
+    let t380 = I::fma(0.00010375891721868492, t227, t379);
+    let t381 = I::fma(0.229207552695, t209, t380);
+    let t382 = I::fma(0.168842705569, t207, t381);
+    let t383 = I::fma(-0.088, t356, t382);
     let t384 = t362 + t383;
-    let t385 = fma(0.19039999999999999, t358, t384);
+    let t385 = I::fma(0.19039999999999999, t358, t384);
     let t386 = t358 - t230;
     let t387 = t232 - t356;
     let t388 = c[5] * t370;
-    let t389 = fma(-s[5], t376, t388);
+    let t389 = I::fma(-s[5], t376, t388);
     let t390 = s[5] * t370;
-    let t391 = fma(c[5], t376, t390);
+    let t391 = I::fma(c[5], t376, t390);
     let t392 = t195 + t389;
     let t393 = t196 - t385;
     let t394 = t197 + t391;
-    let t395 = fma(-s[5], t387, t173);
-    let t396 = fma(c[5], t386, t395);
-    let t397 = fma(0.229207552695, t226, t175);
-    let t398 = fma(-0.168842705569, t228, t397);
+    let t395 = I::fma(-s[5], t387, t173);
+    let t396 = I::fma(c[5], t386, t395);
+    let t397 = I::fma(0.229207552695, t226, t175);
+    let t398 = I::fma(-0.168842705569, t228, t397);
     let t399 = t360 + t398;
-    let t400 = fma(c[5], t387, t177);
-    let t401 = fma(s[5], t386, t400);
+    let t400 = I::fma(c[5], t387, t177);
+    let t401 = I::fma(s[5], t386, t400);
     let t402 = s[4] * t399;
-    let t403 = fma(c[4], t396, t402);
+    let t403 = I::fma(c[4], t396, t402);
     let t404 = c[4] * t399;
-    let t405 = fma(s[4], t396, -t404);
+    let t405 = I::fma(s[4], t396, -t404);
     let t406 = 0.384 * t403;
-    let t407 = fma(-0.0016444875773692705, t124, t125);
-    let t408 = fma(-2.0010035536029998, t81, t407);
+    let t407 = I::fma(-0.0016444875773692705, t124, t125);
+    let t408 = I::fma(-2.0010035536029998, t81, t407);
     let t409 = t123 + t408;
-    let t410 = fma(-s[4], t393, t409);
-    let t411 = fma(c[4], t392, t410);
-    let t412 = fma(-0.384, t405, t411);
-    let t413 = fma(-0.10163189731363109, t104, t128);
-    let t414 = fma(-0.5503052746499999, t81, t126);
-    let t415 = fma(0.16189047268546083, t114, t413);
+    let t410 = I::fma(-s[4], t393, t409);
+    let t411 = I::fma(c[4], t392, t410);
+    let t412 = I::fma(-0.384, t405, t411);
+    let t413 = I::fma(-0.10163189731363109, t104, t128);
+    let t414 = I::fma(-0.5503052746499999, t81, t126);
+    let t415 = I::fma(0.16189047268546083, t114, t413);
     let t416 = t414 + t415;
     let t417 = t394 + t416;
-    let t418 = fma(-0.0825, t405, t417);
-    let t419 = fma(0.7451354997528139, t98, -t130);
-    let t420 = fma(0.16189047268546083, t129, t419);
-    let t421 = fma(-0.0039053550262761003, t113, t420);
-    let t422 = fma(-0.0016444875773692705, t110, t421);
+    let t418 = I::fma(-0.0825, t405, t417);
+    let t419 = I::fma(0.7451354997528139, t98, -t130);
+    let t420 = I::fma(0.16189047268546083, t129, t419);
+    let t421 = I::fma(-0.0039053550262761003, t113, t420);
+    let t422 = I::fma(-0.0016444875773692705, t110, t421);
     let t423 = t422 - t100;
-    let t424 = fma(-c[4], t393, t423);
-    let t425 = fma(-0.0825, t401, t424);
-    let t426 = fma(s[4], t392, t406);
+    let t424 = I::fma(-c[4], t393, t423);
+    let t425 = I::fma(-0.0825, t401, t424);
+    let t426 = I::fma(s[4], t392, t406);
     let t427 = t425 - t426;
     let t428 = t116 + t403;
     let t429 = t401 - t118;
     let t430 = t120 - t405;
     let t431 = c[3] * t429;
-    let t432 = fma(s[3], t428, t431);
-    let t433 = fma(0.1343923311482215, t59, t50);
-    let t434 = fma(0.005487648106562256, t64, t75);
-    let t435 = fma(0.011595864095166095, t48, t433);
-    let t436 = fma(0.00012191242095074308, t67, -t434);
+    let t432 = I::fma(s[3], t428, t431);
+    let t433 = I::fma(0.1343923311482215, t59, t50);
+    let t434 = I::fma(0.005487648106562256, t64, t75);
+    let t435 = I::fma(0.011595864095166095, t48, t433);
+    let t436 = I::fma(0.00012191242095074308, t67, -t434);
     let t437 = t435 + t436;
-    let t438 = fma(-s[3], t418, t437);
-    let t439 = fma(c[3], t412, t438);
-    let t440 = fma(0.004377257121839584, t63, -t77);
-    let t441 = fma(0.005487648106562256, t76, t51);
+    let t438 = I::fma(-s[3], t418, t437);
+    let t439 = I::fma(c[3], t412, t438);
+    let t440 = I::fma(0.004377257121839584, t63, -t77);
+    let t441 = I::fma(0.005487648106562256, t76, t51);
     let t442 = t440 - t441;
-    let t443 = fma(-0.00012191242095074308, t69, t442);
+    let t443 = I::fma(-0.00012191242095074308, t69, t442);
     let t444 = t443 - t427;
-    let t445 = fma(-0.0825, t432, t444);
-    let t446 = fma(0.1343923311482215, t49, -t79);
-    let t447 = fma(-0.00012191242095074308, t78, t446);
-    let t448 = fma(-0.004377257121839584, t66, t447);
-    let t449 = fma(0.005487648106562256, t68, t448);
+    let t445 = I::fma(-0.0825, t432, t444);
+    let t446 = I::fma(0.1343923311482215, t49, -t79);
+    let t447 = I::fma(-0.00012191242095074308, t78, t446);
+    let t448 = I::fma(-0.004377257121839584, t66, t447);
+    let t449 = I::fma(0.005487648106562256, t68, t448);
     let t450 = t53 + t449;
-    let t451 = fma(-0.0825, t430, t450);
-    let t452 = fma(c[3], t418, t451);
-    let t453 = fma(s[3], t412, t452);
-    let t454 = fma(-s[3], t429, t71);
-    let t455 = fma(c[3], t428, t454);
+    let t451 = I::fma(-0.0825, t430, t450);
+    let t452 = I::fma(c[3], t418, t451);
+    let t453 = I::fma(s[3], t412, t452);
+    let t454 = I::fma(-s[3], t429, t71);
+    let t455 = I::fma(c[3], t428, t454);
     let t456 = t73 - t430;
     let t457 = c[2] * t455;
-    let t458 = fma(-s[2], t456, t457);
+    let t458 = I::fma(-s[2], t456, t457);
     let t459 = s[2] * t455;
-    let t460 = fma(c[2], t456, t459);
+    let t460 = I::fma(c[2], t456, t459);
     let t461 = 0.316 * t460;
     let t462 = 0.316 * t458;
-    let t463 = fma(0.01026110182100817, t18, -t23);
-    let t464 = fma(-1.0674867322634767, t9, t22);
-    let t465 = fma(0.00398335888393552, t19, t463);
+    let t463 = I::fma(0.01026110182100817, t18, -t23);
+    let t464 = I::fma(-1.0674867322634767, t9, t22);
+    let t465 = I::fma(0.00398335888393552, t19, t463);
     let t466 = t464 + t465;
-    let t467 = fma(c[2], t439, t466);
-    let t468 = fma(s[2], t445, t461);
+    let t467 = I::fma(c[2], t439, t466);
+    let t468 = I::fma(s[2], t445, t461);
     let t469 = t467 - t468;
     let t470 = t28 - t453;
-    let t471 = fma(-0.01026110182100817, t1, t11);
-    let t472 = fma(-1.0674867322634767, t14, t30);
-    let t473 = fma(-0.00398335888393552, t31, t471);
+    let t471 = I::fma(-0.01026110182100817, t1, t11);
+    let t472 = I::fma(-1.0674867322634767, t14, t30);
+    let t473 = I::fma(-0.00398335888393552, t31, t471);
     let t474 = t472 + t473;
-    let t475 = fma(s[2], t439, t474);
-    let t476 = fma(c[2], t445, t462);
+    let t475 = I::fma(s[2], t439, t474);
+    let t476 = I::fma(c[2], t445, t462);
     let t477 = t475 + t476;
-    let t478 = fma(-c[1], t470, t0);
-    let t479 = fma(-s[1], t469, t478);
+    let t478 = I::fma(-c[1], t470, t0);
+    let t479 = I::fma(-s[1], t469, t478);
     [t479, t477, t453, t427, t394, t385, t353, t349, t340]
 }
 /// Inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton-Euler algorithm.
@@ -554,6 +587,11 @@ pub fn inverse_dynamics(
     qd: &[f64; DOF],
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { inverse_dynamics_avx2_fma(q, qd, qdd) };
+    }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     inverse_dynamics_sc(
         &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
@@ -563,44 +601,88 @@ pub fn inverse_dynamics(
         qdd,
     )
 }
+/// [`inverse_dynamics`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn inverse_dynamics_avx2_fma(
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+    qdd: &[f64; DOF],
+) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe {
+        inverse_dynamics_sc_avx2_fma(
+            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
+            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
+            q,
+            qd,
+            qdd,
+        )
+    }
+}
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 509 ops: 129 add, 104 sub, 268 mul, 0 div, 8 neg, 0 sqrt, 0 sin_cos; 169 fused multiply-adds, 354 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read. `q` is read for the prismatic joints only.
+pub fn mass_matrix_sc(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    q: &[f64; DOF],
+) -> [[f64; DOF]; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { mass_matrix_sc_avx2_fma(s, c, q) };
+    }
+    mass_matrix_sc_on::<Baseline>(s, c, q)
+}
+/// [`mass_matrix_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn mass_matrix_sc_avx2_fma(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    q: &[f64; DOF],
+) -> [[f64; DOF]; DOF] {
+    mass_matrix_sc_on::<Avx2Fma>(s, c, q)
+}
+/// The body of [`mass_matrix_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn mass_matrix_sc(
+fn mass_matrix_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
     q: &[f64; DOF],
 ) -> [[f64; DOF]; DOF] {
-    let t0 = fma(0.7071067811865476, q[7], 0.006717514421272202);
-    let t1 = fma(0.7071067811865476, q[8], 0.006717514421272202);
+    let t0 = I::fma(0.7071067811865476, q[7], 0.006717514421272202);
+    let t1 = I::fma(0.7071067811865476, q[8], 0.006717514421272202);
     let t2 = t1 * t1;
     let t3 = 0.015 * t2;
-    let t4 = fma(-0.015, t1, 0.002573605371338203);
-    let t5 = fma(-0.015, t1, 0.0020344399586617965);
+    let t4 = I::fma(-0.015, t1, 0.002573605371338203);
+    let t5 = I::fma(-0.015, t1, 0.0020344399586617965);
     let t6 = 0.0024209437785212284 + t3;
-    let t7 = fma(0.03, t2, 0.007634651967360946);
+    let t7 = I::fma(0.03, t2, 0.007634651967360946);
     let t8 = t3 + 0.001465108718315752;
     let t9 = t0 * t0;
-    let t10 = fma(0.015, t0, t4);
-    let t11 = fma(0.015, t0, t5);
-    let t12 = fma(0.015, t9, t6);
-    let t13 = fma(0.015, t9, t3);
-    let t14 = fma(0.03, t9, t7);
-    let t15 = fma(0.015, t9, t8);
+    let t10 = I::fma(0.015, t0, t4);
+    let t11 = I::fma(0.015, t0, t5);
+    let t12 = I::fma(0.015, t9, t6);
+    let t13 = I::fma(0.015, t9, t3);
+    let t14 = I::fma(0.03, t9, t7);
+    let t15 = I::fma(0.015, t9, t8);
     let t16 = c[6] * t10;
     let t17 = s[6] * t11;
     let t18 = t16 - t17;
     let t19 = s[6] * t10;
-    let t20 = fma(c[6], t11, t19);
+    let t20 = I::fma(c[6], t11, t19);
     let t21 = c[6] * c[6];
     let t22 = s[6] * s[6];
     let t23 = s[6] * c[6];
@@ -608,107 +690,107 @@ pub fn mass_matrix_sc(
     let t25 = t21 - t22;
     let t26 = t12 - t13;
     let t27 = 0.000868179230143692 * s[6];
-    let t28 = fma(-0.000475290707216318, c[6], t27);
+    let t28 = I::fma(-0.000475290707216318, c[6], t27);
     let t29 = 0.000475290707216318 * s[6];
-    let t30 = fma(0.000868179230143692, c[6], t29);
+    let t30 = I::fma(0.000868179230143692, c[6], t29);
     let t31 = t22 * t26;
     let t32 = t23 * t26;
-    let t33 = fma(0.19039999999999999, t20, t30);
+    let t33 = I::fma(0.19039999999999999, t20, t30);
     let t34 = t14 + 0.00023232000000000003;
-    let t35 = fma(0.176, t18, t34);
+    let t35 = I::fma(0.176, t18, t34);
     let t36 = t18 + 0.23184755269500001;
     let t37 = t13 + 0.05273113201066731;
-    let t38 = fma(-t15, t24, t37);
-    let t39 = fma(0.176, t18, t31);
+    let t38 = I::fma(-t15, t24, t37);
+    let t39 = I::fma(0.176, t18, t31);
     let t40 = t38 + t39;
-    let t41 = fma(0.000475290707216318, c[6], 0.014814570382675318);
+    let t41 = I::fma(0.000475290707216318, c[6], 0.014814570382675318);
     let t42 = t41 - t27;
-    let t43 = fma(0.19039999999999999, t18, t42);
-    let t44 = fma(t15, t25, 0.00010375891721868492);
-    let t45 = fma(-0.088, t20, t32);
+    let t43 = I::fma(0.19039999999999999, t18, t42);
+    let t44 = I::fma(t15, t25, 0.00010375891721868492);
+    let t45 = I::fma(-0.088, t20, t32);
     let t46 = t45 - t44;
     let t47 = 9.3569097314605e-5 + t33;
     let t48 = 0.174554705569 * s[5];
-    let t49 = fma(c[5], t36, t48);
+    let t49 = I::fma(c[5], t36, t48);
     let t50 = 0.174554705569 * c[5];
-    let t51 = fma(s[5], t36, -t50);
+    let t51 = I::fma(s[5], t36, -t50);
     let t52 = c[5] * c[5];
     let t53 = s[5] * s[5];
     let t54 = s[5] * c[5];
     let t55 = 2.0 * t54;
     let t56 = t52 - t53;
     let t57 = t13 + 0.0099189412694922;
-    let t58 = fma(t15, t24, t57);
-    let t59 = fma(t21, t26, t58);
+    let t58 = I::fma(t15, t24, t57);
+    let t59 = I::fma(t21, t26, t58);
     let t60 = t59 - t35;
     let t61 = s[5] * t47;
-    let t62 = fma(c[5], t46, -t61);
+    let t62 = I::fma(c[5], t46, -t61);
     let t63 = c[5] * t47;
-    let t64 = fma(s[5], t46, t63);
-    let t65 = fma(-c[5], t46, t61);
+    let t64 = I::fma(s[5], t46, t63);
+    let t65 = I::fma(-c[5], t46, t61);
     let t66 = t49 - 0.014653732538;
     let t67 = 0.067870631425 - t20;
     let t68 = 0.032786279263935514 + t35;
-    let t69 = fma(t43, t55, t68);
-    let t70 = fma(t53, t60, t69);
+    let t69 = I::fma(t43, t55, t68);
+    let t70 = I::fma(t53, t60, t69);
     let t71 = t65 - 0.0015152444733270301;
-    let t72 = fma(t43, t56, -0.004600245517563105);
-    let t73 = fma(t54, t60, t72);
+    let t72 = I::fma(t43, t56, -0.004600245517563105);
+    let t73 = I::fma(t54, t60, t72);
     let t74 = 0.0021640520520981297 - t64;
     let t75 = s[4] * t67;
-    let t76 = fma(c[4], t66, -t75);
+    let t76 = I::fma(c[4], t66, -t75);
     let t77 = c[4] * t67;
-    let t78 = fma(s[4], t66, t77);
+    let t78 = I::fma(s[4], t66, t77);
     let t79 = c[4] * c[4];
     let t80 = s[4] * s[4];
     let t81 = s[4] * c[4];
     let t82 = 2.0 * t81;
     let t83 = t79 - t80;
     let t84 = 0.029883967133882083 + t35;
-    let t85 = fma(t43, t55, t40);
-    let t86 = fma(t52, t60, t84);
+    let t85 = I::fma(t43, t55, t40);
+    let t86 = I::fma(t52, t60, t84);
     let t87 = t86 - t85;
     let t88 = c[4] * t73;
-    let t89 = fma(-s[4], t74, t88);
+    let t89 = I::fma(-s[4], t74, t88);
     let t90 = s[4] * t73;
-    let t91 = fma(c[4], t74, t90);
+    let t91 = I::fma(c[4], t74, t90);
     let t92 = 0.384 * t51;
-    let t93 = fma(-0.0825, t76, t92);
+    let t93 = I::fma(-0.0825, t76, t92);
     let t94 = 0.0825 * t78;
     let t95 = t70 + 0.0002041875000000004;
-    let t96 = fma(-0.165, t76, t95);
+    let t96 = I::fma(-0.165, t76, t95);
     let t97 = t76 - 0.5527802746499999;
     let t98 = t51 + 2.0125235536029997;
     let t99 = t40 + 0.7497633672528139;
-    let t100 = fma(t71, t82, t99);
-    let t101 = fma(t80, t87, t100);
-    let t102 = fma(2.0, t93, t101);
-    let t103 = fma(0.0825, t51, 0.16284087268546082);
-    let t104 = fma(-0.384, t76, t103);
+    let t100 = I::fma(t71, t82, t99);
+    let t101 = I::fma(t80, t87, t100);
+    let t102 = I::fma(2.0, t93, t101);
+    let t103 = I::fma(0.0825, t51, 0.16284087268546082);
+    let t104 = I::fma(-0.384, t76, t103);
     let t105 = t89 + t104;
-    let t106 = fma(-t81, t87, 0.0039053550262761003);
-    let t107 = fma(t71, t83, t94);
+    let t106 = I::fma(-t81, t87, 0.0039053550262761003);
+    let t107 = I::fma(t71, t83, t94);
     let t108 = t106 - t107;
-    let t109 = fma(0.384, t78, -0.0016444875773692705);
+    let t109 = I::fma(0.384, t78, -0.0016444875773692705);
     let t110 = t109 - t91;
     let t111 = s[3] * t98;
-    let t112 = fma(c[3], t97, -t111);
+    let t112 = I::fma(c[3], t97, -t111);
     let t113 = c[3] * t98;
-    let t114 = fma(s[3], t97, t113);
+    let t114 = I::fma(s[3], t97, t113);
     let t115 = c[3] * c[3];
     let t116 = s[3] * s[3];
     let t117 = s[3] * c[3];
     let t118 = 2.0 * t117;
     let t119 = t115 - t116;
     let t120 = t40 + 0.6479272824391829;
-    let t121 = fma(0.768, t51, t120);
-    let t122 = fma(t79, t87, t121);
-    let t123 = fma(t71, t82, t96);
+    let t121 = I::fma(0.768, t51, t120);
+    let t122 = I::fma(t79, t87, t121);
+    let t123 = I::fma(t71, t82, t96);
     let t124 = t122 - t123;
     let t125 = c[3] * t108;
-    let t126 = fma(-s[3], t110, t125);
+    let t126 = I::fma(-s[3], t110, t125);
     let t127 = s[3] * t108;
-    let t128 = fma(c[3], t110, t127);
+    let t128 = I::fma(c[3], t110, t127);
     let t129 = 0.165 * t112;
     let t130 = 0.0825 * t114;
     let t131 = t102 + t129;
@@ -716,55 +798,55 @@ pub fn mass_matrix_sc(
     let t133 = t112 + 0.746857959872;
     let t134 = 0.028227094878000014 + t78;
     let t135 = t96 + 0.1345965186482215;
-    let t136 = fma(t105, t118, t135);
-    let t137 = fma(t116, t124, t129);
+    let t136 = I::fma(t105, t118, t135);
+    let t137 = I::fma(t116, t124, t129);
     let t138 = t136 + t137;
     let t139 = t94 + 0.00012191242095074308;
-    let t140 = fma(s[3], t110, -t139);
+    let t140 = I::fma(s[3], t110, -t139);
     let t141 = t140 - t125;
-    let t142 = fma(t105, t119, -0.005487648106562256);
-    let t143 = fma(t117, t124, -t130);
+    let t142 = I::fma(t105, t119, -0.005487648106562256);
+    let t143 = I::fma(t117, t124, -t130);
     let t144 = t142 + t143;
     let t145 = t128 + 0.004377257121839584;
     let t146 = s[2] * t134;
-    let t147 = fma(c[2], t133, -t146);
+    let t147 = I::fma(c[2], t133, -t146);
     let t148 = c[2] * t134;
-    let t149 = fma(s[2], t133, t148);
+    let t149 = I::fma(s[2], t133, t148);
     let t150 = c[2] * c[2];
     let t151 = s[2] * s[2];
     let t152 = s[2] * c[2];
     let t153 = 2.0 * t152;
     let t154 = t150 - t151;
     let t155 = 0.011595864095166095 + t96;
-    let t156 = fma(-t105, t118, t155);
-    let t157 = fma(t115, t124, t156);
+    let t156 = I::fma(-t105, t118, t155);
+    let t157 = I::fma(t115, t124, t156);
     let t158 = t157 - t132;
     let t159 = c[2] * t144;
-    let t160 = fma(s[2], t145, t159);
+    let t160 = I::fma(s[2], t145, t159);
     let t161 = s[2] * t144;
-    let t162 = fma(-c[2], t145, t161);
-    let t163 = fma(0.632, t114, 1.1166381772533402);
+    let t162 = I::fma(-c[2], t145, t161);
+    let t163 = I::fma(0.632, t114, 1.1166381772533402);
     let t164 = t132 + t163;
-    let t165 = fma(t141, t153, t164);
-    let t166 = fma(t151, t158, t165);
-    let t167 = fma(0.316, t147, -0.00398335888393552);
+    let t165 = I::fma(t141, t153, t164);
+    let t166 = I::fma(t151, t158, t165);
+    let t167 = I::fma(0.316, t147, -0.00398335888393552);
     let t168 = t167 - t160;
-    let t169 = fma(t141, t154, 0.01026110182100817);
-    let t170 = fma(t152, t158, t169);
-    let t171 = fma(0.316, t149, 0.0007689361029464);
+    let t169 = I::fma(t141, t154, 0.01026110182100817);
+    let t170 = I::fma(t152, t158, t169);
+    let t171 = I::fma(0.316, t149, 0.0007689361029464);
     let t172 = t171 - t162;
     let t173 = s[1] * s[1];
     let t174 = s[1] * c[1];
     let t175 = 2.0 * t174;
-    let t176 = fma(0.632, t114, 1.0704824122634766);
+    let t176 = I::fma(0.632, t114, 1.0704824122634766);
     let t177 = t132 + t176;
-    let t178 = fma(t141, t153, t138);
-    let t179 = fma(t150, t158, t177);
+    let t178 = I::fma(t141, t153, t138);
+    let t179 = I::fma(t150, t158, t177);
     let t180 = t179 - t178;
     let t181 = s[1] * t170;
     let t182 = 0.03733744848940618 + t138;
-    let t183 = fma(t168, t175, t182);
-    let t184 = fma(t173, t180, t183);
+    let t183 = I::fma(t168, t175, t182);
+    let t184 = I::fma(t173, t180, t183);
     let t185 = s[1] * c[2];
     let t186 = s[1] * s[2];
     let t187 = 0.316 * s[1];
@@ -773,126 +855,126 @@ pub fn mass_matrix_sc(
     let t190 = 0.316 * c[2];
     let t191 = 0.316 * s[2];
     let t192 = c[1] * t138;
-    let t193 = fma(c[1], t172, t181);
+    let t193 = I::fma(c[1], t172, t181);
     let t194 = -t193;
-    let t195 = fma(-0.316, t147, t160);
+    let t195 = I::fma(-0.316, t147, t160);
     let t196 = t134 * t190;
-    let t197 = fma(t133, t191, t196);
+    let t197 = I::fma(t133, t191, t196);
     let t198 = t162 - t197;
-    let t199 = fma(-s[1], t195, t192);
-    let t200 = fma(0.0825, t112, t102);
+    let t199 = I::fma(-s[1], t195, t192);
+    let t200 = I::fma(0.0825, t112, t102);
     let t201 = s[2] * t126;
-    let t202 = fma(-c[2], t200, t201);
-    let t203 = fma(-t114, t190, t202);
+    let t202 = I::fma(-c[2], t200, t201);
+    let t203 = I::fma(-t114, t190, t202);
     let t204 = t126 * t185;
-    let t205 = fma(t186, t200, t204);
+    let t205 = I::fma(t186, t200, t204);
     let t206 = t114 * t188;
-    let t207 = fma(c[1], t128, -t206);
+    let t207 = I::fma(c[1], t128, -t206);
     let t208 = t207 - t205;
     let t209 = t20 - 0.067870631425;
     let t210 = c[4] * t209;
-    let t211 = fma(-s[4], t66, t210);
+    let t211 = I::fma(-s[4], t66, t210);
     let t212 = s[4] * t209;
-    let t213 = fma(c[4], t66, t212);
+    let t213 = I::fma(c[4], t66, t212);
     let t214 = 0.0825 * t213;
-    let t215 = fma(-0.384, t213, t89);
+    let t215 = I::fma(-0.384, t213, t89);
     let t216 = t70 - t214;
-    let t217 = fma(0.384, t211, t91);
+    let t217 = I::fma(0.384, t211, t91);
     let t218 = -t217;
     let t219 = c[3] * t211;
     let t220 = s[3] * t211;
     let t221 = s[3] * t216;
-    let t222 = fma(c[3], t215, -t221);
-    let t223 = fma(-0.0825, t220, t217);
-    let t224 = fma(c[3], t216, t214);
-    let t225 = fma(s[3], t215, t224);
+    let t222 = I::fma(c[3], t215, -t221);
+    let t223 = I::fma(-0.0825, t220, t217);
+    let t224 = I::fma(c[3], t216, t214);
+    let t225 = I::fma(s[3], t215, t224);
     let t226 = t191 * t213;
-    let t227 = fma(t190, t219, -t226);
-    let t228 = fma(c[2], t223, t227);
-    let t229 = fma(s[2], t222, t228);
+    let t227 = I::fma(t190, t219, -t226);
+    let t228 = I::fma(c[2], t223, t227);
+    let t229 = I::fma(s[2], t222, t228);
     let t230 = c[1] * t225;
     let t231 = t189 * t213;
-    let t232 = fma(t188, t219, t231);
-    let t233 = fma(t186, t223, t232);
-    let t234 = fma(-t185, t222, t230);
+    let t232 = I::fma(t188, t219, t231);
+    let t233 = I::fma(t186, t223, t232);
+    let t234 = I::fma(-t185, t222, t230);
     let t235 = t233 + t234;
-    let t236 = fma(-s[5], t36, t50);
+    let t236 = I::fma(-s[5], t36, t50);
     let t237 = c[4] * t236;
     let t238 = s[4] * t236;
     let t239 = s[4] * t40;
     let t240 = 0.0825 * t238;
     let t241 = 0.0825 * t49;
-    let t242 = fma(-0.384, t238, t239);
-    let t243 = fma(c[4], t62, t242);
+    let t242 = I::fma(-0.384, t238, t239);
+    let t243 = I::fma(c[4], t62, t242);
     let t244 = t64 - t240;
-    let t245 = fma(c[4], t40, -t241);
-    let t246 = fma(-0.384, t237, t245);
-    let t247 = fma(-s[4], t62, t246);
+    let t245 = I::fma(c[4], t40, -t241);
+    let t246 = I::fma(-0.384, t237, t245);
+    let t247 = I::fma(-s[4], t62, t246);
     let t248 = s[3] * t49;
-    let t249 = fma(c[3], t237, -t248);
+    let t249 = I::fma(c[3], t237, -t248);
     let t250 = c[3] * t49;
-    let t251 = fma(s[3], t237, t250);
+    let t251 = I::fma(s[3], t237, t250);
     let t252 = s[3] * t244;
-    let t253 = fma(c[3], t243, -t252);
-    let t254 = fma(0.0825, t251, t247);
-    let t255 = fma(c[3], t244, t240);
-    let t256 = fma(s[3], t243, t255);
+    let t253 = I::fma(c[3], t243, -t252);
+    let t254 = I::fma(0.0825, t251, t247);
+    let t255 = I::fma(c[3], t244, t240);
+    let t256 = I::fma(s[3], t243, t255);
     let t257 = t191 * t238;
-    let t258 = fma(t190, t249, -t257);
-    let t259 = fma(-c[2], t254, t258);
-    let t260 = fma(s[2], t253, t259);
+    let t258 = I::fma(t190, t249, -t257);
+    let t259 = I::fma(-c[2], t254, t258);
+    let t260 = I::fma(s[2], t253, t259);
     let t261 = c[1] * t256;
     let t262 = t189 * t238;
-    let t263 = fma(t188, t249, t262);
-    let t264 = fma(-t186, t254, t263);
-    let t265 = fma(-t185, t253, t261);
+    let t263 = I::fma(t188, t249, t262);
+    let t264 = I::fma(-t186, t254, t263);
+    let t265 = I::fma(-t185, t253, t261);
     let t266 = t264 + t265;
-    let t267 = fma(-0.19039999999999999, t18, t28);
-    let t268 = fma(0.088, t18, t14);
+    let t267 = I::fma(-0.19039999999999999, t18, t28);
+    let t268 = I::fma(0.088, t18, t14);
     let t269 = -t33;
     let t270 = c[5] * t20;
     let t271 = t17 - t16;
     let t272 = s[5] * t20;
     let t273 = c[5] * t267;
-    let t274 = fma(s[5], t268, t273);
+    let t274 = I::fma(s[5], t268, t273);
     let t275 = s[5] * t267;
-    let t276 = fma(-c[5], t268, t275);
+    let t276 = I::fma(-c[5], t268, t275);
     let t277 = s[4] * t271;
-    let t278 = fma(c[4], t270, t277);
+    let t278 = I::fma(c[4], t270, t277);
     let t279 = c[4] * t271;
-    let t280 = fma(-s[4], t270, t279);
-    let t281 = fma(s[4], t270, -t279);
+    let t280 = I::fma(-s[4], t270, t279);
+    let t281 = I::fma(s[4], t270, -t279);
     let t282 = s[4] * t33;
     let t283 = 0.0825 * t272;
-    let t284 = fma(0.384, t281, -t282);
-    let t285 = fma(c[4], t274, t284);
-    let t286 = fma(0.0825, t281, t276);
-    let t287 = fma(-c[4], t33, t283);
-    let t288 = fma(0.384, t278, t287);
-    let t289 = fma(-s[4], t274, t288);
+    let t284 = I::fma(0.384, t281, -t282);
+    let t285 = I::fma(c[4], t274, t284);
+    let t286 = I::fma(0.0825, t281, t276);
+    let t287 = I::fma(-c[4], t33, t283);
+    let t288 = I::fma(0.384, t278, t287);
+    let t289 = I::fma(-s[4], t274, t288);
     let t290 = s[3] * t272;
-    let t291 = fma(-c[3], t278, t290);
+    let t291 = I::fma(-c[3], t278, t290);
     let t292 = c[3] * t272;
-    let t293 = fma(s[3], t278, t292);
+    let t293 = I::fma(s[3], t278, t292);
     let t294 = c[3] * t285;
-    let t295 = fma(-s[3], t286, t294);
+    let t295 = I::fma(-s[3], t286, t294);
     let t296 = 0.0825 * t280;
-    let t297 = fma(-0.0825, t293, t289);
-    let t298 = fma(c[3], t286, t296);
-    let t299 = fma(s[3], t285, t298);
+    let t297 = I::fma(-0.0825, t293, t289);
+    let t298 = I::fma(c[3], t286, t296);
+    let t299 = I::fma(s[3], t285, t298);
     let t300 = t191 * t280;
-    let t301 = fma(t190, t291, -t300);
-    let t302 = fma(-c[2], t297, t301);
-    let t303 = fma(s[2], t295, t302);
+    let t301 = I::fma(t190, t291, -t300);
+    let t302 = I::fma(-c[2], t297, t301);
+    let t303 = I::fma(s[2], t295, t302);
     let t304 = c[1] * t299;
     let t305 = t189 * t280;
-    let t306 = fma(t188, t291, t305);
-    let t307 = fma(-t186, t297, t306);
-    let t308 = fma(-t185, t295, t304);
+    let t306 = I::fma(t188, t291, t305);
+    let t307 = I::fma(-t186, t297, t306);
+    let t308 = I::fma(-t185, t295, t304);
     let t309 = t307 + t308;
     let t310 = 0.010606601717798213 * c[6];
-    let t311 = fma(-0.010606601717798213, s[6], t310);
-    let t312 = fma(0.010606601717798213, s[6], t310);
+    let t311 = I::fma(-0.010606601717798213, s[6], t310);
+    let t312 = I::fma(0.010606601717798213, s[6], t310);
     let t313 = 0.19039999999999999 * t312;
     let t314 = 0.088 * t312;
     let t315 = 0.19039999999999999 * t311;
@@ -900,45 +982,45 @@ pub fn mass_matrix_sc(
     let t317 = c[5] * t311;
     let t318 = s[5] * t311;
     let t319 = s[5] * t314;
-    let t320 = fma(-c[5], t313, t319);
+    let t320 = I::fma(-c[5], t313, t319);
     let t321 = s[5] * t313;
-    let t322 = fma(c[5], t314, t321);
+    let t322 = I::fma(c[5], t314, t321);
     let t323 = -t322;
     let t324 = s[4] * t312;
-    let t325 = fma(c[4], t317, t324);
+    let t325 = I::fma(c[4], t317, t324);
     let t326 = c[4] * t312;
-    let t327 = fma(-s[4], t317, t326);
+    let t327 = I::fma(-s[4], t317, t326);
     let t328 = s[4] * t315;
-    let t329 = fma(c[4], t320, t328);
+    let t329 = I::fma(c[4], t320, t328);
     let t330 = c[4] * t315;
-    let t331 = fma(-s[4], t320, t330);
+    let t331 = I::fma(-s[4], t320, t330);
     let t332 = 0.0825 * t318;
-    let t333 = fma(0.384, t325, t332);
-    let t334 = fma(0.384, t327, t329);
-    let t335 = fma(0.0825, t327, -t322);
+    let t333 = I::fma(0.384, t325, t332);
+    let t334 = I::fma(0.384, t327, t329);
+    let t335 = I::fma(0.0825, t327, -t322);
     let t336 = t331 - t333;
     let t337 = s[3] * t318;
-    let t338 = fma(c[3], t325, -t337);
-    let t339 = fma(s[4], t317, -t326);
+    let t338 = I::fma(c[3], t325, -t337);
+    let t339 = I::fma(s[4], t317, -t326);
     let t340 = c[3] * t318;
-    let t341 = fma(s[3], t325, t340);
+    let t341 = I::fma(s[3], t325, t340);
     let t342 = s[3] * t335;
-    let t343 = fma(c[3], t334, -t342);
+    let t343 = I::fma(c[3], t334, -t342);
     let t344 = t333 - t331;
     let t345 = 0.0825 * t339;
-    let t346 = fma(-0.0825, t341, t344);
-    let t347 = fma(c[3], t335, t345);
-    let t348 = fma(s[3], t334, t347);
+    let t346 = I::fma(-0.0825, t341, t344);
+    let t347 = I::fma(c[3], t335, t345);
+    let t348 = I::fma(s[3], t334, t347);
     let t349 = -t348;
     let t350 = t191 * t339;
-    let t351 = fma(t190, t338, -t350);
-    let t352 = fma(c[2], t346, t351);
-    let t353 = fma(s[2], t343, t352);
+    let t351 = I::fma(t190, t338, -t350);
+    let t352 = I::fma(c[2], t346, t351);
+    let t353 = I::fma(s[2], t343, t352);
     let t354 = c[1] * t348;
     let t355 = t189 * t339;
-    let t356 = fma(t188, t338, t355);
-    let t357 = fma(t186, t346, t356);
-    let t358 = fma(-t185, t343, t354);
+    let t356 = I::fma(t188, t338, t355);
+    let t357 = I::fma(t186, t346, t356);
+    let t358 = I::fma(-t185, t343, t354);
     let t359 = t357 + t358;
     let t360 = -t353;
     let t361 = -t359;
@@ -962,6 +1044,11 @@ pub fn mass_matrix_sc(
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`mass_matrix_sc`].
 #[inline]
 pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { mass_matrix_avx2_fma(q) };
+    }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     mass_matrix_sc(
         &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
@@ -969,19 +1056,59 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
         q,
     )
 }
+/// [`mass_matrix`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn mass_matrix_avx2_fma(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe {
+        mass_matrix_sc_avx2_fma(
+            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
+            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
+            q,
+        )
+    }
+}
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 655 ops: 164 add, 152 sub, 337 mul, 0 div, 2 neg, 0 sqrt, 0 sin_cos; 208 fused multiply-adds, 458 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read. `q` is read for the prismatic joints only.
+pub fn bias_forces_sc(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { bias_forces_sc_avx2_fma(s, c, q, qd) };
+    }
+    bias_forces_sc_on::<Baseline>(s, c, q, qd)
+}
+/// [`bias_forces_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn bias_forces_sc_avx2_fma(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+) -> [f64; DOF] {
+    bias_forces_sc_on::<Avx2Fma>(s, c, q, qd)
+}
+/// The body of [`bias_forces_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn bias_forces_sc(
+fn bias_forces_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
     q: &[f64; DOF],
@@ -994,34 +1121,34 @@ pub fn bias_forces_sc(
     let t4 = qd[1] * t1;
     let t5 = qd[1] * t0;
     let t6 = 0.01993386669246 * c[1];
-    let t7 = fma(-32.71654662685272, s[1], t6);
+    let t7 = I::fma(-32.71654662685272, s[1], t6);
     let t8 = t0 * t0;
     let t9 = qd[1] * qd[1];
     let t10 = t0 * t1;
     let t11 = t8 + t9;
     let t12 = 0.01026110182100817 * t10;
-    let t13 = fma(-1.0674867322634767, t4, t12);
+    let t13 = I::fma(-1.0674867322634767, t4, t12);
     let t14 = 0.00796671776787104 * t5;
-    let t15 = fma(t1, t1, -t9);
+    let t15 = I::fma(t1, t1, -t9);
     let t16 = 0.00796671776787104 * t4;
-    let t17 = fma(-0.0007689361029464, t10, t16);
+    let t17 = I::fma(-0.0007689361029464, t10, t16);
     let t18 = t9 - t8;
-    let t19 = fma(0.01026110182100817, t18, t17);
-    let t20 = fma(0.046155764989863624, t5, t19);
-    let t21 = fma(-t1, t1, t8);
+    let t19 = I::fma(0.01026110182100817, t18, t17);
+    let t20 = I::fma(0.046155764989863624, t5, t19);
+    let t21 = I::fma(-t1, t1, t8);
     let t22 = 0.632 * t4;
-    let t23 = fma(0.316, t10, t2);
+    let t23 = I::fma(0.316, t10, t2);
     let t24 = t4 * c[2];
     let t25 = t4 * s[2];
     let t26 = qd[1] * s[2];
-    let t27 = fma(-t0, c[2], t26);
+    let t27 = I::fma(-t0, c[2], t26);
     let t28 = qd[1] * c[2];
-    let t29 = fma(t0, s[2], t28);
+    let t29 = I::fma(t0, s[2], t28);
     let t30 = s[2] * t22;
-    let t31 = fma(-c[2], t23, t30);
+    let t31 = I::fma(-c[2], t23, t30);
     let t32 = s[2] * t23;
-    let t33 = fma(c[2], t22, t32);
-    let t34 = fma(-0.316, t11, t3);
+    let t33 = I::fma(c[2], t22, t32);
+    let t34 = I::fma(-0.316, t11, t3);
     let t35 = qd[2] + t1;
     let t36 = qd[2] * t29;
     let t37 = qd[2] * t27;
@@ -1030,7 +1157,7 @@ pub fn bias_forces_sc(
     let t40 = 0.028227094878000014 * t34;
     let t41 = 0.744382959872 * t34;
     let t42 = 0.744382959872 * t33;
-    let t43 = fma(-0.028227094878000014, t31, t42);
+    let t43 = I::fma(-0.028227094878000014, t31, t42);
     let t44 = t27 * t27;
     let t45 = t29 * t29;
     let t46 = t35 * t35;
@@ -1048,11 +1175,11 @@ pub fn bias_forces_sc(
     let t58 = t49 + t50;
     let t59 = t38 + t49;
     let t60 = 0.028227094878000014 * t54;
-    let t61 = fma(-0.744382959872, t52, t60);
+    let t61 = I::fma(-0.744382959872, t52, t60);
     let t62 = 0.744382959872 * t55;
-    let t63 = fma(-0.028227094878000014, t53, t62);
+    let t63 = I::fma(-0.028227094878000014, t53, t62);
     let t64 = 0.011595864095166095 * t38;
-    let t65 = fma(-0.005487648106562256, t55, t64);
+    let t65 = I::fma(-0.005487648106562256, t55, t64);
     let t66 = t45 - t46;
     let t67 = 0.004377257121839584 * t66;
     let t68 = t46 - t44;
@@ -1060,30 +1187,30 @@ pub fn bias_forces_sc(
     let t70 = 0.1343923311482215 * t5;
     let t71 = 0.005487648106562256 * t58;
     let t72 = t44 - t45;
-    let t73 = fma(-0.0825, t52, t31);
-    let t74 = fma(0.0825, t55, t33);
-    let t75 = fma(0.0825, t57, t34);
+    let t73 = I::fma(-0.0825, t52, t31);
+    let t74 = I::fma(0.0825, t55, t33);
+    let t75 = I::fma(0.0825, t57, t34);
     let t76 = t5 * s[3];
-    let t77 = fma(t38, c[3], -t76);
+    let t77 = I::fma(t38, c[3], -t76);
     let t78 = t5 * c[3];
-    let t79 = fma(t38, s[3], t78);
+    let t79 = I::fma(t38, s[3], t78);
     let t80 = t27 * c[3];
-    let t81 = fma(t35, s[3], t80);
+    let t81 = I::fma(t35, s[3], t80);
     let t82 = t35 * c[3];
-    let t83 = fma(-t27, s[3], t82);
+    let t83 = I::fma(-t27, s[3], t82);
     let t84 = c[3] * t73;
-    let t85 = fma(s[3], t75, t84);
+    let t85 = I::fma(s[3], t75, t84);
     let t86 = c[3] * t75;
-    let t87 = fma(-s[3], t73, t86);
+    let t87 = I::fma(-s[3], t73, t86);
     let t88 = qd[3] - t29;
-    let t89 = fma(qd[3], t83, t77);
-    let t90 = fma(qd[3], t81, t79);
+    let t89 = I::fma(qd[3], t83, t77);
+    let t90 = I::fma(qd[3], t81, t79);
     let t91 = t81 * t81;
     let t92 = t88 * t88;
     let t93 = t81 * t83;
     let t94 = t81 * t88;
     let t95 = t83 * t88;
-    let t96 = fma(t83, t83, t92);
+    let t96 = I::fma(t83, t83, t92);
     let t97 = t91 + t92;
     let t98 = t39 + t93;
     let t99 = t51 + t93;
@@ -1092,12 +1219,12 @@ pub fn bias_forces_sc(
     let t102 = t95 - t89;
     let t103 = t89 + t95;
     let t104 = 0.5503052746499999 * t96;
-    let t105 = fma(2.0010035536029998, t98, t104);
+    let t105 = I::fma(2.0010035536029998, t98, t104);
     let t106 = 2.0010035536029998 * t97;
-    let t107 = fma(0.5503052746499999, t99, t106);
+    let t107 = I::fma(0.5503052746499999, t99, t106);
     let t108 = 2.0010035536029998 * t103;
-    let t109 = fma(-0.5503052746499999, t101, t108);
-    let t110 = fma(t83, t83, -t92);
+    let t109 = I::fma(-0.5503052746499999, t101, t108);
+    let t110 = I::fma(t83, t83, -t92);
     let t111 = 0.0016444875773692705 * t110;
     let t112 = 0.7451354997528139 * t95;
     let t113 = t92 - t91;
@@ -1105,33 +1232,33 @@ pub fn bias_forces_sc(
     let t115 = 0.10163189731363109 * t94;
     let t116 = 0.7451354997528139 * t51;
     let t117 = 0.0039053550262761003 * t102;
-    let t118 = fma(-t83, t83, t91);
+    let t118 = I::fma(-t83, t83, t91);
     let t119 = 0.0825 * t96;
-    let t120 = fma(0.384, t98, t119);
+    let t120 = I::fma(0.384, t98, t119);
     let t121 = 0.384 * t97;
-    let t122 = fma(0.0825, t99, t121);
+    let t122 = I::fma(0.0825, t99, t121);
     let t123 = 0.384 * t103;
-    let t124 = fma(-0.0825, t101, t123);
+    let t124 = I::fma(-0.0825, t101, t123);
     let t125 = t85 + t120;
     let t126 = t87 - t122;
     let t127 = t124 - t74;
     let t128 = t51 * s[4];
     let t129 = t51 * c[4];
     let t130 = t88 * s[4];
-    let t131 = fma(t81, c[4], -t130);
+    let t131 = I::fma(t81, c[4], -t130);
     let t132 = t88 * c[4];
-    let t133 = fma(t81, s[4], t132);
+    let t133 = I::fma(t81, s[4], t132);
     let t134 = c[4] * t125;
-    let t135 = fma(-s[4], t127, t134);
+    let t135 = I::fma(-s[4], t127, t134);
     let t136 = s[4] * t125;
-    let t137 = fma(c[4], t127, t136);
+    let t137 = I::fma(c[4], t127, t136);
     let t138 = qd[4] + t83;
-    let t139 = fma(qd[4], t133, t128);
-    let t140 = fma(t89, c[4], -t139);
-    let t141 = fma(qd[4], t131, t129);
-    let t142 = fma(t89, s[4], t141);
+    let t139 = I::fma(qd[4], t133, t128);
+    let t140 = I::fma(t89, c[4], -t139);
+    let t141 = I::fma(qd[4], t131, t129);
+    let t142 = I::fma(t89, s[4], t141);
     let t143 = 0.014653732538 * t137;
-    let t144 = fma(-0.067870631425, t135, t143);
+    let t144 = I::fma(-0.067870631425, t135, t143);
     let t145 = t131 * t131;
     let t146 = t133 * t133;
     let t147 = t138 * t138;
@@ -1147,52 +1274,52 @@ pub fn bias_forces_sc(
     let t157 = t140 + t150;
     let t158 = t140 - t150;
     let t159 = 0.014653732538 * t151;
-    let t160 = fma(0.067870631425, t153, t159);
+    let t160 = I::fma(0.067870631425, t153, t159);
     let t161 = 0.067870631425 * t152;
-    let t162 = fma(-0.014653732538, t154, t161);
+    let t162 = I::fma(-0.014653732538, t154, t161);
     let t163 = 0.067870631425 * t158;
-    let t164 = fma(-0.014653732538, t156, t163);
+    let t164 = I::fma(-0.014653732538, t156, t163);
     let t165 = 0.029883967133882083 * t140;
-    let t166 = fma(0.004600245517563105, t154, t165);
-    let t167 = fma(0.0015152444733270301, t156, t166);
+    let t166 = I::fma(0.004600245517563105, t154, t165);
+    let t167 = I::fma(0.0015152444733270301, t156, t166);
     let t168 = t146 - t147;
-    let t169 = fma(0.0021640520520981297, t168, t167);
-    let t170 = fma(-0.032786279263935514, t150, t169);
+    let t169 = I::fma(0.0021640520520981297, t168, t167);
+    let t170 = I::fma(-0.032786279263935514, t150, t169);
     let t171 = 0.0021640520520981297 * t153;
-    let t172 = fma(0.0015152444733270301, t158, t171);
+    let t172 = I::fma(0.0015152444733270301, t158, t171);
     let t173 = t147 - t145;
-    let t174 = fma(0.004600245517563105, t173, t172);
-    let t175 = fma(0.0029023121300534305, t149, t174);
+    let t174 = I::fma(0.004600245517563105, t173, t172);
+    let t175 = I::fma(0.0029023121300534305, t149, t174);
     let t176 = 0.032786279263935514 * t90;
-    let t177 = fma(0.0021640520520981297, t155, -t176);
-    let t178 = fma(-0.004600245517563105, t157, t177);
+    let t177 = I::fma(0.0021640520520981297, t155, -t176);
+    let t178 = I::fma(-0.004600245517563105, t157, t177);
     let t179 = t145 - t146;
-    let t180 = fma(-0.0015152444733270301, t179, t178);
-    let t181 = fma(0.029883967133882083, t148, t180);
-    let t182 = fma(0.067870631425, t126, t170);
-    let t183 = fma(0.014653732538, t126, -t175);
+    let t180 = I::fma(-0.0015152444733270301, t179, t178);
+    let t181 = I::fma(0.029883967133882083, t148, t180);
+    let t182 = I::fma(0.067870631425, t126, t170);
+    let t183 = I::fma(0.014653732538, t126, -t175);
     let t184 = t144 + t181;
     let t185 = t90 * s[5];
     let t186 = t90 * c[5];
     let t187 = t131 * c[5];
-    let t188 = fma(t138, s[5], t187);
+    let t188 = I::fma(t138, s[5], t187);
     let t189 = t138 * c[5];
-    let t190 = fma(-t131, s[5], t189);
+    let t190 = I::fma(-t131, s[5], t189);
     let t191 = t126 * s[5];
-    let t192 = fma(t135, c[5], t191);
+    let t192 = I::fma(t135, c[5], t191);
     let t193 = t126 * c[5];
-    let t194 = fma(-t135, s[5], t193);
+    let t194 = I::fma(-t135, s[5], t193);
     let t195 = qd[5] + t133;
-    let t196 = fma(qd[5], t190, -t185);
-    let t197 = fma(t140, c[5], t196);
-    let t198 = fma(qd[5], t188, t186);
-    let t199 = fma(t140, s[5], t198);
+    let t196 = I::fma(qd[5], t190, -t185);
+    let t197 = I::fma(t140, c[5], t196);
+    let t198 = I::fma(qd[5], t188, t186);
+    let t199 = I::fma(t140, s[5], t198);
     let t200 = t188 * t188;
     let t201 = t195 * t195;
     let t202 = t188 * t190;
     let t203 = t188 * t195;
     let t204 = t190 * t195;
-    let t205 = fma(t190, t190, t201);
+    let t205 = I::fma(t190, t190, t201);
     let t206 = t200 + t201;
     let t207 = t202 - t142;
     let t208 = t142 + t202;
@@ -1201,251 +1328,251 @@ pub fn bias_forces_sc(
     let t211 = t204 - t197;
     let t212 = t197 + t204;
     let t213 = 0.229207552695 * t205;
-    let t214 = fma(0.168842705569, t207, t213);
+    let t214 = I::fma(0.168842705569, t207, t213);
     let t215 = 0.168842705569 * t206;
-    let t216 = fma(0.229207552695, t208, t215);
-    let t217 = fma(t190, t190, -t201);
+    let t216 = I::fma(0.229207552695, t208, t215);
+    let t217 = I::fma(t190, t190, -t201);
     let t218 = 9.3569097314605e-5 * t217;
     let t219 = 0.05141124721066731 * t204;
     let t220 = t201 - t200;
     let t221 = 0.04257987074117511 * t203;
     let t222 = 0.05141124721066731 * t142;
-    let t223 = fma(-t190, t190, t200);
+    let t223 = I::fma(-t190, t190, t200);
     let t224 = 0.088 * t205;
-    let t225 = fma(0.19039999999999999, t207, t224);
+    let t225 = I::fma(0.19039999999999999, t207, t224);
     let t226 = 0.19039999999999999 * t206;
-    let t227 = fma(0.088, t208, t226);
+    let t227 = I::fma(0.088, t208, t226);
     let t228 = 0.088 * t210;
-    let t229 = fma(-0.19039999999999999, t212, t228);
+    let t229 = I::fma(-0.19039999999999999, t212, t228);
     let t230 = t192 - t225;
     let t231 = t194 + t227;
     let t232 = t137 + t229;
     let t233 = t142 * s[6];
     let t234 = t142 * c[6];
-    let t235 = fma(-t197, s[6], t234);
+    let t235 = I::fma(-t197, s[6], t234);
     let t236 = t195 * s[6];
-    let t237 = fma(t188, c[6], t236);
+    let t237 = I::fma(t188, c[6], t236);
     let t238 = t195 * c[6];
-    let t239 = fma(-t188, s[6], t238);
+    let t239 = I::fma(-t188, s[6], t238);
     let t240 = c[6] * t230;
-    let t241 = fma(s[6], t232, t240);
+    let t241 = I::fma(s[6], t232, t240);
     let t242 = c[6] * t232;
-    let t243 = fma(-s[6], t230, t242);
+    let t243 = I::fma(-s[6], t230, t242);
     let t244 = qd[6] - t189;
-    let t245 = fma(t131, s[5], t244);
-    let t246 = fma(qd[6], t239, t233);
-    let t247 = fma(t197, c[6], t246);
+    let t245 = I::fma(t131, s[5], t244);
+    let t246 = I::fma(qd[6], t239, t233);
+    let t247 = I::fma(t197, c[6], t246);
     let t248 = 0.002573605371338203 * t243;
-    let t249 = fma(-0.0020344399586617965, t241, t248);
+    let t249 = I::fma(-0.0020344399586617965, t241, t248);
     let t250 = t237 * t237;
     let t251 = t245 * t245;
     let t252 = t237 * t239;
     let t253 = t237 * t245;
     let t254 = t239 * t245;
-    let t255 = fma(t239, t239, t251);
+    let t255 = I::fma(t239, t239, t251);
     let t256 = t250 + t251;
     let t257 = t252 - t199;
     let t258 = t199 + t252;
-    let t259 = fma(-qd[6], t237, t253);
+    let t259 = I::fma(-qd[6], t237, t253);
     let t260 = t235 + t259;
-    let t261 = fma(qd[6], t237, t253);
+    let t261 = I::fma(qd[6], t237, t253);
     let t262 = t261 - t235;
     let t263 = t254 - t247;
     let t264 = t247 + t254;
     let t265 = 0.002573605371338203 * t255;
-    let t266 = fma(0.0020344399586617965, t257, -t265);
+    let t266 = I::fma(0.0020344399586617965, t257, -t265);
     let t267 = 0.0020344399586617965 * t256;
-    let t268 = fma(0.002573605371338203, t258, -t267);
+    let t268 = I::fma(0.002573605371338203, t258, -t267);
     let t269 = 0.002573605371338203 * t262;
-    let t270 = fma(0.0020344399586617965, t264, t269);
+    let t270 = I::fma(0.0020344399586617965, t264, t269);
     let t271 = 0.0024209437785212284 * t247;
-    let t272 = fma(-0.000475290707216318, t258, t271);
-    let t273 = fma(0.001465108718315752, t262, t272);
-    let t274 = fma(t239, t239, -t251);
-    let t275 = fma(-0.000868179230143692, t274, t273);
-    let t276 = fma(0.007634651967360946, t254, t275);
+    let t272 = I::fma(-0.000475290707216318, t258, t271);
+    let t273 = I::fma(0.001465108718315752, t262, t272);
+    let t274 = I::fma(t239, t239, -t251);
+    let t275 = I::fma(-0.000868179230143692, t274, t273);
+    let t276 = I::fma(0.007634651967360946, t254, t275);
     let t277 = 0.000868179230143692 * t257;
-    let t278 = fma(-0.001465108718315752, t264, t277);
+    let t278 = I::fma(-0.001465108718315752, t264, t277);
     let t279 = t251 - t250;
-    let t280 = fma(-0.000475290707216318, t279, t278);
-    let t281 = fma(-0.005213708188839717, t253, t280);
+    let t280 = I::fma(-0.000475290707216318, t279, t278);
+    let t281 = I::fma(-0.005213708188839717, t253, t280);
     let t282 = 0.007634651967360946 * t199;
-    let t283 = fma(-0.000868179230143692, t260, t282);
-    let t284 = fma(0.000475290707216318, t263, t283);
-    let t285 = fma(-t239, t239, t250);
-    let t286 = fma(-0.001465108718315752, t285, t284);
-    let t287 = fma(-0.0024209437785212284, t252, t286);
-    let t288 = fma(-0.0020344399586617965, t231, t276);
-    let t289 = fma(0.002573605371338203, t231, t281);
+    let t283 = I::fma(-0.000868179230143692, t260, t282);
+    let t284 = I::fma(0.000475290707216318, t263, t283);
+    let t285 = I::fma(-t239, t239, t250);
+    let t286 = I::fma(-0.001465108718315752, t285, t284);
+    let t287 = I::fma(-0.0024209437785212284, t252, t286);
+    let t288 = I::fma(-0.0020344399586617965, t231, t276);
+    let t289 = I::fma(0.002573605371338203, t231, t281);
     let t290 = t249 + t287;
-    let t291 = fma(0.7071067811865476, q[7], 0.006717514421272202);
+    let t291 = I::fma(0.7071067811865476, q[7], 0.006717514421272202);
     let t292 = t257 - t255;
     let t293 = t258 - t256;
     let t294 = t262 + t264;
-    let t295 = fma(t291, t294, -t231);
+    let t295 = I::fma(t291, t294, -t231);
     let t296 = 1.4142135623730951 * qd[7];
     let t297 = t245 * t296;
     let t298 = t237 - t239;
-    let t299 = fma(t291, t292, -t297);
+    let t299 = I::fma(t291, t292, -t297);
     let t300 = t241 + t299;
-    let t301 = fma(t291, t293, t297);
+    let t301 = I::fma(t291, t293, t297);
     let t302 = t243 + t301;
-    let t303 = fma(t296, t298, t295);
+    let t303 = I::fma(t296, t298, t295);
     let t304 = 0.015 * t302;
     let t305 = 0.015 * t303;
-    let t306 = fma(0.7071067811865476, q[8], 0.006717514421272202);
-    let t307 = fma(t294, t306, t231);
+    let t306 = I::fma(0.7071067811865476, q[8], 0.006717514421272202);
+    let t307 = I::fma(t294, t306, t231);
     let t308 = 1.4142135623730951 * qd[8];
     let t309 = t245 * t308;
     let t310 = t239 - t237;
-    let t311 = fma(-t292, t306, t309);
+    let t311 = I::fma(-t292, t306, t309);
     let t312 = t241 + t311;
-    let t313 = fma(t293, t306, t309);
+    let t313 = I::fma(t293, t306, t309);
     let t314 = t243 - t313;
-    let t315 = fma(t308, t310, -t307);
+    let t315 = I::fma(t308, t310, -t307);
     let t316 = 0.015 * t314;
     let t317 = 0.015 * t315;
     let t318 = t312 + t314;
     let t319 = 0.010606601717798213 * t318;
     let t320 = -t319;
-    let t321 = fma(-0.015, t312, t316);
-    let t322 = fma(-t306, t317, t288);
-    let t323 = fma(t306, t317, t289);
-    let t324 = fma(-t306, t321, t290);
-    let t325 = fma(0.015, t312, t266);
+    let t321 = I::fma(-0.015, t312, t316);
+    let t322 = I::fma(-t306, t317, t288);
+    let t323 = I::fma(t306, t317, t289);
+    let t324 = I::fma(-t306, t321, t290);
+    let t325 = I::fma(0.015, t312, t266);
     let t326 = t268 + t316;
     let t327 = t270 + t317;
     let t328 = t300 + t302;
     let t329 = 0.010606601717798213 * t328;
-    let t330 = fma(-0.015, t300, t304);
-    let t331 = fma(t291, t305, t322);
-    let t332 = fma(-t291, t305, t323);
-    let t333 = fma(t291, t330, t324);
-    let t334 = fma(0.015, t300, t325);
+    let t330 = I::fma(-0.015, t300, t304);
+    let t331 = I::fma(t291, t305, t322);
+    let t332 = I::fma(-t291, t305, t323);
+    let t333 = I::fma(t291, t330, t324);
+    let t334 = I::fma(0.015, t300, t325);
     let t335 = t304 + t326;
     let t336 = t305 + t327;
     let t337 = c[6] * t334;
-    let t338 = fma(-s[6], t335, t337);
+    let t338 = I::fma(-s[6], t335, t337);
     let t339 = s[6] * t334;
-    let t340 = fma(c[6], t335, t339);
+    let t340 = I::fma(c[6], t335, t339);
     let t341 = s[6] * t331;
-    let t342 = fma(c[6], t332, t341);
-    let t343 = fma(-0.00010375891721868492, t208, t219);
-    let t344 = fma(0.0088313764694922, t197, t218);
-    let t345 = fma(-0.014311914382675317, t210, t343);
-    let t346 = fma(-0.168842705569, t137, t344);
+    let t342 = I::fma(c[6], t332, t341);
+    let t343 = I::fma(-0.00010375891721868492, t208, t219);
+    let t344 = I::fma(0.0088313764694922, t197, t218);
+    let t345 = I::fma(-0.014311914382675317, t210, t343);
+    let t346 = I::fma(-0.168842705569, t137, t344);
     let t347 = t345 + t346;
-    let t348 = fma(c[6], t331, t347);
-    let t349 = fma(-s[6], t332, t348);
-    let t350 = fma(-0.19039999999999999, t340, t349);
-    let t351 = fma(9.3569097314605e-5, t207, t221);
-    let t352 = fma(0.00010375891721868492, t220, t351);
-    let t353 = fma(0.014311914382675317, t212, -t352);
-    let t354 = fma(-0.229207552695, t137, t353);
+    let t348 = I::fma(c[6], t331, t347);
+    let t349 = I::fma(-s[6], t332, t348);
+    let t350 = I::fma(-0.19039999999999999, t340, t349);
+    let t351 = I::fma(9.3569097314605e-5, t207, t221);
+    let t352 = I::fma(0.00010375891721868492, t220, t351);
+    let t353 = I::fma(0.014311914382675317, t212, -t352);
+    let t354 = I::fma(-0.229207552695, t137, t353);
     let t355 = t354 - t333;
-    let t356 = fma(-0.088, t340, t355);
-    let t357 = fma(-0.0088313764694922, t202, t222);
-    let t358 = fma(0.014311914382675317, t223, t357);
-    let t359 = fma(9.3569097314605e-5, t209, t358);
-    let t360 = fma(0.00010375891721868492, t211, t359);
-    let t361 = fma(0.229207552695, t194, t360);
-    let t362 = fma(0.168842705569, t192, t361);
-    let t363 = fma(-0.088, t336, t362);
+    let t356 = I::fma(-0.088, t340, t355);
+    let t357 = I::fma(-0.0088313764694922, t202, t222);
+    let t358 = I::fma(0.014311914382675317, t223, t357);
+    let t359 = I::fma(9.3569097314605e-5, t209, t358);
+    let t360 = I::fma(0.00010375891721868492, t211, t359);
+    let t361 = I::fma(0.229207552695, t194, t360);
+    let t362 = I::fma(0.168842705569, t192, t361);
+    let t363 = I::fma(-0.088, t336, t362);
     let t364 = t342 + t363;
-    let t365 = fma(0.19039999999999999, t338, t364);
+    let t365 = I::fma(0.19039999999999999, t338, t364);
     let t366 = t338 - t214;
     let t367 = t216 - t336;
     let t368 = c[5] * t350;
-    let t369 = fma(-s[5], t356, t368);
+    let t369 = I::fma(-s[5], t356, t368);
     let t370 = s[5] * t350;
-    let t371 = fma(c[5], t356, t370);
+    let t371 = I::fma(c[5], t356, t370);
     let t372 = t182 + t369;
     let t373 = t183 - t365;
     let t374 = t184 + t371;
-    let t375 = fma(-s[5], t367, t160);
-    let t376 = fma(c[5], t366, t375);
-    let t377 = fma(0.229207552695, t210, t162);
-    let t378 = fma(-0.168842705569, t212, t377);
+    let t375 = I::fma(-s[5], t367, t160);
+    let t376 = I::fma(c[5], t366, t375);
+    let t377 = I::fma(0.229207552695, t210, t162);
+    let t378 = I::fma(-0.168842705569, t212, t377);
     let t379 = t340 + t378;
-    let t380 = fma(c[5], t367, t164);
-    let t381 = fma(s[5], t366, t380);
+    let t380 = I::fma(c[5], t367, t164);
+    let t381 = I::fma(s[5], t366, t380);
     let t382 = s[4] * t379;
-    let t383 = fma(c[4], t376, t382);
+    let t383 = I::fma(c[4], t376, t382);
     let t384 = c[4] * t379;
-    let t385 = fma(s[4], t376, -t384);
+    let t385 = I::fma(s[4], t376, -t384);
     let t386 = 0.384 * t383;
-    let t387 = fma(0.0039053550262761003, t99, t112);
-    let t388 = fma(2.0010035536029998, t74, t111);
-    let t389 = fma(0.6435036024391828, t89, t387);
-    let t390 = fma(0.16189047268546083, t101, t388);
+    let t387 = I::fma(0.0039053550262761003, t99, t112);
+    let t388 = I::fma(2.0010035536029998, t74, t111);
+    let t389 = I::fma(0.6435036024391828, t89, t387);
+    let t390 = I::fma(0.16189047268546083, t101, t388);
     let t391 = t389 - t390;
-    let t392 = fma(-s[4], t373, t391);
-    let t393 = fma(c[4], t372, t392);
-    let t394 = fma(-0.384, t385, t393);
-    let t395 = fma(0.0016444875773692705, t98, -t115);
-    let t396 = fma(-0.5503052746499999, t74, t114);
+    let t392 = I::fma(-s[4], t373, t391);
+    let t393 = I::fma(c[4], t372, t392);
+    let t394 = I::fma(-0.384, t385, t393);
+    let t395 = I::fma(0.0016444875773692705, t98, -t115);
+    let t396 = I::fma(-0.5503052746499999, t74, t114);
     let t397 = t395 + t396;
-    let t398 = fma(0.16189047268546083, t103, t397);
+    let t398 = I::fma(0.16189047268546083, t103, t397);
     let t399 = t374 + t398;
-    let t400 = fma(-0.0825, t385, t399);
-    let t401 = fma(-0.6435036024391828, t93, t116);
-    let t402 = fma(0.16189047268546083, t118, t401);
-    let t403 = fma(-0.0016444875773692705, t100, t402);
-    let t404 = fma(0.5503052746499999, t87, t117);
-    let t405 = fma(-2.0010035536029998, t85, t403);
+    let t400 = I::fma(-0.0825, t385, t399);
+    let t401 = I::fma(-0.6435036024391828, t93, t116);
+    let t402 = I::fma(0.16189047268546083, t118, t401);
+    let t403 = I::fma(-0.0016444875773692705, t100, t402);
+    let t404 = I::fma(0.5503052746499999, t87, t117);
+    let t405 = I::fma(-2.0010035536029998, t85, t403);
     let t406 = t405 - t404;
-    let t407 = fma(-c[4], t373, t406);
-    let t408 = fma(-0.0825, t381, t407);
-    let t409 = fma(s[4], t372, t386);
+    let t407 = I::fma(-c[4], t373, t406);
+    let t408 = I::fma(-0.0825, t381, t407);
+    let t409 = I::fma(s[4], t372, t386);
     let t410 = t408 - t409;
     let t411 = t105 + t383;
     let t412 = t381 - t107;
     let t413 = t109 - t385;
     let t414 = c[3] * t412;
-    let t415 = fma(s[3], t411, t414);
-    let t416 = fma(0.1343923311482215, t49, t40);
-    let t417 = fma(0.00012191242095074308, t57, -t67);
+    let t415 = I::fma(s[3], t411, t414);
+    let t416 = I::fma(0.1343923311482215, t49, t40);
+    let t417 = I::fma(0.00012191242095074308, t57, -t67);
     let t418 = t65 + t416;
     let t419 = t417 + t418;
-    let t420 = fma(-s[3], t400, t419);
-    let t421 = fma(c[3], t394, t420);
-    let t422 = fma(0.004377257121839584, t54, -t69);
-    let t423 = fma(0.005487648106562256, t68, t41);
-    let t424 = fma(-0.00012191242095074308, t59, t422);
+    let t420 = I::fma(-s[3], t400, t419);
+    let t421 = I::fma(c[3], t394, t420);
+    let t422 = I::fma(0.004377257121839584, t54, -t69);
+    let t423 = I::fma(0.005487648106562256, t68, t41);
+    let t424 = I::fma(-0.00012191242095074308, t59, t422);
     let t425 = t424 - t423;
     let t426 = t425 - t410;
-    let t427 = fma(-0.0825, t415, t426);
-    let t428 = fma(0.011595864095166095, t47, t70);
-    let t429 = fma(0.00012191242095074308, t72, t428);
-    let t430 = fma(-0.004377257121839584, t56, t71);
+    let t427 = I::fma(-0.0825, t415, t426);
+    let t428 = I::fma(0.011595864095166095, t47, t70);
+    let t429 = I::fma(0.00012191242095074308, t72, t428);
+    let t430 = I::fma(-0.004377257121839584, t56, t71);
     let t431 = t43 - t429;
     let t432 = t430 + t431;
-    let t433 = fma(-0.0825, t413, t432);
-    let t434 = fma(c[3], t400, t433);
-    let t435 = fma(s[3], t394, t434);
-    let t436 = fma(-s[3], t412, t61);
-    let t437 = fma(c[3], t411, t436);
+    let t433 = I::fma(-0.0825, t413, t432);
+    let t434 = I::fma(c[3], t400, t433);
+    let t435 = I::fma(s[3], t394, t434);
+    let t436 = I::fma(-s[3], t412, t61);
+    let t437 = I::fma(c[3], t411, t436);
     let t438 = t63 - t413;
     let t439 = c[2] * t437;
-    let t440 = fma(-s[2], t438, t439);
+    let t440 = I::fma(-s[2], t438, t439);
     let t441 = s[2] * t437;
-    let t442 = fma(c[2], t438, t441);
+    let t442 = I::fma(c[2], t438, t441);
     let t443 = 0.316 * t442;
     let t444 = 0.316 * t440;
-    let t445 = fma(1.1136424972533403, t4, t14);
-    let t446 = fma(0.0007689361029464, t15, t13);
+    let t445 = I::fma(1.1136424972533403, t4, t14);
+    let t446 = I::fma(0.0007689361029464, t15, t13);
     let t447 = t446 - t445;
-    let t448 = fma(c[2], t421, t447);
-    let t449 = fma(s[2], t427, t443);
+    let t448 = I::fma(c[2], t421, t447);
+    let t449 = I::fma(s[2], t427, t443);
     let t450 = t448 - t449;
     let t451 = t20 - t435;
-    let t452 = fma(-1.0674867322634767, t10, t7);
-    let t453 = fma(-0.00398335888393552, t21, t452);
-    let t454 = fma(s[2], t421, t453);
-    let t455 = fma(c[2], t427, t444);
+    let t452 = I::fma(-1.0674867322634767, t10, t7);
+    let t453 = I::fma(-0.00398335888393552, t21, t452);
+    let t454 = I::fma(s[2], t421, t453);
+    let t455 = I::fma(c[2], t427, t444);
     let t456 = t454 + t455;
     let t457 = c[1] * t451;
-    let t458 = fma(s[1], t450, t457);
+    let t458 = I::fma(s[1], t450, t457);
     let t459 = -t458;
     [t459, t456, t435, t410, t374, t365, t333, t329, t320]
 }
@@ -1457,6 +1584,11 @@ pub fn bias_forces_sc(
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`bias_forces_sc`].
 #[inline]
 pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { bias_forces_avx2_fma(q, qd) };
+    }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     bias_forces_sc(
         &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
@@ -1465,93 +1597,132 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
         qd,
     )
 }
+/// [`bias_forces`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn bias_forces_avx2_fma(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe {
+        bias_forces_sc_avx2_fma(
+            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
+            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
+            q,
+            qd,
+        )
+    }
+}
 /// The gravity torques g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 116 ops: 25 add, 21 sub, 68 mul, 0 div, 2 neg, 0 sqrt, 0 sin_cos; 42 fused multiply-adds, 75 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read. `q` is read for the prismatic joints only.
+pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF], q: &[f64; DOF]) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { gravity_torques_sc_avx2_fma(s, c, q) };
+    }
+    gravity_torques_sc_on::<Baseline>(s, c, q)
+}
+/// [`gravity_torques_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn gravity_torques_sc_avx2_fma(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    q: &[f64; DOF],
+) -> [f64; DOF] {
+    gravity_torques_sc_on::<Avx2Fma>(s, c, q)
+}
+/// The body of [`gravity_torques_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF], q: &[f64; DOF]) -> [f64; DOF] {
+fn gravity_torques_sc_on<I: Isa>(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    q: &[f64; DOF],
+) -> [f64; DOF] {
     let t0 = q[7] - q[8];
     let t1 = 0.010606601717798213 * t0;
     let t2 = 9.81 * s[1];
     let t3 = 9.81 * c[1];
     let t4 = 0.01993386669246 * c[1];
-    let t5 = fma(-32.80954542685272, s[1], t4);
+    let t5 = I::fma(-32.80954542685272, s[1], t4);
     let t6 = t2 * c[2];
     let t7 = t2 * s[2];
     let t8 = 0.27690780075318017 * c[1];
     let t9 = 0.746857959872 * t7;
-    let t10 = fma(0.028227094878000014, t6, t9);
+    let t10 = I::fma(0.028227094878000014, t6, t9);
     let t11 = t3 * s[3];
-    let t12 = fma(-t6, c[3], t11);
+    let t12 = I::fma(-t6, c[3], t11);
     let t13 = t3 * c[3];
-    let t14 = fma(t6, s[3], t13);
+    let t14 = I::fma(t6, s[3], t13);
     let t15 = 2.0125235536029997 * t7;
     let t16 = 0.5527802746499999 * t14;
-    let t17 = fma(2.0125235536029997, t12, t16);
+    let t17 = I::fma(2.0125235536029997, t12, t16);
     let t18 = t7 * s[4];
-    let t19 = fma(t12, c[4], t18);
+    let t19 = I::fma(t12, c[4], t18);
     let t20 = t7 * c[4];
-    let t21 = fma(-t12, s[4], t20);
+    let t21 = I::fma(-t12, s[4], t20);
     let t22 = 0.067870631425 * t14;
     let t23 = 0.014653732538 * t21;
-    let t24 = fma(0.067870631425, t19, t23);
+    let t24 = I::fma(0.067870631425, t19, t23);
     let t25 = t14 * s[5];
-    let t26 = fma(t19, c[5], t25);
+    let t26 = I::fma(t19, c[5], t25);
     let t27 = t14 * c[5];
-    let t28 = fma(-t19, s[5], t27);
-    let t29 = fma(t12, s[4], -t20);
+    let t28 = I::fma(-t19, s[5], t27);
+    let t29 = I::fma(t12, s[4], -t20);
     let t30 = 0.23184755269500001 * t28;
-    let t31 = fma(0.174554705569, t26, t30);
+    let t31 = I::fma(0.174554705569, t26, t30);
     let t32 = t29 * s[6];
-    let t33 = fma(t26, c[6], t32);
+    let t33 = I::fma(t26, c[6], t32);
     let t34 = t29 * c[6];
-    let t35 = fma(-t26, s[6], t34);
-    let t36 = fma(t19, s[5], -t27);
+    let t35 = I::fma(-t26, s[6], t34);
+    let t36 = I::fma(t19, s[5], -t27);
     let t37 = 0.0020344399586617965 * t36;
     let t38 = 0.002573605371338203 * t36;
     let t39 = 0.002573605371338203 * t35;
-    let t40 = fma(-0.0020344399586617965, t33, t39);
+    let t40 = I::fma(-0.0020344399586617965, t33, t39);
     let t41 = t35 - t33;
-    let t42 = fma(t1, t36, t37);
-    let t43 = fma(t1, t36, t38);
-    let t44 = fma(t1, t41, t40);
+    let t42 = I::fma(t1, t36, t37);
+    let t43 = I::fma(t1, t36, t38);
+    let t44 = I::fma(t1, t41, t40);
     let t45 = c[6] * t42;
-    let t46 = fma(s[6], t43, t45);
+    let t46 = I::fma(s[6], t43, t45);
     let t47 = s[6] * t42;
-    let t48 = fma(-c[6], t43, t47);
-    let t49 = fma(-0.174554705569, t29, t46);
-    let t50 = fma(0.23184755269500001, t29, t44);
+    let t48 = I::fma(-c[6], t43, t47);
+    let t49 = I::fma(-0.174554705569, t29, t46);
+    let t50 = I::fma(0.23184755269500001, t29, t44);
     let t51 = t31 + t48;
-    let t52 = fma(c[5], t49, t22);
-    let t53 = fma(s[5], t50, t52);
-    let t54 = fma(0.014653732538, t14, -t51);
-    let t55 = fma(s[5], t49, -t24);
-    let t56 = fma(-c[5], t50, t55);
-    let t57 = fma(s[4], t54, t15);
-    let t58 = fma(c[4], t53, -t57);
-    let t59 = fma(-0.5527802746499999, t7, t56);
-    let t60 = fma(c[4], t54, t17);
-    let t61 = fma(s[4], t53, t60);
+    let t52 = I::fma(c[5], t49, t22);
+    let t53 = I::fma(s[5], t50, t52);
+    let t54 = I::fma(0.014653732538, t14, -t51);
+    let t55 = I::fma(s[5], t49, -t24);
+    let t56 = I::fma(-c[5], t50, t55);
+    let t57 = I::fma(s[4], t54, t15);
+    let t58 = I::fma(c[4], t53, -t57);
+    let t59 = I::fma(-0.5527802746499999, t7, t56);
+    let t60 = I::fma(c[4], t54, t17);
+    let t61 = I::fma(s[4], t53, t60);
     let t62 = -t61;
-    let t63 = fma(-s[3], t59, t8);
-    let t64 = fma(c[3], t58, t63);
-    let t65 = fma(7.326676586344321, c[1], -t61);
-    let t66 = fma(c[3], t59, t10);
-    let t67 = fma(s[3], t58, t66);
+    let t63 = I::fma(-s[3], t59, t8);
+    let t64 = I::fma(c[3], t58, t63);
+    let t65 = I::fma(7.326676586344321, c[1], -t61);
+    let t66 = I::fma(c[3], t59, t10);
+    let t67 = I::fma(s[3], t58, t66);
     let t68 = s[2] * t65;
-    let t69 = fma(c[2], t64, t68);
-    let t70 = fma(-c[2], t65, t5);
-    let t71 = fma(s[2], t64, t70);
+    let t69 = I::fma(c[2], t64, t68);
+    let t70 = I::fma(-c[2], t65, t5);
+    let t71 = I::fma(s[2], t64, t70);
     let t72 = c[1] * t67;
-    let t73 = fma(-s[1], t69, t72);
+    let t73 = I::fma(-s[1], t69, t72);
     let t74 = t33 + t35;
     let t75 = 0.010606601717798213 * t74;
     let t76 = -t75;
@@ -1565,6 +1736,11 @@ pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF], q: &[f64; DOF]) -> [f6
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`gravity_torques_sc`].
 #[inline]
 pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { gravity_torques_avx2_fma(q) };
+    }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     gravity_torques_sc(
         &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
@@ -1572,19 +1748,61 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
         q,
     )
 }
+/// [`gravity_torques`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn gravity_torques_avx2_fma(q: &[f64; DOF]) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe {
+        gravity_torques_sc_avx2_fma(
+            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
+            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
+            q,
+        )
+    }
+}
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by the articulated-body algorithm.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 1655 ops: 397 add, 355 sub, 896 mul, 7 div, 0 neg, 0 sqrt, 0 sin_cos; 581 fused multiply-adds, 1101 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read. `q` is read for the prismatic joints only.
+pub fn forward_dynamics_sc(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+    tau: &[f64; DOF],
+) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { forward_dynamics_sc_avx2_fma(s, c, q, qd, tau) };
+    }
+    forward_dynamics_sc_on::<Baseline>(s, c, q, qd, tau)
+}
+/// [`forward_dynamics_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn forward_dynamics_sc_avx2_fma(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+    tau: &[f64; DOF],
+) -> [f64; DOF] {
+    forward_dynamics_sc_on::<Avx2Fma>(s, c, q, qd, tau)
+}
+/// The body of [`forward_dynamics_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn forward_dynamics_sc(
+fn forward_dynamics_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
     q: &[f64; DOF],
@@ -1597,27 +1815,27 @@ pub fn forward_dynamics_sc(
     let t3 = qd[1] * t0;
     let t4 = qd[1] * qd[1];
     let t5 = t0 * t1;
-    let t6 = fma(t0, t0, t4);
+    let t6 = I::fma(t0, t0, t4);
     let t7 = 0.00398335888393552 * t1;
-    let t8 = fma(-1.0674867322634767, t0, t7);
-    let t9 = fma(0.01026110182100817, qd[1], t8);
+    let t8 = I::fma(-1.0674867322634767, t0, t7);
+    let t9 = I::fma(0.01026110182100817, qd[1], t8);
     let t10 = 0.0007689361029464 * qd[1];
-    let t11 = fma(0.00398335888393552, t0, t10);
+    let t11 = I::fma(0.00398335888393552, t0, t10);
     let t12 = 0.01026110182100817 * t0;
-    let t13 = fma(0.0007689361029464, t1, t12);
-    let t14 = fma(1.1136424972533403, qd[1], -t13);
+    let t13 = I::fma(0.0007689361029464, t1, t12);
+    let t14 = I::fma(1.1136424972533403, qd[1], -t13);
     let t15 = qd[1] * t11;
     let t16 = 0.316 * t5;
     let t17 = 0.316 * t6;
     let t18 = 0.316 * t2;
     let t19 = qd[1] * s[2];
-    let t20 = fma(-t0, c[2], t19);
+    let t20 = I::fma(-t0, c[2], t19);
     let t21 = qd[1] * c[2];
-    let t22 = fma(t0, s[2], t21);
+    let t22 = I::fma(t0, s[2], t21);
     let t23 = s[2] * t18;
-    let t24 = fma(-c[2], t16, t23);
+    let t24 = I::fma(-c[2], t16, t23);
     let t25 = s[2] * t16;
-    let t26 = fma(c[2], t18, t25);
+    let t26 = I::fma(c[2], t18, t25);
     let t27 = qd[2] * t22;
     let t28 = qd[2] * t20;
     let t29 = qd[2] + t1;
@@ -1625,33 +1843,33 @@ pub fn forward_dynamics_sc(
     let t31 = t22 * t22;
     let t32 = t20 * t22;
     let t33 = t20 * t29;
-    let t34 = fma(t29, t29, t31);
-    let t35 = fma(t29, t29, t30);
+    let t34 = I::fma(t29, t29, t31);
+    let t35 = I::fma(t29, t29, t30);
     let t36 = 0.028227094878000014 * t32;
-    let t37 = fma(-0.744382959872, t34, t36);
+    let t37 = I::fma(-0.744382959872, t34, t36);
     let t38 = 0.744382959872 * t32;
-    let t39 = fma(-0.028227094878000014, t35, t38);
+    let t39 = I::fma(-0.028227094878000014, t35, t38);
     let t40 = 0.011595864095166095 * t20;
-    let t41 = fma(-0.00012191242095074308, t22, t40);
-    let t42 = fma(-0.005487648106562256, t29, t41);
+    let t41 = I::fma(-0.00012191242095074308, t22, t40);
+    let t42 = I::fma(-0.005487648106562256, t29, t41);
     let t43 = 0.00012191242095074308 * t20;
-    let t44 = fma(0.004377257121839584, t29, t43);
+    let t44 = I::fma(0.004377257121839584, t29, t43);
     let t45 = 0.005487648106562256 * t20;
-    let t46 = fma(0.004377257121839584, t22, t45);
-    let t47 = fma(0.1343923311482215, t29, -t46);
+    let t46 = I::fma(0.004377257121839584, t22, t45);
+    let t47 = I::fma(0.1343923311482215, t29, -t46);
     let t48 = t29 * t44;
-    let t49 = fma(t22, t47, t48);
+    let t49 = I::fma(t22, t47, t48);
     let t50 = 0.0825 * t34;
     let t51 = 0.0825 * t32;
     let t52 = 0.0825 * t33;
     let t53 = t20 * c[3];
-    let t54 = fma(t29, s[3], t53);
+    let t54 = I::fma(t29, s[3], t53);
     let t55 = t29 * c[3];
-    let t56 = fma(-t20, s[3], t55);
+    let t56 = I::fma(-t20, s[3], t55);
     let t57 = s[3] * t52;
-    let t58 = fma(-c[3], t50, t57);
+    let t58 = I::fma(-c[3], t50, t57);
     let t59 = c[3] * t52;
-    let t60 = fma(s[3], t50, t59);
+    let t60 = I::fma(s[3], t50, t59);
     let t61 = qd[3] * t56;
     let t62 = qd[3] * t54;
     let t63 = qd[3] - t22;
@@ -1659,38 +1877,38 @@ pub fn forward_dynamics_sc(
     let t65 = t54 * t56;
     let t66 = t54 * t63;
     let t67 = t56 * t63;
-    let t68 = fma(t56, t56, t64);
-    let t69 = fma(t54, t54, t64);
+    let t68 = I::fma(t56, t56, t64);
+    let t69 = I::fma(t54, t54, t64);
     let t70 = 0.5503052746499999 * t68;
-    let t71 = fma(2.0010035536029998, t65, t70);
+    let t71 = I::fma(2.0010035536029998, t65, t70);
     let t72 = 0.5503052746499999 * t65;
-    let t73 = fma(2.0010035536029998, t69, t72);
+    let t73 = I::fma(2.0010035536029998, t69, t72);
     let t74 = 2.0010035536029998 * t67;
-    let t75 = fma(-0.5503052746499999, t66, t74);
+    let t75 = I::fma(-0.5503052746499999, t66, t74);
     let t76 = 0.6435036024391828 * t54;
-    let t77 = fma(0.16189047268546083, t56, t76);
-    let t78 = fma(0.0039053550262761003, t63, t77);
+    let t77 = I::fma(0.16189047268546083, t56, t76);
+    let t78 = I::fma(0.0039053550262761003, t63, t77);
     let t79 = 0.0016444875773692705 * t63;
-    let t80 = fma(0.16189047268546083, t54, -t79);
+    let t80 = I::fma(0.16189047268546083, t54, -t79);
     let t81 = 0.0039053550262761003 * t54;
-    let t82 = fma(-0.0016444875773692705, t56, t81);
-    let t83 = fma(0.7451354997528139, t63, t82);
+    let t82 = I::fma(-0.0016444875773692705, t56, t81);
+    let t83 = I::fma(0.7451354997528139, t63, t82);
     let t84 = t63 * t80;
-    let t85 = fma(t56, t83, -t84);
+    let t85 = I::fma(t56, t83, -t84);
     let t86 = 0.0825 * t68;
-    let t87 = fma(0.384, t65, t86);
+    let t87 = I::fma(0.384, t65, t86);
     let t88 = 0.0825 * t65;
-    let t89 = fma(0.384, t69, t88);
+    let t89 = I::fma(0.384, t69, t88);
     let t90 = 0.384 * t67;
-    let t91 = fma(-0.0825, t66, t90);
+    let t91 = I::fma(-0.0825, t66, t90);
     let t92 = t63 * s[4];
-    let t93 = fma(t54, c[4], -t92);
+    let t93 = I::fma(t54, c[4], -t92);
     let t94 = t63 * c[4];
-    let t95 = fma(t54, s[4], t94);
+    let t95 = I::fma(t54, s[4], t94);
     let t96 = c[4] * t87;
-    let t97 = fma(-s[4], t91, t96);
+    let t97 = I::fma(-s[4], t91, t96);
     let t98 = s[4] * t87;
-    let t99 = fma(c[4], t91, t98);
+    let t99 = I::fma(c[4], t91, t98);
     let t100 = qd[4] * t95;
     let t101 = qd[4] * t93;
     let t102 = qd[4] + t56;
@@ -1699,28 +1917,28 @@ pub fn forward_dynamics_sc(
     let t105 = t93 * t95;
     let t106 = t93 * t102;
     let t107 = t95 * t102;
-    let t108 = fma(t102, t102, t104);
-    let t109 = fma(t102, t102, t103);
+    let t108 = I::fma(t102, t102, t104);
+    let t109 = I::fma(t102, t102, t103);
     let t110 = 0.067870631425 * t105;
-    let t111 = fma(0.014653732538, t108, -t110);
+    let t111 = I::fma(0.014653732538, t108, -t110);
     let t112 = 0.014653732538 * t105;
-    let t113 = fma(-0.067870631425, t109, t112);
+    let t113 = I::fma(-0.067870631425, t109, t112);
     let t114 = 0.014653732538 * t106;
-    let t115 = fma(0.067870631425, t107, t114);
+    let t115 = I::fma(0.067870631425, t107, t114);
     let t116 = 0.029883967133882083 * t93;
-    let t117 = fma(0.0015152444733270301, t95, t116);
-    let t118 = fma(-0.004600245517563105, t102, t117);
+    let t117 = I::fma(0.0015152444733270301, t95, t116);
+    let t118 = I::fma(-0.004600245517563105, t102, t117);
     let t119 = 0.0021640520520981297 * t102;
-    let t120 = fma(-0.0015152444733270301, t93, t119);
+    let t120 = I::fma(-0.0015152444733270301, t93, t119);
     let t121 = 0.004600245517563105 * t93;
-    let t122 = fma(0.0021640520520981297, t95, t121);
-    let t123 = fma(0.032786279263935514, t102, -t122);
+    let t122 = I::fma(0.0021640520520981297, t95, t121);
+    let t123 = I::fma(0.032786279263935514, t102, -t122);
     let t124 = t102 * t118;
-    let t125 = fma(-t93, t123, t124);
+    let t125 = I::fma(-t93, t123, t124);
     let t126 = t93 * c[5];
-    let t127 = fma(t102, s[5], t126);
+    let t127 = I::fma(t102, s[5], t126);
     let t128 = t102 * c[5];
-    let t129 = fma(-t93, s[5], t128);
+    let t129 = I::fma(-t93, s[5], t128);
     let t130 = qd[5] * t129;
     let t131 = qd[5] * t127;
     let t132 = qd[5] + t95;
@@ -1728,87 +1946,87 @@ pub fn forward_dynamics_sc(
     let t134 = t127 * t129;
     let t135 = t127 * t132;
     let t136 = t129 * t132;
-    let t137 = fma(t129, t129, t133);
-    let t138 = fma(t127, t127, t133);
+    let t137 = I::fma(t129, t129, t133);
+    let t138 = I::fma(t127, t127, t133);
     let t139 = 0.229207552695 * t137;
-    let t140 = fma(0.168842705569, t134, t139);
+    let t140 = I::fma(0.168842705569, t134, t139);
     let t141 = 0.229207552695 * t134;
     let t142 = 0.168842705569 * t136;
     let t143 = 0.0088313764694922 * t127;
-    let t144 = fma(0.014311914382675317, t129, t143);
-    let t145 = fma(-0.00010375891721868492, t132, t144);
+    let t144 = I::fma(0.014311914382675317, t129, t143);
+    let t145 = I::fma(-0.00010375891721868492, t132, t144);
     let t146 = 9.3569097314605e-5 * t132;
-    let t147 = fma(0.014311914382675317, t127, t146);
+    let t147 = I::fma(0.014311914382675317, t127, t146);
     let t148 = 9.3569097314605e-5 * t129;
-    let t149 = fma(-0.00010375891721868492, t127, t148);
-    let t150 = fma(0.05141124721066731, t132, t149);
+    let t149 = I::fma(-0.00010375891721868492, t127, t148);
+    let t150 = I::fma(0.05141124721066731, t132, t149);
     let t151 = t132 * t147;
-    let t152 = fma(t129, t150, -t151);
+    let t152 = I::fma(t129, t150, -t151);
     let t153 = 0.088 * t137;
-    let t154 = fma(0.19039999999999999, t134, t153);
+    let t154 = I::fma(0.19039999999999999, t134, t153);
     let t155 = 0.088 * t134;
-    let t156 = fma(0.19039999999999999, t138, t155);
+    let t156 = I::fma(0.19039999999999999, t138, t155);
     let t157 = 0.088 * t135;
-    let t158 = fma(-0.19039999999999999, t136, t157);
+    let t158 = I::fma(-0.19039999999999999, t136, t157);
     let t159 = t132 * s[6];
-    let t160 = fma(t127, c[6], t159);
+    let t160 = I::fma(t127, c[6], t159);
     let t161 = t132 * c[6];
-    let t162 = fma(-t127, s[6], t161);
+    let t162 = I::fma(-t127, s[6], t161);
     let t163 = s[6] * t158;
-    let t164 = fma(-c[6], t154, t163);
+    let t164 = I::fma(-c[6], t154, t163);
     let t165 = s[6] * t154;
-    let t166 = fma(c[6], t158, t165);
+    let t166 = I::fma(c[6], t158, t165);
     let t167 = qd[6] * t162;
     let t168 = qd[6] * t160;
     let t169 = qd[6] - t128;
-    let t170 = fma(t93, s[5], t169);
+    let t170 = I::fma(t93, s[5], t169);
     let t171 = t170 * t170;
     let t172 = t160 * t162;
     let t173 = t160 * t170;
     let t174 = t162 * t170;
-    let t175 = fma(t162, t162, t171);
-    let t176 = fma(t160, t160, t171);
+    let t175 = I::fma(t162, t162, t171);
+    let t176 = I::fma(t160, t160, t171);
     let t177 = 0.0020344399586617965 * t172;
-    let t178 = fma(-0.002573605371338203, t175, t177);
+    let t178 = I::fma(-0.002573605371338203, t175, t177);
     let t179 = 0.002573605371338203 * t172;
-    let t180 = fma(-0.0020344399586617965, t176, t179);
+    let t180 = I::fma(-0.0020344399586617965, t176, t179);
     let t181 = 0.002573605371338203 * t173;
-    let t182 = fma(0.0020344399586617965, t174, t181);
+    let t182 = I::fma(0.0020344399586617965, t174, t181);
     let t183 = 0.0024209437785212284 * t160;
-    let t184 = fma(-0.001465108718315752, t162, t183);
-    let t185 = fma(-0.000475290707216318, t170, t184);
+    let t184 = I::fma(-0.001465108718315752, t162, t183);
+    let t185 = I::fma(-0.000475290707216318, t170, t184);
     let t186 = 0.000868179230143692 * t170;
-    let t187 = fma(0.001465108718315752, t160, t186);
+    let t187 = I::fma(0.001465108718315752, t160, t186);
     let t188 = 0.000475290707216318 * t160;
-    let t189 = fma(0.000868179230143692, t162, t188);
-    let t190 = fma(0.007634651967360946, t170, -t189);
+    let t189 = I::fma(0.000868179230143692, t162, t188);
+    let t190 = I::fma(0.007634651967360946, t170, -t189);
     let t191 = t170 * t187;
     let t192 = t170 * t185;
-    let t193 = fma(-t160, t190, t192);
+    let t193 = I::fma(-t160, t190, t192);
     let t194 = t160 * t187;
-    let t195 = fma(0.7071067811865476, q[7], 0.006717514421272202);
+    let t195 = I::fma(0.7071067811865476, q[7], 0.006717514421272202);
     let t196 = t173 + t174;
     let t197 = 1.4142135623730951 * qd[7];
     let t198 = t170 * t197;
     let t199 = t160 - t162;
     let t200 = t197 * t199;
-    let t201 = fma(t172, t195, -t198);
-    let t202 = fma(-t175, t195, t201);
-    let t203 = fma(t172, t195, t198);
-    let t204 = fma(-t176, t195, t203);
-    let t205 = fma(t195, t196, t200);
-    let t206 = fma(0.7071067811865476, q[8], 0.006717514421272202);
+    let t201 = I::fma(t172, t195, -t198);
+    let t202 = I::fma(-t175, t195, t201);
+    let t203 = I::fma(t172, t195, t198);
+    let t204 = I::fma(-t176, t195, t203);
+    let t205 = I::fma(t195, t196, t200);
+    let t206 = I::fma(0.7071067811865476, q[8], 0.006717514421272202);
     let t207 = 1.4142135623730951 * qd[8];
     let t208 = t170 * t207;
     let t209 = t162 - t160;
     let t210 = t207 * t209;
-    let t211 = fma(-t172, t206, t208);
-    let t212 = fma(t175, t206, t211);
-    let t213 = fma(t172, t206, t208);
-    let t214 = fma(t176, t206, -t213);
-    let t215 = fma(-t196, t206, t210);
+    let t211 = I::fma(-t172, t206, t208);
+    let t212 = I::fma(t175, t206, t211);
+    let t213 = I::fma(t172, t206, t208);
+    let t214 = I::fma(t176, t206, -t213);
+    let t215 = I::fma(-t196, t206, t210);
     let t216 = t212 + t214;
-    let t217 = fma(0.010606601717798213, t216, tau[8]);
+    let t217 = I::fma(0.010606601717798213, t216, tau[8]);
     let t218 = 0.015 * t206;
     let t219 = t206 * t218;
     let t220 = 0.015 * t214;
@@ -1818,13 +2036,13 @@ pub fn forward_dynamics_sc(
     let t224 = t218 - 0.0020344399586617965;
     let t225 = 0.002573605371338203 - t218;
     let t226 = 0.0024209437785212284 + t219;
-    let t227 = fma(2.0, t219, 0.007634651967360946);
+    let t227 = I::fma(2.0, t219, 0.007634651967360946);
     let t228 = 0.001465108718315752 + t219;
     let t229 = t206 * t221;
-    let t230 = fma(-0.015, t212, t220);
+    let t230 = I::fma(-0.015, t212, t220);
     let t231 = t206 * t230;
     let t232 = t202 + t204;
-    let t233 = fma(-0.010606601717798213, t232, tau[7]);
+    let t233 = I::fma(-0.010606601717798213, t232, tau[7]);
     let t234 = 0.015 * t195;
     let t235 = t195 * t234;
     let t236 = 0.015 * t202;
@@ -1836,31 +2054,31 @@ pub fn forward_dynamics_sc(
     let t242 = t225 + t234;
     let t243 = t226 + t235;
     let t244 = t219 + t235;
-    let t245 = fma(2.0, t235, t227);
+    let t245 = I::fma(2.0, t235, t227);
     let t246 = t228 + t235;
     let t247 = t195 * t238;
     let t248 = t237 - t236;
     let t249 = 0.7071067811865475 * t233;
     let t250 = 1.0 / t245;
     let t251 = c[6] * t241;
-    let t252 = fma(-s[6], t242, t251);
+    let t252 = I::fma(-s[6], t242, t251);
     let t253 = s[6] * t241;
-    let t254 = fma(c[6], t242, t253);
+    let t254 = I::fma(c[6], t242, t253);
     let t255 = 0.000868179230143692 * s[6];
-    let t256 = fma(-0.000475290707216318, c[6], t255);
+    let t256 = I::fma(-0.000475290707216318, c[6], t255);
     let t257 = 0.000475290707216318 * s[6];
-    let t258 = fma(0.000868179230143692, c[6], t257);
+    let t258 = I::fma(0.000868179230143692, c[6], t257);
     let t259 = 0.088 * t254;
-    let t260 = fma(-0.19039999999999999, t254, t256);
-    let t261 = fma(0.19039999999999999, t252, -t258);
+    let t260 = I::fma(-0.19039999999999999, t254, t256);
+    let t261 = I::fma(0.19039999999999999, t252, -t258);
     let t262 = t245 + t259;
-    let t263 = fma(-0.000868179230143692, t168, tau[6]);
-    let t264 = fma(0.000475290707216318, t167, t194);
-    let t265 = fma(t162, t185, t263);
-    let t266 = fma(-t164, t241, t264);
-    let t267 = fma(-t166, t242, t265);
+    let t263 = I::fma(-0.000868179230143692, t168, tau[6]);
+    let t264 = I::fma(0.000475290707216318, t167, t194);
+    let t265 = I::fma(t162, t185, t263);
+    let t266 = I::fma(-t164, t241, t264);
+    let t267 = I::fma(-t166, t242, t265);
     let t268 = t266 + t267;
-    let t269 = fma(-t195, t248, t231);
+    let t269 = I::fma(-t195, t248, t231);
     let t270 = t268 + t269;
     let t271 = c[6] * c[6];
     let t272 = s[6] * s[6];
@@ -1872,108 +2090,108 @@ pub fn forward_dynamics_sc(
     let t278 = t273 * t276;
     let t279 = s[6] * t240;
     let t280 = s[6] * t239;
-    let t281 = fma(c[6], t240, t280);
-    let t282 = fma(-c[6], t239, t279);
-    let t283 = fma(0.03, t273, 0.015);
-    let t284 = fma(-0.03, t273, 0.015);
+    let t281 = I::fma(c[6], t240, t280);
+    let t282 = I::fma(-c[6], t239, t279);
+    let t283 = I::fma(0.03, t273, 0.015);
+    let t284 = I::fma(-0.03, t273, 0.015);
     let t285 = 0.015 * t275;
     let t286 = 0.0028559999999999996 * t275;
     let t287 = 0.0013199999999999998 * t275;
     let t288 = 0.007743999999999999 * t284;
     let t289 = t167 * t243;
-    let t290 = fma(t168, t246, t289);
+    let t290 = I::fma(t168, t246, t289);
     let t291 = t167 * t246;
-    let t292 = fma(t168, t244, t291);
-    let t293 = fma(t156, t240, t292);
+    let t292 = I::fma(t168, t244, t291);
+    let t293 = I::fma(t156, t240, t292);
     let t294 = t167 * t239;
-    let t295 = fma(-t168, t240, t294);
-    let t296 = fma(-t156, t239, t191);
-    let t297 = fma(t162, t190, t290);
+    let t295 = I::fma(-t168, t240, t294);
+    let t296 = I::fma(-t156, t239, t191);
+    let t297 = I::fma(t162, t190, t290);
     let t298 = t296 + t297;
     let t299 = t247 - t229;
     let t300 = t298 + t299;
     let t301 = t193 - t293;
     let t302 = t229 - t247;
     let t303 = t301 + t302;
-    let t304 = fma(0.015, t212, t178);
-    let t305 = fma(0.015, t164, t236);
-    let t306 = fma(-0.015, t166, t304);
+    let t304 = I::fma(0.015, t212, t178);
+    let t305 = I::fma(0.015, t164, t236);
+    let t306 = I::fma(-0.015, t166, t304);
     let t307 = t305 + t306;
-    let t308 = fma(-0.7071067811865475, t217, t249);
+    let t308 = I::fma(-0.7071067811865475, t217, t249);
     let t309 = t307 + t308;
     let t310 = t180 + t220;
-    let t311 = fma(0.015, t166, t237);
-    let t312 = fma(-0.015, t164, t310);
+    let t311 = I::fma(0.015, t166, t237);
+    let t312 = I::fma(-0.015, t164, t310);
     let t313 = t311 + t312;
     let t314 = t308 + t313;
-    let t315 = fma(-0.03, t156, t182);
+    let t315 = I::fma(-0.03, t156, t182);
     let t316 = t295 + t315;
     let t317 = t221 + t238;
     let t318 = t316 + t317;
     let t319 = t250 * t260;
     let t320 = t250 * t259;
     let t321 = t250 * t261;
-    let t322 = fma(-t252, t319, t286);
-    let t323 = fma(t252, t320, t287);
-    let t324 = fma(-t259, t320, t288);
+    let t322 = I::fma(-t252, t319, t286);
+    let t323 = I::fma(t252, t320, t287);
+    let t324 = I::fma(-t259, t320, t288);
     let t325 = t250 * t252;
     let t326 = t250 * t254;
-    let t327 = fma(-t254, t326, t284);
-    let t328 = fma(t254, t325, t285);
+    let t327 = I::fma(-t254, t326, t284);
+    let t328 = I::fma(t254, t325, t285);
     let t329 = t261 * t261;
-    let t330 = fma(0.19039999999999999, t284, 0.168842705569);
-    let t331 = fma(t254, t319, t330);
-    let t332 = fma(0.088, t284, 0.229207552695);
-    let t333 = fma(t254, t320, -t332);
-    let t334 = fma(0.19039999999999999, t283, 0.168842705569);
-    let t335 = fma(-t252, t321, t334);
+    let t330 = I::fma(0.19039999999999999, t284, 0.168842705569);
+    let t331 = I::fma(t254, t319, t330);
+    let t332 = I::fma(0.088, t284, 0.229207552695);
+    let t333 = I::fma(t254, t320, -t332);
+    let t334 = I::fma(0.19039999999999999, t283, 0.168842705569);
+    let t335 = I::fma(-t252, t321, t334);
     let t336 = 0.23184755269500001 - t281;
-    let t337 = fma(0.03625215999999999, t284, 0.0088313764694922);
+    let t337 = I::fma(0.03625215999999999, t284, 0.0088313764694922);
     let t338 = t244 + t337;
-    let t339 = fma(t246, t274, t338);
-    let t340 = fma(t271, t276, t339);
-    let t341 = fma(-t260, t319, t340);
-    let t342 = fma(0.03625215999999999, t283, 0.05164356721066731);
+    let t339 = I::fma(t246, t274, t338);
+    let t340 = I::fma(t271, t276, t339);
+    let t341 = I::fma(-t260, t319, t340);
+    let t342 = I::fma(0.03625215999999999, t283, 0.05164356721066731);
     let t343 = t244 + t342;
-    let t344 = fma(-t246, t274, t343);
-    let t345 = fma(-0.088, t281, t277);
-    let t346 = fma(-0.088, t281, t344);
+    let t344 = I::fma(-t246, t274, t343);
+    let t345 = I::fma(-0.088, t281, t277);
+    let t346 = I::fma(-0.088, t281, t344);
     let t347 = t345 + t346;
-    let t348 = fma(-t250, t329, t347);
-    let t349 = fma(0.016755199999999998, t284, 0.014311914382675317);
-    let t350 = fma(t259, t319, t349);
-    let t351 = fma(0.0005437823999999998, t275, -0.00010375891721868492);
-    let t352 = fma(-t246, t275, t351);
-    let t353 = fma(0.088, t282, t278);
+    let t348 = I::fma(-t250, t329, t347);
+    let t349 = I::fma(0.016755199999999998, t284, 0.014311914382675317);
+    let t350 = I::fma(t259, t319, t349);
+    let t351 = I::fma(0.0005437823999999998, t275, -0.00010375891721868492);
+    let t352 = I::fma(-t246, t275, t351);
+    let t353 = I::fma(0.088, t282, t278);
     let t354 = t352 + t353;
-    let t355 = fma(-t261, t319, t354);
-    let t356 = fma(0.00025132799999999994, t275, 9.3569097314605e-5);
-    let t357 = fma(t261, t320, t356);
+    let t355 = I::fma(-t261, t319, t354);
+    let t356 = I::fma(0.00025132799999999994, t275, 9.3569097314605e-5);
+    let t357 = I::fma(t261, t320, t356);
     let t358 = c[6] * t309;
-    let t359 = fma(-s[6], t314, t358);
+    let t359 = I::fma(-s[6], t314, t358);
     let t360 = s[6] * t309;
-    let t361 = fma(c[6], t314, t360);
+    let t361 = I::fma(c[6], t314, t360);
     let t362 = s[6] * t300;
-    let t363 = fma(c[6], t303, t362);
+    let t363 = I::fma(c[6], t303, t362);
     let t364 = t250 * t270;
     let t365 = 1.0 / t348;
     let t366 = s[5] * t336;
-    let t367 = fma(c[5], t335, -t366);
-    let t368 = fma(t254, t321, t286);
+    let t367 = I::fma(c[5], t335, -t366);
+    let t368 = I::fma(t254, t321, t286);
     let t369 = c[5] * t336;
-    let t370 = fma(s[5], t335, t369);
+    let t370 = I::fma(s[5], t335, t369);
     let t371 = c[5] * t355;
-    let t372 = fma(-s[5], t357, t371);
+    let t372 = I::fma(-s[5], t357, t371);
     let t373 = s[5] * t355;
-    let t374 = fma(c[5], t357, t373);
-    let t375 = fma(-t127, t147, tau[5]);
-    let t376 = fma(t129, t145, t375);
-    let t377 = fma(-t130, t355, t376);
-    let t378 = fma(t131, t357, t377);
-    let t379 = fma(0.088, t318, t378);
+    let t374 = I::fma(c[5], t357, t373);
+    let t375 = I::fma(-t127, t147, tau[5]);
+    let t376 = I::fma(t129, t145, t375);
+    let t377 = I::fma(-t130, t355, t376);
+    let t378 = I::fma(t131, t357, t377);
+    let t379 = I::fma(0.088, t318, t378);
     let t380 = t379 - t363;
-    let t381 = fma(-t261, t364, t380);
-    let t382 = fma(-0.19039999999999999, t359, t381);
+    let t381 = I::fma(-t261, t364, t380);
+    let t382 = I::fma(-0.19039999999999999, t359, t381);
     let t383 = c[5] * c[5];
     let t384 = s[5] * s[5];
     let t385 = s[5] * c[5];
@@ -1983,101 +2201,101 @@ pub fn forward_dynamics_sc(
     let t389 = t282 + t323;
     let t390 = c[5] * t331;
     let t391 = t322 * t383;
-    let t392 = fma(-t385, t389, t391);
+    let t392 = I::fma(-t385, t389, t391);
     let t393 = t322 * t384;
-    let t394 = fma(t385, t389, t393);
-    let t395 = fma(s[5], t333, t390);
-    let t396 = fma(0.03, t273, -0.015);
-    let t397 = fma(-t252, t325, t396);
+    let t394 = I::fma(t385, t389, t393);
+    let t395 = I::fma(s[5], t333, t390);
+    let t396 = I::fma(0.03, t273, -0.015);
+    let t397 = I::fma(-t252, t325, t396);
     let t398 = c[5] * t328;
     let t399 = s[5] * t328;
-    let t400 = fma(t383, t397, 0.03);
-    let t401 = fma(t384, t397, 0.03);
+    let t400 = I::fma(t383, t397, 0.03);
+    let t401 = I::fma(t384, t397, 0.03);
     let t402 = t385 * t397;
     let t403 = t130 * t350;
-    let t404 = fma(-t131, t324, t403);
-    let t405 = fma(t130, t341, t152);
-    let t406 = fma(-t131, t350, t405);
-    let t407 = fma(c[6], t300, t406);
-    let t408 = fma(-s[6], t303, t407);
-    let t409 = fma(t260, t364, t408);
-    let t410 = fma(-0.19039999999999999, t361, t409);
-    let t411 = fma(t132, t145, -tau[6]);
-    let t412 = fma(-t127, t150, t411);
+    let t404 = I::fma(-t131, t324, t403);
+    let t405 = I::fma(t130, t341, t152);
+    let t406 = I::fma(-t131, t350, t405);
+    let t407 = I::fma(c[6], t300, t406);
+    let t408 = I::fma(-s[6], t303, t407);
+    let t409 = I::fma(t260, t364, t408);
+    let t410 = I::fma(-0.19039999999999999, t361, t409);
+    let t411 = I::fma(t132, t145, -tau[6]);
+    let t412 = I::fma(-t127, t150, t411);
     let t413 = t404 + t412;
-    let t414 = fma(-t259, t364, t413);
-    let t415 = fma(-0.088, t361, t414);
-    let t416 = fma(t130, t322, -t140);
-    let t417 = fma(-t131, t323, t416);
-    let t418 = fma(t252, t364, t417);
+    let t414 = I::fma(-t259, t364, t413);
+    let t415 = I::fma(-0.088, t361, t414);
+    let t416 = I::fma(t130, t322, -t140);
+    let t417 = I::fma(-t131, t323, t416);
+    let t418 = I::fma(t252, t364, t417);
     let t419 = t359 + t418;
-    let t420 = fma(t130, t282, t141);
-    let t421 = fma(0.168842705569, t138, t420);
+    let t420 = I::fma(t130, t282, t141);
+    let t421 = I::fma(0.168842705569, t138, t420);
     let t422 = t421 - t318;
     let t423 = t365 * t372;
     let t424 = t365 * t374;
-    let t425 = fma(-t367, t423, t392);
-    let t426 = fma(-t368, t423, t395);
-    let t427 = fma(-t370, t424, t394);
+    let t425 = I::fma(-t367, t423, t392);
+    let t426 = I::fma(-t368, t423, t395);
+    let t427 = I::fma(-t370, t424, t394);
     let t428 = t365 * t367;
     let t429 = t365 * t368;
     let t430 = t365 * t370;
-    let t431 = fma(-t367, t428, t400);
-    let t432 = fma(-t368, t429, t327);
-    let t433 = fma(-t370, t430, t401);
-    let t434 = fma(-t368, t428, t398);
-    let t435 = fma(-t370, t428, t402);
-    let t436 = fma(-t370, t429, t399);
+    let t431 = I::fma(-t367, t428, t400);
+    let t432 = I::fma(-t368, t429, t327);
+    let t433 = I::fma(-t370, t430, t401);
+    let t434 = I::fma(-t368, t428, t398);
+    let t435 = I::fma(-t370, t428, t402);
+    let t436 = I::fma(-t370, t429, t399);
     let t437 = t374 * t374;
-    let t438 = fma(t282, t383, 0.067870631425);
-    let t439 = fma(t322, t385, t438);
-    let t440 = fma(-t323, t384, t439);
-    let t441 = fma(-t370, t423, t440);
-    let t442 = fma(t282, t384, 0.067870631425);
-    let t443 = fma(t322, t385, -t442);
-    let t444 = fma(t323, t383, t443);
-    let t445 = fma(-t367, t424, t444);
-    let t446 = fma(c[5], t333, 0.014653732538);
-    let t447 = fma(-s[5], t331, t446);
-    let t448 = fma(t368, t424, t447);
+    let t438 = I::fma(t282, t383, 0.067870631425);
+    let t439 = I::fma(t322, t385, t438);
+    let t440 = I::fma(-t323, t384, t439);
+    let t441 = I::fma(-t370, t423, t440);
+    let t442 = I::fma(t282, t384, 0.067870631425);
+    let t443 = I::fma(t322, t385, -t442);
+    let t444 = I::fma(t323, t383, t443);
+    let t445 = I::fma(-t367, t424, t444);
+    let t446 = I::fma(c[5], t333, 0.014653732538);
+    let t447 = I::fma(-s[5], t331, t446);
+    let t448 = I::fma(t368, t424, t447);
     let t449 = 0.029883967133882083 + t324;
-    let t450 = fma(-t350, t386, t449);
-    let t451 = fma(t383, t388, t450);
-    let t452 = fma(-t372, t423, t451);
+    let t450 = I::fma(-t350, t386, t449);
+    let t451 = I::fma(t383, t388, t450);
+    let t452 = I::fma(-t372, t423, t451);
     let t453 = 0.032786279263935514 + t324;
-    let t454 = fma(t350, t386, t453);
-    let t455 = fma(t384, t388, t454);
-    let t456 = fma(-t365, t437, t455);
-    let t457 = fma(t350, t387, -0.004600245517563105);
-    let t458 = fma(t385, t388, t457);
-    let t459 = fma(-t374, t423, t458);
+    let t454 = I::fma(t350, t386, t453);
+    let t455 = I::fma(t384, t388, t454);
+    let t456 = I::fma(-t365, t437, t455);
+    let t457 = I::fma(t350, t387, -0.004600245517563105);
+    let t458 = I::fma(t385, t388, t457);
+    let t459 = I::fma(-t374, t423, t458);
     let t460 = s[5] * t415;
     let t461 = c[5] * t415;
     let t462 = t365 * t382;
     let t463 = 1.0 / t456;
     let t464 = c[4] * t445;
-    let t465 = fma(s[4], t448, t464);
+    let t465 = I::fma(s[4], t448, t464);
     let t466 = s[4] * t445;
-    let t467 = fma(-c[4], t448, t466);
+    let t467 = I::fma(-c[4], t448, t466);
     let t468 = 0.0021640520520981297 * s[4];
-    let t469 = fma(c[4], t459, -t468);
+    let t469 = I::fma(c[4], t459, -t468);
     let t470 = 0.0021640520520981297 * c[4];
-    let t471 = fma(s[4], t459, t470);
+    let t471 = I::fma(s[4], t459, t470);
     let t472 = 0.0825 * t467;
-    let t473 = fma(-0.384, t467, t469);
-    let t474 = fma(0.0825, t427, t471);
-    let t475 = fma(0.384, t465, t474);
+    let t473 = I::fma(-0.384, t467, t469);
+    let t474 = I::fma(0.0825, t427, t471);
+    let t475 = I::fma(0.384, t465, t474);
     let t476 = t456 - t472;
     let t477 = t89 * t427;
-    let t478 = fma(0.0021640520520981297, t101, tau[4]);
-    let t479 = fma(-t93, t120, t478);
-    let t480 = fma(-t95, t118, t479);
-    let t481 = fma(-t97, t445, t480);
-    let t482 = fma(-t99, t448, t477);
-    let t483 = fma(t100, t459, t481);
+    let t478 = I::fma(0.0021640520520981297, t101, tau[4]);
+    let t479 = I::fma(-t93, t120, t478);
+    let t480 = I::fma(-t95, t118, t479);
+    let t481 = I::fma(-t97, t445, t480);
+    let t482 = I::fma(-t99, t448, t477);
+    let t483 = I::fma(t100, t459, t481);
     let t484 = t482 + t483;
-    let t485 = fma(-s[5], t410, t484);
-    let t486 = fma(t374, t462, t461);
+    let t485 = I::fma(-s[5], t410, t484);
+    let t486 = I::fma(t374, t462, t461);
     let t487 = t485 - t486;
     let t488 = c[4] * c[4];
     let t489 = s[4] * s[4];
@@ -2087,178 +2305,178 @@ pub fn forward_dynamics_sc(
     let t493 = t425 * t490;
     let t494 = t426 * t490;
     let t495 = 0.014653732538 * s[4];
-    let t496 = fma(c[4], t441, -t495);
+    let t496 = I::fma(c[4], t441, -t495);
     let t497 = 0.014653732538 * c[4];
-    let t498 = fma(s[4], t441, t497);
+    let t498 = I::fma(s[4], t441, t497);
     let t499 = t425 * t488;
     let t500 = t499 - t494;
-    let t501 = fma(t425, t489, t494);
-    let t502 = fma(t426, t488, t493);
+    let t501 = I::fma(t425, t489, t494);
+    let t502 = I::fma(t426, t488, t493);
     let t503 = t426 * t489;
     let t504 = t503 - t493;
     let t505 = t431 - t432;
     let t506 = c[4] * t435;
-    let t507 = fma(-s[4], t436, t506);
+    let t507 = I::fma(-s[4], t436, t506);
     let t508 = s[4] * t435;
-    let t509 = fma(c[4], t436, t508);
-    let t510 = fma(-t434, t491, t432);
-    let t511 = fma(t488, t505, t510);
-    let t512 = fma(t434, t491, t432);
-    let t513 = fma(t489, t505, t512);
+    let t509 = I::fma(c[4], t436, t508);
+    let t510 = I::fma(-t434, t491, t432);
+    let t511 = I::fma(t488, t505, t510);
+    let t512 = I::fma(t434, t491, t432);
+    let t513 = I::fma(t489, t505, t512);
     let t514 = t434 * t492;
-    let t515 = fma(t490, t505, t514);
+    let t515 = I::fma(t490, t505, t514);
     let t516 = 0.0825 * t515;
     let t517 = 0.0825 * t507;
-    let t518 = fma(0.384, t511, t517);
+    let t518 = I::fma(0.384, t511, t517);
     let t519 = 0.0825 * t509;
     let t520 = 0.0825 * t433;
-    let t521 = fma(0.384, t507, t520);
+    let t521 = I::fma(0.384, t507, t520);
     let t522 = 0.0825 * t496;
     let t523 = 0.0825 * t498;
-    let t524 = fma(-0.384, t504, t523);
+    let t524 = I::fma(-0.384, t504, t523);
     let t525 = 0.147456 * t513;
     let t526 = 0.147456 * t515;
     let t527 = 0.006806250000000001 * t513;
     let t528 = 0.03168 * t515;
-    let t529 = fma(0.006806250000000001, t509, t528);
-    let t530 = fma(-0.384, t515, t500);
-    let t531 = fma(-0.384, t509, t496);
+    let t529 = I::fma(0.006806250000000001, t509, t528);
+    let t530 = I::fma(-0.384, t515, t500);
+    let t531 = I::fma(-0.384, t509, t496);
     let t532 = t501 + t519;
-    let t533 = fma(0.384, t515, t532);
+    let t533 = I::fma(0.384, t515, t532);
     let t534 = 0.0015152444733270301 * t101;
     let t535 = t97 * t425;
-    let t536 = fma(-t99, t426, t535);
+    let t536 = I::fma(-t99, t426, t535);
     let t537 = t100 * t425;
     let t538 = t100 * t441;
     let t539 = t97 * t431;
-    let t540 = fma(-t99, t434, t539);
+    let t540 = I::fma(-t99, t434, t539);
     let t541 = t99 * t432;
     let t542 = t97 * t435;
-    let t543 = fma(-t99, t436, t542);
-    let t544 = fma(-t102, t120, t534);
-    let t545 = fma(-t95, t123, t544);
-    let t546 = fma(-t100, t452, t545);
-    let t547 = fma(-t89, t441, t546);
+    let t543 = I::fma(-t99, t436, t542);
+    let t544 = I::fma(-t102, t120, t534);
+    let t545 = I::fma(-t95, t123, t544);
+    let t546 = I::fma(-t100, t452, t545);
+    let t547 = I::fma(-t89, t441, t546);
     let t548 = t536 + t547;
-    let t549 = fma(c[5], t410, t548);
-    let t550 = fma(t372, t462, -t460);
+    let t549 = I::fma(c[5], t410, t548);
+    let t550 = I::fma(t372, t462, -t460);
     let t551 = t549 + t550;
-    let t552 = fma(0.0015152444733270301, t100, -tau[5]);
-    let t553 = fma(-0.014653732538, t89, t552);
+    let t552 = I::fma(0.0015152444733270301, t100, -tau[5]);
+    let t553 = I::fma(-0.014653732538, t89, t552);
     let t554 = t125 + t553;
-    let t555 = fma(-s[5], t422, t111);
-    let t556 = fma(t89, t435, t537);
+    let t555 = I::fma(-s[5], t422, t111);
+    let t556 = I::fma(t89, t435, t537);
     let t557 = t540 + t555;
     let t558 = t557 - t556;
-    let t559 = fma(c[5], t419, t558);
-    let t560 = fma(t367, t462, t559);
-    let t561 = fma(-0.229207552695, t135, t142);
+    let t559 = I::fma(c[5], t419, t558);
+    let t560 = I::fma(t367, t462, t559);
+    let t561 = I::fma(-0.229207552695, t135, t142);
     let t562 = t113 + t561;
-    let t563 = fma(t130, t331, t562);
-    let t564 = fma(t131, t333, t563);
-    let t565 = fma(t97, t434, t564);
-    let t566 = fma(t89, t436, t541);
-    let t567 = fma(-t100, t426, t565);
-    let t568 = fma(t254, t364, t566);
+    let t563 = I::fma(t130, t331, t562);
+    let t564 = I::fma(t131, t333, t563);
+    let t565 = I::fma(t97, t434, t564);
+    let t566 = I::fma(t89, t436, t541);
+    let t567 = I::fma(-t100, t426, t565);
+    let t568 = I::fma(t254, t364, t566);
     let t569 = t567 - t361;
     let t570 = t569 - t568;
-    let t571 = fma(t368, t462, t570);
-    let t572 = fma(0.014653732538, t101, t115);
-    let t573 = fma(c[5], t422, -t572);
-    let t574 = fma(t89, t433, t538);
+    let t571 = I::fma(t368, t462, t570);
+    let t572 = I::fma(0.014653732538, t101, t115);
+    let t573 = I::fma(c[5], t422, -t572);
+    let t574 = I::fma(t89, t433, t538);
     let t575 = t543 + t573;
     let t576 = t575 - t574;
-    let t577 = fma(s[5], t419, t576);
-    let t578 = fma(t370, t462, t577);
+    let t577 = I::fma(s[5], t419, t576);
+    let t578 = I::fma(t370, t462, t577);
     let t579 = t463 * t473;
     let t580 = t463 * t472;
     let t581 = t463 * t475;
-    let t582 = fma(-t465, t579, t530);
-    let t583 = fma(-t427, t579, t531);
-    let t584 = fma(t465, t580, -t516);
-    let t585 = fma(t427, t580, -t519);
-    let t586 = fma(-t467, t581, t533);
-    let t587 = fma(-t472, t580, t527);
+    let t582 = I::fma(-t465, t579, t530);
+    let t583 = I::fma(-t427, t579, t531);
+    let t584 = I::fma(t465, t580, -t516);
+    let t585 = I::fma(t427, t580, -t519);
+    let t586 = I::fma(-t467, t581, t533);
+    let t587 = I::fma(-t472, t580, t527);
     let t588 = t463 * t465;
     let t589 = t427 * t463;
     let t590 = t463 * t467;
-    let t591 = fma(-t465, t588, t511);
-    let t592 = fma(-t427, t589, t433);
-    let t593 = fma(-t467, t590, t513);
-    let t594 = fma(-t427, t588, t507);
-    let t595 = fma(t467, t588, -t515);
-    let t596 = fma(t467, t589, -t509);
+    let t591 = I::fma(-t465, t588, t511);
+    let t592 = I::fma(-t427, t589, t433);
+    let t593 = I::fma(-t467, t590, t513);
+    let t594 = I::fma(-t427, t588, t507);
+    let t595 = I::fma(t467, t588, -t515);
+    let t596 = I::fma(t467, t589, -t509);
     let t597 = t475 * t475;
     let t598 = 2.0010035536029998 - t502;
-    let t599 = fma(0.384, t513, t598);
-    let t600 = fma(t467, t579, t599);
-    let t601 = fma(0.0825, t513, 0.5503052746499999);
-    let t602 = fma(-t467, t580, t601);
+    let t599 = I::fma(0.384, t513, t598);
+    let t600 = I::fma(t467, t579, t599);
+    let t601 = I::fma(0.0825, t513, 0.5503052746499999);
+    let t602 = I::fma(-t467, t580, t601);
     let t603 = t504 - 2.0010035536029998;
     let t604 = t603 - t518;
-    let t605 = fma(t465, t581, t604);
+    let t605 = I::fma(t465, t581, t604);
     let t606 = 0.5503052746499999 + t498;
     let t607 = t521 + t606;
-    let t608 = fma(t427, t581, -t607);
-    let t609 = fma(0.0030304889466540603, t490, 0.6435036024391828);
-    let t610 = fma(t452, t488, t609);
-    let t611 = fma(-0.384, t502, t610);
-    let t612 = fma(-0.384, t502, t525);
+    let t608 = I::fma(t427, t581, -t607);
+    let t609 = I::fma(0.0030304889466540603, t490, 0.6435036024391828);
+    let t610 = I::fma(t452, t488, t609);
+    let t611 = I::fma(-0.384, t502, t610);
+    let t612 = I::fma(-0.384, t502, t525);
     let t613 = t611 + t612;
-    let t614 = fma(-t473, t579, t613);
-    let t615 = fma(-0.0030304889466540603, t490, 0.7451354997528139);
-    let t616 = fma(t452, t489, t615);
+    let t614 = I::fma(-t473, t579, t613);
+    let t615 = I::fma(-0.0030304889466540603, t490, 0.7451354997528139);
+    let t616 = I::fma(t452, t489, t615);
     let t617 = t524 + t616;
-    let t618 = fma(0.0825, t521, t524);
-    let t619 = fma(0.384, t518, t617);
-    let t620 = fma(-t463, t597, t618);
+    let t618 = I::fma(0.0825, t521, t524);
+    let t619 = I::fma(0.384, t518, t617);
+    let t620 = I::fma(-t463, t597, t618);
     let t621 = t619 + t620;
-    let t622 = fma(-0.0825, t502, 0.16189047268546083);
-    let t623 = fma(0.03168, t513, t622);
-    let t624 = fma(t472, t579, t623);
-    let t625 = fma(0.0015152444733270301, t492, 0.0039053550262761003);
-    let t626 = fma(-t452, t490, t625);
-    let t627 = fma(0.03168, t509, t626);
-    let t628 = fma(0.384, t501, -t522);
-    let t629 = fma(-0.384, t500, t526);
+    let t622 = I::fma(-0.0825, t502, 0.16189047268546083);
+    let t623 = I::fma(0.03168, t513, t622);
+    let t624 = I::fma(t472, t579, t623);
+    let t625 = I::fma(0.0015152444733270301, t492, 0.0039053550262761003);
+    let t626 = I::fma(-t452, t490, t625);
+    let t627 = I::fma(0.03168, t509, t626);
+    let t628 = I::fma(0.384, t501, -t522);
+    let t629 = I::fma(-0.384, t500, t526);
     let t630 = t627 + t628;
     let t631 = t629 + t630;
-    let t632 = fma(t475, t579, t631);
-    let t633 = fma(0.0825, t501, -0.0016444875773692705);
-    let t634 = fma(-t475, t580, t633);
+    let t632 = I::fma(t475, t579, t631);
+    let t633 = I::fma(0.0825, t501, -0.0016444875773692705);
+    let t634 = I::fma(-t475, t580, t633);
     let t635 = t529 + t634;
     let t636 = c[4] * t560;
-    let t637 = fma(-s[4], t571, t636);
+    let t637 = I::fma(-s[4], t571, t636);
     let t638 = s[4] * t560;
-    let t639 = fma(c[4], t571, t638);
+    let t639 = I::fma(c[4], t571, t638);
     let t640 = t463 * t487;
     let t641 = t473 * t640;
     let t642 = 1.0 / t621;
     let t643 = s[3] * t608;
-    let t644 = fma(c[3], t605, -t643);
-    let t645 = fma(t467, t581, -t533);
+    let t644 = I::fma(c[3], t605, -t643);
+    let t645 = I::fma(t467, t581, -t533);
     let t646 = c[3] * t608;
-    let t647 = fma(s[3], t605, t646);
+    let t647 = I::fma(s[3], t605, t646);
     let t648 = c[3] * t632;
-    let t649 = fma(-s[3], t635, t648);
+    let t649 = I::fma(-s[3], t635, t648);
     let t650 = s[3] * t632;
-    let t651 = fma(c[3], t635, t650);
+    let t651 = I::fma(c[3], t635, t650);
     let t652 = 0.0825 * t647;
-    let t653 = fma(0.0825, t645, t651);
+    let t653 = I::fma(0.0825, t645, t651);
     let t654 = t621 + t652;
     let t655 = t62 * t635;
     let t656 = t51 * t586;
-    let t657 = fma(-t54, t80, tau[3]);
-    let t658 = fma(t56, t78, t657);
-    let t659 = fma(c[4], t554, t658);
-    let t660 = fma(-t61, t632, t659);
-    let t661 = fma(-t58, t605, t655);
-    let t662 = fma(-t60, t608, t656);
+    let t657 = I::fma(-t54, t80, tau[3]);
+    let t658 = I::fma(t56, t78, t657);
+    let t659 = I::fma(c[4], t554, t658);
+    let t660 = I::fma(-t61, t632, t659);
+    let t661 = I::fma(-t58, t605, t655);
+    let t662 = I::fma(-t60, t608, t656);
     let t663 = t660 + t661;
-    let t664 = fma(0.0825, t578, t662);
-    let t665 = fma(s[4], t551, t663);
-    let t666 = fma(0.384, t637, t664);
-    let t667 = fma(t475, t640, t665);
+    let t664 = I::fma(0.0825, t578, t662);
+    let t665 = I::fma(s[4], t551, t663);
+    let t666 = I::fma(0.384, t637, t664);
+    let t667 = I::fma(t475, t640, t665);
     let t668 = t666 + t667;
     let t669 = c[3] * c[3];
     let t670 = s[3] * s[3];
@@ -2272,28 +2490,28 @@ pub fn forward_dynamics_sc(
     let t678 = t671 * t677;
     let t679 = s[3] * t602;
     let t680 = s[3] * t600;
-    let t681 = fma(c[3], t602, t680);
+    let t681 = I::fma(c[3], t602, t680);
     let t682 = t669 * t675;
     let t683 = t682 - t678;
     let t684 = t585 + t683;
-    let t685 = fma(t670, t675, t678);
+    let t685 = I::fma(t670, t675, t678);
     let t686 = t585 + t685;
     let t687 = t583 * t669;
-    let t688 = fma(-t584, t670, t687);
+    let t688 = I::fma(-t584, t670, t687);
     let t689 = t676 + t688;
-    let t690 = fma(-c[3], t600, t679);
+    let t690 = I::fma(-c[3], t600, t679);
     let t691 = t591 - t592;
     let t692 = s[3] * t596;
     let t693 = s[3] * t595;
-    let t694 = fma(c[3], t596, t693);
+    let t694 = I::fma(c[3], t596, t693);
     let t695 = t594 * t672;
-    let t696 = fma(t669, t691, -t695);
+    let t696 = I::fma(t669, t691, -t695);
     let t697 = t592 + t696;
     let t698 = t592 + t695;
-    let t699 = fma(t670, t691, t698);
+    let t699 = I::fma(t670, t691, t698);
     let t700 = t594 * t673;
-    let t701 = fma(t671, t691, t700);
-    let t702 = fma(-c[3], t595, t692);
+    let t701 = I::fma(t671, t691, t700);
+    let t702 = I::fma(-c[3], t595, t692);
     let t703 = 0.0825 * t701;
     let t704 = 0.0825 * t694;
     let t705 = 0.006806250000000001 * t699;
@@ -2302,127 +2520,127 @@ pub fn forward_dynamics_sc(
     let t708 = t58 * t582;
     let t709 = t60 * t583;
     let t710 = t58 * t584;
-    let t711 = fma(t60, t585, t710);
+    let t711 = I::fma(t60, t585, t710);
     let t712 = t58 * t591;
-    let t713 = fma(t60, t594, t712);
+    let t713 = I::fma(t60, t594, t712);
     let t714 = t51 * t595;
     let t715 = t58 * t594;
-    let t716 = fma(t60, t592, t715);
+    let t716 = I::fma(t60, t592, t715);
     let t717 = t51 * t596;
     let t718 = t58 * t595;
-    let t719 = fma(t60, t596, t718);
+    let t719 = I::fma(t60, t596, t718);
     let t720 = t51 * t593;
-    let t721 = fma(-s[4], t554, t85);
-    let t722 = fma(t61, t614, t721);
-    let t723 = fma(-t62, t624, t708);
-    let t724 = fma(-t51, t600, t709);
+    let t721 = I::fma(-s[4], t554, t85);
+    let t722 = I::fma(t61, t614, t721);
+    let t723 = I::fma(-t62, t624, t708);
+    let t724 = I::fma(-t51, t600, t709);
     let t725 = t722 + t723;
     let t726 = t724 + t725;
-    let t727 = fma(c[4], t551, t726);
-    let t728 = fma(-0.384, t639, t641);
+    let t727 = I::fma(c[4], t551, t726);
+    let t728 = I::fma(-0.384, t639, t641);
     let t729 = t727 + t728;
-    let t730 = fma(t63, t78, tau[4]);
-    let t731 = fma(-t54, t83, t730);
-    let t732 = fma(-t62, t587, t731);
-    let t733 = fma(-t51, t602, t707);
+    let t730 = I::fma(t63, t78, tau[4]);
+    let t731 = I::fma(-t54, t83, t730);
+    let t732 = I::fma(-t62, t587, t731);
+    let t733 = I::fma(-t51, t602, t707);
     let t734 = t711 + t732;
     let t735 = t733 + t734;
-    let t736 = fma(-0.0825, t639, t735);
-    let t737 = fma(-t472, t640, t736);
-    let t738 = fma(-t62, t584, t71);
-    let t739 = fma(t61, t582, -t714);
+    let t736 = I::fma(-0.0825, t639, t735);
+    let t737 = I::fma(-t472, t640, t736);
+    let t738 = I::fma(-t62, t584, t71);
+    let t739 = I::fma(t61, t582, -t714);
     let t740 = t713 + t738;
     let t741 = t739 + t740;
     let t742 = t637 + t741;
-    let t743 = fma(t465, t640, t742);
-    let t744 = fma(t62, t585, t73);
-    let t745 = fma(t61, t583, -t717);
+    let t743 = I::fma(t465, t640, t742);
+    let t744 = I::fma(t62, t585, t73);
+    let t745 = I::fma(t61, t583, -t717);
     let t746 = t716 - t744;
     let t747 = t578 + t745;
     let t748 = t746 + t747;
-    let t749 = fma(t427, t640, t748);
-    let t750 = fma(-t62, t602, t75);
-    let t751 = fma(t61, t600, -t720);
+    let t749 = I::fma(t427, t640, t748);
+    let t750 = I::fma(-t62, t602, t75);
+    let t751 = I::fma(t61, t600, -t720);
     let t752 = t719 + t750;
     let t753 = t751 + t752;
     let t754 = t753 - t639;
-    let t755 = fma(-t467, t640, t754);
+    let t755 = I::fma(-t467, t640, t754);
     let t756 = t642 * t649;
     let t757 = t642 * t652;
     let t758 = t642 * t653;
-    let t759 = fma(-t644, t756, t684);
-    let t760 = fma(-t645, t756, t690);
-    let t761 = fma(t644, t757, -t703);
-    let t762 = fma(t645, t757, t704);
-    let t763 = fma(-t647, t758, t706);
-    let t764 = fma(-t652, t757, t705);
+    let t759 = I::fma(-t644, t756, t684);
+    let t760 = I::fma(-t645, t756, t690);
+    let t761 = I::fma(t644, t757, -t703);
+    let t762 = I::fma(t645, t757, t704);
+    let t763 = I::fma(-t647, t758, t706);
+    let t764 = I::fma(-t652, t757, t705);
     let t765 = t642 * t644;
     let t766 = t642 * t645;
-    let t767 = fma(-t644, t765, t697);
-    let t768 = fma(-t645, t766, t593);
-    let t769 = fma(-t645, t765, t702);
-    let t770 = fma(-t647, t765, t701);
-    let t771 = fma(t647, t766, t694);
+    let t767 = I::fma(-t644, t765, t697);
+    let t768 = I::fma(-t645, t766, t593);
+    let t769 = I::fma(-t645, t765, t702);
+    let t770 = I::fma(-t647, t765, t701);
+    let t771 = I::fma(t647, t766, t694);
     let t772 = t653 * t653;
     let t773 = 0.028227094878000014 + t689;
-    let t774 = fma(-t647, t756, t773);
-    let t775 = fma(0.0825, t699, 0.744382959872);
-    let t776 = fma(t647, t757, -t775);
-    let t777 = fma(t584, t669, -0.028227094878000014);
-    let t778 = fma(-t583, t670, t777);
-    let t779 = fma(0.0825, t702, t676);
+    let t774 = I::fma(-t647, t756, t773);
+    let t775 = I::fma(0.0825, t699, 0.744382959872);
+    let t776 = I::fma(t647, t757, -t775);
+    let t777 = I::fma(t584, t669, -0.028227094878000014);
+    let t778 = I::fma(-t583, t670, t777);
+    let t779 = I::fma(0.0825, t702, t676);
     let t780 = t778 + t779;
-    let t781 = fma(-t644, t758, t780);
-    let t782 = fma(0.0825, t593, 0.744382959872);
+    let t781 = I::fma(-t644, t758, t780);
+    let t782 = I::fma(0.0825, t593, 0.744382959872);
     let t783 = t782 - t681;
-    let t784 = fma(-t645, t758, t783);
+    let t784 = I::fma(-t645, t758, t783);
     let t785 = 0.011595864095166095 + t587;
-    let t786 = fma(-t624, t672, t785);
-    let t787 = fma(t669, t674, t786);
-    let t788 = fma(-t649, t756, t787);
+    let t786 = I::fma(-t624, t672, t785);
+    let t787 = I::fma(t669, t674, t786);
+    let t788 = I::fma(-t649, t756, t787);
     let t789 = 0.1343923311482215 + t587;
-    let t790 = fma(0.006806250000000001, t593, t789);
-    let t791 = fma(t624, t672, t790);
-    let t792 = fma(t670, t674, t791);
-    let t793 = fma(-0.165, t681, t792);
-    let t794 = fma(-t642, t772, t793);
-    let t795 = fma(0.0825, t689, 0.00012191242095074308);
-    let t796 = fma(t652, t756, -t795);
-    let t797 = fma(t624, t673, -0.005487648106562256);
-    let t798 = fma(t671, t674, t797);
-    let t799 = fma(0.0825, t690, t798);
-    let t800 = fma(-t653, t756, t799);
-    let t801 = fma(0.006806250000000001, t694, -0.004377257121839584);
-    let t802 = fma(-0.0825, t686, t801);
-    let t803 = fma(t653, t757, t802);
+    let t790 = I::fma(0.006806250000000001, t593, t789);
+    let t791 = I::fma(t624, t672, t790);
+    let t792 = I::fma(t670, t674, t791);
+    let t793 = I::fma(-0.165, t681, t792);
+    let t794 = I::fma(-t642, t772, t793);
+    let t795 = I::fma(0.0825, t689, 0.00012191242095074308);
+    let t796 = I::fma(t652, t756, -t795);
+    let t797 = I::fma(t624, t673, -0.005487648106562256);
+    let t798 = I::fma(t671, t674, t797);
+    let t799 = I::fma(0.0825, t690, t798);
+    let t800 = I::fma(-t653, t756, t799);
+    let t801 = I::fma(0.006806250000000001, t694, -0.004377257121839584);
+    let t802 = I::fma(-0.0825, t686, t801);
+    let t803 = I::fma(t653, t757, t802);
     let t804 = c[3] * t749;
-    let t805 = fma(s[3], t743, t804);
+    let t805 = I::fma(s[3], t743, t804);
     let t806 = s[3] * t737;
     let t807 = c[3] * t737;
-    let t808 = fma(s[3], t729, t807);
+    let t808 = I::fma(s[3], t729, t807);
     let t809 = 0.0825 * t805;
     let t810 = t642 * t668;
     let t811 = 1.0 / t794;
     let t812 = c[2] * t781;
-    let t813 = fma(-s[2], t784, t812);
-    let t814 = fma(t647, t758, -t706);
+    let t813 = I::fma(-s[2], t784, t812);
+    let t814 = I::fma(t647, t758, -t706);
     let t815 = s[2] * t781;
-    let t816 = fma(c[2], t784, t815);
+    let t816 = I::fma(c[2], t784, t815);
     let t817 = c[2] * t800;
-    let t818 = fma(-s[2], t803, t817);
+    let t818 = I::fma(-s[2], t803, t817);
     let t819 = s[2] * t800;
-    let t820 = fma(c[2], t803, t819);
-    let t821 = fma(-0.316, t816, t818);
-    let t822 = fma(0.316, t813, t820);
+    let t820 = I::fma(c[2], t803, t819);
+    let t821 = I::fma(-0.316, t816, t818);
+    let t822 = I::fma(0.316, t813, t820);
     let t823 = t28 * t803;
     let t824 = t17 * t763;
-    let t825 = fma(t20, t44, tau[2]);
-    let t826 = fma(t22, t42, t825);
-    let t827 = fma(0.0825, t755, t826);
-    let t828 = fma(-t27, t800, t827);
-    let t829 = fma(-t24, t781, t823);
-    let t830 = fma(-t26, t784, t824);
-    let t831 = fma(t653, t810, t808);
+    let t825 = I::fma(t20, t44, tau[2]);
+    let t826 = I::fma(t22, t42, t825);
+    let t827 = I::fma(0.0825, t755, t826);
+    let t828 = I::fma(-t27, t800, t827);
+    let t829 = I::fma(-t24, t781, t823);
+    let t830 = I::fma(-t26, t784, t824);
+    let t831 = I::fma(t653, t810, t808);
     let t832 = t828 + t829;
     let t833 = t830 - t831;
     let t834 = t832 + t833;
@@ -2439,258 +2657,258 @@ pub fn forward_dynamics_sc(
     let t845 = t835 * t841;
     let t846 = t845 - t843;
     let t847 = t762 + t846;
-    let t848 = fma(t836, t841, t843);
+    let t848 = I::fma(t836, t841, t843);
     let t849 = t762 + t848;
     let t850 = t760 * t835;
-    let t851 = fma(-t761, t836, t850);
-    let t852 = fma(t837, t841, t851);
+    let t851 = I::fma(-t761, t836, t850);
+    let t852 = I::fma(t837, t841, t851);
     let t853 = t761 * t835;
-    let t854 = fma(-t760, t836, t853);
-    let t855 = fma(t837, t841, t854);
-    let t856 = fma(-c[2], t774, t844);
+    let t854 = I::fma(-t760, t836, t853);
+    let t855 = I::fma(t837, t841, t854);
+    let t856 = I::fma(-c[2], t774, t844);
     let t857 = t767 - t768;
     let t858 = c[2] * t770;
     let t859 = s[2] * t770;
-    let t860 = fma(-c[2], t771, t859);
-    let t861 = fma(-t769, t838, t768);
-    let t862 = fma(t835, t857, t861);
-    let t863 = fma(t769, t838, t768);
-    let t864 = fma(t836, t857, t863);
+    let t860 = I::fma(-c[2], t771, t859);
+    let t861 = I::fma(-t769, t838, t768);
+    let t862 = I::fma(t835, t857, t861);
+    let t863 = I::fma(t769, t838, t768);
+    let t864 = I::fma(t836, t857, t863);
     let t865 = t769 * t839;
-    let t866 = fma(t837, t857, t865);
-    let t867 = fma(s[2], t771, t858);
+    let t866 = I::fma(t837, t857, t865);
+    let t867 = I::fma(s[2], t771, t858);
     let t868 = 0.316 * t847;
-    let t869 = fma(-0.316, t866, t847);
-    let t870 = fma(0.316, t860, t856);
+    let t869 = I::fma(-0.316, t866, t847);
+    let t870 = I::fma(0.316, t860, t856);
     let t871 = t24 * t759;
     let t872 = t26 * t760;
     let t873 = t24 * t761;
     let t874 = t26 * t762;
     let t875 = t27 * t759;
-    let t876 = fma(-t28, t761, t875);
+    let t876 = I::fma(-t28, t761, t875);
     let t877 = t24 * t767;
-    let t878 = fma(t26, t769, t877);
+    let t878 = I::fma(t26, t769, t877);
     let t879 = t17 * t770;
     let t880 = t24 * t769;
     let t881 = t26 * t768;
-    let t882 = fma(c[3], t729, t49);
-    let t883 = fma(t27, t788, -t806);
-    let t884 = fma(-t28, t796, t871);
-    let t885 = fma(-t17, t774, t872);
-    let t886 = fma(t649, t810, t882);
+    let t882 = I::fma(c[3], t729, t49);
+    let t883 = I::fma(t27, t788, -t806);
+    let t884 = I::fma(-t28, t796, t871);
+    let t885 = I::fma(-t17, t774, t872);
+    let t886 = I::fma(t649, t810, t882);
     let t887 = t883 + t884;
     let t888 = t885 + t886;
     let t889 = t887 + t888;
-    let t890 = fma(t29, t42, -tau[3]);
-    let t891 = fma(-t20, t47, t890);
-    let t892 = fma(t27, t796, t891);
-    let t893 = fma(-t28, t764, t873);
-    let t894 = fma(-t17, t776, t874);
-    let t895 = fma(t652, t810, t809);
+    let t890 = I::fma(t29, t42, -tau[3]);
+    let t891 = I::fma(-t20, t47, t890);
+    let t892 = I::fma(t27, t796, t891);
+    let t893 = I::fma(-t28, t764, t873);
+    let t894 = I::fma(-t17, t776, t874);
+    let t895 = I::fma(t652, t810, t809);
     let t896 = t892 + t893;
     let t897 = t894 - t895;
     let t898 = t896 + t897;
-    let t899 = fma(c[3], t743, t37);
-    let t900 = fma(-s[3], t749, t899);
-    let t901 = fma(t644, t810, -t879);
+    let t899 = I::fma(c[3], t743, t37);
+    let t900 = I::fma(-s[3], t749, t899);
+    let t901 = I::fma(t644, t810, -t879);
     let t902 = t876 + t900;
     let t903 = t878 + t901;
     let t904 = t902 + t903;
     let t905 = t39 - t755;
-    let t906 = fma(t27, t760, t905);
-    let t907 = fma(-t28, t762, t880);
-    let t908 = fma(t17, t771, t881);
-    let t909 = fma(t645, t810, t906);
+    let t906 = I::fma(t27, t760, t905);
+    let t907 = I::fma(-t28, t762, t880);
+    let t908 = I::fma(t17, t771, t881);
+    let t909 = I::fma(t645, t810, t906);
     let t910 = t907 + t908;
     let t911 = t909 + t910;
     let t912 = t811 * t821;
     let t913 = t811 * t822;
-    let t914 = fma(-t813, t912, t869);
-    let t915 = fma(-t814, t912, t870);
+    let t914 = I::fma(-t813, t912, t869);
+    let t915 = I::fma(-t814, t912, t870);
     let t916 = t822 * t822;
     let t917 = 3.335020043512 + t855;
-    let t918 = fma(0.316, t862, t917);
-    let t919 = fma(-t813, t913, t918);
-    let t920 = fma(s[2], t774, 0.002031994566);
-    let t921 = fma(c[2], t776, t920);
-    let t922 = fma(0.316, t867, t921);
-    let t923 = fma(t814, t913, t922);
+    let t918 = I::fma(0.316, t862, t917);
+    let t919 = I::fma(-t813, t913, t918);
+    let t920 = I::fma(s[2], t774, 0.002031994566);
+    let t921 = I::fma(c[2], t776, t920);
+    let t922 = I::fma(0.316, t867, t921);
+    let t923 = I::fma(t814, t913, t922);
     let t924 = 1.0674867322634767 + t764;
-    let t925 = fma(-t796, t838, t924);
-    let t926 = fma(t835, t840, t925);
-    let t927 = fma(0.099856, t864, t926);
-    let t928 = fma(-0.632, t852, t927);
-    let t929 = fma(-t821, t912, t928);
+    let t925 = I::fma(-t796, t838, t924);
+    let t926 = I::fma(t835, t840, t925);
+    let t927 = I::fma(0.099856, t864, t926);
+    let t928 = I::fma(-0.632, t852, t927);
+    let t929 = I::fma(-t821, t912, t928);
     let t930 = 1.1136424972533403 + t764;
-    let t931 = fma(t796, t838, t930);
-    let t932 = fma(t836, t840, t931);
-    let t933 = fma(0.099856, t862, t932);
-    let t934 = fma(0.632, t855, t933);
-    let t935 = fma(-t811, t916, t934);
-    let t936 = fma(t796, t839, 0.01026110182100817);
-    let t937 = fma(t837, t840, t936);
-    let t938 = fma(-0.099856, t866, t937);
-    let t939 = fma(-0.316, t849, t868);
-    let t940 = fma(-t822, t912, t938);
+    let t931 = I::fma(t796, t838, t930);
+    let t932 = I::fma(t836, t840, t931);
+    let t933 = I::fma(0.099856, t862, t932);
+    let t934 = I::fma(0.632, t855, t933);
+    let t935 = I::fma(-t811, t916, t934);
+    let t936 = I::fma(t796, t839, 0.01026110182100817);
+    let t937 = I::fma(t837, t840, t936);
+    let t938 = I::fma(-0.099856, t866, t937);
+    let t939 = I::fma(-0.316, t849, t868);
+    let t940 = I::fma(-t822, t912, t938);
     let t941 = t939 + t940;
     let t942 = s[2] * t911;
-    let t943 = fma(c[2], t904, -t942);
+    let t943 = I::fma(c[2], t904, -t942);
     let t944 = c[2] * t911;
-    let t945 = fma(s[2], t904, t944);
+    let t945 = I::fma(s[2], t904, t944);
     let t946 = s[2] * t898;
     let t947 = c[2] * t898;
     let t948 = t811 * t834;
     let t949 = 1.0 / t935;
     let t950 = c[1] * t923;
-    let t951 = fma(s[1], t919, -t950);
+    let t951 = I::fma(s[1], t919, -t950);
     let t952 = 0.0007689361029464 * c[1];
-    let t953 = fma(s[1], t941, t952);
-    let t954 = fma(-0.0007689361029464, t3, tau[1]);
-    let t955 = fma(t0, t11, t954);
-    let t956 = fma(-t1, t9, t955);
-    let t957 = fma(-s[2], t889, t956);
-    let t958 = fma(t822, t948, t947);
-    let t959 = fma(-0.316, t943, t957);
+    let t953 = I::fma(s[1], t941, t952);
+    let t954 = I::fma(-0.0007689361029464, t3, tau[1]);
+    let t955 = I::fma(t0, t11, t954);
+    let t956 = I::fma(-t1, t9, t955);
+    let t957 = I::fma(-s[2], t889, t956);
+    let t958 = I::fma(t822, t948, t947);
+    let t959 = I::fma(-0.316, t943, t957);
     let t960 = t959 - t958;
-    let t961 = fma(t2, t941, t960);
+    let t961 = I::fma(t2, t941, t960);
     let t962 = s[1] * s[1];
     let t963 = s[1] * c[1];
     let t964 = t915 * t963;
-    let t965 = fma(t914, t962, t964);
-    let t966 = fma(0.00398335888393552, t3, t15);
-    let t967 = fma(t1, t14, t966);
-    let t968 = fma(c[2], t889, -t967);
-    let t969 = fma(t821, t948, -t946);
-    let t970 = fma(-0.316, t945, t968);
-    let t971 = fma(-t2, t929, t969);
+    let t965 = I::fma(t914, t962, t964);
+    let t966 = I::fma(0.00398335888393552, t3, t15);
+    let t967 = I::fma(t1, t14, t966);
+    let t968 = I::fma(c[2], t889, -t967);
+    let t969 = I::fma(t821, t948, -t946);
+    let t970 = I::fma(-0.316, t945, t968);
+    let t971 = I::fma(-t2, t929, t969);
     let t972 = t970 + t971;
-    let t973 = fma(0.00398335888393552, t2, -tau[2]);
-    let t974 = fma(qd[1], t9, t973);
-    let t975 = fma(t0, t14, t974);
+    let t973 = I::fma(0.00398335888393552, t2, -tau[2]);
+    let t974 = I::fma(qd[1], t9, t973);
+    let t975 = I::fma(t0, t14, t974);
     let t976 = t949 * t953;
-    let t977 = fma(-t951, t976, t965);
+    let t977 = I::fma(-t951, t976, t965);
     let t978 = t953 * t953;
-    let t979 = fma(-0.00796671776787104, t963, 0.03733744848940618);
-    let t980 = fma(t929, t962, t979);
-    let t981 = fma(-t949, t978, t980);
+    let t979 = I::fma(-0.00796671776787104, t963, 0.03733744848940618);
+    let t980 = I::fma(t929, t962, t979);
+    let t981 = I::fma(-t949, t978, t980);
     let t982 = c[1] * t975;
-    let t983 = fma(s[1], t972, t982);
+    let t983 = I::fma(s[1], t972, t982);
     let t984 = t949 * t961;
-    let t985 = fma(t953, t984, t983);
+    let t985 = I::fma(t953, t984, t983);
     let t986 = 1.0 / t981;
     let t987 = tau[0] + t985;
-    let t988 = fma(-9.81, t977, t987);
+    let t988 = I::fma(-9.81, t977, t987);
     let t989 = t986 * t988;
     let t990 = 9.81 * s[1];
     let t991 = 9.81 * c[1];
-    let t992 = fma(s[1], t989, t2);
-    let t993 = fma(-c[1], t989, t3);
-    let t994 = fma(9.81, t951, t961);
-    let t995 = fma(t953, t989, t994);
+    let t992 = I::fma(s[1], t989, t2);
+    let t993 = I::fma(-c[1], t989, t3);
+    let t994 = I::fma(9.81, t951, t961);
+    let t995 = I::fma(t953, t989, t994);
     let t996 = t949 * t995;
     let t997 = s[2] * t992;
-    let t998 = fma(c[2], t996, t997);
-    let t999 = fma(c[1], t989, -t3);
+    let t998 = I::fma(c[2], t996, t997);
+    let t999 = I::fma(c[1], t989, -t3);
     let t1000 = 0.316 * t992;
-    let t1001 = fma(0.316, t996, -t990);
-    let t1002 = fma(-c[2], t992, t27);
-    let t1003 = fma(s[2], t996, t1002);
+    let t1001 = I::fma(0.316, t996, -t990);
+    let t1002 = I::fma(-c[2], t992, t27);
+    let t1003 = I::fma(s[2], t996, t1002);
     let t1004 = t998 - t28;
-    let t1005 = fma(s[2], t1000, t24);
-    let t1006 = fma(c[2], t1001, t1005);
-    let t1007 = fma(c[2], t1000, t26);
-    let t1008 = fma(-s[2], t1001, t1007);
+    let t1005 = I::fma(s[2], t1000, t24);
+    let t1006 = I::fma(c[2], t1001, t1005);
+    let t1007 = I::fma(c[2], t1000, t26);
+    let t1008 = I::fma(-s[2], t1001, t1007);
     let t1009 = t991 - t17;
     let t1010 = t794 * t993;
     let t1011 = t814 * t991;
-    let t1012 = fma(t813, t990, t1011);
+    let t1012 = I::fma(t813, t990, t1011);
     let t1013 = t834 + t1012;
-    let t1014 = fma(t821, t992, t1013);
-    let t1015 = fma(-t822, t996, t1010);
+    let t1014 = I::fma(t821, t992, t1013);
+    let t1015 = I::fma(-t822, t996, t1010);
     let t1016 = t1014 + t1015;
     let t1017 = t811 * t1016;
     let t1018 = t999 + t1017;
     let t1019 = t28 - t998;
-    let t1020 = fma(-0.0825, t1004, t1009);
-    let t1021 = fma(c[3], t1003, t61);
-    let t1022 = fma(s[3], t1018, t1021);
-    let t1023 = fma(s[3], t1003, t62);
-    let t1024 = fma(c[3], t1018, -t1023);
-    let t1025 = fma(c[3], t1006, t58);
-    let t1026 = fma(s[3], t1020, t1025);
-    let t1027 = fma(-s[3], t1006, t60);
-    let t1028 = fma(c[3], t1020, t1027);
+    let t1020 = I::fma(-0.0825, t1004, t1009);
+    let t1021 = I::fma(c[3], t1003, t61);
+    let t1022 = I::fma(s[3], t1018, t1021);
+    let t1023 = I::fma(s[3], t1003, t62);
+    let t1024 = I::fma(c[3], t1018, -t1023);
+    let t1025 = I::fma(c[3], t1006, t58);
+    let t1026 = I::fma(s[3], t1020, t1025);
+    let t1027 = I::fma(-s[3], t1006, t60);
+    let t1028 = I::fma(c[3], t1020, t1027);
     let t1029 = t51 + t1008;
-    let t1030 = fma(0.0825, t1018, t1029);
+    let t1030 = I::fma(0.0825, t1018, t1029);
     let t1031 = t644 * t1006;
-    let t1032 = fma(t645, t1008, t1031);
-    let t1033 = fma(-t647, t1009, t668);
-    let t1034 = fma(-t649, t1003, t1033);
-    let t1035 = fma(t654, t1004, t1034);
-    let t1036 = fma(-t653, t1018, t1035);
+    let t1032 = I::fma(t645, t1008, t1031);
+    let t1033 = I::fma(-t647, t1009, t668);
+    let t1034 = I::fma(-t649, t1003, t1033);
+    let t1035 = I::fma(t654, t1004, t1034);
+    let t1036 = I::fma(-t653, t1018, t1035);
     let t1037 = t1036 - t1032;
     let t1038 = t642 * t1037;
     let t1039 = t1019 + t1038;
     let t1040 = 0.384 * t1022;
-    let t1041 = fma(0.0825, t1024, t1040);
-    let t1042 = fma(-0.384, t1039, t1026);
+    let t1041 = I::fma(0.0825, t1024, t1040);
+    let t1042 = I::fma(-0.384, t1039, t1026);
     let t1043 = t1041 - t1030;
-    let t1044 = fma(c[4], t1022, -t100);
-    let t1045 = fma(-s[4], t1039, t1044);
-    let t1046 = fma(s[4], t1022, t101);
-    let t1047 = fma(c[4], t1039, t1046);
-    let t1048 = fma(-s[4], t1043, t97);
-    let t1049 = fma(c[4], t1042, t1048);
-    let t1050 = fma(c[4], t1043, t99);
-    let t1051 = fma(s[4], t1042, t1050);
+    let t1044 = I::fma(c[4], t1022, -t100);
+    let t1045 = I::fma(-s[4], t1039, t1044);
+    let t1046 = I::fma(s[4], t1022, t101);
+    let t1047 = I::fma(c[4], t1039, t1046);
+    let t1048 = I::fma(-s[4], t1043, t97);
+    let t1049 = I::fma(c[4], t1042, t1048);
+    let t1050 = I::fma(c[4], t1043, t99);
+    let t1051 = I::fma(s[4], t1042, t1050);
     let t1052 = t1028 - t89;
-    let t1053 = fma(-0.0825, t1039, t1052);
+    let t1053 = I::fma(-0.0825, t1039, t1052);
     let t1054 = t465 * t1026;
     let t1055 = t427 * t1028;
-    let t1056 = fma(-t473, t1022, t487);
-    let t1057 = fma(t476, t1024, t1054);
-    let t1058 = fma(t467, t1030, t1055);
+    let t1056 = I::fma(-t473, t1022, t487);
+    let t1057 = I::fma(t476, t1024, t1054);
+    let t1058 = I::fma(t467, t1030, t1055);
     let t1059 = t1056 - t1057;
     let t1060 = t1059 - t1058;
-    let t1061 = fma(t475, t1039, t1060);
+    let t1061 = I::fma(t475, t1039, t1060);
     let t1062 = t463 * t1061;
     let t1063 = t1024 + t1062;
     let t1064 = s[5] * t1053;
-    let t1065 = fma(c[5], t1049, t1064);
-    let t1066 = fma(c[5], t1045, t130);
-    let t1067 = fma(s[5], t1063, t1066);
-    let t1068 = fma(s[5], t1045, t131);
-    let t1069 = fma(c[5], t1063, -t1068);
+    let t1065 = I::fma(c[5], t1049, t1064);
+    let t1066 = I::fma(c[5], t1045, t130);
+    let t1067 = I::fma(s[5], t1063, t1066);
+    let t1068 = I::fma(s[5], t1045, t131);
+    let t1069 = I::fma(c[5], t1063, -t1068);
     let t1070 = t348 * t1047;
     let t1071 = t367 * t1049;
-    let t1072 = fma(-t372, t1045, t382);
-    let t1073 = fma(t370, t1053, t1070);
+    let t1072 = I::fma(-t372, t1045, t382);
+    let t1073 = I::fma(t370, t1053, t1070);
     let t1074 = t1072 - t1073;
-    let t1075 = fma(t374, t1063, t1071);
-    let t1076 = fma(t368, t1051, t1074);
+    let t1075 = I::fma(t374, t1063, t1071);
+    let t1076 = I::fma(t368, t1051, t1074);
     let t1077 = t1076 - t1075;
     let t1078 = t365 * t1077;
     let t1079 = t1047 + t1078;
     let t1080 = 0.19039999999999999 * t1067;
-    let t1081 = fma(0.088, t1069, t1080);
-    let t1082 = fma(0.19039999999999999, t1079, t1065);
+    let t1081 = I::fma(0.088, t1069, t1080);
+    let t1082 = I::fma(0.19039999999999999, t1079, t1065);
     let t1083 = t1051 - t1081;
     let t1084 = c[6] * t1082;
     let t1085 = t252 * t1065;
-    let t1086 = fma(-t254, t1051, t270);
-    let t1087 = fma(-t260, t1067, t1086);
-    let t1088 = fma(t262, t1069, -t1085);
+    let t1086 = I::fma(-t254, t1051, t270);
+    let t1087 = I::fma(-t260, t1067, t1086);
+    let t1088 = I::fma(t262, t1069, -t1085);
     let t1089 = t1087 + t1088;
-    let t1090 = fma(-t261, t1079, t1089);
+    let t1090 = I::fma(-t261, t1079, t1089);
     let t1091 = t250 * t1090;
     let t1092 = t164 + t166;
-    let t1093 = fma(s[6], t1083, t1092);
-    let t1094 = fma(c[6], t1083, t1093);
-    let t1095 = fma(-s[6], t1082, t1084);
+    let t1093 = I::fma(s[6], t1083, t1092);
+    let t1094 = I::fma(c[6], t1083, t1093);
+    let t1095 = I::fma(-s[6], t1082, t1084);
     let t1096 = t1094 + t1095;
-    let t1097 = fma(-0.010606601717798213, t1096, t233);
+    let t1097 = I::fma(-0.010606601717798213, t1096, t233);
     let t1098 = 66.66666666666666 * t1097;
-    let t1099 = fma(0.010606601717798213, t1096, t217);
+    let t1099 = I::fma(0.010606601717798213, t1096, t217);
     let t1100 = 66.66666666666666 * t1099;
     [t989, t996, t1017, t1038, t1062, t1078, t1091, t1098, t1100]
 }
@@ -2706,6 +2924,11 @@ pub fn forward_dynamics(
     qd: &[f64; DOF],
     tau: &[f64; DOF],
 ) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { forward_dynamics_avx2_fma(q, qd, tau) };
+    }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     forward_dynamics_sc(
         &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
@@ -2715,6 +2938,32 @@ pub fn forward_dynamics(
         tau,
     )
 }
+/// [`forward_dynamics`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn forward_dynamics_avx2_fma(
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+    tau: &[f64; DOF],
+) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe {
+        forward_dynamics_sc_avx2_fma(
+            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
+            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
+            q,
+            qd,
+            tau,
+        )
+    }
+}
+
+/// Whether `sin_cos_array` and the other public functions of the kernel below pick, on x86-64
+/// builds without the `avx2` and `fma` target features, their copies compiled for AVX2 and FMA
+/// where the processor has both (`CodegenOptions::runtime_dispatch`).
+#[allow(dead_code)]
+const RUNTIME_DISPATCH: bool = true;
 
 // The sine and cosine of joint angles in plain f64 arithmetic: nothing from
 // std or any crate. Within 1 ulp of the exact values for every finite
@@ -2803,24 +3052,216 @@ fn fma(a: f64, b: f64, c: f64) -> f64 {
     a * b + c
 }
 
+/// `a·b + c` in `f32` with one rounding (x86-64 with the `fma` feature);
+/// see `fma`.
+#[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
+#[inline(always)]
+#[allow(dead_code, unused_unsafe)]
+fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+    use core::arch::x86_64::{_mm_cvtss_f32, _mm_fmadd_ss, _mm_set_ss};
+    // SAFETY: the cfg above compiles this only where the `fma` target
+    // feature is enabled, so the instruction exists.
+    unsafe { _mm_cvtss_f32(_mm_fmadd_ss(_mm_set_ss(a), _mm_set_ss(b), _mm_set_ss(c))) }
+}
+
+/// `a·b + c` in `f32` with one rounding (aarch64).
+#[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
+#[inline(always)]
+#[allow(dead_code, unused_unsafe)]
+fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+    use core::arch::aarch64::{vdup_n_f32, vfma_f32, vget_lane_f32};
+    // SAFETY: the cfg above compiles this only where NEON is enabled.
+    unsafe { vget_lane_f32::<0>(vfma_f32(vdup_n_f32(c), vdup_n_f32(a), vdup_n_f32(b))) }
+}
+
+/// `a·b + c` in `f32`, rounded twice (targets without a fused multiply-add).
+#[cfg(not(any(
+    all(target_arch = "x86_64", target_feature = "fma"),
+    all(target_arch = "aarch64", target_feature = "neon")
+)))]
+#[inline(always)]
+#[allow(dead_code)]
+fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+    a * b + c
+}
+
+// Run-time dispatch (`CodegenOptions::runtime_dispatch`, on unless the
+// module says `RUNTIME_DISPATCH = false`). A default x86-64 build has SSE2
+// only: no fused multiply-add, two angles to a register. Most x86-64
+// processors in use have AVX2 and FMA, so on such builds every public
+// function is compiled twice from one generic body: for `Baseline` (the
+// build's own target features, the code a build without dispatch has) and
+// for `Avx2Fma`, inside a `#[target_feature(enable = "avx2,fma")]` function
+// that the public one calls when `has_avx2_and_fma()` says the processor
+// has both. The results are then those of a build with `-C
+// target-feature=+avx2,+fma`: bit for bit those of a native build on such
+// a processor, and different in the last bits from the baseline's on
+// processors without FMA. Builds that already have both features, and other
+// targets, compile no dispatch: `Baseline` is all there is.
+
+/// The instructions a copy of a generic body is compiled for.
+#[allow(dead_code)]
+trait Isa {
+    /// Whether `Lanes::mul_add` rounds once.
+    const FUSED: bool;
+    /// Whether four angles go to a register (else two).
+    const QUADS: bool;
+    /// `a·b + c` in `f64`.
+    fn fma(a: f64, b: f64, c: f64) -> f64;
+    /// `a·b + c` in `f32`.
+    fn fmaf(a: f32, b: f32, c: f32) -> f32;
+}
+
+/// What the build's target features give: fused multiply-adds where the
+/// target has them (`fma`, `fmaf`), four angles to a register where it has
+/// AVX2.
+#[allow(dead_code)]
+enum Baseline {}
+
+impl Isa for Baseline {
+    const FUSED: bool = cfg!(any(
+        all(target_arch = "x86_64", target_feature = "fma"),
+        all(target_arch = "aarch64", target_feature = "neon")
+    ));
+    const QUADS: bool = cfg!(all(target_arch = "x86_64", target_feature = "avx2"));
+    #[inline(always)]
+    fn fma(a: f64, b: f64, c: f64) -> f64 {
+        fma(a, b, c)
+    }
+    #[inline(always)]
+    fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+        fmaf(a, b, c)
+    }
+}
+
+/// AVX2 and FMA: named only in the bodies of `#[target_feature(enable =
+/// "avx2,fma")]` functions, which are called only where
+/// `has_avx2_and_fma()` holds.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[allow(dead_code)]
+enum Avx2Fma {}
+
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+impl Isa for Avx2Fma {
+    const FUSED: bool = true;
+    const QUADS: bool = true;
+    #[inline(always)]
+    #[allow(unused_unsafe)]
+    fn fma(a: f64, b: f64, c: f64) -> f64 {
+        use core::arch::x86_64::{_mm_cvtsd_f64, _mm_fmadd_sd, _mm_set_sd};
+        // SAFETY: `Avx2Fma` code runs only on processors with FMA (see above).
+        unsafe { _mm_cvtsd_f64(_mm_fmadd_sd(_mm_set_sd(a), _mm_set_sd(b), _mm_set_sd(c))) }
+    }
+    #[inline(always)]
+    #[allow(unused_unsafe)]
+    fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+        use core::arch::x86_64::{_mm_cvtss_f32, _mm_fmadd_ss, _mm_set_ss};
+        // SAFETY: `Avx2Fma` code runs only on processors with FMA (see above).
+        unsafe { _mm_cvtss_f32(_mm_fmadd_ss(_mm_set_ss(a), _mm_set_ss(b), _mm_set_ss(c))) }
+    }
+}
+
+/// Whether this processor has AVX2 and FMA and the operating system saves
+/// the 256-bit registers: asked once (`cpuid`, `xgetbv`), then remembered.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[inline]
+#[allow(dead_code)]
+fn has_avx2_and_fma() -> bool {
+    use core::sync::atomic::{AtomicU8, Ordering};
+    // 0: not asked yet, 1: no, 2: yes. Racing first calls store the same answer.
+    static ANSWER: AtomicU8 = AtomicU8::new(0);
+    match ANSWER.load(Ordering::Relaxed) {
+        0 => {
+            let yes = ask_cpu_for_avx2_and_fma();
+            ANSWER.store(if yes { 2 } else { 1 }, Ordering::Relaxed);
+            yes
+        }
+        answer => answer == 2,
+    }
+}
+
+/// `cpuid` leaf 1: FMA (ECX bit 12), OSXSAVE (27), AVX (28); `xgetbv`: the
+/// OS saves the SSE and AVX state (XCR0 bits 1 and 2); leaf 7: AVX2 (EBX
+/// bit 5).
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[cold]
+#[inline(never)]
+#[allow(dead_code, unused_unsafe)]
+fn ask_cpu_for_avx2_and_fma() -> bool {
+    use core::arch::x86_64::{__cpuid, __cpuid_count, _xgetbv};
+    let bit = |word: u32, b: u32| word >> b & 1 == 1;
+    // SAFETY: every x86-64 processor has `cpuid`; `xgetbv` is run only where
+    // leaf 1 says the OS has enabled it (OSXSAVE).
+    unsafe {
+        if __cpuid(0).eax < 7 {
+            return false;
+        }
+        let ecx = __cpuid(1).ecx;
+        if !(bit(ecx, 12) && bit(ecx, 27) && bit(ecx, 28)) || _xgetbv(0) & 0b110 != 0b110 {
+            return false;
+        }
+        bit(__cpuid_count(7, 0).ebx, 5)
+    }
+}
+
 /// The sines and cosines of `x`, entry by entry: within 1 ulp of the exact
 /// values for every finite angle (NaN and ±∞ give NaN); two or four angles
 /// at a time in vector instructions.
 #[inline]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if RUNTIME_DISPATCH && has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { sin_cos_array_avx2_fma(x) };
+    }
+    sin_cos_array_on::<Baseline, N>(x)
+}
+
+/// `sin_cos_array` compiled for AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn sin_cos_array_avx2_fma<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
+    sin_cos_array_on::<Avx2Fma, N>(x)
+}
+
+/// `sin_cos_array` in the instructions of `I`.
+#[inline(always)]
+fn sin_cos_array_on<I: Isa, const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut s = [0.0; N];
     let mut c = [0.0; N];
-    if !sin_cos_batches::<Precise, N>(x, &mut s, &mut c) {
-        sin_cos_again(x, &mut s, &mut c);
+    if !sin_cos_batches::<I, Precise, N>(x, &mut s, &mut c) {
+        sin_cos_again::<I>(x, &mut s, &mut c);
     }
     (s, c)
+}
+
+/// `[e(0), …, e(P − 1)]` for `each!(i => e(i))`: one step on each of the
+/// `P ≥ 1` registers of the function it is used in. A macro, not a function
+/// taking a closure: LLVM leaves closures (and `core::array::from_fn`) that
+/// return vector registers out of line when their caller is a
+/// `#[target_feature]` function (`Avx2Fma` code), and out of line they are
+/// compiled without its features; so the fast path calls nothing that is
+/// not `#[inline(always)]` (checked in the release assembly).
+macro_rules! each {
+    ($i:ident => $e:expr) => {{
+        let mut out = [{
+            let $i = 0;
+            $e
+        }; P];
+        let mut $i = 1;
+        while $i < P {
+            out[$i] = $e;
+            $i += 1;
+        }
+        out
+    }};
 }
 
 /// A fast path over registers of angles: (sin, cos, within 1 ulp) per
 /// register.
 trait FastPath {
     /// The fast path on `P` registers, step by step across them.
-    fn lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P];
+    fn lanes<I: Isa, V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P];
 }
 
 /// `sin_cos_lanes`: within 1 ulp of `f64`.
@@ -2828,50 +3269,55 @@ struct Precise;
 
 impl FastPath for Precise {
     #[inline(always)]
-    fn lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
-        sin_cos_lanes(x)
+    fn lanes<I: Isa, V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
+        sin_cos_lanes::<I, V, P>(x)
     }
 }
 
 /// `K`'s fast path on every angle of `x`, the results into `s` and `c`, and
 /// whether they are all within 1 ulp (false: redo them on the slow path).
 #[inline(always)]
-fn sin_cos_batches<K: FastPath, const N: usize>(x: &[f64; N], s: &mut [f64; N], c: &mut [f64; N]) -> bool {
+fn sin_cos_batches<I: Isa, K: FastPath, const N: usize>(x: &[f64; N], s: &mut [f64; N], c: &mut [f64; N]) -> bool {
     let mut fast = true;
     let mut i = 0;
     while i < N {
-        // The angles from i on, as many as a pass takes; past the end, the
-        // first ones again (a register of copies of one angle makes the
-        // compiler fall back to scalar code).
-        let at = |j: usize| x[(i + j) % N];
-        #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
-        let ok = {
-            let quad = |j: usize| core::array::from_fn(|l| at(j + l));
-            match N - i {
-                1..=4 => sin_cos_pass::<K, 4, 1, N>(i, [quad(0)], s, c),
-                _ => sin_cos_pass::<K, 4, 2, N>(i, [quad(0), quad(4)], s, c),
-            }
-        };
-        #[cfg(not(all(target_arch = "x86_64", target_feature = "avx2")))]
-        let ok = {
-            let pair = |j: usize| [at(j), at(j + 1)];
-            match N - i {
-                1 | 2 => sin_cos_pass::<K, 2, 1, N>(i, [pair(0)], s, c),
-                3 | 4 => sin_cos_pass::<K, 2, 2, N>(i, [pair(0), pair(2)], s, c),
-                _ => sin_cos_pass::<K, 2, 3, N>(i, [pair(0), pair(2), pair(4)], s, c),
-            }
-        };
-        fast &= ok;
-        i += if cfg!(all(target_arch = "x86_64", target_feature = "avx2")) { 8 } else { 6 };
+        if I::QUADS {
+            fast &= match N - i {
+                1..=4 => sin_cos_pass::<I, K, 4, 1, N>(i, [angles(x, i)], s, c),
+                _ => sin_cos_pass::<I, K, 4, 2, N>(i, [angles(x, i), angles(x, i + 4)], s, c),
+            };
+            i += 8;
+        } else {
+            fast &= match N - i {
+                1 | 2 => sin_cos_pass::<I, K, 2, 1, N>(i, [angles(x, i)], s, c),
+                3 | 4 => sin_cos_pass::<I, K, 2, 2, N>(i, [angles(x, i), angles(x, i + 2)], s, c),
+                _ => sin_cos_pass::<I, K, 2, 3, N>(i, [angles(x, i), angles(x, i + 2), angles(x, i + 4)], s, c),
+            };
+            i += 6;
+        }
     }
     fast
+}
+
+/// The `W` angles of `x` from `from` on; past the end, the first ones again
+/// (a register of copies of one angle makes the compiler fall back to scalar
+/// code).
+#[inline(always)]
+fn angles<const W: usize, const N: usize>(x: &[f64; N], from: usize) -> [f64; W] {
+    let mut out = [0.0; W];
+    let mut l = 0;
+    while l < W {
+        out[l] = x[(from + l) % N];
+        l += 1;
+    }
+    out
 }
 
 /// `K`'s fast path on `P` registers of `W` angles, interleaved, the results
 /// into `s[i..]` and `c[i..]` (what fits), and whether they are all within 1
 /// ulp.
 #[inline(always)]
-fn sin_cos_pass<K: FastPath, const W: usize, const P: usize, const N: usize>(
+fn sin_cos_pass<I: Isa, K: FastPath, const W: usize, const P: usize, const N: usize>(
     i: usize,
     x: [[f64; W]; P],
     s: &mut [f64; N],
@@ -2880,13 +3326,16 @@ fn sin_cos_pass<K: FastPath, const W: usize, const P: usize, const N: usize>(
 where
     [f64; W]: ToLanes,
 {
-    let r = K::lanes(x.map(<[f64; W]>::to_lanes));
-    for j in 0..W * P {
+    let r = K::lanes::<I, _, P>(each!(p => x[p].to_lanes()));
+    let (mut j, mut fast) = (0, true);
+    while j < W * P {
         if i + j < N {
             (s[i + j], c[i + j]) = (r[j / W].0.lane(j % W), r[j / W].1.lane(j % W));
         }
+        fast &= r[j / W].2;
+        j += 1;
     }
-    r.iter().all(|r| r.2)
+    fast
 }
 
 /// `W` angles as a register: `[f64; 1]` as `f64`, `[f64; 2]` and `[f64; 4]`
@@ -2910,8 +3359,8 @@ trait Lanes: Copy {
     fn sub(self, b: Self) -> Self;
     /// `self · b`.
     fn mul(self, b: Self) -> Self;
-    /// `self · b + c`, fused where the scalar `fma` is.
-    fn mul_add(self, b: Self, c: Self) -> Self;
+    /// `self · b + c`, rounded once if `I::FUSED`.
+    fn mul_add<I: Isa>(self, b: Self, c: Self) -> Self;
     /// `−self`.
     fn neg(self) -> Self;
     /// `|self|`.
@@ -2955,8 +3404,8 @@ impl Lanes for f64 {
         self * b
     }
     #[inline(always)]
-    fn mul_add(self, b: f64, c: f64) -> f64 {
-        fma(self, b, c)
+    fn mul_add<I: Isa>(self, b: f64, c: f64) -> f64 {
+        I::fma(self, b, c)
     }
     #[inline(always)]
     fn neg(self) -> f64 {
@@ -2988,23 +3437,24 @@ impl Lanes for f64 {
 /// operations of `impl Lanes for f64`, lane by lane.
 #[cfg(target_arch = "x86_64")]
 macro_rules! vector_lanes {
-    ($w:literal, $v:ident, $all:literal, $feature:literal, $add:ident, $sub:ident, $mul:ident, $fmadd:ident, $xor_pd:ident,
+    ($w:literal, $v:ident, $all:literal, $add:ident, $sub:ident, $mul:ident, $fmadd:ident, $xor_pd:ident,
      $set1:ident, $loadu:ident, $storeu:ident, $andnot:ident, $min:ident, $cmp_ge:expr, $movemask:ident,
      $to_int:ident, $to_float:ident, $and:ident, $or:ident, $xor:ident, $sub64:ident, $zero:ident, $set1_64:ident,
      $shl:ident) => {
-        #[cfg(target_feature = $feature)]
         impl ToLanes for [f64; $w] {
             type V = core::arch::x86_64::$v;
             #[inline(always)]
             #[allow(unused_unsafe)]
             fn to_lanes(self) -> Self::V {
-                // SAFETY (this and every block below): the target has the
-                // instructions (`cfg(target_feature)`); loads and stores are
-                // of `$w` f64 from and to arrays of `$w` f64.
+                // SAFETY (this and every block below): the processor has the
+                // instructions: SSE2 is part of every x86-64 target, and the
+                // AVX2 registers and `_fmadd_` are used only where the target
+                // has them (`Baseline::QUADS` and `FUSED` are their `cfg`) or
+                // in `Avx2Fma` code; loads and stores are of `$w` f64 from and
+                // to arrays of `$w` f64.
                 unsafe { core::arch::x86_64::$loadu(self.as_ptr()) }
             }
         }
-        #[cfg(target_feature = $feature)]
         #[allow(unused_unsafe)]
         impl Lanes for core::arch::x86_64::$v {
             #[inline(always)]
@@ -3030,12 +3480,12 @@ macro_rules! vector_lanes {
                 unsafe { core::arch::x86_64::$mul(self, b) }
             }
             #[inline(always)]
-            fn mul_add(self, b: Self, c: Self) -> Self {
-                #[cfg(target_feature = "fma")]
-                let r = unsafe { core::arch::x86_64::$fmadd(self, b, c) };
-                #[cfg(not(target_feature = "fma"))]
-                let r = self.mul(b).add(c);
-                r
+            fn mul_add<I: Isa>(self, b: Self, c: Self) -> Self {
+                if I::FUSED {
+                    unsafe { core::arch::x86_64::$fmadd(self, b, c) }
+                } else {
+                    self.mul(b).add(c)
+                }
             }
             #[inline(always)]
             fn neg(self) -> Self {
@@ -3068,16 +3518,17 @@ macro_rules! vector_lanes {
 }
 
 #[cfg(target_arch = "x86_64")]
-vector_lanes!(2, __m128d, 3, "sse2", _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_fmadd_pd, _mm_xor_pd, _mm_set1_pd, _mm_loadu_pd,
+vector_lanes!(2, __m128d, 3, _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_fmadd_pd, _mm_xor_pd, _mm_set1_pd, _mm_loadu_pd,
     _mm_storeu_pd, _mm_andnot_pd, _mm_min_pd, _mm_cmpge_pd, _mm_movemask_pd, _mm_castpd_si128, _mm_castsi128_pd,
     _mm_and_si128, _mm_or_si128, _mm_xor_si128, _mm_sub_epi64, _mm_setzero_si128, _mm_set1_epi64x, _mm_slli_epi64);
 #[cfg(target_arch = "x86_64")]
-vector_lanes!(4, __m256d, 15, "avx2", _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_fmadd_pd, _mm256_xor_pd, _mm256_set1_pd,
+vector_lanes!(4, __m256d, 15, _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_fmadd_pd, _mm256_xor_pd, _mm256_set1_pd,
     _mm256_loadu_pd, _mm256_storeu_pd, _mm256_andnot_pd, _mm256_min_pd, _mm256_cmp_pd::<_CMP_GE_OQ>,
     _mm256_movemask_pd, _mm256_castpd_si256, _mm256_castsi256_pd, _mm256_and_si256, _mm256_or_si256,
     _mm256_xor_si256, _mm256_sub_epi64, _mm256_setzero_si256, _mm256_set1_epi64x, _mm256_slli_epi64);
 
-/// Other targets: two angles lane by lane (the compiler may vectorise).
+/// Other targets: two angles lane by lane (the compiler may vectorise);
+/// four only to compile `sin_cos_batches` (`Baseline::QUADS` is false).
 #[cfg(not(target_arch = "x86_64"))]
 impl ToLanes for [f64; 2] {
     type V = [f64; 2];
@@ -3088,10 +3539,19 @@ impl ToLanes for [f64; 2] {
 }
 
 #[cfg(not(target_arch = "x86_64"))]
-impl Lanes for [f64; 2] {
+impl ToLanes for [f64; 4] {
+    type V = [f64; 4];
+    #[inline(always)]
+    fn to_lanes(self) -> [f64; 4] {
+        self
+    }
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+impl<const W: usize> Lanes for [f64; W] {
     #[inline(always)]
     fn splat(a: f64) -> Self {
-        [a; 2]
+        [a; W]
     }
     #[inline(always)]
     fn lane(self, l: usize) -> f64 {
@@ -3099,51 +3559,45 @@ impl Lanes for [f64; 2] {
     }
     #[inline(always)]
     fn add(self, b: Self) -> Self {
-        [self[0] + b[0], self[1] + b[1]]
+        core::array::from_fn(|l| self[l] + b[l])
     }
     #[inline(always)]
     fn sub(self, b: Self) -> Self {
-        [self[0] - b[0], self[1] - b[1]]
+        core::array::from_fn(|l| self[l] - b[l])
     }
     #[inline(always)]
     fn mul(self, b: Self) -> Self {
-        [self[0] * b[0], self[1] * b[1]]
+        core::array::from_fn(|l| self[l] * b[l])
     }
     #[inline(always)]
-    fn mul_add(self, b: Self, c: Self) -> Self {
-        [fma(self[0], b[0], c[0]), fma(self[1], b[1], c[1])]
+    fn mul_add<I: Isa>(self, b: Self, c: Self) -> Self {
+        core::array::from_fn(|l| I::fma(self[l], b[l], c[l]))
     }
     #[inline(always)]
     fn neg(self) -> Self {
-        [-self[0], -self[1]]
+        self.map(|a| -a)
     }
     #[inline(always)]
     fn abs(self) -> Self {
-        [self[0].abs(), self[1].abs()]
+        self.map(f64::abs)
     }
     #[inline(always)]
     fn capped_ge(self, b: Self) -> bool {
-        self[0].capped_ge(b[0]) & self[1].capped_ge(b[1])
+        (0..W).all(|l| self[l].capped_ge(b[l]))
     }
     #[inline(always)]
     fn quadrant(sin_r: Self, signed: Self, cos_r: Self, quadrant: Self) -> (Self, Self) {
-        let r = [0, 1].map(|l| f64::quadrant(sin_r[l], signed[l], cos_r[l], quadrant[l]));
-        ([r[0].0, r[1].0], [r[0].1, r[1].1])
+        let r: [(f64, f64); W] = core::array::from_fn(|l| f64::quadrant(sin_r[l], signed[l], cos_r[l], quadrant[l]));
+        (r.map(|r| r.0), r.map(|r| r.1))
     }
-}
-
-/// `[f(0), …, f(P − 1)]`: one step on each of `P` registers.
-#[inline(always)]
-fn each<V, const P: usize>(f: impl FnMut(usize) -> V) -> [V; P] {
-    core::array::from_fn(f)
 }
 
 /// The rare case of `sin_cos_array`: every angle again, one at a time.
 #[cold]
 #[inline(never)]
-fn sin_cos_again(x: &[f64], s: &mut [f64], c: &mut [f64]) {
+fn sin_cos_again<I: Isa>(x: &[f64], s: &mut [f64], c: &mut [f64]) {
     for ((x, s), c) in x.iter().zip(s).zip(c) {
-        (*s, *c) = sin_cos_kernel(*x);
+        (*s, *c) = sin_cos_kernel_on::<I>(*x);
     }
 }
 
@@ -3151,9 +3605,27 @@ fn sin_cos_again(x: &[f64], s: &mut [f64], c: &mut [f64]) {
 /// for every finite `x` (NaN and ±∞ give NaN).
 #[inline]
 pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
-    match sin_cos_lanes([x]) {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if RUNTIME_DISPATCH && has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { sin_cos_kernel_avx2_fma(x) };
+    }
+    sin_cos_kernel_on::<Baseline>(x)
+}
+
+/// `sin_cos_kernel` compiled for AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn sin_cos_kernel_avx2_fma(x: f64) -> (f64, f64) {
+    sin_cos_kernel_on::<Avx2Fma>(x)
+}
+
+/// `sin_cos_kernel` in the instructions of `I`.
+#[inline(always)]
+fn sin_cos_kernel_on<I: Isa>(x: f64) -> (f64, f64) {
+    match sin_cos_lanes::<I, f64, 1>([x]) {
         [(s, c, true)] => (s, c),
-        _ => sin_cos_slow(x),
+        _ => sin_cos_slow::<I>(x),
     }
 }
 
@@ -3162,28 +3634,28 @@ pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
 /// `sin_cos_slow`).
 #[inline(always)]
 #[allow(clippy::excessive_precision, clippy::approx_constant)]
-fn sin_cos_lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
+fn sin_cos_lanes<I: Isa, V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
     const FRAC_2_PI: f64 = 0.6366197723675814;
     const ROUND: f64 = 6755399441055744.0; // 1.5·2⁵²: x + ROUND − ROUND rounds x to an integer
     const P1: f64 = 1.5707963267341256;
     const P2: f64 = 6.077100506303966e-11;
     const P3: f64 = 2.0222662487959506e-21;
     let v = V::splat;
-    let t: [V; P] = each(|i| x[i].mul_add(v(FRAC_2_PI), v(ROUND)));
-    let k: [V; P] = each(|i| t[i].sub(v(ROUND)));
-    let t0: [V; P] = each(|i| k[i].neg().mul_add(v(P1), x[i])); // exact, fused or not
-    let w: [V; P] = each(|i| k[i].mul(v(P2))); // exact
-    let a: [V; P] = each(|i| t0[i].sub(w[i]));
+    let t: [V; P] = each!(i => x[i].mul_add::<I>(v(FRAC_2_PI), v(ROUND)));
+    let k: [V; P] = each!(i => t[i].sub(v(ROUND)));
+    let t0: [V; P] = each!(i => k[i].neg().mul_add::<I>(v(P1), x[i])); // exact, fused or not
+    let w: [V; P] = each!(i => k[i].mul(v(P2))); // exact
+    let a: [V; P] = each!(i => t0[i].sub(w[i]));
     // r ≈ a + b: the rounding error of t0 − w, exact (|t0| ≥ |w|, or else t0 − w is exact), then − k·P3.
     // Not renormalised, so that the polynomials start from a without waiting for b: |b| ≤ ulp(a)/2 +
     // |k|·P3 ≤ 2e-15, which step 3 allows for.
-    let b: [V; P] = each(|i| t0[i].sub(a[i]).sub(w[i]).sub(k[i].mul(v(P3))));
+    let b: [V; P] = each!(i => t0[i].sub(a[i]).sub(w[i]).sub(k[i].mul(v(P3))));
     // Within 1 ulp if |x| ≤ 1.5e6 and |a| ≥ 2⁻⁵⁸·|x| (as |r − (a + b)| ≤ 3e-37·|x|), which also
     // holds for k = 0 (a = x) and fails for NaN and ±∞ (then a is NaN): min(2⁵⁸·|a|, 1.5e6) ≥ |x|.
-    let ok: [bool; P] = core::array::from_fn(|i| a[i].abs().mul(v(2.8823037615171174e17)).capped_ge(x[i].abs()));
+    let ok: [bool; P] = each!(i => a[i].abs().mul(v(2.8823037615171174e17)).capped_ge(x[i].abs()));
     // a's sign is r's, also when a = −0 (x = −0).
-    let r = sin_cos_reduced(a, b, a, t);
-    core::array::from_fn(|i| (r[i].0, r[i].1, ok[i]))
+    let r = sin_cos_reduced::<I, V, P>(a, b, a, t);
+    each!(i => (r[i].0, r[i].1, ok[i]))
 }
 
 /// Step 3 and 4: sin and cos of k·π/2 + rh + rl for |rh + rl| ≤ π/4 and
@@ -3191,7 +3663,7 @@ fn sin_cos_lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
 /// into sin (rh's sign, also when rh = −0).
 #[inline(always)]
 #[allow(clippy::excessive_precision)]
-fn sin_cos_reduced<V: Lanes, const P: usize>(rh: [V; P], rl: [V; P], signed: [V; P], quadrant: [V; P]) -> [(V, V); P] {
+fn sin_cos_reduced<I: Isa, V: Lanes, const P: usize>(rh: [V; P], rl: [V; P], signed: [V; P], quadrant: [V; P]) -> [(V, V); P] {
     const S: [f64; 6] = [
         -1.666666666666663e-1,
         8.333333333322118e-3,
@@ -3209,34 +3681,39 @@ fn sin_cos_reduced<V: Lanes, const P: usize>(rh: [V; P], rl: [V; P], signed: [V;
         -1.1358536521605753e-11,
     ];
     let v = V::splat;
-    let z: [V; P] = each(|i| rh[i].mul(rh[i]));
-    let z2: [V; P] = each(|i| z[i].mul(z[i]));
-    // Estrin: (c0 + z·c1) + z²·((c2 + z·c3) + z²·(c4 + z·c5)).
-    let poly = |c: [f64; 6], i: usize| {
-        let (lo, mid, hi) = (z[i].mul_add(v(c[1]), v(c[0])), z[i].mul_add(v(c[3]), v(c[2])), z[i].mul_add(v(c[5]), v(c[4])));
-        z2[i].mul_add(z2[i].mul_add(hi, mid), lo)
-    };
-    let ps: [V; P] = each(|i| poly(S, i));
-    let pc: [V; P] = each(|i| poly(C, i));
-    let hz: [V; P] = each(|i| v(0.5).mul(z[i]));
-    let w: [V; P] = each(|i| v(1.0).sub(hz[i]));
+    let z: [V; P] = each!(i => rh[i].mul(rh[i]));
+    let z2: [V; P] = each!(i => z[i].mul(z[i]));
+    // Estrin: (c0 + z·c1) + z²·((c2 + z·c3) + z²·(c4 + z·c5)). (A function, not a closure: called
+    // four times, a closure would stay out of line, outside a `#[target_feature]` caller's features.)
+    #[inline(always)]
+    fn poly<I: Isa, V: Lanes>(c: [f64; 6], z: V, z2: V) -> V {
+        let v = V::splat;
+        let lo = z.mul_add::<I>(v(c[1]), v(c[0]));
+        let (mid, hi) = (z.mul_add::<I>(v(c[3]), v(c[2])), z.mul_add::<I>(v(c[5]), v(c[4])));
+        z2.mul_add::<I>(z2.mul_add::<I>(hi, mid), lo)
+    }
+    let ps: [V; P] = each!(i => poly::<I, V>(S, z[i], z2[i]));
+    let pc: [V; P] = each!(i => poly::<I, V>(C, z[i], z2[i]));
+    let hz: [V; P] = each!(i => v(0.5).mul(z[i]));
+    let w: [V; P] = each!(i => v(1.0).sub(hz[i]));
     // rl·cos rh and rl·sin rh to O(rl·rh⁶): 1 − z/2 + z²/24 and rh·(1 − z/6 + z²/120), so that rl
     // may be up to 2e-15 (the fast path's b) without costing digits.
-    let cos_rh: [V; P] = each(|i| z2[i].mul_add(v(1.0 / 24.0), w[i]));
-    let sin_rh: [V; P] = each(|i| rh[i].mul(z2[i].mul_add(v(1.0 / 120.0), z[i].mul_add(v(-1.0 / 6.0), v(1.0)))));
+    let cos_rh: [V; P] = each!(i => z2[i].mul_add::<I>(v(1.0 / 24.0), w[i]));
+    let sin_rh: [V; P] =
+        each!(i => rh[i].mul(z2[i].mul_add::<I>(v(1.0 / 120.0), z[i].mul_add::<I>(v(-1.0 / 6.0), v(1.0)))));
     // sin(rh + rl) = rh + rh·z·S(z) + rl·cos rh + …; the sign or-ed in keeps sin(−0) = −0.
-    let sin_r: [V; P] = each(|i| rh[i].add(rh[i].mul(z[i]).mul_add(ps[i], rl[i].mul(cos_rh[i]))));
+    let sin_r: [V; P] = each!(i => rh[i].add(rh[i].mul(z[i]).mul_add::<I>(ps[i], rl[i].mul(cos_rh[i]))));
     // cos(rh + rl) = (1 − z/2) + z²·C(z) − rl·sin rh + …, with the rounding error of 1 − z/2.
     let cos_r: [V; P] =
-        each(|i| w[i].add(z2[i].mul_add(pc[i], v(1.0).sub(w[i]).sub(hz[i])).sub(rl[i].mul(sin_rh[i]))));
-    core::array::from_fn(|i| V::quadrant(sin_r[i], signed[i], cos_r[i], quadrant[i]))
+        each!(i => w[i].add(z2[i].mul_add::<I>(pc[i], v(1.0).sub(w[i]).sub(hz[i])).sub(rl[i].mul(sin_rh[i]))));
+    each!(i => V::quadrant(sin_r[i], signed[i], cos_r[i], quadrant[i]))
 }
 
 /// Step 2: Payne and Hanek's reduction of any finite `x`, then step 3.
 #[inline(never)]
 #[cold]
 #[allow(clippy::unreadable_literal, clippy::approx_constant)]
-fn sin_cos_slow(x: f64) -> (f64, f64) {
+fn sin_cos_slow<I: Isa>(x: f64) -> (f64, f64) {
     // 2/π = Σ FRAC_2_PI_BITS[i]·2^(−64(i+1)) + less than 2⁻¹²⁸⁰.
     const FRAC_2_PI_BITS: [u64; 20] = [
         0xa2f9836e4e441529, 0xfc2757d1f534ddc0, 0xdb6295993c439041, 0xfe5163abdebbc561,
@@ -3253,7 +3730,7 @@ fn sin_cos_slow(x: f64) -> (f64, f64) {
     }
     let ax = x.abs();
     if ax < 0.78 {
-        let [(s, c)] = sin_cos_reduced([ax], [0.0], [0.0], [0.0]);
+        let [(s, c)] = sin_cos_reduced::<I, f64, 1>([ax], [0.0], [0.0], [0.0]);
         return (if x < 0.0 { -s } else { s }, c);
     }
     // |x| = m·2^e with m < 2⁵³ an integer.
@@ -3296,6 +3773,6 @@ fn sin_cos_slow(x: f64) -> (f64, f64) {
     let low = pl + (fh * PIO2_LO + fl * PIO2_HI);
     let rh = ph + low;
     let rl = low - (rh - ph);
-    let [(s, c)] = sin_cos_reduced([rh], [rl], [rh], [f64::from_bits(k)]);
+    let [(s, c)] = sin_cos_reduced::<I, f64, 1>([rh], [rl], [rh], [f64::from_bits(k)]);
     (if x < 0.0 { -s } else { s }, c)
 }

@@ -5,10 +5,15 @@
 // Model content hash (FNV-1a 64 of its canonical text): d6d04477035bb72d
 // Gravity: [0.0, 0.0, -9.81] m/s^2 in the base frame, folded in.
 // Options: scalar f64; forward dynamics by the articulated-body algorithm (chosen); rounding snap on (0 constants); inertia regrouping on; like terms on, constant products on, constant sums on, reassociation on.
-// Trigonometry: NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time, four where the target has AVX2 (no_std, no dependency).
+// Trigonometry: NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time, four where the target (or, with run-time dispatch, the processor) has AVX2 (no_std, no dependency).
 // Fused multiply-adds: fma(a, b, c) (fmaf in f32) is a*b + c with one rounding where the target has an FMA
 //   instruction (x86_64 built with target feature fma, e.g. -C target-cpu=native on a machine that has it;
 //   aarch64), and plain a * b + c elsewhere: a default x86_64 build gives the same bits as unfused code.
+// Run-time dispatch: on. On x86_64 builds without target features avx2 and fma (a default build), every
+//   public function also has a copy compiled for AVX2 and FMA (NAME_avx2_fma, from the one generic body
+//   NAME_on) and runs it where the processor has both (cpuid, asked once): as fast as a native build, and
+//   with its bits, so results differ in the last bits between machines with and without FMA (within the
+//   accuracy the tests check). Off: runtime_dispatch(false), the same bits on every x86_64 machine.
 // Forward dynamics: the articulated-body algorithm, chosen as the faster (estimated 54 cycles for CRBA + LTDL against 48 for the articulated-body algorithm; worst relative error on 16 states against double-double 3.5e-16 against 2.7e-16).
 // Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]
 //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.
@@ -26,7 +31,7 @@
 pub const DOF: usize = 2;
 /// The joint names, in the order of every index of the functions below.
 pub const JOINT_NAMES: [&str; DOF] = ["joint1", "joint2"];
-/// The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target has AVX2).
+/// The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target, or with run-time dispatch the processor, has AVX2).
 #[inline]
 pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
     sin_cos_array(q)
@@ -37,13 +42,39 @@ pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
 /// 24 ops: 5 add, 5 sub, 14 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 7 fused multiply-adds, 17 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+pub fn inverse_dynamics_sc(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+    qdd: &[f64; DOF],
+) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { inverse_dynamics_sc_avx2_fma(s, c, qd, qdd) };
+    }
+    inverse_dynamics_sc_on::<Baseline>(s, c, qd, qdd)
+}
+/// [`inverse_dynamics_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn inverse_dynamics_sc_avx2_fma(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+    qdd: &[f64; DOF],
+) -> [f64; DOF] {
+    inverse_dynamics_sc_on::<Avx2Fma>(s, c, qd, qdd)
+}
+/// The body of [`inverse_dynamics_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn inverse_dynamics_sc(
+fn inverse_dynamics_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
     qd: &[f64; DOF],
@@ -51,20 +82,20 @@ pub fn inverse_dynamics_sc(
 ) -> [f64; DOF] {
     let t0 = 9.81 * s[0];
     let t1 = 2.1666666666666665 * qdd[0];
-    let t2 = fma(-24.525000000000002, c[0], t1);
-    let t3 = fma(qd[0], qd[0], t0);
-    let t4 = fma(9.81, c[0], -qdd[0]);
+    let t2 = I::fma(-24.525000000000002, c[0], t1);
+    let t3 = I::fma(qd[0], qd[0], t0);
+    let t4 = I::fma(9.81, c[0], -qdd[0]);
     let t5 = c[1] * t4;
-    let t6 = fma(-s[1], t3, t5);
+    let t6 = I::fma(-s[1], t3, t5);
     let t7 = qd[0] + qd[1];
     let t8 = qdd[0] + qdd[1];
     let t9 = t7 * t7;
     let t10 = 0.6000000000000001 * t9;
     let t11 = 0.6000000000000001 * t8;
     let t12 = 0.32000000000000006 * t8;
-    let t13 = fma(-0.6000000000000001, t6, t12);
-    let t14 = fma(c[1], t11, t2);
-    let t15 = fma(-s[1], t10, t14);
+    let t13 = I::fma(-0.6000000000000001, t6, t12);
+    let t14 = I::fma(c[1], t11, t2);
+    let t15 = I::fma(-s[1], t10, t14);
     let t16 = t13 + t15;
     [t16, t13]
 }
@@ -80,8 +111,25 @@ pub fn inverse_dynamics(
     qd: &[f64; DOF],
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { inverse_dynamics_avx2_fma(q, qd, qdd) };
+    }
     let (s, c) = sin_cos_all(q);
     inverse_dynamics_sc(&s, &c, qd, qdd)
+}
+/// [`inverse_dynamics`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn inverse_dynamics_avx2_fma(
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+    qdd: &[f64; DOF],
+) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, DOF>(q);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe { inverse_dynamics_sc_avx2_fma(&s, &c, qd, qdd) }
 }
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
@@ -89,16 +137,32 @@ pub fn inverse_dynamics(
 /// 4 ops: 2 add, 0 sub, 2 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 2 fused multiply-adds, 2 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { mass_matrix_sc_avx2_fma(s, c) };
+    }
+    mass_matrix_sc_on::<Baseline>(s, c)
+}
+/// [`mass_matrix_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn mass_matrix_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+    mass_matrix_sc_on::<Avx2Fma>(s, c)
+}
+/// The body of [`mass_matrix_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+fn mass_matrix_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let _ = s;
-    let t0 = fma(1.2000000000000002, c[1], 2.4866666666666664);
-    let t1 = fma(0.6000000000000001, c[1], 0.32000000000000006);
+    let t0 = I::fma(1.2000000000000002, c[1], 2.4866666666666664);
+    let t1 = I::fma(0.6000000000000001, c[1], 0.32000000000000006);
     [[t0, t1], [t1, 0.32000000000000006]]
 }
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
@@ -109,8 +173,21 @@ pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`mass_matrix_sc`].
 #[inline]
 pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { mass_matrix_avx2_fma(q) };
+    }
     let (s, c) = sin_cos_array(&[q[1]]);
     mass_matrix_sc(&[0.0, s[0]], &[1.0, c[0]])
+}
+/// [`mass_matrix`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn mass_matrix_avx2_fma(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, 1>(&[q[1]]);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe { mass_matrix_sc_avx2_fma(&[0.0, s[0]], &[1.0, c[0]]) }
 }
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
@@ -118,25 +195,49 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// 16 ops: 3 add, 2 sub, 10 mul, 0 div, 1 neg, 0 sqrt, 0 sin_cos; 3 fused multiply-adds, 12 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { bias_forces_sc_avx2_fma(s, c, qd) };
+    }
+    bias_forces_sc_on::<Baseline>(s, c, qd)
+}
+/// [`bias_forces_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn bias_forces_sc_avx2_fma(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+) -> [f64; DOF] {
+    bias_forces_sc_on::<Avx2Fma>(s, c, qd)
+}
+/// The body of [`bias_forces_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
+fn bias_forces_sc_on<I: Isa>(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+) -> [f64; DOF] {
     let t0 = 9.81 * c[0];
     let t1 = 9.81 * s[0];
     let t2 = 24.525000000000002 * c[0];
-    let t3 = fma(qd[0], qd[0], t1);
+    let t3 = I::fma(qd[0], qd[0], t1);
     let t4 = t0 * c[1];
-    let t5 = fma(-s[1], t3, t4);
+    let t5 = I::fma(-s[1], t3, t4);
     let t6 = qd[0] + qd[1];
     let t7 = 0.6000000000000001 * t5;
     let t8 = -t7;
     let t9 = t6 * t6;
     let t10 = 0.6000000000000001 * t9;
-    let t11 = fma(s[1], t10, t2);
+    let t11 = I::fma(s[1], t10, t2);
     let t12 = t8 - t11;
     [t12, t8]
 }
@@ -148,8 +249,21 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`bias_forces_sc`].
 #[inline]
 pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { bias_forces_avx2_fma(q, qd) };
+    }
     let (s, c) = sin_cos_all(q);
     bias_forces_sc(&s, &c, qd)
+}
+/// [`bias_forces`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn bias_forces_avx2_fma(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, DOF>(q);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe { bias_forces_sc_avx2_fma(&s, &c, qd) }
 }
 /// The gravity torques g(q).
 ///
@@ -157,19 +271,35 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 /// 10 ops: 0 add, 2 sub, 6 mul, 0 div, 2 neg, 0 sqrt, 0 sin_cos; 1 fused multiply-adds, 7 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { gravity_torques_sc_avx2_fma(s, c) };
+    }
+    gravity_torques_sc_on::<Baseline>(s, c)
+}
+/// [`gravity_torques_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn gravity_torques_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
+    gravity_torques_sc_on::<Avx2Fma>(s, c)
+}
+/// The body of [`gravity_torques_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
+fn gravity_torques_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
     let t0 = 9.81 * c[0];
     let t1 = 9.81 * s[0];
     let t2 = 24.525000000000002 * c[0];
     let t3 = -t2;
     let t4 = t0 * c[1];
-    let t5 = fma(-t1, s[1], t4);
+    let t5 = I::fma(-t1, s[1], t4);
     let t6 = 0.6000000000000001 * t5;
     let t7 = -t6;
     let t8 = t3 - t6;
@@ -183,8 +313,21 @@ pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`gravity_torques_sc`].
 #[inline]
 pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { gravity_torques_avx2_fma(q) };
+    }
     let (s, c) = sin_cos_all(q);
     gravity_torques_sc(&s, &c)
+}
+/// [`gravity_torques`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn gravity_torques_avx2_fma(q: &[f64; DOF]) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, DOF>(q);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe { gravity_torques_sc_avx2_fma(&s, &c) }
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by the articulated-body algorithm.
 ///
@@ -192,13 +335,39 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
 /// 39 ops: 4 add, 9 sub, 25 mul, 1 div, 0 neg, 0 sqrt, 0 sin_cos; 9 fused multiply-adds, 30 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+pub fn forward_dynamics_sc(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+    tau: &[f64; DOF],
+) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { forward_dynamics_sc_avx2_fma(s, c, qd, tau) };
+    }
+    forward_dynamics_sc_on::<Baseline>(s, c, qd, tau)
+}
+/// [`forward_dynamics_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn forward_dynamics_sc_avx2_fma(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+    tau: &[f64; DOF],
+) -> [f64; DOF] {
+    forward_dynamics_sc_on::<Avx2Fma>(s, c, qd, tau)
+}
+/// The body of [`forward_dynamics_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn forward_dynamics_sc(
+fn forward_dynamics_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
     qd: &[f64; DOF],
@@ -212,27 +381,27 @@ pub fn forward_dynamics_sc(
     let t5 = 0.6000000000000001 * c[1];
     let t6 = 0.6000000000000001 * s[1];
     let t7 = 0.32000000000000006 + t5;
-    let t8 = fma(-0.6000000000000001, t1, tau[1]);
+    let t8 = I::fma(-0.6000000000000001, t1, tau[1]);
     let t9 = 1.875 * c[1];
     let t10 = t6 * t9;
     let t11 = t5 * t5;
-    let t12 = fma(t5, t9, -2.5);
-    let t13 = fma(-3.1249999999999996, t11, 2.1666666666666665);
+    let t12 = I::fma(t5, t9, -2.5);
+    let t13 = I::fma(-3.1249999999999996, t11, 2.1666666666666665);
     let t14 = 3.1249999999999996 * t8;
     let t15 = 1.0 / t13;
     let t16 = c[0] * t12;
-    let t17 = fma(-s[0], t10, t16);
+    let t17 = I::fma(-s[0], t10, t16);
     let t18 = 9.81 * c[0];
     let t19 = 9.81 * s[0];
     let t20 = tau[0] - tau[1];
-    let t21 = fma(s[1], t4, t20);
-    let t22 = fma(-t5, t14, t21);
-    let t23 = fma(-9.81, t17, t22);
+    let t21 = I::fma(s[1], t4, t20);
+    let t22 = I::fma(-t5, t14, t21);
+    let t23 = I::fma(-9.81, t17, t22);
     let t24 = t15 * t23;
     let t25 = t5 * t18;
-    let t26 = fma(-t6, t19, t25);
+    let t26 = I::fma(-t6, t19, t25);
     let t27 = t8 + t26;
-    let t28 = fma(-t7, t24, t27);
+    let t28 = I::fma(-t7, t24, t27);
     let t29 = 3.1249999999999996 * t28;
     [t24, t29]
 }
@@ -248,9 +417,32 @@ pub fn forward_dynamics(
     qd: &[f64; DOF],
     tau: &[f64; DOF],
 ) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { forward_dynamics_avx2_fma(q, qd, tau) };
+    }
     let (s, c) = sin_cos_all(q);
     forward_dynamics_sc(&s, &c, qd, tau)
 }
+/// [`forward_dynamics`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn forward_dynamics_avx2_fma(
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+    tau: &[f64; DOF],
+) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, DOF>(q);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe { forward_dynamics_sc_avx2_fma(&s, &c, qd, tau) }
+}
+
+/// Whether `sin_cos_array` and the other public functions of the kernel below pick, on x86-64
+/// builds without the `avx2` and `fma` target features, their copies compiled for AVX2 and FMA
+/// where the processor has both (`CodegenOptions::runtime_dispatch`).
+#[allow(dead_code)]
+const RUNTIME_DISPATCH: bool = true;
 
 // The sine and cosine of joint angles in plain f64 arithmetic: nothing from
 // std or any crate. Within 1 ulp of the exact values for every finite
@@ -339,24 +531,216 @@ fn fma(a: f64, b: f64, c: f64) -> f64 {
     a * b + c
 }
 
+/// `a·b + c` in `f32` with one rounding (x86-64 with the `fma` feature);
+/// see `fma`.
+#[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
+#[inline(always)]
+#[allow(dead_code, unused_unsafe)]
+fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+    use core::arch::x86_64::{_mm_cvtss_f32, _mm_fmadd_ss, _mm_set_ss};
+    // SAFETY: the cfg above compiles this only where the `fma` target
+    // feature is enabled, so the instruction exists.
+    unsafe { _mm_cvtss_f32(_mm_fmadd_ss(_mm_set_ss(a), _mm_set_ss(b), _mm_set_ss(c))) }
+}
+
+/// `a·b + c` in `f32` with one rounding (aarch64).
+#[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
+#[inline(always)]
+#[allow(dead_code, unused_unsafe)]
+fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+    use core::arch::aarch64::{vdup_n_f32, vfma_f32, vget_lane_f32};
+    // SAFETY: the cfg above compiles this only where NEON is enabled.
+    unsafe { vget_lane_f32::<0>(vfma_f32(vdup_n_f32(c), vdup_n_f32(a), vdup_n_f32(b))) }
+}
+
+/// `a·b + c` in `f32`, rounded twice (targets without a fused multiply-add).
+#[cfg(not(any(
+    all(target_arch = "x86_64", target_feature = "fma"),
+    all(target_arch = "aarch64", target_feature = "neon")
+)))]
+#[inline(always)]
+#[allow(dead_code)]
+fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+    a * b + c
+}
+
+// Run-time dispatch (`CodegenOptions::runtime_dispatch`, on unless the
+// module says `RUNTIME_DISPATCH = false`). A default x86-64 build has SSE2
+// only: no fused multiply-add, two angles to a register. Most x86-64
+// processors in use have AVX2 and FMA, so on such builds every public
+// function is compiled twice from one generic body: for `Baseline` (the
+// build's own target features, the code a build without dispatch has) and
+// for `Avx2Fma`, inside a `#[target_feature(enable = "avx2,fma")]` function
+// that the public one calls when `has_avx2_and_fma()` says the processor
+// has both. The results are then those of a build with `-C
+// target-feature=+avx2,+fma`: bit for bit those of a native build on such
+// a processor, and different in the last bits from the baseline's on
+// processors without FMA. Builds that already have both features, and other
+// targets, compile no dispatch: `Baseline` is all there is.
+
+/// The instructions a copy of a generic body is compiled for.
+#[allow(dead_code)]
+trait Isa {
+    /// Whether `Lanes::mul_add` rounds once.
+    const FUSED: bool;
+    /// Whether four angles go to a register (else two).
+    const QUADS: bool;
+    /// `a·b + c` in `f64`.
+    fn fma(a: f64, b: f64, c: f64) -> f64;
+    /// `a·b + c` in `f32`.
+    fn fmaf(a: f32, b: f32, c: f32) -> f32;
+}
+
+/// What the build's target features give: fused multiply-adds where the
+/// target has them (`fma`, `fmaf`), four angles to a register where it has
+/// AVX2.
+#[allow(dead_code)]
+enum Baseline {}
+
+impl Isa for Baseline {
+    const FUSED: bool = cfg!(any(
+        all(target_arch = "x86_64", target_feature = "fma"),
+        all(target_arch = "aarch64", target_feature = "neon")
+    ));
+    const QUADS: bool = cfg!(all(target_arch = "x86_64", target_feature = "avx2"));
+    #[inline(always)]
+    fn fma(a: f64, b: f64, c: f64) -> f64 {
+        fma(a, b, c)
+    }
+    #[inline(always)]
+    fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+        fmaf(a, b, c)
+    }
+}
+
+/// AVX2 and FMA: named only in the bodies of `#[target_feature(enable =
+/// "avx2,fma")]` functions, which are called only where
+/// `has_avx2_and_fma()` holds.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[allow(dead_code)]
+enum Avx2Fma {}
+
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+impl Isa for Avx2Fma {
+    const FUSED: bool = true;
+    const QUADS: bool = true;
+    #[inline(always)]
+    #[allow(unused_unsafe)]
+    fn fma(a: f64, b: f64, c: f64) -> f64 {
+        use core::arch::x86_64::{_mm_cvtsd_f64, _mm_fmadd_sd, _mm_set_sd};
+        // SAFETY: `Avx2Fma` code runs only on processors with FMA (see above).
+        unsafe { _mm_cvtsd_f64(_mm_fmadd_sd(_mm_set_sd(a), _mm_set_sd(b), _mm_set_sd(c))) }
+    }
+    #[inline(always)]
+    #[allow(unused_unsafe)]
+    fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+        use core::arch::x86_64::{_mm_cvtss_f32, _mm_fmadd_ss, _mm_set_ss};
+        // SAFETY: `Avx2Fma` code runs only on processors with FMA (see above).
+        unsafe { _mm_cvtss_f32(_mm_fmadd_ss(_mm_set_ss(a), _mm_set_ss(b), _mm_set_ss(c))) }
+    }
+}
+
+/// Whether this processor has AVX2 and FMA and the operating system saves
+/// the 256-bit registers: asked once (`cpuid`, `xgetbv`), then remembered.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[inline]
+#[allow(dead_code)]
+fn has_avx2_and_fma() -> bool {
+    use core::sync::atomic::{AtomicU8, Ordering};
+    // 0: not asked yet, 1: no, 2: yes. Racing first calls store the same answer.
+    static ANSWER: AtomicU8 = AtomicU8::new(0);
+    match ANSWER.load(Ordering::Relaxed) {
+        0 => {
+            let yes = ask_cpu_for_avx2_and_fma();
+            ANSWER.store(if yes { 2 } else { 1 }, Ordering::Relaxed);
+            yes
+        }
+        answer => answer == 2,
+    }
+}
+
+/// `cpuid` leaf 1: FMA (ECX bit 12), OSXSAVE (27), AVX (28); `xgetbv`: the
+/// OS saves the SSE and AVX state (XCR0 bits 1 and 2); leaf 7: AVX2 (EBX
+/// bit 5).
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[cold]
+#[inline(never)]
+#[allow(dead_code, unused_unsafe)]
+fn ask_cpu_for_avx2_and_fma() -> bool {
+    use core::arch::x86_64::{__cpuid, __cpuid_count, _xgetbv};
+    let bit = |word: u32, b: u32| word >> b & 1 == 1;
+    // SAFETY: every x86-64 processor has `cpuid`; `xgetbv` is run only where
+    // leaf 1 says the OS has enabled it (OSXSAVE).
+    unsafe {
+        if __cpuid(0).eax < 7 {
+            return false;
+        }
+        let ecx = __cpuid(1).ecx;
+        if !(bit(ecx, 12) && bit(ecx, 27) && bit(ecx, 28)) || _xgetbv(0) & 0b110 != 0b110 {
+            return false;
+        }
+        bit(__cpuid_count(7, 0).ebx, 5)
+    }
+}
+
 /// The sines and cosines of `x`, entry by entry: within 1 ulp of the exact
 /// values for every finite angle (NaN and ±∞ give NaN); two or four angles
 /// at a time in vector instructions.
 #[inline]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if RUNTIME_DISPATCH && has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { sin_cos_array_avx2_fma(x) };
+    }
+    sin_cos_array_on::<Baseline, N>(x)
+}
+
+/// `sin_cos_array` compiled for AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn sin_cos_array_avx2_fma<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
+    sin_cos_array_on::<Avx2Fma, N>(x)
+}
+
+/// `sin_cos_array` in the instructions of `I`.
+#[inline(always)]
+fn sin_cos_array_on<I: Isa, const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut s = [0.0; N];
     let mut c = [0.0; N];
-    if !sin_cos_batches::<Precise, N>(x, &mut s, &mut c) {
-        sin_cos_again(x, &mut s, &mut c);
+    if !sin_cos_batches::<I, Precise, N>(x, &mut s, &mut c) {
+        sin_cos_again::<I>(x, &mut s, &mut c);
     }
     (s, c)
+}
+
+/// `[e(0), …, e(P − 1)]` for `each!(i => e(i))`: one step on each of the
+/// `P ≥ 1` registers of the function it is used in. A macro, not a function
+/// taking a closure: LLVM leaves closures (and `core::array::from_fn`) that
+/// return vector registers out of line when their caller is a
+/// `#[target_feature]` function (`Avx2Fma` code), and out of line they are
+/// compiled without its features; so the fast path calls nothing that is
+/// not `#[inline(always)]` (checked in the release assembly).
+macro_rules! each {
+    ($i:ident => $e:expr) => {{
+        let mut out = [{
+            let $i = 0;
+            $e
+        }; P];
+        let mut $i = 1;
+        while $i < P {
+            out[$i] = $e;
+            $i += 1;
+        }
+        out
+    }};
 }
 
 /// A fast path over registers of angles: (sin, cos, within 1 ulp) per
 /// register.
 trait FastPath {
     /// The fast path on `P` registers, step by step across them.
-    fn lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P];
+    fn lanes<I: Isa, V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P];
 }
 
 /// `sin_cos_lanes`: within 1 ulp of `f64`.
@@ -364,50 +748,55 @@ struct Precise;
 
 impl FastPath for Precise {
     #[inline(always)]
-    fn lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
-        sin_cos_lanes(x)
+    fn lanes<I: Isa, V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
+        sin_cos_lanes::<I, V, P>(x)
     }
 }
 
 /// `K`'s fast path on every angle of `x`, the results into `s` and `c`, and
 /// whether they are all within 1 ulp (false: redo them on the slow path).
 #[inline(always)]
-fn sin_cos_batches<K: FastPath, const N: usize>(x: &[f64; N], s: &mut [f64; N], c: &mut [f64; N]) -> bool {
+fn sin_cos_batches<I: Isa, K: FastPath, const N: usize>(x: &[f64; N], s: &mut [f64; N], c: &mut [f64; N]) -> bool {
     let mut fast = true;
     let mut i = 0;
     while i < N {
-        // The angles from i on, as many as a pass takes; past the end, the
-        // first ones again (a register of copies of one angle makes the
-        // compiler fall back to scalar code).
-        let at = |j: usize| x[(i + j) % N];
-        #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
-        let ok = {
-            let quad = |j: usize| core::array::from_fn(|l| at(j + l));
-            match N - i {
-                1..=4 => sin_cos_pass::<K, 4, 1, N>(i, [quad(0)], s, c),
-                _ => sin_cos_pass::<K, 4, 2, N>(i, [quad(0), quad(4)], s, c),
-            }
-        };
-        #[cfg(not(all(target_arch = "x86_64", target_feature = "avx2")))]
-        let ok = {
-            let pair = |j: usize| [at(j), at(j + 1)];
-            match N - i {
-                1 | 2 => sin_cos_pass::<K, 2, 1, N>(i, [pair(0)], s, c),
-                3 | 4 => sin_cos_pass::<K, 2, 2, N>(i, [pair(0), pair(2)], s, c),
-                _ => sin_cos_pass::<K, 2, 3, N>(i, [pair(0), pair(2), pair(4)], s, c),
-            }
-        };
-        fast &= ok;
-        i += if cfg!(all(target_arch = "x86_64", target_feature = "avx2")) { 8 } else { 6 };
+        if I::QUADS {
+            fast &= match N - i {
+                1..=4 => sin_cos_pass::<I, K, 4, 1, N>(i, [angles(x, i)], s, c),
+                _ => sin_cos_pass::<I, K, 4, 2, N>(i, [angles(x, i), angles(x, i + 4)], s, c),
+            };
+            i += 8;
+        } else {
+            fast &= match N - i {
+                1 | 2 => sin_cos_pass::<I, K, 2, 1, N>(i, [angles(x, i)], s, c),
+                3 | 4 => sin_cos_pass::<I, K, 2, 2, N>(i, [angles(x, i), angles(x, i + 2)], s, c),
+                _ => sin_cos_pass::<I, K, 2, 3, N>(i, [angles(x, i), angles(x, i + 2), angles(x, i + 4)], s, c),
+            };
+            i += 6;
+        }
     }
     fast
+}
+
+/// The `W` angles of `x` from `from` on; past the end, the first ones again
+/// (a register of copies of one angle makes the compiler fall back to scalar
+/// code).
+#[inline(always)]
+fn angles<const W: usize, const N: usize>(x: &[f64; N], from: usize) -> [f64; W] {
+    let mut out = [0.0; W];
+    let mut l = 0;
+    while l < W {
+        out[l] = x[(from + l) % N];
+        l += 1;
+    }
+    out
 }
 
 /// `K`'s fast path on `P` registers of `W` angles, interleaved, the results
 /// into `s[i..]` and `c[i..]` (what fits), and whether they are all within 1
 /// ulp.
 #[inline(always)]
-fn sin_cos_pass<K: FastPath, const W: usize, const P: usize, const N: usize>(
+fn sin_cos_pass<I: Isa, K: FastPath, const W: usize, const P: usize, const N: usize>(
     i: usize,
     x: [[f64; W]; P],
     s: &mut [f64; N],
@@ -416,13 +805,16 @@ fn sin_cos_pass<K: FastPath, const W: usize, const P: usize, const N: usize>(
 where
     [f64; W]: ToLanes,
 {
-    let r = K::lanes(x.map(<[f64; W]>::to_lanes));
-    for j in 0..W * P {
+    let r = K::lanes::<I, _, P>(each!(p => x[p].to_lanes()));
+    let (mut j, mut fast) = (0, true);
+    while j < W * P {
         if i + j < N {
             (s[i + j], c[i + j]) = (r[j / W].0.lane(j % W), r[j / W].1.lane(j % W));
         }
+        fast &= r[j / W].2;
+        j += 1;
     }
-    r.iter().all(|r| r.2)
+    fast
 }
 
 /// `W` angles as a register: `[f64; 1]` as `f64`, `[f64; 2]` and `[f64; 4]`
@@ -446,8 +838,8 @@ trait Lanes: Copy {
     fn sub(self, b: Self) -> Self;
     /// `self · b`.
     fn mul(self, b: Self) -> Self;
-    /// `self · b + c`, fused where the scalar `fma` is.
-    fn mul_add(self, b: Self, c: Self) -> Self;
+    /// `self · b + c`, rounded once if `I::FUSED`.
+    fn mul_add<I: Isa>(self, b: Self, c: Self) -> Self;
     /// `−self`.
     fn neg(self) -> Self;
     /// `|self|`.
@@ -491,8 +883,8 @@ impl Lanes for f64 {
         self * b
     }
     #[inline(always)]
-    fn mul_add(self, b: f64, c: f64) -> f64 {
-        fma(self, b, c)
+    fn mul_add<I: Isa>(self, b: f64, c: f64) -> f64 {
+        I::fma(self, b, c)
     }
     #[inline(always)]
     fn neg(self) -> f64 {
@@ -524,23 +916,24 @@ impl Lanes for f64 {
 /// operations of `impl Lanes for f64`, lane by lane.
 #[cfg(target_arch = "x86_64")]
 macro_rules! vector_lanes {
-    ($w:literal, $v:ident, $all:literal, $feature:literal, $add:ident, $sub:ident, $mul:ident, $fmadd:ident, $xor_pd:ident,
+    ($w:literal, $v:ident, $all:literal, $add:ident, $sub:ident, $mul:ident, $fmadd:ident, $xor_pd:ident,
      $set1:ident, $loadu:ident, $storeu:ident, $andnot:ident, $min:ident, $cmp_ge:expr, $movemask:ident,
      $to_int:ident, $to_float:ident, $and:ident, $or:ident, $xor:ident, $sub64:ident, $zero:ident, $set1_64:ident,
      $shl:ident) => {
-        #[cfg(target_feature = $feature)]
         impl ToLanes for [f64; $w] {
             type V = core::arch::x86_64::$v;
             #[inline(always)]
             #[allow(unused_unsafe)]
             fn to_lanes(self) -> Self::V {
-                // SAFETY (this and every block below): the target has the
-                // instructions (`cfg(target_feature)`); loads and stores are
-                // of `$w` f64 from and to arrays of `$w` f64.
+                // SAFETY (this and every block below): the processor has the
+                // instructions: SSE2 is part of every x86-64 target, and the
+                // AVX2 registers and `_fmadd_` are used only where the target
+                // has them (`Baseline::QUADS` and `FUSED` are their `cfg`) or
+                // in `Avx2Fma` code; loads and stores are of `$w` f64 from and
+                // to arrays of `$w` f64.
                 unsafe { core::arch::x86_64::$loadu(self.as_ptr()) }
             }
         }
-        #[cfg(target_feature = $feature)]
         #[allow(unused_unsafe)]
         impl Lanes for core::arch::x86_64::$v {
             #[inline(always)]
@@ -566,12 +959,12 @@ macro_rules! vector_lanes {
                 unsafe { core::arch::x86_64::$mul(self, b) }
             }
             #[inline(always)]
-            fn mul_add(self, b: Self, c: Self) -> Self {
-                #[cfg(target_feature = "fma")]
-                let r = unsafe { core::arch::x86_64::$fmadd(self, b, c) };
-                #[cfg(not(target_feature = "fma"))]
-                let r = self.mul(b).add(c);
-                r
+            fn mul_add<I: Isa>(self, b: Self, c: Self) -> Self {
+                if I::FUSED {
+                    unsafe { core::arch::x86_64::$fmadd(self, b, c) }
+                } else {
+                    self.mul(b).add(c)
+                }
             }
             #[inline(always)]
             fn neg(self) -> Self {
@@ -604,16 +997,17 @@ macro_rules! vector_lanes {
 }
 
 #[cfg(target_arch = "x86_64")]
-vector_lanes!(2, __m128d, 3, "sse2", _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_fmadd_pd, _mm_xor_pd, _mm_set1_pd, _mm_loadu_pd,
+vector_lanes!(2, __m128d, 3, _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_fmadd_pd, _mm_xor_pd, _mm_set1_pd, _mm_loadu_pd,
     _mm_storeu_pd, _mm_andnot_pd, _mm_min_pd, _mm_cmpge_pd, _mm_movemask_pd, _mm_castpd_si128, _mm_castsi128_pd,
     _mm_and_si128, _mm_or_si128, _mm_xor_si128, _mm_sub_epi64, _mm_setzero_si128, _mm_set1_epi64x, _mm_slli_epi64);
 #[cfg(target_arch = "x86_64")]
-vector_lanes!(4, __m256d, 15, "avx2", _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_fmadd_pd, _mm256_xor_pd, _mm256_set1_pd,
+vector_lanes!(4, __m256d, 15, _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_fmadd_pd, _mm256_xor_pd, _mm256_set1_pd,
     _mm256_loadu_pd, _mm256_storeu_pd, _mm256_andnot_pd, _mm256_min_pd, _mm256_cmp_pd::<_CMP_GE_OQ>,
     _mm256_movemask_pd, _mm256_castpd_si256, _mm256_castsi256_pd, _mm256_and_si256, _mm256_or_si256,
     _mm256_xor_si256, _mm256_sub_epi64, _mm256_setzero_si256, _mm256_set1_epi64x, _mm256_slli_epi64);
 
-/// Other targets: two angles lane by lane (the compiler may vectorise).
+/// Other targets: two angles lane by lane (the compiler may vectorise);
+/// four only to compile `sin_cos_batches` (`Baseline::QUADS` is false).
 #[cfg(not(target_arch = "x86_64"))]
 impl ToLanes for [f64; 2] {
     type V = [f64; 2];
@@ -624,10 +1018,19 @@ impl ToLanes for [f64; 2] {
 }
 
 #[cfg(not(target_arch = "x86_64"))]
-impl Lanes for [f64; 2] {
+impl ToLanes for [f64; 4] {
+    type V = [f64; 4];
+    #[inline(always)]
+    fn to_lanes(self) -> [f64; 4] {
+        self
+    }
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+impl<const W: usize> Lanes for [f64; W] {
     #[inline(always)]
     fn splat(a: f64) -> Self {
-        [a; 2]
+        [a; W]
     }
     #[inline(always)]
     fn lane(self, l: usize) -> f64 {
@@ -635,51 +1038,45 @@ impl Lanes for [f64; 2] {
     }
     #[inline(always)]
     fn add(self, b: Self) -> Self {
-        [self[0] + b[0], self[1] + b[1]]
+        core::array::from_fn(|l| self[l] + b[l])
     }
     #[inline(always)]
     fn sub(self, b: Self) -> Self {
-        [self[0] - b[0], self[1] - b[1]]
+        core::array::from_fn(|l| self[l] - b[l])
     }
     #[inline(always)]
     fn mul(self, b: Self) -> Self {
-        [self[0] * b[0], self[1] * b[1]]
+        core::array::from_fn(|l| self[l] * b[l])
     }
     #[inline(always)]
-    fn mul_add(self, b: Self, c: Self) -> Self {
-        [fma(self[0], b[0], c[0]), fma(self[1], b[1], c[1])]
+    fn mul_add<I: Isa>(self, b: Self, c: Self) -> Self {
+        core::array::from_fn(|l| I::fma(self[l], b[l], c[l]))
     }
     #[inline(always)]
     fn neg(self) -> Self {
-        [-self[0], -self[1]]
+        self.map(|a| -a)
     }
     #[inline(always)]
     fn abs(self) -> Self {
-        [self[0].abs(), self[1].abs()]
+        self.map(f64::abs)
     }
     #[inline(always)]
     fn capped_ge(self, b: Self) -> bool {
-        self[0].capped_ge(b[0]) & self[1].capped_ge(b[1])
+        (0..W).all(|l| self[l].capped_ge(b[l]))
     }
     #[inline(always)]
     fn quadrant(sin_r: Self, signed: Self, cos_r: Self, quadrant: Self) -> (Self, Self) {
-        let r = [0, 1].map(|l| f64::quadrant(sin_r[l], signed[l], cos_r[l], quadrant[l]));
-        ([r[0].0, r[1].0], [r[0].1, r[1].1])
+        let r: [(f64, f64); W] = core::array::from_fn(|l| f64::quadrant(sin_r[l], signed[l], cos_r[l], quadrant[l]));
+        (r.map(|r| r.0), r.map(|r| r.1))
     }
-}
-
-/// `[f(0), …, f(P − 1)]`: one step on each of `P` registers.
-#[inline(always)]
-fn each<V, const P: usize>(f: impl FnMut(usize) -> V) -> [V; P] {
-    core::array::from_fn(f)
 }
 
 /// The rare case of `sin_cos_array`: every angle again, one at a time.
 #[cold]
 #[inline(never)]
-fn sin_cos_again(x: &[f64], s: &mut [f64], c: &mut [f64]) {
+fn sin_cos_again<I: Isa>(x: &[f64], s: &mut [f64], c: &mut [f64]) {
     for ((x, s), c) in x.iter().zip(s).zip(c) {
-        (*s, *c) = sin_cos_kernel(*x);
+        (*s, *c) = sin_cos_kernel_on::<I>(*x);
     }
 }
 
@@ -687,9 +1084,27 @@ fn sin_cos_again(x: &[f64], s: &mut [f64], c: &mut [f64]) {
 /// for every finite `x` (NaN and ±∞ give NaN).
 #[inline]
 pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
-    match sin_cos_lanes([x]) {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if RUNTIME_DISPATCH && has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { sin_cos_kernel_avx2_fma(x) };
+    }
+    sin_cos_kernel_on::<Baseline>(x)
+}
+
+/// `sin_cos_kernel` compiled for AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn sin_cos_kernel_avx2_fma(x: f64) -> (f64, f64) {
+    sin_cos_kernel_on::<Avx2Fma>(x)
+}
+
+/// `sin_cos_kernel` in the instructions of `I`.
+#[inline(always)]
+fn sin_cos_kernel_on<I: Isa>(x: f64) -> (f64, f64) {
+    match sin_cos_lanes::<I, f64, 1>([x]) {
         [(s, c, true)] => (s, c),
-        _ => sin_cos_slow(x),
+        _ => sin_cos_slow::<I>(x),
     }
 }
 
@@ -698,28 +1113,28 @@ pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
 /// `sin_cos_slow`).
 #[inline(always)]
 #[allow(clippy::excessive_precision, clippy::approx_constant)]
-fn sin_cos_lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
+fn sin_cos_lanes<I: Isa, V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
     const FRAC_2_PI: f64 = 0.6366197723675814;
     const ROUND: f64 = 6755399441055744.0; // 1.5·2⁵²: x + ROUND − ROUND rounds x to an integer
     const P1: f64 = 1.5707963267341256;
     const P2: f64 = 6.077100506303966e-11;
     const P3: f64 = 2.0222662487959506e-21;
     let v = V::splat;
-    let t: [V; P] = each(|i| x[i].mul_add(v(FRAC_2_PI), v(ROUND)));
-    let k: [V; P] = each(|i| t[i].sub(v(ROUND)));
-    let t0: [V; P] = each(|i| k[i].neg().mul_add(v(P1), x[i])); // exact, fused or not
-    let w: [V; P] = each(|i| k[i].mul(v(P2))); // exact
-    let a: [V; P] = each(|i| t0[i].sub(w[i]));
+    let t: [V; P] = each!(i => x[i].mul_add::<I>(v(FRAC_2_PI), v(ROUND)));
+    let k: [V; P] = each!(i => t[i].sub(v(ROUND)));
+    let t0: [V; P] = each!(i => k[i].neg().mul_add::<I>(v(P1), x[i])); // exact, fused or not
+    let w: [V; P] = each!(i => k[i].mul(v(P2))); // exact
+    let a: [V; P] = each!(i => t0[i].sub(w[i]));
     // r ≈ a + b: the rounding error of t0 − w, exact (|t0| ≥ |w|, or else t0 − w is exact), then − k·P3.
     // Not renormalised, so that the polynomials start from a without waiting for b: |b| ≤ ulp(a)/2 +
     // |k|·P3 ≤ 2e-15, which step 3 allows for.
-    let b: [V; P] = each(|i| t0[i].sub(a[i]).sub(w[i]).sub(k[i].mul(v(P3))));
+    let b: [V; P] = each!(i => t0[i].sub(a[i]).sub(w[i]).sub(k[i].mul(v(P3))));
     // Within 1 ulp if |x| ≤ 1.5e6 and |a| ≥ 2⁻⁵⁸·|x| (as |r − (a + b)| ≤ 3e-37·|x|), which also
     // holds for k = 0 (a = x) and fails for NaN and ±∞ (then a is NaN): min(2⁵⁸·|a|, 1.5e6) ≥ |x|.
-    let ok: [bool; P] = core::array::from_fn(|i| a[i].abs().mul(v(2.8823037615171174e17)).capped_ge(x[i].abs()));
+    let ok: [bool; P] = each!(i => a[i].abs().mul(v(2.8823037615171174e17)).capped_ge(x[i].abs()));
     // a's sign is r's, also when a = −0 (x = −0).
-    let r = sin_cos_reduced(a, b, a, t);
-    core::array::from_fn(|i| (r[i].0, r[i].1, ok[i]))
+    let r = sin_cos_reduced::<I, V, P>(a, b, a, t);
+    each!(i => (r[i].0, r[i].1, ok[i]))
 }
 
 /// Step 3 and 4: sin and cos of k·π/2 + rh + rl for |rh + rl| ≤ π/4 and
@@ -727,7 +1142,7 @@ fn sin_cos_lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
 /// into sin (rh's sign, also when rh = −0).
 #[inline(always)]
 #[allow(clippy::excessive_precision)]
-fn sin_cos_reduced<V: Lanes, const P: usize>(rh: [V; P], rl: [V; P], signed: [V; P], quadrant: [V; P]) -> [(V, V); P] {
+fn sin_cos_reduced<I: Isa, V: Lanes, const P: usize>(rh: [V; P], rl: [V; P], signed: [V; P], quadrant: [V; P]) -> [(V, V); P] {
     const S: [f64; 6] = [
         -1.666666666666663e-1,
         8.333333333322118e-3,
@@ -745,34 +1160,39 @@ fn sin_cos_reduced<V: Lanes, const P: usize>(rh: [V; P], rl: [V; P], signed: [V;
         -1.1358536521605753e-11,
     ];
     let v = V::splat;
-    let z: [V; P] = each(|i| rh[i].mul(rh[i]));
-    let z2: [V; P] = each(|i| z[i].mul(z[i]));
-    // Estrin: (c0 + z·c1) + z²·((c2 + z·c3) + z²·(c4 + z·c5)).
-    let poly = |c: [f64; 6], i: usize| {
-        let (lo, mid, hi) = (z[i].mul_add(v(c[1]), v(c[0])), z[i].mul_add(v(c[3]), v(c[2])), z[i].mul_add(v(c[5]), v(c[4])));
-        z2[i].mul_add(z2[i].mul_add(hi, mid), lo)
-    };
-    let ps: [V; P] = each(|i| poly(S, i));
-    let pc: [V; P] = each(|i| poly(C, i));
-    let hz: [V; P] = each(|i| v(0.5).mul(z[i]));
-    let w: [V; P] = each(|i| v(1.0).sub(hz[i]));
+    let z: [V; P] = each!(i => rh[i].mul(rh[i]));
+    let z2: [V; P] = each!(i => z[i].mul(z[i]));
+    // Estrin: (c0 + z·c1) + z²·((c2 + z·c3) + z²·(c4 + z·c5)). (A function, not a closure: called
+    // four times, a closure would stay out of line, outside a `#[target_feature]` caller's features.)
+    #[inline(always)]
+    fn poly<I: Isa, V: Lanes>(c: [f64; 6], z: V, z2: V) -> V {
+        let v = V::splat;
+        let lo = z.mul_add::<I>(v(c[1]), v(c[0]));
+        let (mid, hi) = (z.mul_add::<I>(v(c[3]), v(c[2])), z.mul_add::<I>(v(c[5]), v(c[4])));
+        z2.mul_add::<I>(z2.mul_add::<I>(hi, mid), lo)
+    }
+    let ps: [V; P] = each!(i => poly::<I, V>(S, z[i], z2[i]));
+    let pc: [V; P] = each!(i => poly::<I, V>(C, z[i], z2[i]));
+    let hz: [V; P] = each!(i => v(0.5).mul(z[i]));
+    let w: [V; P] = each!(i => v(1.0).sub(hz[i]));
     // rl·cos rh and rl·sin rh to O(rl·rh⁶): 1 − z/2 + z²/24 and rh·(1 − z/6 + z²/120), so that rl
     // may be up to 2e-15 (the fast path's b) without costing digits.
-    let cos_rh: [V; P] = each(|i| z2[i].mul_add(v(1.0 / 24.0), w[i]));
-    let sin_rh: [V; P] = each(|i| rh[i].mul(z2[i].mul_add(v(1.0 / 120.0), z[i].mul_add(v(-1.0 / 6.0), v(1.0)))));
+    let cos_rh: [V; P] = each!(i => z2[i].mul_add::<I>(v(1.0 / 24.0), w[i]));
+    let sin_rh: [V; P] =
+        each!(i => rh[i].mul(z2[i].mul_add::<I>(v(1.0 / 120.0), z[i].mul_add::<I>(v(-1.0 / 6.0), v(1.0)))));
     // sin(rh + rl) = rh + rh·z·S(z) + rl·cos rh + …; the sign or-ed in keeps sin(−0) = −0.
-    let sin_r: [V; P] = each(|i| rh[i].add(rh[i].mul(z[i]).mul_add(ps[i], rl[i].mul(cos_rh[i]))));
+    let sin_r: [V; P] = each!(i => rh[i].add(rh[i].mul(z[i]).mul_add::<I>(ps[i], rl[i].mul(cos_rh[i]))));
     // cos(rh + rl) = (1 − z/2) + z²·C(z) − rl·sin rh + …, with the rounding error of 1 − z/2.
     let cos_r: [V; P] =
-        each(|i| w[i].add(z2[i].mul_add(pc[i], v(1.0).sub(w[i]).sub(hz[i])).sub(rl[i].mul(sin_rh[i]))));
-    core::array::from_fn(|i| V::quadrant(sin_r[i], signed[i], cos_r[i], quadrant[i]))
+        each!(i => w[i].add(z2[i].mul_add::<I>(pc[i], v(1.0).sub(w[i]).sub(hz[i])).sub(rl[i].mul(sin_rh[i]))));
+    each!(i => V::quadrant(sin_r[i], signed[i], cos_r[i], quadrant[i]))
 }
 
 /// Step 2: Payne and Hanek's reduction of any finite `x`, then step 3.
 #[inline(never)]
 #[cold]
 #[allow(clippy::unreadable_literal, clippy::approx_constant)]
-fn sin_cos_slow(x: f64) -> (f64, f64) {
+fn sin_cos_slow<I: Isa>(x: f64) -> (f64, f64) {
     // 2/π = Σ FRAC_2_PI_BITS[i]·2^(−64(i+1)) + less than 2⁻¹²⁸⁰.
     const FRAC_2_PI_BITS: [u64; 20] = [
         0xa2f9836e4e441529, 0xfc2757d1f534ddc0, 0xdb6295993c439041, 0xfe5163abdebbc561,
@@ -789,7 +1209,7 @@ fn sin_cos_slow(x: f64) -> (f64, f64) {
     }
     let ax = x.abs();
     if ax < 0.78 {
-        let [(s, c)] = sin_cos_reduced([ax], [0.0], [0.0], [0.0]);
+        let [(s, c)] = sin_cos_reduced::<I, f64, 1>([ax], [0.0], [0.0], [0.0]);
         return (if x < 0.0 { -s } else { s }, c);
     }
     // |x| = m·2^e with m < 2⁵³ an integer.
@@ -832,6 +1252,6 @@ fn sin_cos_slow(x: f64) -> (f64, f64) {
     let low = pl + (fh * PIO2_LO + fl * PIO2_HI);
     let rh = ph + low;
     let rl = low - (rh - ph);
-    let [(s, c)] = sin_cos_reduced([rh], [rl], [rh], [f64::from_bits(k)]);
+    let [(s, c)] = sin_cos_reduced::<I, f64, 1>([rh], [rl], [rh], [f64::from_bits(k)]);
     (if x < 0.0 { -s } else { s }, c)
 }

@@ -5,10 +5,15 @@
 // Model content hash (FNV-1a 64 of its canonical text): c1ed6c647a88e920
 // Gravity: [0.0, 0.0, -9.81] m/s^2 in the base frame, folded in.
 // Options: scalar f64; forward dynamics by the CRBA + RNEA + sparse LTDL (chosen); rounding snap on (2 constants); inertia regrouping on; like terms on, constant products on, constant sums on, reassociation on.
-// Trigonometry: NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time, four where the target has AVX2 (no_std, no dependency).
+// Trigonometry: NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time, four where the target (or, with run-time dispatch, the processor) has AVX2 (no_std, no dependency).
 // Fused multiply-adds: fma(a, b, c) (fmaf in f32) is a*b + c with one rounding where the target has an FMA
 //   instruction (x86_64 built with target feature fma, e.g. -C target-cpu=native on a machine that has it;
 //   aarch64), and plain a * b + c elsewhere: a default x86_64 build gives the same bits as unfused code.
+// Run-time dispatch: on. On x86_64 builds without target features avx2 and fma (a default build), every
+//   public function also has a copy compiled for AVX2 and FMA (NAME_avx2_fma, from the one generic body
+//   NAME_on) and runs it where the processor has both (cpuid, asked once): as fast as a native build, and
+//   with its bits, so results differ in the last bits between machines with and without FMA (within the
+//   accuracy the tests check). Off: runtime_dispatch(false), the same bits on every x86_64 machine.
 // Forward dynamics: CRBA + LTDL, chosen as faster and as accurate (estimated 689 cycles for CRBA + LTDL against 1024 for the articulated-body algorithm; worst relative error on 16 states against double-double 3.0e-16 against 3.4e-16).
 // Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]
 //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.
@@ -34,7 +39,7 @@ pub const JOINT_NAMES: [&str; DOF] = [
     "right_elbow_joint",
     "right_wrist_joint",
 ];
-/// The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target has AVX2).
+/// The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target, or with run-time dispatch the processor, has AVX2).
 #[inline]
 pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
     sin_cos_array(q)
@@ -45,13 +50,39 @@ pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
 /// 754 ops: 204 add, 137 sub, 413 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 248 fused multiply-adds, 522 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+pub fn inverse_dynamics_sc(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+    qdd: &[f64; DOF],
+) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { inverse_dynamics_sc_avx2_fma(s, c, qd, qdd) };
+    }
+    inverse_dynamics_sc_on::<Baseline>(s, c, qd, qdd)
+}
+/// [`inverse_dynamics_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn inverse_dynamics_sc_avx2_fma(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+    qdd: &[f64; DOF],
+) -> [f64; DOF] {
+    inverse_dynamics_sc_on::<Avx2Fma>(s, c, qd, qdd)
+}
+/// The body of [`inverse_dynamics_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn inverse_dynamics_sc(
+fn inverse_dynamics_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
     qd: &[f64; DOF],
@@ -70,16 +101,16 @@ pub fn inverse_dynamics_sc(
     let t10 = qd[0] * t5;
     let t11 = qd[0] * t4;
     let t12 = 9.61445312862258 * s[1];
-    let t13 = fma(c[1], t6, t12);
-    let t14 = fma(t3, t7, t13);
-    let t15 = fma(-0.1764119840114235, t0, 1.9489461350995507);
+    let t13 = I::fma(c[1], t6, t12);
+    let t14 = I::fma(t3, t7, t13);
+    let t15 = I::fma(-0.1764119840114235, t0, 1.9489461350995507);
     let t16 = 9.61445312862258 * c[1];
-    let t17 = fma(-s[1], t6, t16);
-    let t18 = fma(t2, t7, t17);
-    let t19 = fma(0.19866933079506122, qd[0], qd[1]);
-    let t20 = fma(qd[1], t11, t8);
-    let t21 = fma(-qd[1], t10, t9);
-    let t22 = fma(0.19866933079506122, qdd[0], qdd[1]);
+    let t17 = I::fma(-s[1], t6, t16);
+    let t18 = I::fma(t2, t7, t17);
+    let t19 = I::fma(0.19866933079506122, qd[0], qd[1]);
+    let t20 = I::fma(qd[1], t11, t8);
+    let t21 = I::fma(-qd[1], t10, t9);
+    let t22 = I::fma(0.19866933079506122, qdd[0], qdd[1]);
     let t23 = 0.25200000000000006 * t15;
     let t24 = 0.018000000000000002 * t18;
     let t25 = 0.018000000000000002 * t15;
@@ -89,60 +120,60 @@ pub fn inverse_dynamics_sc(
     let t29 = t10 * t11;
     let t30 = t11 * t19;
     let t31 = t26 + t27;
-    let t32 = fma(t10, t10, t26);
+    let t32 = I::fma(t10, t10, t26);
     let t33 = t21 - t28;
     let t34 = t22 - t29;
     let t35 = t22 + t29;
     let t36 = t20 + t30;
     let t37 = 0.018000000000000002 * t31;
-    let t38 = fma(0.25200000000000006, t34, t37);
+    let t38 = I::fma(0.25200000000000006, t34, t37);
     let t39 = 0.25200000000000006 * t32;
-    let t40 = fma(-0.018000000000000002, t35, t39);
+    let t40 = I::fma(-0.018000000000000002, t35, t39);
     let t41 = 0.051460000000000006 * t22;
-    let t42 = fma(-t10, t10, t27);
+    let t42 = I::fma(-t10, t10, t27);
     let t43 = 1.0 - c[2];
     let t44 = 0.5000000000000001 * t43;
     let t45 = 0.7071067811865476 * s[2];
     let t46 = c[2] + t44;
-    let t47 = fma(0.3, t34, t14);
-    let t48 = fma(-0.3, t36, t15);
-    let t49 = fma(0.3, t32, t18);
+    let t47 = I::fma(0.3, t34, t14);
+    let t48 = I::fma(-0.3, t36, t15);
+    let t49 = I::fma(0.3, t32, t18);
     let t50 = t22 * t45;
-    let t51 = fma(-t20, c[2], t50);
-    let t52 = fma(-t21, t45, t51);
+    let t51 = I::fma(-t20, c[2], t50);
+    let t52 = I::fma(-t21, t45, t51);
     let t53 = t20 * t45;
     let t54 = t21 * t46;
     let t55 = t19 * t45;
-    let t56 = fma(-t10, c[2], t55);
-    let t57 = fma(-t11, t45, t56);
+    let t56 = I::fma(-t10, c[2], t55);
+    let t57 = I::fma(-t11, t45, t56);
     let t58 = t10 * t45;
-    let t59 = fma(t11, t44, t58);
-    let t60 = fma(t19, t46, t59);
+    let t59 = I::fma(t11, t44, t58);
+    let t60 = I::fma(t19, t46, t59);
     let t61 = t19 * t44;
     let t62 = t61 - t58;
-    let t63 = fma(t11, t46, t62);
+    let t63 = I::fma(t11, t46, t62);
     let t64 = t45 * t49;
-    let t65 = fma(c[2], t47, t64);
-    let t66 = fma(t45, t48, -t65);
+    let t65 = I::fma(c[2], t47, t64);
+    let t66 = I::fma(t45, t48, -t65);
     let t67 = t44 * t49;
-    let t68 = fma(t45, t47, t67);
-    let t69 = fma(t46, t48, t68);
+    let t68 = I::fma(t45, t47, t67);
+    let t69 = I::fma(t46, t48, t68);
     let t70 = t46 * t49;
-    let t71 = fma(-t45, t47, t70);
-    let t72 = fma(t44, t48, t71);
+    let t71 = I::fma(-t45, t47, t70);
+    let t72 = I::fma(t44, t48, t71);
     let t73 = 0.7071067811865476 * qd[2];
     let t74 = t60 + t73;
     let t75 = t63 + t73;
     let t76 = t60 - t63;
-    let t77 = fma(t73, t76, t52);
+    let t77 = I::fma(t73, t76, t52);
     let t78 = 0.7071067811865476 * qdd[2];
-    let t79 = fma(t22, t46, t78);
-    let t80 = fma(t21, t44, t53);
-    let t81 = fma(-t57, t73, t79);
+    let t79 = I::fma(t22, t46, t78);
+    let t80 = I::fma(t21, t44, t53);
+    let t81 = I::fma(-t57, t73, t79);
     let t82 = t80 + t81;
-    let t83 = fma(t22, t44, t78);
+    let t83 = I::fma(t22, t44, t78);
     let t84 = t83 - t53;
-    let t85 = fma(t57, t73, t54);
+    let t85 = I::fma(t57, t73, t54);
     let t86 = t84 + t85;
     let t87 = 2.3 * t72;
     let t88 = 0.001438276615812609 * t72;
@@ -155,8 +186,8 @@ pub fn inverse_dynamics_sc(
     let t95 = t57 * t74;
     let t96 = t57 * t75;
     let t97 = t74 * t75;
-    let t98 = fma(t75, t75, t94);
-    let t99 = fma(t75, t75, t93);
+    let t98 = I::fma(t75, t75, t94);
+    let t99 = I::fma(t75, t75, t93);
     let t100 = t93 + t94;
     let t101 = t95 - t86;
     let t102 = t86 + t95;
@@ -165,69 +196,69 @@ pub fn inverse_dynamics_sc(
     let t105 = t97 - t77;
     let t106 = t77 + t97;
     let t107 = 0.001438276615812609 * t101;
-    let t108 = fma(-0.0026327476856711184, t98, t107);
-    let t109 = fma(-0.45599999999999996, t103, t108);
+    let t108 = I::fma(-0.0026327476856711184, t98, t107);
+    let t109 = I::fma(-0.45599999999999996, t103, t108);
     let t110 = 0.001438276615812609 * t99;
-    let t111 = fma(0.0026327476856711184, t102, -t110);
-    let t112 = fma(-0.45599999999999996, t105, t111);
+    let t111 = I::fma(0.0026327476856711184, t102, -t110);
+    let t112 = I::fma(-0.45599999999999996, t105, t111);
     let t113 = 0.0026327476856711184 * t104;
-    let t114 = fma(0.001438276615812609, t106, t113);
-    let t115 = fma(2.3, t66, t109);
-    let t116 = fma(2.3, t69, t112);
+    let t114 = I::fma(0.001438276615812609, t106, t113);
+    let t115 = I::fma(2.3, t66, t109);
+    let t116 = I::fma(2.3, t69, t112);
     let t117 = 0.11248370112100659 * t77;
-    let t118 = fma(-t75, t75, t94);
+    let t118 = I::fma(-t75, t75, t94);
     let t119 = 0.11237803875603204 * t82;
-    let t120 = fma(t75, t75, -t93);
+    let t120 = I::fma(t75, t75, -t93);
     let t121 = 0.0007227573213207296 * t120;
     let t122 = 0.0013082601229613597 * t86;
     let t123 = t93 - t94;
     let t124 = 0.2593433800522308 * s[3];
-    let t125 = fma(-0.479425538604203, c[3], t124);
+    let t125 = I::fma(-0.479425538604203, c[3], t124);
     let t126 = 0.2593433800522308 * c[3];
-    let t127 = fma(0.479425538604203, s[3], t126);
+    let t127 = I::fma(0.479425538604203, s[3], t126);
     let t128 = 0.8775825618903728 * c[3];
-    let t129 = fma(0.1416799342470381, s[3], t128);
+    let t129 = I::fma(0.1416799342470381, s[3], t128);
     let t130 = 0.1416799342470381 * c[3];
-    let t131 = fma(-0.8775825618903728, s[3], t130);
+    let t131 = I::fma(-0.8775825618903728, s[3], t130);
     let t132 = 0.955336489125606 * s[3];
     let t133 = 0.955336489125606 * c[3];
-    let t134 = fma(-0.3, t103, t66);
-    let t135 = fma(-0.3, t105, t69);
-    let t136 = fma(0.3, t100, t72);
+    let t134 = I::fma(-0.3, t103, t66);
+    let t135 = I::fma(-0.3, t105, t69);
+    let t136 = I::fma(0.3, t100, t72);
     let t137 = 0.45801271084729195 * t82;
     let t138 = t82 * t129;
-    let t139 = fma(t77, t125, t138);
-    let t140 = fma(t86, t132, t139);
+    let t139 = I::fma(t77, t125, t138);
+    let t140 = I::fma(t86, t132, t139);
     let t141 = t82 * t131;
-    let t142 = fma(t77, t127, t141);
+    let t142 = I::fma(t77, t127, t141);
     let t143 = t86 * t133;
     let t144 = 0.45801271084729195 * t74;
     let t145 = t57 * t125;
-    let t146 = fma(t74, t129, t145);
-    let t147 = fma(t75, t132, t146);
+    let t146 = I::fma(t74, t129, t145);
+    let t147 = I::fma(t75, t132, t146);
     let t148 = t57 * t127;
-    let t149 = fma(t74, t131, t148);
-    let t150 = fma(t75, t133, t149);
+    let t149 = I::fma(t74, t131, t148);
+    let t150 = I::fma(t75, t133, t149);
     let t151 = 0.8383866435942036 * t134;
-    let t152 = fma(0.45801271084729195, t135, t151);
-    let t153 = fma(-0.29552020666133955, t136, t152);
+    let t152 = I::fma(0.45801271084729195, t135, t151);
+    let t153 = I::fma(-0.29552020666133955, t136, t152);
     let t154 = t125 * t134;
-    let t155 = fma(t129, t135, t154);
-    let t156 = fma(t132, t136, t155);
-    let t157 = fma(0.8383866435942036, t57, qd[3]);
-    let t158 = fma(-0.29552020666133955, t75, t144);
+    let t155 = I::fma(t129, t135, t154);
+    let t156 = I::fma(t132, t136, t155);
+    let t157 = I::fma(0.8383866435942036, t57, qd[3]);
+    let t158 = I::fma(-0.29552020666133955, t75, t144);
     let t159 = t157 + t158;
-    let t160 = fma(qd[3], t150, t140);
-    let t161 = fma(0.8383866435942036, t77, qdd[3]);
-    let t162 = fma(-0.29552020666133955, t86, t137);
+    let t160 = I::fma(qd[3], t150, t140);
+    let t161 = I::fma(0.8383866435942036, t77, qdd[3]);
+    let t162 = I::fma(-0.29552020666133955, t86, t137);
     let t163 = t161 + t162;
     let t164 = t147 * t147;
     let t165 = t150 * t150;
     let t166 = t147 * t159;
     let t167 = t150 * t159;
     let t168 = t147 * t150;
-    let t169 = fma(t159, t159, t164);
-    let t170 = fma(-qd[3], t147, t143);
+    let t169 = I::fma(t159, t159, t164);
+    let t170 = I::fma(-qd[3], t147, t143);
     let t171 = t142 + t166;
     let t172 = t170 + t171;
     let t173 = t160 + t167;
@@ -235,24 +266,24 @@ pub fn inverse_dynamics_sc(
     let t175 = 0.02 * t174;
     let t176 = 0.02 * t169;
     let t177 = 0.001 * t163;
-    let t178 = fma(1e-5, t172, t177);
-    let t179 = fma(-0.0009, t168, t178);
+    let t178 = I::fma(1e-5, t172, t177);
+    let t179 = I::fma(-0.0009, t168, t178);
     let t180 = 0.0009 * t160;
-    let t181 = fma(-t159, t159, t165);
-    let t182 = fma(1e-5, t181, t180);
-    let t183 = fma(0.001, t167, t182);
+    let t181 = I::fma(-t159, t159, t165);
+    let t182 = I::fma(1e-5, t181, t180);
+    let t183 = I::fma(0.001, t167, t182);
     let t184 = 1e-5 * t174;
-    let t185 = fma(0.00010000000000000005, t166, t184);
-    let t186 = fma(0.02, t156, t179);
-    let t187 = fma(-0.02, t153, t183);
+    let t185 = I::fma(0.00010000000000000005, t166, t184);
+    let t186 = I::fma(0.02, t156, t179);
+    let t187 = I::fma(-0.02, t153, t183);
     let t188 = 0.9950041652780258 * s[4];
-    let t189 = fma(-0.019833838076209875, c[4], t188);
+    let t189 = I::fma(-0.019833838076209875, c[4], t188);
     let t190 = 0.9950041652780258 * c[4];
-    let t191 = fma(0.019833838076209875, s[4], t190);
+    let t191 = I::fma(0.019833838076209875, s[4], t190);
     let t192 = 0.19767681165408388 * c[4];
-    let t193 = fma(0.09983341664682815, s[4], t192);
+    let t193 = I::fma(0.09983341664682815, s[4], t192);
     let t194 = 0.09983341664682815 * c[4];
-    let t195 = fma(-0.19767681165408388, s[4], t194);
+    let t195 = I::fma(-0.19767681165408388, s[4], t194);
     let t196 = 0.9800665778412416 * c[4];
     let t197 = 0.9800665778412416 * s[4];
     let t198 = qdd[0] * t197;
@@ -260,26 +291,26 @@ pub fn inverse_dynamics_sc(
     let t200 = qd[0] * t197;
     let t201 = qd[0] * t196;
     let t202 = t6 * t191;
-    let t203 = fma(t7, t195, t202);
-    let t204 = fma(-9.61445312862258, s[4], t203);
-    let t205 = fma(0.017611811101306028, qdd[0], 1.9489461350995507);
-    let t206 = fma(0.17553065889632685, t0, -t205);
+    let t203 = I::fma(t7, t195, t202);
+    let t204 = I::fma(-9.61445312862258, s[4], t203);
+    let t205 = I::fma(0.017611811101306028, qdd[0], 1.9489461350995507);
+    let t206 = I::fma(0.17553065889632685, t0, -t205);
     let t207 = t6 * t189;
-    let t208 = fma(t7, t193, t207);
-    let t209 = fma(9.61445312862258, c[4], t208);
-    let t210 = fma(-0.19866933079506122, qd[0], qd[4]);
-    let t211 = fma(qd[4], t201, t198);
-    let t212 = fma(-qd[4], t200, t199);
-    let t213 = fma(-0.19866933079506122, qdd[0], qdd[4]);
+    let t208 = I::fma(t7, t193, t207);
+    let t209 = I::fma(9.61445312862258, c[4], t208);
+    let t210 = I::fma(-0.19866933079506122, qd[0], qd[4]);
+    let t211 = I::fma(qd[4], t201, t198);
+    let t212 = I::fma(-qd[4], t200, t199);
+    let t213 = I::fma(-0.19866933079506122, qdd[0], qdd[4]);
     let t214 = 0.3 * t206;
     let t215 = t210 * t210;
     let t216 = t200 * t210;
     let t217 = t200 * t201;
     let t218 = t201 * t210;
-    let t219 = fma(qd[4], t200, -t199);
-    let t220 = fma(0.19866933079506122, qdd[0], -qdd[4]);
-    let t221 = fma(t201, t201, t215);
-    let t222 = fma(t200, t200, t215);
+    let t219 = I::fma(qd[4], t200, -t199);
+    let t220 = I::fma(0.19866933079506122, qdd[0], -qdd[4]);
+    let t221 = I::fma(t201, t201, t215);
+    let t222 = I::fma(t200, t200, t215);
     let t223 = t219 - t216;
     let t224 = t212 - t216;
     let t225 = t213 - t217;
@@ -287,110 +318,110 @@ pub fn inverse_dynamics_sc(
     let t227 = t211 + t218;
     let t228 = t218 - t211;
     let t229 = 0.3 * t222;
-    let t230 = fma(-t201, t201, t215);
+    let t230 = I::fma(-t201, t201, t215);
     let t231 = 0.0026 * t230;
-    let t232 = fma(0.0003, t226, t231);
+    let t232 = I::fma(0.0003, t226, t231);
     let t233 = 0.062 * t213;
     let t234 = 0.0026 * t223;
     let t235 = 0.06049999999999999 * t212;
-    let t236 = fma(0.0026, t225, t235);
-    let t237 = fma(t200, t200, -t215);
+    let t236 = I::fma(0.0026, t225, t235);
+    let t237 = I::fma(t200, t200, -t215);
     let t238 = 0.0003 * t237;
     let t239 = 1.0 - c[5];
     let t240 = 0.48 * t239;
     let t241 = 0.8 * s[5];
     let t242 = 0.6 * s[5];
-    let t243 = fma(0.6400000000000001, t239, c[5]);
-    let t244 = fma(0.36, t239, c[5]);
+    let t243 = I::fma(0.6400000000000001, t239, c[5]);
+    let t244 = I::fma(0.36, t239, c[5]);
     let t245 = 0.02 * t221;
-    let t246 = fma(0.3, t225, t245);
+    let t246 = I::fma(0.3, t225, t245);
     let t247 = 0.02 * t224;
-    let t248 = fma(-0.3, t227, t247);
-    let t249 = fma(0.02, t226, t229);
+    let t248 = I::fma(-0.3, t227, t247);
+    let t249 = I::fma(0.02, t226, t229);
     let t250 = t204 - t246;
     let t251 = t206 + t248;
     let t252 = t209 + t249;
     let t253 = t213 * t242;
-    let t254 = fma(-t211, c[5], t253);
-    let t255 = fma(-t212, t241, t254);
+    let t254 = I::fma(-t211, c[5], t253);
+    let t255 = I::fma(-t212, t241, t254);
     let t256 = t211 * t242;
     let t257 = t212 * t244;
     let t258 = t210 * t242;
-    let t259 = fma(-t200, c[5], t258);
-    let t260 = fma(-t201, t241, t259);
+    let t259 = I::fma(-t200, c[5], t258);
+    let t260 = I::fma(-t201, t241, t259);
     let t261 = t200 * t242;
-    let t262 = fma(t201, t240, t261);
-    let t263 = fma(t210, t243, t262);
+    let t262 = I::fma(t201, t240, t261);
+    let t263 = I::fma(t210, t243, t262);
     let t264 = t210 * t240;
-    let t265 = fma(-t200, t241, t264);
-    let t266 = fma(t201, t244, t265);
+    let t265 = I::fma(-t200, t241, t264);
+    let t266 = I::fma(t201, t244, t265);
     let t267 = c[5] * t250;
-    let t268 = fma(-t241, t252, t267);
-    let t269 = fma(t242, t251, t268);
+    let t268 = I::fma(-t241, t252, t267);
+    let t269 = I::fma(t242, t251, t268);
     let t270 = t240 * t252;
-    let t271 = fma(-t242, t250, t270);
-    let t272 = fma(t243, t251, t271);
+    let t271 = I::fma(-t242, t250, t270);
+    let t272 = I::fma(t243, t251, t271);
     let t273 = t241 * t250;
-    let t274 = fma(t244, t252, t273);
-    let t275 = fma(t240, t251, t274);
+    let t274 = I::fma(t244, t252, t273);
+    let t275 = I::fma(t240, t251, t274);
     let t276 = 0.8 * qd[5];
     let t277 = 0.6 * qd[5];
     let t278 = t263 + t276;
     let t279 = t266 + t277;
     let t280 = t263 * t277;
-    let t281 = fma(-t266, t276, t280);
+    let t281 = I::fma(-t266, t276, t280);
     let t282 = t255 + t281;
     let t283 = 0.8 * qdd[5];
     let t284 = 0.6 * qdd[5];
-    let t285 = fma(t213, t243, t283);
-    let t286 = fma(t212, t240, t256);
-    let t287 = fma(-t260, t277, t285);
+    let t285 = I::fma(t213, t243, t283);
+    let t286 = I::fma(t212, t240, t256);
+    let t287 = I::fma(-t260, t277, t285);
     let t288 = t286 + t287;
-    let t289 = fma(t213, t240, t284);
-    let t290 = fma(-t211, t241, t289);
-    let t291 = fma(t260, t276, t257);
+    let t289 = I::fma(t213, t240, t284);
+    let t290 = I::fma(-t211, t241, t289);
+    let t291 = I::fma(t260, t276, t257);
     let t292 = t290 + t291;
     let t293 = 1.7 * t272;
     let t294 = t260 * t260;
     let t295 = t260 * t278;
     let t296 = t260 * t279;
     let t297 = t278 * t279;
-    let t298 = fma(t278, t278, t294);
+    let t298 = I::fma(t278, t278, t294);
     let t299 = t292 + t295;
     let t300 = t288 + t296;
     let t301 = t297 - t282;
     let t302 = 0.347 * t300;
     let t303 = 0.347 * t298;
-    let t304 = fma(1.7, t269, -t302);
-    let t305 = fma(-0.347, t301, t293);
-    let t306 = fma(1.7, t275, t303);
+    let t304 = I::fma(1.7, t269, -t302);
+    let t305 = I::fma(-0.347, t301, t293);
+    let t306 = I::fma(1.7, t275, t303);
     let t307 = 0.08939000000000001 * t297;
     let t308 = 0.09019 * t288;
-    let t309 = fma(t279, t279, -t294);
+    let t309 = I::fma(t279, t279, -t294);
     let t310 = 0.0008 * t292;
-    let t311 = fma(-0.0002, t301, t310);
-    let t312 = fma(0.00010000000000000286, t295, t311);
+    let t311 = I::fma(-0.0002, t301, t310);
+    let t312 = I::fma(0.00010000000000000286, t295, t311);
     let t313 = 0.9210609940028851 * c[6];
-    let t314 = fma(0.3894183423086505, s[6], t313);
+    let t314 = I::fma(0.3894183423086505, s[6], t313);
     let t315 = 0.3894183423086505 * c[6];
     let t316 = 0.9210609940028851 * s[6];
     let t317 = t315 - t316;
     let t318 = t316 - t315;
-    let t319 = fma(-0.28, t300, t269);
-    let t320 = fma(-0.28, t301, t272);
-    let t321 = fma(0.28, t298, t275);
+    let t319 = I::fma(-0.28, t300, t269);
+    let t320 = I::fma(-0.28, t301, t272);
+    let t321 = I::fma(0.28, t298, t275);
     let t322 = t288 * t318;
-    let t323 = fma(t282, t314, t322);
+    let t323 = I::fma(t282, t314, t322);
     let t324 = t288 * t314;
-    let t325 = fma(t282, t317, t324);
+    let t325 = I::fma(t282, t317, t324);
     let t326 = t260 * t314;
-    let t327 = fma(t278, t318, t326);
+    let t327 = I::fma(t278, t318, t326);
     let t328 = t260 * t317;
-    let t329 = fma(t278, t314, t328);
+    let t329 = I::fma(t278, t314, t328);
     let t330 = t317 * t319;
-    let t331 = fma(t314, t320, t330);
+    let t331 = I::fma(t314, t320, t330);
     let t332 = qd[6] + t279;
-    let t333 = fma(qd[6], t329, t323);
+    let t333 = I::fma(qd[6], t329, t323);
     let t334 = qdd[6] + t292;
     let t335 = t327 * t327;
     let t336 = t329 * t329;
@@ -400,7 +431,7 @@ pub fn inverse_dynamics_sc(
     let t340 = t329 * t332;
     let t341 = t336 + t337;
     let t342 = t334 + t338;
-    let t343 = fma(qd[6], t327, t339);
+    let t343 = I::fma(qd[6], t327, t339);
     let t344 = t343 - t325;
     let t345 = t340 - t333;
     let t346 = t333 + t340;
@@ -408,175 +439,175 @@ pub fn inverse_dynamics_sc(
     let t348 = 0.006999999999999999 * t342;
     let t349 = 2e-5 * t344;
     let t350 = 0.00022 * t340;
-    let t351 = fma(0.00020999999999999998, t342, t350);
-    let t352 = fma(-0.0001200000000000001, t333, t349);
+    let t351 = I::fma(0.00020999999999999998, t342, t350);
+    let t352 = I::fma(-0.0001200000000000001, t333, t349);
     let t353 = t351 + t352;
     let t354 = t337 - t335;
     let t355 = 0.00034000000000000013 * t339;
     let t356 = 0.00022 * t334;
     let t357 = t335 - t336;
-    let t358 = fma(0.00020999999999999998, t354, -t355);
-    let t359 = fma(-0.006999999999999999, t321, t358);
-    let t360 = fma(-2e-5, t346, t359);
-    let t361 = fma(0.0001200000000000001, t338, t356);
-    let t362 = fma(-2e-5, t357, t361);
-    let t363 = fma(-0.00020999999999999998, t345, t362);
-    let t364 = fma(0.006999999999999999, t331, t363);
+    let t358 = I::fma(0.00020999999999999998, t354, -t355);
+    let t359 = I::fma(-0.006999999999999999, t321, t358);
+    let t360 = I::fma(-2e-5, t346, t359);
+    let t361 = I::fma(0.0001200000000000001, t338, t356);
+    let t362 = I::fma(-2e-5, t357, t361);
+    let t363 = I::fma(-0.00020999999999999998, t345, t362);
+    let t364 = I::fma(0.006999999999999999, t331, t363);
     let t365 = t317 * t348;
-    let t366 = fma(-t314, t347, t365);
+    let t366 = I::fma(-t314, t347, t365);
     let t367 = t314 * t348;
-    let t368 = fma(-t318, t347, t367);
+    let t368 = I::fma(-t318, t347, t367);
     let t369 = t317 * t360;
-    let t370 = fma(t314, t353, t369);
+    let t370 = I::fma(t314, t353, t369);
     let t371 = t314 * t360;
-    let t372 = fma(t318, t353, t371);
-    let t373 = fma(0.09009, t282, -t307);
-    let t374 = fma(0.0002, t299, t373);
-    let t375 = fma(0.347, t272, t374);
-    let t376 = fma(0.28, t368, t375);
+    let t372 = I::fma(t318, t353, t371);
+    let t373 = I::fma(0.09009, t282, -t307);
+    let t374 = I::fma(0.0002, t299, t373);
+    let t375 = I::fma(0.347, t272, t374);
+    let t376 = I::fma(0.28, t368, t375);
     let t377 = t370 + t376;
-    let t378 = fma(0.08929000000000001, t296, t308);
-    let t379 = fma(0.0002, t309, t378);
-    let t380 = fma(-0.347, t269, t379);
-    let t381 = fma(-0.28, t366, t380);
+    let t378 = I::fma(0.08929000000000001, t296, t308);
+    let t379 = I::fma(0.0002, t309, t378);
+    let t380 = I::fma(-0.347, t269, t379);
+    let t381 = I::fma(-0.28, t366, t380);
     let t382 = t372 + t381;
     let t383 = t312 + t364;
     let t384 = t304 + t366;
     let t385 = t305 + t368;
-    let t386 = fma(0.006999999999999999, t344, t306);
+    let t386 = I::fma(0.006999999999999999, t344, t306);
     let t387 = 0.6 * t383;
-    let t388 = fma(0.8, t382, t387);
+    let t388 = I::fma(0.8, t382, t387);
     let t389 = c[5] * t384;
-    let t390 = fma(-t242, t385, t389);
-    let t391 = fma(t241, t386, t390);
+    let t390 = I::fma(-t242, t385, t389);
+    let t391 = I::fma(t241, t386, t390);
     let t392 = t242 * t384;
-    let t393 = fma(t243, t385, t392);
-    let t394 = fma(t240, t386, t393);
+    let t393 = I::fma(t243, t385, t392);
+    let t394 = I::fma(t240, t386, t393);
     let t395 = t240 * t385;
-    let t396 = fma(-t241, t384, t395);
-    let t397 = fma(t244, t386, t396);
+    let t396 = I::fma(-t241, t384, t395);
+    let t397 = I::fma(t244, t386, t396);
     let t398 = c[5] * t377;
-    let t399 = fma(-t242, t382, t398);
+    let t399 = I::fma(-t242, t382, t398);
     let t400 = t242 * t377;
-    let t401 = fma(t243, t382, t400);
+    let t401 = I::fma(t243, t382, t400);
     let t402 = t240 * t382;
-    let t403 = fma(-t241, t377, t402);
+    let t403 = I::fma(-t241, t377, t402);
     let t404 = 0.3 * t391;
-    let t405 = fma(0.02, t397, t404);
-    let t406 = fma(-0.1225, t218, t214);
+    let t405 = I::fma(0.02, t397, t404);
+    let t406 = I::fma(-0.1225, t218, t214);
     let t407 = t406 - t232;
-    let t408 = fma(t241, t383, t407);
-    let t409 = fma(0.3, t394, t408);
+    let t408 = I::fma(t241, t383, t407);
+    let t409 = I::fma(0.3, t394, t408);
     let t410 = t399 + t409;
-    let t411 = fma(-0.06049999999999999, t217, t233);
-    let t412 = fma(0.0003, t228, t411);
-    let t413 = fma(-0.3, t204, t234);
+    let t411 = I::fma(-0.06049999999999999, t217, t233);
+    let t412 = I::fma(0.0003, t228, t411);
+    let t413 = I::fma(-0.3, t204, t234);
     let t414 = t412 + t413;
-    let t415 = fma(t240, t383, t414);
+    let t415 = I::fma(t240, t383, t414);
     let t416 = t401 + t415;
     let t417 = t416 - t405;
-    let t418 = fma(-0.062, t216, t238);
+    let t418 = I::fma(-0.062, t216, t238);
     let t419 = t418 - t236;
-    let t420 = fma(t244, t383, t419);
-    let t421 = fma(0.02, t394, t420);
+    let t420 = I::fma(t244, t383, t419);
+    let t421 = I::fma(0.02, t394, t420);
     let t422 = t403 + t421;
-    let t423 = fma(-0.3, t225, t391);
-    let t424 = fma(-0.3, t227, t394);
+    let t423 = I::fma(-0.3, t225, t391);
+    let t424 = I::fma(-0.3, t227, t394);
     let t425 = t229 + t397;
     let t426 = t191 * t423;
-    let t427 = fma(-0.09784339500725571, t424, t426);
-    let t428 = fma(t189, t425, t427);
+    let t427 = I::fma(-0.09784339500725571, t424, t426);
+    let t428 = I::fma(t189, t425, t427);
     let t429 = t197 * t410;
-    let t430 = fma(0.19866933079506122, t417, t429);
+    let t430 = I::fma(0.19866933079506122, t417, t429);
     let t431 = 0.016767732871884072 * t173;
-    let t432 = fma(t125, t175, t431);
-    let t433 = fma(t127, t176, -t432);
+    let t432 = I::fma(t125, t175, t431);
+    let t433 = I::fma(t127, t176, -t432);
     let t434 = 0.00916025421694584 * t173;
-    let t435 = fma(t129, t175, t434);
-    let t436 = fma(t131, t176, -t435);
+    let t435 = I::fma(t129, t175, t434);
+    let t436 = I::fma(t131, t176, -t435);
     let t437 = 0.005910404133226791 * t173;
-    let t438 = fma(-t132, t175, t437);
+    let t438 = I::fma(-t132, t175, t437);
     let t439 = t125 * t187;
     let t440 = t129 * t187;
-    let t441 = fma(-0.11106977863307069, t97, t117);
-    let t442 = fma(0.00021714363512649699, t118, t88);
-    let t443 = fma(0.0007227573213207296, t102, t89);
-    let t444 = fma(-5.72628672892178e-6, t104, t441);
+    let t441 = I::fma(-0.11106977863307069, t97, t117);
+    let t442 = I::fma(0.00021714363512649699, t118, t88);
+    let t443 = I::fma(0.0007227573213207296, t102, t89);
+    let t444 = I::fma(-5.72628672892178e-6, t104, t441);
     let t445 = t442 + t443;
     let t446 = t444 + t445;
-    let t447 = fma(-t127, t185, t446);
-    let t448 = fma(0.8383866435942036, t186, t447);
-    let t449 = fma(0.3, t436, t439);
+    let t447 = I::fma(-t127, t185, t446);
+    let t448 = I::fma(0.8383866435942036, t186, t447);
+    let t449 = I::fma(0.3, t436, t439);
     let t450 = t448 + t449;
-    let t451 = fma(0.11117544099804523, t96, t119);
-    let t452 = fma(5.72628672892178e-6, t106, t121);
-    let t453 = fma(0.00021714363512649699, t101, t90);
-    let t454 = fma(-0.0026327476856711184, t72, t451);
+    let t451 = I::fma(0.11117544099804523, t96, t119);
+    let t452 = I::fma(5.72628672892178e-6, t106, t121);
+    let t453 = I::fma(0.00021714363512649699, t101, t90);
+    let t454 = I::fma(-0.0026327476856711184, t72, t451);
     let t455 = t452 - t453;
     let t456 = t454 + t455;
-    let t457 = fma(-t131, t185, t456);
-    let t458 = fma(0.45801271084729195, t186, t457);
-    let t459 = fma(-0.3, t433, t440);
+    let t457 = I::fma(-t131, t185, t456);
+    let t458 = I::fma(0.45801271084729195, t186, t457);
+    let t459 = I::fma(-0.3, t433, t440);
     let t460 = t458 + t459;
-    let t461 = fma(-0.00010566236497454307, t95, t122);
-    let t462 = fma(5.72628672892178e-6, t123, t91);
-    let t463 = fma(0.00021714363512649699, t103, -t92);
-    let t464 = fma(-0.0007227573213207296, t105, t461);
+    let t461 = I::fma(-0.00010566236497454307, t95, t122);
+    let t462 = I::fma(5.72628672892178e-6, t123, t91);
+    let t463 = I::fma(0.00021714363512649699, t103, -t92);
+    let t464 = I::fma(-0.0007227573213207296, t105, t461);
     let t465 = t462 + t463;
     let t466 = t464 + t465;
-    let t467 = fma(-t133, t185, t466);
-    let t468 = fma(t132, t187, t467);
-    let t469 = fma(-0.29552020666133955, t186, t468);
+    let t467 = I::fma(-t133, t185, t466);
+    let t468 = I::fma(t132, t187, t467);
+    let t469 = I::fma(-0.29552020666133955, t186, t468);
     let t470 = t115 + t433;
     let t471 = t116 + t436;
-    let t472 = fma(0.45599999999999996, t100, t87);
+    let t472 = I::fma(0.45599999999999996, t100, t87);
     let t473 = t114 + t472;
-    let t474 = fma(t133, t176, t473);
+    let t474 = I::fma(t133, t176, t473);
     let t475 = t438 + t474;
     let t476 = t460 + t469;
     let t477 = 0.7071067811865476 * t476;
     let t478 = c[2] * t470;
-    let t479 = fma(-t45, t471, t478);
-    let t480 = fma(t45, t475, t479);
+    let t479 = I::fma(-t45, t471, t478);
+    let t480 = I::fma(t45, t475, t479);
     let t481 = t45 * t470;
-    let t482 = fma(t46, t471, t481);
-    let t483 = fma(t44, t475, t482);
+    let t482 = I::fma(t46, t471, t481);
+    let t483 = I::fma(t44, t475, t482);
     let t484 = t44 * t471;
     let t485 = t484 - t481;
     let t486 = t45 * t469;
     let t487 = t44 * t469;
     let t488 = t46 * t469;
-    let t489 = fma(-0.09956000000000001, t30, t23);
-    let t490 = fma(0.0030200000000000005, t33, t489);
-    let t491 = fma(c[2], t450, t490);
-    let t492 = fma(-t45, t460, t486);
-    let t493 = fma(0.3, t483, t491);
+    let t489 = I::fma(-0.09956000000000001, t30, t23);
+    let t490 = I::fma(0.0030200000000000005, t33, t489);
+    let t491 = I::fma(c[2], t450, t490);
+    let t492 = I::fma(-t45, t460, t486);
+    let t493 = I::fma(0.3, t483, t491);
     let t494 = t492 + t493;
-    let t495 = fma(-0.048100000000000004, t29, t41);
-    let t496 = fma(0.0030200000000000005, t42, -t24);
-    let t497 = fma(0.25200000000000006, t14, t495);
+    let t495 = I::fma(-0.048100000000000004, t29, t41);
+    let t496 = I::fma(0.0030200000000000005, t42, -t24);
+    let t497 = I::fma(0.25200000000000006, t14, t495);
     let t498 = t496 + t497;
-    let t499 = fma(t45, t450, t498);
-    let t500 = fma(t46, t460, t487);
-    let t501 = fma(-0.3, t480, t499);
+    let t499 = I::fma(t45, t450, t498);
+    let t500 = I::fma(t46, t460, t487);
+    let t501 = I::fma(-0.3, t480, t499);
     let t502 = t500 + t501;
-    let t503 = fma(-0.051460000000000006, t28, t25);
-    let t504 = fma(-0.048100000000000004, t21, t503);
-    let t505 = fma(-0.0030200000000000005, t36, t504);
-    let t506 = fma(t44, t460, t505);
-    let t507 = fma(-t45, t450, t488);
+    let t503 = I::fma(-0.051460000000000006, t28, t25);
+    let t504 = I::fma(-0.048100000000000004, t21, t503);
+    let t505 = I::fma(-0.0030200000000000005, t36, t504);
+    let t506 = I::fma(t44, t460, t505);
+    let t507 = I::fma(-t45, t450, t488);
     let t508 = t506 + t507;
     let t509 = t480 - t38;
-    let t510 = fma(t46, t475, t40);
+    let t510 = I::fma(t46, t475, t40);
     let t511 = t485 + t510;
     let t512 = s[1] * t511;
-    let t513 = fma(c[1], t509, t512);
+    let t513 = I::fma(c[1], t509, t512);
     let t514 = t5 * t494;
-    let t515 = fma(t196, t422, t1);
-    let t516 = fma(0.18, t428, t515);
-    let t517 = fma(t4, t508, -t430);
-    let t518 = fma(0.19866933079506122, t502, t516);
-    let t519 = fma(0.18, t513, t514);
+    let t515 = I::fma(t196, t422, t1);
+    let t516 = I::fma(0.18, t428, t515);
+    let t517 = I::fma(t4, t508, -t430);
+    let t518 = I::fma(0.19866933079506122, t502, t516);
+    let t519 = I::fma(0.18, t513, t514);
     let t520 = t517 + t518;
     let t521 = t520 - t519;
     [t521, t502, t477, t186, t417, t388, t364]
@@ -593,6 +624,11 @@ pub fn inverse_dynamics(
     qd: &[f64; DOF],
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { inverse_dynamics_avx2_fma(q, qd, qdd) };
+    }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     inverse_dynamics_sc(
         &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
@@ -601,19 +637,54 @@ pub fn inverse_dynamics(
         qdd,
     )
 }
+/// [`inverse_dynamics`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn inverse_dynamics_avx2_fma(
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+    qdd: &[f64; DOF],
+) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe {
+        inverse_dynamics_sc_avx2_fma(
+            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
+            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
+            qd,
+            qdd,
+        )
+    }
+}
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 600 ops: 166 add, 87 sub, 347 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 215 fused multiply-adds, 390 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { mass_matrix_sc_avx2_fma(s, c) };
+    }
+    mass_matrix_sc_on::<Baseline>(s, c)
+}
+/// [`mass_matrix_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn mass_matrix_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+    mass_matrix_sc_on::<Avx2Fma>(s, c)
+}
+/// The body of [`mass_matrix_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+fn mass_matrix_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let t0 = 0.9800665778412416 * c[1];
     let t1 = 0.9800665778412416 * s[1];
     let t2 = 1.0 - c[2];
@@ -621,28 +692,28 @@ pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let t4 = 0.7071067811865476 * s[2];
     let t5 = c[2] + t3;
     let t6 = 0.2593433800522308 * s[3];
-    let t7 = fma(-0.479425538604203, c[3], t6);
+    let t7 = I::fma(-0.479425538604203, c[3], t6);
     let t8 = 0.2593433800522308 * c[3];
-    let t9 = fma(0.479425538604203, s[3], t8);
+    let t9 = I::fma(0.479425538604203, s[3], t8);
     let t10 = 0.8775825618903728 * c[3];
-    let t11 = fma(0.1416799342470381, s[3], t10);
+    let t11 = I::fma(0.1416799342470381, s[3], t10);
     let t12 = 0.1416799342470381 * c[3];
-    let t13 = fma(-0.8775825618903728, s[3], t12);
+    let t13 = I::fma(-0.8775825618903728, s[3], t12);
     let t14 = 0.955336489125606 * s[3];
     let t15 = 0.9950041652780258 * s[4];
-    let t16 = fma(-0.019833838076209875, c[4], t15);
+    let t16 = I::fma(-0.019833838076209875, c[4], t15);
     let t17 = 0.9950041652780258 * c[4];
-    let t18 = fma(0.019833838076209875, s[4], t17);
+    let t18 = I::fma(0.019833838076209875, s[4], t17);
     let t19 = 0.9800665778412416 * c[4];
     let t20 = 0.9800665778412416 * s[4];
     let t21 = 1.0 - c[5];
     let t22 = 0.48 * t21;
     let t23 = 0.8 * s[5];
     let t24 = 0.6 * s[5];
-    let t25 = fma(0.6400000000000001, t21, c[5]);
-    let t26 = fma(0.36, t21, c[5]);
+    let t25 = I::fma(0.6400000000000001, t21, c[5]);
+    let t26 = I::fma(0.36, t21, c[5]);
     let t27 = 0.9210609940028851 * c[6];
-    let t28 = fma(0.3894183423086505, s[6], t27);
+    let t28 = I::fma(0.3894183423086505, s[6], t27);
     let t29 = 0.3894183423086505 * c[6];
     let t30 = 0.9210609940028851 * s[6];
     let t31 = t29 - t30;
@@ -650,275 +721,275 @@ pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let t33 = 0.006999999999999999 * t28;
     let t34 = 0.006999999999999999 * t32;
     let t35 = 0.0001200000000000001 * t28;
-    let t36 = fma(2e-5, t31, t35);
+    let t36 = I::fma(2e-5, t31, t35);
     let t37 = 2e-5 * t28;
-    let t38 = fma(0.0001200000000000001, t32, t37);
+    let t38 = I::fma(0.0001200000000000001, t32, t37);
     let t39 = 2e-5 * t32;
     let t40 = 0.00020999999999999998 * t32;
     let t41 = t28 * t37;
-    let t42 = fma(t32, t36, t41);
+    let t42 = I::fma(t32, t36, t41);
     let t43 = 0.00217 * t28;
     let t44 = 0.00217 * t32;
-    let t45 = fma(-t31, t37, 0.09009);
-    let t46 = fma(-t28, t36, t45);
-    let t47 = fma(-t28, t39, 0.09019);
-    let t48 = fma(-t32, t38, t47);
+    let t45 = I::fma(-t31, t37, 0.09009);
+    let t46 = I::fma(-t28, t36, t45);
+    let t47 = I::fma(-t28, t39, 0.09019);
+    let t48 = I::fma(-t32, t38, t47);
     let t49 = 0.0002 + t43;
     let t50 = c[5] * t33;
-    let t51 = fma(-t24, t34, t50);
-    let t52 = fma(-0.2776, s[5], t51);
+    let t51 = I::fma(-t24, t34, t50);
+    let t52 = I::fma(-0.2776, s[5], t51);
     let t53 = t24 * t33;
-    let t54 = fma(t25, t34, t53);
-    let t55 = fma(-0.16655999999999999, t21, t54);
+    let t54 = I::fma(t25, t34, t53);
+    let t55 = I::fma(-0.16655999999999999, t21, t54);
     let t56 = t22 * t34;
-    let t57 = fma(-t23, t33, t56);
-    let t58 = fma(-0.347, t26, t57);
+    let t57 = I::fma(-t23, t33, t56);
+    let t58 = I::fma(-0.347, t26, t57);
     let t59 = c[5] * t46;
-    let t60 = fma(t24, t42, t59);
-    let t61 = fma(t23, t49, t60);
+    let t60 = I::fma(t24, t42, t59);
+    let t61 = I::fma(t23, t49, t60);
     let t62 = c[5] * t42;
-    let t63 = fma(t24, t48, t62);
-    let t64 = fma(t23, t44, -t63);
+    let t63 = I::fma(t24, t48, t62);
+    let t64 = I::fma(t23, t44, -t63);
     let t65 = 0.0008160000000000001 * s[5];
-    let t66 = fma(-t24, t44, t65);
-    let t67 = fma(c[5], t49, t66);
+    let t66 = I::fma(-t24, t44, t65);
+    let t67 = I::fma(c[5], t49, t66);
     let t68 = t24 * t46;
-    let t69 = fma(-t25, t42, t68);
-    let t70 = fma(t22, t49, t69);
+    let t69 = I::fma(-t25, t42, t68);
+    let t70 = I::fma(t22, t49, t69);
     let t71 = t25 * t48;
-    let t72 = fma(-t24, t42, t71);
-    let t73 = fma(t22, t44, t72);
+    let t72 = I::fma(-t24, t42, t71);
+    let t73 = I::fma(t22, t44, t72);
     let t74 = 0.0004896 * t21;
-    let t75 = fma(t25, t44, t74);
-    let t76 = fma(t24, t49, t75);
+    let t75 = I::fma(t25, t44, t74);
+    let t76 = I::fma(t24, t49, t75);
     let t77 = t24 * t70;
-    let t78 = fma(t25, t73, t77);
+    let t78 = I::fma(t25, t73, t77);
     let t79 = 0.02 * t52;
-    let t80 = fma(-0.3, t58, t79);
+    let t80 = I::fma(-0.3, t58, t79);
     let t81 = t52 + 0.034;
     let t82 = t58 - 0.81;
-    let t83 = fma(t22, t76, 0.21567999999999998);
-    let t84 = fma(2.0, t80, t83);
+    let t83 = I::fma(t22, t76, 0.21567999999999998);
+    let t84 = I::fma(2.0, t80, t83);
     let t85 = t78 + t84;
-    let t86 = fma(t22, t67, 0.0003);
-    let t87 = fma(-0.02, t55, t86);
-    let t88 = fma(t24, t61, t87);
-    let t89 = fma(t25, t64, t88);
-    let t90 = fma(t26, t76, -0.0026);
-    let t91 = fma(0.3, t55, t90);
-    let t92 = fma(t22, t73, t91);
-    let t93 = fma(-t23, t70, t92);
+    let t86 = I::fma(t22, t67, 0.0003);
+    let t87 = I::fma(-0.02, t55, t86);
+    let t88 = I::fma(t24, t61, t87);
+    let t89 = I::fma(t25, t64, t88);
+    let t90 = I::fma(t26, t76, -0.0026);
+    let t91 = I::fma(0.3, t55, t90);
+    let t92 = I::fma(t22, t73, t91);
+    let t93 = I::fma(-t23, t70, t92);
     let t94 = t20 * t89;
-    let t95 = fma(0.19866933079506122, t85, t94);
-    let t96 = fma(1e-5, t9, 0.0008383866435942035);
+    let t95 = I::fma(0.19866933079506122, t85, t94);
+    let t96 = I::fma(1e-5, t9, 0.0008383866435942035);
     let t97 = 0.0009 * t7;
-    let t98 = fma(1e-5, t13, 0.00045801271084729194);
+    let t98 = I::fma(1e-5, t13, 0.00045801271084729194);
     let t99 = 0.0009 * t11;
-    let t100 = fma(9.55336489125606e-6, c[3], -0.00029552020666133953);
+    let t100 = I::fma(9.55336489125606e-6, c[3], -0.00029552020666133953);
     let t101 = 0.0008598028402130454 * s[3];
-    let t102 = fma(-0.02, t9, 0.0026327476856711184);
-    let t103 = fma(-0.02, t13, 0.001438276615812609);
-    let t104 = fma(0.01910672978251212, c[3], 0.45599999999999996);
-    let t105 = fma(0.011464037869507272, c[3], 0.11248370112100659);
-    let t106 = fma(8.383866435942037e-6, t9, t105);
-    let t107 = fma(t7, t97, t106);
-    let t108 = fma(0.8383866435942036, t96, t107);
-    let t109 = fma(0.011464037869507272, c[3], 0.11237803875603204);
-    let t110 = fma(4.58012710847292e-6, t13, t109);
-    let t111 = fma(t11, t99, t110);
-    let t112 = fma(0.45801271084729195, t98, t111);
-    let t113 = fma(-2.8232123669751764e-6, c[3], 0.0013082601229613597);
-    let t114 = fma(t14, t101, t113);
-    let t115 = fma(-0.29552020666133955, t100, t114);
-    let t116 = fma(8.383866435942037e-6, t13, 5.72628672892178e-6);
-    let t117 = fma(t11, t97, t116);
-    let t118 = fma(0.45801271084729195, t96, t117);
-    let t119 = fma(8.009413526210872e-6, c[3], 0.0007227573213207296);
-    let t120 = fma(-0.006, t9, t119);
-    let t121 = fma(t14, t97, t120);
-    let t122 = fma(-0.29552020666133955, t96, t121);
-    let t123 = fma(4.375562551557533e-6, c[3], 0.00021714363512649699);
-    let t124 = fma(-0.006, t13, t123);
-    let t125 = fma(t14, t99, t124);
-    let t126 = fma(-0.29552020666133955, t98, t125);
+    let t102 = I::fma(-0.02, t9, 0.0026327476856711184);
+    let t103 = I::fma(-0.02, t13, 0.001438276615812609);
+    let t104 = I::fma(0.01910672978251212, c[3], 0.45599999999999996);
+    let t105 = I::fma(0.011464037869507272, c[3], 0.11248370112100659);
+    let t106 = I::fma(8.383866435942037e-6, t9, t105);
+    let t107 = I::fma(t7, t97, t106);
+    let t108 = I::fma(0.8383866435942036, t96, t107);
+    let t109 = I::fma(0.011464037869507272, c[3], 0.11237803875603204);
+    let t110 = I::fma(4.58012710847292e-6, t13, t109);
+    let t111 = I::fma(t11, t99, t110);
+    let t112 = I::fma(0.45801271084729195, t98, t111);
+    let t113 = I::fma(-2.8232123669751764e-6, c[3], 0.0013082601229613597);
+    let t114 = I::fma(t14, t101, t113);
+    let t115 = I::fma(-0.29552020666133955, t100, t114);
+    let t116 = I::fma(8.383866435942037e-6, t13, 5.72628672892178e-6);
+    let t117 = I::fma(t11, t97, t116);
+    let t118 = I::fma(0.45801271084729195, t96, t117);
+    let t119 = I::fma(8.009413526210872e-6, c[3], 0.0007227573213207296);
+    let t120 = I::fma(-0.006, t9, t119);
+    let t121 = I::fma(t14, t97, t120);
+    let t122 = I::fma(-0.29552020666133955, t96, t121);
+    let t123 = I::fma(4.375562551557533e-6, c[3], 0.00021714363512649699);
+    let t124 = I::fma(-0.006, t13, t123);
+    let t125 = I::fma(t14, t99, t124);
+    let t126 = I::fma(-0.29552020666133955, t98, t125);
     let t127 = t4 * t102;
-    let t128 = fma(t5, t103, t127);
-    let t129 = fma(-t3, t104, t128);
+    let t128 = I::fma(t5, t103, t127);
+    let t129 = I::fma(-t3, t104, t128);
     let t130 = t3 * t103;
     let t131 = t130 - t127;
-    let t132 = fma(-t5, t104, t131);
+    let t132 = I::fma(-t5, t104, t131);
     let t133 = c[2] * t108;
     let t134 = t4 * t118;
     let t135 = t133 - t134;
     let t136 = t4 * t122;
     let t137 = t135 + t136;
     let t138 = c[2] * t118;
-    let t139 = fma(-t4, t112, t138);
-    let t140 = fma(t4, t126, t139);
+    let t139 = I::fma(-t4, t112, t138);
+    let t140 = I::fma(t4, t126, t139);
     let t141 = c[2] * t122;
-    let t142 = fma(-t4, t126, t141);
-    let t143 = fma(t4, t115, t142);
+    let t142 = I::fma(-t4, t126, t141);
+    let t143 = I::fma(t4, t115, t142);
     let t144 = t4 * t108;
-    let t145 = fma(t5, t118, t144);
-    let t146 = fma(t3, t122, t145);
-    let t147 = fma(t5, t112, t134);
-    let t148 = fma(t3, t126, t147);
-    let t149 = fma(t5, t126, t136);
-    let t150 = fma(t3, t115, t149);
+    let t145 = I::fma(t5, t118, t144);
+    let t146 = I::fma(t3, t122, t145);
+    let t147 = I::fma(t5, t112, t134);
+    let t148 = I::fma(t3, t126, t147);
+    let t149 = I::fma(t5, t126, t136);
+    let t150 = I::fma(t3, t115, t149);
     let t151 = t5 * t148;
     let t152 = t4 * t137;
-    let t153 = fma(t5, t140, t152);
-    let t154 = fma(t3, t143, t153);
+    let t153 = I::fma(t5, t140, t152);
+    let t154 = I::fma(t3, t143, t153);
     let t155 = t5 * t150;
     let t156 = 0.3 * t129;
-    let t157 = fma(t3, t148, t156);
-    let t158 = fma(-t4, t146, t155);
+    let t157 = I::fma(t3, t148, t156);
+    let t158 = I::fma(-t4, t146, t155);
     let t159 = t157 + t158;
-    let t160 = fma(-t4, t104, 0.018000000000000002);
-    let t161 = fma(c[2], t102, t160);
-    let t162 = fma(-t4, t103, t161);
+    let t160 = I::fma(-t4, t104, 0.018000000000000002);
+    let t161 = I::fma(c[2], t102, t160);
+    let t162 = I::fma(-t4, t103, t161);
     let t163 = t132 - 0.942;
-    let t164 = fma(-0.6, t132, 0.25846);
-    let t165 = fma(t4, t146, t164);
-    let t166 = fma(t3, t150, t151);
+    let t164 = I::fma(-0.6, t132, 0.25846);
+    let t165 = I::fma(t4, t146, t164);
+    let t166 = I::fma(t3, t150, t151);
     let t167 = t165 + t166;
     let t168 = t0 * t159;
     let t169 = 0.18 * c[1];
     let t170 = 0.18 * s[1];
     let t171 = 0.1404804310189812 * s[2];
-    let t172 = fma(-t1, c[2], t171);
-    let t173 = fma(-t0, t4, t172);
+    let t172 = I::fma(-t1, c[2], t171);
+    let t173 = I::fma(-t0, t4, t172);
     let t174 = t1 * t4;
-    let t175 = fma(t0, t3, t174);
-    let t176 = fma(0.19866933079506122, t5, t175);
+    let t175 = I::fma(t0, t3, t174);
+    let t176 = I::fma(0.19866933079506122, t5, t175);
     let t177 = 0.09933466539753064 * t2;
     let t178 = t177 - t174;
-    let t179 = fma(t0, t5, t178);
+    let t179 = I::fma(t0, t5, t178);
     let t180 = 0.29401997335237245 * s[1];
     let t181 = t169 + 0.05960079923851836;
     let t182 = t4 * t170;
-    let t183 = fma(-t4, t180, t182);
-    let t184 = fma(-c[2], t181, t183);
+    let t183 = I::fma(-t4, t180, t182);
+    let t184 = I::fma(-c[2], t181, t183);
     let t185 = t4 * t181;
-    let t186 = fma(-t3, t170, t185);
-    let t187 = fma(-t5, t180, t186);
-    let t188 = fma(t3, t180, t185);
-    let t189 = fma(t5, t170, t188);
+    let t186 = I::fma(-t3, t170, t185);
+    let t187 = I::fma(-t5, t180, t186);
+    let t188 = I::fma(t3, t180, t185);
+    let t189 = I::fma(t5, t170, t188);
     let t190 = 0.18 * t18;
     let t191 = 0.18 * t16;
     let t192 = 0.11920159847703672 * s[5];
-    let t193 = fma(t20, c[5], t192);
-    let t194 = fma(t19, t23, t193);
+    let t193 = I::fma(t20, c[5], t192);
+    let t194 = I::fma(t19, t23, t193);
     let t195 = t20 * t24;
-    let t196 = fma(t19, t22, t195);
-    let t197 = fma(-0.19866933079506122, t25, t196);
+    let t196 = I::fma(t19, t22, t195);
+    let t197 = I::fma(-0.19866933079506122, t25, t196);
     let t198 = t20 * t23;
-    let t199 = fma(0.09536127878162938, t21, t198);
-    let t200 = fma(t19, t26, -t199);
+    let t199 = I::fma(0.09536127878162938, t21, t198);
+    let t200 = I::fma(t19, t26, -t199);
     let t201 = 0.019601331556824832 * c[4];
-    let t202 = fma(-0.29401997335237245, s[4], t201);
+    let t202 = I::fma(-0.29401997335237245, s[4], t201);
     let t203 = 0.05960079923851836 + t190;
     let t204 = t202 - 0.017611811101306028;
     let t205 = t191 + 0.003973386615901225;
     let t206 = t24 * t204;
-    let t207 = fma(c[5], t203, t206);
-    let t208 = fma(-t23, t205, t207);
+    let t207 = I::fma(c[5], t203, t206);
+    let t208 = I::fma(-t23, t205, t207);
     let t209 = t25 * t204;
-    let t210 = fma(-t24, t203, t209);
-    let t211 = fma(t22, t205, t210);
+    let t210 = I::fma(-t24, t203, t209);
+    let t211 = I::fma(t22, t205, t210);
     let t212 = t22 * t204;
-    let t213 = fma(t23, t203, t212);
-    let t214 = fma(t26, t205, t213);
+    let t213 = I::fma(t23, t203, t212);
+    let t214 = I::fma(t26, t205, t213);
     let t215 = 0.016 * s[5];
-    let t216 = fma(-0.3, c[5], t215);
+    let t216 = I::fma(-0.3, c[5], t215);
     let t217 = 0.18 * s[5];
-    let t218 = fma(-0.0096, t21, t217);
+    let t218 = I::fma(-0.0096, t21, t217);
     let t219 = 0.24 * s[5];
-    let t220 = fma(0.02, t26, t219);
+    let t220 = I::fma(0.02, t26, t219);
     let t221 = 0.017260747435643386 * s[4];
-    let t222 = fma(0.03576047954311102, t18, t221);
+    let t222 = I::fma(0.03576047954311102, t18, t221);
     let t223 = 0.00295980106508055 * c[1];
     let t224 = 0.00295980106508055 * s[1];
-    let t225 = fma(0.04714120239416372, c[1], t224);
+    let t225 = I::fma(0.04714120239416372, c[1], t224);
     let t226 = 0.0006436886317759984 * s[1];
-    let t227 = fma(0.009011640844863979, c[1], t226);
+    let t227 = I::fma(0.009011640844863979, c[1], t226);
     let t228 = 2.0 * t227;
-    let t229 = fma(0.00029401997335237246, s[4], 0.012317498509293796);
-    let t230 = fma(0.002548173102387228, c[4], t229);
-    let t231 = fma(-0.05929402795939511, c[4], 0.0005165402600671591);
+    let t229 = I::fma(0.00029401997335237246, s[4], 0.012317498509293796);
+    let t230 = I::fma(0.002548173102387228, c[4], t229);
+    let t231 = I::fma(-0.05929402795939511, c[4], 0.0005165402600671591);
     let t232 = t108 * t173;
-    let t233 = fma(t118, t176, t232);
-    let t234 = fma(t122, t179, t233);
+    let t233 = I::fma(t118, t176, t232);
+    let t234 = I::fma(t122, t179, t233);
     let t235 = t118 * t173;
-    let t236 = fma(t112, t176, t235);
-    let t237 = fma(t126, t179, t236);
+    let t236 = I::fma(t112, t176, t235);
+    let t237 = I::fma(t126, t179, t236);
     let t238 = t122 * t173;
-    let t239 = fma(t126, t176, t238);
-    let t240 = fma(t115, t179, t239);
+    let t239 = I::fma(t126, t176, t238);
+    let t240 = I::fma(t115, t179, t239);
     let t241 = t176 * t237;
     let t242 = t179 * t187;
-    let t243 = fma(t176, t189, t242);
+    let t243 = I::fma(t176, t189, t242);
     let t244 = t179 * t184;
-    let t245 = fma(t173, t189, t244);
+    let t245 = I::fma(t173, t189, t244);
     let t246 = t176 * t184;
-    let t247 = fma(-t173, t187, t246);
+    let t247 = I::fma(-t173, t187, t246);
     let t248 = t103 * t245;
-    let t249 = fma(t102, t243, -t248);
-    let t250 = fma(-t104, t247, t249);
+    let t249 = I::fma(t102, t243, -t248);
+    let t250 = I::fma(-t104, t247, t249);
     let t251 = t184 * t184;
-    let t252 = fma(t187, t187, t251);
-    let t253 = fma(t189, t189, t252);
+    let t252 = I::fma(t187, t187, t251);
+    let t253 = I::fma(t189, t189, t252);
     let t254 = t46 * t194;
-    let t255 = fma(t42, t197, t254);
-    let t256 = fma(t49, t200, -t255);
+    let t255 = I::fma(t42, t197, t254);
+    let t256 = I::fma(t49, t200, -t255);
     let t257 = t42 * t194;
-    let t258 = fma(t48, t197, t257);
-    let t259 = fma(t44, t200, t258);
+    let t258 = I::fma(t48, t197, t257);
+    let t259 = I::fma(t44, t200, t258);
     let t260 = t44 * t197;
-    let t261 = fma(-t49, t194, t260);
-    let t262 = fma(0.00102, t200, t261);
+    let t261 = I::fma(-t49, t194, t260);
+    let t262 = I::fma(0.00102, t200, t261);
     let t263 = t197 * t259;
-    let t264 = fma(-t194, t256, t263);
+    let t264 = I::fma(-t194, t256, t263);
     let t265 = t200 * t262;
     let t266 = t200 * t211;
-    let t267 = fma(-t197, t214, t266);
+    let t267 = I::fma(-t197, t214, t266);
     let t268 = t194 * t214;
-    let t269 = fma(t200, t208, t268);
+    let t269 = I::fma(t200, t208, t268);
     let t270 = t197 * t208;
-    let t271 = fma(t194, t211, t270);
+    let t271 = I::fma(t194, t211, t270);
     let t272 = t33 * t267;
-    let t273 = fma(-t34, t269, t272);
-    let t274 = fma(-0.347, t271, t273);
+    let t273 = I::fma(-t34, t269, t272);
+    let t274 = I::fma(-0.347, t271, t273);
     let t275 = t208 * t208;
-    let t276 = fma(t211, t211, t275);
-    let t277 = fma(t214, t214, t276);
-    let t278 = fma(5.8412751346297566e-5, s[4], 0.2715733277798825);
-    let t279 = fma(-t1, t223, t278);
-    let t280 = fma(-t0, t225, t228);
-    let t281 = fma(t19, t231, t279);
-    let t282 = fma(0.19866933079506122, t230, t280);
-    let t283 = fma(0.6, t222, t281);
+    let t276 = I::fma(t211, t211, t275);
+    let t277 = I::fma(t214, t214, t276);
+    let t278 = I::fma(5.8412751346297566e-5, s[4], 0.2715733277798825);
+    let t279 = I::fma(-t1, t223, t278);
+    let t280 = I::fma(-t0, t225, t228);
+    let t281 = I::fma(t19, t231, t279);
+    let t282 = I::fma(0.19866933079506122, t230, t280);
+    let t283 = I::fma(0.6, t222, t281);
     let t284 = t282 + t283;
-    let t285 = fma(2.3, t253, t284);
-    let t286 = fma(t173, t234, t265);
-    let t287 = fma(t179, t240, t241);
-    let t288 = fma(2.0, t250, t285);
-    let t289 = fma(1.7, t277, t286);
+    let t285 = I::fma(2.3, t253, t284);
+    let t286 = I::fma(t173, t234, t265);
+    let t287 = I::fma(t179, t240, t241);
+    let t288 = I::fma(2.0, t250, t285);
+    let t289 = I::fma(1.7, t277, t286);
     let t290 = t264 + t287;
     let t291 = t288 + t289;
-    let t292 = fma(2.0, t274, t290);
+    let t292 = I::fma(2.0, t274, t290);
     let t293 = t291 + t292;
     let t294 = t162 * t170;
-    let t295 = fma(-t163, t169, t294);
-    let t296 = fma(0.19866933079506122, t167, t295);
-    let t297 = fma(-t1, t154, t168);
+    let t295 = I::fma(-t163, t169, t294);
+    let t296 = I::fma(0.19866933079506122, t167, t295);
+    let t297 = I::fma(-t1, t154, t168);
     let t298 = t296 + t297;
     let t299 = t118 + t122;
     let t300 = 0.7071067811865476 * t299;
     let t301 = 0.7071067811865476 * t112;
-    let t302 = fma(0.7071067811865476, t126, t301);
+    let t302 = I::fma(0.7071067811865476, t126, t301);
     let t303 = 0.7071067811865476 * t115;
-    let t304 = fma(0.7071067811865476, t126, t303);
+    let t304 = I::fma(0.7071067811865476, t126, t303);
     let t305 = 0.7071067811865476 * t102;
     let t306 = t103 + t104;
     let t307 = 0.7071067811865476 * t306;
@@ -926,83 +997,83 @@ pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let t309 = 0.7071067811865476 * t308;
     let t310 = c[2] * t307;
     let t311 = t4 * t305;
-    let t312 = fma(2.0, t311, t310);
+    let t312 = I::fma(2.0, t311, t310);
     let t313 = t4 * t300;
-    let t314 = fma(t5, t302, t313);
+    let t314 = I::fma(t5, t302, t313);
     let t315 = t3 * t304;
-    let t316 = fma(0.3, t312, t315);
+    let t316 = I::fma(0.3, t312, t315);
     let t317 = t314 + t316;
     let t318 = t179 * t304;
     let t319 = t187 * t305;
-    let t320 = fma(t189, t305, t319);
-    let t321 = fma(-t184, t307, t320);
-    let t322 = fma(t173, t300, t321);
-    let t323 = fma(t176, t302, t318);
+    let t320 = I::fma(t189, t305, t319);
+    let t321 = I::fma(-t184, t307, t320);
+    let t322 = I::fma(t173, t300, t321);
+    let t323 = I::fma(t176, t302, t318);
     let t324 = t322 + t323;
     let t325 = 0.02 * t7;
     let t326 = 0.02 * t11;
     let t327 = 0.01910672978251212 * s[3];
-    let t328 = fma(0.006, t11, t96);
-    let t329 = fma(-0.006, t7, t98);
+    let t328 = I::fma(0.006, t11, t96);
+    let t329 = I::fma(-0.006, t7, t98);
     let t330 = t100 + t329;
     let t331 = 0.7071067811865476 * t330;
     let t332 = c[2] * t325;
-    let t333 = fma(-t4, t326, t332);
-    let t334 = fma(t4, t327, t333);
+    let t333 = I::fma(-t4, t326, t332);
+    let t334 = I::fma(t4, t327, t333);
     let t335 = t4 * t328;
-    let t336 = fma(t5, t329, t335);
-    let t337 = fma(t3, t100, t336);
-    let t338 = fma(-0.3, t334, t337);
+    let t336 = I::fma(t5, t329, t335);
+    let t337 = I::fma(t3, t100, t336);
+    let t338 = I::fma(-0.3, t334, t337);
     let t339 = t173 * t328;
-    let t340 = fma(t176, t329, t339);
-    let t341 = fma(t100, t179, t340);
+    let t340 = I::fma(t176, t329, t339);
+    let t341 = I::fma(t100, t179, t340);
     let t342 = t184 * t325;
-    let t343 = fma(t187, t326, t342);
-    let t344 = fma(-t189, t327, t343);
+    let t343 = I::fma(t187, t326, t342);
+    let t344 = I::fma(-t189, t327, t343);
     let t345 = t341 + t344;
     let t346 = 0.0001056 * t21;
     let t347 = t82 * t190;
-    let t348 = fma(-t81, t191, t347);
-    let t349 = fma(t19, t93, t348);
+    let t348 = I::fma(-t81, t191, t347);
+    let t349 = I::fma(t19, t93, t348);
     let t350 = t349 - t95;
     let t351 = 0.6 * t49;
-    let t352 = fma(-0.8, t42, t351);
+    let t352 = I::fma(-0.8, t42, t351);
     let t353 = 0.001302 * t32;
-    let t354 = fma(0.8, t48, t353);
-    let t355 = fma(0.0017360000000000001, t32, 0.000612);
-    let t356 = fma(0.0042, t32, 0.2776);
+    let t354 = I::fma(0.8, t48, t353);
+    let t355 = I::fma(0.0017360000000000001, t32, 0.000612);
+    let t356 = I::fma(0.0042, t32, 0.2776);
     let t357 = 0.0042 * t28;
     let t358 = 0.0056 * t28;
     let t359 = 0.6 * t355;
-    let t360 = fma(0.8, t354, t359);
+    let t360 = I::fma(0.8, t354, t359);
     let t361 = t22 * t355;
     let t362 = t220 * t358;
-    let t363 = fma(t218, t357, t361);
-    let t364 = fma(-t216, t356, t362);
+    let t363 = I::fma(t218, t357, t361);
+    let t364 = I::fma(-t216, t356, t362);
     let t365 = t363 + t364;
-    let t366 = fma(t24, t352, t365);
-    let t367 = fma(t25, t354, t366);
+    let t366 = I::fma(t24, t352, t365);
+    let t367 = I::fma(t25, t354, t366);
     let t368 = t197 * t354;
-    let t369 = fma(-t194, t352, t368);
+    let t369 = I::fma(-t194, t352, t368);
     let t370 = t200 * t355;
     let t371 = t208 * t356;
-    let t372 = fma(t211, t357, t370);
-    let t373 = fma(t214, t358, t371);
+    let t372 = I::fma(t211, t357, t370);
+    let t373 = I::fma(t214, t358, t371);
     let t374 = t372 - t373;
     let t375 = t369 + t374;
     let t376 = 0.006999999999999999 * t31;
-    let t377 = fma(-0.00196, t31, t40);
-    let t378 = fma(0.8, t377, 0.000132);
+    let t377 = I::fma(-0.00196, t31, t40);
+    let t378 = I::fma(0.8, t377, 0.000132);
     let t379 = t216 * t376;
-    let t380 = fma(t33, t218, t379);
-    let t381 = fma(t24, t43, t346);
-    let t382 = fma(t25, t377, t381);
+    let t380 = I::fma(t33, t218, t379);
+    let t381 = I::fma(t24, t43, t346);
+    let t382 = I::fma(t25, t377, t381);
     let t383 = t380 + t382;
     let t384 = t43 * t194;
-    let t385 = fma(t197, t377, -t384);
-    let t386 = fma(0.00022, t200, t385);
+    let t385 = I::fma(t197, t377, -t384);
+    let t386 = I::fma(0.00022, t200, t385);
     let t387 = t208 * t376;
-    let t388 = fma(t33, t211, t387);
+    let t388 = I::fma(t33, t211, t387);
     let t389 = t386 + t388;
     [
         [t293, t298, t324, t345, t350, t375, t389],
@@ -1022,11 +1093,29 @@ pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`mass_matrix_sc`].
 #[inline]
 pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { mass_matrix_avx2_fma(q) };
+    }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     mass_matrix_sc(
         &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
         &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
     )
+}
+/// [`mass_matrix`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn mass_matrix_avx2_fma(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe {
+        mass_matrix_sc_avx2_fma(
+            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
+            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
+        )
+    }
 }
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
@@ -1034,13 +1123,37 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// 701 ops: 183 add, 128 sub, 390 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 229 fused multiply-adds, 486 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { bias_forces_sc_avx2_fma(s, c, qd) };
+    }
+    bias_forces_sc_on::<Baseline>(s, c, qd)
+}
+/// [`bias_forces_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn bias_forces_sc_avx2_fma(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+) -> [f64; DOF] {
+    bias_forces_sc_on::<Avx2Fma>(s, c, qd)
+}
+/// The body of [`bias_forces_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
+fn bias_forces_sc_on<I: Isa>(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+) -> [f64; DOF] {
     let t0 = qd[0] * qd[0];
     let t1 = 0.19866933079506122 * c[1];
     let t2 = 0.19866933079506122 * s[1];
@@ -1050,11 +1163,11 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
     let t6 = qd[0] * t4;
     let t7 = qd[0] * t3;
     let t8 = 9.61445312862258 * s[1];
-    let t9 = fma(t2, t5, t8);
-    let t10 = fma(-0.1764119840114235, t0, 1.9489461350995507);
+    let t9 = I::fma(t2, t5, t8);
+    let t10 = I::fma(-0.1764119840114235, t0, 1.9489461350995507);
     let t11 = 9.61445312862258 * c[1];
-    let t12 = fma(t1, t5, t11);
-    let t13 = fma(0.19866933079506122, qd[0], qd[1]);
+    let t12 = I::fma(t1, t5, t11);
+    let t13 = I::fma(0.19866933079506122, qd[0], qd[1]);
     let t14 = qd[1] * t6;
     let t15 = qd[1] * t7;
     let t16 = 0.25200000000000006 * t10;
@@ -1067,64 +1180,64 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
     let t23 = t6 * t7;
     let t24 = t7 * t13;
     let t25 = t20 + t21;
-    let t26 = fma(t6, t6, t20);
+    let t26 = I::fma(t6, t6, t20);
     let t27 = t14 + t22;
     let t28 = t15 + t24;
     let t29 = 0.25200000000000006 * t23;
-    let t30 = fma(-0.018000000000000002, t25, t29);
+    let t30 = I::fma(-0.018000000000000002, t25, t29);
     let t31 = 0.25200000000000006 * t26;
-    let t32 = fma(-0.018000000000000002, t23, t31);
-    let t33 = fma(-t6, t6, t21);
+    let t32 = I::fma(-0.018000000000000002, t23, t31);
+    let t33 = I::fma(-t6, t6, t21);
     let t34 = 0.051460000000000006 * t22;
     let t35 = 1.0 - c[2];
     let t36 = 0.5000000000000001 * t35;
     let t37 = 0.7071067811865476 * s[2];
     let t38 = c[2] + t36;
-    let t39 = fma(0.3, t23, -t9);
-    let t40 = fma(-0.3, t28, t10);
-    let t41 = fma(0.3, t26, t12);
+    let t39 = I::fma(0.3, t23, -t9);
+    let t40 = I::fma(-0.3, t28, t10);
+    let t41 = I::fma(0.3, t26, t12);
     let t42 = t14 * t37;
-    let t43 = fma(-t15, c[2], t42);
+    let t43 = I::fma(-t15, c[2], t42);
     let t44 = t15 * t37;
-    let t45 = fma(-t14, t36, t44);
-    let t46 = fma(t14, t38, t44);
+    let t45 = I::fma(-t14, t36, t44);
+    let t46 = I::fma(t14, t38, t44);
     let t47 = t13 * t37;
-    let t48 = fma(-t6, c[2], t47);
-    let t49 = fma(-t7, t37, t48);
+    let t48 = I::fma(-t6, c[2], t47);
+    let t49 = I::fma(-t7, t37, t48);
     let t50 = t6 * t37;
-    let t51 = fma(t7, t36, t50);
-    let t52 = fma(t13, t38, t51);
+    let t51 = I::fma(t7, t36, t50);
+    let t52 = I::fma(t13, t38, t51);
     let t53 = t13 * t36;
     let t54 = t53 - t50;
-    let t55 = fma(t7, t38, t54);
+    let t55 = I::fma(t7, t38, t54);
     let t56 = c[2] * t39;
-    let t57 = fma(t37, t40, t56);
-    let t58 = fma(-t37, t41, t57);
+    let t57 = I::fma(t37, t40, t56);
+    let t58 = I::fma(-t37, t41, t57);
     let t59 = t37 * t39;
-    let t60 = fma(t38, t40, -t59);
-    let t61 = fma(t36, t41, t60);
-    let t62 = fma(t36, t40, t59);
-    let t63 = fma(t38, t41, t62);
+    let t60 = I::fma(t38, t40, -t59);
+    let t61 = I::fma(t36, t41, t60);
+    let t62 = I::fma(t36, t40, t59);
+    let t63 = I::fma(t38, t41, t62);
     let t64 = 0.7071067811865476 * qd[2];
     let t65 = t52 + t64;
     let t66 = t55 + t64;
     let t67 = t52 - t55;
-    let t68 = fma(t64, t67, t43);
-    let t69 = fma(-t49, t64, t45);
-    let t70 = fma(t49, t64, -t46);
+    let t68 = I::fma(t64, t67, t43);
+    let t69 = I::fma(-t49, t64, t45);
+    let t70 = I::fma(t49, t64, -t46);
     let t71 = 2.3 * t63;
     let t72 = 0.001438276615812609 * t63;
     let t73 = 0.45599999999999996 * t58;
-    let t74 = fma(0.0026327476856711184, t63, t73);
+    let t74 = I::fma(0.0026327476856711184, t63, t73);
     let t75 = 0.001438276615812609 * t58;
     let t76 = t49 * t49;
     let t77 = t65 * t65;
     let t78 = t49 * t65;
     let t79 = t49 * t66;
     let t80 = t65 * t66;
-    let t81 = fma(t49, t64, -t45);
-    let t82 = fma(t66, t66, t77);
-    let t83 = fma(t66, t66, t76);
+    let t81 = I::fma(t49, t64, -t45);
+    let t82 = I::fma(t66, t66, t77);
+    let t83 = I::fma(t66, t66, t76);
     let t84 = t76 + t77;
     let t85 = t78 - t70;
     let t86 = t70 + t78;
@@ -1133,70 +1246,70 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
     let t89 = t80 - t68;
     let t90 = t68 + t80;
     let t91 = 0.001438276615812609 * t85;
-    let t92 = fma(-0.0026327476856711184, t82, t91);
-    let t93 = fma(-0.45599999999999996, t87, t92);
+    let t92 = I::fma(-0.0026327476856711184, t82, t91);
+    let t93 = I::fma(-0.45599999999999996, t87, t92);
     let t94 = 0.001438276615812609 * t83;
-    let t95 = fma(0.0026327476856711184, t86, -t94);
-    let t96 = fma(-0.45599999999999996, t89, t95);
+    let t95 = I::fma(0.0026327476856711184, t86, -t94);
+    let t96 = I::fma(-0.45599999999999996, t89, t95);
     let t97 = 0.45599999999999996 * t84;
-    let t98 = fma(2.3, t58, t93);
-    let t99 = fma(2.3, t61, t96);
+    let t98 = I::fma(2.3, t58, t93);
+    let t99 = I::fma(2.3, t61, t96);
     let t100 = 0.11248370112100659 * t68;
     let t101 = 0.0007227573213207296 * t86;
-    let t102 = fma(-t66, t66, t77);
+    let t102 = I::fma(-t66, t66, t77);
     let t103 = 0.11237803875603204 * t69;
-    let t104 = fma(t66, t66, -t76);
+    let t104 = I::fma(t66, t66, -t76);
     let t105 = 0.0007227573213207296 * t104;
     let t106 = 0.0013082601229613597 * t70;
     let t107 = t76 - t77;
     let t108 = 5.72628672892178e-6 * t107;
     let t109 = 0.2593433800522308 * s[3];
-    let t110 = fma(-0.479425538604203, c[3], t109);
+    let t110 = I::fma(-0.479425538604203, c[3], t109);
     let t111 = 0.2593433800522308 * c[3];
-    let t112 = fma(0.479425538604203, s[3], t111);
+    let t112 = I::fma(0.479425538604203, s[3], t111);
     let t113 = 0.8775825618903728 * c[3];
-    let t114 = fma(0.1416799342470381, s[3], t113);
+    let t114 = I::fma(0.1416799342470381, s[3], t113);
     let t115 = 0.1416799342470381 * c[3];
-    let t116 = fma(-0.8775825618903728, s[3], t115);
+    let t116 = I::fma(-0.8775825618903728, s[3], t115);
     let t117 = 0.955336489125606 * s[3];
     let t118 = 0.955336489125606 * c[3];
-    let t119 = fma(-0.3, t87, t58);
-    let t120 = fma(-0.3, t89, t61);
-    let t121 = fma(0.3, t84, t63);
+    let t119 = I::fma(-0.3, t87, t58);
+    let t120 = I::fma(-0.3, t89, t61);
+    let t121 = I::fma(0.3, t84, t63);
     let t122 = 0.45801271084729195 * t69;
-    let t123 = fma(0.8383866435942036, t68, t122);
-    let t124 = fma(-0.29552020666133955, t70, t123);
+    let t123 = I::fma(0.8383866435942036, t68, t122);
+    let t124 = I::fma(-0.29552020666133955, t70, t123);
     let t125 = t69 * t114;
     let t126 = t69 * t116;
     let t127 = 0.45801271084729195 * t65;
     let t128 = t49 * t110;
-    let t129 = fma(t65, t114, t128);
-    let t130 = fma(t66, t117, t129);
+    let t129 = I::fma(t65, t114, t128);
+    let t130 = I::fma(t66, t117, t129);
     let t131 = t49 * t112;
-    let t132 = fma(t65, t116, t131);
-    let t133 = fma(t66, t118, t132);
+    let t132 = I::fma(t65, t116, t131);
+    let t133 = I::fma(t66, t118, t132);
     let t134 = 0.29552020666133955 * t121;
-    let t135 = fma(0.8383866435942036, t119, -t134);
-    let t136 = fma(0.45801271084729195, t120, t135);
+    let t135 = I::fma(0.8383866435942036, t119, -t134);
+    let t136 = I::fma(0.45801271084729195, t120, t135);
     let t137 = t117 * t121;
-    let t138 = fma(t110, t119, t137);
-    let t139 = fma(t114, t120, t138);
-    let t140 = fma(0.8383866435942036, t49, qd[3]);
-    let t141 = fma(-0.29552020666133955, t66, t127);
+    let t138 = I::fma(t110, t119, t137);
+    let t139 = I::fma(t114, t120, t138);
+    let t140 = I::fma(0.8383866435942036, t49, qd[3]);
+    let t141 = I::fma(-0.29552020666133955, t66, t127);
     let t142 = t140 + t141;
-    let t143 = fma(t70, t117, t125);
-    let t144 = fma(t68, t110, t143);
-    let t145 = fma(qd[3], t133, t144);
+    let t143 = I::fma(t70, t117, t125);
+    let t144 = I::fma(t68, t110, t143);
+    let t145 = I::fma(qd[3], t133, t144);
     let t146 = t130 * t130;
     let t147 = t133 * t133;
     let t148 = t130 * t142;
     let t149 = t133 * t142;
     let t150 = t130 * t133;
-    let t151 = fma(0.29552020666133955, t70, -t123);
-    let t152 = fma(t142, t142, t146);
-    let t153 = fma(t70, t118, t126);
-    let t154 = fma(t68, t112, t153);
-    let t155 = fma(-qd[3], t130, t148);
+    let t151 = I::fma(0.29552020666133955, t70, -t123);
+    let t152 = I::fma(t142, t142, t146);
+    let t153 = I::fma(t70, t118, t126);
+    let t154 = I::fma(t68, t112, t153);
+    let t155 = I::fma(-qd[3], t130, t148);
     let t156 = t154 + t155;
     let t157 = t145 + t149;
     let t158 = t150 + t151;
@@ -1204,33 +1317,33 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
     let t160 = 0.02 * t152;
     let t161 = 0.001 * t124;
     let t162 = 0.0009 * t145;
-    let t163 = fma(-t142, t142, t147);
-    let t164 = fma(1e-5, t163, t162);
-    let t165 = fma(0.001, t149, t164);
+    let t163 = I::fma(-t142, t142, t147);
+    let t164 = I::fma(1e-5, t163, t162);
+    let t165 = I::fma(0.001, t149, t164);
     let t166 = 1e-5 * t158;
-    let t167 = fma(0.00010000000000000005, t148, t166);
-    let t168 = fma(-0.0009, t150, t161);
-    let t169 = fma(1e-5, t156, t168);
-    let t170 = fma(0.02, t139, t169);
-    let t171 = fma(-0.02, t136, t165);
+    let t167 = I::fma(0.00010000000000000005, t148, t166);
+    let t168 = I::fma(-0.0009, t150, t161);
+    let t169 = I::fma(1e-5, t156, t168);
+    let t170 = I::fma(0.02, t139, t169);
+    let t171 = I::fma(-0.02, t136, t165);
     let t172 = 0.9950041652780258 * s[4];
-    let t173 = fma(-0.019833838076209875, c[4], t172);
+    let t173 = I::fma(-0.019833838076209875, c[4], t172);
     let t174 = 0.9950041652780258 * c[4];
-    let t175 = fma(0.019833838076209875, s[4], t174);
+    let t175 = I::fma(0.019833838076209875, s[4], t174);
     let t176 = 0.19767681165408388 * c[4];
-    let t177 = fma(0.09983341664682815, s[4], t176);
+    let t177 = I::fma(0.09983341664682815, s[4], t176);
     let t178 = 0.09983341664682815 * c[4];
-    let t179 = fma(-0.19767681165408388, s[4], t178);
+    let t179 = I::fma(-0.19767681165408388, s[4], t178);
     let t180 = 0.9800665778412416 * c[4];
     let t181 = 0.9800665778412416 * s[4];
     let t182 = qd[0] * t181;
     let t183 = qd[0] * t180;
     let t184 = 9.61445312862258 * s[4];
-    let t185 = fma(t5, t179, -t184);
-    let t186 = fma(0.17553065889632685, t0, -1.9489461350995507);
+    let t185 = I::fma(t5, t179, -t184);
+    let t186 = I::fma(0.17553065889632685, t0, -1.9489461350995507);
     let t187 = 9.61445312862258 * c[4];
-    let t188 = fma(t5, t177, t187);
-    let t189 = fma(-0.19866933079506122, qd[0], qd[4]);
+    let t188 = I::fma(t5, t177, t187);
+    let t189 = I::fma(-0.19866933079506122, qd[0], qd[4]);
     let t190 = qd[4] * t182;
     let t191 = qd[4] * t183;
     let t192 = 0.3 * t186;
@@ -1239,65 +1352,65 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
     let t195 = t182 * t189;
     let t196 = t182 * t183;
     let t197 = t183 * t189;
-    let t198 = fma(t183, t183, t194);
-    let t199 = fma(t182, t182, t194);
+    let t198 = I::fma(t183, t183, t194);
+    let t199 = I::fma(t182, t182, t194);
     let t200 = t190 - t195;
     let t201 = t190 + t195;
     let t202 = t191 + t197;
     let t203 = t197 - t191;
     let t204 = 0.3 * t202;
-    let t205 = fma(-t183, t183, t194);
+    let t205 = I::fma(-t183, t183, t194);
     let t206 = 0.0026 * t205;
     let t207 = 0.06049999999999999 * t196;
     let t208 = 0.06049999999999999 * t190;
-    let t209 = fma(0.0026, t196, t208);
-    let t210 = fma(t182, t182, -t194);
+    let t209 = I::fma(0.0026, t196, t208);
+    let t210 = I::fma(t182, t182, -t194);
     let t211 = 0.0003 * t210;
     let t212 = 1.0 - c[5];
     let t213 = 0.48 * t212;
     let t214 = 0.8 * s[5];
     let t215 = 0.6 * s[5];
-    let t216 = fma(0.6400000000000001, t212, c[5]);
-    let t217 = fma(0.36, t212, c[5]);
-    let t218 = fma(0.02, t201, t204);
-    let t219 = fma(0.3, t196, t185);
-    let t220 = fma(-0.02, t198, t219);
+    let t216 = I::fma(0.6400000000000001, t212, c[5]);
+    let t217 = I::fma(0.36, t212, c[5]);
+    let t218 = I::fma(0.02, t201, t204);
+    let t219 = I::fma(0.3, t196, t185);
+    let t220 = I::fma(-0.02, t198, t219);
     let t221 = t186 - t218;
-    let t222 = fma(-0.02, t196, t188);
-    let t223 = fma(0.3, t199, t222);
+    let t222 = I::fma(-0.02, t196, t188);
+    let t223 = I::fma(0.3, t199, t222);
     let t224 = t190 * t214;
-    let t225 = fma(-t191, c[5], t224);
+    let t225 = I::fma(-t191, c[5], t224);
     let t226 = t191 * t215;
-    let t227 = fma(-t190, t213, t226);
+    let t227 = I::fma(-t190, t213, t226);
     let t228 = t191 * t214;
-    let t229 = fma(t190, t217, t228);
+    let t229 = I::fma(t190, t217, t228);
     let t230 = t189 * t215;
-    let t231 = fma(-t182, c[5], t230);
-    let t232 = fma(-t183, t214, t231);
+    let t231 = I::fma(-t182, c[5], t230);
+    let t232 = I::fma(-t183, t214, t231);
     let t233 = t182 * t215;
-    let t234 = fma(t183, t213, t233);
-    let t235 = fma(t189, t216, t234);
+    let t234 = I::fma(t183, t213, t233);
+    let t235 = I::fma(t189, t216, t234);
     let t236 = t189 * t213;
-    let t237 = fma(-t182, t214, t236);
-    let t238 = fma(t183, t217, t237);
+    let t237 = I::fma(-t182, t214, t236);
+    let t238 = I::fma(t183, t217, t237);
     let t239 = c[5] * t220;
-    let t240 = fma(-t214, t223, t239);
-    let t241 = fma(t215, t221, t240);
+    let t240 = I::fma(-t214, t223, t239);
+    let t241 = I::fma(t215, t221, t240);
     let t242 = t213 * t223;
-    let t243 = fma(-t215, t220, t242);
-    let t244 = fma(t216, t221, t243);
+    let t243 = I::fma(-t215, t220, t242);
+    let t244 = I::fma(t216, t221, t243);
     let t245 = t214 * t220;
-    let t246 = fma(t217, t223, t245);
-    let t247 = fma(t213, t221, t246);
+    let t246 = I::fma(t217, t223, t245);
+    let t247 = I::fma(t213, t221, t246);
     let t248 = 0.8 * qd[5];
     let t249 = 0.6 * qd[5];
     let t250 = t235 + t248;
     let t251 = t238 + t249;
     let t252 = t235 * t249;
-    let t253 = fma(-t238, t248, t252);
+    let t253 = I::fma(-t238, t248, t252);
     let t254 = t225 + t253;
-    let t255 = fma(-t232, t249, t227);
-    let t256 = fma(t232, t248, -t229);
+    let t255 = I::fma(-t232, t249, t227);
+    let t256 = I::fma(t232, t248, -t229);
     let t257 = 1.7 * t241;
     let t258 = 1.7 * t244;
     let t259 = 0.347 * t244;
@@ -1305,40 +1418,40 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
     let t261 = t232 * t250;
     let t262 = t232 * t251;
     let t263 = t250 * t251;
-    let t264 = fma(t250, t250, t260);
+    let t264 = I::fma(t250, t250, t260);
     let t265 = t256 + t261;
     let t266 = t255 + t262;
     let t267 = t263 - t254;
     let t268 = 0.347 * t264;
-    let t269 = fma(-0.347, t266, t257);
-    let t270 = fma(-0.347, t267, t258);
-    let t271 = fma(1.7, t247, t268);
+    let t269 = I::fma(-0.347, t266, t257);
+    let t270 = I::fma(-0.347, t267, t258);
+    let t271 = I::fma(1.7, t247, t268);
     let t272 = 0.08939000000000001 * t263;
     let t273 = 0.09019 * t255;
-    let t274 = fma(t251, t251, -t260);
+    let t274 = I::fma(t251, t251, -t260);
     let t275 = 0.0008 * t256;
-    let t276 = fma(-0.0002, t267, t275);
-    let t277 = fma(0.00010000000000000286, t261, t276);
+    let t276 = I::fma(-0.0002, t267, t275);
+    let t277 = I::fma(0.00010000000000000286, t261, t276);
     let t278 = 0.9210609940028851 * c[6];
-    let t279 = fma(0.3894183423086505, s[6], t278);
+    let t279 = I::fma(0.3894183423086505, s[6], t278);
     let t280 = 0.3894183423086505 * c[6];
     let t281 = 0.9210609940028851 * s[6];
     let t282 = t280 - t281;
     let t283 = t281 - t280;
-    let t284 = fma(-0.28, t266, t241);
-    let t285 = fma(-0.28, t267, t244);
-    let t286 = fma(0.28, t264, t247);
+    let t284 = I::fma(-0.28, t266, t241);
+    let t285 = I::fma(-0.28, t267, t244);
+    let t286 = I::fma(0.28, t264, t247);
     let t287 = t255 * t283;
-    let t288 = fma(t254, t279, t287);
+    let t288 = I::fma(t254, t279, t287);
     let t289 = t232 * t279;
-    let t290 = fma(t250, t283, t289);
+    let t290 = I::fma(t250, t283, t289);
     let t291 = t232 * t282;
-    let t292 = fma(t250, t279, t291);
+    let t292 = I::fma(t250, t279, t291);
     let t293 = t282 * t284;
-    let t294 = fma(t279, t285, t293);
+    let t294 = I::fma(t279, t285, t293);
     let t295 = qd[6] + t251;
     let t296 = qd[6] * t290;
-    let t297 = fma(qd[6], t292, t288);
+    let t297 = I::fma(qd[6], t292, t288);
     let t298 = t290 * t290;
     let t299 = t292 * t292;
     let t300 = t295 * t295;
@@ -1347,8 +1460,8 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
     let t303 = t292 * t295;
     let t304 = t299 + t300;
     let t305 = t256 + t301;
-    let t306 = fma(-t255, t279, t302);
-    let t307 = fma(-t254, t282, t296);
+    let t306 = I::fma(-t255, t279, t302);
+    let t307 = I::fma(-t254, t282, t296);
     let t308 = t306 + t307;
     let t309 = t303 - t297;
     let t310 = t297 + t303;
@@ -1356,175 +1469,175 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
     let t312 = 0.006999999999999999 * t305;
     let t313 = 2e-5 * t308;
     let t314 = 0.00022 * t303;
-    let t315 = fma(0.00020999999999999998, t305, t314);
-    let t316 = fma(-0.0001200000000000001, t297, t313);
+    let t315 = I::fma(0.00020999999999999998, t305, t314);
+    let t316 = I::fma(-0.0001200000000000001, t297, t313);
     let t317 = t315 + t316;
     let t318 = t300 - t298;
     let t319 = 0.00034000000000000013 * t302;
     let t320 = 0.00022 * t256;
     let t321 = t298 - t299;
-    let t322 = fma(0.00020999999999999998, t318, -t319);
-    let t323 = fma(-0.006999999999999999, t286, t322);
-    let t324 = fma(-2e-5, t310, t323);
-    let t325 = fma(0.0001200000000000001, t301, t320);
-    let t326 = fma(-2e-5, t321, t325);
-    let t327 = fma(-0.00020999999999999998, t309, t326);
-    let t328 = fma(0.006999999999999999, t294, t327);
+    let t322 = I::fma(0.00020999999999999998, t318, -t319);
+    let t323 = I::fma(-0.006999999999999999, t286, t322);
+    let t324 = I::fma(-2e-5, t310, t323);
+    let t325 = I::fma(0.0001200000000000001, t301, t320);
+    let t326 = I::fma(-2e-5, t321, t325);
+    let t327 = I::fma(-0.00020999999999999998, t309, t326);
+    let t328 = I::fma(0.006999999999999999, t294, t327);
     let t329 = t282 * t312;
-    let t330 = fma(-t279, t311, t329);
+    let t330 = I::fma(-t279, t311, t329);
     let t331 = t279 * t312;
-    let t332 = fma(-t283, t311, t331);
+    let t332 = I::fma(-t283, t311, t331);
     let t333 = t282 * t324;
-    let t334 = fma(t279, t317, t333);
+    let t334 = I::fma(t279, t317, t333);
     let t335 = t279 * t324;
-    let t336 = fma(t283, t317, t335);
-    let t337 = fma(0.09009, t254, -t272);
-    let t338 = fma(0.0002, t265, t259);
+    let t336 = I::fma(t283, t317, t335);
+    let t337 = I::fma(0.09009, t254, -t272);
+    let t338 = I::fma(0.0002, t265, t259);
     let t339 = t337 + t338;
-    let t340 = fma(0.28, t332, t339);
+    let t340 = I::fma(0.28, t332, t339);
     let t341 = t334 + t340;
-    let t342 = fma(0.08929000000000001, t262, t273);
-    let t343 = fma(0.0002, t274, t342);
-    let t344 = fma(-0.347, t241, t343);
-    let t345 = fma(-0.28, t330, t344);
+    let t342 = I::fma(0.08929000000000001, t262, t273);
+    let t343 = I::fma(0.0002, t274, t342);
+    let t344 = I::fma(-0.347, t241, t343);
+    let t345 = I::fma(-0.28, t330, t344);
     let t346 = t336 + t345;
     let t347 = t277 + t328;
     let t348 = t269 + t330;
     let t349 = t270 + t332;
-    let t350 = fma(0.006999999999999999, t308, t271);
+    let t350 = I::fma(0.006999999999999999, t308, t271);
     let t351 = 0.6 * t347;
-    let t352 = fma(0.8, t346, t351);
+    let t352 = I::fma(0.8, t346, t351);
     let t353 = c[5] * t348;
-    let t354 = fma(-t215, t349, t353);
-    let t355 = fma(t214, t350, t354);
+    let t354 = I::fma(-t215, t349, t353);
+    let t355 = I::fma(t214, t350, t354);
     let t356 = t215 * t348;
-    let t357 = fma(t216, t349, t356);
-    let t358 = fma(t213, t350, t357);
+    let t357 = I::fma(t216, t349, t356);
+    let t358 = I::fma(t213, t350, t357);
     let t359 = t213 * t349;
-    let t360 = fma(-t214, t348, t359);
-    let t361 = fma(t217, t350, t360);
+    let t360 = I::fma(-t214, t348, t359);
+    let t361 = I::fma(t217, t350, t360);
     let t362 = c[5] * t341;
-    let t363 = fma(-t215, t346, t362);
+    let t363 = I::fma(-t215, t346, t362);
     let t364 = t215 * t341;
-    let t365 = fma(t216, t346, t364);
+    let t365 = I::fma(t216, t346, t364);
     let t366 = t213 * t346;
-    let t367 = fma(-t214, t341, t366);
+    let t367 = I::fma(-t214, t341, t366);
     let t368 = 0.3 * t355;
-    let t369 = fma(0.02, t361, t368);
-    let t370 = fma(0.0003, t196, t192);
-    let t371 = fma(0.1225, t197, t206);
+    let t369 = I::fma(0.02, t361, t368);
+    let t370 = I::fma(0.0003, t196, t192);
+    let t371 = I::fma(0.1225, t197, t206);
     let t372 = t370 - t371;
-    let t373 = fma(t214, t347, t372);
-    let t374 = fma(0.3, t358, t373);
+    let t373 = I::fma(t214, t347, t372);
+    let t374 = I::fma(0.3, t358, t373);
     let t375 = t363 + t374;
-    let t376 = fma(0.0003, t203, -t207);
-    let t377 = fma(0.0026, t200, -t193);
+    let t376 = I::fma(0.0003, t203, -t207);
+    let t377 = I::fma(0.0026, t200, -t193);
     let t378 = t376 + t377;
-    let t379 = fma(t213, t347, t378);
+    let t379 = I::fma(t213, t347, t378);
     let t380 = t365 + t379;
     let t381 = t380 - t369;
-    let t382 = fma(-0.062, t195, t211);
+    let t382 = I::fma(-0.062, t195, t211);
     let t383 = t209 + t382;
-    let t384 = fma(t217, t347, t383);
-    let t385 = fma(0.02, t358, t384);
+    let t384 = I::fma(t217, t347, t383);
+    let t385 = I::fma(0.02, t358, t384);
     let t386 = t367 + t385;
-    let t387 = fma(0.3, t196, t355);
+    let t387 = I::fma(0.3, t196, t355);
     let t388 = t358 - t204;
-    let t389 = fma(0.3, t199, t361);
+    let t389 = I::fma(0.3, t199, t361);
     let t390 = t175 * t387;
-    let t391 = fma(-0.09784339500725571, t388, t390);
-    let t392 = fma(t173, t389, t391);
+    let t391 = I::fma(-0.09784339500725571, t388, t390);
+    let t392 = I::fma(t173, t389, t391);
     let t393 = 0.19866933079506122 * t381;
     let t394 = t180 * t386;
     let t395 = t112 * t160;
-    let t396 = fma(-0.016767732871884072, t157, t395);
-    let t397 = fma(-t110, t159, t396);
+    let t396 = I::fma(-0.016767732871884072, t157, t395);
+    let t397 = I::fma(-t110, t159, t396);
     let t398 = t116 * t160;
-    let t399 = fma(-0.00916025421694584, t157, t398);
-    let t400 = fma(-t114, t159, t399);
+    let t399 = I::fma(-0.00916025421694584, t157, t398);
+    let t400 = I::fma(-t114, t159, t399);
     let t401 = t118 * t160;
     let t402 = 0.8383866435942036 * t170;
-    let t403 = fma(t110, t171, t402);
+    let t403 = I::fma(t110, t171, t402);
     let t404 = 0.45801271084729195 * t170;
-    let t405 = fma(t114, t171, t404);
+    let t405 = I::fma(t114, t171, t404);
     let t406 = t117 * t171;
-    let t407 = fma(-0.29552020666133955, t170, t406);
-    let t408 = fma(-0.11106977863307069, t80, t100);
-    let t409 = fma(-5.72628672892178e-6, t88, t101);
-    let t410 = fma(0.00021714363512649699, t102, t72);
-    let t411 = fma(0.45599999999999996, t61, t408);
+    let t407 = I::fma(-0.29552020666133955, t170, t406);
+    let t408 = I::fma(-0.11106977863307069, t80, t100);
+    let t409 = I::fma(-5.72628672892178e-6, t88, t101);
+    let t410 = I::fma(0.00021714363512649699, t102, t72);
+    let t411 = I::fma(0.45599999999999996, t61, t408);
     let t412 = t409 + t410;
     let t413 = t411 + t412;
-    let t414 = fma(-t112, t167, t413);
-    let t415 = fma(0.3, t400, t414);
+    let t414 = I::fma(-t112, t167, t413);
+    let t415 = I::fma(0.3, t400, t414);
     let t416 = t403 + t415;
-    let t417 = fma(0.11117544099804523, t79, t103);
-    let t418 = fma(-0.00021714363512649699, t85, t105);
-    let t419 = fma(5.72628672892178e-6, t90, t417);
+    let t417 = I::fma(0.11117544099804523, t79, t103);
+    let t418 = I::fma(-0.00021714363512649699, t85, t105);
+    let t419 = I::fma(5.72628672892178e-6, t90, t417);
     let t420 = t418 + t419;
     let t421 = t420 - t74;
-    let t422 = fma(-t116, t167, t421);
-    let t423 = fma(-0.3, t397, t422);
+    let t422 = I::fma(-t116, t167, t421);
+    let t423 = I::fma(-0.3, t397, t422);
     let t424 = t405 + t423;
-    let t425 = fma(-0.00010566236497454307, t78, t106);
-    let t426 = fma(0.00021714363512649699, t87, t108);
-    let t427 = fma(0.0026327476856711184, t61, t425);
-    let t428 = fma(0.0007227573213207296, t89, t75);
+    let t425 = I::fma(-0.00010566236497454307, t78, t106);
+    let t426 = I::fma(0.00021714363512649699, t87, t108);
+    let t427 = I::fma(0.0026327476856711184, t61, t425);
+    let t428 = I::fma(0.0007227573213207296, t89, t75);
     let t429 = t426 + t427;
     let t430 = t429 - t428;
-    let t431 = fma(-t118, t167, t430);
+    let t431 = I::fma(-t118, t167, t430);
     let t432 = t407 + t431;
     let t433 = t98 + t397;
     let t434 = t99 + t400;
-    let t435 = fma(0.0026327476856711184, t88, t97);
-    let t436 = fma(0.001438276615812609, t90, t71);
+    let t435 = I::fma(0.0026327476856711184, t88, t97);
+    let t436 = I::fma(0.001438276615812609, t90, t71);
     let t437 = t435 + t436;
-    let t438 = fma(0.005910404133226791, t157, t437);
-    let t439 = fma(-t117, t159, t401);
+    let t438 = I::fma(0.005910404133226791, t157, t437);
+    let t439 = I::fma(-t117, t159, t401);
     let t440 = t438 + t439;
     let t441 = t424 + t432;
     let t442 = 0.7071067811865476 * t441;
     let t443 = c[2] * t433;
-    let t444 = fma(-t37, t434, t443);
-    let t445 = fma(t37, t440, t444);
+    let t444 = I::fma(-t37, t434, t443);
+    let t445 = I::fma(t37, t440, t444);
     let t446 = t37 * t433;
-    let t447 = fma(t38, t434, t446);
-    let t448 = fma(t36, t440, t447);
+    let t447 = I::fma(t38, t434, t446);
+    let t448 = I::fma(t36, t440, t447);
     let t449 = t38 * t440;
     let t450 = t37 * t432;
     let t451 = t38 * t424;
     let t452 = t38 * t432;
-    let t453 = fma(-0.09956000000000001, t24, t16);
-    let t454 = fma(-0.0030200000000000005, t27, t453);
-    let t455 = fma(c[2], t416, t454);
-    let t456 = fma(-t37, t424, t450);
-    let t457 = fma(0.3, t448, t455);
+    let t453 = I::fma(-0.09956000000000001, t24, t16);
+    let t454 = I::fma(-0.0030200000000000005, t27, t453);
+    let t455 = I::fma(c[2], t416, t454);
+    let t456 = I::fma(-t37, t424, t450);
+    let t457 = I::fma(0.3, t448, t455);
     let t458 = t456 + t457;
-    let t459 = fma(-0.048100000000000004, t23, t17);
-    let t460 = fma(0.0030200000000000005, t33, -t18);
+    let t459 = I::fma(-0.048100000000000004, t23, t17);
+    let t460 = I::fma(0.0030200000000000005, t33, -t18);
     let t461 = t459 + t460;
-    let t462 = fma(t37, t416, t461);
-    let t463 = fma(t36, t432, t451);
-    let t464 = fma(-0.3, t445, t462);
+    let t462 = I::fma(t37, t416, t461);
+    let t463 = I::fma(t36, t432, t451);
+    let t464 = I::fma(-0.3, t445, t462);
     let t465 = t463 + t464;
-    let t466 = fma(0.048100000000000004, t14, t19);
-    let t467 = fma(0.0030200000000000005, t28, t34);
+    let t466 = I::fma(0.048100000000000004, t14, t19);
+    let t467 = I::fma(0.0030200000000000005, t28, t34);
     let t468 = t466 - t467;
-    let t469 = fma(t36, t424, t468);
-    let t470 = fma(-t37, t416, t452);
+    let t469 = I::fma(t36, t424, t468);
+    let t470 = I::fma(-t37, t416, t452);
     let t471 = t469 + t470;
     let t472 = t30 + t445;
-    let t473 = fma(t36, t434, t32);
+    let t473 = I::fma(t36, t434, t32);
     let t474 = t449 - t446;
     let t475 = t473 + t474;
     let t476 = s[1] * t475;
-    let t477 = fma(c[1], t472, t476);
+    let t477 = I::fma(c[1], t472, t476);
     let t478 = 0.19866933079506122 * t465;
-    let t479 = fma(-t4, t458, t478);
-    let t480 = fma(-t181, t375, t394);
-    let t481 = fma(0.18, t392, -t393);
-    let t482 = fma(t3, t471, t480);
-    let t483 = fma(-0.18, t477, t481);
+    let t479 = I::fma(-t4, t458, t478);
+    let t480 = I::fma(-t181, t375, t394);
+    let t481 = I::fma(0.18, t392, -t393);
+    let t482 = I::fma(t3, t471, t480);
+    let t483 = I::fma(-0.18, t477, t481);
     let t484 = t479 + t482;
     let t485 = t483 + t484;
     [t485, t465, t442, t170, t381, t352, t328]
@@ -1537,6 +1650,11 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`bias_forces_sc`].
 #[inline]
 pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { bias_forces_avx2_fma(q, qd) };
+    }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     bias_forces_sc(
         &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
@@ -1544,64 +1662,94 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
         qd,
     )
 }
+/// [`bias_forces`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn bias_forces_avx2_fma(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe {
+        bias_forces_sc_avx2_fma(
+            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
+            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
+            qd,
+        )
+    }
+}
 /// The gravity torques g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 225 ops: 50 add, 37 sub, 138 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 74 fused multiply-adds, 152 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { gravity_torques_sc_avx2_fma(s, c) };
+    }
+    gravity_torques_sc_on::<Baseline>(s, c)
+}
+/// [`gravity_torques_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn gravity_torques_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
+    gravity_torques_sc_on::<Avx2Fma>(s, c)
+}
+/// The body of [`gravity_torques_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
+fn gravity_torques_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
     let t0 = 0.9800665778412416 * c[1];
     let t1 = 0.9800665778412416 * s[1];
     let t2 = 9.61445312862258 * s[1];
     let t3 = 9.61445312862258 * c[1];
     let t4 = 2.422842188412891 * s[1];
-    let t5 = fma(-0.17306015631520646, c[1], t4);
+    let t5 = I::fma(-0.17306015631520646, c[1], t4);
     let t6 = 1.0 - c[2];
     let t7 = 0.5000000000000001 * t6;
     let t8 = 0.7071067811865476 * s[2];
     let t9 = c[2] + t7;
     let t10 = 1.3781130282962055 * s[2];
-    let t11 = fma(-t2, c[2], t10);
-    let t12 = fma(-t3, t8, t11);
+    let t11 = I::fma(-t2, c[2], t10);
+    let t12 = I::fma(-t3, t8, t11);
     let t13 = t2 * t8;
-    let t14 = fma(t3, t7, t13);
-    let t15 = fma(1.9489461350995507, t9, t14);
+    let t14 = I::fma(t3, t7, t13);
+    let t15 = I::fma(1.9489461350995507, t9, t14);
     let t16 = 0.9744730675497756 * t6;
     let t17 = t16 - t13;
-    let t18 = fma(t3, t9, t17);
+    let t18 = I::fma(t3, t9, t17);
     let t19 = 2.3 * t12;
     let t20 = 2.3 * t15;
     let t21 = 2.3 * t18;
     let t22 = 0.001438276615812609 * t18;
-    let t23 = fma(0.45599999999999996, t15, t22);
+    let t23 = I::fma(0.45599999999999996, t15, t22);
     let t24 = 0.45599999999999996 * t12;
-    let t25 = fma(0.0026327476856711184, t18, t24);
+    let t25 = I::fma(0.0026327476856711184, t18, t24);
     let t26 = 0.001438276615812609 * t12;
-    let t27 = fma(0.0026327476856711184, t15, -t26);
+    let t27 = I::fma(0.0026327476856711184, t15, -t26);
     let t28 = 0.2593433800522308 * s[3];
-    let t29 = fma(-0.479425538604203, c[3], t28);
+    let t29 = I::fma(-0.479425538604203, c[3], t28);
     let t30 = 0.8775825618903728 * c[3];
-    let t31 = fma(0.1416799342470381, s[3], t30);
+    let t31 = I::fma(0.1416799342470381, s[3], t30);
     let t32 = 0.955336489125606 * s[3];
     let t33 = 0.8383866435942036 * t12;
-    let t34 = fma(0.45801271084729195, t15, t33);
-    let t35 = fma(-0.29552020666133955, t18, t34);
+    let t34 = I::fma(0.45801271084729195, t15, t33);
+    let t35 = I::fma(-0.29552020666133955, t18, t34);
     let t36 = t12 * t29;
-    let t37 = fma(t15, t31, t36);
-    let t38 = fma(t18, t32, t37);
+    let t37 = I::fma(t15, t31, t36);
+    let t38 = I::fma(t18, t32, t37);
     let t39 = 0.02 * t38;
     let t40 = 0.02 * t35;
     let t41 = 0.9950041652780258 * s[4];
-    let t42 = fma(-0.019833838076209875, c[4], t41);
+    let t42 = I::fma(-0.019833838076209875, c[4], t41);
     let t43 = 0.9950041652780258 * c[4];
-    let t44 = fma(0.019833838076209875, s[4], t43);
+    let t44 = I::fma(0.019833838076209875, s[4], t43);
     let t45 = 0.9800665778412416 * c[4];
     let t46 = 0.9800665778412416 * s[4];
     let t47 = 9.61445312862258 * s[4];
@@ -1611,102 +1759,102 @@ pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
     let t51 = 0.48 * t50;
     let t52 = 0.8 * s[5];
     let t53 = 0.6 * s[5];
-    let t54 = fma(0.6400000000000001, t50, c[5]);
-    let t55 = fma(0.36, t50, c[5]);
+    let t54 = I::fma(0.6400000000000001, t50, c[5]);
+    let t55 = I::fma(0.36, t50, c[5]);
     let t56 = 1.1693676810597304 * s[5];
-    let t57 = fma(t47, c[5], t56);
-    let t58 = fma(t48, t52, t57);
+    let t57 = I::fma(t47, c[5], t56);
+    let t58 = I::fma(t48, t52, t57);
     let t59 = t47 * t53;
-    let t60 = fma(t48, t51, t59);
-    let t61 = fma(-1.9489461350995507, t54, t60);
+    let t60 = I::fma(t48, t51, t59);
+    let t61 = I::fma(-1.9489461350995507, t54, t60);
     let t62 = t47 * t52;
-    let t63 = fma(0.9354941448477843, t50, t62);
-    let t64 = fma(t48, t55, -t63);
+    let t63 = I::fma(0.9354941448477843, t50, t62);
+    let t64 = I::fma(t48, t55, -t63);
     let t65 = 1.7 * t58;
     let t66 = 1.7 * t61;
     let t67 = 1.7 * t64;
     let t68 = 0.347 * t61;
     let t69 = 0.347 * t58;
     let t70 = 0.9210609940028851 * c[6];
-    let t71 = fma(0.3894183423086505, s[6], t70);
+    let t71 = I::fma(0.3894183423086505, s[6], t70);
     let t72 = 0.3894183423086505 * c[6];
-    let t73 = fma(-0.9210609940028851, s[6], t72);
+    let t73 = I::fma(-0.9210609940028851, s[6], t72);
     let t74 = t58 * t73;
-    let t75 = fma(t61, t71, -t74);
+    let t75 = I::fma(t61, t71, -t74);
     let t76 = 0.006999999999999999 * t64;
     let t77 = 0.006999999999999999 * t75;
-    let t78 = fma(-t73, t76, t68);
-    let t79 = fma(t71, t76, -t69);
+    let t78 = I::fma(-t73, t76, t68);
+    let t79 = I::fma(t71, t76, -t69);
     let t80 = 0.0042 * t75;
-    let t81 = fma(-0.8, t79, t80);
+    let t81 = I::fma(-0.8, t79, t80);
     let t82 = c[5] * t65;
-    let t83 = fma(t53, t66, t82);
-    let t84 = fma(t52, t67, -t83);
+    let t83 = I::fma(t53, t66, t82);
+    let t84 = I::fma(t52, t67, -t83);
     let t85 = t53 * t65;
-    let t86 = fma(t54, t66, -t85);
-    let t87 = fma(t51, t67, t86);
+    let t86 = I::fma(t54, t66, -t85);
+    let t87 = I::fma(t51, t67, t86);
     let t88 = t52 * t65;
-    let t89 = fma(t51, t66, t88);
-    let t90 = fma(t55, t67, t89);
+    let t89 = I::fma(t51, t66, t88);
+    let t90 = I::fma(t55, t67, t89);
     let t91 = t53 * t79;
     let t92 = t51 * t77;
     let t93 = t52 * t78;
-    let t94 = fma(t51, t79, t93);
-    let t95 = fma(t55, t77, -t94);
+    let t94 = I::fma(t51, t79, t93);
+    let t95 = I::fma(t55, t77, -t94);
     let t96 = 0.3 * t84;
-    let t97 = fma(0.02, t90, t96);
-    let t98 = fma(0.02, t87, t95);
-    let t99 = fma(c[5], t78, -0.5846838405298652);
-    let t100 = fma(t52, t77, t91);
-    let t101 = fma(0.3, t87, t99);
+    let t97 = I::fma(0.02, t90, t96);
+    let t98 = I::fma(0.02, t87, t95);
+    let t99 = I::fma(c[5], t78, -0.5846838405298652);
+    let t100 = I::fma(t52, t77, t91);
+    let t101 = I::fma(0.3, t87, t99);
     let t102 = t100 + t101;
-    let t103 = fma(t53, t78, t49);
-    let t104 = fma(-t54, t79, t92);
+    let t103 = I::fma(t53, t78, t49);
+    let t104 = I::fma(-t54, t79, t92);
     let t105 = t103 + t104;
     let t106 = t105 - t97;
     let t107 = t44 * t84;
-    let t108 = fma(-0.09784339500725571, t87, t107);
-    let t109 = fma(t42, t90, t108);
+    let t108 = I::fma(-0.09784339500725571, t87, t107);
+    let t109 = I::fma(t42, t90, t108);
     let t110 = t46 * t102;
-    let t111 = fma(0.19866933079506122, t106, t110);
-    let t112 = fma(0.016767732871884072, t38, t23);
-    let t113 = fma(-t29, t40, t112);
-    let t114 = fma(0.00916025421694584, t38, -t25);
-    let t115 = fma(-t31, t40, t114);
-    let t116 = fma(-0.005910404133226791, t38, t27);
-    let t117 = fma(-t32, t40, t116);
+    let t111 = I::fma(0.19866933079506122, t106, t110);
+    let t112 = I::fma(0.016767732871884072, t38, t23);
+    let t113 = I::fma(-t29, t40, t112);
+    let t114 = I::fma(0.00916025421694584, t38, -t25);
+    let t115 = I::fma(-t31, t40, t114);
+    let t116 = I::fma(-0.005910404133226791, t38, t27);
+    let t117 = I::fma(-t32, t40, t116);
     let t118 = t115 + t117;
     let t119 = 0.7071067811865476 * t118;
     let t120 = c[2] * t19;
-    let t121 = fma(-t8, t20, t120);
-    let t122 = fma(t8, t21, t121);
+    let t121 = I::fma(-t8, t20, t120);
+    let t122 = I::fma(t8, t21, t121);
     let t123 = t8 * t19;
-    let t124 = fma(t9, t20, t123);
-    let t125 = fma(t7, t21, t124);
-    let t126 = fma(t7, t20, -t123);
-    let t127 = fma(t9, t21, t126);
+    let t124 = I::fma(t9, t20, t123);
+    let t125 = I::fma(t7, t21, t124);
+    let t126 = I::fma(t7, t20, -t123);
+    let t127 = I::fma(t9, t21, t126);
     let t128 = t8 * t117;
     let t129 = t9 * t115;
     let t130 = t9 * t117;
-    let t131 = fma(0.3, t125, 0.4911344260450869);
-    let t132 = fma(c[2], t113, t131);
-    let t133 = fma(-t8, t115, t128);
+    let t131 = I::fma(0.3, t125, 0.4911344260450869);
+    let t132 = I::fma(c[2], t113, t131);
+    let t133 = I::fma(-t8, t115, t128);
     let t134 = t132 + t133;
-    let t135 = fma(-0.3, t122, t5);
-    let t136 = fma(t8, t113, t135);
-    let t137 = fma(t7, t117, t129);
+    let t135 = I::fma(-0.3, t122, t5);
+    let t136 = I::fma(t8, t113, t135);
+    let t137 = I::fma(t7, t117, t129);
     let t138 = t136 + t137;
-    let t139 = fma(t7, t115, 0.035081030431791914);
-    let t140 = fma(-t8, t113, t130);
+    let t139 = I::fma(t7, t115, 0.035081030431791914);
+    let t140 = I::fma(-t8, t113, t130);
     let t141 = t139 + t140;
     let t142 = c[1] * t122;
-    let t143 = fma(s[1], t127, t142);
+    let t143 = I::fma(s[1], t127, t142);
     let t144 = t0 * t141;
     let t145 = 0.18 * t143;
-    let t146 = fma(t45, t98, -t145);
-    let t147 = fma(0.18, t109, t146);
-    let t148 = fma(0.19866933079506122, t138, -t111);
-    let t149 = fma(-t1, t134, t144);
+    let t146 = I::fma(t45, t98, -t145);
+    let t147 = I::fma(0.18, t109, t146);
+    let t148 = I::fma(0.19866933079506122, t138, -t111);
+    let t149 = I::fma(-t1, t134, t144);
     let t150 = t147 + t148;
     let t151 = t149 + t150;
     [t151, t138, t119, t39, t106, t81, t77]
@@ -1719,11 +1867,29 @@ pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`gravity_torques_sc`].
 #[inline]
 pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { gravity_torques_avx2_fma(q) };
+    }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     gravity_torques_sc(
         &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
         &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
     )
+}
+/// [`gravity_torques`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn gravity_torques_avx2_fma(q: &[f64; DOF]) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe {
+        gravity_torques_sc_avx2_fma(
+            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
+            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
+        )
+    }
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by CRBA, RNEA and a sparse LᵀDL solve.
 ///
@@ -1731,13 +1897,39 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
 /// 1377 ops: 344 add, 257 sub, 765 mul, 11 div, 0 neg, 0 sqrt, 0 sin_cos; 477 fused multiply-adds, 919 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+pub fn forward_dynamics_sc(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+    tau: &[f64; DOF],
+) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { forward_dynamics_sc_avx2_fma(s, c, qd, tau) };
+    }
+    forward_dynamics_sc_on::<Baseline>(s, c, qd, tau)
+}
+/// [`forward_dynamics_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn forward_dynamics_sc_avx2_fma(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+    tau: &[f64; DOF],
+) -> [f64; DOF] {
+    forward_dynamics_sc_on::<Avx2Fma>(s, c, qd, tau)
+}
+/// The body of [`forward_dynamics_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn forward_dynamics_sc(
+fn forward_dynamics_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
     qd: &[f64; DOF],
@@ -1752,11 +1944,11 @@ pub fn forward_dynamics_sc(
     let t6 = qd[0] * t4;
     let t7 = qd[0] * t3;
     let t8 = 9.61445312862258 * s[1];
-    let t9 = fma(t2, t5, t8);
-    let t10 = fma(-0.1764119840114235, t0, 1.9489461350995507);
+    let t9 = I::fma(t2, t5, t8);
+    let t10 = I::fma(-0.1764119840114235, t0, 1.9489461350995507);
     let t11 = 9.61445312862258 * c[1];
-    let t12 = fma(t1, t5, t11);
-    let t13 = fma(0.19866933079506122, qd[0], qd[1]);
+    let t12 = I::fma(t1, t5, t11);
+    let t13 = I::fma(0.19866933079506122, qd[0], qd[1]);
     let t14 = qd[1] * t6;
     let t15 = qd[1] * t7;
     let t16 = 0.25200000000000006 * t10;
@@ -1769,64 +1961,64 @@ pub fn forward_dynamics_sc(
     let t23 = t6 * t7;
     let t24 = t7 * t13;
     let t25 = t20 + t21;
-    let t26 = fma(t6, t6, t20);
+    let t26 = I::fma(t6, t6, t20);
     let t27 = t14 + t22;
     let t28 = t15 + t24;
     let t29 = 0.25200000000000006 * t23;
-    let t30 = fma(-0.018000000000000002, t25, t29);
+    let t30 = I::fma(-0.018000000000000002, t25, t29);
     let t31 = 0.25200000000000006 * t26;
-    let t32 = fma(-0.018000000000000002, t23, t31);
-    let t33 = fma(-t6, t6, t21);
+    let t32 = I::fma(-0.018000000000000002, t23, t31);
+    let t33 = I::fma(-t6, t6, t21);
     let t34 = 0.051460000000000006 * t22;
     let t35 = 1.0 - c[2];
     let t36 = 0.5000000000000001 * t35;
     let t37 = 0.7071067811865476 * s[2];
     let t38 = c[2] + t36;
-    let t39 = fma(0.3, t23, -t9);
-    let t40 = fma(-0.3, t28, t10);
-    let t41 = fma(0.3, t26, t12);
+    let t39 = I::fma(0.3, t23, -t9);
+    let t40 = I::fma(-0.3, t28, t10);
+    let t41 = I::fma(0.3, t26, t12);
     let t42 = t14 * t37;
-    let t43 = fma(-t15, c[2], t42);
+    let t43 = I::fma(-t15, c[2], t42);
     let t44 = t15 * t37;
-    let t45 = fma(-t14, t36, t44);
-    let t46 = fma(t14, t38, t44);
+    let t45 = I::fma(-t14, t36, t44);
+    let t46 = I::fma(t14, t38, t44);
     let t47 = t13 * t37;
-    let t48 = fma(-t6, c[2], t47);
-    let t49 = fma(-t7, t37, t48);
+    let t48 = I::fma(-t6, c[2], t47);
+    let t49 = I::fma(-t7, t37, t48);
     let t50 = t6 * t37;
-    let t51 = fma(t7, t36, t50);
-    let t52 = fma(t13, t38, t51);
+    let t51 = I::fma(t7, t36, t50);
+    let t52 = I::fma(t13, t38, t51);
     let t53 = t13 * t36;
     let t54 = t53 - t50;
-    let t55 = fma(t7, t38, t54);
+    let t55 = I::fma(t7, t38, t54);
     let t56 = c[2] * t39;
-    let t57 = fma(t37, t40, t56);
-    let t58 = fma(-t37, t41, t57);
+    let t57 = I::fma(t37, t40, t56);
+    let t58 = I::fma(-t37, t41, t57);
     let t59 = t37 * t39;
-    let t60 = fma(t38, t40, -t59);
-    let t61 = fma(t36, t41, t60);
-    let t62 = fma(t36, t40, t59);
-    let t63 = fma(t38, t41, t62);
+    let t60 = I::fma(t38, t40, -t59);
+    let t61 = I::fma(t36, t41, t60);
+    let t62 = I::fma(t36, t40, t59);
+    let t63 = I::fma(t38, t41, t62);
     let t64 = 0.7071067811865476 * qd[2];
     let t65 = t52 + t64;
     let t66 = t55 + t64;
     let t67 = t52 - t55;
-    let t68 = fma(t64, t67, t43);
-    let t69 = fma(-t49, t64, t45);
-    let t70 = fma(t49, t64, -t46);
+    let t68 = I::fma(t64, t67, t43);
+    let t69 = I::fma(-t49, t64, t45);
+    let t70 = I::fma(t49, t64, -t46);
     let t71 = 2.3 * t63;
     let t72 = 0.001438276615812609 * t63;
     let t73 = 0.45599999999999996 * t58;
-    let t74 = fma(0.0026327476856711184, t63, t73);
+    let t74 = I::fma(0.0026327476856711184, t63, t73);
     let t75 = 0.001438276615812609 * t58;
     let t76 = t49 * t49;
     let t77 = t65 * t65;
     let t78 = t49 * t65;
     let t79 = t49 * t66;
     let t80 = t65 * t66;
-    let t81 = fma(t49, t64, -t45);
-    let t82 = fma(t66, t66, t77);
-    let t83 = fma(t66, t66, t76);
+    let t81 = I::fma(t49, t64, -t45);
+    let t82 = I::fma(t66, t66, t77);
+    let t83 = I::fma(t66, t66, t76);
     let t84 = t76 + t77;
     let t85 = t78 - t70;
     let t86 = t70 + t78;
@@ -1835,70 +2027,70 @@ pub fn forward_dynamics_sc(
     let t89 = t80 - t68;
     let t90 = t68 + t80;
     let t91 = 0.001438276615812609 * t85;
-    let t92 = fma(-0.0026327476856711184, t82, t91);
-    let t93 = fma(-0.45599999999999996, t87, t92);
+    let t92 = I::fma(-0.0026327476856711184, t82, t91);
+    let t93 = I::fma(-0.45599999999999996, t87, t92);
     let t94 = 0.001438276615812609 * t83;
-    let t95 = fma(0.0026327476856711184, t86, -t94);
-    let t96 = fma(-0.45599999999999996, t89, t95);
+    let t95 = I::fma(0.0026327476856711184, t86, -t94);
+    let t96 = I::fma(-0.45599999999999996, t89, t95);
     let t97 = 0.45599999999999996 * t84;
-    let t98 = fma(2.3, t58, t93);
-    let t99 = fma(2.3, t61, t96);
+    let t98 = I::fma(2.3, t58, t93);
+    let t99 = I::fma(2.3, t61, t96);
     let t100 = 0.11248370112100659 * t68;
     let t101 = 0.0007227573213207296 * t86;
-    let t102 = fma(-t66, t66, t77);
+    let t102 = I::fma(-t66, t66, t77);
     let t103 = 0.11237803875603204 * t69;
-    let t104 = fma(t66, t66, -t76);
+    let t104 = I::fma(t66, t66, -t76);
     let t105 = 0.0007227573213207296 * t104;
     let t106 = 0.0013082601229613597 * t70;
     let t107 = t76 - t77;
     let t108 = 5.72628672892178e-6 * t107;
     let t109 = 0.2593433800522308 * s[3];
-    let t110 = fma(-0.479425538604203, c[3], t109);
+    let t110 = I::fma(-0.479425538604203, c[3], t109);
     let t111 = 0.2593433800522308 * c[3];
-    let t112 = fma(0.479425538604203, s[3], t111);
+    let t112 = I::fma(0.479425538604203, s[3], t111);
     let t113 = 0.8775825618903728 * c[3];
-    let t114 = fma(0.1416799342470381, s[3], t113);
+    let t114 = I::fma(0.1416799342470381, s[3], t113);
     let t115 = 0.1416799342470381 * c[3];
-    let t116 = fma(-0.8775825618903728, s[3], t115);
+    let t116 = I::fma(-0.8775825618903728, s[3], t115);
     let t117 = 0.955336489125606 * s[3];
     let t118 = 0.955336489125606 * c[3];
-    let t119 = fma(-0.3, t87, t58);
-    let t120 = fma(-0.3, t89, t61);
-    let t121 = fma(0.3, t84, t63);
+    let t119 = I::fma(-0.3, t87, t58);
+    let t120 = I::fma(-0.3, t89, t61);
+    let t121 = I::fma(0.3, t84, t63);
     let t122 = 0.45801271084729195 * t69;
-    let t123 = fma(0.8383866435942036, t68, t122);
-    let t124 = fma(-0.29552020666133955, t70, t123);
+    let t123 = I::fma(0.8383866435942036, t68, t122);
+    let t124 = I::fma(-0.29552020666133955, t70, t123);
     let t125 = t69 * t114;
     let t126 = t69 * t116;
     let t127 = 0.45801271084729195 * t65;
     let t128 = t49 * t110;
-    let t129 = fma(t65, t114, t128);
-    let t130 = fma(t66, t117, t129);
+    let t129 = I::fma(t65, t114, t128);
+    let t130 = I::fma(t66, t117, t129);
     let t131 = t49 * t112;
-    let t132 = fma(t65, t116, t131);
-    let t133 = fma(t66, t118, t132);
+    let t132 = I::fma(t65, t116, t131);
+    let t133 = I::fma(t66, t118, t132);
     let t134 = 0.29552020666133955 * t121;
-    let t135 = fma(0.8383866435942036, t119, -t134);
-    let t136 = fma(0.45801271084729195, t120, t135);
+    let t135 = I::fma(0.8383866435942036, t119, -t134);
+    let t136 = I::fma(0.45801271084729195, t120, t135);
     let t137 = t117 * t121;
-    let t138 = fma(t110, t119, t137);
-    let t139 = fma(t114, t120, t138);
-    let t140 = fma(0.8383866435942036, t49, qd[3]);
-    let t141 = fma(-0.29552020666133955, t66, t127);
+    let t138 = I::fma(t110, t119, t137);
+    let t139 = I::fma(t114, t120, t138);
+    let t140 = I::fma(0.8383866435942036, t49, qd[3]);
+    let t141 = I::fma(-0.29552020666133955, t66, t127);
     let t142 = t140 + t141;
-    let t143 = fma(t70, t117, t125);
-    let t144 = fma(t68, t110, t143);
-    let t145 = fma(qd[3], t133, t144);
+    let t143 = I::fma(t70, t117, t125);
+    let t144 = I::fma(t68, t110, t143);
+    let t145 = I::fma(qd[3], t133, t144);
     let t146 = t130 * t130;
     let t147 = t133 * t133;
     let t148 = t130 * t142;
     let t149 = t133 * t142;
     let t150 = t130 * t133;
-    let t151 = fma(0.29552020666133955, t70, -t123);
-    let t152 = fma(t142, t142, t146);
-    let t153 = fma(t70, t118, t126);
-    let t154 = fma(t68, t112, t153);
-    let t155 = fma(-qd[3], t130, t148);
+    let t151 = I::fma(0.29552020666133955, t70, -t123);
+    let t152 = I::fma(t142, t142, t146);
+    let t153 = I::fma(t70, t118, t126);
+    let t154 = I::fma(t68, t112, t153);
+    let t155 = I::fma(-qd[3], t130, t148);
     let t156 = t154 + t155;
     let t157 = t145 + t149;
     let t158 = t150 + t151;
@@ -1906,33 +2098,33 @@ pub fn forward_dynamics_sc(
     let t160 = 0.02 * t152;
     let t161 = 0.001 * t124;
     let t162 = 0.0009 * t145;
-    let t163 = fma(-t142, t142, t147);
-    let t164 = fma(1e-5, t163, t162);
-    let t165 = fma(0.001, t149, t164);
+    let t163 = I::fma(-t142, t142, t147);
+    let t164 = I::fma(1e-5, t163, t162);
+    let t165 = I::fma(0.001, t149, t164);
     let t166 = 1e-5 * t158;
-    let t167 = fma(0.00010000000000000005, t148, t166);
-    let t168 = fma(-0.0009, t150, t161);
-    let t169 = fma(1e-5, t156, t168);
-    let t170 = fma(0.02, t139, t169);
-    let t171 = fma(-0.02, t136, t165);
+    let t167 = I::fma(0.00010000000000000005, t148, t166);
+    let t168 = I::fma(-0.0009, t150, t161);
+    let t169 = I::fma(1e-5, t156, t168);
+    let t170 = I::fma(0.02, t139, t169);
+    let t171 = I::fma(-0.02, t136, t165);
     let t172 = 0.9950041652780258 * s[4];
-    let t173 = fma(-0.019833838076209875, c[4], t172);
+    let t173 = I::fma(-0.019833838076209875, c[4], t172);
     let t174 = 0.9950041652780258 * c[4];
-    let t175 = fma(0.019833838076209875, s[4], t174);
+    let t175 = I::fma(0.019833838076209875, s[4], t174);
     let t176 = 0.19767681165408388 * c[4];
-    let t177 = fma(0.09983341664682815, s[4], t176);
+    let t177 = I::fma(0.09983341664682815, s[4], t176);
     let t178 = 0.09983341664682815 * c[4];
-    let t179 = fma(-0.19767681165408388, s[4], t178);
+    let t179 = I::fma(-0.19767681165408388, s[4], t178);
     let t180 = 0.9800665778412416 * c[4];
     let t181 = 0.9800665778412416 * s[4];
     let t182 = qd[0] * t181;
     let t183 = qd[0] * t180;
     let t184 = 9.61445312862258 * s[4];
-    let t185 = fma(t5, t179, -t184);
-    let t186 = fma(0.17553065889632685, t0, -1.9489461350995507);
+    let t185 = I::fma(t5, t179, -t184);
+    let t186 = I::fma(0.17553065889632685, t0, -1.9489461350995507);
     let t187 = 9.61445312862258 * c[4];
-    let t188 = fma(t5, t177, t187);
-    let t189 = fma(-0.19866933079506122, qd[0], qd[4]);
+    let t188 = I::fma(t5, t177, t187);
+    let t189 = I::fma(-0.19866933079506122, qd[0], qd[4]);
     let t190 = qd[4] * t182;
     let t191 = qd[4] * t183;
     let t192 = 0.3 * t186;
@@ -1941,65 +2133,65 @@ pub fn forward_dynamics_sc(
     let t195 = t182 * t189;
     let t196 = t182 * t183;
     let t197 = t183 * t189;
-    let t198 = fma(t183, t183, t194);
-    let t199 = fma(t182, t182, t194);
+    let t198 = I::fma(t183, t183, t194);
+    let t199 = I::fma(t182, t182, t194);
     let t200 = t190 - t195;
     let t201 = t190 + t195;
     let t202 = t191 + t197;
     let t203 = t197 - t191;
     let t204 = 0.3 * t202;
-    let t205 = fma(-t183, t183, t194);
+    let t205 = I::fma(-t183, t183, t194);
     let t206 = 0.0026 * t205;
     let t207 = 0.06049999999999999 * t196;
     let t208 = 0.06049999999999999 * t190;
-    let t209 = fma(0.0026, t196, t208);
-    let t210 = fma(t182, t182, -t194);
+    let t209 = I::fma(0.0026, t196, t208);
+    let t210 = I::fma(t182, t182, -t194);
     let t211 = 0.0003 * t210;
     let t212 = 1.0 - c[5];
     let t213 = 0.48 * t212;
     let t214 = 0.8 * s[5];
     let t215 = 0.6 * s[5];
-    let t216 = fma(0.6400000000000001, t212, c[5]);
-    let t217 = fma(0.36, t212, c[5]);
-    let t218 = fma(0.02, t201, t204);
-    let t219 = fma(0.3, t196, t185);
-    let t220 = fma(-0.02, t198, t219);
+    let t216 = I::fma(0.6400000000000001, t212, c[5]);
+    let t217 = I::fma(0.36, t212, c[5]);
+    let t218 = I::fma(0.02, t201, t204);
+    let t219 = I::fma(0.3, t196, t185);
+    let t220 = I::fma(-0.02, t198, t219);
     let t221 = t186 - t218;
-    let t222 = fma(-0.02, t196, t188);
-    let t223 = fma(0.3, t199, t222);
+    let t222 = I::fma(-0.02, t196, t188);
+    let t223 = I::fma(0.3, t199, t222);
     let t224 = t190 * t214;
-    let t225 = fma(-t191, c[5], t224);
+    let t225 = I::fma(-t191, c[5], t224);
     let t226 = t191 * t215;
-    let t227 = fma(-t190, t213, t226);
+    let t227 = I::fma(-t190, t213, t226);
     let t228 = t191 * t214;
-    let t229 = fma(t190, t217, t228);
+    let t229 = I::fma(t190, t217, t228);
     let t230 = t189 * t215;
-    let t231 = fma(-t182, c[5], t230);
-    let t232 = fma(-t183, t214, t231);
+    let t231 = I::fma(-t182, c[5], t230);
+    let t232 = I::fma(-t183, t214, t231);
     let t233 = t182 * t215;
-    let t234 = fma(t183, t213, t233);
-    let t235 = fma(t189, t216, t234);
+    let t234 = I::fma(t183, t213, t233);
+    let t235 = I::fma(t189, t216, t234);
     let t236 = t189 * t213;
-    let t237 = fma(-t182, t214, t236);
-    let t238 = fma(t183, t217, t237);
+    let t237 = I::fma(-t182, t214, t236);
+    let t238 = I::fma(t183, t217, t237);
     let t239 = c[5] * t220;
-    let t240 = fma(-t214, t223, t239);
-    let t241 = fma(t215, t221, t240);
+    let t240 = I::fma(-t214, t223, t239);
+    let t241 = I::fma(t215, t221, t240);
     let t242 = t213 * t223;
-    let t243 = fma(-t215, t220, t242);
-    let t244 = fma(t216, t221, t243);
+    let t243 = I::fma(-t215, t220, t242);
+    let t244 = I::fma(t216, t221, t243);
     let t245 = t214 * t220;
-    let t246 = fma(t217, t223, t245);
-    let t247 = fma(t213, t221, t246);
+    let t246 = I::fma(t217, t223, t245);
+    let t247 = I::fma(t213, t221, t246);
     let t248 = 0.8 * qd[5];
     let t249 = 0.6 * qd[5];
     let t250 = t235 + t248;
     let t251 = t238 + t249;
     let t252 = t235 * t249;
-    let t253 = fma(-t238, t248, t252);
+    let t253 = I::fma(-t238, t248, t252);
     let t254 = t225 + t253;
-    let t255 = fma(-t232, t249, t227);
-    let t256 = fma(t232, t248, -t229);
+    let t255 = I::fma(-t232, t249, t227);
+    let t256 = I::fma(t232, t248, -t229);
     let t257 = 1.7 * t241;
     let t258 = 1.7 * t244;
     let t259 = 0.347 * t244;
@@ -2007,40 +2199,40 @@ pub fn forward_dynamics_sc(
     let t261 = t232 * t250;
     let t262 = t232 * t251;
     let t263 = t250 * t251;
-    let t264 = fma(t250, t250, t260);
+    let t264 = I::fma(t250, t250, t260);
     let t265 = t256 + t261;
     let t266 = t255 + t262;
     let t267 = t263 - t254;
     let t268 = 0.347 * t264;
-    let t269 = fma(-0.347, t266, t257);
-    let t270 = fma(-0.347, t267, t258);
-    let t271 = fma(1.7, t247, t268);
+    let t269 = I::fma(-0.347, t266, t257);
+    let t270 = I::fma(-0.347, t267, t258);
+    let t271 = I::fma(1.7, t247, t268);
     let t272 = 0.08939000000000001 * t263;
     let t273 = 0.09019 * t255;
-    let t274 = fma(t251, t251, -t260);
+    let t274 = I::fma(t251, t251, -t260);
     let t275 = 0.0008 * t256;
-    let t276 = fma(-0.0002, t267, t275);
-    let t277 = fma(0.00010000000000000286, t261, t276);
+    let t276 = I::fma(-0.0002, t267, t275);
+    let t277 = I::fma(0.00010000000000000286, t261, t276);
     let t278 = 0.9210609940028851 * c[6];
-    let t279 = fma(0.3894183423086505, s[6], t278);
+    let t279 = I::fma(0.3894183423086505, s[6], t278);
     let t280 = 0.3894183423086505 * c[6];
     let t281 = 0.9210609940028851 * s[6];
     let t282 = t280 - t281;
     let t283 = t281 - t280;
-    let t284 = fma(-0.28, t266, t241);
-    let t285 = fma(-0.28, t267, t244);
-    let t286 = fma(0.28, t264, t247);
+    let t284 = I::fma(-0.28, t266, t241);
+    let t285 = I::fma(-0.28, t267, t244);
+    let t286 = I::fma(0.28, t264, t247);
     let t287 = t255 * t283;
-    let t288 = fma(t254, t279, t287);
+    let t288 = I::fma(t254, t279, t287);
     let t289 = t232 * t279;
-    let t290 = fma(t250, t283, t289);
+    let t290 = I::fma(t250, t283, t289);
     let t291 = t232 * t282;
-    let t292 = fma(t250, t279, t291);
+    let t292 = I::fma(t250, t279, t291);
     let t293 = t282 * t284;
-    let t294 = fma(t279, t285, t293);
+    let t294 = I::fma(t279, t285, t293);
     let t295 = qd[6] + t251;
     let t296 = qd[6] * t290;
-    let t297 = fma(qd[6], t292, t288);
+    let t297 = I::fma(qd[6], t292, t288);
     let t298 = t290 * t290;
     let t299 = t292 * t292;
     let t300 = t295 * t295;
@@ -2049,8 +2241,8 @@ pub fn forward_dynamics_sc(
     let t303 = t292 * t295;
     let t304 = t299 + t300;
     let t305 = t256 + t301;
-    let t306 = fma(-t255, t279, t302);
-    let t307 = fma(-t254, t282, t296);
+    let t306 = I::fma(-t255, t279, t302);
+    let t307 = I::fma(-t254, t282, t296);
     let t308 = t306 + t307;
     let t309 = t303 - t297;
     let t310 = t297 + t303;
@@ -2058,590 +2250,590 @@ pub fn forward_dynamics_sc(
     let t312 = 0.006999999999999999 * t305;
     let t313 = 2e-5 * t308;
     let t314 = 0.00022 * t303;
-    let t315 = fma(0.00020999999999999998, t305, t314);
-    let t316 = fma(-0.0001200000000000001, t297, t313);
+    let t315 = I::fma(0.00020999999999999998, t305, t314);
+    let t316 = I::fma(-0.0001200000000000001, t297, t313);
     let t317 = t315 + t316;
     let t318 = t300 - t298;
     let t319 = 0.00034000000000000013 * t302;
     let t320 = 0.00022 * t256;
     let t321 = t298 - t299;
-    let t322 = fma(0.00020999999999999998, t318, -t319);
-    let t323 = fma(-0.006999999999999999, t286, t322);
-    let t324 = fma(-2e-5, t310, t323);
-    let t325 = fma(0.0001200000000000001, t301, t320);
-    let t326 = fma(-2e-5, t321, t325);
-    let t327 = fma(-0.00020999999999999998, t309, t326);
-    let t328 = fma(0.006999999999999999, t294, t327);
+    let t322 = I::fma(0.00020999999999999998, t318, -t319);
+    let t323 = I::fma(-0.006999999999999999, t286, t322);
+    let t324 = I::fma(-2e-5, t310, t323);
+    let t325 = I::fma(0.0001200000000000001, t301, t320);
+    let t326 = I::fma(-2e-5, t321, t325);
+    let t327 = I::fma(-0.00020999999999999998, t309, t326);
+    let t328 = I::fma(0.006999999999999999, t294, t327);
     let t329 = t282 * t312;
-    let t330 = fma(-t279, t311, t329);
+    let t330 = I::fma(-t279, t311, t329);
     let t331 = t279 * t312;
-    let t332 = fma(-t283, t311, t331);
+    let t332 = I::fma(-t283, t311, t331);
     let t333 = t282 * t324;
-    let t334 = fma(t279, t317, t333);
+    let t334 = I::fma(t279, t317, t333);
     let t335 = t279 * t324;
-    let t336 = fma(t283, t317, t335);
-    let t337 = fma(0.09009, t254, -t272);
-    let t338 = fma(0.0002, t265, t259);
+    let t336 = I::fma(t283, t317, t335);
+    let t337 = I::fma(0.09009, t254, -t272);
+    let t338 = I::fma(0.0002, t265, t259);
     let t339 = t337 + t338;
-    let t340 = fma(0.28, t332, t339);
+    let t340 = I::fma(0.28, t332, t339);
     let t341 = t334 + t340;
-    let t342 = fma(0.08929000000000001, t262, t273);
-    let t343 = fma(0.0002, t274, t342);
-    let t344 = fma(-0.347, t241, t343);
-    let t345 = fma(-0.28, t330, t344);
+    let t342 = I::fma(0.08929000000000001, t262, t273);
+    let t343 = I::fma(0.0002, t274, t342);
+    let t344 = I::fma(-0.347, t241, t343);
+    let t345 = I::fma(-0.28, t330, t344);
     let t346 = t336 + t345;
     let t347 = t277 + t328;
     let t348 = t269 + t330;
     let t349 = t270 + t332;
-    let t350 = fma(0.006999999999999999, t308, t271);
+    let t350 = I::fma(0.006999999999999999, t308, t271);
     let t351 = c[5] * t348;
-    let t352 = fma(-t215, t349, t351);
-    let t353 = fma(t214, t350, t352);
+    let t352 = I::fma(-t215, t349, t351);
+    let t353 = I::fma(t214, t350, t352);
     let t354 = t215 * t348;
-    let t355 = fma(t216, t349, t354);
-    let t356 = fma(t213, t350, t355);
+    let t355 = I::fma(t216, t349, t354);
+    let t356 = I::fma(t213, t350, t355);
     let t357 = t213 * t349;
-    let t358 = fma(-t214, t348, t357);
-    let t359 = fma(t217, t350, t358);
+    let t358 = I::fma(-t214, t348, t357);
+    let t359 = I::fma(t217, t350, t358);
     let t360 = c[5] * t341;
-    let t361 = fma(-t215, t346, t360);
+    let t361 = I::fma(-t215, t346, t360);
     let t362 = t215 * t341;
-    let t363 = fma(t216, t346, t362);
+    let t363 = I::fma(t216, t346, t362);
     let t364 = t213 * t346;
-    let t365 = fma(-t214, t341, t364);
+    let t365 = I::fma(-t214, t341, t364);
     let t366 = 0.3 * t353;
-    let t367 = fma(0.02, t359, t366);
-    let t368 = fma(0.0003, t196, t192);
-    let t369 = fma(0.1225, t197, t206);
+    let t367 = I::fma(0.02, t359, t366);
+    let t368 = I::fma(0.0003, t196, t192);
+    let t369 = I::fma(0.1225, t197, t206);
     let t370 = t368 - t369;
-    let t371 = fma(t214, t347, t370);
-    let t372 = fma(0.3, t356, t371);
+    let t371 = I::fma(t214, t347, t370);
+    let t372 = I::fma(0.3, t356, t371);
     let t373 = t361 + t372;
-    let t374 = fma(0.0003, t203, -t207);
-    let t375 = fma(0.0026, t200, -t193);
+    let t374 = I::fma(0.0003, t203, -t207);
+    let t375 = I::fma(0.0026, t200, -t193);
     let t376 = t374 + t375;
-    let t377 = fma(t213, t347, t376);
+    let t377 = I::fma(t213, t347, t376);
     let t378 = t363 + t377;
     let t379 = t378 - t367;
-    let t380 = fma(-0.062, t195, t211);
+    let t380 = I::fma(-0.062, t195, t211);
     let t381 = t209 + t380;
-    let t382 = fma(t217, t347, t381);
-    let t383 = fma(0.02, t356, t382);
+    let t382 = I::fma(t217, t347, t381);
+    let t383 = I::fma(0.02, t356, t382);
     let t384 = t365 + t383;
-    let t385 = fma(0.3, t196, t353);
+    let t385 = I::fma(0.3, t196, t353);
     let t386 = t356 - t204;
-    let t387 = fma(0.3, t199, t359);
+    let t387 = I::fma(0.3, t199, t359);
     let t388 = t175 * t385;
-    let t389 = fma(-0.09784339500725571, t386, t388);
-    let t390 = fma(t173, t387, t389);
+    let t389 = I::fma(-0.09784339500725571, t386, t388);
+    let t390 = I::fma(t173, t387, t389);
     let t391 = 0.19866933079506122 * t379;
     let t392 = t112 * t160;
-    let t393 = fma(-0.016767732871884072, t157, t392);
-    let t394 = fma(-t110, t159, t393);
+    let t393 = I::fma(-0.016767732871884072, t157, t392);
+    let t394 = I::fma(-t110, t159, t393);
     let t395 = t116 * t160;
-    let t396 = fma(-0.00916025421694584, t157, t395);
-    let t397 = fma(-t114, t159, t396);
+    let t396 = I::fma(-0.00916025421694584, t157, t395);
+    let t397 = I::fma(-t114, t159, t396);
     let t398 = t118 * t160;
     let t399 = 0.8383866435942036 * t170;
-    let t400 = fma(t110, t171, t399);
+    let t400 = I::fma(t110, t171, t399);
     let t401 = 0.45801271084729195 * t170;
-    let t402 = fma(t114, t171, t401);
+    let t402 = I::fma(t114, t171, t401);
     let t403 = t117 * t171;
-    let t404 = fma(-0.29552020666133955, t170, t403);
-    let t405 = fma(-0.11106977863307069, t80, t100);
-    let t406 = fma(-5.72628672892178e-6, t88, t101);
-    let t407 = fma(0.00021714363512649699, t102, t72);
-    let t408 = fma(0.45599999999999996, t61, t405);
+    let t404 = I::fma(-0.29552020666133955, t170, t403);
+    let t405 = I::fma(-0.11106977863307069, t80, t100);
+    let t406 = I::fma(-5.72628672892178e-6, t88, t101);
+    let t407 = I::fma(0.00021714363512649699, t102, t72);
+    let t408 = I::fma(0.45599999999999996, t61, t405);
     let t409 = t406 + t407;
     let t410 = t408 + t409;
-    let t411 = fma(-t112, t167, t410);
-    let t412 = fma(0.3, t397, t411);
+    let t411 = I::fma(-t112, t167, t410);
+    let t412 = I::fma(0.3, t397, t411);
     let t413 = t400 + t412;
-    let t414 = fma(0.11117544099804523, t79, t103);
-    let t415 = fma(-0.00021714363512649699, t85, t105);
-    let t416 = fma(5.72628672892178e-6, t90, t414);
+    let t414 = I::fma(0.11117544099804523, t79, t103);
+    let t415 = I::fma(-0.00021714363512649699, t85, t105);
+    let t416 = I::fma(5.72628672892178e-6, t90, t414);
     let t417 = t415 + t416;
     let t418 = t417 - t74;
-    let t419 = fma(-t116, t167, t418);
-    let t420 = fma(-0.3, t394, t419);
+    let t419 = I::fma(-t116, t167, t418);
+    let t420 = I::fma(-0.3, t394, t419);
     let t421 = t402 + t420;
-    let t422 = fma(-0.00010566236497454307, t78, t106);
-    let t423 = fma(0.00021714363512649699, t87, t108);
-    let t424 = fma(0.0026327476856711184, t61, t422);
-    let t425 = fma(0.0007227573213207296, t89, t75);
+    let t422 = I::fma(-0.00010566236497454307, t78, t106);
+    let t423 = I::fma(0.00021714363512649699, t87, t108);
+    let t424 = I::fma(0.0026327476856711184, t61, t422);
+    let t425 = I::fma(0.0007227573213207296, t89, t75);
     let t426 = t423 + t424;
     let t427 = t426 - t425;
-    let t428 = fma(-t118, t167, t427);
+    let t428 = I::fma(-t118, t167, t427);
     let t429 = t404 + t428;
     let t430 = t98 + t394;
     let t431 = t99 + t397;
-    let t432 = fma(0.0026327476856711184, t88, t97);
-    let t433 = fma(0.001438276615812609, t90, t71);
+    let t432 = I::fma(0.0026327476856711184, t88, t97);
+    let t433 = I::fma(0.001438276615812609, t90, t71);
     let t434 = t432 + t433;
-    let t435 = fma(0.005910404133226791, t157, t434);
-    let t436 = fma(-t117, t159, t398);
+    let t435 = I::fma(0.005910404133226791, t157, t434);
+    let t436 = I::fma(-t117, t159, t398);
     let t437 = t435 + t436;
     let t438 = t421 + t429;
     let t439 = c[2] * t430;
-    let t440 = fma(-t37, t431, t439);
-    let t441 = fma(t37, t437, t440);
+    let t440 = I::fma(-t37, t431, t439);
+    let t441 = I::fma(t37, t437, t440);
     let t442 = t37 * t430;
-    let t443 = fma(t38, t431, t442);
-    let t444 = fma(t36, t437, t443);
+    let t443 = I::fma(t38, t431, t442);
+    let t444 = I::fma(t36, t437, t443);
     let t445 = t38 * t437;
     let t446 = t37 * t429;
     let t447 = t38 * t421;
     let t448 = t38 * t429;
-    let t449 = fma(-0.09956000000000001, t24, t16);
-    let t450 = fma(-0.0030200000000000005, t27, t449);
-    let t451 = fma(c[2], t413, t450);
-    let t452 = fma(-t37, t421, t446);
-    let t453 = fma(0.3, t444, t451);
+    let t449 = I::fma(-0.09956000000000001, t24, t16);
+    let t450 = I::fma(-0.0030200000000000005, t27, t449);
+    let t451 = I::fma(c[2], t413, t450);
+    let t452 = I::fma(-t37, t421, t446);
+    let t453 = I::fma(0.3, t444, t451);
     let t454 = t452 + t453;
-    let t455 = fma(-0.048100000000000004, t23, t17);
-    let t456 = fma(0.0030200000000000005, t33, -t18);
+    let t455 = I::fma(-0.048100000000000004, t23, t17);
+    let t456 = I::fma(0.0030200000000000005, t33, -t18);
     let t457 = t455 + t456;
-    let t458 = fma(t37, t413, t457);
-    let t459 = fma(t36, t429, t447);
-    let t460 = fma(-0.3, t441, t458);
+    let t458 = I::fma(t37, t413, t457);
+    let t459 = I::fma(t36, t429, t447);
+    let t460 = I::fma(-0.3, t441, t458);
     let t461 = t459 + t460;
-    let t462 = fma(0.048100000000000004, t14, t19);
-    let t463 = fma(0.0030200000000000005, t28, t34);
+    let t462 = I::fma(0.048100000000000004, t14, t19);
+    let t463 = I::fma(0.0030200000000000005, t28, t34);
     let t464 = t462 - t463;
-    let t465 = fma(t36, t421, t464);
-    let t466 = fma(-t37, t413, t448);
+    let t465 = I::fma(t36, t421, t464);
+    let t466 = I::fma(-t37, t413, t448);
     let t467 = t465 + t466;
     let t468 = t30 + t441;
-    let t469 = fma(t36, t431, t32);
+    let t469 = I::fma(t36, t431, t32);
     let t470 = t445 - t442;
     let t471 = t469 + t470;
     let t472 = s[1] * t471;
-    let t473 = fma(c[1], t468, t472);
+    let t473 = I::fma(c[1], t468, t472);
     let t474 = t4 * t454;
     let t475 = tau[3] - t170;
     let t476 = tau[6] - t328;
     let t477 = 0.006999999999999999 * t279;
     let t478 = 0.006999999999999999 * t283;
     let t479 = 0.0001200000000000001 * t279;
-    let t480 = fma(2e-5, t282, t479);
+    let t480 = I::fma(2e-5, t282, t479);
     let t481 = 2e-5 * t279;
-    let t482 = fma(0.0001200000000000001, t283, t481);
+    let t482 = I::fma(0.0001200000000000001, t283, t481);
     let t483 = 2e-5 * t283;
     let t484 = 0.00020999999999999998 * t283;
     let t485 = t279 * t481;
-    let t486 = fma(t283, t480, t485);
+    let t486 = I::fma(t283, t480, t485);
     let t487 = 0.00217 * t279;
     let t488 = 0.00217 * t283;
-    let t489 = fma(-t282, t481, 0.09009);
-    let t490 = fma(-t279, t480, t489);
-    let t491 = fma(-t279, t483, 0.09019);
-    let t492 = fma(-t283, t482, t491);
+    let t489 = I::fma(-t282, t481, 0.09009);
+    let t490 = I::fma(-t279, t480, t489);
+    let t491 = I::fma(-t279, t483, 0.09019);
+    let t492 = I::fma(-t283, t482, t491);
     let t493 = 0.0002 + t487;
     let t494 = c[5] * t477;
-    let t495 = fma(-t215, t478, t494);
-    let t496 = fma(-0.2776, s[5], t495);
+    let t495 = I::fma(-t215, t478, t494);
+    let t496 = I::fma(-0.2776, s[5], t495);
     let t497 = t215 * t477;
-    let t498 = fma(t216, t478, t497);
-    let t499 = fma(-0.16655999999999999, t212, t498);
+    let t498 = I::fma(t216, t478, t497);
+    let t499 = I::fma(-0.16655999999999999, t212, t498);
     let t500 = t213 * t478;
-    let t501 = fma(-t214, t477, t500);
-    let t502 = fma(-0.347, t217, t501);
+    let t501 = I::fma(-t214, t477, t500);
+    let t502 = I::fma(-0.347, t217, t501);
     let t503 = c[5] * t490;
-    let t504 = fma(t215, t486, t503);
-    let t505 = fma(t214, t493, t504);
+    let t504 = I::fma(t215, t486, t503);
+    let t505 = I::fma(t214, t493, t504);
     let t506 = c[5] * t486;
-    let t507 = fma(t215, t492, t506);
-    let t508 = fma(t214, t488, -t507);
+    let t507 = I::fma(t215, t492, t506);
+    let t508 = I::fma(t214, t488, -t507);
     let t509 = 0.0008160000000000001 * s[5];
-    let t510 = fma(-t215, t488, t509);
-    let t511 = fma(c[5], t493, t510);
+    let t510 = I::fma(-t215, t488, t509);
+    let t511 = I::fma(c[5], t493, t510);
     let t512 = t215 * t490;
-    let t513 = fma(-t216, t486, t512);
-    let t514 = fma(t213, t493, t513);
+    let t513 = I::fma(-t216, t486, t512);
+    let t514 = I::fma(t213, t493, t513);
     let t515 = t216 * t492;
-    let t516 = fma(-t215, t486, t515);
-    let t517 = fma(t213, t488, t516);
+    let t516 = I::fma(-t215, t486, t515);
+    let t517 = I::fma(t213, t488, t516);
     let t518 = 0.0004896 * t212;
-    let t519 = fma(t216, t488, t518);
-    let t520 = fma(t215, t493, t519);
+    let t519 = I::fma(t216, t488, t518);
+    let t520 = I::fma(t215, t493, t519);
     let t521 = t215 * t514;
-    let t522 = fma(t216, t517, t521);
+    let t522 = I::fma(t216, t517, t521);
     let t523 = 0.02 * t496;
-    let t524 = fma(-0.3, t502, t523);
+    let t524 = I::fma(-0.3, t502, t523);
     let t525 = t496 + 0.034;
     let t526 = t502 - 0.81;
-    let t527 = fma(t213, t520, 0.21567999999999998);
-    let t528 = fma(2.0, t524, t527);
+    let t527 = I::fma(t213, t520, 0.21567999999999998);
+    let t528 = I::fma(2.0, t524, t527);
     let t529 = t522 + t528;
-    let t530 = fma(t213, t511, 0.0003);
-    let t531 = fma(-0.02, t499, t530);
-    let t532 = fma(t215, t505, t531);
-    let t533 = fma(t216, t508, t532);
-    let t534 = fma(t217, t520, -0.0026);
-    let t535 = fma(0.3, t499, t534);
-    let t536 = fma(t213, t517, t535);
-    let t537 = fma(-t214, t514, t536);
+    let t530 = I::fma(t213, t511, 0.0003);
+    let t531 = I::fma(-0.02, t499, t530);
+    let t532 = I::fma(t215, t505, t531);
+    let t533 = I::fma(t216, t508, t532);
+    let t534 = I::fma(t217, t520, -0.0026);
+    let t535 = I::fma(0.3, t499, t534);
+    let t536 = I::fma(t213, t517, t535);
+    let t537 = I::fma(-t214, t514, t536);
     let t538 = t181 * t533;
-    let t539 = fma(0.19866933079506122, t529, t538);
-    let t540 = fma(1e-5, t112, 0.0008383866435942035);
+    let t539 = I::fma(0.19866933079506122, t529, t538);
+    let t540 = I::fma(1e-5, t112, 0.0008383866435942035);
     let t541 = 0.0009 * t110;
-    let t542 = fma(1e-5, t116, 0.00045801271084729194);
+    let t542 = I::fma(1e-5, t116, 0.00045801271084729194);
     let t543 = 0.0009 * t114;
-    let t544 = fma(9.55336489125606e-6, c[3], -0.00029552020666133953);
+    let t544 = I::fma(9.55336489125606e-6, c[3], -0.00029552020666133953);
     let t545 = 0.0008598028402130454 * s[3];
-    let t546 = fma(-0.02, t112, 0.0026327476856711184);
-    let t547 = fma(-0.02, t116, 0.001438276615812609);
-    let t548 = fma(0.01910672978251212, c[3], 0.45599999999999996);
-    let t549 = fma(0.011464037869507272, c[3], 0.11248370112100659);
-    let t550 = fma(8.383866435942037e-6, t112, t549);
-    let t551 = fma(t110, t541, t550);
-    let t552 = fma(0.8383866435942036, t540, t551);
-    let t553 = fma(0.011464037869507272, c[3], 0.11237803875603204);
-    let t554 = fma(4.58012710847292e-6, t116, t553);
-    let t555 = fma(t114, t543, t554);
-    let t556 = fma(0.45801271084729195, t542, t555);
-    let t557 = fma(-2.8232123669751764e-6, c[3], 0.0013082601229613597);
-    let t558 = fma(t117, t545, t557);
-    let t559 = fma(-0.29552020666133955, t544, t558);
-    let t560 = fma(8.383866435942037e-6, t116, 5.72628672892178e-6);
-    let t561 = fma(t114, t541, t560);
-    let t562 = fma(0.45801271084729195, t540, t561);
-    let t563 = fma(8.009413526210872e-6, c[3], 0.0007227573213207296);
-    let t564 = fma(-0.006, t112, t563);
-    let t565 = fma(t117, t541, t564);
-    let t566 = fma(-0.29552020666133955, t540, t565);
-    let t567 = fma(4.375562551557533e-6, c[3], 0.00021714363512649699);
-    let t568 = fma(-0.006, t116, t567);
-    let t569 = fma(t117, t543, t568);
-    let t570 = fma(-0.29552020666133955, t542, t569);
+    let t546 = I::fma(-0.02, t112, 0.0026327476856711184);
+    let t547 = I::fma(-0.02, t116, 0.001438276615812609);
+    let t548 = I::fma(0.01910672978251212, c[3], 0.45599999999999996);
+    let t549 = I::fma(0.011464037869507272, c[3], 0.11248370112100659);
+    let t550 = I::fma(8.383866435942037e-6, t112, t549);
+    let t551 = I::fma(t110, t541, t550);
+    let t552 = I::fma(0.8383866435942036, t540, t551);
+    let t553 = I::fma(0.011464037869507272, c[3], 0.11237803875603204);
+    let t554 = I::fma(4.58012710847292e-6, t116, t553);
+    let t555 = I::fma(t114, t543, t554);
+    let t556 = I::fma(0.45801271084729195, t542, t555);
+    let t557 = I::fma(-2.8232123669751764e-6, c[3], 0.0013082601229613597);
+    let t558 = I::fma(t117, t545, t557);
+    let t559 = I::fma(-0.29552020666133955, t544, t558);
+    let t560 = I::fma(8.383866435942037e-6, t116, 5.72628672892178e-6);
+    let t561 = I::fma(t114, t541, t560);
+    let t562 = I::fma(0.45801271084729195, t540, t561);
+    let t563 = I::fma(8.009413526210872e-6, c[3], 0.0007227573213207296);
+    let t564 = I::fma(-0.006, t112, t563);
+    let t565 = I::fma(t117, t541, t564);
+    let t566 = I::fma(-0.29552020666133955, t540, t565);
+    let t567 = I::fma(4.375562551557533e-6, c[3], 0.00021714363512649699);
+    let t568 = I::fma(-0.006, t116, t567);
+    let t569 = I::fma(t117, t543, t568);
+    let t570 = I::fma(-0.29552020666133955, t542, t569);
     let t571 = t37 * t546;
-    let t572 = fma(t38, t547, t571);
-    let t573 = fma(-t36, t548, t572);
+    let t572 = I::fma(t38, t547, t571);
+    let t573 = I::fma(-t36, t548, t572);
     let t574 = t36 * t547;
     let t575 = t574 - t571;
-    let t576 = fma(-t38, t548, t575);
+    let t576 = I::fma(-t38, t548, t575);
     let t577 = c[2] * t552;
     let t578 = t37 * t562;
     let t579 = t577 - t578;
     let t580 = t37 * t566;
     let t581 = t579 + t580;
     let t582 = c[2] * t562;
-    let t583 = fma(-t37, t556, t582);
-    let t584 = fma(t37, t570, t583);
+    let t583 = I::fma(-t37, t556, t582);
+    let t584 = I::fma(t37, t570, t583);
     let t585 = c[2] * t566;
-    let t586 = fma(-t37, t570, t585);
-    let t587 = fma(t37, t559, t586);
+    let t586 = I::fma(-t37, t570, t585);
+    let t587 = I::fma(t37, t559, t586);
     let t588 = t37 * t552;
-    let t589 = fma(t38, t562, t588);
-    let t590 = fma(t36, t566, t589);
-    let t591 = fma(t38, t556, t578);
-    let t592 = fma(t36, t570, t591);
-    let t593 = fma(t38, t570, t580);
-    let t594 = fma(t36, t559, t593);
+    let t589 = I::fma(t38, t562, t588);
+    let t590 = I::fma(t36, t566, t589);
+    let t591 = I::fma(t38, t556, t578);
+    let t592 = I::fma(t36, t570, t591);
+    let t593 = I::fma(t38, t570, t580);
+    let t594 = I::fma(t36, t559, t593);
     let t595 = t38 * t592;
     let t596 = t37 * t581;
-    let t597 = fma(t38, t584, t596);
-    let t598 = fma(t36, t587, t597);
+    let t597 = I::fma(t38, t584, t596);
+    let t598 = I::fma(t36, t587, t597);
     let t599 = t38 * t594;
     let t600 = 0.3 * t573;
-    let t601 = fma(t36, t592, t600);
-    let t602 = fma(-t37, t590, t599);
+    let t601 = I::fma(t36, t592, t600);
+    let t602 = I::fma(-t37, t590, t599);
     let t603 = t601 + t602;
-    let t604 = fma(-t37, t548, 0.018000000000000002);
-    let t605 = fma(c[2], t546, t604);
-    let t606 = fma(-t37, t547, t605);
+    let t604 = I::fma(-t37, t548, 0.018000000000000002);
+    let t605 = I::fma(c[2], t546, t604);
+    let t606 = I::fma(-t37, t547, t605);
     let t607 = t576 - 0.942;
-    let t608 = fma(-0.6, t576, 0.25846);
-    let t609 = fma(t37, t590, t608);
-    let t610 = fma(t36, t594, t595);
+    let t608 = I::fma(-0.6, t576, 0.25846);
+    let t609 = I::fma(t37, t590, t608);
+    let t610 = I::fma(t36, t594, t595);
     let t611 = t609 + t610;
     let t612 = t3 * t603;
     let t613 = 0.18 * c[1];
     let t614 = 0.18 * s[1];
     let t615 = 0.1404804310189812 * s[2];
-    let t616 = fma(-t4, c[2], t615);
-    let t617 = fma(-t3, t37, t616);
+    let t616 = I::fma(-t4, c[2], t615);
+    let t617 = I::fma(-t3, t37, t616);
     let t618 = t4 * t37;
-    let t619 = fma(t3, t36, t618);
-    let t620 = fma(0.19866933079506122, t38, t619);
+    let t619 = I::fma(t3, t36, t618);
+    let t620 = I::fma(0.19866933079506122, t38, t619);
     let t621 = 0.09933466539753064 * t35;
     let t622 = t621 - t618;
-    let t623 = fma(t3, t38, t622);
+    let t623 = I::fma(t3, t38, t622);
     let t624 = 0.29401997335237245 * s[1];
     let t625 = t613 + 0.05960079923851836;
     let t626 = t37 * t614;
-    let t627 = fma(-t37, t624, t626);
-    let t628 = fma(-c[2], t625, t627);
+    let t627 = I::fma(-t37, t624, t626);
+    let t628 = I::fma(-c[2], t625, t627);
     let t629 = t37 * t625;
-    let t630 = fma(-t36, t614, t629);
-    let t631 = fma(-t38, t624, t630);
-    let t632 = fma(t36, t624, t629);
-    let t633 = fma(t38, t614, t632);
+    let t630 = I::fma(-t36, t614, t629);
+    let t631 = I::fma(-t38, t624, t630);
+    let t632 = I::fma(t36, t624, t629);
+    let t633 = I::fma(t38, t614, t632);
     let t634 = 0.18 * t175;
     let t635 = 0.18 * t173;
     let t636 = 0.11920159847703672 * s[5];
-    let t637 = fma(t181, c[5], t636);
-    let t638 = fma(t180, t214, t637);
+    let t637 = I::fma(t181, c[5], t636);
+    let t638 = I::fma(t180, t214, t637);
     let t639 = t181 * t215;
-    let t640 = fma(t180, t213, t639);
-    let t641 = fma(-0.19866933079506122, t216, t640);
+    let t640 = I::fma(t180, t213, t639);
+    let t641 = I::fma(-0.19866933079506122, t216, t640);
     let t642 = t181 * t214;
-    let t643 = fma(0.09536127878162938, t212, t642);
-    let t644 = fma(t180, t217, -t643);
+    let t643 = I::fma(0.09536127878162938, t212, t642);
+    let t644 = I::fma(t180, t217, -t643);
     let t645 = 0.019601331556824832 * c[4];
-    let t646 = fma(-0.29401997335237245, s[4], t645);
+    let t646 = I::fma(-0.29401997335237245, s[4], t645);
     let t647 = 0.05960079923851836 + t634;
     let t648 = t646 - 0.017611811101306028;
     let t649 = t635 + 0.003973386615901225;
     let t650 = t215 * t648;
-    let t651 = fma(c[5], t647, t650);
-    let t652 = fma(-t214, t649, t651);
+    let t651 = I::fma(c[5], t647, t650);
+    let t652 = I::fma(-t214, t649, t651);
     let t653 = t216 * t648;
-    let t654 = fma(-t215, t647, t653);
-    let t655 = fma(t213, t649, t654);
+    let t654 = I::fma(-t215, t647, t653);
+    let t655 = I::fma(t213, t649, t654);
     let t656 = t213 * t648;
-    let t657 = fma(t214, t647, t656);
-    let t658 = fma(t217, t649, t657);
+    let t657 = I::fma(t214, t647, t656);
+    let t658 = I::fma(t217, t649, t657);
     let t659 = 0.016 * s[5];
-    let t660 = fma(-0.3, c[5], t659);
+    let t660 = I::fma(-0.3, c[5], t659);
     let t661 = 0.18 * s[5];
-    let t662 = fma(-0.0096, t212, t661);
+    let t662 = I::fma(-0.0096, t212, t661);
     let t663 = 0.24 * s[5];
-    let t664 = fma(0.02, t217, t663);
+    let t664 = I::fma(0.02, t217, t663);
     let t665 = 0.017260747435643386 * s[4];
-    let t666 = fma(0.03576047954311102, t175, t665);
+    let t666 = I::fma(0.03576047954311102, t175, t665);
     let t667 = 0.00295980106508055 * c[1];
     let t668 = 0.00295980106508055 * s[1];
-    let t669 = fma(0.04714120239416372, c[1], t668);
+    let t669 = I::fma(0.04714120239416372, c[1], t668);
     let t670 = 0.0006436886317759984 * s[1];
-    let t671 = fma(0.009011640844863979, c[1], t670);
+    let t671 = I::fma(0.009011640844863979, c[1], t670);
     let t672 = 2.0 * t671;
-    let t673 = fma(0.00029401997335237246, s[4], 0.012317498509293796);
-    let t674 = fma(0.002548173102387228, c[4], t673);
-    let t675 = fma(-0.05929402795939511, c[4], 0.0005165402600671591);
+    let t673 = I::fma(0.00029401997335237246, s[4], 0.012317498509293796);
+    let t674 = I::fma(0.002548173102387228, c[4], t673);
+    let t675 = I::fma(-0.05929402795939511, c[4], 0.0005165402600671591);
     let t676 = t552 * t617;
-    let t677 = fma(t562, t620, t676);
-    let t678 = fma(t566, t623, t677);
+    let t677 = I::fma(t562, t620, t676);
+    let t678 = I::fma(t566, t623, t677);
     let t679 = t562 * t617;
-    let t680 = fma(t556, t620, t679);
-    let t681 = fma(t570, t623, t680);
+    let t680 = I::fma(t556, t620, t679);
+    let t681 = I::fma(t570, t623, t680);
     let t682 = t566 * t617;
-    let t683 = fma(t570, t620, t682);
-    let t684 = fma(t559, t623, t683);
+    let t683 = I::fma(t570, t620, t682);
+    let t684 = I::fma(t559, t623, t683);
     let t685 = t620 * t681;
     let t686 = t623 * t631;
-    let t687 = fma(t620, t633, t686);
+    let t687 = I::fma(t620, t633, t686);
     let t688 = t623 * t628;
-    let t689 = fma(t617, t633, t688);
+    let t689 = I::fma(t617, t633, t688);
     let t690 = t620 * t628;
-    let t691 = fma(-t617, t631, t690);
+    let t691 = I::fma(-t617, t631, t690);
     let t692 = t547 * t689;
-    let t693 = fma(t546, t687, -t692);
-    let t694 = fma(-t548, t691, t693);
+    let t693 = I::fma(t546, t687, -t692);
+    let t694 = I::fma(-t548, t691, t693);
     let t695 = t628 * t628;
-    let t696 = fma(t631, t631, t695);
-    let t697 = fma(t633, t633, t696);
+    let t696 = I::fma(t631, t631, t695);
+    let t697 = I::fma(t633, t633, t696);
     let t698 = t490 * t638;
-    let t699 = fma(t486, t641, t698);
-    let t700 = fma(t493, t644, -t699);
+    let t699 = I::fma(t486, t641, t698);
+    let t700 = I::fma(t493, t644, -t699);
     let t701 = t486 * t638;
-    let t702 = fma(t492, t641, t701);
-    let t703 = fma(t488, t644, t702);
+    let t702 = I::fma(t492, t641, t701);
+    let t703 = I::fma(t488, t644, t702);
     let t704 = t488 * t641;
-    let t705 = fma(-t493, t638, t704);
-    let t706 = fma(0.00102, t644, t705);
+    let t705 = I::fma(-t493, t638, t704);
+    let t706 = I::fma(0.00102, t644, t705);
     let t707 = t641 * t703;
-    let t708 = fma(-t638, t700, t707);
+    let t708 = I::fma(-t638, t700, t707);
     let t709 = t644 * t706;
     let t710 = t644 * t655;
-    let t711 = fma(-t641, t658, t710);
+    let t711 = I::fma(-t641, t658, t710);
     let t712 = t638 * t658;
-    let t713 = fma(t644, t652, t712);
+    let t713 = I::fma(t644, t652, t712);
     let t714 = t641 * t652;
-    let t715 = fma(t638, t655, t714);
+    let t715 = I::fma(t638, t655, t714);
     let t716 = t477 * t711;
-    let t717 = fma(-t478, t713, t716);
-    let t718 = fma(-0.347, t715, t717);
+    let t717 = I::fma(-t478, t713, t716);
+    let t718 = I::fma(-0.347, t715, t717);
     let t719 = t652 * t652;
-    let t720 = fma(t655, t655, t719);
-    let t721 = fma(t658, t658, t720);
+    let t720 = I::fma(t655, t655, t719);
+    let t721 = I::fma(t658, t658, t720);
     let t722 = 1.7 * t721;
     let t723 = t606 * t614;
-    let t724 = fma(-t607, t613, t723);
+    let t724 = I::fma(-t607, t613, t723);
     let t725 = t562 + t566;
     let t726 = 0.7071067811865476 * t725;
     let t727 = 0.7071067811865476 * t556;
-    let t728 = fma(0.7071067811865476, t570, t727);
+    let t728 = I::fma(0.7071067811865476, t570, t727);
     let t729 = 0.7071067811865476 * t559;
-    let t730 = fma(0.7071067811865476, t570, t729);
+    let t730 = I::fma(0.7071067811865476, t570, t729);
     let t731 = 0.7071067811865476 * t546;
     let t732 = t547 + t548;
     let t733 = 0.7071067811865476 * t732;
     let t734 = t728 + t730;
     let t735 = c[2] * t733;
     let t736 = t37 * t731;
-    let t737 = fma(2.0, t736, t735);
+    let t737 = I::fma(2.0, t736, t735);
     let t738 = t37 * t726;
-    let t739 = fma(t38, t728, t738);
+    let t739 = I::fma(t38, t728, t738);
     let t740 = t36 * t730;
     let t741 = t623 * t730;
     let t742 = t631 * t731;
     let t743 = 0.02 * t110;
     let t744 = 0.02 * t114;
     let t745 = 0.01910672978251212 * s[3];
-    let t746 = fma(0.006, t114, t540);
-    let t747 = fma(-0.006, t110, t542);
+    let t746 = I::fma(0.006, t114, t540);
+    let t747 = I::fma(-0.006, t110, t542);
     let t748 = t544 + t747;
     let t749 = 0.7071067811865476 * t748;
     let t750 = c[2] * t743;
-    let t751 = fma(-t37, t744, t750);
-    let t752 = fma(t37, t745, t751);
+    let t751 = I::fma(-t37, t744, t750);
+    let t752 = I::fma(t37, t745, t751);
     let t753 = t37 * t746;
-    let t754 = fma(t38, t747, t753);
-    let t755 = fma(t36, t544, t754);
-    let t756 = fma(-0.3, t752, t755);
+    let t754 = I::fma(t38, t747, t753);
+    let t755 = I::fma(t36, t544, t754);
+    let t756 = I::fma(-0.3, t752, t755);
     let t757 = t617 * t746;
-    let t758 = fma(t620, t747, t757);
-    let t759 = fma(t544, t623, t758);
+    let t758 = I::fma(t620, t747, t757);
+    let t759 = I::fma(t544, t623, t758);
     let t760 = t628 * t743;
-    let t761 = fma(t631, t744, t760);
-    let t762 = fma(-t633, t745, t761);
+    let t761 = I::fma(t631, t744, t760);
+    let t762 = I::fma(-t633, t745, t761);
     let t763 = t759 + t762;
     let t764 = 0.0001056 * t212;
     let t765 = t526 * t634;
-    let t766 = fma(-t525, t635, t765);
+    let t766 = I::fma(-t525, t635, t765);
     let t767 = 0.6 * t493;
-    let t768 = fma(-0.8, t486, t767);
+    let t768 = I::fma(-0.8, t486, t767);
     let t769 = 0.001302 * t283;
-    let t770 = fma(0.8, t492, t769);
-    let t771 = fma(0.0017360000000000001, t283, 0.000612);
-    let t772 = fma(0.0042, t283, 0.2776);
+    let t770 = I::fma(0.8, t492, t769);
+    let t771 = I::fma(0.0017360000000000001, t283, 0.000612);
+    let t772 = I::fma(0.0042, t283, 0.2776);
     let t773 = 0.0042 * t279;
     let t774 = 0.0056 * t279;
     let t775 = 0.6 * t771;
     let t776 = t215 * t768;
-    let t777 = fma(t216, t770, t776);
+    let t777 = I::fma(t216, t770, t776);
     let t778 = t213 * t771;
     let t779 = t664 * t774;
     let t780 = t641 * t770;
-    let t781 = fma(-t638, t768, t780);
+    let t781 = I::fma(-t638, t768, t780);
     let t782 = t644 * t771;
     let t783 = t652 * t772;
     let t784 = 0.006999999999999999 * t282;
-    let t785 = fma(-0.00196, t282, t484);
-    let t786 = fma(0.8, t785, 0.000132);
+    let t785 = I::fma(-0.00196, t282, t484);
+    let t786 = I::fma(0.8, t785, 0.000132);
     let t787 = t660 * t784;
-    let t788 = fma(t477, t662, t787);
-    let t789 = fma(t215, t487, t764);
-    let t790 = fma(t216, t785, t789);
+    let t788 = I::fma(t477, t662, t787);
+    let t789 = I::fma(t215, t487, t764);
+    let t790 = I::fma(t216, t785, t789);
     let t791 = t788 + t790;
     let t792 = t487 * t638;
-    let t793 = fma(t641, t785, -t792);
-    let t794 = fma(0.00022, t644, t793);
+    let t793 = I::fma(t641, t785, -t792);
+    let t794 = I::fma(0.00022, t644, t793);
     let t795 = t652 * t784;
-    let t796 = fma(t477, t655, t795);
+    let t796 = I::fma(t477, t655, t795);
     let t797 = t794 + t796;
     let t798 = 4545.454545454545 * t786;
-    let t799 = fma(-t786, t798, t775);
-    let t800 = fma(0.8, t770, t799);
-    let t801 = fma(t662, t773, t778);
-    let t802 = fma(-t660, t772, t779);
+    let t799 = I::fma(-t786, t798, t775);
+    let t800 = I::fma(0.8, t770, t799);
+    let t801 = I::fma(t662, t773, t778);
+    let t802 = I::fma(-t660, t772, t779);
     let t803 = t801 + t802;
-    let t804 = fma(-t791, t798, t803);
+    let t804 = I::fma(-t791, t798, t803);
     let t805 = t777 + t804;
-    let t806 = fma(t655, t773, t782);
-    let t807 = fma(t658, t774, t783);
+    let t806 = I::fma(t655, t773, t782);
+    let t807 = I::fma(t658, t774, t783);
     let t808 = t806 - t807;
     let t809 = t781 + t808;
-    let t810 = fma(-t797, t798, t809);
+    let t810 = I::fma(-t797, t798, t809);
     let t811 = 4545.454545454545 * t791;
-    let t812 = fma(-t791, t811, t529);
+    let t812 = I::fma(-t791, t811, t529);
     let t813 = 4545.454545454545 * t797;
     let t814 = 1.0 / t800;
     let t815 = t805 * t814;
-    let t816 = fma(-t805, t815, t812);
-    let t817 = fma(-t797, t811, t766);
-    let t818 = fma(t180, t537, t817);
+    let t816 = I::fma(-t805, t815, t812);
+    let t817 = I::fma(-t797, t811, t766);
+    let t818 = I::fma(t180, t537, t817);
     let t819 = t818 - t539;
-    let t820 = fma(-t810, t815, t819);
+    let t820 = I::fma(-t810, t815, t819);
     let t821 = t810 * t814;
     let t822 = 1.0 / t816;
     let t823 = t820 * t822;
     let t824 = 707.1067811865476 * t748;
     let t825 = t749 * t824;
-    let t826 = fma(0.7071067811865476, t734, -t825);
-    let t827 = fma(0.3, t737, t740);
-    let t828 = fma(-t756, t824, t739);
+    let t826 = I::fma(0.7071067811865476, t734, -t825);
+    let t827 = I::fma(0.3, t737, t740);
+    let t828 = I::fma(-t756, t824, t739);
     let t829 = t827 + t828;
-    let t830 = fma(t633, t731, t742);
-    let t831 = fma(-t628, t733, t830);
-    let t832 = fma(t617, t726, t831);
-    let t833 = fma(t620, t728, t741);
-    let t834 = fma(-t763, t824, t832);
+    let t830 = I::fma(t633, t731, t742);
+    let t831 = I::fma(-t628, t733, t830);
+    let t832 = I::fma(t617, t726, t831);
+    let t833 = I::fma(t620, t728, t741);
+    let t834 = I::fma(-t763, t824, t832);
     let t835 = t833 + t834;
     let t836 = 1000.0 * t756;
-    let t837 = fma(-t756, t836, t611);
+    let t837 = I::fma(-t756, t836, t611);
     let t838 = 1000.0 * t763;
     let t839 = 1.0 / t826;
     let t840 = t829 * t839;
-    let t841 = fma(-t829, t840, t837);
-    let t842 = fma(-t763, t836, t724);
-    let t843 = fma(0.19866933079506122, t611, t842);
-    let t844 = fma(-t4, t598, t612);
+    let t841 = I::fma(-t829, t840, t837);
+    let t842 = I::fma(-t763, t836, t724);
+    let t843 = I::fma(0.19866933079506122, t611, t842);
+    let t844 = I::fma(-t4, t598, t612);
     let t845 = t843 + t844;
-    let t846 = fma(-t835, t840, t845);
+    let t846 = I::fma(-t835, t840, t845);
     let t847 = t835 * t839;
     let t848 = 1.0 / t841;
     let t849 = t846 * t848;
-    let t850 = fma(5.8412751346297566e-5, s[4], 0.2715733277798825);
-    let t851 = fma(-t4, t667, t850);
-    let t852 = fma(-t3, t669, t672);
-    let t853 = fma(t180, t675, t851);
-    let t854 = fma(0.19866933079506122, t674, t852);
-    let t855 = fma(0.6, t666, t853);
+    let t850 = I::fma(5.8412751346297566e-5, s[4], 0.2715733277798825);
+    let t851 = I::fma(-t4, t667, t850);
+    let t852 = I::fma(-t3, t669, t672);
+    let t853 = I::fma(t180, t675, t851);
+    let t854 = I::fma(0.19866933079506122, t674, t852);
+    let t855 = I::fma(0.6, t666, t853);
     let t856 = t854 + t855;
-    let t857 = fma(2.3, t697, t856);
-    let t858 = fma(t617, t678, t709);
-    let t859 = fma(t623, t684, t685);
-    let t860 = fma(2.0, t694, t857);
-    let t861 = fma(-t763, t838, t722);
+    let t857 = I::fma(2.3, t697, t856);
+    let t858 = I::fma(t617, t678, t709);
+    let t859 = I::fma(t623, t684, t685);
+    let t860 = I::fma(2.0, t694, t857);
+    let t861 = I::fma(-t763, t838, t722);
     let t862 = t858 + t859;
-    let t863 = fma(-t797, t813, t708);
+    let t863 = I::fma(-t797, t813, t708);
     let t864 = t860 + t861;
-    let t865 = fma(2.0, t718, t862);
+    let t865 = I::fma(2.0, t718, t862);
     let t866 = t863 + t864;
     let t867 = t865 + t866;
-    let t868 = fma(-t810, t821, t867);
-    let t869 = fma(-t835, t847, t868);
-    let t870 = fma(-t820, t823, t869);
-    let t871 = fma(-t846, t849, t870);
+    let t868 = I::fma(-t810, t821, t867);
+    let t869 = I::fma(-t835, t847, t868);
+    let t870 = I::fma(-t820, t823, t869);
+    let t871 = I::fma(-t846, t849, t870);
     let t872 = t476 * t798;
-    let t873 = fma(-0.6, t347, tau[5]);
-    let t874 = fma(0.8, t346, t872);
+    let t873 = I::fma(-0.6, t347, tau[5]);
+    let t874 = I::fma(0.8, t346, t872);
     let t875 = t873 - t874;
-    let t876 = fma(-t476, t811, tau[4]);
+    let t876 = I::fma(-t476, t811, tau[4]);
     let t877 = t876 - t379;
-    let t878 = fma(-t815, t875, t877);
+    let t878 = I::fma(-t815, t875, t877);
     let t879 = t821 * t875;
-    let t880 = fma(-t475, t824, tau[2]);
-    let t881 = fma(-0.7071067811865476, t438, t880);
-    let t882 = fma(-t475, t836, tau[1]);
+    let t880 = I::fma(-t475, t824, tau[2]);
+    let t881 = I::fma(-0.7071067811865476, t438, t880);
+    let t882 = I::fma(-t475, t836, tau[1]);
     let t883 = t882 - t461;
-    let t884 = fma(-t840, t881, t883);
+    let t884 = I::fma(-t840, t881, t883);
     let t885 = t847 * t881;
-    let t886 = fma(-t476, t813, tau[0]);
-    let t887 = fma(-t475, t838, t886);
-    let t888 = fma(-t180, t384, t887);
-    let t889 = fma(t181, t373, -t879);
-    let t890 = fma(-0.18, t390, t391);
-    let t891 = fma(t3, t467, t885);
+    let t886 = I::fma(-t476, t813, tau[0]);
+    let t887 = I::fma(-t475, t838, t886);
+    let t888 = I::fma(-t180, t384, t887);
+    let t889 = I::fma(t181, t373, -t879);
+    let t890 = I::fma(-0.18, t390, t391);
+    let t891 = I::fma(t3, t467, t885);
     let t892 = t888 + t889;
-    let t893 = fma(-0.19866933079506122, t461, t474);
-    let t894 = fma(0.18, t473, t890);
+    let t893 = I::fma(-0.19866933079506122, t461, t474);
+    let t894 = I::fma(0.18, t473, t890);
     let t895 = t892 - t891;
-    let t896 = fma(-t823, t878, t893);
+    let t896 = I::fma(-t823, t878, t893);
     let t897 = t894 + t895;
-    let t898 = fma(-t849, t884, t896);
+    let t898 = I::fma(-t849, t884, t896);
     let t899 = t897 + t898;
     let t900 = t899 / t871;
     let t901 = t884 / t841;
@@ -2650,18 +2842,18 @@ pub fn forward_dynamics_sc(
     let t904 = t878 / t816;
     let t905 = t875 / t800;
     let t906 = t476 / 0.00022;
-    let t907 = fma(-t849, t900, t901);
-    let t908 = fma(-t847, t900, t902);
-    let t909 = fma(-t840, t907, t908);
-    let t910 = fma(-t838, t900, t903);
-    let t911 = fma(-t836, t907, t910);
-    let t912 = fma(-t824, t909, t911);
-    let t913 = fma(-t823, t900, t904);
-    let t914 = fma(-t821, t900, t905);
-    let t915 = fma(-t815, t913, t914);
-    let t916 = fma(-t813, t900, t906);
-    let t917 = fma(-t811, t913, t916);
-    let t918 = fma(-t798, t915, t917);
+    let t907 = I::fma(-t849, t900, t901);
+    let t908 = I::fma(-t847, t900, t902);
+    let t909 = I::fma(-t840, t907, t908);
+    let t910 = I::fma(-t838, t900, t903);
+    let t911 = I::fma(-t836, t907, t910);
+    let t912 = I::fma(-t824, t909, t911);
+    let t913 = I::fma(-t823, t900, t904);
+    let t914 = I::fma(-t821, t900, t905);
+    let t915 = I::fma(-t815, t913, t914);
+    let t916 = I::fma(-t813, t900, t906);
+    let t917 = I::fma(-t811, t913, t916);
+    let t918 = I::fma(-t798, t915, t917);
     [t900, t907, t909, t912, t913, t915, t918]
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by CRBA, RNEA and a sparse LᵀDL solve.
@@ -2676,6 +2868,11 @@ pub fn forward_dynamics(
     qd: &[f64; DOF],
     tau: &[f64; DOF],
 ) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { forward_dynamics_avx2_fma(q, qd, tau) };
+    }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     forward_dynamics_sc(
         &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
@@ -2684,6 +2881,31 @@ pub fn forward_dynamics(
         tau,
     )
 }
+/// [`forward_dynamics`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn forward_dynamics_avx2_fma(
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+    tau: &[f64; DOF],
+) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe {
+        forward_dynamics_sc_avx2_fma(
+            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
+            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
+            qd,
+            tau,
+        )
+    }
+}
+
+/// Whether `sin_cos_array` and the other public functions of the kernel below pick, on x86-64
+/// builds without the `avx2` and `fma` target features, their copies compiled for AVX2 and FMA
+/// where the processor has both (`CodegenOptions::runtime_dispatch`).
+#[allow(dead_code)]
+const RUNTIME_DISPATCH: bool = true;
 
 // The sine and cosine of joint angles in plain f64 arithmetic: nothing from
 // std or any crate. Within 1 ulp of the exact values for every finite
@@ -2772,24 +2994,216 @@ fn fma(a: f64, b: f64, c: f64) -> f64 {
     a * b + c
 }
 
+/// `a·b + c` in `f32` with one rounding (x86-64 with the `fma` feature);
+/// see `fma`.
+#[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
+#[inline(always)]
+#[allow(dead_code, unused_unsafe)]
+fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+    use core::arch::x86_64::{_mm_cvtss_f32, _mm_fmadd_ss, _mm_set_ss};
+    // SAFETY: the cfg above compiles this only where the `fma` target
+    // feature is enabled, so the instruction exists.
+    unsafe { _mm_cvtss_f32(_mm_fmadd_ss(_mm_set_ss(a), _mm_set_ss(b), _mm_set_ss(c))) }
+}
+
+/// `a·b + c` in `f32` with one rounding (aarch64).
+#[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
+#[inline(always)]
+#[allow(dead_code, unused_unsafe)]
+fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+    use core::arch::aarch64::{vdup_n_f32, vfma_f32, vget_lane_f32};
+    // SAFETY: the cfg above compiles this only where NEON is enabled.
+    unsafe { vget_lane_f32::<0>(vfma_f32(vdup_n_f32(c), vdup_n_f32(a), vdup_n_f32(b))) }
+}
+
+/// `a·b + c` in `f32`, rounded twice (targets without a fused multiply-add).
+#[cfg(not(any(
+    all(target_arch = "x86_64", target_feature = "fma"),
+    all(target_arch = "aarch64", target_feature = "neon")
+)))]
+#[inline(always)]
+#[allow(dead_code)]
+fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+    a * b + c
+}
+
+// Run-time dispatch (`CodegenOptions::runtime_dispatch`, on unless the
+// module says `RUNTIME_DISPATCH = false`). A default x86-64 build has SSE2
+// only: no fused multiply-add, two angles to a register. Most x86-64
+// processors in use have AVX2 and FMA, so on such builds every public
+// function is compiled twice from one generic body: for `Baseline` (the
+// build's own target features, the code a build without dispatch has) and
+// for `Avx2Fma`, inside a `#[target_feature(enable = "avx2,fma")]` function
+// that the public one calls when `has_avx2_and_fma()` says the processor
+// has both. The results are then those of a build with `-C
+// target-feature=+avx2,+fma`: bit for bit those of a native build on such
+// a processor, and different in the last bits from the baseline's on
+// processors without FMA. Builds that already have both features, and other
+// targets, compile no dispatch: `Baseline` is all there is.
+
+/// The instructions a copy of a generic body is compiled for.
+#[allow(dead_code)]
+trait Isa {
+    /// Whether `Lanes::mul_add` rounds once.
+    const FUSED: bool;
+    /// Whether four angles go to a register (else two).
+    const QUADS: bool;
+    /// `a·b + c` in `f64`.
+    fn fma(a: f64, b: f64, c: f64) -> f64;
+    /// `a·b + c` in `f32`.
+    fn fmaf(a: f32, b: f32, c: f32) -> f32;
+}
+
+/// What the build's target features give: fused multiply-adds where the
+/// target has them (`fma`, `fmaf`), four angles to a register where it has
+/// AVX2.
+#[allow(dead_code)]
+enum Baseline {}
+
+impl Isa for Baseline {
+    const FUSED: bool = cfg!(any(
+        all(target_arch = "x86_64", target_feature = "fma"),
+        all(target_arch = "aarch64", target_feature = "neon")
+    ));
+    const QUADS: bool = cfg!(all(target_arch = "x86_64", target_feature = "avx2"));
+    #[inline(always)]
+    fn fma(a: f64, b: f64, c: f64) -> f64 {
+        fma(a, b, c)
+    }
+    #[inline(always)]
+    fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+        fmaf(a, b, c)
+    }
+}
+
+/// AVX2 and FMA: named only in the bodies of `#[target_feature(enable =
+/// "avx2,fma")]` functions, which are called only where
+/// `has_avx2_and_fma()` holds.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[allow(dead_code)]
+enum Avx2Fma {}
+
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+impl Isa for Avx2Fma {
+    const FUSED: bool = true;
+    const QUADS: bool = true;
+    #[inline(always)]
+    #[allow(unused_unsafe)]
+    fn fma(a: f64, b: f64, c: f64) -> f64 {
+        use core::arch::x86_64::{_mm_cvtsd_f64, _mm_fmadd_sd, _mm_set_sd};
+        // SAFETY: `Avx2Fma` code runs only on processors with FMA (see above).
+        unsafe { _mm_cvtsd_f64(_mm_fmadd_sd(_mm_set_sd(a), _mm_set_sd(b), _mm_set_sd(c))) }
+    }
+    #[inline(always)]
+    #[allow(unused_unsafe)]
+    fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+        use core::arch::x86_64::{_mm_cvtss_f32, _mm_fmadd_ss, _mm_set_ss};
+        // SAFETY: `Avx2Fma` code runs only on processors with FMA (see above).
+        unsafe { _mm_cvtss_f32(_mm_fmadd_ss(_mm_set_ss(a), _mm_set_ss(b), _mm_set_ss(c))) }
+    }
+}
+
+/// Whether this processor has AVX2 and FMA and the operating system saves
+/// the 256-bit registers: asked once (`cpuid`, `xgetbv`), then remembered.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[inline]
+#[allow(dead_code)]
+fn has_avx2_and_fma() -> bool {
+    use core::sync::atomic::{AtomicU8, Ordering};
+    // 0: not asked yet, 1: no, 2: yes. Racing first calls store the same answer.
+    static ANSWER: AtomicU8 = AtomicU8::new(0);
+    match ANSWER.load(Ordering::Relaxed) {
+        0 => {
+            let yes = ask_cpu_for_avx2_and_fma();
+            ANSWER.store(if yes { 2 } else { 1 }, Ordering::Relaxed);
+            yes
+        }
+        answer => answer == 2,
+    }
+}
+
+/// `cpuid` leaf 1: FMA (ECX bit 12), OSXSAVE (27), AVX (28); `xgetbv`: the
+/// OS saves the SSE and AVX state (XCR0 bits 1 and 2); leaf 7: AVX2 (EBX
+/// bit 5).
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[cold]
+#[inline(never)]
+#[allow(dead_code, unused_unsafe)]
+fn ask_cpu_for_avx2_and_fma() -> bool {
+    use core::arch::x86_64::{__cpuid, __cpuid_count, _xgetbv};
+    let bit = |word: u32, b: u32| word >> b & 1 == 1;
+    // SAFETY: every x86-64 processor has `cpuid`; `xgetbv` is run only where
+    // leaf 1 says the OS has enabled it (OSXSAVE).
+    unsafe {
+        if __cpuid(0).eax < 7 {
+            return false;
+        }
+        let ecx = __cpuid(1).ecx;
+        if !(bit(ecx, 12) && bit(ecx, 27) && bit(ecx, 28)) || _xgetbv(0) & 0b110 != 0b110 {
+            return false;
+        }
+        bit(__cpuid_count(7, 0).ebx, 5)
+    }
+}
+
 /// The sines and cosines of `x`, entry by entry: within 1 ulp of the exact
 /// values for every finite angle (NaN and ±∞ give NaN); two or four angles
 /// at a time in vector instructions.
 #[inline]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if RUNTIME_DISPATCH && has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { sin_cos_array_avx2_fma(x) };
+    }
+    sin_cos_array_on::<Baseline, N>(x)
+}
+
+/// `sin_cos_array` compiled for AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn sin_cos_array_avx2_fma<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
+    sin_cos_array_on::<Avx2Fma, N>(x)
+}
+
+/// `sin_cos_array` in the instructions of `I`.
+#[inline(always)]
+fn sin_cos_array_on<I: Isa, const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut s = [0.0; N];
     let mut c = [0.0; N];
-    if !sin_cos_batches::<Precise, N>(x, &mut s, &mut c) {
-        sin_cos_again(x, &mut s, &mut c);
+    if !sin_cos_batches::<I, Precise, N>(x, &mut s, &mut c) {
+        sin_cos_again::<I>(x, &mut s, &mut c);
     }
     (s, c)
+}
+
+/// `[e(0), …, e(P − 1)]` for `each!(i => e(i))`: one step on each of the
+/// `P ≥ 1` registers of the function it is used in. A macro, not a function
+/// taking a closure: LLVM leaves closures (and `core::array::from_fn`) that
+/// return vector registers out of line when their caller is a
+/// `#[target_feature]` function (`Avx2Fma` code), and out of line they are
+/// compiled without its features; so the fast path calls nothing that is
+/// not `#[inline(always)]` (checked in the release assembly).
+macro_rules! each {
+    ($i:ident => $e:expr) => {{
+        let mut out = [{
+            let $i = 0;
+            $e
+        }; P];
+        let mut $i = 1;
+        while $i < P {
+            out[$i] = $e;
+            $i += 1;
+        }
+        out
+    }};
 }
 
 /// A fast path over registers of angles: (sin, cos, within 1 ulp) per
 /// register.
 trait FastPath {
     /// The fast path on `P` registers, step by step across them.
-    fn lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P];
+    fn lanes<I: Isa, V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P];
 }
 
 /// `sin_cos_lanes`: within 1 ulp of `f64`.
@@ -2797,50 +3211,55 @@ struct Precise;
 
 impl FastPath for Precise {
     #[inline(always)]
-    fn lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
-        sin_cos_lanes(x)
+    fn lanes<I: Isa, V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
+        sin_cos_lanes::<I, V, P>(x)
     }
 }
 
 /// `K`'s fast path on every angle of `x`, the results into `s` and `c`, and
 /// whether they are all within 1 ulp (false: redo them on the slow path).
 #[inline(always)]
-fn sin_cos_batches<K: FastPath, const N: usize>(x: &[f64; N], s: &mut [f64; N], c: &mut [f64; N]) -> bool {
+fn sin_cos_batches<I: Isa, K: FastPath, const N: usize>(x: &[f64; N], s: &mut [f64; N], c: &mut [f64; N]) -> bool {
     let mut fast = true;
     let mut i = 0;
     while i < N {
-        // The angles from i on, as many as a pass takes; past the end, the
-        // first ones again (a register of copies of one angle makes the
-        // compiler fall back to scalar code).
-        let at = |j: usize| x[(i + j) % N];
-        #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
-        let ok = {
-            let quad = |j: usize| core::array::from_fn(|l| at(j + l));
-            match N - i {
-                1..=4 => sin_cos_pass::<K, 4, 1, N>(i, [quad(0)], s, c),
-                _ => sin_cos_pass::<K, 4, 2, N>(i, [quad(0), quad(4)], s, c),
-            }
-        };
-        #[cfg(not(all(target_arch = "x86_64", target_feature = "avx2")))]
-        let ok = {
-            let pair = |j: usize| [at(j), at(j + 1)];
-            match N - i {
-                1 | 2 => sin_cos_pass::<K, 2, 1, N>(i, [pair(0)], s, c),
-                3 | 4 => sin_cos_pass::<K, 2, 2, N>(i, [pair(0), pair(2)], s, c),
-                _ => sin_cos_pass::<K, 2, 3, N>(i, [pair(0), pair(2), pair(4)], s, c),
-            }
-        };
-        fast &= ok;
-        i += if cfg!(all(target_arch = "x86_64", target_feature = "avx2")) { 8 } else { 6 };
+        if I::QUADS {
+            fast &= match N - i {
+                1..=4 => sin_cos_pass::<I, K, 4, 1, N>(i, [angles(x, i)], s, c),
+                _ => sin_cos_pass::<I, K, 4, 2, N>(i, [angles(x, i), angles(x, i + 4)], s, c),
+            };
+            i += 8;
+        } else {
+            fast &= match N - i {
+                1 | 2 => sin_cos_pass::<I, K, 2, 1, N>(i, [angles(x, i)], s, c),
+                3 | 4 => sin_cos_pass::<I, K, 2, 2, N>(i, [angles(x, i), angles(x, i + 2)], s, c),
+                _ => sin_cos_pass::<I, K, 2, 3, N>(i, [angles(x, i), angles(x, i + 2), angles(x, i + 4)], s, c),
+            };
+            i += 6;
+        }
     }
     fast
+}
+
+/// The `W` angles of `x` from `from` on; past the end, the first ones again
+/// (a register of copies of one angle makes the compiler fall back to scalar
+/// code).
+#[inline(always)]
+fn angles<const W: usize, const N: usize>(x: &[f64; N], from: usize) -> [f64; W] {
+    let mut out = [0.0; W];
+    let mut l = 0;
+    while l < W {
+        out[l] = x[(from + l) % N];
+        l += 1;
+    }
+    out
 }
 
 /// `K`'s fast path on `P` registers of `W` angles, interleaved, the results
 /// into `s[i..]` and `c[i..]` (what fits), and whether they are all within 1
 /// ulp.
 #[inline(always)]
-fn sin_cos_pass<K: FastPath, const W: usize, const P: usize, const N: usize>(
+fn sin_cos_pass<I: Isa, K: FastPath, const W: usize, const P: usize, const N: usize>(
     i: usize,
     x: [[f64; W]; P],
     s: &mut [f64; N],
@@ -2849,13 +3268,16 @@ fn sin_cos_pass<K: FastPath, const W: usize, const P: usize, const N: usize>(
 where
     [f64; W]: ToLanes,
 {
-    let r = K::lanes(x.map(<[f64; W]>::to_lanes));
-    for j in 0..W * P {
+    let r = K::lanes::<I, _, P>(each!(p => x[p].to_lanes()));
+    let (mut j, mut fast) = (0, true);
+    while j < W * P {
         if i + j < N {
             (s[i + j], c[i + j]) = (r[j / W].0.lane(j % W), r[j / W].1.lane(j % W));
         }
+        fast &= r[j / W].2;
+        j += 1;
     }
-    r.iter().all(|r| r.2)
+    fast
 }
 
 /// `W` angles as a register: `[f64; 1]` as `f64`, `[f64; 2]` and `[f64; 4]`
@@ -2879,8 +3301,8 @@ trait Lanes: Copy {
     fn sub(self, b: Self) -> Self;
     /// `self · b`.
     fn mul(self, b: Self) -> Self;
-    /// `self · b + c`, fused where the scalar `fma` is.
-    fn mul_add(self, b: Self, c: Self) -> Self;
+    /// `self · b + c`, rounded once if `I::FUSED`.
+    fn mul_add<I: Isa>(self, b: Self, c: Self) -> Self;
     /// `−self`.
     fn neg(self) -> Self;
     /// `|self|`.
@@ -2924,8 +3346,8 @@ impl Lanes for f64 {
         self * b
     }
     #[inline(always)]
-    fn mul_add(self, b: f64, c: f64) -> f64 {
-        fma(self, b, c)
+    fn mul_add<I: Isa>(self, b: f64, c: f64) -> f64 {
+        I::fma(self, b, c)
     }
     #[inline(always)]
     fn neg(self) -> f64 {
@@ -2957,23 +3379,24 @@ impl Lanes for f64 {
 /// operations of `impl Lanes for f64`, lane by lane.
 #[cfg(target_arch = "x86_64")]
 macro_rules! vector_lanes {
-    ($w:literal, $v:ident, $all:literal, $feature:literal, $add:ident, $sub:ident, $mul:ident, $fmadd:ident, $xor_pd:ident,
+    ($w:literal, $v:ident, $all:literal, $add:ident, $sub:ident, $mul:ident, $fmadd:ident, $xor_pd:ident,
      $set1:ident, $loadu:ident, $storeu:ident, $andnot:ident, $min:ident, $cmp_ge:expr, $movemask:ident,
      $to_int:ident, $to_float:ident, $and:ident, $or:ident, $xor:ident, $sub64:ident, $zero:ident, $set1_64:ident,
      $shl:ident) => {
-        #[cfg(target_feature = $feature)]
         impl ToLanes for [f64; $w] {
             type V = core::arch::x86_64::$v;
             #[inline(always)]
             #[allow(unused_unsafe)]
             fn to_lanes(self) -> Self::V {
-                // SAFETY (this and every block below): the target has the
-                // instructions (`cfg(target_feature)`); loads and stores are
-                // of `$w` f64 from and to arrays of `$w` f64.
+                // SAFETY (this and every block below): the processor has the
+                // instructions: SSE2 is part of every x86-64 target, and the
+                // AVX2 registers and `_fmadd_` are used only where the target
+                // has them (`Baseline::QUADS` and `FUSED` are their `cfg`) or
+                // in `Avx2Fma` code; loads and stores are of `$w` f64 from and
+                // to arrays of `$w` f64.
                 unsafe { core::arch::x86_64::$loadu(self.as_ptr()) }
             }
         }
-        #[cfg(target_feature = $feature)]
         #[allow(unused_unsafe)]
         impl Lanes for core::arch::x86_64::$v {
             #[inline(always)]
@@ -2999,12 +3422,12 @@ macro_rules! vector_lanes {
                 unsafe { core::arch::x86_64::$mul(self, b) }
             }
             #[inline(always)]
-            fn mul_add(self, b: Self, c: Self) -> Self {
-                #[cfg(target_feature = "fma")]
-                let r = unsafe { core::arch::x86_64::$fmadd(self, b, c) };
-                #[cfg(not(target_feature = "fma"))]
-                let r = self.mul(b).add(c);
-                r
+            fn mul_add<I: Isa>(self, b: Self, c: Self) -> Self {
+                if I::FUSED {
+                    unsafe { core::arch::x86_64::$fmadd(self, b, c) }
+                } else {
+                    self.mul(b).add(c)
+                }
             }
             #[inline(always)]
             fn neg(self) -> Self {
@@ -3037,16 +3460,17 @@ macro_rules! vector_lanes {
 }
 
 #[cfg(target_arch = "x86_64")]
-vector_lanes!(2, __m128d, 3, "sse2", _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_fmadd_pd, _mm_xor_pd, _mm_set1_pd, _mm_loadu_pd,
+vector_lanes!(2, __m128d, 3, _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_fmadd_pd, _mm_xor_pd, _mm_set1_pd, _mm_loadu_pd,
     _mm_storeu_pd, _mm_andnot_pd, _mm_min_pd, _mm_cmpge_pd, _mm_movemask_pd, _mm_castpd_si128, _mm_castsi128_pd,
     _mm_and_si128, _mm_or_si128, _mm_xor_si128, _mm_sub_epi64, _mm_setzero_si128, _mm_set1_epi64x, _mm_slli_epi64);
 #[cfg(target_arch = "x86_64")]
-vector_lanes!(4, __m256d, 15, "avx2", _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_fmadd_pd, _mm256_xor_pd, _mm256_set1_pd,
+vector_lanes!(4, __m256d, 15, _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_fmadd_pd, _mm256_xor_pd, _mm256_set1_pd,
     _mm256_loadu_pd, _mm256_storeu_pd, _mm256_andnot_pd, _mm256_min_pd, _mm256_cmp_pd::<_CMP_GE_OQ>,
     _mm256_movemask_pd, _mm256_castpd_si256, _mm256_castsi256_pd, _mm256_and_si256, _mm256_or_si256,
     _mm256_xor_si256, _mm256_sub_epi64, _mm256_setzero_si256, _mm256_set1_epi64x, _mm256_slli_epi64);
 
-/// Other targets: two angles lane by lane (the compiler may vectorise).
+/// Other targets: two angles lane by lane (the compiler may vectorise);
+/// four only to compile `sin_cos_batches` (`Baseline::QUADS` is false).
 #[cfg(not(target_arch = "x86_64"))]
 impl ToLanes for [f64; 2] {
     type V = [f64; 2];
@@ -3057,10 +3481,19 @@ impl ToLanes for [f64; 2] {
 }
 
 #[cfg(not(target_arch = "x86_64"))]
-impl Lanes for [f64; 2] {
+impl ToLanes for [f64; 4] {
+    type V = [f64; 4];
+    #[inline(always)]
+    fn to_lanes(self) -> [f64; 4] {
+        self
+    }
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+impl<const W: usize> Lanes for [f64; W] {
     #[inline(always)]
     fn splat(a: f64) -> Self {
-        [a; 2]
+        [a; W]
     }
     #[inline(always)]
     fn lane(self, l: usize) -> f64 {
@@ -3068,51 +3501,45 @@ impl Lanes for [f64; 2] {
     }
     #[inline(always)]
     fn add(self, b: Self) -> Self {
-        [self[0] + b[0], self[1] + b[1]]
+        core::array::from_fn(|l| self[l] + b[l])
     }
     #[inline(always)]
     fn sub(self, b: Self) -> Self {
-        [self[0] - b[0], self[1] - b[1]]
+        core::array::from_fn(|l| self[l] - b[l])
     }
     #[inline(always)]
     fn mul(self, b: Self) -> Self {
-        [self[0] * b[0], self[1] * b[1]]
+        core::array::from_fn(|l| self[l] * b[l])
     }
     #[inline(always)]
-    fn mul_add(self, b: Self, c: Self) -> Self {
-        [fma(self[0], b[0], c[0]), fma(self[1], b[1], c[1])]
+    fn mul_add<I: Isa>(self, b: Self, c: Self) -> Self {
+        core::array::from_fn(|l| I::fma(self[l], b[l], c[l]))
     }
     #[inline(always)]
     fn neg(self) -> Self {
-        [-self[0], -self[1]]
+        self.map(|a| -a)
     }
     #[inline(always)]
     fn abs(self) -> Self {
-        [self[0].abs(), self[1].abs()]
+        self.map(f64::abs)
     }
     #[inline(always)]
     fn capped_ge(self, b: Self) -> bool {
-        self[0].capped_ge(b[0]) & self[1].capped_ge(b[1])
+        (0..W).all(|l| self[l].capped_ge(b[l]))
     }
     #[inline(always)]
     fn quadrant(sin_r: Self, signed: Self, cos_r: Self, quadrant: Self) -> (Self, Self) {
-        let r = [0, 1].map(|l| f64::quadrant(sin_r[l], signed[l], cos_r[l], quadrant[l]));
-        ([r[0].0, r[1].0], [r[0].1, r[1].1])
+        let r: [(f64, f64); W] = core::array::from_fn(|l| f64::quadrant(sin_r[l], signed[l], cos_r[l], quadrant[l]));
+        (r.map(|r| r.0), r.map(|r| r.1))
     }
-}
-
-/// `[f(0), …, f(P − 1)]`: one step on each of `P` registers.
-#[inline(always)]
-fn each<V, const P: usize>(f: impl FnMut(usize) -> V) -> [V; P] {
-    core::array::from_fn(f)
 }
 
 /// The rare case of `sin_cos_array`: every angle again, one at a time.
 #[cold]
 #[inline(never)]
-fn sin_cos_again(x: &[f64], s: &mut [f64], c: &mut [f64]) {
+fn sin_cos_again<I: Isa>(x: &[f64], s: &mut [f64], c: &mut [f64]) {
     for ((x, s), c) in x.iter().zip(s).zip(c) {
-        (*s, *c) = sin_cos_kernel(*x);
+        (*s, *c) = sin_cos_kernel_on::<I>(*x);
     }
 }
 
@@ -3120,9 +3547,27 @@ fn sin_cos_again(x: &[f64], s: &mut [f64], c: &mut [f64]) {
 /// for every finite `x` (NaN and ±∞ give NaN).
 #[inline]
 pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
-    match sin_cos_lanes([x]) {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if RUNTIME_DISPATCH && has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { sin_cos_kernel_avx2_fma(x) };
+    }
+    sin_cos_kernel_on::<Baseline>(x)
+}
+
+/// `sin_cos_kernel` compiled for AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn sin_cos_kernel_avx2_fma(x: f64) -> (f64, f64) {
+    sin_cos_kernel_on::<Avx2Fma>(x)
+}
+
+/// `sin_cos_kernel` in the instructions of `I`.
+#[inline(always)]
+fn sin_cos_kernel_on<I: Isa>(x: f64) -> (f64, f64) {
+    match sin_cos_lanes::<I, f64, 1>([x]) {
         [(s, c, true)] => (s, c),
-        _ => sin_cos_slow(x),
+        _ => sin_cos_slow::<I>(x),
     }
 }
 
@@ -3131,28 +3576,28 @@ pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
 /// `sin_cos_slow`).
 #[inline(always)]
 #[allow(clippy::excessive_precision, clippy::approx_constant)]
-fn sin_cos_lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
+fn sin_cos_lanes<I: Isa, V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
     const FRAC_2_PI: f64 = 0.6366197723675814;
     const ROUND: f64 = 6755399441055744.0; // 1.5·2⁵²: x + ROUND − ROUND rounds x to an integer
     const P1: f64 = 1.5707963267341256;
     const P2: f64 = 6.077100506303966e-11;
     const P3: f64 = 2.0222662487959506e-21;
     let v = V::splat;
-    let t: [V; P] = each(|i| x[i].mul_add(v(FRAC_2_PI), v(ROUND)));
-    let k: [V; P] = each(|i| t[i].sub(v(ROUND)));
-    let t0: [V; P] = each(|i| k[i].neg().mul_add(v(P1), x[i])); // exact, fused or not
-    let w: [V; P] = each(|i| k[i].mul(v(P2))); // exact
-    let a: [V; P] = each(|i| t0[i].sub(w[i]));
+    let t: [V; P] = each!(i => x[i].mul_add::<I>(v(FRAC_2_PI), v(ROUND)));
+    let k: [V; P] = each!(i => t[i].sub(v(ROUND)));
+    let t0: [V; P] = each!(i => k[i].neg().mul_add::<I>(v(P1), x[i])); // exact, fused or not
+    let w: [V; P] = each!(i => k[i].mul(v(P2))); // exact
+    let a: [V; P] = each!(i => t0[i].sub(w[i]));
     // r ≈ a + b: the rounding error of t0 − w, exact (|t0| ≥ |w|, or else t0 − w is exact), then − k·P3.
     // Not renormalised, so that the polynomials start from a without waiting for b: |b| ≤ ulp(a)/2 +
     // |k|·P3 ≤ 2e-15, which step 3 allows for.
-    let b: [V; P] = each(|i| t0[i].sub(a[i]).sub(w[i]).sub(k[i].mul(v(P3))));
+    let b: [V; P] = each!(i => t0[i].sub(a[i]).sub(w[i]).sub(k[i].mul(v(P3))));
     // Within 1 ulp if |x| ≤ 1.5e6 and |a| ≥ 2⁻⁵⁸·|x| (as |r − (a + b)| ≤ 3e-37·|x|), which also
     // holds for k = 0 (a = x) and fails for NaN and ±∞ (then a is NaN): min(2⁵⁸·|a|, 1.5e6) ≥ |x|.
-    let ok: [bool; P] = core::array::from_fn(|i| a[i].abs().mul(v(2.8823037615171174e17)).capped_ge(x[i].abs()));
+    let ok: [bool; P] = each!(i => a[i].abs().mul(v(2.8823037615171174e17)).capped_ge(x[i].abs()));
     // a's sign is r's, also when a = −0 (x = −0).
-    let r = sin_cos_reduced(a, b, a, t);
-    core::array::from_fn(|i| (r[i].0, r[i].1, ok[i]))
+    let r = sin_cos_reduced::<I, V, P>(a, b, a, t);
+    each!(i => (r[i].0, r[i].1, ok[i]))
 }
 
 /// Step 3 and 4: sin and cos of k·π/2 + rh + rl for |rh + rl| ≤ π/4 and
@@ -3160,7 +3605,7 @@ fn sin_cos_lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
 /// into sin (rh's sign, also when rh = −0).
 #[inline(always)]
 #[allow(clippy::excessive_precision)]
-fn sin_cos_reduced<V: Lanes, const P: usize>(rh: [V; P], rl: [V; P], signed: [V; P], quadrant: [V; P]) -> [(V, V); P] {
+fn sin_cos_reduced<I: Isa, V: Lanes, const P: usize>(rh: [V; P], rl: [V; P], signed: [V; P], quadrant: [V; P]) -> [(V, V); P] {
     const S: [f64; 6] = [
         -1.666666666666663e-1,
         8.333333333322118e-3,
@@ -3178,34 +3623,39 @@ fn sin_cos_reduced<V: Lanes, const P: usize>(rh: [V; P], rl: [V; P], signed: [V;
         -1.1358536521605753e-11,
     ];
     let v = V::splat;
-    let z: [V; P] = each(|i| rh[i].mul(rh[i]));
-    let z2: [V; P] = each(|i| z[i].mul(z[i]));
-    // Estrin: (c0 + z·c1) + z²·((c2 + z·c3) + z²·(c4 + z·c5)).
-    let poly = |c: [f64; 6], i: usize| {
-        let (lo, mid, hi) = (z[i].mul_add(v(c[1]), v(c[0])), z[i].mul_add(v(c[3]), v(c[2])), z[i].mul_add(v(c[5]), v(c[4])));
-        z2[i].mul_add(z2[i].mul_add(hi, mid), lo)
-    };
-    let ps: [V; P] = each(|i| poly(S, i));
-    let pc: [V; P] = each(|i| poly(C, i));
-    let hz: [V; P] = each(|i| v(0.5).mul(z[i]));
-    let w: [V; P] = each(|i| v(1.0).sub(hz[i]));
+    let z: [V; P] = each!(i => rh[i].mul(rh[i]));
+    let z2: [V; P] = each!(i => z[i].mul(z[i]));
+    // Estrin: (c0 + z·c1) + z²·((c2 + z·c3) + z²·(c4 + z·c5)). (A function, not a closure: called
+    // four times, a closure would stay out of line, outside a `#[target_feature]` caller's features.)
+    #[inline(always)]
+    fn poly<I: Isa, V: Lanes>(c: [f64; 6], z: V, z2: V) -> V {
+        let v = V::splat;
+        let lo = z.mul_add::<I>(v(c[1]), v(c[0]));
+        let (mid, hi) = (z.mul_add::<I>(v(c[3]), v(c[2])), z.mul_add::<I>(v(c[5]), v(c[4])));
+        z2.mul_add::<I>(z2.mul_add::<I>(hi, mid), lo)
+    }
+    let ps: [V; P] = each!(i => poly::<I, V>(S, z[i], z2[i]));
+    let pc: [V; P] = each!(i => poly::<I, V>(C, z[i], z2[i]));
+    let hz: [V; P] = each!(i => v(0.5).mul(z[i]));
+    let w: [V; P] = each!(i => v(1.0).sub(hz[i]));
     // rl·cos rh and rl·sin rh to O(rl·rh⁶): 1 − z/2 + z²/24 and rh·(1 − z/6 + z²/120), so that rl
     // may be up to 2e-15 (the fast path's b) without costing digits.
-    let cos_rh: [V; P] = each(|i| z2[i].mul_add(v(1.0 / 24.0), w[i]));
-    let sin_rh: [V; P] = each(|i| rh[i].mul(z2[i].mul_add(v(1.0 / 120.0), z[i].mul_add(v(-1.0 / 6.0), v(1.0)))));
+    let cos_rh: [V; P] = each!(i => z2[i].mul_add::<I>(v(1.0 / 24.0), w[i]));
+    let sin_rh: [V; P] =
+        each!(i => rh[i].mul(z2[i].mul_add::<I>(v(1.0 / 120.0), z[i].mul_add::<I>(v(-1.0 / 6.0), v(1.0)))));
     // sin(rh + rl) = rh + rh·z·S(z) + rl·cos rh + …; the sign or-ed in keeps sin(−0) = −0.
-    let sin_r: [V; P] = each(|i| rh[i].add(rh[i].mul(z[i]).mul_add(ps[i], rl[i].mul(cos_rh[i]))));
+    let sin_r: [V; P] = each!(i => rh[i].add(rh[i].mul(z[i]).mul_add::<I>(ps[i], rl[i].mul(cos_rh[i]))));
     // cos(rh + rl) = (1 − z/2) + z²·C(z) − rl·sin rh + …, with the rounding error of 1 − z/2.
     let cos_r: [V; P] =
-        each(|i| w[i].add(z2[i].mul_add(pc[i], v(1.0).sub(w[i]).sub(hz[i])).sub(rl[i].mul(sin_rh[i]))));
-    core::array::from_fn(|i| V::quadrant(sin_r[i], signed[i], cos_r[i], quadrant[i]))
+        each!(i => w[i].add(z2[i].mul_add::<I>(pc[i], v(1.0).sub(w[i]).sub(hz[i])).sub(rl[i].mul(sin_rh[i]))));
+    each!(i => V::quadrant(sin_r[i], signed[i], cos_r[i], quadrant[i]))
 }
 
 /// Step 2: Payne and Hanek's reduction of any finite `x`, then step 3.
 #[inline(never)]
 #[cold]
 #[allow(clippy::unreadable_literal, clippy::approx_constant)]
-fn sin_cos_slow(x: f64) -> (f64, f64) {
+fn sin_cos_slow<I: Isa>(x: f64) -> (f64, f64) {
     // 2/π = Σ FRAC_2_PI_BITS[i]·2^(−64(i+1)) + less than 2⁻¹²⁸⁰.
     const FRAC_2_PI_BITS: [u64; 20] = [
         0xa2f9836e4e441529, 0xfc2757d1f534ddc0, 0xdb6295993c439041, 0xfe5163abdebbc561,
@@ -3222,7 +3672,7 @@ fn sin_cos_slow(x: f64) -> (f64, f64) {
     }
     let ax = x.abs();
     if ax < 0.78 {
-        let [(s, c)] = sin_cos_reduced([ax], [0.0], [0.0], [0.0]);
+        let [(s, c)] = sin_cos_reduced::<I, f64, 1>([ax], [0.0], [0.0], [0.0]);
         return (if x < 0.0 { -s } else { s }, c);
     }
     // |x| = m·2^e with m < 2⁵³ an integer.
@@ -3265,6 +3715,6 @@ fn sin_cos_slow(x: f64) -> (f64, f64) {
     let low = pl + (fh * PIO2_LO + fl * PIO2_HI);
     let rh = ph + low;
     let rl = low - (rh - ph);
-    let [(s, c)] = sin_cos_reduced([rh], [rl], [rh], [f64::from_bits(k)]);
+    let [(s, c)] = sin_cos_reduced::<I, f64, 1>([rh], [rl], [rh], [f64::from_bits(k)]);
     (if x < 0.0 { -s } else { s }, c)
 }

@@ -5,10 +5,15 @@
 // Model content hash (FNV-1a 64 of its canonical text): cad994e2c45c6621
 // Gravity: [0.0, 0.0, -9.81] m/s^2 in the base frame, folded in.
 // Options: scalar f64; forward dynamics by the CRBA + RNEA + sparse LTDL (chosen); rounding snap on (6 constants); inertia regrouping on; like terms on, constant products on, constant sums on, reassociation on.
-// Trigonometry: NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time, four where the target has AVX2 (no_std, no dependency).
+// Trigonometry: NAME(q, ...) computes the sines and cosines it reads by sin_cos_array, two at a time, four where the target (or, with run-time dispatch, the processor) has AVX2 (no_std, no dependency).
 // Fused multiply-adds: fma(a, b, c) (fmaf in f32) is a*b + c with one rounding where the target has an FMA
 //   instruction (x86_64 built with target feature fma, e.g. -C target-cpu=native on a machine that has it;
 //   aarch64), and plain a * b + c elsewhere: a default x86_64 build gives the same bits as unfused code.
+// Run-time dispatch: on. On x86_64 builds without target features avx2 and fma (a default build), every
+//   public function also has a copy compiled for AVX2 and FMA (NAME_avx2_fma, from the one generic body
+//   NAME_on) and runs it where the processor has both (cpuid, asked once): as fast as a native build, and
+//   with its bits, so results differ in the last bits between machines with and without FMA (within the
+//   accuracy the tests check). Off: runtime_dispatch(false), the same bits on every x86_64 machine.
 // Forward dynamics: CRBA + LTDL, chosen as faster and as accurate (estimated 247 cycles for CRBA + LTDL against 320 for the articulated-body algorithm; worst relative error on 16 states against double-double 3.8e-16 against 1.7e-16).
 // Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]
 //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.
@@ -33,7 +38,7 @@ pub const JOINT_NAMES: [&str; DOF] = [
     "wrist_2_joint",
     "wrist_3_joint",
 ];
-/// The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target has AVX2).
+/// The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target, or with run-time dispatch the processor, has AVX2).
 #[inline]
 pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
     sin_cos_array(q)
@@ -44,13 +49,39 @@ pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
 /// 277 ops: 65 add, 50 sub, 162 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 96 fused multiply-adds, 182 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+pub fn inverse_dynamics_sc(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+    qdd: &[f64; DOF],
+) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { inverse_dynamics_sc_avx2_fma(s, c, qd, qdd) };
+    }
+    inverse_dynamics_sc_on::<Baseline>(s, c, qd, qdd)
+}
+/// [`inverse_dynamics_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn inverse_dynamics_sc_avx2_fma(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+    qdd: &[f64; DOF],
+) -> [f64; DOF] {
+    inverse_dynamics_sc_on::<Avx2Fma>(s, c, qd, qdd)
+}
+/// The body of [`inverse_dynamics_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn inverse_dynamics_sc(
+fn inverse_dynamics_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
     qd: &[f64; DOF],
@@ -64,180 +95,180 @@ pub fn inverse_dynamics_sc(
     let t5 = qd[0] * c[1];
     let t6 = qd[0] * s[1];
     let t7 = 9.81 * c[1];
-    let t8 = fma(s[1], t2, -t7);
+    let t8 = I::fma(s[1], t2, -t7);
     let t9 = 9.81 * s[1];
-    let t10 = fma(c[1], t2, t9);
+    let t10 = I::fma(c[1], t2, t9);
     let t11 = qd[1] * t5;
     let t12 = qd[1] * t6;
-    let t13 = fma(-qdd[0], c[1], t12);
+    let t13 = I::fma(-qdd[0], c[1], t12);
     let t14 = t4 + t11;
     let t15 = 0.483853490875 * t0;
     let t16 = qd[1] * qd[1];
     let t17 = t5 * t6;
-    let t18 = fma(qdd[0], c[1], -t12);
-    let t19 = fma(t5, t5, t16);
+    let t18 = I::fma(qdd[0], c[1], -t12);
+    let t19 = I::fma(t5, t5, t16);
     let t20 = qdd[1] + t17;
     let t21 = t18 - t12;
-    let t22 = fma(-t6, t6, t16);
+    let t22 = I::fma(-t6, t6, t16);
     let t23 = 1.77012693841 * qdd[1];
-    let t24 = fma(-0.075354282, t4, t23);
-    let t25 = fma(1.75501953841, t17, t24);
+    let t24 = I::fma(-0.075354282, t4, t23);
+    let t25 = I::fma(1.75501953841, t17, t24);
     let t26 = 1.75501953841 * t14;
-    let t27 = fma(0.075354282, t20, t26);
-    let t28 = fma(-1.77012693841, t11, t27);
-    let t29 = fma(4.4329225, t8, t25);
-    let t30 = fma(0.425, t20, t8);
-    let t31 = fma(0.425, t21, -t3);
-    let t32 = fma(0.425, t19, t10);
+    let t27 = I::fma(0.075354282, t20, t26);
+    let t28 = I::fma(-1.77012693841, t11, t27);
+    let t29 = I::fma(4.4329225, t8, t25);
+    let t30 = I::fma(0.425, t20, t8);
+    let t31 = I::fma(0.425, t21, -t3);
+    let t32 = I::fma(0.425, t19, t10);
     let t33 = t13 * s[2];
-    let t34 = fma(-t14, c[2], t33);
+    let t34 = I::fma(-t14, c[2], t33);
     let t35 = t14 * s[2];
-    let t36 = fma(t13, c[2], t35);
+    let t36 = I::fma(t13, c[2], t35);
     let t37 = t6 * c[2];
-    let t38 = fma(t5, s[2], t37);
+    let t38 = I::fma(t5, s[2], t37);
     let t39 = t6 * s[2];
-    let t40 = fma(-t5, c[2], t39);
+    let t40 = I::fma(-t5, c[2], t39);
     let t41 = c[2] * t32;
-    let t42 = fma(s[2], t30, -t41);
+    let t42 = I::fma(s[2], t30, -t41);
     let t43 = s[2] * t32;
-    let t44 = fma(c[2], t30, t43);
+    let t44 = I::fma(c[2], t30, t43);
     let t45 = qd[1] + qd[2];
-    let t46 = fma(qd[2], t38, t36);
-    let t47 = fma(qd[2], t40, t34);
+    let t46 = I::fma(qd[2], t38, t36);
+    let t47 = I::fma(qd[2], t40, t34);
     let t48 = qdd[1] + qdd[2];
     let t49 = t45 * t45;
     let t50 = t40 * t45;
     let t51 = t38 * t40;
     let t52 = t38 * t45;
-    let t53 = fma(t40, t40, t49);
+    let t53 = I::fma(t40, t40, t49);
     let t54 = t50 - t47;
     let t55 = t48 - t51;
     let t56 = t46 + t52;
     let t57 = 1.598759275 * t56;
-    let t58 = fma(-t38, t38, t49);
+    let t58 = I::fma(-t38, t38, t49);
     let t59 = 0.09736195575 * t58;
-    let t60 = fma(1.1872089033494997, t52, t59);
+    let t60 = I::fma(1.1872089033494997, t52, t59);
     let t61 = 0.5956519516747499 * t48;
     let t62 = 0.5956519516747499 * t50;
-    let t63 = fma(-1.598759275, t31, t60);
-    let t64 = fma(0.39225, t55, t44);
-    let t65 = fma(-0.39225, t56, t31);
-    let t66 = fma(-0.39225, t53, t42);
+    let t63 = I::fma(-1.598759275, t31, t60);
+    let t64 = I::fma(0.39225, t55, t44);
+    let t65 = I::fma(-0.39225, t56, t31);
+    let t66 = I::fma(-0.39225, t53, t42);
     let t67 = t46 * s[3];
-    let t68 = fma(t47, c[3], t67);
+    let t68 = I::fma(t47, c[3], t67);
     let t69 = t46 * c[3];
-    let t70 = fma(-t47, s[3], t69);
+    let t70 = I::fma(-t47, s[3], t69);
     let t71 = t38 * c[3];
-    let t72 = fma(-t40, s[3], t71);
+    let t72 = I::fma(-t40, s[3], t71);
     let t73 = t40 * c[3];
-    let t74 = fma(t38, s[3], t73);
+    let t74 = I::fma(t38, s[3], t73);
     let t75 = s[3] * t64;
-    let t76 = fma(c[3], t66, t75);
+    let t76 = I::fma(c[3], t66, t75);
     let t77 = qd[3] + t45;
-    let t78 = fma(qd[3], t74, t68);
-    let t79 = fma(qd[3], t72, t70);
+    let t78 = I::fma(qd[3], t74, t68);
+    let t79 = I::fma(qd[3], t72, t70);
     let t80 = qdd[3] + t48;
     let t81 = t77 * t77;
     let t82 = t72 * t77;
     let t83 = t72 * t74;
     let t84 = t74 * t77;
-    let t85 = fma(t72, t72, t81);
+    let t85 = I::fma(t72, t72, t81);
     let t86 = t80 + t83;
     let t87 = t78 + t84;
     let t88 = 0.01778473500000001 * t86;
     let t89 = 0.01778473500000001 * t85;
     let t90 = 0.22863767245949998 * t84;
     let t91 = 0.22402883622975 * t80;
-    let t92 = fma(0.004608836229749974, t83, t91);
+    let t92 = I::fma(0.004608836229749974, t83, t91);
     let t93 = 0.22402883622975 * t82;
-    let t94 = fma(-0.004608836229749974, t79, t93);
-    let t95 = fma(0.01778473500000001, t65, t90);
-    let t96 = fma(-0.01778473500000001, t76, t92);
+    let t94 = I::fma(-0.004608836229749974, t79, t93);
+    let t95 = I::fma(0.01778473500000001, t65, t90);
+    let t96 = I::fma(-0.01778473500000001, t76, t92);
     let t97 = t80 * s[4];
     let t98 = t77 * s[4];
-    let t99 = fma(t72, c[4], t98);
+    let t99 = I::fma(t72, c[4], t98);
     let t100 = t77 * c[4];
-    let t101 = fma(-t72, s[4], t100);
+    let t101 = I::fma(-t72, s[4], t100);
     let t102 = qd[4] + t74;
-    let t103 = fma(qd[4], t101, t97);
-    let t104 = fma(-t78, c[4], t103);
+    let t103 = I::fma(qd[4], t101, t97);
+    let t104 = I::fma(-t78, c[4], t103);
     let t105 = qdd[4] + t79;
     let t106 = t99 * t101;
     let t107 = t99 * t102;
     let t108 = t101 * t102;
     let t109 = 0.23655647314540001 * t108;
-    let t110 = fma(0.017136473145399997, t104, t109);
+    let t110 = I::fma(0.017136473145399997, t104, t109);
     let t111 = 0.017136473145399997 * t106;
-    let t112 = fma(0.23655647314540001, t105, -t111);
+    let t112 = I::fma(0.23655647314540001, t105, -t111);
     let t113 = t102 * c[5];
-    let t114 = fma(t99, s[5], t113);
+    let t114 = I::fma(t99, s[5], t113);
     let t115 = t99 * c[5];
-    let t116 = fma(-t102, s[5], t115);
+    let t116 = I::fma(-t102, s[5], t115);
     let t117 = qd[5] + t101;
     let t118 = qd[5] * t116;
-    let t119 = fma(t105, c[5], t118);
-    let t120 = fma(t104, s[5], t119);
-    let t121 = fma(t80, c[4], qdd[5]);
-    let t122 = fma(-qd[4], t99, t121);
-    let t123 = fma(t78, s[4], t122);
+    let t119 = I::fma(t105, c[5], t118);
+    let t120 = I::fma(t104, s[5], t119);
+    let t121 = I::fma(t80, c[4], qdd[5]);
+    let t122 = I::fma(-qd[4], t99, t121);
+    let t123 = I::fma(t78, s[4], t122);
     let t124 = t116 * t117;
     let t125 = t114 * t116;
     let t126 = t114 * t117;
     let t127 = 0.0004509462908000028 * t126;
     let t128 = 0.016685526854599998 * t125;
-    let t129 = fma(0.0171364731454, t123, -t128);
+    let t129 = I::fma(0.0171364731454, t123, -t128);
     let t130 = 0.0171364731454 * t124;
-    let t131 = fma(0.016685526854599998, t120, t130);
-    let t132 = fma(-c[5], t127, t110);
-    let t133 = fma(s[5], t131, t132);
-    let t134 = fma(-0.21942, t107, t129);
-    let t135 = fma(s[5], t127, t112);
-    let t136 = fma(c[5], t131, t135);
-    let t137 = fma(s[4], t134, t95);
-    let t138 = fma(c[4], t133, -t137);
-    let t139 = fma(c[4], t134, t96);
-    let t140 = fma(s[4], t133, t139);
+    let t131 = I::fma(0.016685526854599998, t120, t130);
+    let t132 = I::fma(-c[5], t127, t110);
+    let t133 = I::fma(s[5], t131, t132);
+    let t134 = I::fma(-0.21942, t107, t129);
+    let t135 = I::fma(s[5], t127, t112);
+    let t136 = I::fma(c[5], t131, t135);
+    let t137 = I::fma(s[4], t134, t95);
+    let t138 = I::fma(c[4], t133, -t137);
+    let t139 = I::fma(c[4], t134, t96);
+    let t140 = I::fma(s[4], t133, t139);
     let t141 = t94 + t136;
     let t142 = c[3] * t89;
-    let t143 = fma(s[3], t88, t142);
+    let t143 = I::fma(s[3], t88, t142);
     let t144 = s[3] * t89;
-    let t145 = fma(-c[3], t88, t144);
-    let t146 = fma(-0.006976062303750003, t87, t63);
-    let t147 = fma(c[3], t141, t146);
-    let t148 = fma(-s[3], t138, t147);
-    let t149 = fma(-0.5915569516747499, t51, t61);
-    let t150 = fma(1.598759275, t44, t149);
-    let t151 = fma(-0.09736195575, t54, t150);
-    let t152 = fma(-0.39225, t143, t151);
+    let t145 = I::fma(-c[3], t88, t144);
+    let t146 = I::fma(-0.006976062303750003, t87, t63);
+    let t147 = I::fma(c[3], t141, t146);
+    let t148 = I::fma(-s[3], t138, t147);
+    let t149 = I::fma(-0.5915569516747499, t51, t61);
+    let t150 = I::fma(1.598759275, t44, t149);
+    let t151 = I::fma(-0.09736195575, t54, t150);
+    let t152 = I::fma(-0.39225, t143, t151);
     let t153 = t140 + t152;
-    let t154 = fma(0.09736195575, t55, t62);
-    let t155 = fma(-0.5915569516747499, t47, t154);
-    let t156 = fma(-s[3], t141, t155);
-    let t157 = fma(-c[3], t138, t156);
-    let t158 = fma(1.598759275, t55, -t143);
-    let t159 = fma(0.01778473500000001, t87, -t57);
-    let t160 = fma(-1.598759275, t53, t145);
+    let t154 = I::fma(0.09736195575, t55, t62);
+    let t155 = I::fma(-0.5915569516747499, t47, t154);
+    let t156 = I::fma(-s[3], t141, t155);
+    let t157 = I::fma(-c[3], t138, t156);
+    let t158 = I::fma(1.598759275, t55, -t143);
+    let t159 = I::fma(0.01778473500000001, t87, -t57);
+    let t160 = I::fma(-1.598759275, t53, t145);
     let t161 = c[2] * t160;
-    let t162 = fma(-s[2], t158, t161);
+    let t162 = I::fma(-s[2], t158, t161);
     let t163 = s[2] * t160;
-    let t164 = fma(c[2], t158, t163);
+    let t164 = I::fma(c[2], t158, t163);
     let t165 = c[2] * t157;
-    let t166 = fma(-s[2], t148, t165);
-    let t167 = fma(3.52514647682, t12, t15);
-    let t168 = fma(0.075354282, t22, t167);
-    let t169 = fma(-0.425, t159, t168);
-    let t170 = fma(s[2], t157, t169);
-    let t171 = fma(c[2], t148, t170);
-    let t172 = fma(0.425, t164, t29);
+    let t166 = I::fma(-s[2], t148, t165);
+    let t167 = I::fma(3.52514647682, t12, t15);
+    let t168 = I::fma(0.075354282, t22, t167);
+    let t169 = I::fma(-0.425, t159, t168);
+    let t170 = I::fma(s[2], t157, t169);
+    let t171 = I::fma(c[2], t148, t170);
+    let t172 = I::fma(0.425, t164, t29);
     let t173 = t153 + t172;
     let t174 = t28 + t166;
-    let t175 = fma(4.4329225, t20, t164);
-    let t176 = fma(-4.4329225, t19, t162);
+    let t175 = I::fma(4.4329225, t20, t164);
+    let t176 = I::fma(-4.4329225, t19, t162);
     let t177 = c[1] * t176;
-    let t178 = fma(-s[1], t175, t177);
-    let t179 = fma(-0.10915, t178, t1);
-    let t180 = fma(-c[1], t171, t179);
-    let t181 = fma(-s[1], t174, t180);
+    let t178 = I::fma(-s[1], t175, t177);
+    let t179 = I::fma(-0.10915, t178, t1);
+    let t180 = I::fma(-c[1], t171, t179);
+    let t181 = I::fma(-s[1], t174, t180);
     [t181, t173, t153, t140, t136, t129]
 }
 /// Inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton-Euler algorithm.
@@ -252,6 +283,11 @@ pub fn inverse_dynamics(
     qd: &[f64; DOF],
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { inverse_dynamics_avx2_fma(q, qd, qdd) };
+    }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5]]);
     inverse_dynamics_sc(
         &[0.0, s[0], s[1], s[2], s[3], s[4]],
@@ -260,106 +296,141 @@ pub fn inverse_dynamics(
         qdd,
     )
 }
+/// [`inverse_dynamics`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn inverse_dynamics_avx2_fma(
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+    qdd: &[f64; DOF],
+) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, 5>(&[q[1], q[2], q[3], q[4], q[5]]);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe {
+        inverse_dynamics_sc_avx2_fma(
+            &[0.0, s[0], s[1], s[2], s[3], s[4]],
+            &[1.0, c[0], c[1], c[2], c[3], c[4]],
+            qd,
+            qdd,
+        )
+    }
+}
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 126 ops: 27 add, 20 sub, 78 mul, 0 div, 1 neg, 0 sqrt, 0 sin_cos; 37 fused multiply-adds, 89 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { mass_matrix_sc_avx2_fma(s, c) };
+    }
+    mass_matrix_sc_on::<Baseline>(s, c)
+}
+/// [`mass_matrix_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn mass_matrix_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+    mass_matrix_sc_on::<Avx2Fma>(s, c)
+}
+/// The body of [`mass_matrix_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+fn mass_matrix_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let t0 = c[5] * c[5];
     let t1 = s[5] * s[5];
     let t2 = s[5] * c[5];
     let t3 = 0.016685526854599998 * t1;
     let t4 = 0.016685526854599998 * t2;
-    let t5 = fma(0.016685526854599998, t0, 0.23655647314540001);
+    let t5 = I::fma(0.016685526854599998, t0, 0.23655647314540001);
     let t6 = c[4] * c[4];
     let t7 = s[4] * s[4];
     let t8 = s[4] * c[4];
     let t9 = c[4] * t4;
     let t10 = s[4] * t4;
-    let t11 = fma(t3, t6, 0.0171364731454);
+    let t11 = I::fma(t3, t6, 0.0171364731454);
     let t12 = t3 * t8;
-    let t13 = fma(t3, t7, 0.24116530937515002);
-    let t14 = fma(0.016685526854599998, t0, 0.23194763691565004);
+    let t13 = I::fma(t3, t7, 0.24116530937515002);
+    let t14 = I::fma(0.016685526854599998, t0, 0.23194763691565004);
     let t15 = 0.01778473500000001 * c[3];
     let t16 = 0.01778473500000001 * s[3];
     let t17 = c[3] * t10;
-    let t18 = fma(-s[3], t12, t17);
+    let t18 = I::fma(-s[3], t12, t17);
     let t19 = s[3] * t10;
-    let t20 = fma(c[3], t12, t19);
+    let t20 = I::fma(c[3], t12, t19);
     let t21 = 1.598759275 - t16;
-    let t22 = fma(-0.013952124607500007, s[3], 0.5956519516747499);
+    let t22 = I::fma(-0.013952124607500007, s[3], 0.5956519516747499);
     let t23 = t13 + t22;
     let t24 = 0.09736195575 - t20;
     let t25 = s[2] * t15;
-    let t26 = fma(c[2], t21, -t25);
+    let t26 = I::fma(c[2], t21, -t25);
     let t27 = c[2] * t15;
-    let t28 = fma(s[2], t21, t27);
+    let t28 = I::fma(s[2], t21, t27);
     let t29 = c[2] * t18;
-    let t30 = fma(s[2], t24, t29);
-    let t31 = fma(0.85, t26, t23);
+    let t30 = I::fma(s[2], t24, t29);
+    let t31 = I::fma(0.85, t26, t23);
     let t32 = 4.4329225 + t26;
     let t33 = 1.77012693841 + t31;
-    let t34 = fma(-s[2], t18, 0.075354282);
-    let t35 = fma(c[2], t24, t34);
+    let t34 = I::fma(-s[2], t18, 0.075354282);
+    let t35 = I::fma(c[2], t24, t34);
     let t36 = s[1] * t35;
     let t37 = 0.10915 * s[1];
     let t38 = 0.10915 * c[1];
     let t39 = s[1] * c[2];
-    let t40 = fma(c[1], s[2], t39);
+    let t40 = I::fma(c[1], s[2], t39);
     let t41 = s[1] * s[2];
-    let t42 = fma(-c[1], c[2], t41);
+    let t42 = I::fma(-c[1], c[2], t41);
     let t43 = 0.425 * c[1];
     let t44 = s[2] * t37;
-    let t45 = fma(-c[2], t38, t44);
+    let t45 = I::fma(-c[2], t38, t44);
     let t46 = s[2] * t38;
-    let t47 = fma(c[2], t37, t46);
+    let t47 = I::fma(c[2], t37, t46);
     let t48 = c[3] * t40;
-    let t49 = fma(-s[3], t42, t48);
+    let t49 = I::fma(-s[3], t42, t48);
     let t50 = c[3] * t42;
-    let t51 = fma(s[3], t40, t50);
-    let t52 = fma(-0.39225, t42, t43);
-    let t53 = fma(c[1], t30, t36);
+    let t51 = I::fma(s[3], t40, t50);
+    let t52 = I::fma(-0.39225, t42, t43);
+    let t53 = I::fma(c[1], t30, t36);
     let t54 = 1.75501953841 * s[1];
-    let t55 = fma(-s[1], t54, 2.7690351387572503);
+    let t55 = I::fma(-s[1], t54, 2.7690351387572503);
     let t56 = t18 * t42;
     let t57 = t42 * t43;
     let t58 = 0.5915569516747499 * t40;
     let t59 = t11 * t49;
-    let t60 = fma(t9, t51, t59);
+    let t60 = I::fma(t9, t51, t59);
     let t61 = t9 * t49;
-    let t62 = fma(t14, t51, t61);
+    let t62 = I::fma(t14, t51, t61);
     let t63 = t49 * t60;
-    let t64 = fma(t51, t62, t63);
+    let t64 = I::fma(t51, t62, t63);
     let t65 = t49 * t52;
-    let t66 = fma(-t40, t58, t55);
-    let t67 = fma(-3.19751855, t57, t66);
-    let t68 = fma(-0.03556947000000002, t65, t67);
+    let t66 = I::fma(-t40, t58, t55);
+    let t67 = I::fma(-3.19751855, t57, t66);
+    let t68 = I::fma(-0.03556947000000002, t65, t67);
     let t69 = t64 + t68;
     let t70 = 0.0171364731454 * c[4];
     let t71 = t28 * t38;
-    let t72 = fma(t32, t37, t71);
+    let t72 = I::fma(t32, t37, t71);
     let t73 = t72 - t53;
-    let t74 = fma(0.425, t26, t23);
+    let t74 = I::fma(0.425, t26, t23);
     let t75 = t21 * t47;
     let t76 = t15 * t45;
     let t77 = t75 - t76;
     let t78 = t56 + t77;
-    let t79 = fma(-t24, t40, t78);
-    let t80 = fma(-0.006976062303750003, s[3], t13);
-    let t81 = fma(c[2], t16, t25);
-    let t82 = fma(-0.425, t81, t80);
-    let t83 = fma(t20, t40, t56);
-    let t84 = fma(t16, t47, t76);
+    let t79 = I::fma(-t24, t40, t78);
+    let t80 = I::fma(-0.006976062303750003, s[3], t13);
+    let t81 = I::fma(c[2], t16, t25);
+    let t82 = I::fma(-0.425, t81, t80);
+    let t83 = I::fma(t20, t40, t56);
+    let t84 = I::fma(t16, t47, t76);
     let t85 = t83 - t84;
-    let t86 = fma(t5, t51, t61);
+    let t86 = I::fma(t5, t51, t61);
     let t87 = 0.0171364731454 * s[4];
     let t88 = t49 * t87;
     let t89 = -t88;
@@ -380,11 +451,29 @@ pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`mass_matrix_sc`].
 #[inline]
 pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { mass_matrix_avx2_fma(q) };
+    }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5]]);
     mass_matrix_sc(
         &[0.0, s[0], s[1], s[2], s[3], s[4]],
         &[1.0, c[0], c[1], c[2], c[3], c[4]],
     )
+}
+/// [`mass_matrix`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn mass_matrix_avx2_fma(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, 5>(&[q[1], q[2], q[3], q[4], q[5]]);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe {
+        mass_matrix_sc_avx2_fma(
+            &[0.0, s[0], s[1], s[2], s[3], s[4]],
+            &[1.0, c[0], c[1], c[2], c[3], c[4]],
+        )
+    }
 }
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
@@ -392,13 +481,37 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// 248 ops: 56 add, 39 sub, 150 mul, 0 div, 3 neg, 0 sqrt, 0 sin_cos; 84 fused multiply-adds, 161 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { bias_forces_sc_avx2_fma(s, c, qd) };
+    }
+    bias_forces_sc_on::<Baseline>(s, c, qd)
+}
+/// [`bias_forces_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn bias_forces_sc_avx2_fma(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+) -> [f64; DOF] {
+    bias_forces_sc_on::<Avx2Fma>(s, c, qd)
+}
+/// The body of [`bias_forces_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
+fn bias_forces_sc_on<I: Isa>(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+) -> [f64; DOF] {
     let t0 = qd[0] * qd[0];
     let t1 = 0.10915 * t0;
     let t2 = qd[0] * c[1];
@@ -411,157 +524,157 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
     let t9 = 43.486969725 * c[1];
     let t10 = qd[1] * qd[1];
     let t11 = t2 * t3;
-    let t12 = fma(t2, t2, t10);
+    let t12 = I::fma(t2, t2, t10);
     let t13 = 4.4329225 * t12;
-    let t14 = fma(-t3, t3, t10);
+    let t14 = I::fma(-t3, t3, t10);
     let t15 = 1.75501953841 * t6;
-    let t16 = fma(0.075354282, t11, t15);
-    let t17 = fma(-1.77012693841, t6, t16);
-    let t18 = fma(1.75501953841, t11, -t9);
-    let t19 = fma(0.425, t11, -t4);
-    let t20 = fma(0.85, t7, t1);
-    let t21 = fma(0.425, t12, t5);
+    let t16 = I::fma(0.075354282, t11, t15);
+    let t17 = I::fma(-1.77012693841, t6, t16);
+    let t18 = I::fma(1.75501953841, t11, -t9);
+    let t19 = I::fma(0.425, t11, -t4);
+    let t20 = I::fma(0.85, t7, t1);
+    let t21 = I::fma(0.425, t12, t5);
     let t22 = t7 * s[2];
-    let t23 = fma(-t6, c[2], t22);
+    let t23 = I::fma(-t6, c[2], t22);
     let t24 = t6 * s[2];
-    let t25 = fma(t7, c[2], t24);
+    let t25 = I::fma(t7, c[2], t24);
     let t26 = t3 * c[2];
-    let t27 = fma(t2, s[2], t26);
+    let t27 = I::fma(t2, s[2], t26);
     let t28 = t3 * s[2];
-    let t29 = fma(-t2, c[2], t28);
+    let t29 = I::fma(-t2, c[2], t28);
     let t30 = s[2] * t19;
-    let t31 = fma(-c[2], t21, t30);
+    let t31 = I::fma(-c[2], t21, t30);
     let t32 = s[2] * t21;
-    let t33 = fma(c[2], t19, t32);
+    let t33 = I::fma(c[2], t19, t32);
     let t34 = qd[1] + qd[2];
-    let t35 = fma(qd[2], t27, t25);
-    let t36 = fma(qd[2], t29, t23);
+    let t35 = I::fma(qd[2], t27, t25);
+    let t36 = I::fma(qd[2], t29, t23);
     let t37 = 1.598759275 * t20;
     let t38 = t34 * t34;
     let t39 = t29 * t34;
     let t40 = t27 * t29;
     let t41 = t27 * t34;
     let t42 = -t35;
-    let t43 = fma(t29, t29, t38);
+    let t43 = I::fma(t29, t29, t38);
     let t44 = t39 - t36;
     let t45 = t42 - t41;
     let t46 = 1.598759275 * t45;
     let t47 = 1.598759275 * t43;
-    let t48 = fma(-t27, t27, t38);
+    let t48 = I::fma(-t27, t27, t38);
     let t49 = 0.5915569516747499 * t40;
-    let t50 = fma(0.09736195575, t44, t49);
+    let t50 = I::fma(0.09736195575, t44, t49);
     let t51 = 0.5956519516747499 * t39;
-    let t52 = fma(1.598759275, t33, -t50);
-    let t53 = fma(-0.39225, t40, t33);
-    let t54 = fma(0.39225, t45, -t20);
-    let t55 = fma(-0.39225, t43, t31);
+    let t52 = I::fma(1.598759275, t33, -t50);
+    let t53 = I::fma(-0.39225, t40, t33);
+    let t54 = I::fma(0.39225, t45, -t20);
+    let t55 = I::fma(-0.39225, t43, t31);
     let t56 = t35 * s[3];
-    let t57 = fma(t36, c[3], t56);
+    let t57 = I::fma(t36, c[3], t56);
     let t58 = t35 * c[3];
-    let t59 = fma(-t36, s[3], t58);
+    let t59 = I::fma(-t36, s[3], t58);
     let t60 = t27 * c[3];
-    let t61 = fma(-t29, s[3], t60);
+    let t61 = I::fma(-t29, s[3], t60);
     let t62 = t29 * c[3];
-    let t63 = fma(t27, s[3], t62);
+    let t63 = I::fma(t27, s[3], t62);
     let t64 = s[3] * t53;
-    let t65 = fma(c[3], t55, t64);
+    let t65 = I::fma(c[3], t55, t64);
     let t66 = qd[3] + t34;
-    let t67 = fma(qd[3], t63, t57);
-    let t68 = fma(qd[3], t61, t59);
+    let t67 = I::fma(qd[3], t63, t57);
+    let t68 = I::fma(qd[3], t61, t59);
     let t69 = t66 * t66;
     let t70 = t61 * t66;
     let t71 = t61 * t63;
     let t72 = t63 * t66;
-    let t73 = fma(t61, t61, t69);
+    let t73 = I::fma(t61, t61, t69);
     let t74 = t67 + t72;
     let t75 = 0.01778473500000001 * t71;
     let t76 = 0.01778473500000001 * t73;
     let t77 = 0.22863767245949998 * t72;
     let t78 = 0.004608836229749974 * t71;
     let t79 = 0.22402883622975 * t70;
-    let t80 = fma(-0.004608836229749974, t68, t79);
-    let t81 = fma(0.01778473500000001, t54, t77);
-    let t82 = fma(-0.01778473500000001, t65, t78);
+    let t80 = I::fma(-0.004608836229749974, t68, t79);
+    let t81 = I::fma(0.01778473500000001, t54, t77);
+    let t82 = I::fma(-0.01778473500000001, t65, t78);
     let t83 = t66 * s[4];
-    let t84 = fma(t61, c[4], t83);
+    let t84 = I::fma(t61, c[4], t83);
     let t85 = t66 * c[4];
-    let t86 = fma(-t61, s[4], t85);
+    let t86 = I::fma(-t61, s[4], t85);
     let t87 = qd[4] + t63;
     let t88 = qd[4] * t86;
     let t89 = qd[4] * t84;
-    let t90 = fma(-t67, c[4], t88);
-    let t91 = fma(-t67, s[4], t89);
+    let t90 = I::fma(-t67, c[4], t88);
+    let t91 = I::fma(-t67, s[4], t89);
     let t92 = t84 * t86;
     let t93 = t84 * t87;
     let t94 = t86 * t87;
     let t95 = 0.23655647314540001 * t94;
-    let t96 = fma(0.017136473145399997, t90, t95);
+    let t96 = I::fma(0.017136473145399997, t90, t95);
     let t97 = 0.017136473145399997 * t92;
-    let t98 = fma(0.23655647314540001, t68, -t97);
+    let t98 = I::fma(0.23655647314540001, t68, -t97);
     let t99 = t68 * c[5];
     let t100 = t87 * c[5];
-    let t101 = fma(t84, s[5], t100);
+    let t101 = I::fma(t84, s[5], t100);
     let t102 = t84 * c[5];
-    let t103 = fma(-t87, s[5], t102);
+    let t103 = I::fma(-t87, s[5], t102);
     let t104 = qd[5] + t86;
-    let t105 = fma(qd[5], t103, t99);
-    let t106 = fma(t90, s[5], t105);
+    let t105 = I::fma(qd[5], t103, t99);
+    let t106 = I::fma(t90, s[5], t105);
     let t107 = t103 * t104;
     let t108 = t101 * t103;
     let t109 = t101 * t104;
     let t110 = 0.0004509462908000028 * t109;
     let t111 = 0.0171364731454 * t91;
-    let t112 = fma(0.016685526854599998, t108, t111);
+    let t112 = I::fma(0.016685526854599998, t108, t111);
     let t113 = -t112;
     let t114 = 0.0171364731454 * t107;
-    let t115 = fma(0.016685526854599998, t106, t114);
-    let t116 = fma(-c[5], t110, t96);
-    let t117 = fma(s[5], t115, t116);
-    let t118 = fma(-0.21942, t93, t113);
-    let t119 = fma(s[5], t110, t98);
-    let t120 = fma(c[5], t115, t119);
-    let t121 = fma(s[4], t118, t81);
-    let t122 = fma(c[4], t117, -t121);
-    let t123 = fma(c[4], t118, t82);
-    let t124 = fma(s[4], t117, t123);
+    let t115 = I::fma(0.016685526854599998, t106, t114);
+    let t116 = I::fma(-c[5], t110, t96);
+    let t117 = I::fma(s[5], t115, t116);
+    let t118 = I::fma(-0.21942, t93, t113);
+    let t119 = I::fma(s[5], t110, t98);
+    let t120 = I::fma(c[5], t115, t119);
+    let t121 = I::fma(s[4], t118, t81);
+    let t122 = I::fma(c[4], t117, -t121);
+    let t123 = I::fma(c[4], t118, t82);
+    let t124 = I::fma(s[4], t117, t123);
     let t125 = t80 + t120;
     let t126 = s[3] * t75;
-    let t127 = fma(c[3], t76, t126);
-    let t128 = fma(1.1872089033494997, t41, t37);
-    let t129 = fma(0.09736195575, t48, t128);
-    let t130 = fma(-0.006976062303750003, t74, t129);
-    let t131 = fma(c[3], t125, t130);
-    let t132 = fma(-s[3], t122, t131);
-    let t133 = fma(-0.39225, t127, t52);
+    let t127 = I::fma(c[3], t76, t126);
+    let t128 = I::fma(1.1872089033494997, t41, t37);
+    let t129 = I::fma(0.09736195575, t48, t128);
+    let t130 = I::fma(-0.006976062303750003, t74, t129);
+    let t131 = I::fma(c[3], t125, t130);
+    let t132 = I::fma(-s[3], t122, t131);
+    let t133 = I::fma(-0.39225, t127, t52);
     let t134 = t124 + t133;
-    let t135 = fma(-0.09736195575, t40, t51);
-    let t136 = fma(-0.5915569516747499, t36, t135);
-    let t137 = fma(-s[3], t125, t136);
-    let t138 = fma(-c[3], t122, t137);
-    let t139 = fma(1.598759275, t40, t127);
-    let t140 = fma(0.01778473500000001, t74, t46);
-    let t141 = fma(c[3], t75, t47);
-    let t142 = fma(s[3], t76, -t141);
+    let t135 = I::fma(-0.09736195575, t40, t51);
+    let t136 = I::fma(-0.5915569516747499, t36, t135);
+    let t137 = I::fma(-s[3], t125, t136);
+    let t138 = I::fma(-c[3], t122, t137);
+    let t139 = I::fma(1.598759275, t40, t127);
+    let t140 = I::fma(0.01778473500000001, t74, t46);
+    let t141 = I::fma(c[3], t75, t47);
+    let t142 = I::fma(s[3], t76, -t141);
     let t143 = s[2] * t142;
-    let t144 = fma(-c[2], t139, t143);
+    let t144 = I::fma(-c[2], t139, t143);
     let t145 = c[2] * t138;
-    let t146 = fma(-s[2], t132, t145);
-    let t147 = fma(3.52514647682, t7, t8);
-    let t148 = fma(0.075354282, t14, t147);
-    let t149 = fma(-0.425, t140, t148);
-    let t150 = fma(s[2], t138, t149);
-    let t151 = fma(c[2], t132, t150);
-    let t152 = fma(0.425, t144, t18);
+    let t146 = I::fma(-s[2], t132, t145);
+    let t147 = I::fma(3.52514647682, t7, t8);
+    let t148 = I::fma(0.075354282, t14, t147);
+    let t149 = I::fma(-0.425, t140, t148);
+    let t150 = I::fma(s[2], t138, t149);
+    let t151 = I::fma(c[2], t132, t150);
+    let t152 = I::fma(0.425, t144, t18);
     let t153 = t134 + t152;
     let t154 = t17 + t146;
-    let t155 = fma(4.4329225, t11, t144);
-    let t156 = fma(c[2], t142, -t13);
-    let t157 = fma(s[2], t139, t156);
+    let t155 = I::fma(4.4329225, t11, t144);
+    let t156 = I::fma(c[2], t142, -t13);
+    let t157 = I::fma(s[2], t139, t156);
     let t158 = c[1] * t157;
-    let t159 = fma(-s[1], t155, t158);
+    let t159 = I::fma(-s[1], t155, t158);
     let t160 = c[1] * t151;
-    let t161 = fma(s[1], t154, t160);
-    let t162 = fma(0.10915, t159, t161);
+    let t161 = I::fma(s[1], t154, t160);
+    let t162 = I::fma(0.10915, t159, t161);
     let t163 = -t162;
     [t163, t153, t134, t124, t120, t113]
 }
@@ -573,6 +686,11 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`bias_forces_sc`].
 #[inline]
 pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { bias_forces_avx2_fma(q, qd) };
+    }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5]]);
     bias_forces_sc(
         &[0.0, s[0], s[1], s[2], s[3], s[4]],
@@ -580,30 +698,60 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
         qd,
     )
 }
+/// [`bias_forces`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn bias_forces_avx2_fma(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, 5>(&[q[1], q[2], q[3], q[4], q[5]]);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe {
+        bias_forces_sc_avx2_fma(
+            &[0.0, s[0], s[1], s[2], s[3], s[4]],
+            &[1.0, c[0], c[1], c[2], c[3], c[4]],
+            qd,
+        )
+    }
+}
 /// The gravity torques g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
 /// 16 ops: 2 add, 3 sub, 11 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 5 fused multiply-adds, 11 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { gravity_torques_sc_avx2_fma(s, c) };
+    }
+    gravity_torques_sc_on::<Baseline>(s, c)
+}
+/// [`gravity_torques_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn gravity_torques_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
+    gravity_torques_sc_on::<Avx2Fma>(s, c)
+}
+/// The body of [`gravity_torques_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
+fn gravity_torques_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
     let t0 = 9.81 * c[1];
     let t1 = 9.81 * s[1];
     let t2 = t1 * c[2];
-    let t3 = fma(t0, s[2], t2);
+    let t3 = I::fma(t0, s[2], t2);
     let t4 = t1 * s[2];
-    let t5 = fma(-t0, c[2], t4);
+    let t5 = I::fma(-t0, c[2], t4);
     let t6 = t3 * c[3];
-    let t7 = fma(-t5, s[3], t6);
+    let t7 = I::fma(-t5, s[3], t6);
     let t8 = 0.01778473500000001 * t7;
-    let t9 = fma(1.598759275, t5, t8);
-    let t10 = fma(-43.486969725, c[1], t9);
+    let t9 = I::fma(1.598759275, t5, t8);
+    let t10 = I::fma(-43.486969725, c[1], t9);
     [0.0, t10, t9, t8, 0.0, 0.0]
 }
 /// The gravity torques g(q).
@@ -614,11 +762,29 @@ pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`gravity_torques_sc`].
 #[inline]
 pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { gravity_torques_avx2_fma(q) };
+    }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3]]);
     gravity_torques_sc(
         &[0.0, s[0], s[1], s[2], 0.0, 0.0],
         &[1.0, c[0], c[1], c[2], 1.0, 1.0],
     )
+}
+/// [`gravity_torques`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn gravity_torques_avx2_fma(q: &[f64; DOF]) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, 3>(&[q[1], q[2], q[3]]);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe {
+        gravity_torques_sc_avx2_fma(
+            &[0.0, s[0], s[1], s[2], 0.0, 0.0],
+            &[1.0, c[0], c[1], c[2], 1.0, 1.0],
+        )
+    }
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by CRBA, RNEA and a sparse LᵀDL solve.
 ///
@@ -626,13 +792,39 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
 /// 493 ops: 91 add, 115 sub, 277 mul, 10 div, 0 neg, 0 sqrt, 0 sin_cos; 178 fused multiply-adds, 334 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+pub fn forward_dynamics_sc(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+    tau: &[f64; DOF],
+) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { forward_dynamics_sc_avx2_fma(s, c, qd, tau) };
+    }
+    forward_dynamics_sc_on::<Baseline>(s, c, qd, tau)
+}
+/// [`forward_dynamics_sc`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn forward_dynamics_sc_avx2_fma(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    qd: &[f64; DOF],
+    tau: &[f64; DOF],
+) -> [f64; DOF] {
+    forward_dynamics_sc_on::<Avx2Fma>(s, c, qd, tau)
+}
+/// The body of [`forward_dynamics_sc`], in the instructions of `I`.
+#[inline(always)]
 #[allow(
     clippy::approx_constant,
     clippy::excessive_precision,
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
-pub fn forward_dynamics_sc(
+fn forward_dynamics_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
     qd: &[f64; DOF],
@@ -649,151 +841,151 @@ pub fn forward_dynamics_sc(
     let t8 = 0.483853490875 * t0;
     let t9 = qd[1] * qd[1];
     let t10 = t2 * t3;
-    let t11 = fma(t2, t2, t9);
+    let t11 = I::fma(t2, t2, t9);
     let t12 = 4.4329225 * t11;
-    let t13 = fma(-t3, t3, t9);
+    let t13 = I::fma(-t3, t3, t9);
     let t14 = 1.75501953841 * t6;
-    let t15 = fma(0.075354282, t10, t14);
-    let t16 = fma(-1.77012693841, t6, t15);
-    let t17 = fma(0.425, t10, -t4);
-    let t18 = fma(0.85, t7, t1);
-    let t19 = fma(0.425, t11, t5);
+    let t15 = I::fma(0.075354282, t10, t14);
+    let t16 = I::fma(-1.77012693841, t6, t15);
+    let t17 = I::fma(0.425, t10, -t4);
+    let t18 = I::fma(0.85, t7, t1);
+    let t19 = I::fma(0.425, t11, t5);
     let t20 = t7 * s[2];
-    let t21 = fma(-t6, c[2], t20);
+    let t21 = I::fma(-t6, c[2], t20);
     let t22 = t6 * s[2];
-    let t23 = fma(t7, c[2], t22);
+    let t23 = I::fma(t7, c[2], t22);
     let t24 = t3 * c[2];
-    let t25 = fma(t2, s[2], t24);
+    let t25 = I::fma(t2, s[2], t24);
     let t26 = t3 * s[2];
-    let t27 = fma(-t2, c[2], t26);
+    let t27 = I::fma(-t2, c[2], t26);
     let t28 = s[2] * t17;
-    let t29 = fma(-c[2], t19, t28);
+    let t29 = I::fma(-c[2], t19, t28);
     let t30 = s[2] * t19;
-    let t31 = fma(c[2], t17, t30);
+    let t31 = I::fma(c[2], t17, t30);
     let t32 = qd[1] + qd[2];
-    let t33 = fma(qd[2], t25, t23);
-    let t34 = fma(qd[2], t27, t21);
+    let t33 = I::fma(qd[2], t25, t23);
+    let t34 = I::fma(qd[2], t27, t21);
     let t35 = 1.598759275 * t18;
     let t36 = t32 * t32;
     let t37 = t27 * t32;
     let t38 = t25 * t27;
     let t39 = t25 * t32;
-    let t40 = fma(t27, t27, t36);
+    let t40 = I::fma(t27, t27, t36);
     let t41 = t37 - t34;
     let t42 = t33 + t39;
     let t43 = 1.598759275 * t42;
     let t44 = 1.598759275 * t40;
-    let t45 = fma(-t25, t25, t36);
+    let t45 = I::fma(-t25, t25, t36);
     let t46 = 0.5915569516747499 * t38;
-    let t47 = fma(0.09736195575, t41, t46);
+    let t47 = I::fma(0.09736195575, t41, t46);
     let t48 = 0.5956519516747499 * t37;
-    let t49 = fma(1.598759275, t31, -t47);
-    let t50 = fma(-0.39225, t38, t31);
-    let t51 = fma(0.39225, t42, t18);
-    let t52 = fma(-0.39225, t40, t29);
+    let t49 = I::fma(1.598759275, t31, -t47);
+    let t50 = I::fma(-0.39225, t38, t31);
+    let t51 = I::fma(0.39225, t42, t18);
+    let t52 = I::fma(-0.39225, t40, t29);
     let t53 = t33 * s[3];
-    let t54 = fma(t34, c[3], t53);
+    let t54 = I::fma(t34, c[3], t53);
     let t55 = t33 * c[3];
-    let t56 = fma(-t34, s[3], t55);
+    let t56 = I::fma(-t34, s[3], t55);
     let t57 = t25 * c[3];
-    let t58 = fma(-t27, s[3], t57);
+    let t58 = I::fma(-t27, s[3], t57);
     let t59 = t27 * c[3];
-    let t60 = fma(t25, s[3], t59);
+    let t60 = I::fma(t25, s[3], t59);
     let t61 = s[3] * t50;
-    let t62 = fma(c[3], t52, t61);
+    let t62 = I::fma(c[3], t52, t61);
     let t63 = qd[3] + t32;
-    let t64 = fma(qd[3], t60, t54);
-    let t65 = fma(qd[3], t58, t56);
+    let t64 = I::fma(qd[3], t60, t54);
+    let t65 = I::fma(qd[3], t58, t56);
     let t66 = t63 * t63;
     let t67 = t58 * t63;
     let t68 = t58 * t60;
     let t69 = t60 * t63;
-    let t70 = fma(t58, t58, t66);
+    let t70 = I::fma(t58, t58, t66);
     let t71 = t64 + t69;
     let t72 = 0.01778473500000001 * t68;
     let t73 = 0.01778473500000001 * t70;
     let t74 = 0.22863767245949998 * t69;
     let t75 = 0.004608836229749974 * t68;
     let t76 = 0.22402883622975 * t67;
-    let t77 = fma(-0.004608836229749974, t65, t76);
-    let t78 = fma(-0.01778473500000001, t62, t75);
+    let t77 = I::fma(-0.004608836229749974, t65, t76);
+    let t78 = I::fma(-0.01778473500000001, t62, t75);
     let t79 = t63 * s[4];
-    let t80 = fma(t58, c[4], t79);
+    let t80 = I::fma(t58, c[4], t79);
     let t81 = t63 * c[4];
-    let t82 = fma(-t58, s[4], t81);
+    let t82 = I::fma(-t58, s[4], t81);
     let t83 = qd[4] + t60;
     let t84 = qd[4] * t82;
     let t85 = qd[4] * t80;
-    let t86 = fma(-t64, c[4], t84);
-    let t87 = fma(-t64, s[4], t85);
+    let t86 = I::fma(-t64, c[4], t84);
+    let t87 = I::fma(-t64, s[4], t85);
     let t88 = t80 * t82;
     let t89 = t80 * t83;
     let t90 = t82 * t83;
     let t91 = 0.23655647314540001 * t90;
-    let t92 = fma(0.017136473145399997, t86, t91);
+    let t92 = I::fma(0.017136473145399997, t86, t91);
     let t93 = 0.017136473145399997 * t88;
-    let t94 = fma(0.23655647314540001, t65, -t93);
+    let t94 = I::fma(0.23655647314540001, t65, -t93);
     let t95 = t65 * c[5];
     let t96 = t83 * c[5];
-    let t97 = fma(t80, s[5], t96);
+    let t97 = I::fma(t80, s[5], t96);
     let t98 = t80 * c[5];
-    let t99 = fma(-t83, s[5], t98);
+    let t99 = I::fma(-t83, s[5], t98);
     let t100 = qd[5] + t82;
-    let t101 = fma(qd[5], t99, t95);
-    let t102 = fma(t86, s[5], t101);
+    let t101 = I::fma(qd[5], t99, t95);
+    let t102 = I::fma(t86, s[5], t101);
     let t103 = t99 * t100;
     let t104 = t97 * t99;
     let t105 = t97 * t100;
     let t106 = 0.0004509462908000028 * t105;
     let t107 = 0.0171364731454 * t87;
-    let t108 = fma(0.016685526854599998, t104, t107);
+    let t108 = I::fma(0.016685526854599998, t104, t107);
     let t109 = 0.0171364731454 * t103;
-    let t110 = fma(0.016685526854599998, t102, t109);
-    let t111 = fma(-c[5], t106, t92);
-    let t112 = fma(s[5], t110, t111);
-    let t113 = fma(0.21942, t89, t108);
-    let t114 = fma(s[5], t106, t94);
-    let t115 = fma(c[5], t110, t114);
-    let t116 = fma(0.01778473500000001, t51, -t74);
-    let t117 = fma(s[4], t113, t116);
-    let t118 = fma(c[4], t112, t117);
-    let t119 = fma(-c[4], t113, t78);
-    let t120 = fma(s[4], t112, t119);
+    let t110 = I::fma(0.016685526854599998, t102, t109);
+    let t111 = I::fma(-c[5], t106, t92);
+    let t112 = I::fma(s[5], t110, t111);
+    let t113 = I::fma(0.21942, t89, t108);
+    let t114 = I::fma(s[5], t106, t94);
+    let t115 = I::fma(c[5], t110, t114);
+    let t116 = I::fma(0.01778473500000001, t51, -t74);
+    let t117 = I::fma(s[4], t113, t116);
+    let t118 = I::fma(c[4], t112, t117);
+    let t119 = I::fma(-c[4], t113, t78);
+    let t120 = I::fma(s[4], t112, t119);
     let t121 = t77 + t115;
     let t122 = s[3] * t72;
-    let t123 = fma(c[3], t73, t122);
-    let t124 = fma(1.1872089033494997, t39, t35);
-    let t125 = fma(0.09736195575, t45, t124);
-    let t126 = fma(-0.006976062303750003, t71, t125);
-    let t127 = fma(c[3], t121, t126);
-    let t128 = fma(-s[3], t118, t127);
-    let t129 = fma(-0.39225, t123, t49);
+    let t123 = I::fma(c[3], t73, t122);
+    let t124 = I::fma(1.1872089033494997, t39, t35);
+    let t125 = I::fma(0.09736195575, t45, t124);
+    let t126 = I::fma(-0.006976062303750003, t71, t125);
+    let t127 = I::fma(c[3], t121, t126);
+    let t128 = I::fma(-s[3], t118, t127);
+    let t129 = I::fma(-0.39225, t123, t49);
     let t130 = t120 + t129;
-    let t131 = fma(-0.09736195575, t38, t48);
-    let t132 = fma(-0.5915569516747499, t34, t131);
-    let t133 = fma(-s[3], t121, t132);
-    let t134 = fma(-c[3], t118, t133);
-    let t135 = fma(1.598759275, t38, t123);
-    let t136 = fma(0.01778473500000001, t71, -t43);
-    let t137 = fma(c[3], t72, t44);
-    let t138 = fma(s[3], t73, -t137);
+    let t131 = I::fma(-0.09736195575, t38, t48);
+    let t132 = I::fma(-0.5915569516747499, t34, t131);
+    let t133 = I::fma(-s[3], t121, t132);
+    let t134 = I::fma(-c[3], t118, t133);
+    let t135 = I::fma(1.598759275, t38, t123);
+    let t136 = I::fma(0.01778473500000001, t71, -t43);
+    let t137 = I::fma(c[3], t72, t44);
+    let t138 = I::fma(s[3], t73, -t137);
     let t139 = s[2] * t138;
-    let t140 = fma(-c[2], t135, t139);
+    let t140 = I::fma(-c[2], t135, t139);
     let t141 = c[2] * t134;
-    let t142 = fma(-s[2], t128, t141);
-    let t143 = fma(3.52514647682, t7, t8);
-    let t144 = fma(0.075354282, t13, t143);
-    let t145 = fma(-0.425, t136, t144);
-    let t146 = fma(s[2], t134, t145);
-    let t147 = fma(c[2], t128, t146);
+    let t142 = I::fma(-s[2], t128, t141);
+    let t143 = I::fma(3.52514647682, t7, t8);
+    let t144 = I::fma(0.075354282, t13, t143);
+    let t145 = I::fma(-0.425, t136, t144);
+    let t146 = I::fma(s[2], t134, t145);
+    let t147 = I::fma(c[2], t128, t146);
     let t148 = t16 + t142;
-    let t149 = fma(4.4329225, t10, t140);
-    let t150 = fma(c[2], t138, -t12);
-    let t151 = fma(s[2], t135, t150);
+    let t149 = I::fma(4.4329225, t10, t140);
+    let t150 = I::fma(c[2], t138, -t12);
+    let t151 = I::fma(s[2], t135, t150);
     let t152 = c[1] * t151;
-    let t153 = fma(-s[1], t149, t152);
+    let t153 = I::fma(-s[1], t149, t152);
     let t154 = c[1] * t147;
-    let t155 = fma(s[1], t148, t154);
+    let t155 = I::fma(s[1], t148, t154);
     let t156 = tau[4] - t115;
     let t157 = tau[5] + t108;
     let t158 = c[5] * c[5];
@@ -801,177 +993,177 @@ pub fn forward_dynamics_sc(
     let t160 = s[5] * c[5];
     let t161 = 0.016685526854599998 * t159;
     let t162 = 0.016685526854599998 * t160;
-    let t163 = fma(0.016685526854599998, t158, 0.23655647314540001);
+    let t163 = I::fma(0.016685526854599998, t158, 0.23655647314540001);
     let t164 = c[4] * c[4];
     let t165 = s[4] * s[4];
     let t166 = s[4] * c[4];
     let t167 = c[4] * t162;
     let t168 = s[4] * t162;
-    let t169 = fma(t161, t164, 0.0171364731454);
+    let t169 = I::fma(t161, t164, 0.0171364731454);
     let t170 = t161 * t166;
-    let t171 = fma(t161, t165, 0.24116530937515002);
-    let t172 = fma(0.016685526854599998, t158, 0.23194763691565004);
+    let t171 = I::fma(t161, t165, 0.24116530937515002);
+    let t172 = I::fma(0.016685526854599998, t158, 0.23194763691565004);
     let t173 = 0.01778473500000001 * c[3];
     let t174 = 0.01778473500000001 * s[3];
     let t175 = c[3] * t168;
-    let t176 = fma(-s[3], t170, t175);
+    let t176 = I::fma(-s[3], t170, t175);
     let t177 = s[3] * t168;
-    let t178 = fma(c[3], t170, t177);
+    let t178 = I::fma(c[3], t170, t177);
     let t179 = 1.598759275 - t174;
-    let t180 = fma(-0.013952124607500007, s[3], 0.5956519516747499);
+    let t180 = I::fma(-0.013952124607500007, s[3], 0.5956519516747499);
     let t181 = t171 + t180;
     let t182 = 0.09736195575 - t178;
     let t183 = s[2] * t173;
-    let t184 = fma(c[2], t179, -t183);
+    let t184 = I::fma(c[2], t179, -t183);
     let t185 = c[2] * t173;
-    let t186 = fma(s[2], t179, t185);
+    let t186 = I::fma(s[2], t179, t185);
     let t187 = c[2] * t176;
-    let t188 = fma(s[2], t182, t187);
-    let t189 = fma(0.85, t184, t181);
+    let t188 = I::fma(s[2], t182, t187);
+    let t189 = I::fma(0.85, t184, t181);
     let t190 = 4.4329225 + t184;
     let t191 = 1.77012693841 + t189;
-    let t192 = fma(-s[2], t176, 0.075354282);
-    let t193 = fma(c[2], t182, t192);
+    let t192 = I::fma(-s[2], t176, 0.075354282);
+    let t193 = I::fma(c[2], t182, t192);
     let t194 = s[1] * t193;
     let t195 = 0.10915 * s[1];
     let t196 = 0.10915 * c[1];
     let t197 = s[1] * c[2];
-    let t198 = fma(c[1], s[2], t197);
+    let t198 = I::fma(c[1], s[2], t197);
     let t199 = s[1] * s[2];
-    let t200 = fma(-c[1], c[2], t199);
+    let t200 = I::fma(-c[1], c[2], t199);
     let t201 = 0.425 * c[1];
     let t202 = s[2] * t195;
-    let t203 = fma(-c[2], t196, t202);
+    let t203 = I::fma(-c[2], t196, t202);
     let t204 = s[2] * t196;
-    let t205 = fma(c[2], t195, t204);
+    let t205 = I::fma(c[2], t195, t204);
     let t206 = c[3] * t198;
-    let t207 = fma(-s[3], t200, t206);
+    let t207 = I::fma(-s[3], t200, t206);
     let t208 = c[3] * t200;
-    let t209 = fma(s[3], t198, t208);
-    let t210 = fma(-0.39225, t200, t201);
-    let t211 = fma(c[1], t188, t194);
+    let t209 = I::fma(s[3], t198, t208);
+    let t210 = I::fma(-0.39225, t200, t201);
+    let t211 = I::fma(c[1], t188, t194);
     let t212 = 1.75501953841 * s[1];
-    let t213 = fma(-s[1], t212, 2.7690351387572503);
+    let t213 = I::fma(-s[1], t212, 2.7690351387572503);
     let t214 = t176 * t200;
-    let t215 = fma(-t182, t198, t214);
+    let t215 = I::fma(-t182, t198, t214);
     let t216 = t200 * t201;
     let t217 = 0.5915569516747499 * t198;
     let t218 = t198 * t217;
-    let t219 = fma(3.19751855, t216, t218);
+    let t219 = I::fma(3.19751855, t216, t218);
     let t220 = t213 - t219;
     let t221 = t169 * t207;
-    let t222 = fma(t167, t209, t221);
+    let t222 = I::fma(t167, t209, t221);
     let t223 = t167 * t207;
-    let t224 = fma(t172, t209, t223);
+    let t224 = I::fma(t172, t209, t223);
     let t225 = t207 * t222;
-    let t226 = fma(t209, t224, t225);
+    let t226 = I::fma(t209, t224, t225);
     let t227 = t207 * t210;
-    let t228 = fma(-0.03556947000000002, t227, t226);
+    let t228 = I::fma(-0.03556947000000002, t227, t226);
     let t229 = t220 + t228;
     let t230 = 0.0171364731454 * c[4];
     let t231 = t186 * t196;
-    let t232 = fma(t190, t195, t231);
+    let t232 = I::fma(t190, t195, t231);
     let t233 = t232 - t211;
-    let t234 = fma(0.425, t184, t181);
+    let t234 = I::fma(0.425, t184, t181);
     let t235 = t179 * t205;
     let t236 = t173 * t203;
     let t237 = t235 - t236;
     let t238 = t215 + t237;
-    let t239 = fma(-0.006976062303750003, s[3], t171);
-    let t240 = fma(c[2], t174, t183);
-    let t241 = fma(-0.425, t240, t239);
+    let t239 = I::fma(-0.006976062303750003, s[3], t171);
+    let t240 = I::fma(c[2], t174, t183);
+    let t241 = I::fma(-0.425, t240, t239);
     let t242 = t178 * t198;
-    let t243 = fma(t174, t205, t236);
-    let t244 = fma(t163, t209, t223);
+    let t243 = I::fma(t174, t205, t236);
+    let t244 = I::fma(t163, t209, t223);
     let t245 = 0.0171364731454 * s[4];
     let t246 = t207 * t245;
-    let t247 = fma(-c[4], t230, t171);
-    let t248 = fma(-c[4], t230, t239);
-    let t249 = fma(-c[4], t230, t241);
-    let t250 = fma(-c[4], t230, t181);
-    let t251 = fma(-c[4], t230, t234);
-    let t252 = fma(c[4], t246, t238);
-    let t253 = fma(-c[4], t230, t191);
-    let t254 = fma(c[4], t246, t233);
+    let t247 = I::fma(-c[4], t230, t171);
+    let t248 = I::fma(-c[4], t230, t239);
+    let t249 = I::fma(-c[4], t230, t241);
+    let t250 = I::fma(-c[4], t230, t181);
+    let t251 = I::fma(-c[4], t230, t234);
+    let t252 = I::fma(c[4], t246, t238);
+    let t253 = I::fma(-c[4], t230, t191);
+    let t254 = I::fma(c[4], t246, t233);
     let t255 = 58.355064750790525 * t246;
-    let t256 = fma(-t246, t255, t229);
+    let t256 = I::fma(-t246, t255, t229);
     let t257 = 1.0 / t163;
     let t258 = t168 * t257;
-    let t259 = fma(-t168, t258, t247);
-    let t260 = fma(-t168, t258, t248);
-    let t261 = fma(-t168, t258, t249);
+    let t259 = I::fma(-t168, t258, t247);
+    let t260 = I::fma(-t168, t258, t248);
+    let t261 = I::fma(-t168, t258, t249);
     let t262 = t214 - t243;
-    let t263 = fma(c[4], t246, t242);
+    let t263 = I::fma(c[4], t246, t242);
     let t264 = t262 + t263;
-    let t265 = fma(-t244, t258, t264);
-    let t266 = fma(-t168, t258, t250);
-    let t267 = fma(-t168, t258, t251);
-    let t268 = fma(-t244, t258, t252);
-    let t269 = fma(-t168, t258, t253);
-    let t270 = fma(-t244, t258, t254);
+    let t265 = I::fma(-t244, t258, t264);
+    let t266 = I::fma(-t168, t258, t250);
+    let t267 = I::fma(-t168, t258, t251);
+    let t268 = I::fma(-t244, t258, t252);
+    let t269 = I::fma(-t168, t258, t253);
+    let t270 = I::fma(-t244, t258, t254);
     let t271 = t244 * t257;
-    let t272 = fma(-t244, t271, t256);
+    let t272 = I::fma(-t244, t271, t256);
     let t273 = 1.0 / t259;
     let t274 = t260 * t273;
-    let t275 = fma(-t260, t274, t266);
-    let t276 = fma(-t261, t274, t267);
-    let t277 = fma(-t265, t274, t268);
+    let t275 = I::fma(-t260, t274, t266);
+    let t276 = I::fma(-t261, t274, t267);
+    let t277 = I::fma(-t265, t274, t268);
     let t278 = t261 * t273;
-    let t279 = fma(-t261, t278, t269);
-    let t280 = fma(-t265, t278, t270);
+    let t279 = I::fma(-t261, t278, t269);
+    let t280 = I::fma(-t265, t278, t270);
     let t281 = t265 * t273;
-    let t282 = fma(-t265, t281, t272);
+    let t282 = I::fma(-t265, t281, t272);
     let t283 = 1.0 / t275;
     let t284 = t276 * t283;
-    let t285 = fma(-t276, t284, t279);
-    let t286 = fma(-t277, t284, t280);
+    let t285 = I::fma(-t276, t284, t279);
+    let t286 = I::fma(-t277, t284, t280);
     let t287 = t277 * t283;
-    let t288 = fma(-t277, t287, t282);
+    let t288 = I::fma(-t277, t287, t282);
     let t289 = 1.0 / t285;
     let t290 = t286 * t289;
-    let t291 = fma(-t286, t290, t288);
-    let t292 = fma(-c[4], t157, tau[3]);
+    let t291 = I::fma(-t286, t290, t288);
+    let t292 = I::fma(-c[4], t157, tau[3]);
     let t293 = t292 - t120;
-    let t294 = fma(-t156, t258, t293);
-    let t295 = fma(-c[4], t157, tau[2]);
-    let t296 = fma(-t156, t258, t295);
+    let t294 = I::fma(-t156, t258, t293);
+    let t295 = I::fma(-c[4], t157, tau[2]);
+    let t296 = I::fma(-t156, t258, t295);
     let t297 = t296 - t130;
-    let t298 = fma(-t274, t294, t297);
-    let t299 = fma(43.486969725, c[1], tau[1]);
-    let t300 = fma(-1.75501953841, t10, t299);
-    let t301 = fma(-0.425, t140, t300);
-    let t302 = fma(-c[4], t157, t301);
-    let t303 = fma(-t156, t258, t302);
+    let t298 = I::fma(-t274, t294, t297);
+    let t299 = I::fma(43.486969725, c[1], tau[1]);
+    let t300 = I::fma(-1.75501953841, t10, t299);
+    let t301 = I::fma(-0.425, t140, t300);
+    let t302 = I::fma(-c[4], t157, t301);
+    let t303 = I::fma(-t156, t258, t302);
     let t304 = t303 - t130;
-    let t305 = fma(-t278, t294, t304);
-    let t306 = fma(-t284, t298, t305);
-    let t307 = fma(t157, t255, tau[0]);
-    let t308 = fma(0.10915, t153, t307);
-    let t309 = fma(-t156, t271, t308);
-    let t310 = fma(-t281, t294, t309);
-    let t311 = fma(-t287, t298, t310);
+    let t305 = I::fma(-t278, t294, t304);
+    let t306 = I::fma(-t284, t298, t305);
+    let t307 = I::fma(t157, t255, tau[0]);
+    let t308 = I::fma(0.10915, t153, t307);
+    let t309 = I::fma(-t156, t271, t308);
+    let t310 = I::fma(-t281, t294, t309);
+    let t311 = I::fma(-t287, t298, t310);
     let t312 = t155 + t311;
-    let t313 = fma(-t290, t306, t312);
+    let t313 = I::fma(-t290, t306, t312);
     let t314 = t313 / t291;
     let t315 = t306 / t285;
     let t316 = t298 / t275;
     let t317 = t294 / t259;
     let t318 = t156 / t163;
     let t319 = t157 / 0.0171364731454;
-    let t320 = fma(-t290, t314, t315);
-    let t321 = fma(-t287, t314, t316);
-    let t322 = fma(-t284, t320, t321);
-    let t323 = fma(-t281, t314, t317);
-    let t324 = fma(-t278, t320, t323);
-    let t325 = fma(-t274, t322, t324);
-    let t326 = fma(-t271, t314, t318);
-    let t327 = fma(-t258, t320, t326);
-    let t328 = fma(-t258, t322, t327);
-    let t329 = fma(-t258, t325, t328);
-    let t330 = fma(t255, t314, t319);
-    let t331 = fma(-c[4], t320, t330);
-    let t332 = fma(-c[4], t322, t331);
-    let t333 = fma(-c[4], t325, t332);
+    let t320 = I::fma(-t290, t314, t315);
+    let t321 = I::fma(-t287, t314, t316);
+    let t322 = I::fma(-t284, t320, t321);
+    let t323 = I::fma(-t281, t314, t317);
+    let t324 = I::fma(-t278, t320, t323);
+    let t325 = I::fma(-t274, t322, t324);
+    let t326 = I::fma(-t271, t314, t318);
+    let t327 = I::fma(-t258, t320, t326);
+    let t328 = I::fma(-t258, t322, t327);
+    let t329 = I::fma(-t258, t325, t328);
+    let t330 = I::fma(t255, t314, t319);
+    let t331 = I::fma(-c[4], t320, t330);
+    let t332 = I::fma(-c[4], t322, t331);
+    let t333 = I::fma(-c[4], t325, t332);
     [t314, t320, t322, t325, t329, t333]
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by CRBA, RNEA and a sparse LᵀDL solve.
@@ -986,6 +1178,11 @@ pub fn forward_dynamics(
     qd: &[f64; DOF],
     tau: &[f64; DOF],
 ) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { forward_dynamics_avx2_fma(q, qd, tau) };
+    }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5]]);
     forward_dynamics_sc(
         &[0.0, s[0], s[1], s[2], s[3], s[4]],
@@ -994,6 +1191,31 @@ pub fn forward_dynamics(
         tau,
     )
 }
+/// [`forward_dynamics`] compiled for processors with AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn forward_dynamics_avx2_fma(
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+    tau: &[f64; DOF],
+) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx2Fma, 5>(&[q[1], q[2], q[3], q[4], q[5]]);
+    // SAFETY: this processor has AVX2 and FMA (the caller checked).
+    unsafe {
+        forward_dynamics_sc_avx2_fma(
+            &[0.0, s[0], s[1], s[2], s[3], s[4]],
+            &[1.0, c[0], c[1], c[2], c[3], c[4]],
+            qd,
+            tau,
+        )
+    }
+}
+
+/// Whether `sin_cos_array` and the other public functions of the kernel below pick, on x86-64
+/// builds without the `avx2` and `fma` target features, their copies compiled for AVX2 and FMA
+/// where the processor has both (`CodegenOptions::runtime_dispatch`).
+#[allow(dead_code)]
+const RUNTIME_DISPATCH: bool = true;
 
 // The sine and cosine of joint angles in plain f64 arithmetic: nothing from
 // std or any crate. Within 1 ulp of the exact values for every finite
@@ -1082,24 +1304,216 @@ fn fma(a: f64, b: f64, c: f64) -> f64 {
     a * b + c
 }
 
+/// `a·b + c` in `f32` with one rounding (x86-64 with the `fma` feature);
+/// see `fma`.
+#[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
+#[inline(always)]
+#[allow(dead_code, unused_unsafe)]
+fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+    use core::arch::x86_64::{_mm_cvtss_f32, _mm_fmadd_ss, _mm_set_ss};
+    // SAFETY: the cfg above compiles this only where the `fma` target
+    // feature is enabled, so the instruction exists.
+    unsafe { _mm_cvtss_f32(_mm_fmadd_ss(_mm_set_ss(a), _mm_set_ss(b), _mm_set_ss(c))) }
+}
+
+/// `a·b + c` in `f32` with one rounding (aarch64).
+#[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
+#[inline(always)]
+#[allow(dead_code, unused_unsafe)]
+fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+    use core::arch::aarch64::{vdup_n_f32, vfma_f32, vget_lane_f32};
+    // SAFETY: the cfg above compiles this only where NEON is enabled.
+    unsafe { vget_lane_f32::<0>(vfma_f32(vdup_n_f32(c), vdup_n_f32(a), vdup_n_f32(b))) }
+}
+
+/// `a·b + c` in `f32`, rounded twice (targets without a fused multiply-add).
+#[cfg(not(any(
+    all(target_arch = "x86_64", target_feature = "fma"),
+    all(target_arch = "aarch64", target_feature = "neon")
+)))]
+#[inline(always)]
+#[allow(dead_code)]
+fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+    a * b + c
+}
+
+// Run-time dispatch (`CodegenOptions::runtime_dispatch`, on unless the
+// module says `RUNTIME_DISPATCH = false`). A default x86-64 build has SSE2
+// only: no fused multiply-add, two angles to a register. Most x86-64
+// processors in use have AVX2 and FMA, so on such builds every public
+// function is compiled twice from one generic body: for `Baseline` (the
+// build's own target features, the code a build without dispatch has) and
+// for `Avx2Fma`, inside a `#[target_feature(enable = "avx2,fma")]` function
+// that the public one calls when `has_avx2_and_fma()` says the processor
+// has both. The results are then those of a build with `-C
+// target-feature=+avx2,+fma`: bit for bit those of a native build on such
+// a processor, and different in the last bits from the baseline's on
+// processors without FMA. Builds that already have both features, and other
+// targets, compile no dispatch: `Baseline` is all there is.
+
+/// The instructions a copy of a generic body is compiled for.
+#[allow(dead_code)]
+trait Isa {
+    /// Whether `Lanes::mul_add` rounds once.
+    const FUSED: bool;
+    /// Whether four angles go to a register (else two).
+    const QUADS: bool;
+    /// `a·b + c` in `f64`.
+    fn fma(a: f64, b: f64, c: f64) -> f64;
+    /// `a·b + c` in `f32`.
+    fn fmaf(a: f32, b: f32, c: f32) -> f32;
+}
+
+/// What the build's target features give: fused multiply-adds where the
+/// target has them (`fma`, `fmaf`), four angles to a register where it has
+/// AVX2.
+#[allow(dead_code)]
+enum Baseline {}
+
+impl Isa for Baseline {
+    const FUSED: bool = cfg!(any(
+        all(target_arch = "x86_64", target_feature = "fma"),
+        all(target_arch = "aarch64", target_feature = "neon")
+    ));
+    const QUADS: bool = cfg!(all(target_arch = "x86_64", target_feature = "avx2"));
+    #[inline(always)]
+    fn fma(a: f64, b: f64, c: f64) -> f64 {
+        fma(a, b, c)
+    }
+    #[inline(always)]
+    fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+        fmaf(a, b, c)
+    }
+}
+
+/// AVX2 and FMA: named only in the bodies of `#[target_feature(enable =
+/// "avx2,fma")]` functions, which are called only where
+/// `has_avx2_and_fma()` holds.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[allow(dead_code)]
+enum Avx2Fma {}
+
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+impl Isa for Avx2Fma {
+    const FUSED: bool = true;
+    const QUADS: bool = true;
+    #[inline(always)]
+    #[allow(unused_unsafe)]
+    fn fma(a: f64, b: f64, c: f64) -> f64 {
+        use core::arch::x86_64::{_mm_cvtsd_f64, _mm_fmadd_sd, _mm_set_sd};
+        // SAFETY: `Avx2Fma` code runs only on processors with FMA (see above).
+        unsafe { _mm_cvtsd_f64(_mm_fmadd_sd(_mm_set_sd(a), _mm_set_sd(b), _mm_set_sd(c))) }
+    }
+    #[inline(always)]
+    #[allow(unused_unsafe)]
+    fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+        use core::arch::x86_64::{_mm_cvtss_f32, _mm_fmadd_ss, _mm_set_ss};
+        // SAFETY: `Avx2Fma` code runs only on processors with FMA (see above).
+        unsafe { _mm_cvtss_f32(_mm_fmadd_ss(_mm_set_ss(a), _mm_set_ss(b), _mm_set_ss(c))) }
+    }
+}
+
+/// Whether this processor has AVX2 and FMA and the operating system saves
+/// the 256-bit registers: asked once (`cpuid`, `xgetbv`), then remembered.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[inline]
+#[allow(dead_code)]
+fn has_avx2_and_fma() -> bool {
+    use core::sync::atomic::{AtomicU8, Ordering};
+    // 0: not asked yet, 1: no, 2: yes. Racing first calls store the same answer.
+    static ANSWER: AtomicU8 = AtomicU8::new(0);
+    match ANSWER.load(Ordering::Relaxed) {
+        0 => {
+            let yes = ask_cpu_for_avx2_and_fma();
+            ANSWER.store(if yes { 2 } else { 1 }, Ordering::Relaxed);
+            yes
+        }
+        answer => answer == 2,
+    }
+}
+
+/// `cpuid` leaf 1: FMA (ECX bit 12), OSXSAVE (27), AVX (28); `xgetbv`: the
+/// OS saves the SSE and AVX state (XCR0 bits 1 and 2); leaf 7: AVX2 (EBX
+/// bit 5).
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[cold]
+#[inline(never)]
+#[allow(dead_code, unused_unsafe)]
+fn ask_cpu_for_avx2_and_fma() -> bool {
+    use core::arch::x86_64::{__cpuid, __cpuid_count, _xgetbv};
+    let bit = |word: u32, b: u32| word >> b & 1 == 1;
+    // SAFETY: every x86-64 processor has `cpuid`; `xgetbv` is run only where
+    // leaf 1 says the OS has enabled it (OSXSAVE).
+    unsafe {
+        if __cpuid(0).eax < 7 {
+            return false;
+        }
+        let ecx = __cpuid(1).ecx;
+        if !(bit(ecx, 12) && bit(ecx, 27) && bit(ecx, 28)) || _xgetbv(0) & 0b110 != 0b110 {
+            return false;
+        }
+        bit(__cpuid_count(7, 0).ebx, 5)
+    }
+}
+
 /// The sines and cosines of `x`, entry by entry: within 1 ulp of the exact
 /// values for every finite angle (NaN and ±∞ give NaN); two or four angles
 /// at a time in vector instructions.
 #[inline]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if RUNTIME_DISPATCH && has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { sin_cos_array_avx2_fma(x) };
+    }
+    sin_cos_array_on::<Baseline, N>(x)
+}
+
+/// `sin_cos_array` compiled for AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn sin_cos_array_avx2_fma<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
+    sin_cos_array_on::<Avx2Fma, N>(x)
+}
+
+/// `sin_cos_array` in the instructions of `I`.
+#[inline(always)]
+fn sin_cos_array_on<I: Isa, const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut s = [0.0; N];
     let mut c = [0.0; N];
-    if !sin_cos_batches::<Precise, N>(x, &mut s, &mut c) {
-        sin_cos_again(x, &mut s, &mut c);
+    if !sin_cos_batches::<I, Precise, N>(x, &mut s, &mut c) {
+        sin_cos_again::<I>(x, &mut s, &mut c);
     }
     (s, c)
+}
+
+/// `[e(0), …, e(P − 1)]` for `each!(i => e(i))`: one step on each of the
+/// `P ≥ 1` registers of the function it is used in. A macro, not a function
+/// taking a closure: LLVM leaves closures (and `core::array::from_fn`) that
+/// return vector registers out of line when their caller is a
+/// `#[target_feature]` function (`Avx2Fma` code), and out of line they are
+/// compiled without its features; so the fast path calls nothing that is
+/// not `#[inline(always)]` (checked in the release assembly).
+macro_rules! each {
+    ($i:ident => $e:expr) => {{
+        let mut out = [{
+            let $i = 0;
+            $e
+        }; P];
+        let mut $i = 1;
+        while $i < P {
+            out[$i] = $e;
+            $i += 1;
+        }
+        out
+    }};
 }
 
 /// A fast path over registers of angles: (sin, cos, within 1 ulp) per
 /// register.
 trait FastPath {
     /// The fast path on `P` registers, step by step across them.
-    fn lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P];
+    fn lanes<I: Isa, V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P];
 }
 
 /// `sin_cos_lanes`: within 1 ulp of `f64`.
@@ -1107,50 +1521,55 @@ struct Precise;
 
 impl FastPath for Precise {
     #[inline(always)]
-    fn lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
-        sin_cos_lanes(x)
+    fn lanes<I: Isa, V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
+        sin_cos_lanes::<I, V, P>(x)
     }
 }
 
 /// `K`'s fast path on every angle of `x`, the results into `s` and `c`, and
 /// whether they are all within 1 ulp (false: redo them on the slow path).
 #[inline(always)]
-fn sin_cos_batches<K: FastPath, const N: usize>(x: &[f64; N], s: &mut [f64; N], c: &mut [f64; N]) -> bool {
+fn sin_cos_batches<I: Isa, K: FastPath, const N: usize>(x: &[f64; N], s: &mut [f64; N], c: &mut [f64; N]) -> bool {
     let mut fast = true;
     let mut i = 0;
     while i < N {
-        // The angles from i on, as many as a pass takes; past the end, the
-        // first ones again (a register of copies of one angle makes the
-        // compiler fall back to scalar code).
-        let at = |j: usize| x[(i + j) % N];
-        #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
-        let ok = {
-            let quad = |j: usize| core::array::from_fn(|l| at(j + l));
-            match N - i {
-                1..=4 => sin_cos_pass::<K, 4, 1, N>(i, [quad(0)], s, c),
-                _ => sin_cos_pass::<K, 4, 2, N>(i, [quad(0), quad(4)], s, c),
-            }
-        };
-        #[cfg(not(all(target_arch = "x86_64", target_feature = "avx2")))]
-        let ok = {
-            let pair = |j: usize| [at(j), at(j + 1)];
-            match N - i {
-                1 | 2 => sin_cos_pass::<K, 2, 1, N>(i, [pair(0)], s, c),
-                3 | 4 => sin_cos_pass::<K, 2, 2, N>(i, [pair(0), pair(2)], s, c),
-                _ => sin_cos_pass::<K, 2, 3, N>(i, [pair(0), pair(2), pair(4)], s, c),
-            }
-        };
-        fast &= ok;
-        i += if cfg!(all(target_arch = "x86_64", target_feature = "avx2")) { 8 } else { 6 };
+        if I::QUADS {
+            fast &= match N - i {
+                1..=4 => sin_cos_pass::<I, K, 4, 1, N>(i, [angles(x, i)], s, c),
+                _ => sin_cos_pass::<I, K, 4, 2, N>(i, [angles(x, i), angles(x, i + 4)], s, c),
+            };
+            i += 8;
+        } else {
+            fast &= match N - i {
+                1 | 2 => sin_cos_pass::<I, K, 2, 1, N>(i, [angles(x, i)], s, c),
+                3 | 4 => sin_cos_pass::<I, K, 2, 2, N>(i, [angles(x, i), angles(x, i + 2)], s, c),
+                _ => sin_cos_pass::<I, K, 2, 3, N>(i, [angles(x, i), angles(x, i + 2), angles(x, i + 4)], s, c),
+            };
+            i += 6;
+        }
     }
     fast
+}
+
+/// The `W` angles of `x` from `from` on; past the end, the first ones again
+/// (a register of copies of one angle makes the compiler fall back to scalar
+/// code).
+#[inline(always)]
+fn angles<const W: usize, const N: usize>(x: &[f64; N], from: usize) -> [f64; W] {
+    let mut out = [0.0; W];
+    let mut l = 0;
+    while l < W {
+        out[l] = x[(from + l) % N];
+        l += 1;
+    }
+    out
 }
 
 /// `K`'s fast path on `P` registers of `W` angles, interleaved, the results
 /// into `s[i..]` and `c[i..]` (what fits), and whether they are all within 1
 /// ulp.
 #[inline(always)]
-fn sin_cos_pass<K: FastPath, const W: usize, const P: usize, const N: usize>(
+fn sin_cos_pass<I: Isa, K: FastPath, const W: usize, const P: usize, const N: usize>(
     i: usize,
     x: [[f64; W]; P],
     s: &mut [f64; N],
@@ -1159,13 +1578,16 @@ fn sin_cos_pass<K: FastPath, const W: usize, const P: usize, const N: usize>(
 where
     [f64; W]: ToLanes,
 {
-    let r = K::lanes(x.map(<[f64; W]>::to_lanes));
-    for j in 0..W * P {
+    let r = K::lanes::<I, _, P>(each!(p => x[p].to_lanes()));
+    let (mut j, mut fast) = (0, true);
+    while j < W * P {
         if i + j < N {
             (s[i + j], c[i + j]) = (r[j / W].0.lane(j % W), r[j / W].1.lane(j % W));
         }
+        fast &= r[j / W].2;
+        j += 1;
     }
-    r.iter().all(|r| r.2)
+    fast
 }
 
 /// `W` angles as a register: `[f64; 1]` as `f64`, `[f64; 2]` and `[f64; 4]`
@@ -1189,8 +1611,8 @@ trait Lanes: Copy {
     fn sub(self, b: Self) -> Self;
     /// `self · b`.
     fn mul(self, b: Self) -> Self;
-    /// `self · b + c`, fused where the scalar `fma` is.
-    fn mul_add(self, b: Self, c: Self) -> Self;
+    /// `self · b + c`, rounded once if `I::FUSED`.
+    fn mul_add<I: Isa>(self, b: Self, c: Self) -> Self;
     /// `−self`.
     fn neg(self) -> Self;
     /// `|self|`.
@@ -1234,8 +1656,8 @@ impl Lanes for f64 {
         self * b
     }
     #[inline(always)]
-    fn mul_add(self, b: f64, c: f64) -> f64 {
-        fma(self, b, c)
+    fn mul_add<I: Isa>(self, b: f64, c: f64) -> f64 {
+        I::fma(self, b, c)
     }
     #[inline(always)]
     fn neg(self) -> f64 {
@@ -1267,23 +1689,24 @@ impl Lanes for f64 {
 /// operations of `impl Lanes for f64`, lane by lane.
 #[cfg(target_arch = "x86_64")]
 macro_rules! vector_lanes {
-    ($w:literal, $v:ident, $all:literal, $feature:literal, $add:ident, $sub:ident, $mul:ident, $fmadd:ident, $xor_pd:ident,
+    ($w:literal, $v:ident, $all:literal, $add:ident, $sub:ident, $mul:ident, $fmadd:ident, $xor_pd:ident,
      $set1:ident, $loadu:ident, $storeu:ident, $andnot:ident, $min:ident, $cmp_ge:expr, $movemask:ident,
      $to_int:ident, $to_float:ident, $and:ident, $or:ident, $xor:ident, $sub64:ident, $zero:ident, $set1_64:ident,
      $shl:ident) => {
-        #[cfg(target_feature = $feature)]
         impl ToLanes for [f64; $w] {
             type V = core::arch::x86_64::$v;
             #[inline(always)]
             #[allow(unused_unsafe)]
             fn to_lanes(self) -> Self::V {
-                // SAFETY (this and every block below): the target has the
-                // instructions (`cfg(target_feature)`); loads and stores are
-                // of `$w` f64 from and to arrays of `$w` f64.
+                // SAFETY (this and every block below): the processor has the
+                // instructions: SSE2 is part of every x86-64 target, and the
+                // AVX2 registers and `_fmadd_` are used only where the target
+                // has them (`Baseline::QUADS` and `FUSED` are their `cfg`) or
+                // in `Avx2Fma` code; loads and stores are of `$w` f64 from and
+                // to arrays of `$w` f64.
                 unsafe { core::arch::x86_64::$loadu(self.as_ptr()) }
             }
         }
-        #[cfg(target_feature = $feature)]
         #[allow(unused_unsafe)]
         impl Lanes for core::arch::x86_64::$v {
             #[inline(always)]
@@ -1309,12 +1732,12 @@ macro_rules! vector_lanes {
                 unsafe { core::arch::x86_64::$mul(self, b) }
             }
             #[inline(always)]
-            fn mul_add(self, b: Self, c: Self) -> Self {
-                #[cfg(target_feature = "fma")]
-                let r = unsafe { core::arch::x86_64::$fmadd(self, b, c) };
-                #[cfg(not(target_feature = "fma"))]
-                let r = self.mul(b).add(c);
-                r
+            fn mul_add<I: Isa>(self, b: Self, c: Self) -> Self {
+                if I::FUSED {
+                    unsafe { core::arch::x86_64::$fmadd(self, b, c) }
+                } else {
+                    self.mul(b).add(c)
+                }
             }
             #[inline(always)]
             fn neg(self) -> Self {
@@ -1347,16 +1770,17 @@ macro_rules! vector_lanes {
 }
 
 #[cfg(target_arch = "x86_64")]
-vector_lanes!(2, __m128d, 3, "sse2", _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_fmadd_pd, _mm_xor_pd, _mm_set1_pd, _mm_loadu_pd,
+vector_lanes!(2, __m128d, 3, _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_fmadd_pd, _mm_xor_pd, _mm_set1_pd, _mm_loadu_pd,
     _mm_storeu_pd, _mm_andnot_pd, _mm_min_pd, _mm_cmpge_pd, _mm_movemask_pd, _mm_castpd_si128, _mm_castsi128_pd,
     _mm_and_si128, _mm_or_si128, _mm_xor_si128, _mm_sub_epi64, _mm_setzero_si128, _mm_set1_epi64x, _mm_slli_epi64);
 #[cfg(target_arch = "x86_64")]
-vector_lanes!(4, __m256d, 15, "avx2", _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_fmadd_pd, _mm256_xor_pd, _mm256_set1_pd,
+vector_lanes!(4, __m256d, 15, _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_fmadd_pd, _mm256_xor_pd, _mm256_set1_pd,
     _mm256_loadu_pd, _mm256_storeu_pd, _mm256_andnot_pd, _mm256_min_pd, _mm256_cmp_pd::<_CMP_GE_OQ>,
     _mm256_movemask_pd, _mm256_castpd_si256, _mm256_castsi256_pd, _mm256_and_si256, _mm256_or_si256,
     _mm256_xor_si256, _mm256_sub_epi64, _mm256_setzero_si256, _mm256_set1_epi64x, _mm256_slli_epi64);
 
-/// Other targets: two angles lane by lane (the compiler may vectorise).
+/// Other targets: two angles lane by lane (the compiler may vectorise);
+/// four only to compile `sin_cos_batches` (`Baseline::QUADS` is false).
 #[cfg(not(target_arch = "x86_64"))]
 impl ToLanes for [f64; 2] {
     type V = [f64; 2];
@@ -1367,10 +1791,19 @@ impl ToLanes for [f64; 2] {
 }
 
 #[cfg(not(target_arch = "x86_64"))]
-impl Lanes for [f64; 2] {
+impl ToLanes for [f64; 4] {
+    type V = [f64; 4];
+    #[inline(always)]
+    fn to_lanes(self) -> [f64; 4] {
+        self
+    }
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+impl<const W: usize> Lanes for [f64; W] {
     #[inline(always)]
     fn splat(a: f64) -> Self {
-        [a; 2]
+        [a; W]
     }
     #[inline(always)]
     fn lane(self, l: usize) -> f64 {
@@ -1378,51 +1811,45 @@ impl Lanes for [f64; 2] {
     }
     #[inline(always)]
     fn add(self, b: Self) -> Self {
-        [self[0] + b[0], self[1] + b[1]]
+        core::array::from_fn(|l| self[l] + b[l])
     }
     #[inline(always)]
     fn sub(self, b: Self) -> Self {
-        [self[0] - b[0], self[1] - b[1]]
+        core::array::from_fn(|l| self[l] - b[l])
     }
     #[inline(always)]
     fn mul(self, b: Self) -> Self {
-        [self[0] * b[0], self[1] * b[1]]
+        core::array::from_fn(|l| self[l] * b[l])
     }
     #[inline(always)]
-    fn mul_add(self, b: Self, c: Self) -> Self {
-        [fma(self[0], b[0], c[0]), fma(self[1], b[1], c[1])]
+    fn mul_add<I: Isa>(self, b: Self, c: Self) -> Self {
+        core::array::from_fn(|l| I::fma(self[l], b[l], c[l]))
     }
     #[inline(always)]
     fn neg(self) -> Self {
-        [-self[0], -self[1]]
+        self.map(|a| -a)
     }
     #[inline(always)]
     fn abs(self) -> Self {
-        [self[0].abs(), self[1].abs()]
+        self.map(f64::abs)
     }
     #[inline(always)]
     fn capped_ge(self, b: Self) -> bool {
-        self[0].capped_ge(b[0]) & self[1].capped_ge(b[1])
+        (0..W).all(|l| self[l].capped_ge(b[l]))
     }
     #[inline(always)]
     fn quadrant(sin_r: Self, signed: Self, cos_r: Self, quadrant: Self) -> (Self, Self) {
-        let r = [0, 1].map(|l| f64::quadrant(sin_r[l], signed[l], cos_r[l], quadrant[l]));
-        ([r[0].0, r[1].0], [r[0].1, r[1].1])
+        let r: [(f64, f64); W] = core::array::from_fn(|l| f64::quadrant(sin_r[l], signed[l], cos_r[l], quadrant[l]));
+        (r.map(|r| r.0), r.map(|r| r.1))
     }
-}
-
-/// `[f(0), …, f(P − 1)]`: one step on each of `P` registers.
-#[inline(always)]
-fn each<V, const P: usize>(f: impl FnMut(usize) -> V) -> [V; P] {
-    core::array::from_fn(f)
 }
 
 /// The rare case of `sin_cos_array`: every angle again, one at a time.
 #[cold]
 #[inline(never)]
-fn sin_cos_again(x: &[f64], s: &mut [f64], c: &mut [f64]) {
+fn sin_cos_again<I: Isa>(x: &[f64], s: &mut [f64], c: &mut [f64]) {
     for ((x, s), c) in x.iter().zip(s).zip(c) {
-        (*s, *c) = sin_cos_kernel(*x);
+        (*s, *c) = sin_cos_kernel_on::<I>(*x);
     }
 }
 
@@ -1430,9 +1857,27 @@ fn sin_cos_again(x: &[f64], s: &mut [f64], c: &mut [f64]) {
 /// for every finite `x` (NaN and ±∞ give NaN).
 #[inline]
 pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
-    match sin_cos_lanes([x]) {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+    if RUNTIME_DISPATCH && has_avx2_and_fma() {
+        // SAFETY: this processor has AVX2 and FMA (checked just above).
+        return unsafe { sin_cos_kernel_avx2_fma(x) };
+    }
+    sin_cos_kernel_on::<Baseline>(x)
+}
+
+/// `sin_cos_kernel` compiled for AVX2 and FMA.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn sin_cos_kernel_avx2_fma(x: f64) -> (f64, f64) {
+    sin_cos_kernel_on::<Avx2Fma>(x)
+}
+
+/// `sin_cos_kernel` in the instructions of `I`.
+#[inline(always)]
+fn sin_cos_kernel_on<I: Isa>(x: f64) -> (f64, f64) {
+    match sin_cos_lanes::<I, f64, 1>([x]) {
         [(s, c, true)] => (s, c),
-        _ => sin_cos_slow(x),
+        _ => sin_cos_slow::<I>(x),
     }
 }
 
@@ -1441,28 +1886,28 @@ pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
 /// `sin_cos_slow`).
 #[inline(always)]
 #[allow(clippy::excessive_precision, clippy::approx_constant)]
-fn sin_cos_lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
+fn sin_cos_lanes<I: Isa, V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
     const FRAC_2_PI: f64 = 0.6366197723675814;
     const ROUND: f64 = 6755399441055744.0; // 1.5·2⁵²: x + ROUND − ROUND rounds x to an integer
     const P1: f64 = 1.5707963267341256;
     const P2: f64 = 6.077100506303966e-11;
     const P3: f64 = 2.0222662487959506e-21;
     let v = V::splat;
-    let t: [V; P] = each(|i| x[i].mul_add(v(FRAC_2_PI), v(ROUND)));
-    let k: [V; P] = each(|i| t[i].sub(v(ROUND)));
-    let t0: [V; P] = each(|i| k[i].neg().mul_add(v(P1), x[i])); // exact, fused or not
-    let w: [V; P] = each(|i| k[i].mul(v(P2))); // exact
-    let a: [V; P] = each(|i| t0[i].sub(w[i]));
+    let t: [V; P] = each!(i => x[i].mul_add::<I>(v(FRAC_2_PI), v(ROUND)));
+    let k: [V; P] = each!(i => t[i].sub(v(ROUND)));
+    let t0: [V; P] = each!(i => k[i].neg().mul_add::<I>(v(P1), x[i])); // exact, fused or not
+    let w: [V; P] = each!(i => k[i].mul(v(P2))); // exact
+    let a: [V; P] = each!(i => t0[i].sub(w[i]));
     // r ≈ a + b: the rounding error of t0 − w, exact (|t0| ≥ |w|, or else t0 − w is exact), then − k·P3.
     // Not renormalised, so that the polynomials start from a without waiting for b: |b| ≤ ulp(a)/2 +
     // |k|·P3 ≤ 2e-15, which step 3 allows for.
-    let b: [V; P] = each(|i| t0[i].sub(a[i]).sub(w[i]).sub(k[i].mul(v(P3))));
+    let b: [V; P] = each!(i => t0[i].sub(a[i]).sub(w[i]).sub(k[i].mul(v(P3))));
     // Within 1 ulp if |x| ≤ 1.5e6 and |a| ≥ 2⁻⁵⁸·|x| (as |r − (a + b)| ≤ 3e-37·|x|), which also
     // holds for k = 0 (a = x) and fails for NaN and ±∞ (then a is NaN): min(2⁵⁸·|a|, 1.5e6) ≥ |x|.
-    let ok: [bool; P] = core::array::from_fn(|i| a[i].abs().mul(v(2.8823037615171174e17)).capped_ge(x[i].abs()));
+    let ok: [bool; P] = each!(i => a[i].abs().mul(v(2.8823037615171174e17)).capped_ge(x[i].abs()));
     // a's sign is r's, also when a = −0 (x = −0).
-    let r = sin_cos_reduced(a, b, a, t);
-    core::array::from_fn(|i| (r[i].0, r[i].1, ok[i]))
+    let r = sin_cos_reduced::<I, V, P>(a, b, a, t);
+    each!(i => (r[i].0, r[i].1, ok[i]))
 }
 
 /// Step 3 and 4: sin and cos of k·π/2 + rh + rl for |rh + rl| ≤ π/4 and
@@ -1470,7 +1915,7 @@ fn sin_cos_lanes<V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, bool); P] {
 /// into sin (rh's sign, also when rh = −0).
 #[inline(always)]
 #[allow(clippy::excessive_precision)]
-fn sin_cos_reduced<V: Lanes, const P: usize>(rh: [V; P], rl: [V; P], signed: [V; P], quadrant: [V; P]) -> [(V, V); P] {
+fn sin_cos_reduced<I: Isa, V: Lanes, const P: usize>(rh: [V; P], rl: [V; P], signed: [V; P], quadrant: [V; P]) -> [(V, V); P] {
     const S: [f64; 6] = [
         -1.666666666666663e-1,
         8.333333333322118e-3,
@@ -1488,34 +1933,39 @@ fn sin_cos_reduced<V: Lanes, const P: usize>(rh: [V; P], rl: [V; P], signed: [V;
         -1.1358536521605753e-11,
     ];
     let v = V::splat;
-    let z: [V; P] = each(|i| rh[i].mul(rh[i]));
-    let z2: [V; P] = each(|i| z[i].mul(z[i]));
-    // Estrin: (c0 + z·c1) + z²·((c2 + z·c3) + z²·(c4 + z·c5)).
-    let poly = |c: [f64; 6], i: usize| {
-        let (lo, mid, hi) = (z[i].mul_add(v(c[1]), v(c[0])), z[i].mul_add(v(c[3]), v(c[2])), z[i].mul_add(v(c[5]), v(c[4])));
-        z2[i].mul_add(z2[i].mul_add(hi, mid), lo)
-    };
-    let ps: [V; P] = each(|i| poly(S, i));
-    let pc: [V; P] = each(|i| poly(C, i));
-    let hz: [V; P] = each(|i| v(0.5).mul(z[i]));
-    let w: [V; P] = each(|i| v(1.0).sub(hz[i]));
+    let z: [V; P] = each!(i => rh[i].mul(rh[i]));
+    let z2: [V; P] = each!(i => z[i].mul(z[i]));
+    // Estrin: (c0 + z·c1) + z²·((c2 + z·c3) + z²·(c4 + z·c5)). (A function, not a closure: called
+    // four times, a closure would stay out of line, outside a `#[target_feature]` caller's features.)
+    #[inline(always)]
+    fn poly<I: Isa, V: Lanes>(c: [f64; 6], z: V, z2: V) -> V {
+        let v = V::splat;
+        let lo = z.mul_add::<I>(v(c[1]), v(c[0]));
+        let (mid, hi) = (z.mul_add::<I>(v(c[3]), v(c[2])), z.mul_add::<I>(v(c[5]), v(c[4])));
+        z2.mul_add::<I>(z2.mul_add::<I>(hi, mid), lo)
+    }
+    let ps: [V; P] = each!(i => poly::<I, V>(S, z[i], z2[i]));
+    let pc: [V; P] = each!(i => poly::<I, V>(C, z[i], z2[i]));
+    let hz: [V; P] = each!(i => v(0.5).mul(z[i]));
+    let w: [V; P] = each!(i => v(1.0).sub(hz[i]));
     // rl·cos rh and rl·sin rh to O(rl·rh⁶): 1 − z/2 + z²/24 and rh·(1 − z/6 + z²/120), so that rl
     // may be up to 2e-15 (the fast path's b) without costing digits.
-    let cos_rh: [V; P] = each(|i| z2[i].mul_add(v(1.0 / 24.0), w[i]));
-    let sin_rh: [V; P] = each(|i| rh[i].mul(z2[i].mul_add(v(1.0 / 120.0), z[i].mul_add(v(-1.0 / 6.0), v(1.0)))));
+    let cos_rh: [V; P] = each!(i => z2[i].mul_add::<I>(v(1.0 / 24.0), w[i]));
+    let sin_rh: [V; P] =
+        each!(i => rh[i].mul(z2[i].mul_add::<I>(v(1.0 / 120.0), z[i].mul_add::<I>(v(-1.0 / 6.0), v(1.0)))));
     // sin(rh + rl) = rh + rh·z·S(z) + rl·cos rh + …; the sign or-ed in keeps sin(−0) = −0.
-    let sin_r: [V; P] = each(|i| rh[i].add(rh[i].mul(z[i]).mul_add(ps[i], rl[i].mul(cos_rh[i]))));
+    let sin_r: [V; P] = each!(i => rh[i].add(rh[i].mul(z[i]).mul_add::<I>(ps[i], rl[i].mul(cos_rh[i]))));
     // cos(rh + rl) = (1 − z/2) + z²·C(z) − rl·sin rh + …, with the rounding error of 1 − z/2.
     let cos_r: [V; P] =
-        each(|i| w[i].add(z2[i].mul_add(pc[i], v(1.0).sub(w[i]).sub(hz[i])).sub(rl[i].mul(sin_rh[i]))));
-    core::array::from_fn(|i| V::quadrant(sin_r[i], signed[i], cos_r[i], quadrant[i]))
+        each!(i => w[i].add(z2[i].mul_add::<I>(pc[i], v(1.0).sub(w[i]).sub(hz[i])).sub(rl[i].mul(sin_rh[i]))));
+    each!(i => V::quadrant(sin_r[i], signed[i], cos_r[i], quadrant[i]))
 }
 
 /// Step 2: Payne and Hanek's reduction of any finite `x`, then step 3.
 #[inline(never)]
 #[cold]
 #[allow(clippy::unreadable_literal, clippy::approx_constant)]
-fn sin_cos_slow(x: f64) -> (f64, f64) {
+fn sin_cos_slow<I: Isa>(x: f64) -> (f64, f64) {
     // 2/π = Σ FRAC_2_PI_BITS[i]·2^(−64(i+1)) + less than 2⁻¹²⁸⁰.
     const FRAC_2_PI_BITS: [u64; 20] = [
         0xa2f9836e4e441529, 0xfc2757d1f534ddc0, 0xdb6295993c439041, 0xfe5163abdebbc561,
@@ -1532,7 +1982,7 @@ fn sin_cos_slow(x: f64) -> (f64, f64) {
     }
     let ax = x.abs();
     if ax < 0.78 {
-        let [(s, c)] = sin_cos_reduced([ax], [0.0], [0.0], [0.0]);
+        let [(s, c)] = sin_cos_reduced::<I, f64, 1>([ax], [0.0], [0.0], [0.0]);
         return (if x < 0.0 { -s } else { s }, c);
     }
     // |x| = m·2^e with m < 2⁵³ an integer.
@@ -1575,6 +2025,6 @@ fn sin_cos_slow(x: f64) -> (f64, f64) {
     let low = pl + (fh * PIO2_LO + fl * PIO2_HI);
     let rh = ph + low;
     let rl = low - (rh - ph);
-    let [(s, c)] = sin_cos_reduced([rh], [rl], [rh], [f64::from_bits(k)]);
+    let [(s, c)] = sin_cos_reduced::<I, f64, 1>([rh], [rl], [rh], [f64::from_bits(k)]);
     (if x < 0.0 { -s } else { s }, c)
 }
