@@ -147,3 +147,20 @@ fn forward_dynamics_is_chosen_by_speed_and_accuracy() {
         assert!(line.contains("chosen as"), "{name}: {line}");
     }
 }
+
+/// The run-time dispatch is left out of a module over
+/// `DISPATCH_MAX_OPS` operations (rustc compiles the fused copies of long
+/// bodies very slowly), and the header says so; under it, it is emitted.
+#[test]
+fn the_dispatch_is_left_out_of_large_modules() {
+    use dynagen::codegen::{generate, CodegenOptions, DISPATCH_MAX_OPS};
+    for (n, dispatched) in [(4, true), (8, false)] {
+        let module = generate(&chain(n), &CodegenOptions::default()).unwrap();
+        let ops: usize = module.functions.iter().filter(|f| f.emitted).map(|f| f.op_count.total()).sum();
+        assert_eq!(ops <= DISPATCH_MAX_OPS, dispatched, "{n} joints: {ops} operations");
+        assert_eq!(module.source.contains("fn inverse_dynamics_sc_avx2_fma("), dispatched, "{n} joints");
+        assert_eq!(module.source.contains("Run-time dispatch was asked for but left out"), !dispatched, "{n} joints");
+        let off = generate(&chain(n), &CodegenOptions::default().runtime_dispatch(false)).unwrap();
+        assert!(!off.source.contains("fn inverse_dynamics_sc_avx2_fma(") && !off.source.contains("but left out"));
+    }
+}

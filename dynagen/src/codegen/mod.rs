@@ -298,9 +298,25 @@ pub struct CodegenOptions {
     /// between machines with and without FMA (on both they are within the
     /// accuracy the tests check, 1e-12 of the generic solver), and the
     /// bodies are compiled twice. Off, a build gives the same bits on every
-    /// x86-64 machine.
+    /// x86-64 machine. [`generate`] leaves it out of modules of more than
+    /// [`DISPATCH_MAX_OPS`] operations (slow to compile), and says so in
+    /// the header.
     pub runtime_dispatch: bool,
 }
+
+/// [`generate`] leaves the run-time dispatch out of a module whose emitted
+/// functions take more operations than this (their sum, as the header
+/// counts them), and says so in the header: rustc compiles the AVX2 and FMA
+/// copies of long bodies very slowly. The fused multiply-adds are written
+/// with `core::arch`'s `_mm_fmadd_sd` (`f64::mul_add` is not in `core`), and
+/// LLVM's time on thousands of them grows far faster than the body: an
+/// 8-joint chain's module (8,149 operations) took 20.5 s of `rustc -O`
+/// with the dispatch and 1.6 s without, a 30-joint chain's 231 s against
+/// 13 s, the Panda's (3,638) 3.8 s against 1.3 s. The same module built
+/// with `-C target-cpu=native` pays the same (the fused copy is then the
+/// only one), and with `mul_add` in place of the intrinsic the 8-joint
+/// chain's took 1.1 s. The bundled robots are under the limit.
+pub const DISPATCH_MAX_OPS: usize = 5_000;
 
 /// The default [`CodegenOptions::split_lets`]: 2,500 `let`s. rustc with
 /// debug information overflows its stack at about 2,900 `let`s in one
@@ -567,6 +583,20 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
         }
         method => fd_choice::FdChoice { method, why: String::new() },
     };
+    // Large modules keep the build's target features only (see DISPATCH_MAX_OPS).
+    let emitted_ops: usize = functions
+        .iter()
+        .filter(|f| match f.kind {
+            FunctionKind::ForwardDynamicsAba => fd_method.method == ForwardDynamicsMethod::Aba,
+            FunctionKind::ForwardDynamicsLdlt => fd_method.method == ForwardDynamicsMethod::Ldlt,
+            _ => true,
+        })
+        .map(|f| f.op_count.total())
+        .sum();
+    let dispatch_dropped = options.runtime_dispatch && emitted_ops > DISPATCH_MAX_OPS;
+    let effective =
+        CodegenOptions { runtime_dispatch: options.runtime_dispatch && !dispatch_dropped, ..options.clone() };
+    let options = &effective;
     for f in &mut functions {
         f.emitted = match f.kind {
             FunctionKind::ForwardDynamicsAba => fd_method.method == ForwardDynamicsMethod::Aba,
@@ -606,8 +636,14 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
     let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
     let body = emit::tidy_dispatch(&prettyplease::unparse(&file));
     let model_hash = model_hash(model);
-    let header = header(model, options, &fd_method, &functions, &snapped, model_hash)
+    let mut header = header(model, options, &fd_method, &functions, &snapped, model_hash)
         + &split::header_note(options.split_lets, &split_functions);
+    if dispatch_dropped {
+        header.push_str(&format!(
+            "// Run-time dispatch was asked for but left out: the functions take {emitted_ops} operations, over\n\
+             //   the {DISPATCH_MAX_OPS} up to which it is emitted (rustc compiles the fused copies of long bodies slowly).\n"
+        ));
+    }
     let kernel = sin_cos::kernel_source(options.scalar, options.runtime_dispatch);
     Ok(GeneratedModule {
         source: format!("{header}\n{body}\n{kernel}"),
