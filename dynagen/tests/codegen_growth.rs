@@ -148,7 +148,7 @@ fn forward_dynamics_is_chosen_by_speed_and_accuracy() {
     }
 }
 
-/// The run-time dispatch is left out of a module over
+/// The run-time dispatch is left out of a module (plain or scene) over
 /// `DISPATCH_MAX_OPS` operations (rustc compiles the fused copies of long
 /// bodies very slowly), and the header says so; under it, it is emitted.
 #[test]
@@ -162,5 +162,10 @@ fn the_dispatch_is_left_out_of_large_modules() {
         assert_eq!(module.source.contains("Run-time dispatch was asked for but left out"), !dispatched, "{n} joints");
         let off = generate(&chain(n), &CodegenOptions::default().runtime_dispatch(false)).unwrap();
         assert!(!off.source.contains("fn inverse_dynamics_sc_avx2_fma(") && !off.source.contains("but left out"));
+        // A scene of the whole robot follows the same rule.
+        let scene = dynagen::scene::Scene::new().apply(&chain(n)).unwrap();
+        let module = dynagen::codegen::generate_scene(&scene, &CodegenOptions::default()).unwrap();
+        assert_eq!(module.source.contains("fn inverse_dynamics_sc_avx2_fma("), dispatched, "scene, {n} joints");
+        assert_eq!(module.source.contains("Run-time dispatch was asked for but left out"), !dispatched, "scene");
     }
 }

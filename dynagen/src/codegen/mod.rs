@@ -639,10 +639,7 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
     let mut header = header(model, options, &fd_method, &functions, &snapped, model_hash)
         + &split::header_note(options.split_lets, &split_functions);
     if dispatch_dropped {
-        header.push_str(&format!(
-            "// Run-time dispatch was asked for but left out: the functions take {emitted_ops} operations, over\n\
-             //   the {DISPATCH_MAX_OPS} up to which it is emitted (rustc compiles the fused copies of long bodies slowly).\n"
-        ));
+        header.push_str(&dispatch_dropped_note(emitted_ops));
     }
     let kernel = sin_cos::kernel_source(options.scalar, options.runtime_dispatch);
     Ok(GeneratedModule {
@@ -652,6 +649,15 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
         snapped,
         model_hash,
     })
+}
+
+/// The header's line for a module left without the run-time dispatch
+/// because its functions take `ops` operations, over [`DISPATCH_MAX_OPS`].
+pub(crate) fn dispatch_dropped_note(ops: usize) -> String {
+    format!(
+        "// Run-time dispatch was asked for but left out: the functions take {ops} operations, over\n\
+         //   the {DISPATCH_MAX_OPS} up to which it is emitted (rustc compiles the fused copies of long bodies slowly).\n"
+    )
 }
 
 /// The operation count of `f`, with its fused multiply-adds if `fma`.

@@ -405,6 +405,26 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
             method => traced_as(method)?,
         };
         let op_count = super::counted(&function, options.fma);
+        let inputs = ps.iter().map(|p| (p.name.clone(), p.len_value(n))).collect();
+        functions.push(SceneFunction {
+            function: f.clone(),
+            name,
+            inputs,
+            traced: function,
+            sin_cos_inputs: sc,
+            op_count,
+        });
+    }
+    // Large modules keep the build's target features only, as plain ones (DISPATCH_MAX_OPS).
+    let emitted_ops: usize = functions.iter().map(|f| f.op_count.total()).sum();
+    let dispatch_dropped = options.runtime_dispatch && emitted_ops > super::DISPATCH_MAX_OPS;
+    let effective =
+        CodegenOptions { runtime_dispatch: options.runtime_dispatch && !dispatch_dropped, ..options.clone() };
+    let options = &effective;
+    let opts = CodegenOptions { runtime_dispatch: options.runtime_dispatch, ..opts };
+    for sf in &functions {
+        let (f, name, sc, op_count) = (&sf.function, &sf.name, &sf.sin_cos_inputs, sf.op_count);
+        let ps = params(scene, f);
         let mut sc_params = vec![Param::dof("s"), Param::dof("c")];
         if has_prismatic {
             sc_params.push(Param::dof("q"));
@@ -427,23 +447,17 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
                 trig_source(trig, scalar)
             );
             let ret = shape(f).tokens(scalar);
-            items.extend(super::parse_items(wrapper(&name, &ps, ret, &sc, has_prismatic, &opts, &doc))?);
+            items.extend(super::parse_items(wrapper(name, &ps, ret, sc, has_prismatic, &opts, &doc))?);
         }
-        let inputs = ps.iter().map(|p| (p.name.clone(), p.len_value(n))).collect();
-        functions.push(SceneFunction {
-            function: f.clone(),
-            name,
-            inputs,
-            traced: function,
-            sin_cos_inputs: sc,
-            op_count,
-        });
     }
     let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
     let body = emit::tidy_dispatch(&prettyplease::unparse(&file));
     let model_hash = super::model_hash(&scene.model);
-    let header = header(scene, &opts, &fd_why, &functions, &snapped, model_hash)
+    let mut header = header(scene, &opts, &fd_why, &functions, &snapped, model_hash)
         + &super::split::header_note(options.split_lets, &split_functions);
+    if dispatch_dropped {
+        header.push_str(&super::dispatch_dropped_note(emitted_ops));
+    }
     let kernel = sin_cos::kernel_source(scalar, options.runtime_dispatch);
     Ok(GeneratedModule {
         source: format!("{header}\n{body}\n{kernel}"),
