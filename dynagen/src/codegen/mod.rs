@@ -583,26 +583,17 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
         }
         method => fd_choice::FdChoice { method, why: String::new() },
     };
-    // Large modules keep the build's target features only (see DISPATCH_MAX_OPS).
-    let emitted_ops: usize = functions
-        .iter()
-        .filter(|f| match f.kind {
-            FunctionKind::ForwardDynamicsAba => fd_method.method == ForwardDynamicsMethod::Aba,
-            FunctionKind::ForwardDynamicsLdlt => fd_method.method == ForwardDynamicsMethod::Ldlt,
-            _ => true,
-        })
-        .map(|f| f.op_count.total())
-        .sum();
-    let dispatch_dropped = options.runtime_dispatch && emitted_ops > DISPATCH_MAX_OPS;
-    let effective =
-        CodegenOptions { runtime_dispatch: options.runtime_dispatch && !dispatch_dropped, ..options.clone() };
-    let options = &effective;
     for f in &mut functions {
         f.emitted = match f.kind {
             FunctionKind::ForwardDynamicsAba => fd_method.method == ForwardDynamicsMethod::Aba,
             FunctionKind::ForwardDynamicsLdlt => fd_method.method == ForwardDynamicsMethod::Ldlt,
             _ => true,
         };
+    }
+    let emitted_ops = functions.iter().filter(|f| f.emitted).map(|f| f.op_count.total()).sum();
+    let (effective, dropped_note) = within_dispatch_limit(options, emitted_ops);
+    let options = &effective;
+    for f in &functions {
         if !f.emitted {
             continue;
         }
@@ -638,9 +629,7 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
     let model_hash = model_hash(model);
     let mut header = header(model, options, &fd_method, &functions, &snapped, model_hash)
         + &split::header_note(options.split_lets, &split_functions);
-    if dispatch_dropped {
-        header.push_str(&dispatch_dropped_note(emitted_ops));
-    }
+    header.push_str(&dropped_note);
     let kernel = sin_cos::kernel_source(options.scalar, options.runtime_dispatch);
     Ok(GeneratedModule {
         source: format!("{header}\n{body}\n{kernel}"),
@@ -651,13 +640,18 @@ pub fn generate(model: &Model, options: &CodegenOptions) -> Result<GeneratedModu
     })
 }
 
-/// The header's line for a module left without the run-time dispatch
-/// because its functions take `ops` operations, over [`DISPATCH_MAX_OPS`].
-pub(crate) fn dispatch_dropped_note(ops: usize) -> String {
-    format!(
+/// `options` with the run-time dispatch left out if the module's functions
+/// take `ops` operations, over [`DISPATCH_MAX_OPS`], and the header's line
+/// that says so (empty when nothing was left out).
+pub(crate) fn within_dispatch_limit(options: &CodegenOptions, ops: usize) -> (CodegenOptions, String) {
+    if !options.runtime_dispatch || ops <= DISPATCH_MAX_OPS {
+        return (options.clone(), String::new());
+    }
+    let note = format!(
         "// Run-time dispatch was asked for but left out: the functions take {ops} operations, over\n\
          //   the {DISPATCH_MAX_OPS} up to which it is emitted (rustc compiles the fused copies of long bodies slowly).\n"
-    )
+    );
+    (CodegenOptions { runtime_dispatch: false, ..options.clone() }, note)
 }
 
 /// The operation count of `f`, with its fused multiply-adds if `fma`.

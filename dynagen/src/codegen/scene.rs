@@ -38,12 +38,12 @@
 //! estimated faster and as accurate. The header says which and why.
 
 use super::emit::{self, Dim, Param, Shape};
-use super::trace::{sin_cos_from_q, sin_cos_inputs, SinCosTrace};
+use super::trace::{ldlt_forward_dynamics, sin_cos_from_q, sin_cos_inputs, LdltSteps, SinCosTrace};
 use super::{
     fd_choice, module_name, parse_item, prepare_model, sin_cos, trig_source, wrapper, CodegenError, CodegenOptions,
     ForwardDynamicsMethod, GeneratedModule, ScalarType, SnappedConstant, Trig, GENERATOR_VERSION,
 };
-use crate::algorithms::{kinematics, ldlt, rnea, BodyInertia, TipWrench, Workspace};
+use crate::algorithms::{kinematics, rnea, BodyInertia, TipWrench, Workspace};
 use crate::model::{JointKind, Model};
 use crate::scene::{dynamics, Function as SceneFn, ResolvedGravity, SceneModel};
 use crate::spatial::{Force, Inertia, Sym3, Transform, Vec3};
@@ -240,21 +240,13 @@ fn trace_unfactored(
         }
         SceneFn::Coriolis => dynamics::coriolis(scene, &mut ws, q, &args[1], &mut out),
         SceneFn::ForwardDynamics if use_ldlt => {
-            // The steps of dynamics::forward_dynamics_ldlt_with_payloads, with
-            // the planned M (as the plain module's LᵀDL, codegen/trace.rs).
+            // As the plain module's LᵀDL, on τ − friction, with the armature on M's diagonal.
             let plan = plan.as_ref().expect("planned above");
-            let (n, qd, tau) = (model.dof(), &args[1], &args[2]);
-            rnea::rnea_with_payloads(model, &mut ws, q, Some(qd), None, g, &tips, pl, &mut out);
-            let mut rhs = tau.clone();
-            dynamics::sub_friction(scene, qd, &mut rhs);
-            for i in 0..n {
-                out[i] = rhs[i] - out[i];
-            }
-            let mut m = vec![zero; n * n];
-            super::mass_matrix::mass_matrix(model, &mut ws, q, pl, plan, &mut m);
-            dynamics::add_armature_diagonal(scene, &mut m);
-            ldlt::factorise(model, &mut m);
-            ldlt::solve(model, &m, &mut out);
+            let mut rhs = args[2].clone();
+            dynamics::sub_friction(scene, &args[1], &mut rhs);
+            let steps = LdltSteps { gravity: g, tips: &tips, payloads: pl, plan };
+            let armature = |m: &mut [Expr]| dynamics::add_armature_diagonal(scene, m);
+            ldlt_forward_dynamics(model, &mut ws, q, &args[1], &rhs, &steps, armature, &mut out);
         }
         SceneFn::ForwardDynamics => {
             let mut scratch = vec![zero; n];
@@ -354,7 +346,6 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
         crate::scene::Target::Std => options.trig,
         t => Trig::from(t),
     };
-    let opts = CodegenOptions { scalar, trig, ..options.clone() };
     let mut names = std::collections::HashSet::new();
     for f in &scene.functions {
         let name = scene_function_name(f);
@@ -416,12 +407,10 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
         });
     }
     // Large modules keep the build's target features only, as plain ones (DISPATCH_MAX_OPS).
-    let emitted_ops: usize = functions.iter().map(|f| f.op_count.total()).sum();
-    let dispatch_dropped = options.runtime_dispatch && emitted_ops > super::DISPATCH_MAX_OPS;
-    let effective =
-        CodegenOptions { runtime_dispatch: options.runtime_dispatch && !dispatch_dropped, ..options.clone() };
+    let emitted_ops = functions.iter().map(|f| f.op_count.total()).sum();
+    let (effective, dropped_note) = super::within_dispatch_limit(options, emitted_ops);
     let options = &effective;
-    let opts = CodegenOptions { runtime_dispatch: options.runtime_dispatch, ..opts };
+    let opts = CodegenOptions { scalar, trig, ..options.clone() };
     for sf in &functions {
         let (f, name, sc, op_count) = (&sf.function, &sf.name, &sf.sin_cos_inputs, sf.op_count);
         let ps = params(scene, f);
@@ -455,9 +444,7 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
     let model_hash = super::model_hash(&scene.model);
     let mut header = header(scene, &opts, &fd_why, &functions, &snapped, model_hash)
         + &super::split::header_note(options.split_lets, &split_functions);
-    if dispatch_dropped {
-        header.push_str(&super::dispatch_dropped_note(emitted_ops));
-    }
+    header.push_str(&dropped_note);
     let kernel = sin_cos::kernel_source(scalar, options.runtime_dispatch);
     Ok(GeneratedModule {
         source: format!("{header}\n{body}\n{kernel}"),

@@ -1,7 +1,7 @@
 //! The functions of a generated module, traced from the generic algorithms.
 
 use super::{leaves, mass_matrix};
-use crate::algorithms::{aba, bias, crba, forward_dynamics, ldlt, rnea, Workspace};
+use crate::algorithms::{aba, bias, crba, forward_dynamics, ldlt, rnea, BodyInertia, TipWrench, Workspace};
 use crate::model::Model;
 use crate::spatial::Vec3;
 use crate::symbolic::{balance, factor, Expr, Function, Graph, Latency, Node, NodeId, Rewrites, TraceActive, Tracer};
@@ -115,18 +115,8 @@ fn trace_unfactored(model: &Model, kind: FunctionKind, rewrites: Rewrites) -> Re
         FunctionKind::ForwardDynamicsLdlt => {
             let plan = mass_matrix::plan(model, rewrites)?;
             trace_run(model, kind, rewrites, |ws, args, g, out| {
-                // The steps of forward_dynamics::forward_dynamics_ldlt, with
-                // this M (that function is left as it is: passing it the
-                // mass matrix cost the f64 solver instructions).
-                let (n, q, tau) = (model.dof(), &args[0], &args[2]);
-                rnea::rnea(model, ws, q, Some(&args[1]), None, Some(g), &[], out);
-                for i in 0..n {
-                    out[i] = tau[i] - out[i];
-                }
-                let mut m = vec![Expr::zero(); n * n];
-                mass_matrix::mass_matrix(model, ws, q, &[], &plan, &mut m);
-                ldlt::factorise(model, &mut m);
-                ldlt::solve(model, &m, out);
+                let steps = LdltSteps { gravity: Some(g), tips: &[], payloads: &[], plan: &plan };
+                ldlt_forward_dynamics(model, ws, &args[0], &args[1], &args[2], &steps, |_| {}, out)
             })
         }
         FunctionKind::GravityTorques => match leaves::fold_for_gravity(model) {
@@ -139,6 +129,44 @@ fn trace_unfactored(model: &Model, kind: FunctionKind, rewrites: Rewrites) -> Re
         },
         _ => trace_run(model, kind, rewrites, |ws, args, g, out| kind.run(model, ws, args, g, out)),
     }
+}
+
+/// What [`ldlt_forward_dynamics`] takes besides the state: gravity, tip
+/// wrenches, run-time payloads, and the mass-matrix plan.
+pub(crate) struct LdltSteps<'a> {
+    pub gravity: Option<&'a Vec3<Expr>>,
+    pub tips: &'a [TipWrench<Expr>],
+    pub payloads: &'a [BodyInertia<Expr>],
+    pub plan: &'a mass_matrix::Plan,
+}
+
+/// q̈ = M⁻¹(rhs − h − JᵀF_tip) as the generated CRBA + LᵀDL computes it:
+/// the steps of `forward_dynamics::forward_dynamics_ldlt`, with M from
+/// the planned [`mass_matrix`](mass_matrix::mass_matrix) (that function is
+/// left as it is: passing it the mass matrix cost the f64 solver
+/// instructions), and `add_to_m` applied to M before it is factorised (a
+/// scene's armature). Plain modules and scenes trace it.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn ldlt_forward_dynamics(
+    model: &Model,
+    ws: &mut Workspace<Expr>,
+    q: &[Expr],
+    qd: &[Expr],
+    rhs: &[Expr],
+    steps: &LdltSteps,
+    add_to_m: impl FnOnce(&mut [Expr]),
+    out: &mut [Expr],
+) {
+    let n = model.dof();
+    rnea::rnea_with_payloads(model, ws, q, Some(qd), None, steps.gravity, steps.tips, steps.payloads, out);
+    for i in 0..n {
+        out[i] = rhs[i] - out[i];
+    }
+    let mut m = vec![Expr::zero(); n * n];
+    mass_matrix::mass_matrix(model, ws, q, steps.payloads, steps.plan, &mut m);
+    add_to_m(&mut m);
+    ldlt::factorise(model, &mut m);
+    ldlt::solve(model, &m, out);
 }
 
 /// Traces `run` (an algorithm computing `kind`'s outputs, with `kind`'s
