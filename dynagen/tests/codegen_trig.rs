@@ -111,3 +111,34 @@ fn the_body_with_sines_and_cosines_given_computes_the_function_of_q() {
         }
     }
 }
+
+/// With batched trigonometry and run-time dispatch, the AVX2 and FMA copy of
+/// `NAME` inlines both the kernel and the body (`NAME_sc_on::<Avx2Fma>`), so
+/// the sines and cosines stay in registers; a body split into parts has no
+/// `NAME_sc_on`, and `NAME_avx2_fma` calls the chain of its parts'
+/// copies, `NAME_sc_avx2_fma`.
+#[test]
+fn the_dispatched_batched_copy_inlines_its_body_unless_it_is_split() {
+    let fast_copy = |src: &str, name: &str| -> String {
+        let head = format!("unsafe fn {name}_avx2_fma(");
+        src.split(&head).nth(1).unwrap_or_else(|| panic!("no {head}")).split("\n}\n").next().unwrap().to_string()
+    };
+    let whole = source(&ur5(), Trig::Batched);
+    let split =
+        generate(&ur5(), &CodegenOptions::default().trig(Trig::Batched).split_lets(Some(40))).unwrap().source;
+    for name in ["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "forward_dynamics"] {
+        let copy = fast_copy(&whole, name);
+        assert!(copy.contains("sin_cos_array_on::<Avx2Fma,"), "{name}: {copy}");
+        assert!(copy.contains(&format!("{name}_sc_on::<")) && copy.contains("Avx2Fma"), "{name}: {copy}");
+        assert!(!copy.contains(&format!("{name}_sc_avx2_fma(")), "{name}: {copy}");
+        // Split at 40 lets: every body but g's is in parts.
+        let copy = fast_copy(&split, name);
+        if split.contains(&format!("fn {name}_sc_part1_on<")) {
+            assert!(copy.contains(&format!("{name}_sc_avx2_fma(")), "{name}: {copy}");
+            assert!(!copy.contains(&format!("{name}_sc_on::<")), "{name}: {copy}");
+        } else {
+            assert_eq!(name, "gravity_torques");
+            assert!(copy.contains(&format!("{name}_sc_on::<")), "{name}: {copy}");
+        }
+    }
+}

@@ -610,16 +610,15 @@ unsafe fn inverse_dynamics_avx2_fma(
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe {
-        inverse_dynamics_sc_avx2_fma(
-            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
-            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
-            q,
-            qd,
-            qdd,
-        )
-    }
+    inverse_dynamics_sc_on::<
+        Avx2Fma,
+    >(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
+        q,
+        qd,
+        qdd,
+    )
 }
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
@@ -1061,14 +1060,13 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 #[target_feature(enable = "avx2,fma")]
 unsafe fn mass_matrix_avx2_fma(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe {
-        mass_matrix_sc_avx2_fma(
-            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
-            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
-            q,
-        )
-    }
+    mass_matrix_sc_on::<
+        Avx2Fma,
+    >(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
+        q,
+    )
 }
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
@@ -1602,15 +1600,14 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 #[target_feature(enable = "avx2,fma")]
 unsafe fn bias_forces_avx2_fma(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe {
-        bias_forces_sc_avx2_fma(
-            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
-            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
-            q,
-            qd,
-        )
-    }
+    bias_forces_sc_on::<
+        Avx2Fma,
+    >(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
+        q,
+        qd,
+    )
 }
 /// The gravity torques g(q).
 ///
@@ -1753,14 +1750,13 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
 #[target_feature(enable = "avx2,fma")]
 unsafe fn gravity_torques_avx2_fma(q: &[f64; DOF]) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe {
-        gravity_torques_sc_avx2_fma(
-            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
-            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
-            q,
-        )
-    }
+    gravity_torques_sc_on::<
+        Avx2Fma,
+    >(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
+        q,
+    )
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by the articulated-body algorithm.
 ///
@@ -2947,16 +2943,15 @@ unsafe fn forward_dynamics_avx2_fma(
     tau: &[f64; DOF],
 ) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe {
-        forward_dynamics_sc_avx2_fma(
-            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
-            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
-            q,
-            qd,
-            tau,
-        )
-    }
+    forward_dynamics_sc_on::<
+        Avx2Fma,
+    >(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
+        q,
+        qd,
+        tau,
+    )
 }
 
 /// Whether `sin_cos_array` and the other public functions of the kernel below pick, on x86-64

@@ -128,8 +128,7 @@ unsafe fn inverse_dynamics_avx2_fma(
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, DOF>(q);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe { inverse_dynamics_sc_avx2_fma(&s, &c, qd, qdd) }
+    inverse_dynamics_sc_on::<Avx2Fma>(&s, &c, qd, qdd)
 }
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
@@ -186,8 +185,7 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 #[target_feature(enable = "avx2,fma")]
 unsafe fn mass_matrix_avx2_fma(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 1>(&[q[1]]);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe { mass_matrix_sc_avx2_fma(&[0.0, s[0]], &[1.0, c[0]]) }
+    mass_matrix_sc_on::<Avx2Fma>(&[0.0, s[0]], &[1.0, c[0]])
 }
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
@@ -262,8 +260,7 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 #[target_feature(enable = "avx2,fma")]
 unsafe fn bias_forces_avx2_fma(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, DOF>(q);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe { bias_forces_sc_avx2_fma(&s, &c, qd) }
+    bias_forces_sc_on::<Avx2Fma>(&s, &c, qd)
 }
 /// The gravity torques g(q).
 ///
@@ -326,8 +323,7 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
 #[target_feature(enable = "avx2,fma")]
 unsafe fn gravity_torques_avx2_fma(q: &[f64; DOF]) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, DOF>(q);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe { gravity_torques_sc_avx2_fma(&s, &c) }
+    gravity_torques_sc_on::<Avx2Fma>(&s, &c)
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by the articulated-body algorithm.
 ///
@@ -434,8 +430,7 @@ unsafe fn forward_dynamics_avx2_fma(
     tau: &[f64; DOF],
 ) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, DOF>(q);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe { forward_dynamics_sc_avx2_fma(&s, &c, qd, tau) }
+    forward_dynamics_sc_on::<Avx2Fma>(&s, &c, qd, tau)
 }
 
 /// Whether `sin_cos_array` and the other public functions of the kernel below pick, on x86-64

@@ -646,15 +646,14 @@ unsafe fn inverse_dynamics_avx2_fma(
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe {
-        inverse_dynamics_sc_avx2_fma(
-            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
-            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
-            qd,
-            qdd,
-        )
-    }
+    inverse_dynamics_sc_on::<
+        Avx2Fma,
+    >(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
+        qd,
+        qdd,
+    )
 }
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
@@ -1109,13 +1108,12 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 #[target_feature(enable = "avx2,fma")]
 unsafe fn mass_matrix_avx2_fma(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe {
-        mass_matrix_sc_avx2_fma(
-            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
-            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
-        )
-    }
+    mass_matrix_sc_on::<
+        Avx2Fma,
+    >(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
+    )
 }
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
@@ -1667,14 +1665,13 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 #[target_feature(enable = "avx2,fma")]
 unsafe fn bias_forces_avx2_fma(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe {
-        bias_forces_sc_avx2_fma(
-            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
-            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
-            qd,
-        )
-    }
+    bias_forces_sc_on::<
+        Avx2Fma,
+    >(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
+        qd,
+    )
 }
 /// The gravity torques g(q).
 ///
@@ -1883,13 +1880,12 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
 #[target_feature(enable = "avx2,fma")]
 unsafe fn gravity_torques_avx2_fma(q: &[f64; DOF]) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe {
-        gravity_torques_sc_avx2_fma(
-            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
-            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
-        )
-    }
+    gravity_torques_sc_on::<
+        Avx2Fma,
+    >(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
+    )
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by CRBA, RNEA and a sparse LᵀDL solve.
 ///
@@ -2890,15 +2886,14 @@ unsafe fn forward_dynamics_avx2_fma(
     tau: &[f64; DOF],
 ) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe {
-        forward_dynamics_sc_avx2_fma(
-            &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
-            &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
-            qd,
-            tau,
-        )
-    }
+    forward_dynamics_sc_on::<
+        Avx2Fma,
+    >(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5]],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
+        qd,
+        tau,
+    )
 }
 
 /// Whether `sin_cos_array` and the other public functions of the kernel below pick, on x86-64

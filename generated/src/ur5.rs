@@ -305,15 +305,14 @@ unsafe fn inverse_dynamics_avx2_fma(
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 5>(&[q[1], q[2], q[3], q[4], q[5]]);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe {
-        inverse_dynamics_sc_avx2_fma(
-            &[0.0, s[0], s[1], s[2], s[3], s[4]],
-            &[1.0, c[0], c[1], c[2], c[3], c[4]],
-            qd,
-            qdd,
-        )
-    }
+    inverse_dynamics_sc_on::<
+        Avx2Fma,
+    >(
+        &[0.0, s[0], s[1], s[2], s[3], s[4]],
+        &[1.0, c[0], c[1], c[2], c[3], c[4]],
+        qd,
+        qdd,
+    )
 }
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
@@ -467,13 +466,9 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 #[target_feature(enable = "avx2,fma")]
 unsafe fn mass_matrix_avx2_fma(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 5>(&[q[1], q[2], q[3], q[4], q[5]]);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe {
-        mass_matrix_sc_avx2_fma(
-            &[0.0, s[0], s[1], s[2], s[3], s[4]],
-            &[1.0, c[0], c[1], c[2], c[3], c[4]],
-        )
-    }
+    mass_matrix_sc_on::<
+        Avx2Fma,
+    >(&[0.0, s[0], s[1], s[2], s[3], s[4]], &[1.0, c[0], c[1], c[2], c[3], c[4]])
 }
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
@@ -703,14 +698,9 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 #[target_feature(enable = "avx2,fma")]
 unsafe fn bias_forces_avx2_fma(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 5>(&[q[1], q[2], q[3], q[4], q[5]]);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe {
-        bias_forces_sc_avx2_fma(
-            &[0.0, s[0], s[1], s[2], s[3], s[4]],
-            &[1.0, c[0], c[1], c[2], c[3], c[4]],
-            qd,
-        )
-    }
+    bias_forces_sc_on::<
+        Avx2Fma,
+    >(&[0.0, s[0], s[1], s[2], s[3], s[4]], &[1.0, c[0], c[1], c[2], c[3], c[4]], qd)
 }
 /// The gravity torques g(q).
 ///
@@ -778,13 +768,9 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
 #[target_feature(enable = "avx2,fma")]
 unsafe fn gravity_torques_avx2_fma(q: &[f64; DOF]) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 3>(&[q[1], q[2], q[3]]);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe {
-        gravity_torques_sc_avx2_fma(
-            &[0.0, s[0], s[1], s[2], 0.0, 0.0],
-            &[1.0, c[0], c[1], c[2], 1.0, 1.0],
-        )
-    }
+    gravity_torques_sc_on::<
+        Avx2Fma,
+    >(&[0.0, s[0], s[1], s[2], 0.0, 0.0], &[1.0, c[0], c[1], c[2], 1.0, 1.0])
 }
 /// Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by CRBA, RNEA and a sparse LᵀDL solve.
 ///
@@ -1200,15 +1186,14 @@ unsafe fn forward_dynamics_avx2_fma(
     tau: &[f64; DOF],
 ) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 5>(&[q[1], q[2], q[3], q[4], q[5]]);
-    // SAFETY: this processor has AVX2 and FMA (the caller checked).
-    unsafe {
-        forward_dynamics_sc_avx2_fma(
-            &[0.0, s[0], s[1], s[2], s[3], s[4]],
-            &[1.0, c[0], c[1], c[2], c[3], c[4]],
-            qd,
-            tau,
-        )
-    }
+    forward_dynamics_sc_on::<
+        Avx2Fma,
+    >(
+        &[0.0, s[0], s[1], s[2], s[3], s[4]],
+        &[1.0, c[0], c[1], c[2], c[3], c[4]],
+        qd,
+        tau,
+    )
 }
 
 /// Whether `sin_cos_array` and the other public functions of the kernel below pick, on x86-64

@@ -425,7 +425,8 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
         let doc = format!("{}\n\n{}", doc_of(scene, f, &sc_count), super::sc_doc(has_prismatic));
         let style = emit::BodyStyle::of(options);
         let emitted = emit::emit_function(&sc.function, &signature, scalar, trig, n, &doc, style)?;
-        if let Some(parts) = super::split::parts_of(&emitted) {
+        let sc_split = super::split::parts_of(&emitted);
+        if let Some(parts) = sc_split {
             split_functions.push((sc_name.clone(), parts));
         }
         items.extend(emitted);
@@ -436,7 +437,8 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
                 trig_source(trig, scalar)
             );
             let ret = shape(f).tokens(scalar);
-            items.extend(super::parse_items(wrapper(name, &ps, ret, sc, has_prismatic, &opts, &doc))?);
+            let body = super::ScBody { trace: sc, has_prismatic, split: sc_split.is_some() };
+            items.extend(super::parse_items(wrapper(name, &ps, ret, body, &opts, &doc))?);
         }
     }
     let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
