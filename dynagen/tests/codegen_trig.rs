@@ -124,8 +124,7 @@ fn the_dispatched_batched_copy_inlines_its_body_unless_it_is_split() {
         src.split(&head).nth(1).unwrap_or_else(|| panic!("no {head}")).split("\n}\n").next().unwrap().to_string()
     };
     let whole = source(&ur5(), Trig::Batched);
-    let split =
-        generate(&ur5(), &CodegenOptions::default().trig(Trig::Batched).split_lets(Some(40))).unwrap().source;
+    let split = generate(&ur5(), &CodegenOptions::default().trig(Trig::Batched).split_lets(Some(40))).unwrap().source;
     for name in ["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "forward_dynamics"] {
         let copy = fast_copy(&whole, name);
         assert!(copy.contains("sin_cos_array_on::<Avx2Fma,"), "{name}: {copy}");
