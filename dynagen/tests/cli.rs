@@ -678,6 +678,11 @@ fn ops_lists_generated_and_generic_counts() {
         assert_eq!(cols[5], f.op_count.fused.to_string(), "{row}");
         assert_eq!(cols[6], f.op_count.fp_ops().to_string(), "{row}");
         assert!(f.op_count.fused > 0 && f.op_count.fp_ops() < f.op_count.arithmetic(), "{row}");
+        // The multiplications executed: more than the products computed on
+        // their own (the fused ones count), fewer than the traced ones.
+        assert_eq!(cols[7], f.op_count.multiplies().to_string(), "{row}");
+        assert!(f.op_count.multiplies() > f.op_count.mul - f.op_count.mul_folded, "{row}");
+        assert!(f.op_count.multiplies() < f.op_count.mul + f.op_count.fused, "{row}");
         // The generic recursion does every multiplication by a model
         // constant at run time: the generated code must do fewer.
         assert!(f.op_count.arithmetic() < generic.arithmetic(), "{row}");

@@ -216,6 +216,9 @@ mod tests {
         assert_eq!((count.add + count.sub, count.mul), (4, 3));
         assert_eq!((count.fused, count.mul_folded), (3, 2));
         assert_eq!(count.fp_ops(), count.arithmetic() - 2);
+        // Multiplications executed: the fused x0·x1 twice, x3·x4 on its
+        // own, the late product once, fused.
+        assert_eq!(count.multiplies(), 4);
         let nodes = f.nodes();
         let id = |want: Node| nodes.iter().position(|n| *n == want).unwrap() as NodeId;
         let p = nodes.iter().position(|n| matches!(n, Node::Mul(..))).unwrap() as NodeId;
