@@ -25,15 +25,20 @@ fn main() {
         let module = generate(&model, &opts).unwrap_or_else(|e| panic!("generating {file}: {e}"));
         std::fs::write(Path::new(&out).join(file), module.source).expect("writing the generated module");
     }
-    // Two scenes with no_std targets: the UR5 controller scene on libm (its
-    // Coulomb friction needs libm's sqrt), and a torque scene with the sines
-    // and cosines as inputs and the tip wrench and gravity as arguments.
+    // Scenes without std: the UR5 controller scene (Coulomb friction, whose
+    // smoothing takes a square root) on libm (libm's sqrt), with the sines and
+    // cosines as inputs and with the batched ones in f64 and f32 (the module's
+    // own sqrt and sqrtf); and a torque scene with the sines and cosines as
+    // inputs and the tip wrench and gravity as arguments.
     use dynagen::scene::{Function, Gravity, Scene, Target};
     let ur5 = Model::from_urdf_file(robots.join("ur5.urdf")).expect("the UR5");
     let controller = Scene::from_toml_file(robots.join("../scenes/ur5_controller.toml")).expect("the controller scene");
     println!("cargo:rerun-if-changed={}", robots.join("../scenes/ur5_controller.toml").display());
     let scenes = [
-        ("ur5_controller_libm.rs", controller.target(Target::NoStdLibm)),
+        ("ur5_controller_libm.rs", controller.clone().target(Target::NoStdLibm)),
+        ("ur5_controller_sincos.rs", controller.clone().target(Target::NoStdSinCos)),
+        ("ur5_controller_batched.rs", controller.clone()),
+        ("ur5_controller_batched_f32.rs", controller.scalar(ScalarType::F32)),
         (
             "ur5_tau_sincos.rs",
             Scene::new()
@@ -46,7 +51,8 @@ fn main() {
     ];
     for (file, scene) in scenes {
         let applied = scene.apply(&ur5).unwrap_or_else(|e| panic!("{file}: {e}"));
-        let opts = CodegenOptions::default().source("dynagen/robots/ur5.urdf");
+        // A std target takes its trigonometry from the options (batched: no std), the others their own.
+        let opts = CodegenOptions::default().trig(Trig::Batched).source("dynagen/robots/ur5.urdf");
         let module = dynagen::codegen::generate_scene(&applied, &opts).unwrap_or_else(|e| panic!("{file}: {e}"));
         std::fs::write(Path::new(&out).join(file), module.source).expect("writing the generated module");
     }

@@ -179,19 +179,22 @@ pub enum ForwardDynamicsMethod {
 /// `#![no_std]` as well.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Trig {
-    /// `NAME(q, …)` calls `f64::sin_cos` (or `f32::sin_cos`) per joint:
-    /// needs std.
+    /// `NAME(q, …)` calls `f64::sin_cos` (or `f32::sin_cos`) per joint, and
+    /// a scene's square roots are `f64::sqrt`: needs std.
     #[default]
     Std,
     /// `NAME(q, …)` calls the module's `sin_cos_array` on the angles its
-    /// body reads: `#![no_std]`, no dependency, faster than `Std` in the
+    /// body reads, and a scene's square roots are the module's `sqrt`
+    /// (`sqrtf`): `#![no_std]`, no dependency, faster than `Std` in the
     /// benchmarks.
     Batched,
-    /// `NAME(q, …)` calls `libm::sincos` (`libm::sincosf` for `f32`):
-    /// `#![no_std]`, needs the `libm` crate.
+    /// `NAME(q, …)` calls `libm::sincos` (`libm::sincosf` for `f32`), and a
+    /// scene's square roots are `libm::sqrt` (`sqrtf`): `#![no_std]`, needs
+    /// the `libm` crate.
     Libm,
-    /// Only the `NAME_sc` functions (and `sin_cos_all`): `#![no_std]`, no
-    /// dependency; the caller brings the sines and cosines.
+    /// Only the `NAME_sc` functions (and `sin_cos_all`), a scene's square
+    /// roots the module's `sqrt`: `#![no_std]`, no dependency; the caller
+    /// brings the sines and cosines.
     Inputs,
 }
 
@@ -417,17 +420,6 @@ pub enum CodegenError {
     /// A symbolic trace was already running on this thread.
     #[error(transparent)]
     TraceActive(#[from] crate::symbolic::TraceActive),
-    /// A function needs an operation that the chosen [`Trig`] has no
-    /// no_std source for.
-    #[error(
-        "function {function} needs {what}, which no_std code without libm does not have; use Trig::Std or Trig::Libm"
-    )]
-    NeedsStd {
-        /// The function.
-        function: String,
-        /// The operation.
-        what: &'static str,
-    },
     /// Two functions of a scene get the same Rust name (two frames whose
     /// names differ only in characters a Rust name cannot hold).
     #[error("two functions would be named `{0}` (frame names that differ only in characters Rust names cannot hold)")]

@@ -37,7 +37,9 @@
 //! `f64::sqrt`. It is the square-root instruction on x86-64 (SSE2) and
 //! aarch64 (NEON), and elsewhere `sqrt_portable`, exact integer arithmetic
 //! (compiled on every target, and tested here against `f64::sqrt` bit for
-//! bit).
+//! bit). The bodies of [`Trig::Batched`](super::Trig::Batched) and
+//! [`Trig::Inputs`](super::Trig::Inputs) modules call it where a scene needs
+//! a square root (smoothed Coulomb friction).
 
 use super::ScalarType;
 use proc_macro2::TokenStream;

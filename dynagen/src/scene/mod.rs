@@ -38,7 +38,12 @@
 //! σ(10 v_ε) = 0.995, σ(100 v_ε) = 0.99995. The default smoothing velocity
 //! v_ε is [`DEFAULT_COULOMB_VELOCITY`] = 0.01 rad/s (or m/s), set by
 //! [`Scene::coulomb_velocity`]. A smaller v_ε is closer to sign(q̇) but
-//! makes forward dynamics stiffer (the slope at rest is f/v_ε).
+//! makes forward dynamics stiffer (the slope at rest is f/v_ε). Generated
+//! code takes the square root from std (`f64::sqrt`, with
+//! [`Trig::Std`](crate::codegen::Trig::Std)), from `libm` (target
+//! `no_std_libm`), or else from the module's own `sqrt`, which needs
+//! neither and is correctly rounded like the other two: every target
+//! generates Coulomb friction.
 //!
 //! # Reductions
 //!
@@ -487,11 +492,6 @@ impl Scene {
     pub fn check(&self) -> Result<(), SceneError> {
         if self.functions.is_empty() {
             return Err(SceneError::NoFunctions);
-        }
-        if self.target == Target::NoStdSinCos {
-            if let Some((joint, _)) = self.coulomb_friction.iter().find(|(_, f)| *f != 0.0) {
-                return Err(SceneError::NeedsSqrt { joint: joint.clone() });
-            }
         }
         if !(self.coulomb_velocity.is_finite() && self.coulomb_velocity > 0.0) {
             return Err(SceneError::BadCoulombVelocity(self.coulomb_velocity));
