@@ -95,7 +95,9 @@
 //! frame_pose = ["ee_link"]
 //! frame_jacobian = ["ee_link"]
 //! scalar = "f64"               # or "f32"
-//! target = "std"               # or "no_std_libm", "no_std_sincos"
+//! target = "std"               # std allowed; the trigonometry is the code-generation
+//!                              # options' (batched, no_std, by default); or "no_std_libm",
+//!                              # "no_std_sincos" (the sines and cosines as arguments)
 //!
 //! # The wrench the robot applies to its environment at this link, in the
 //! # link's frame, as a run-time input (no key: no tip wrench).
@@ -323,7 +325,11 @@ pub enum ScalarType {
 /// What generated code may use (code generation only).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Target {
-    /// std: sines and cosines by `f64::sin_cos`.
+    /// std allowed, not required: the sines and cosines (and square roots)
+    /// come from the code-generation options'
+    /// [`trig`](crate::codegen::CodegenOptions::trig), by default the
+    /// module's own (batched, `#![no_std]`, no dependency); std's
+    /// `f64::sin_cos` with [`Trig::Std`](crate::codegen::Trig::Std).
     #[default]
     Std,
     /// `#![no_std]`, sines and cosines from the `libm` crate.

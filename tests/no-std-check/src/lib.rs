@@ -7,8 +7,8 @@
 //! - [`ur5_inputs`], [`panda_inputs`]: only `NAME_sc(s, c, [q,] …)`, the
 //!   caller passes the sines and cosines (the Panda's prismatic fingers make
 //!   it take `q` as well);
-//! - [`ur5_batched`], [`ur5_batched_f32`]: `NAME(q, …)` calls the module's
-//!   own `sin_cos_all`;
+//! - [`ur5_batched`] (the default options), [`ur5_batched_f32`]: `NAME(q, …)`
+//!   calls the module's own `sin_cos_all`;
 //! - [`ur5_controller_libm`], [`ur5_controller_sincos`], [`ur5_tau_sincos`]:
 //!   scene modules with the `no_std_libm` and `no_std_sincos` targets;
 //! - [`ur5_controller_batched`], [`ur5_controller_batched_f32`]: the
@@ -36,7 +36,11 @@ macro_rules! generated {
 generated!(ur5_libm, "ur5_libm.rs", "The UR5, `f64`, sines and cosines by `libm`.");
 generated!(ur5_libm_f32, "ur5_libm_f32.rs", "The UR5, `f32`, sines and cosines by `libm`.");
 generated!(ur5_inputs, "ur5_inputs.rs", "The UR5, `f64`, sines and cosines as inputs.");
-generated!(ur5_batched, "ur5_batched.rs", "The UR5, `f64`, sines and cosines by the module's `sin_cos_all`.");
+generated!(
+    ur5_batched,
+    "ur5_batched.rs",
+    "The UR5 with the default options: `f64`, sines and cosines by the module's `sin_cos_all`."
+);
 generated!(ur5_batched_f32, "ur5_batched_f32.rs", "The UR5, `f32`, sines and cosines by the module's `sin_cos_all`.");
 generated!(panda_inputs, "panda_inputs.rs", "The Panda (prismatic fingers), `f64`, sines and cosines as inputs.");
 generated!(
