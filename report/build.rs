@@ -1,15 +1,15 @@
 //! Generates, into OUT_DIR, the generated-code variants the report measures,
 //! for each bundled robot (`dynagen/robots/NAME.urdf`):
 //!
-//! - `NAME_f64.rs`: f64, std's `sin_cos`, forward dynamics by the
+//! - `NAME_f64.rs`: f64, std's `sin_cos` (`Trig::Std`), forward dynamics by the
 //!   articulated-body algorithm (every module also has the `NAME_sc`
 //!   functions, which take the sines and cosines as inputs, and
 //!   `sin_cos_all`);
 //! - `NAME_f64_batched.rs`: the same with `NAME` calling the batched
-//!   `sin_cos_all` (`Trig::Batched`);
+//!   `sin_cos_all` (`Trig::Batched`, the default options');
 //! - `NAME_f64_ldlt.rs`, `NAME_f64_ldlt_batched.rs`: forward dynamics only,
 //!   by CRBA + LTDL;
-//! - `NAME_f32.rs` and `NAME_f32_ldlt.rs`: the same in f32.
+//! - `NAME_f32.rs` and `NAME_f32_ldlt.rs`: the same in f32 (std's `sin_cos`).
 //!
 //! and `generated.rs`, which `include!`s them in one module per robot, with
 //! adapters `sc::*` that give every robot's `NAME_sc` the same arguments
@@ -42,8 +42,10 @@ fn main() {
         let urdf = robots.join(format!("{robot}.urdf"));
         println!("cargo:rerun-if-changed={}", urdf.display());
         let model = Model::from_urdf_file(&urdf).unwrap_or_else(|e| panic!("{}: {e}", urdf.display()));
-        // Forward dynamics by the ABA here, so that its row is that algorithm's (the default picks per robot).
-        let base = CodegenOptions::default().source(rel.clone()).forward_dynamics(ForwardDynamicsMethod::Aba);
+        // Forward dynamics by the ABA here, so that its row is that algorithm's (the default picks per robot);
+        // std's sin_cos unless a variant says batched (the default).
+        let base =
+            CodegenOptions::default().source(rel.clone()).forward_dynamics(ForwardDynamicsMethod::Aba).trig(Trig::Std);
         let variants = [
             ("f64", base.clone()),
             ("f64_batched", base.clone().trig(Trig::Batched)),

@@ -1,6 +1,6 @@
 //! Generates into OUT_DIR with [`dynagen::Builder`]: the UR5 module in f32,
 //! for `tests/generated_bundled.rs` (the f64 modules are the committed ones
-//! in `generated/`), and in f64 (with and without run-time dispatch) for `tests/generated_fma.rs`, and three scene modules for `tests/generated_scene.rs`:
+//! in `generated/`), and in f64 (with and without run-time dispatch) for `tests/generated_fma.rs` (and, the default options' module, `tests/generated_bundled.rs`), and three scene modules for `tests/generated_scene.rs`:
 //! the bundled `ur5_controller` scene (from its TOML file), a UR5 with every
 //! run-time input (gravity, tip wrench, a payload) and a lock, and an f32
 //! UR5 with only τ and no gravity; the stiff robots (`build_stiff.rs`) and
@@ -15,7 +15,8 @@ mod build_stiff;
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     let ur5 = "../dynagen/robots/ur5.urdf";
-    // Default options (fused multiply-adds on), for tests/generated_fma.rs.
+    // Default options (batched trigonometry, fused multiply-adds, run-time
+    // dispatch), for tests/generated_fma.rs and tests/generated_bundled.rs.
     dynagen::Builder::new().urdf(ur5).file_name("ur5_f64.rs").generate().expect("generating the UR5 module");
     // The same without run-time dispatch: the build's target features only.
     dynagen::Builder::new()

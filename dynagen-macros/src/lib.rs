@@ -8,9 +8,10 @@
 //!
 //! Depend on `dynagen-macros` directly and call `dynagen_macros::urdf!`
 //! (as with `serde_derive`). The generated code needs nothing else at run
-//! time: not `dynagen`, not even `std` beyond `f64::sin_cos`. `dynagen`
-//! does not re-export these macros, because this crate depends on it (a
-//! re-export would make a dependency cycle).
+//! time: not `dynagen`, not even `std` (with the default `trig = batched`;
+//! `trig = std` calls `f64::sin_cos`). `dynagen` does not re-export these
+//! macros, because this crate depends on it (a re-export would make a
+//! dependency cycle).
 //!
 //! ```toml
 //! [dependencies]
@@ -40,7 +41,7 @@
 //! | `scalar` | `f64`, `f32` | `f64` |
 //! | `forward_dynamics` | `auto`, `aba`, `ldlt` | `auto` (the faster of the two unless it is less accurate; the header says which) |
 //! | `snap_rounding` | `true`, `false` | `true` |
-//! | `trig` | `std` (`f64::sin_cos`), `batched` (the module's own `sin_cos_array`: no_std, faster), `libm`, `inputs` (only the `NAME_sc` functions) | `std` |
+//! | `trig` | `batched` (the module's own `sin_cos_array`: no_std, no dependency, faster than std's), `std` (`f64::sin_cos`), `libm`, `inputs` (only the `NAME_sc` functions) | `batched` |
 //! | `split_lets` | a number of `let`s, or `none` | 2500 (longer bodies become `#[inline(never)]` parts) |
 //! | `fma` | `true`, `false`: `a*b + c` as `fma(a, b, c)`, one rounding where the target has a fused multiply-add | `true` |
 //! | `dispatch` | `true`, `false`: on x86-64 builds without the `avx2` and `fma` target features, also compile each function for AVX2 and FMA and run that copy where the processor has both (results differ in the last bits between machines) | `true` |
@@ -69,7 +70,7 @@
 //! | `payload` | `{ link = LINK, mass = kg, com = [x, y, z], inertia = [ixx, iyy, izz, ixy, ixz, iyz] }` (repeat the key for several) |
 //! | `payload_input` | `LINK`: its payload is an argument |
 //! | `frame_pose`, `frame_jacobian` | `[FRAME, …]`: `frame_pose_FRAME(q)`, `frame_jacobian_FRAME(q)` |
-//! | `target` | `std`, `no_std_libm`, `no_std_sincos` |
+//! | `target` | `std` (std allowed: the trigonometry is the `trig` option's, `batched` by default), `no_std_libm`, `no_std_sincos` |
 //!
 //! ```ignore
 //! mod ur5_tau {

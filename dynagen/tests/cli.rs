@@ -564,6 +564,13 @@ fn generate_to_stdout_and_to_a_file_equal_the_library_output() {
     let (stdout, stderr) = succeeds_with_stderr(dynagen().arg("generate").arg(&urdf));
     let want = generate(&model, &CodegenOptions::default().source(urdf.clone())).unwrap();
     assert_eq!(stdout, want.source);
+    // Without --trig: the library's default, the module's own batched sines and cosines (no std).
+    assert!(stdout.contains("= sin_cos_array(&[") && !stdout.contains(".sin_cos()"), "{stdout}");
+    // --trig std: std's sin_cos, as the library gives it.
+    let with_std = succeeds(dynagen().arg("generate").arg(&urdf).args(["--trig", "std"]));
+    let opts = CodegenOptions::default().source(urdf.clone()).trig(dynagen::codegen::Trig::Std);
+    assert_eq!(with_std, generate(&model, &opts).unwrap().source);
+    assert!(with_std.contains(".sin_cos();") && !with_std.contains("= sin_cos_array(&["), "{with_std}");
     let lines: Vec<&str> = stderr.lines().collect();
     assert_eq!(lines.len(), want.functions.len(), "{stderr}");
     for (line, f) in lines.iter().zip(&want.functions) {

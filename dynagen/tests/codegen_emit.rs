@@ -2,7 +2,7 @@
 //! generator does with constants that are 0 or ±1 up to rounding.
 
 use dynagen::codegen::{
-    float_literal_text, generate, model_hash, snap_rounding, CodegenOptions, FunctionKind, Functions, ScalarType,
+    float_literal_text, generate, model_hash, snap_rounding, CodegenOptions, FunctionKind, Functions, ScalarType, Trig,
 };
 use dynagen::model::{Inertial, JointDescription, RobotBuilder};
 use dynagen::Model;
@@ -40,7 +40,7 @@ fn the_module_follows_the_contract_and_parses() {
         "pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF]",
         "pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF]",
         "pub fn forward_dynamics(\n    q: &[f64; DOF],\n    qd: &[f64; DOF],\n    tau: &[f64; DOF],\n) -> [f64; DOF]",
-        ".sin_cos()",
+        "pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF])",
     ] {
         assert!(src.contains(sig), "missing {sig:?}");
     }
@@ -61,10 +61,19 @@ fn the_module_follows_the_contract_and_parses() {
     assert!(docs >= items, "{docs} doc blocks for {items} items");
     let lines = src.lines().filter(|l| !l.starts_with("//")).collect::<Vec<_>>().join("\n");
     syn::parse_file(&lines).unwrap();
+    // The default sines and cosines are the module's own: no std.
+    assert!(!src.contains(".sin_cos()") && !src.contains("libm"));
+    // std's, asked for: one `.sin_cos()` per angle a body reads (below for the default).
+    let std = generate(&ur5(), &CodegenOptions::default().trig(Trig::Std)).unwrap();
+    for f in std.functions.iter().filter(|f| f.emitted) {
+        let wrapper = function_text(&std.source, &format!("pub fn {}(", f.kind.fn_name()));
+        assert_eq!(wrapper.matches(".sin_cos()").count(), f.op_count.sin_cos, "{wrapper}");
+        assert!(!wrapper.contains("sin_cos_array"), "{wrapper}");
+    }
     // one let per kept operation in the body (NAME_sc), one sine and cosine
     // per joint angle in NAME, which adds them to the body's count
     for f in module.functions.iter().filter(|f| f.emitted) {
-        let split = |head: &str| src.split(head).nth(1).unwrap().split("\n}\n").next().unwrap();
+        let split = |head: &str| function_text(src, head);
         // run-time dispatch (on by default): the body is the generic `NAME_sc_on`, which the public
         // `NAME_sc` runs for the baseline and `NAME_sc_avx2_fma` for AVX2 and FMA
         let name = format!("{}_sc", f.kind.fn_name());
@@ -82,8 +91,28 @@ fn the_module_follows_the_contract_and_parses() {
         assert_eq!(body.matches(" = I::fma(").count(), fused.fused);
         assert_eq!(sc.sin_cos, 0);
         let wrapper = split(&format!("pub fn {}(", f.kind.fn_name()));
-        assert_eq!(wrapper.matches(".sin_cos()").count(), f.op_count.sin_cos);
+        assert_eq!(batched_angles(wrapper), f.op_count.sin_cos, "{wrapper}");
         assert_eq!(sc.total() + f.op_count.sin_cos, f.op_count.total());
+    }
+}
+
+/// The text of the function of `src` that starts with `head`, up to its
+/// closing brace.
+fn function_text<'a>(src: &'a str, head: &str) -> &'a str {
+    let from = src.split(head).nth(1).unwrap_or_else(|| panic!("no {head}"));
+    from.split("\n}\n").next().unwrap()
+}
+
+/// How many angles the baseline path of a batched `NAME(q, …)` gives the
+/// module's `sin_cos_array` (all of them for `sin_cos_all(q)`, none if it
+/// calls neither).
+fn batched_angles(wrapper: &str) -> usize {
+    if wrapper.contains("sin_cos_all(q)") {
+        return 6;
+    }
+    match wrapper.split("= sin_cos_array(&[").nth(1) {
+        Some(rest) => rest.split("])").next().unwrap().matches("q[").count(),
+        None => 0,
     }
 }
 

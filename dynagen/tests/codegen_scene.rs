@@ -4,7 +4,7 @@
 //! `tests/tests/generated_scene.rs` compiles two of them), and the
 //! operation count of each option against the full scene's.
 
-use dynagen::codegen::{generate_scene, CodegenOptions, FunctionKind, GeneratedModule};
+use dynagen::codegen::{generate_scene, CodegenOptions, FunctionKind, GeneratedModule, Trig};
 use dynagen::scene::{
     Function, Gravity, PayloadInertia, ResolvedGravity, ScalarType, Scene, SceneInputs, SceneModel, SceneRobot, Target,
 };
@@ -54,12 +54,24 @@ fn rows<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f64, R, C>>(
     (0..m.nrows()).flat_map(|r| (0..m.ncols()).map(move |c| m[(r, c)])).collect()
 }
 
-/// Generates `scene` for `model`, and checks every function against
-/// [`SceneRobot`] on `states` random states (f64 graph evaluation within
-/// `tol`, or f32 evaluation within `tol` when the scene is f32).
+/// Generates `scene` for `model` with the default options, and checks every
+/// function against [`SceneRobot`] on `states` random states (f64 graph
+/// evaluation within `tol`, or f32 evaluation within `tol` when the scene is
+/// f32).
 fn check(model: &Model, scene: &Scene, states: usize, tol: f64) -> (SceneModel, GeneratedModule) {
+    check_with(model, scene, &CodegenOptions::default(), states, tol)
+}
+
+/// [`check`] with `options`.
+fn check_with(
+    model: &Model,
+    scene: &Scene,
+    options: &CodegenOptions,
+    states: usize,
+    tol: f64,
+) -> (SceneModel, GeneratedModule) {
     let applied = scene.apply(model).unwrap();
-    let module = generate_scene(&applied, &CodegenOptions::default()).unwrap();
+    let module = generate_scene(&applied, options).unwrap();
     let mut robot = SceneRobot::new(applied.clone());
     let n = applied.dof();
     let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
@@ -410,10 +422,39 @@ fn no_std_targets() {
     let (_, m) = check(&ur5(), &inputs, 2, 1e-12);
     assert!(m.source.contains("pub fn inverse_dynamics_sc(") && !m.source.contains("pub fn inverse_dynamics("));
     assert!(deltas("no_std_sincos, tip wrench", &m).iter().all(|(f, x)| *x == 0 || f.contains("dynamics")));
-    // Coulomb friction needs a square root that target has not: refused,
-    // naming the joint.
-    let e = full_scene().target(Target::NoStdSinCos).coulomb("elbow_joint", 1.0).apply(&ur5()).unwrap_err();
-    assert!(e.to_string().contains("\"elbow_joint\"") && e.to_string().contains("no_std_sincos"), "{e}");
+}
+
+/// Coulomb friction's square root without std and without libm: the
+/// module's own `sqrt` (`sqrtf` in f32), one call in each body that has the
+/// friction (τ, h, forward dynamics), for the batched trigonometry and for
+/// target `no_std_sincos` (the sines and cosines as inputs). The compiled
+/// modules are checked in `tests/no-std-check` (inside `#![no_std]`) and
+/// `tests/tests/generated_scene.rs`.
+#[test]
+fn coulomb_friction_without_std_uses_the_module_sqrt() {
+    let friction = || full_scene().coulomb("elbow_joint", 1.0).viscous("wrist_1_joint", 0.5);
+    let batched = CodegenOptions::default().trig(Trig::Batched);
+    let cases = [
+        ("batched", friction(), batched.clone(), "sqrt"),
+        ("no_std_sincos", friction().target(Target::NoStdSinCos), CodegenOptions::default(), "sqrt"),
+        ("batched f32", friction().scalar(ScalarType::F32), batched, "sqrtf"),
+    ];
+    for (label, scene, options, sqrt) in cases {
+        let tol = if sqrt == "sqrtf" { 1e-5 } else { 1e-12 };
+        let (_, m) = check_with(&ur5(), &scene, &options, 2, tol);
+        let src = &m.source;
+        assert!(!src.contains(".sqrt()") && !src.contains("libm") && !src.contains(".sin_cos()"), "{label}");
+        // One square root per body with friction: τ, h and the forward dynamics.
+        let calls = src.lines().filter(|l| l.trim_start().starts_with("let t") && l.contains(&format!(" = {sqrt}(")));
+        assert_eq!(calls.count(), 3, "{label}");
+        assert!(src.contains(&format!("\nfn {sqrt}(")), "{label}: the kernel text's {sqrt}");
+        for f in ["inverse_dynamics", "bias_forces", "forward_dynamics"] {
+            assert_eq!(m.scene_function(f).unwrap().op_count.sqrt, 1, "{label}: {f}");
+        }
+    }
+    // With std's trigonometry, std's square root.
+    let (_, m) = check_with(&ur5(), &friction(), &CodegenOptions::default().trig(Trig::Std), 1, 1e-12);
+    assert_eq!(m.source.matches(".sqrt()").count(), 3);
 }
 
 #[test]

@@ -66,6 +66,28 @@ fn each_trig_kind_emits_its_functions() {
     assert!(Trig::Std.needs_std() && !Trig::Libm.needs_std() && !Trig::Inputs.needs_std());
 }
 
+/// The default is the batched trigonometry: the module's own
+/// `sin_cos_array`, no `.sin_cos()` (nothing from std), the same module as
+/// asked for by name. (Compiled and checked against the generic solver in
+/// `tests/tests/generated_bundled.rs`, and inside a `#![no_std]` crate in
+/// `tests/no-std-check`.)
+#[test]
+fn the_default_is_the_batched_trigonometry() {
+    assert_eq!(Trig::default(), Trig::Batched);
+    assert_eq!(CodegenOptions::default().trig, Trig::Batched);
+    for model in [ur5(), skewed()] {
+        let default = generate(&model, &CodegenOptions::default()).unwrap().source;
+        assert_eq!(default, source(&model, Trig::Batched), "{}", model.name);
+        assert!(default.contains("= sin_cos_array(&["), "{default}");
+        assert!(!default.contains(".sin_cos()") && !default.contains("libm"), "{default}");
+        assert!(
+            default.contains("// Trigonometry: NAME(q, ...) computes the sines and cosines it reads by sin_cos_array")
+        );
+        // std's is one option away.
+        assert!(source(&model, Trig::Std).contains(".sin_cos();"));
+    }
+}
+
 #[test]
 fn non_unit_axes_and_prismatic_joints() {
     let model = skewed();

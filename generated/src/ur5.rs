@@ -1322,6 +1322,102 @@ fn fmaf(a: f32, b: f32, c: f32) -> f32 {
     a * b + c
 }
 
+// `sqrt(x)`: the square root, correctly rounded as IEEE 754 requires, so
+// bit for bit std's `f64::sqrt`, which `core` does not have. Generated code
+// that may not use std calls it (scene functions with Coulomb friction, whose
+// smoothing is v/sqrt(v² + v_ε²)). It is the square-root instruction where
+// every build of the target has one: x86-64 (SSE2, part of every x86-64
+// target) and aarch64 (NEON); elsewhere `sqrt_portable`, in exact integer
+// arithmetic. `sqrtf` (in `f32` modules) is the same in `f32`.
+
+/// The square root of `x`, correctly rounded (x86-64: SSE2's `sqrtsd`).
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[inline(always)]
+#[allow(dead_code, unused_unsafe)]
+fn sqrt(x: f64) -> f64 {
+    use core::arch::x86_64::{_mm_cvtsd_f64, _mm_set_sd, _mm_sqrt_sd};
+    // SAFETY: the cfg above compiles this only where SSE2 is enabled.
+    unsafe {
+        let v = _mm_set_sd(x);
+        _mm_cvtsd_f64(_mm_sqrt_sd(v, v))
+    }
+}
+
+/// The square root of `x`, correctly rounded (aarch64: NEON's `fsqrt`).
+#[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
+#[inline(always)]
+#[allow(dead_code, unused_unsafe)]
+fn sqrt(x: f64) -> f64 {
+    use core::arch::aarch64::{vdup_n_f64, vget_lane_f64, vsqrt_f64};
+    // SAFETY: the cfg above compiles this only where NEON is enabled.
+    unsafe { vget_lane_f64::<0>(vsqrt_f64(vdup_n_f64(x))) }
+}
+
+/// The square root of `x`, correctly rounded (targets without a
+/// square-root instruction in every build: `sqrt_portable`).
+#[cfg(not(any(
+    all(target_arch = "x86_64", target_feature = "sse2"),
+    all(target_arch = "aarch64", target_feature = "neon")
+)))]
+#[inline]
+#[allow(dead_code)]
+fn sqrt(x: f64) -> f64 {
+    sqrt_portable(x)
+}
+
+/// The square root of `x`, correctly rounded, in integer arithmetic: what
+/// `sqrt` is on targets without the instruction, compiled on every target
+/// (the tests compare it with `f64::sqrt` bit for bit). ±0 and +∞ give
+/// themselves, NaN gives NaN (the operand's, quieted), a negative number
+/// NaN. Otherwise x = m·2^e with the integer m ∈ [2⁵², 2⁵³) (a subnormal's
+/// significand shifted up), and with s = 54 or 55, whichever makes e − s
+/// even, M = m·2^s ∈ [2¹⁰⁶, 2¹⁰⁸) and √x = √M·2^((e − s)/2). The integer
+/// root R = ⌊√M⌋ ∈ [2⁵³, 2⁵⁴) is found one bit at a time (exact: the
+/// remainder M − R² is kept), and its top 53 bits, plus its last bit, are
+/// the significand rounded to nearest: √M/2 lies above the halfway point
+/// R/2 when R is odd (it cannot equal it: M = R² would be odd, but M is
+/// even) and below it when R is even.
+#[allow(dead_code)]
+fn sqrt_portable(x: f64) -> f64 {
+    if x.is_nan() || x == 0.0 || x == f64::INFINITY {
+        return x + x;
+    }
+    if x < 0.0 {
+        return f64::NAN;
+    }
+    let bits = x.to_bits();
+    let (mut m, mut biased) = (bits & ((1 << 52) - 1), (bits >> 52) as i32);
+    if biased == 0 {
+        // Subnormal: move the leading 1 of m to bit 52.
+        let shift = m.leading_zeros() as i32 - 11;
+        m <<= shift;
+        biased = 1 - shift;
+    } else {
+        m |= 1 << 52;
+    }
+    // x = m·2^e.
+    let e = biased - 1075;
+    let s = if (e - 54) & 1 == 0 { 54 } else { 55 };
+    // R = ⌊√M⌋ digit by digit: `bit` runs over the powers of 4 from 4⁵³ down,
+    // `rest` is M minus the square of the root found so far.
+    let (mut rest, mut root, mut bit) = ((m as u128) << s, 0u128, 1u128 << 106);
+    while bit != 0 {
+        if rest >= root + bit {
+            rest -= root + bit;
+            root = (root >> 1) + bit;
+        } else {
+            root >>= 1;
+        }
+        bit >>= 2;
+    }
+    // √x = q·2^((e − s)/2 − 51) with the significand q ∈ [2⁵², 2⁵³]: its
+    // leading bit adds 1 to the exponent field below (and q = 2⁵³ carries
+    // one more, as it should).
+    let q = (root >> 1) as u64 + (root & 1) as u64;
+    let below = ((e - s) / 2 + 1075) as u64;
+    f64::from_bits((below << 52) + q)
+}
+
 // Run-time dispatch (`CodegenOptions::runtime_dispatch`, on unless the
 // module says `RUNTIME_DISPATCH = false`). A default x86-64 build has SSE2
 // only: no fused multiply-add, two angles to a register. Most x86-64

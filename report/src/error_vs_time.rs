@@ -628,8 +628,8 @@ pub fn run(report: &mut Report) {
     let mut body = format!(
         "Every function of every bundled robot, computed each way dynagen can: the generic algorithms \
          (`dynagen::algorithms`, what `Robot` runs) in f64 and f32, and the code `dynagen::codegen` generates \
-         in f64 — with std's `sin_cos` (the default), with the batched `sin_cos_all` (`Trig::Batched`, what \
-         the vendored `generated/` modules use), or with the sines and cosines passed in (`NAME_sc`, their \
+         in f64 — with std's `sin_cos` (`Trig::Std`), with the batched `sin_cos_all` (`Trig::Batched`, the \
+         default, which the vendored `generated/` modules use), or with the sines and cosines passed in (`NAME_sc`, their \
          cost not counted) — and in f32. Forward dynamics appears twice: by the articulated-body algorithm \
          (`--aba`) and by CRBA + RNEA + sparse LᵀDL (`--ldlt`); by default the generator picks one per robot \
          (the module header says which).\n\n\

@@ -1,5 +1,6 @@
 //! Generates the modules that `src/lib.rs` includes: the UR5 and the Panda
-//! with each no_std kind of trigonometry, into OUT_DIR.
+//! with each no_std kind of trigonometry (the default options' among them),
+//! and scene modules, into OUT_DIR.
 
 use dynagen::codegen::{generate, CodegenOptions, ScalarType, Trig};
 use dynagen::Model;
@@ -9,31 +10,40 @@ fn main() {
     let robots = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../dynagen/robots");
     println!("cargo:rerun-if-changed=build.rs");
     let out = std::env::var("OUT_DIR").expect("OUT_DIR");
+    // `None`: the default options' trigonometry (batched), which must need no std either.
     let modules = [
-        ("ur5", "ur5_libm.rs", Trig::Libm, ScalarType::F64),
-        ("ur5", "ur5_inputs.rs", Trig::Inputs, ScalarType::F64),
-        ("ur5", "ur5_batched.rs", Trig::Batched, ScalarType::F64),
-        ("ur5", "ur5_libm_f32.rs", Trig::Libm, ScalarType::F32),
-        ("ur5", "ur5_batched_f32.rs", Trig::Batched, ScalarType::F32),
-        ("panda", "panda_inputs.rs", Trig::Inputs, ScalarType::F64),
+        ("ur5", "ur5_libm.rs", Some(Trig::Libm), ScalarType::F64),
+        ("ur5", "ur5_inputs.rs", Some(Trig::Inputs), ScalarType::F64),
+        ("ur5", "ur5_batched.rs", None, ScalarType::F64),
+        ("ur5", "ur5_libm_f32.rs", Some(Trig::Libm), ScalarType::F32),
+        ("ur5", "ur5_batched_f32.rs", Some(Trig::Batched), ScalarType::F32),
+        ("panda", "panda_inputs.rs", Some(Trig::Inputs), ScalarType::F64),
     ];
     for (robot, file, trig, scalar) in modules {
         let urdf = robots.join(format!("{robot}.urdf"));
         println!("cargo:rerun-if-changed={}", urdf.display());
         let model = Model::from_urdf_file(&urdf).unwrap_or_else(|e| panic!("{}: {e}", urdf.display()));
-        let opts = CodegenOptions::default().trig(trig).scalar(scalar).source(format!("dynagen/robots/{robot}.urdf"));
+        let mut opts = CodegenOptions::default().scalar(scalar).source(format!("dynagen/robots/{robot}.urdf"));
+        if let Some(trig) = trig {
+            opts = opts.trig(trig);
+        }
         let module = generate(&model, &opts).unwrap_or_else(|e| panic!("generating {file}: {e}"));
         std::fs::write(Path::new(&out).join(file), module.source).expect("writing the generated module");
     }
-    // Two scenes with no_std targets: the UR5 controller scene on libm (its
-    // Coulomb friction needs libm's sqrt), and a torque scene with the sines
-    // and cosines as inputs and the tip wrench and gravity as arguments.
+    // Scenes without std: the UR5 controller scene (Coulomb friction, whose
+    // smoothing takes a square root) on libm (libm's sqrt), with the sines and
+    // cosines as inputs and with the batched ones in f64 and f32 (the module's
+    // own sqrt and sqrtf); and a torque scene with the sines and cosines as
+    // inputs and the tip wrench and gravity as arguments.
     use dynagen::scene::{Function, Gravity, Scene, Target};
     let ur5 = Model::from_urdf_file(robots.join("ur5.urdf")).expect("the UR5");
     let controller = Scene::from_toml_file(robots.join("../scenes/ur5_controller.toml")).expect("the controller scene");
     println!("cargo:rerun-if-changed={}", robots.join("../scenes/ur5_controller.toml").display());
     let scenes = [
-        ("ur5_controller_libm.rs", controller.target(Target::NoStdLibm)),
+        ("ur5_controller_libm.rs", controller.clone().target(Target::NoStdLibm)),
+        ("ur5_controller_sincos.rs", controller.clone().target(Target::NoStdSinCos)),
+        ("ur5_controller_batched.rs", controller.clone()),
+        ("ur5_controller_batched_f32.rs", controller.scalar(ScalarType::F32)),
         (
             "ur5_tau_sincos.rs",
             Scene::new()
@@ -46,7 +56,8 @@ fn main() {
     ];
     for (file, scene) in scenes {
         let applied = scene.apply(&ur5).unwrap_or_else(|e| panic!("{file}: {e}"));
-        let opts = CodegenOptions::default().source("dynagen/robots/ur5.urdf");
+        // A std target takes its trigonometry from the options (batched: no std), the others their own.
+        let opts = CodegenOptions::default().trig(Trig::Batched).source("dynagen/robots/ur5.urdf");
         let module = dynagen::codegen::generate_scene(&applied, &opts).unwrap_or_else(|e| panic!("{file}: {e}"));
         std::fs::write(Path::new(&out).join(file), module.source).expect("writing the generated module");
     }

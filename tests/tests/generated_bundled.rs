@@ -2,8 +2,9 @@
 //! the generator writes today, byte for byte, and each computes what the
 //! generic solver computes, to 1e-12 of the output's norm, on 1,000 states each
 //! (the zero state, ordinary ones, |q̇| ≈ 100 rad/s and |q| ≈ 1e3 rad),
-//! for every function. Plus the f32 UR5 module that `build.rs` writes with
-//! `dynagen::Builder`.
+//! for every function. Plus the UR5 modules that `build.rs` writes with
+//! `dynagen::Builder`: with the default options (the batched trigonometry,
+//! no std) and in f32.
 
 use dynagen::Robot;
 use dynagen_generated::{panda, planar_2link, torso_two_arms, ur5};
@@ -135,6 +136,29 @@ fn torso_two_arms_matches_the_generic_solver() {
 #[test]
 fn planar_2link_matches_the_generic_solver() {
     check_module!(planar_2link, 1000, 4);
+}
+
+/// The UR5 module `build.rs` writes with `Builder::new()`'s options, the
+/// library's default.
+mod default_options {
+    #[allow(dead_code)]
+    pub mod ur5 {
+        include!(concat!(env!("OUT_DIR"), "/ur5_f64.rs"));
+    }
+}
+
+#[test]
+fn the_default_module_is_batched_without_std_and_matches_the_generic_solver() {
+    use dynagen::codegen::{generate, CodegenOptions};
+    let source = std::fs::read_to_string(concat!(env!("OUT_DIR"), "/ur5_f64.rs")).unwrap();
+    let model = dynagen::Model::from_urdf_file(workspace_root().join("dynagen/robots/ur5.urdf")).unwrap();
+    let library = generate(&model, &CodegenOptions::default().source("../dynagen/robots/ur5.urdf")).unwrap();
+    assert!(source == library.source, "the build script's module is not generate()'s with the default options");
+    // The module's own batched sines and cosines: nothing from std.
+    assert!(source.contains("let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5]]);"));
+    assert!(!source.contains(".sin_cos()") && !source.contains(".sqrt()") && !source.contains("libm"));
+    use default_options::ur5;
+    check_module!(ur5, 300, 5);
 }
 
 #[test]

@@ -13,7 +13,9 @@
 //! ```
 //!
 //! The written file holds items only (no inner attributes such as
-//! `#![...]`), so it can be `include!`d inside a `mod` block.
+//! `#![...]`), so it can be `include!`d inside a `mod` block. With the
+//! default options it uses neither std nor any crate, so it also compiles
+//! in a `#![no_std]` crate.
 
 use super::{
     generate, generate_scene, CodegenError, CodegenOptions, ForwardDynamicsMethod, Functions, GeneratedModule,
@@ -191,9 +193,11 @@ pub fn module_name(robot: &str) -> String {
 }
 
 impl Builder {
-    /// A builder with the default options: all five functions, `f64`, the
-    /// articulated-body forward dynamics, the rounding snap on, output into
-    /// `OUT_DIR`.
+    /// A builder with the default options ([`CodegenOptions::default`]):
+    /// all five functions, `f64`, the module's own sines and cosines
+    /// ([`Trig::Batched`](super::Trig::Batched): no std, no dependency), the
+    /// forward dynamics chosen as [`ForwardDynamicsMethod::Auto`] says, the
+    /// rounding snap on, output into `OUT_DIR`.
     pub fn new() -> Self {
         Self::default()
     }

@@ -291,7 +291,10 @@ fn negated(x: &Expr) -> Expr {
 /// operation, named `t{k}` in order (`s{k}`/`c{k}` for a sine and cosine),
 /// constants written in place as literals, inputs read as `q[i]`. With
 /// `style.fma`, the sums of [`Fusion`] are `fma(a, b, c)` (`fmaf` in `f32`)
-/// and the products only they read are not written. A body of more than
+/// and the products only they read are not written. A square root is
+/// `x.sqrt()` with [`Trig::Std`], `libm::sqrt(x)` with [`Trig::Libm`], and
+/// otherwise the module's own `sqrt(x)` (`sqrtf`; no std, correctly
+/// rounded, see [`super::sin_cos`]). A body of more than
 /// `style.split_lets` `let`s is cut into private parts ([`split`]).
 ///
 /// With `style.dispatch`, a body that is not split is written once as a
@@ -439,7 +442,8 @@ fn dispatched(
 
 /// The statements of `f`'s body, its sums fused as `fma_path(a, b, c)`.
 fn body_of(f: &Function, scalar: ScalarType, trig: Trig, style: BodyStyle, fma: &[&str]) -> Result<Body, CodegenError> {
-    let libm_sqrt = match scalar {
+    // libm's and the module's own (the kernel text's) square root have the same names.
+    let sqrt = match scalar {
         ScalarType::F64 => "sqrt",
         ScalarType::F32 => "sqrtf",
     };
@@ -543,10 +547,9 @@ fn body_of(f: &Function, scalar: ScalarType, trig: Trig, style: BodyStyle, fma: 
                     (Node::Neg(a), _) => unary(UnOp::Neg(Default::default()), r(a).clone()),
                     (Node::Sqrt(a), _) => match trig {
                         Trig::Std => method(r(a), "sqrt"),
-                        Trig::Libm => call(&["libm", libm_sqrt], &[r(a)]),
-                        Trig::Batched | Trig::Inputs => {
-                            return Err(CodegenError::NeedsStd { function: f.name().to_string(), what: "sqrt" })
-                        }
+                        Trig::Libm => call(&["libm", sqrt], &[r(a)]),
+                        // No std, no dependency: the module's `sqrt` (`sqrtf`), correctly rounded.
+                        Trig::Batched | Trig::Inputs => call(&[sqrt], &[r(a)]),
                     },
                     _ => unreachable!("handled above"),
                 };

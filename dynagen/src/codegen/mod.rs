@@ -11,11 +11,12 @@
 //! `NAME_sc`, which takes the sines and cosines of the joint angles instead
 //! of computing them (the one body; `NAME` computes them and calls it), and
 //! `sin_cos_all`, a batched sine and cosine without std ([`sin_cos_array`]).
-//! Where `NAME` gets its sines and cosines is [`Trig`]: std's `sin_cos` (the
-//! default, see [`Trig`] for why), the module's `sin_cos_array` (of only the
-//! angles the body reads), the `libm` crate, or nobody (only the `NAME_sc`
-//! functions, for `#![no_std]` without dependencies). The same
-//! model and options give a byte-identical file.
+//! Where `NAME` gets its sines and cosines is [`Trig`]: the module's
+//! `sin_cos_array` (of only the angles the body reads; the default, see
+//! [`Trig`] for why), std's `sin_cos`, the `libm` crate, or nobody (only the
+//! `NAME_sc` functions). With the default, the module is `#![no_std]` and
+//! has no dependency. The same model and options give a byte-identical
+//! file.
 //!
 //! ```
 //! use dynagen::codegen::{generate, CodegenOptions};
@@ -170,34 +171,52 @@ pub enum ForwardDynamicsMethod {
 /// `NAME_sc`. Every module has `sin_cos_all(q)`, the batched sine and
 /// cosine of [`sin_cos_array`] (no std, no dependency, within 1 ulp).
 ///
-/// Why `Std` stays the default although `Batched` measured as fast or
-/// faster (the sines and cosines alone 1.2–1.5x, whole UR5 and Panda
-/// functions 0–20 %, `benches/README.md`): DESIGN.md's contract makes std's
-/// `sin_cos` the default output, whose maximum error (0.56 ulp on the
-/// tests' angles) is below `sin_cos_array`'s (0.73 ulp), and the gain was
-/// measured on a loaded 2-core machine; `Batched` is one option away and
-/// `#![no_std]` as well.
+/// Why `Batched` is the default:
+///
+/// - **Speed.** Whole generated functions, sines and cosines included, run
+///   1.1x–1.8x faster than with std's `sin_cos` on the two machines
+///   measured (`cargo run --release -p dynagen-bench --example interleaved
+///   300`): on an AMD EPYC (Zen 5), the UR5's inverse dynamics in 32.2 ns
+///   against 52.7 ns, the Panda's in 59.8 ns against 96.3 ns; on an Intel
+///   Xeon, 1.1x–1.5x (`benches/README.md`, run 11, whose slower batched M
+///   was the benchmark copying the returned matrix).
+/// - **Accuracy.** Within 1 ulp for every finite angle: at most 0.73 ulp
+///   measured on the tests' angles, std's `sin_cos` 0.56 ulp (the bodies'
+///   own rounding is far larger; the tests hold both to 1e-12 of the
+///   generic solver).
+/// - **No std, no dependency.** The default module is then `#![no_std]`
+///   and depends on nothing (a scene's square roots too: the module's own,
+///   correctly rounded `sqrt`), which is what a module vendored into a
+///   real-time controller needs.
+///
+/// [`Trig::Std`] remains an option (`--trig std`, the macros' `trig =
+/// std`), for code that wants the platform's `sin_cos`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Trig {
-    /// `NAME(q, …)` calls `f64::sin_cos` (or `f32::sin_cos`) per joint:
-    /// needs std.
-    #[default]
+    /// `NAME(q, …)` calls `f64::sin_cos` (or `f32::sin_cos`) per joint, and
+    /// a scene's square roots are `f64::sqrt`: needs std.
     Std,
     /// `NAME(q, …)` calls the module's `sin_cos_array` on the angles its
-    /// body reads: `#![no_std]`, no dependency, faster than `Std` in the
-    /// benchmarks.
+    /// body reads, and a scene's square roots are the module's `sqrt`
+    /// (`sqrtf`): `#![no_std]`, no dependency, faster than `Std` in the
+    /// benchmarks. The default.
+    #[default]
     Batched,
-    /// `NAME(q, …)` calls `libm::sincos` (`libm::sincosf` for `f32`):
-    /// `#![no_std]`, needs the `libm` crate.
+    /// `NAME(q, …)` calls `libm::sincos` (`libm::sincosf` for `f32`), and a
+    /// scene's square roots are `libm::sqrt` (`sqrtf`): `#![no_std]`, needs
+    /// the `libm` crate.
     Libm,
-    /// Only the `NAME_sc` functions (and `sin_cos_all`): `#![no_std]`, no
-    /// dependency; the caller brings the sines and cosines.
+    /// Only the `NAME_sc` functions (and `sin_cos_all`), a scene's square
+    /// roots the module's `sqrt`: `#![no_std]`, no dependency; the caller
+    /// brings the sines and cosines.
     Inputs,
 }
 
 impl From<crate::scene::Target> for Trig {
     /// A scene's target: `Std` → [`Trig::Std`], `NoStdLibm` → [`Trig::Libm`],
-    /// `NoStdSinCos` → [`Trig::Inputs`].
+    /// `NoStdSinCos` → [`Trig::Inputs`]. ([`generate_scene`] does not use
+    /// it for `Std`, which allows std but does not ask for it: a std
+    /// scene's trigonometry is the options', [`Trig::Batched`] by default.)
     fn from(target: crate::scene::Target) -> Self {
         match target {
             crate::scene::Target::Std => Trig::Std,
@@ -265,7 +284,8 @@ pub struct CodegenOptions {
     pub rewrites: Rewrites,
     /// Where the model came from (a file name), for the header.
     pub source: Option<String>,
-    /// Where the sines and cosines come from ([`Trig::Std`]).
+    /// Where the sines and cosines come from ([`Trig::Batched`]: the
+    /// module's own, no std).
     pub trig: Trig,
     /// A function body of more than this many `let`s is emitted as private
     /// parts of at most this many, called in order by the public function
@@ -417,17 +437,6 @@ pub enum CodegenError {
     /// A symbolic trace was already running on this thread.
     #[error(transparent)]
     TraceActive(#[from] crate::symbolic::TraceActive),
-    /// A function needs an operation that the chosen [`Trig`] has no
-    /// no_std source for.
-    #[error(
-        "function {function} needs {what}, which no_std code without libm does not have; use Trig::Std or Trig::Libm"
-    )]
-    NeedsStd {
-        /// The function.
-        function: String,
-        /// The operation.
-        what: &'static str,
-    },
     /// Two functions of a scene get the same Rust name (two frames whose
     /// names differ only in characters a Rust name cannot hold).
     #[error("two functions would be named `{0}` (frame names that differ only in characters Rust names cannot hold)")]

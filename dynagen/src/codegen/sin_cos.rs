@@ -31,6 +31,15 @@
 //! angle cancels). `f32` modules run [`sin_cos_array_f32`]: the same steps in
 //! `f64` with shorter polynomials and a two-part π/2, rounded to `f32`
 //! (within 1 ulp of `f32`).
+//!
+//! The same text gives each module a private `sqrt` (`sqrtf` in `f32`
+//! modules), which `core` lacks too: correctly rounded, so bit for bit std's
+//! `f64::sqrt`. It is the square-root instruction on x86-64 (SSE2) and
+//! aarch64 (NEON), and elsewhere `sqrt_portable`, exact integer arithmetic
+//! (compiled on every target, and tested here against `f64::sqrt` bit for
+//! bit). The bodies of [`Trig::Batched`](super::Trig::Batched) and
+//! [`Trig::Inputs`](super::Trig::Inputs) modules call it where a scene needs
+//! a square root (smoothed Coulomb friction).
 
 use super::ScalarType;
 use proc_macro2::TokenStream;
@@ -116,10 +125,14 @@ mod tests {
     struct Rng(u64);
     impl Rng {
         fn next(&mut self) -> f64 {
+            (self.bits() >> 11) as f64 / (1u64 << 53) as f64
+        }
+        /// 64 random bits.
+        fn bits(&mut self) -> u64 {
             self.0 ^= self.0 >> 12;
             self.0 ^= self.0 << 25;
             self.0 ^= self.0 >> 27;
-            (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+            self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
         }
     }
 
@@ -289,15 +302,22 @@ mod tests {
     /// Bit patterns of `f64` and `f32`, to compare results exactly.
     trait Bits: Copy + core::fmt::Debug {
         fn bits(self) -> u64;
+        fn nan(self) -> bool;
     }
     impl Bits for f64 {
         fn bits(self) -> u64 {
             self.to_bits()
         }
+        fn nan(self) -> bool {
+            self.is_nan()
+        }
     }
     impl Bits for f32 {
         fn bits(self) -> u64 {
             u64::from(self.to_bits())
+        }
+        fn nan(self) -> bool {
+            self.is_nan()
         }
     }
 
@@ -429,6 +449,122 @@ mod tests {
                 let x = f32::from_bits((x.to_bits() as i32 + d) as u32);
                 assert!(sin_cos_lanes_f32::<Baseline, f64, 1>([f64::from(x)])[0].2, "k = {k}");
             }
+        }
+    }
+
+    /// `x` and its `k` neighbours on either side (bit patterns ± 1 … k).
+    fn with_neighbours(x: f64, k: i64, xs: &mut Vec<f64>) {
+        xs.extend((-k..=k).map(|d| f64::from_bits((x.to_bits() as i64 + d) as u64)));
+    }
+
+    /// The arguments of the `f64` square-root tests: the special values,
+    /// every power of two (the subnormal ones too), perfect squares and the
+    /// products a·a⁺ of neighbours (√ lies next to the halfway point between
+    /// a and a⁺: the closest calls of the rounding) and their neighbours, at
+    /// every scale, random subnormals, and random bit patterns over the whole
+    /// range (negative numbers and NaNs among them).
+    fn sqrt_arguments() -> Vec<f64> {
+        let mut rng = Rng(0x5eed_0f5a_ea2e_0007);
+        let mut xs = vec![
+            0.0,
+            -0.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            -f64::NAN,
+            f64::from_bits(0x7ff0_0000_0000_0001),
+            f64::MAX,
+            -f64::MAX,
+            f64::MIN_POSITIVE,
+            -1.0,
+            -5e-324,
+        ];
+        for k in 0..52 {
+            xs.push(f64::from_bits(1 << k));
+        }
+        for field in 1..2047u64 {
+            with_neighbours(f64::from_bits(field << 52), 2, &mut xs);
+        }
+        for n in 1..=3000u64 {
+            with_neighbours((n * n) as f64, 3, &mut xs);
+        }
+        // A power of two 2^j, j in [−500, 500].
+        let scale = |rng: &mut Rng| f64::from_bits((rng.bits() % 1001 + 523) << 52);
+        for _ in 0..20_000 {
+            let (n, p) = ((rng.bits() >> 38) as f64, scale(&mut rng));
+            with_neighbours((n * p) * (n * p), 2, &mut xs);
+            let a = (1.0 + rng.next()) * p;
+            with_neighbours(a * f64::from_bits(a.to_bits() + 1), 2, &mut xs);
+        }
+        for _ in 0..20_000 {
+            xs.push(f64::from_bits(rng.bits() & ((1 << 52) - 1)));
+        }
+        for _ in 0..200_000 {
+            xs.push(f64::from_bits(rng.bits()));
+        }
+        xs
+    }
+
+    /// The same bits, or both NaN (IEEE 754 does not fix a NaN's sign and
+    /// payload).
+    fn same<T: Bits>(a: T, b: T) -> bool {
+        a.bits() == b.bits() || (a.nan() && b.nan())
+    }
+
+    #[test]
+    fn sqrt_is_std_sqrt_bit_for_bit() {
+        let xs = sqrt_arguments();
+        let mut rounded = [0usize; 2];
+        for &x in &xs {
+            let want = x.sqrt();
+            let (portable, here) = (sqrt_portable(x), sqrt(x));
+            assert!(same(portable, want), "sqrt_portable({x:e} = {:#x}): {portable:e}, std {want:e}", x.to_bits());
+            assert!(same(here, want), "sqrt({x:e} = {:#x}): {here:e}, std {want:e}", x.to_bits());
+            // Whether the root was rounded, and whether up (the sign of want² − x, exact).
+            let residual = want.mul_add(want, -x);
+            if want.is_finite() && residual != 0.0 {
+                rounded[usize::from(residual > 0.0)] += 1;
+            }
+        }
+        // Both directions of the rounding were taken, many times.
+        assert!(rounded.iter().all(|&n| n > 10_000), "{rounded:?}");
+        assert!(sqrt_portable(-0.0).is_sign_negative() && sqrt_portable(f64::NEG_INFINITY).is_nan());
+        assert_eq!(sqrt_portable(5e-324), 2f64.powi(-537));
+        assert_eq!(sqrt_portable(f64::MAX), 1.3407807929942596e154);
+    }
+
+    #[test]
+    fn sqrtf_is_std_sqrt_bit_for_bit() {
+        let mut rng = Rng(0x5eed_0f5a_ea2e_0032);
+        let mut xs: Vec<f32> = vec![0.0, -0.0, f32::INFINITY, f32::NEG_INFINITY, f32::NAN, -f32::NAN, f32::MAX, -1.0];
+        xs.push(f32::from_bits(0x7f80_0001));
+        let neighbours = |x: f32, xs: &mut Vec<f32>| {
+            xs.extend((-2i32..=2).map(|d| f32::from_bits((x.to_bits() as i32 + d) as u32)));
+        };
+        for k in 0..23 {
+            xs.push(f32::from_bits(1 << k));
+        }
+        for field in 1..255u32 {
+            neighbours(f32::from_bits(field << 23), &mut xs);
+        }
+        for n in 1..=4096u32 {
+            neighbours((n * n) as f32, &mut xs);
+        }
+        for _ in 0..20_000 {
+            // 2^j, j in [−60, 60]; a·a⁺ rounded to f32, next to the square of a halfway point.
+            let p = f32::from_bits(((rng.bits() % 121) as u32 + 67) << 23);
+            let a = (1.0 + rng.next() as f32) * p;
+            neighbours((f64::from(a) * f64::from(f32::from_bits(a.to_bits() + 1))) as f32, &mut xs);
+            xs.push(f32::from_bits(rng.bits() as u32 & ((1 << 23) - 1)));
+        }
+        for _ in 0..200_000 {
+            xs.push(f32::from_bits(rng.bits() as u32));
+        }
+        for x in xs {
+            let want = x.sqrt();
+            let (portable, here) = (sqrtf_portable(x), sqrtf(x));
+            assert!(same(portable, want), "sqrtf_portable({x:e} = {:#x}): {portable:e}, std {want:e}", x.to_bits());
+            assert!(same(here, want), "sqrtf({x:e} = {:#x}): {here:e}, std {want:e}", x.to_bits());
         }
     }
 

@@ -137,3 +137,48 @@ fn sin_cos_lanes_f32<I: Isa, V: Lanes, const P: usize>(x: [V; P]) -> [(V, V, boo
         (s, c, ok[i])
     })
 }
+
+/// The square root of `x` in `f32`, correctly rounded (x86-64: SSE's
+/// `sqrtss`); see `sqrt`.
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[inline(always)]
+#[allow(dead_code, unused_unsafe)]
+fn sqrtf(x: f32) -> f32 {
+    use core::arch::x86_64::{_mm_cvtss_f32, _mm_set_ss, _mm_sqrt_ss};
+    // SAFETY: the cfg above compiles this only where SSE2 (and so SSE) is
+    // enabled.
+    unsafe { _mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x))) }
+}
+
+/// The square root of `x` in `f32`, correctly rounded (aarch64: NEON's
+/// `fsqrt`).
+#[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
+#[inline(always)]
+#[allow(dead_code, unused_unsafe)]
+fn sqrtf(x: f32) -> f32 {
+    use core::arch::aarch64::{vdup_n_f32, vget_lane_f32, vsqrt_f32};
+    // SAFETY: the cfg above compiles this only where NEON is enabled.
+    unsafe { vget_lane_f32::<0>(vsqrt_f32(vdup_n_f32(x))) }
+}
+
+/// The square root of `x` in `f32`, correctly rounded (targets without a
+/// square-root instruction in every build: `sqrtf_portable`).
+#[cfg(not(any(
+    all(target_arch = "x86_64", target_feature = "sse2"),
+    all(target_arch = "aarch64", target_feature = "neon")
+)))]
+#[inline]
+#[allow(dead_code)]
+fn sqrtf(x: f32) -> f32 {
+    sqrtf_portable(x)
+}
+
+/// The square root of `x` in `f32`, correctly rounded, without a
+/// square-root instruction: `sqrt_portable` of `x` in `f64`, rounded to
+/// `f32`. Rounding twice is exact here: the square root of a number of
+/// p = 24 bits rounded to 2p + 2 = 50 ≤ 53 bits and then to p bits is the
+/// square root rounded once to p bits (Figueroa, 1995).
+#[allow(dead_code)]
+fn sqrtf_portable(x: f32) -> f32 {
+    sqrt_portable(f64::from(x)) as f32
+}

@@ -145,13 +145,6 @@ pub enum SceneError {
     /// A scene that asks for no function at all.
     #[error("the scene generates no function: list at least one in `functions`, `frame_pose` or `frame_jacobian`")]
     NoFunctions,
-    /// Coulomb friction (smoothed with a square root) in a scene whose
-    /// target has no square root.
-    #[error("joint \"{joint}\": Coulomb friction needs a square root, which target no_std_sincos does not have (use no_std_libm or std)")]
-    NeedsSqrt {
-        /// The joint.
-        joint: String,
-    },
     /// The reduced robot is not a valid model.
     #[error("the reduced robot: {0}")]
     Model(#[from] ModelError),

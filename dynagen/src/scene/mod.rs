@@ -38,7 +38,12 @@
 //! σ(10 v_ε) = 0.995, σ(100 v_ε) = 0.99995. The default smoothing velocity
 //! v_ε is [`DEFAULT_COULOMB_VELOCITY`] = 0.01 rad/s (or m/s), set by
 //! [`Scene::coulomb_velocity`]. A smaller v_ε is closer to sign(q̇) but
-//! makes forward dynamics stiffer (the slope at rest is f/v_ε).
+//! makes forward dynamics stiffer (the slope at rest is f/v_ε). Generated
+//! code takes the square root from std (`f64::sqrt`, with
+//! [`Trig::Std`](crate::codegen::Trig::Std)), from `libm` (target
+//! `no_std_libm`), or else from the module's own `sqrt`, which needs
+//! neither and is correctly rounded like the other two: every target
+//! generates Coulomb friction.
 //!
 //! # Reductions
 //!
@@ -90,7 +95,9 @@
 //! frame_pose = ["ee_link"]
 //! frame_jacobian = ["ee_link"]
 //! scalar = "f64"               # or "f32"
-//! target = "std"               # or "no_std_libm", "no_std_sincos"
+//! target = "std"               # std allowed; the trigonometry is the code-generation
+//!                              # options' (batched, no_std, by default); or "no_std_libm",
+//!                              # "no_std_sincos" (the sines and cosines as arguments)
 //!
 //! # The wrench the robot applies to its environment at this link, in the
 //! # link's frame, as a run-time input (no key: no tip wrench).
@@ -318,7 +325,11 @@ pub enum ScalarType {
 /// What generated code may use (code generation only).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Target {
-    /// std: sines and cosines by `f64::sin_cos`.
+    /// std allowed, not required: the sines and cosines (and square roots)
+    /// come from the code-generation options'
+    /// [`trig`](crate::codegen::CodegenOptions::trig), by default the
+    /// module's own (batched, `#![no_std]`, no dependency); std's
+    /// `f64::sin_cos` with [`Trig::Std`](crate::codegen::Trig::Std).
     #[default]
     Std,
     /// `#![no_std]`, sines and cosines from the `libm` crate.
@@ -487,11 +498,6 @@ impl Scene {
     pub fn check(&self) -> Result<(), SceneError> {
         if self.functions.is_empty() {
             return Err(SceneError::NoFunctions);
-        }
-        if self.target == Target::NoStdSinCos {
-            if let Some((joint, _)) = self.coulomb_friction.iter().find(|(_, f)| *f != 0.0) {
-                return Err(SceneError::NeedsSqrt { joint: joint.clone() });
-            }
         }
         if !(self.coulomb_velocity.is_finite() && self.coulomb_velocity > 0.0) {
             return Err(SceneError::BadCoulombVelocity(self.coulomb_velocity));

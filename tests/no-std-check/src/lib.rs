@@ -7,10 +7,17 @@
 //! - [`ur5_inputs`], [`panda_inputs`]: only `NAME_sc(s, c, [q,] …)`, the
 //!   caller passes the sines and cosines (the Panda's prismatic fingers make
 //!   it take `q` as well);
-//! - [`ur5_batched`], [`ur5_batched_f32`]: `NAME(q, …)` calls the module's
-//!   own `sin_cos_all`;
-//! - [`ur5_controller_libm`], [`ur5_tau_sincos`]: scene modules with the
-//!   `no_std_libm` and `no_std_sincos` targets.
+//! - [`ur5_batched`] (the default options), [`ur5_batched_f32`]: `NAME(q, …)`
+//!   calls the module's own `sin_cos_all`;
+//! - [`ur5_controller_libm`], [`ur5_controller_sincos`], [`ur5_tau_sincos`]:
+//!   scene modules with the `no_std_libm` and `no_std_sincos` targets;
+//! - [`ur5_controller_batched`], [`ur5_controller_batched_f32`]: the
+//!   controller scene with the batched sines and cosines (target `std`,
+//!   which takes the options' trigonometry).
+//!
+//! The controller scene has Coulomb friction, smoothed with a square root:
+//! `libm::sqrt` in the libm module, the module's own `sqrt` (`sqrtf`) in the
+//! others.
 //!
 //! The tests (which may use std) check every module against the generic
 //! solver, `dynagen::Robot`.
@@ -29,13 +36,32 @@ macro_rules! generated {
 generated!(ur5_libm, "ur5_libm.rs", "The UR5, `f64`, sines and cosines by `libm`.");
 generated!(ur5_libm_f32, "ur5_libm_f32.rs", "The UR5, `f32`, sines and cosines by `libm`.");
 generated!(ur5_inputs, "ur5_inputs.rs", "The UR5, `f64`, sines and cosines as inputs.");
-generated!(ur5_batched, "ur5_batched.rs", "The UR5, `f64`, sines and cosines by the module's `sin_cos_all`.");
+generated!(
+    ur5_batched,
+    "ur5_batched.rs",
+    "The UR5 with the default options: `f64`, sines and cosines by the module's `sin_cos_all`."
+);
 generated!(ur5_batched_f32, "ur5_batched_f32.rs", "The UR5, `f32`, sines and cosines by the module's `sin_cos_all`.");
 generated!(panda_inputs, "panda_inputs.rs", "The Panda (prismatic fingers), `f64`, sines and cosines as inputs.");
 generated!(
     ur5_controller_libm,
     "ur5_controller_libm.rs",
     "The UR5 controller scene (`dynagen/scenes/ur5_controller.toml`), target `no_std_libm`."
+);
+generated!(
+    ur5_controller_sincos,
+    "ur5_controller_sincos.rs",
+    "The UR5 controller scene, target `no_std_sincos`: the sines and cosines as inputs, the module's `sqrt`."
+);
+generated!(
+    ur5_controller_batched,
+    "ur5_controller_batched.rs",
+    "The UR5 controller scene, `f64`, the module's `sin_cos_all` and `sqrt`."
+);
+generated!(
+    ur5_controller_batched_f32,
+    "ur5_controller_batched_f32.rs",
+    "The UR5 controller scene, `f32`, the module's `sin_cos_all` and `sqrtf`."
 );
 generated!(
     ur5_tau_sincos,
@@ -197,15 +223,21 @@ mod tests {
             let (f, g): ([f64; 6], [f64; 3]) = (rng.array(10.0), [rng.next(), rng.next(), -9.81]);
             let v = DVector::from_column_slice;
             let inputs = SceneInputs { tip_wrench: Some(Vector6::from(f)), ..Default::default() };
+            let (s, c) = (q.map(f64::sin), q.map(f64::cos));
+            let want_tau =
+                controller.inverse_dynamics_with(&v(&q), &v(&qd), &v(&qdd), &inputs).unwrap().as_slice().to_vec();
+            let want_h = controller.bias_forces(&v(&q), &v(&qd)).unwrap().as_slice().to_vec();
+            let want_qdd =
+                controller.forward_dynamics_with(&v(&q), &v(&qd), &v(&tau), &inputs).unwrap().as_slice().to_vec();
             let checks = [
-                (
-                    ur5_controller_libm::inverse_dynamics(&q, &qd, &qdd, &f).to_vec(),
-                    controller.inverse_dynamics_with(&v(&q), &v(&qd), &v(&qdd), &inputs).unwrap().as_slice().to_vec(),
-                ),
-                (
-                    ur5_controller_libm::forward_dynamics(&q, &qd, &tau, &f).to_vec(),
-                    controller.forward_dynamics_with(&v(&q), &v(&qd), &v(&tau), &inputs).unwrap().as_slice().to_vec(),
-                ),
+                (ur5_controller_libm::inverse_dynamics(&q, &qd, &qdd, &f).to_vec(), want_tau.clone()),
+                (ur5_controller_libm::forward_dynamics(&q, &qd, &tau, &f).to_vec(), want_qdd.clone()),
+                (ur5_controller_sincos::inverse_dynamics_sc(&s, &c, &qd, &qdd, &f).to_vec(), want_tau.clone()),
+                (ur5_controller_sincos::bias_forces_sc(&s, &c, &qd).to_vec(), want_h.clone()),
+                (ur5_controller_sincos::forward_dynamics_sc(&s, &c, &qd, &tau, &f).to_vec(), want_qdd.clone()),
+                (ur5_controller_batched::inverse_dynamics(&q, &qd, &qdd, &f).to_vec(), want_tau.clone()),
+                (ur5_controller_batched::bias_forces(&q, &qd).to_vec(), want_h.clone()),
+                (ur5_controller_batched::forward_dynamics(&q, &qd, &tau, &f).to_vec(), want_qdd),
                 (
                     ur5_tau_sincos::inverse_dynamics_sc(&q.map(f64::sin), &q.map(f64::cos), &qd, &qdd, &g, &f).to_vec(),
                     tau_robot
@@ -224,6 +256,14 @@ mod tests {
                 let e = rel_err(got, want);
                 assert!(e < 1e-12, "relative error {e:e}: {got:?} vs {want:?}");
             }
+            // f32, against the f64 values (τ and h: the friction's sqrtf).
+            let f32s = |x: &[f64; 6]| x.map(|v| v as f32);
+            let widen = |x: [f32; 6]| x.map(f64::from).to_vec();
+            let (qf, qdf, qddf, ff) = (f32s(&q), f32s(&qd), f32s(&qdd), f32s(&f));
+            let e = rel_err(&widen(ur5_controller_batched_f32::inverse_dynamics(&qf, &qdf, &qddf, &ff)), &want_tau);
+            assert!(e < 1e-4, "f32 inverse_dynamics: relative error {e:e}");
+            let e = rel_err(&widen(ur5_controller_batched_f32::bias_forces(&qf, &qdf)), &want_h);
+            assert!(e < 1e-4, "f32 bias_forces: relative error {e:e}");
         }
     }
 }
