@@ -88,6 +88,18 @@ fn the_default_is_the_batched_trigonometry() {
     }
 }
 
+/// A scene's target: `std` takes the options' trigonometry, the no_std
+/// targets their own whatever the options say.
+#[test]
+fn a_scene_target_picks_the_trigonometry() {
+    use dynagen::scene::Target;
+    for trig in [Trig::Std, Trig::Batched, Trig::Libm, Trig::Inputs] {
+        assert_eq!(Trig::for_target(Target::Std, trig), trig);
+        assert_eq!(Trig::for_target(Target::NoStdLibm, trig), Trig::Libm);
+        assert_eq!(Trig::for_target(Target::NoStdSinCos, trig), Trig::Inputs);
+    }
+}
+
 #[test]
 fn non_unit_axes_and_prismatic_joints() {
     let model = skewed();

@@ -212,21 +212,18 @@ pub enum Trig {
     Inputs,
 }
 
-impl From<crate::scene::Target> for Trig {
-    /// A scene's target: `Std` → [`Trig::Std`], `NoStdLibm` → [`Trig::Libm`],
-    /// `NoStdSinCos` → [`Trig::Inputs`]. ([`generate_scene`] does not use
-    /// it for `Std`, which allows std but does not ask for it: a std
-    /// scene's trigonometry is the options', [`Trig::Batched`] by default.)
-    fn from(target: crate::scene::Target) -> Self {
+impl Trig {
+    /// The trigonometry of a scene's module whose target is `target`, with
+    /// the options' `trig`: `Std` allows std without asking for it, so it
+    /// takes `trig` ([`Trig::Batched`] by default); `NoStdLibm` is
+    /// [`Trig::Libm`] and `NoStdSinCos` [`Trig::Inputs`], whatever `trig` is.
+    pub fn for_target(target: crate::scene::Target, trig: Trig) -> Trig {
         match target {
-            crate::scene::Target::Std => Trig::Std,
+            crate::scene::Target::Std => trig,
             crate::scene::Target::NoStdLibm => Trig::Libm,
             crate::scene::Target::NoStdSinCos => Trig::Inputs,
         }
     }
-}
-
-impl Trig {
     /// Whether the module needs std (only [`Trig::Std`] does).
     pub fn needs_std(self) -> bool {
         self == Trig::Std

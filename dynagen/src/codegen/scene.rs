@@ -342,10 +342,7 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
     let (model, snapped) = prepare_model(&scene.model, options);
     let n = model.dof();
     let scalar = if scene.scalar == ScalarType::F32 { ScalarType::F32 } else { options.scalar };
-    let trig = match scene.target {
-        crate::scene::Target::Std => options.trig,
-        t => Trig::from(t),
-    };
+    let trig = Trig::for_target(scene.target, options.trig);
     let mut names = std::collections::HashSet::new();
     for f in &scene.functions {
         let name = scene_function_name(f);
