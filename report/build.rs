@@ -16,7 +16,7 @@
 //! (`s, c, q, …`: the Panda's take `q` for its prismatic fingers, the
 //! others do not). It also records the rustc version for the report.
 
-use dynagen::codegen::{generate, CodegenOptions, ForwardDynamicsMethod, Functions, ScalarType, Trig};
+use dynagen::codegen::{generate, CodegenOptions, ForwardDynamicsMethod, Function, ScalarType, Trig};
 use dynagen::model::JointKind;
 use dynagen::Model;
 use std::fmt::Write as _;
@@ -29,13 +29,7 @@ fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     let out = std::env::var("OUT_DIR").expect("OUT_DIR");
     let out = Path::new(&out);
-    let fd_only = Functions {
-        inverse_dynamics: false,
-        mass_matrix: false,
-        bias_forces: false,
-        gravity_torques: false,
-        forward_dynamics: true,
-    };
+    let fd_only = [Function::ForwardDynamics];
     let mut glue = String::from("// The generated variants of every bundled robot (written by build.rs).\n\n");
     for robot in ROBOTS {
         let rel = format!("dynagen/robots/{robot}.urdf");
@@ -49,15 +43,15 @@ fn main() {
         let variants = [
             ("f64", base.clone()),
             ("f64_batched", base.clone().trig(Trig::Batched)),
-            ("f64_ldlt", base.clone().functions(fd_only).forward_dynamics(ForwardDynamicsMethod::Ldlt)),
+            ("f64_ldlt", base.clone().functions(fd_only.clone()).forward_dynamics(ForwardDynamicsMethod::Ldlt)),
             (
                 "f64_ldlt_batched",
-                base.clone().functions(fd_only).forward_dynamics(ForwardDynamicsMethod::Ldlt).trig(Trig::Batched),
+                base.clone().functions(fd_only.clone()).forward_dynamics(ForwardDynamicsMethod::Ldlt).trig(Trig::Batched),
             ),
             ("f32", base.clone().scalar(ScalarType::F32)),
             (
                 "f32_ldlt",
-                base.clone().scalar(ScalarType::F32).functions(fd_only).forward_dynamics(ForwardDynamicsMethod::Ldlt),
+                base.clone().scalar(ScalarType::F32).functions(fd_only.clone()).forward_dynamics(ForwardDynamicsMethod::Ldlt),
             ),
         ];
         let _ = writeln!(glue, "/// `{rel}`.\n#[allow(dead_code)]\npub mod {robot} {{");

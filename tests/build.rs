@@ -7,7 +7,7 @@
 //! the split long-chain modules (`build_split.rs`).
 
 use dynagen::codegen::ScalarType;
-use dynagen::scene::{Function, Gravity, Scene};
+use dynagen::scene::{Gravity, Scene};
 
 mod build_split;
 mod build_stiff;
@@ -36,23 +36,33 @@ fn main() {
         .scene_file("../dynagen/scenes/ur5_controller.toml")
         .generate()
         .expect("generating the ur5_controller scene");
-    dynagen::Builder::new().urdf(ur5).scene(ur5_inputs_scene()).generate().expect("generating the ur5_inputs scene");
-    let torque_only = Scene::new()
+    dynagen::Builder::new()
+        .urdf(ur5)
+        .scene(ur5_inputs_scene())
+        .name("ur5_inputs")
+        .functions(UR5_INPUTS_FUNCTIONS)
+        .generate()
+        .expect("generating the ur5_inputs scene");
+    dynagen::Builder::new()
+        .urdf(ur5)
+        .scene(Scene::new().gravity(Gravity::None))
         .name("ur5_tau_f32")
-        .functions([Function::InverseDynamics])
-        .gravity(Gravity::None)
-        .scalar(ScalarType::F32);
-    dynagen::Builder::new().urdf(ur5).scene(torque_only).generate().expect("generating the ur5_tau_f32 scene");
+        .functions(&["inverse_dynamics"])
+        .scalar(ScalarType::F32)
+        .generate()
+        .expect("generating the ur5_tau_f32 scene");
     build_stiff::generate();
     build_split::generate();
 }
+
+/// The functions of the `ur5_inputs` scene's module: the five, and coriolis.
+const UR5_INPUTS_FUNCTIONS: &[&str] =
+    &["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "forward_dynamics", "coriolis"];
 
 /// The UR5 with every run-time input (gravity, tip wrench, a payload), a
 /// lock, armature and friction.
 fn ur5_inputs_scene() -> Scene {
     Scene::new()
-        .name("ur5_inputs")
-        .function(Function::Coriolis)
         .gravity(Gravity::Input)
         .tip_wrench("ee_link")
         .payload_input("ee_link")

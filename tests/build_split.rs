@@ -30,6 +30,7 @@ pub fn generate() {
     dynagen::Builder::new()
         .urdf("../dynagen/robots/ur5.urdf")
         .scene(super::ur5_inputs_scene())
+        .functions(super::UR5_INPUTS_FUNCTIONS)
         .options(CodegenOptions::default().split_lets(Some(60)))
         .file_name("ur5_inputs_split.rs")
         .generate()

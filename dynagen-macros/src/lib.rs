@@ -86,7 +86,7 @@
 //! joint or a tip not below the root (at the name the error is about; at
 //! the scene file's path for an error in the file).
 
-use dynagen::codegen::{Builder, CodegenOptions, ForwardDynamicsMethod, Functions, ScalarType, Trig};
+use dynagen::codegen::{Builder, ForwardDynamicsMethod, ScalarType, Trig};
 use proc_macro2::{Span, TokenStream};
 use quote::quote;
 use syn::parse::{Parse, ParseStream};
@@ -174,46 +174,22 @@ impl MacroOptions {
                 bracketed!(content in input);
                 let list: Punctuated<Ident, Token![,]> = content.parse_terminated(Ident::parse, Token![,])?;
                 for f in &list {
-                    if dynagen::scene::Function::from_name(&f.to_string()).is_none() {
+                    if dynagen::codegen::Function::from_name(&f.to_string()).is_none() {
                         return Err(syn::Error::new(
                             f.span(),
                             format!(
                                 "unknown function `{f}`; the functions are {}",
-                                dynagen::scene::Function::NAMES.join(", ")
+                                dynagen::codegen::Function::NAMES.join(", ")
                             ),
                         ));
                     }
                 }
                 self.functions = Some(list.into_iter().collect());
             }
-            "scalar" => {
-                let v: Ident = input.parse()?;
-                self.scalar = Some(match v.to_string().as_str() {
-                    "f64" => ScalarType::F64,
-                    "f32" => ScalarType::F32,
-                    _ => return Err(syn::Error::new(v.span(), "expected `f64` or `f32`")),
-                });
-            }
-            "forward_dynamics" => {
-                let v: Ident = input.parse()?;
-                self.forward_dynamics = Some(match v.to_string().as_str() {
-                    "auto" => ForwardDynamicsMethod::Auto,
-                    "aba" => ForwardDynamicsMethod::Aba,
-                    "ldlt" => ForwardDynamicsMethod::Ldlt,
-                    _ => return Err(syn::Error::new(v.span(), "expected `auto`, `aba` or `ldlt`")),
-                });
-            }
+            "scalar" => self.scalar = Some(parse_ident(input)?),
+            "forward_dynamics" => self.forward_dynamics = Some(parse_ident(input)?),
             "snap_rounding" => self.snap_rounding = Some(input.parse::<LitBool>()?.value),
-            "trig" => {
-                let v: Ident = input.parse()?;
-                self.trig = Some(match v.to_string().as_str() {
-                    "std" => Trig::Std,
-                    "batched" => Trig::Batched,
-                    "libm" => Trig::Libm,
-                    "inputs" => Trig::Inputs,
-                    _ => return Err(syn::Error::new(v.span(), "expected `std`, `batched`, `libm` or `inputs`")),
-                });
-            }
+            "trig" => self.trig = Some(parse_ident(input)?),
             "split_lets" => {
                 self.split_lets = Some(if input.peek(Ident) {
                     let v: Ident = input.parse()?;
@@ -241,49 +217,35 @@ impl MacroOptions {
         Ok(true)
     }
 
-    /// The options as a builder's, with `source` for the header. A scene
-    /// (a file, inline keys, or `coriolis` among the functions) makes it a
-    /// scene module.
+    /// The options as a builder's, with `source` for the header; the scene
+    /// keys (a file, inline keys) give the scene.
     pub(crate) fn apply(&self, builder: Builder, source: String) -> syn::Result<Builder> {
-        let mut o = CodegenOptions::default().source(source);
+        let mut b = self.scene.apply(builder.source(&source))?;
         if let Some(s) = self.scalar {
-            o = o.scalar(s);
+            b = b.scalar(s);
         }
         if let Some(m) = self.forward_dynamics {
-            o = o.forward_dynamics(m);
+            b = b.forward_dynamics(m);
         }
         if let Some(s) = self.snap_rounding {
-            o = o.snap_rounding(s);
+            b = b.snap_rounding(s);
         }
         if let Some(t) = self.trig {
-            o = o.trig(t);
+            b = b.trig(t);
         }
         if let Some(n) = self.split_lets {
-            o = o.split_lets(n);
+            b = b.split_lets(n);
         }
         if let Some(f) = self.fma {
-            o = o.fma(f);
+            b = b.fma(f);
         }
         if let Some(d) = self.dispatch {
-            o = o.runtime_dispatch(d);
+            b = b.runtime_dispatch(d);
         }
-        let names: Option<Vec<String>> = self.functions.as_ref().map(|f| f.iter().map(Ident::to_string).collect());
-        let coriolis = names.as_ref().is_some_and(|n| n.iter().any(|f| f == "coriolis"));
-        if !self.scene.given() && !coriolis {
-            if let Some(names) = &names {
-                // Checked when parsed.
-                o = o.functions(Functions::from_names(names).unwrap_or_default());
-            }
-            return Ok(builder.options(o));
+        if let Some(f) = &self.functions {
+            b = b.functions(&f.iter().map(Ident::to_string).collect::<Vec<_>>());
         }
-        let mut builder = self.scene.apply(builder.options(o))?;
-        if !self.scene.given() {
-            builder = builder.scene(dynagen::scene::Scene::new());
-        }
-        if let Some(names) = &names {
-            builder = builder.functions(names);
-        }
-        Ok(builder)
+        Ok(b)
     }
 
     /// The span for an error of the builder.
@@ -301,6 +263,13 @@ impl MacroOptions {
             None => quote!(),
         }
     }
+}
+
+/// A value spelled as an identifier (`f32`, `ldlt`, `batched`), parsed by
+/// the option's own `FromStr`: the spelling the command line uses too.
+fn parse_ident<T: std::str::FromStr<Err = String>>(input: ParseStream) -> syn::Result<T> {
+    let v: Ident = input.parse()?;
+    v.to_string().parse().map_err(|e: String| syn::Error::new(v.span(), e))
 }
 
 /// The options every macro accepts, for error messages.

@@ -5,7 +5,8 @@
 
 use crate::robot::{array, Num};
 use dynagen::codegen::BuildError;
-use dynagen::scene::{Function, Gravity, PayloadInertia, Scene, Target};
+use dynagen::codegen::{CodegenOptions, Function, Trig};
+use dynagen::scene::{Gravity, PayloadInertia, Scene, SceneFile};
 use proc_macro2::Span;
 use syn::parse::{Parse, ParseStream};
 use syn::punctuated::Punctuated;
@@ -65,7 +66,7 @@ fn names(input: ParseStream) -> syn::Result<Vec<Name>> {
 }
 
 /// One inline key, as a change to a scene.
-type Edit = Box<dyn Fn(Scene) -> Scene>;
+type Edit = Box<dyn Fn(SceneFile) -> SceneFile>;
 
 /// The scene a macro was given: a file, inline keys, or both (the keys
 /// then change the file's scene, in the order given).
@@ -86,6 +87,13 @@ pub(crate) struct SceneOptions {
 
 impl SceneOptions {
     fn edit(&mut self, f: impl Fn(Scene) -> Scene + 'static) {
+        self.edits.push(Box::new(move |mut file: SceneFile| {
+            file.scene = f(file.scene);
+            file
+        }));
+    }
+    /// An edit of the code keys (frame functions, target).
+    fn edit_code(&mut self, f: impl Fn(SceneFile) -> SceneFile + 'static) {
         self.edits.push(Box::new(f));
     }
     fn name(&mut self, n: &Name) -> String {
@@ -220,32 +228,31 @@ impl SceneOptions {
                 for n in names(input)? {
                     let f = self.name(&n);
                     let pose = k == "frame_pose";
-                    self.edit(move |s| {
-                        s.function(if pose {
-                            Function::FramePose(f.clone())
-                        } else {
-                            Function::FrameJacobian(f.clone())
-                        })
+                    self.edit_code(move |mut file| {
+                        let frame = if pose { Function::FramePose(f.clone()) } else { Function::FrameJacobian(f.clone()) };
+                        let list = file.code.functions.get_or_insert_with(|| Function::DEFAULT.to_vec());
+                        if !list.contains(&frame) {
+                            list.push(frame);
+                        }
+                        file
                     });
                 }
             }
             _ => {
                 let v: Ident = input.parse()?;
                 let t = match v.to_string().as_str() {
-                    "std" => Target::Std,
-                    "no_std_libm" => Target::NoStdLibm,
-                    "no_std_sincos" => Target::NoStdSinCos,
+                    "std" => None,
+                    "no_std_libm" => Some(Trig::Libm),
+                    "no_std_sincos" => Some(Trig::Inputs),
                     _ => return Err(syn::Error::new(v.span(), "expected `std`, `no_std_libm` or `no_std_sincos`")),
                 };
-                self.edit(move |s| s.target(t));
+                self.edit_code(move |mut file| {
+                    file.code.trig = t.or(file.code.trig);
+                    file
+                });
             }
         }
         Ok(true)
-    }
-
-    /// Whether a scene was given.
-    pub(crate) fn given(&self) -> bool {
-        self.file.is_some() || !self.edits.is_empty()
     }
 
     /// The message of an error of the builder, without what the macro's
@@ -290,13 +297,14 @@ impl SceneOptions {
                         ),
                     ));
                 }
-                Scene::from_toml_file(&path)
+                SceneFile::from_toml_file(&path)
                     .map_err(|e| syn::Error::new(f.span(), format!("scene file {:?}: {e}", f.value())))?
             }
             None if self.edits.is_empty() => return Ok(builder),
-            None => Scene::new(),
+            None => SceneFile::default(),
         };
-        Ok(builder.scene(self.edits.iter().fold(base, |s, edit| edit(s))))
+        let file = self.edits.iter().fold(base, |s, edit| edit(s));
+        Ok(builder.options(file.code.apply(CodegenOptions::default())).scene(file.scene))
     }
 
     /// The scene file's absolute path, for `include_bytes!`.

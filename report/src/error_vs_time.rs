@@ -21,7 +21,7 @@
 use crate::plot::{self, Series};
 use crate::report::Report;
 use dynagen::algorithms::Workspace;
-use dynagen::codegen::FunctionKind;
+use dynagen::algorithms::{aba, bias, crba, forward_dynamics, rnea};
 use dynagen::model::JointKind;
 use dynagen::spatial::Vec3;
 use dynagen::{DoubleDouble, Model, Scalar};
@@ -80,15 +80,36 @@ impl Func {
         }
     }
 
-    /// The generic algorithm behind it.
-    pub fn kind(self) -> FunctionKind {
+    /// Its input vectors, in argument order.
+    fn inputs(self) -> &'static [&'static str] {
         match self {
-            Func::Tau => FunctionKind::InverseDynamics,
-            Func::M => FunctionKind::MassMatrix,
-            Func::H => FunctionKind::BiasForces,
-            Func::G => FunctionKind::GravityTorques,
-            Func::FdAba => FunctionKind::ForwardDynamicsAba,
-            Func::FdLdlt => FunctionKind::ForwardDynamicsLdlt,
+            Func::Tau => &["q", "qd", "qdd"],
+            Func::M | Func::G => &["q"],
+            Func::H => &["q", "qd"],
+            Func::FdAba | Func::FdLdlt => &["q", "qd", "tau"],
+        }
+    }
+
+    /// The length of its output for `n` joints.
+    fn output_len(self, n: usize) -> usize {
+        if self == Func::M {
+            n * n
+        } else {
+            n
+        }
+    }
+
+    /// Runs the generic algorithm behind it on any scalar: `args` in the
+    /// order of [`inputs`](Self::inputs), the result into `out`.
+    fn run<S: Scalar>(self, model: &Model, ws: &mut Workspace<S>, args: &[Vec<S>], gravity: &Vec3<S>, out: &mut [S]) {
+        let g = Some(gravity);
+        match self {
+            Func::Tau => rnea::rnea(model, ws, &args[0], Some(&args[1]), Some(&args[2]), g, &[], out),
+            Func::M => crba::crba(model, ws, &args[0], out),
+            Func::H => bias::bias_forces(model, ws, &args[0], &args[1], g, out),
+            Func::G => bias::gravity_torques(model, ws, &args[0], gravity, out),
+            Func::FdAba => aba::aba(model, ws, &args[0], &args[1], &args[2], g, &[], out),
+            Func::FdLdlt => forward_dynamics::forward_dynamics_ldlt(model, ws, &args[0], &args[1], &args[2], g, &[], out),
         }
     }
 }
@@ -117,9 +138,9 @@ pub struct State {
 }
 
 impl State {
-    /// The inputs of `kind`, in its argument order.
-    fn args(&self, kind: FunctionKind) -> Vec<&[f64]> {
-        kind.inputs()
+    /// The inputs of `f`, in its argument order.
+    fn args(&self, f: Func) -> Vec<&[f64]> {
+        f.inputs()
             .iter()
             .map(|name| match *name {
                 "q" => &self.q[..],
@@ -187,21 +208,21 @@ fn to_scalar<S: Scalar>(args: &[&[f64]]) -> Vec<Vec<S>> {
 
 /// `f` by the generic algorithm on the scalar `S`, at `state`, as f64.
 pub fn generic_eval<S: Scalar>(model: &Model, f: Func, state: &State) -> Vec<f64> {
-    let kind = f.kind();
+    let kind = f;
     let n = model.dof();
     let mut ws = Workspace::<S>::new(model);
-    let mut out = vec![S::zero(); if kind.is_matrix() { n * n } else { n }];
+    let mut out = vec![S::zero(); kind.output_len(n)];
     kind.run(model, &mut ws, &to_scalar::<S>(&state.args(kind)), &Vec3::from_f64(&model.gravity), &mut out);
     out.iter().map(|x| x.to_f64().unwrap_or(f64::NAN)).collect()
 }
 
 /// The generic algorithm on `S` as a variant.
 fn generic<'a, S: Scalar>(name: &'static str, model: &'a Model, f: Func, timing: &[State]) -> Variant<'a> {
-    let kind = f.kind();
+    let kind = f;
     let n = model.dof();
     let inputs: Vec<Vec<Vec<S>>> = timing.iter().map(|s| to_scalar::<S>(&s.args(kind))).collect();
     let mut ws = Workspace::<S>::new(model);
-    let mut out = vec![S::zero(); if kind.is_matrix() { n * n } else { n }];
+    let mut out = vec![S::zero(); kind.output_len(n)];
     let gravity = Vec3::<S>::from_f64(&model.gravity);
     Variant {
         name,

@@ -35,29 +35,27 @@ fn main() {
     // cosines as inputs and with the batched ones in f64 and f32 (the module's
     // own sqrt and sqrtf); and a torque scene with the sines and cosines as
     // inputs and the tip wrench and gravity as arguments.
-    use dynagen::scene::{Function, Gravity, Scene, Target};
+    use dynagen::codegen::Function;
+    use dynagen::scene::{Gravity, Scene, SceneFile};
     let ur5 = Model::from_urdf_file(robots.join("ur5.urdf")).expect("the UR5");
-    let controller = Scene::from_toml_file(robots.join("../scenes/ur5_controller.toml")).expect("the controller scene");
+    let file = SceneFile::from_toml_file(robots.join("../scenes/ur5_controller.toml")).expect("the controller scene");
     println!("cargo:rerun-if-changed={}", robots.join("../scenes/ur5_controller.toml").display());
+    let base = file.code.apply(CodegenOptions::default().source("dynagen/robots/ur5.urdf"));
+    let controller = &file.scene;
+    let torque = Scene::new().gravity(Gravity::Input).tip_wrench("ee_link").viscous("elbow_joint", 0.5);
     let scenes = [
-        ("ur5_controller_libm.rs", controller.clone().target(Target::NoStdLibm)),
-        ("ur5_controller_sincos.rs", controller.clone().target(Target::NoStdSinCos)),
-        ("ur5_controller_batched.rs", controller.clone()),
-        ("ur5_controller_batched_f32.rs", controller.scalar(ScalarType::F32)),
+        ("ur5_controller_libm.rs", controller, base.clone().trig(Trig::Libm)),
+        ("ur5_controller_sincos.rs", controller, base.clone().trig(Trig::Inputs)),
+        ("ur5_controller_batched.rs", controller, base.clone().trig(Trig::Batched)),
+        ("ur5_controller_batched_f32.rs", controller, base.clone().trig(Trig::Batched).scalar(ScalarType::F32)),
         (
             "ur5_tau_sincos.rs",
-            Scene::new()
-                .functions([Function::InverseDynamics])
-                .gravity(Gravity::Input)
-                .tip_wrench("ee_link")
-                .viscous("elbow_joint", 0.5)
-                .target(Target::NoStdSinCos),
+            &torque,
+            base.clone().functions([Function::InverseDynamics]).trig(Trig::Inputs),
         ),
     ];
-    for (file, scene) in scenes {
+    for (file, scene, opts) in scenes {
         let applied = scene.apply(&ur5).unwrap_or_else(|e| panic!("{file}: {e}"));
-        // A std target takes its trigonometry from the options (batched: no std), the others their own.
-        let opts = CodegenOptions::default().trig(Trig::Batched).source("dynagen/robots/ur5.urdf");
         let module = dynagen::codegen::generate_scene(&applied, &opts).unwrap_or_else(|e| panic!("{file}: {e}"));
         std::fs::write(Path::new(&out).join(file), module.source).expect("writing the generated module");
     }

@@ -24,7 +24,7 @@
 //!   functions then pick their AVX2 and FMA copies at run time and must
 //!   print the same bits as the `+fma,+avx2` build, every line.
 
-use dynagen::codegen::{generate, CodegenOptions, FunctionKind, GeneratedFunction, ScalarType};
+use dynagen::codegen::{generate, CodegenOptions, Function as Kind, GeneratedFunction, ScalarType};
 use dynagen::symbolic::Function;
 use dynagen::{DoubleDouble, Model, Robot, Scalar};
 use dynagen_tests::{rel_err, workspace_root, Rng};
@@ -83,17 +83,16 @@ fn emitted(options: &CodegenOptions) -> Vec<GeneratedFunction> {
 }
 
 /// What the generic solver gives for `kind` at `x` (M row-major).
-fn generic(robot: &mut Robot, kind: FunctionKind, x: &State) -> Vec<f64> {
+fn generic(robot: &mut Robot, kind: &Kind, x: &State) -> Vec<f64> {
     let v = |a: &[f64; N]| DVector::from_column_slice(a);
     let (q, qd) = (v(&x.q), v(&x.qd));
     match kind {
-        FunctionKind::InverseDynamics => robot.inverse_dynamics(&q, &qd, &v(&x.qdd)).unwrap().as_slice().to_vec(),
-        FunctionKind::MassMatrix => robot.mass_matrix(&q).unwrap().transpose().as_slice().to_vec(),
-        FunctionKind::BiasForces => robot.bias_forces(&q, &qd).unwrap().as_slice().to_vec(),
-        FunctionKind::GravityTorques => robot.gravity_torques(&q).unwrap().as_slice().to_vec(),
-        FunctionKind::ForwardDynamicsAba | FunctionKind::ForwardDynamicsLdlt => {
-            robot.forward_dynamics(&q, &qd, &v(&x.tau)).unwrap().as_slice().to_vec()
-        }
+        Kind::InverseDynamics => robot.inverse_dynamics(&q, &qd, &v(&x.qdd)).unwrap().as_slice().to_vec(),
+        Kind::MassMatrix => robot.mass_matrix(&q).unwrap().transpose().as_slice().to_vec(),
+        Kind::BiasForces => robot.bias_forces(&q, &qd).unwrap().as_slice().to_vec(),
+        Kind::GravityTorques => robot.gravity_torques(&q).unwrap().as_slice().to_vec(),
+        Kind::ForwardDynamics => robot.forward_dynamics(&q, &qd, &v(&x.tau)).unwrap().as_slice().to_vec(),
+        other => panic!("{other:?} is not in the UR5 module"),
     }
 }
 
@@ -103,13 +102,12 @@ macro_rules! compiled_here {
     ($module:ident, $kind:expr, $x:expr) => {{
         let (s, c, qd, qdd, tau) = (&$x.s, &$x.c, &$x.qd, &$x.qdd, &$x.tau);
         match $kind {
-            FunctionKind::InverseDynamics => $module::inverse_dynamics_sc(s, c, qd, qdd).to_vec(),
-            FunctionKind::MassMatrix => $module::mass_matrix_sc(s, c).concat(),
-            FunctionKind::BiasForces => $module::bias_forces_sc(s, c, qd).to_vec(),
-            FunctionKind::GravityTorques => $module::gravity_torques_sc(s, c).to_vec(),
-            FunctionKind::ForwardDynamicsAba | FunctionKind::ForwardDynamicsLdlt => {
-                $module::forward_dynamics_sc(s, c, qd, tau).to_vec()
-            }
+            Kind::InverseDynamics => $module::inverse_dynamics_sc(s, c, qd, qdd).to_vec(),
+            Kind::MassMatrix => $module::mass_matrix_sc(s, c).concat(),
+            Kind::BiasForces => $module::bias_forces_sc(s, c, qd).to_vec(),
+            Kind::GravityTorques => $module::gravity_torques_sc(s, c).to_vec(),
+            Kind::ForwardDynamics => $module::forward_dynamics_sc(s, c, qd, tau).to_vec(),
+            other => panic!("{other:?} is not in the UR5 module"),
         }
     }};
 }
@@ -141,11 +139,11 @@ fn this_build_gives_the_bits_of_its_target_or_of_its_processor() {
             let body = &f.sin_cos_inputs.function;
             let fused = body.eval_fused(&body.fusion(), &inputs(x)).unwrap();
             let unfused = body.eval(&inputs(x)).unwrap();
-            let label = f.kind.label();
+            let label = f.label();
             let want = if fused_dispatched { &fused } else { &unfused };
-            assert_eq!(bits(&compiled_here!(ur5, f.kind, x)), bits(want), "{label}, dispatched");
+            assert_eq!(bits(&compiled_here!(ur5, &f.function, x)), bits(want), "{label}, dispatched");
             let want = if fused_target { &fused } else { &unfused };
-            assert_eq!(bits(&compiled_here!(ur5_baseline, f.kind, x)), bits(want), "{label}, no dispatch");
+            assert_eq!(bits(&compiled_here!(ur5_baseline, &f.function, x)), bits(want), "{label}, no dispatch");
             differ += usize::from(bits(&fused) != bits(&unfused));
         }
     }
@@ -261,15 +259,15 @@ fn program(xs: &[State], f64_fns: &[GeneratedFunction], f32_fns: &[GeneratedFunc
         for f in fns {
             let close = if conv.is_empty() { "" } else { ")" };
             let mut args = vec![format!("{conv}&S[k]{close}"), format!("{conv}&C[k]{close}")];
-            for input in &f.kind.inputs()[1..] {
+            for input in &f.function.vectors()[1..] {
                 args.push(format!("{conv}&{}[k]{close}", input.to_uppercase()));
             }
-            let call = format!("{module}::{}_sc({})", f.kind.fn_name(), args.join(", "));
-            let flat = if f.kind.is_matrix() { ".as_flattened().to_vec()" } else { ".to_vec()" };
+            let call = format!("{module}::{}_sc({})", f.name, args.join(", "));
+            let flat = if f.function == Kind::MassMatrix { ".as_flattened().to_vec()" } else { ".to_vec()" };
             let _ = writeln!(
                 p,
                 "        out(k, \"{module}_{}\", &{call}{flat}.into_iter().map({bits}).collect::<Vec<_>>());",
-                f.kind.fn_name()
+                f.name
             );
         }
     }
@@ -405,10 +403,10 @@ fn the_fused_path_compiled_with_the_fma_feature_rounds_once_and_stays_accurate()
         }
         let (module, fn_name) = name.split_at(3);
         let fns = if module == "m64" { &f64_fns } else { &f32_fns };
-        let f = fns.iter().find(|f| f.kind.fn_name() == &fn_name[1..]).unwrap();
+        let f = fns.iter().find(|f| f.name == fn_name[1..]).unwrap();
         let body: &Function = &f.sin_cos_inputs.function;
         let (x, fusion) = (&xs[k], body.fusion());
-        let want = generic(&mut robot, f.kind, x);
+        let want = generic(&mut robot, &f.function, x);
         if module == "m64" {
             let got: Vec<f64> = got.into_iter().map(f64::from_bits).collect();
             let fused = body.eval_fused(&fusion, &inputs(x)).unwrap();

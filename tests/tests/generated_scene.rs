@@ -98,7 +98,6 @@ fn ur5_controller_module_matches_the_scene_robot() {
 fn ur5_inputs_module_matches_the_scene_robot() {
     use ur5_inputs as m;
     let scene = Scene::new()
-        .function(dynagen::scene::Function::Coriolis)
         .gravity(dynagen::scene::Gravity::Input)
         .tip_wrench("ee_link")
         .payload_input("ee_link")

@@ -129,7 +129,6 @@ fn a_split_scene_gives_the_same_bits_as_the_whole_one() {
     // are the UR5 with the inputs, against the generic solver once).
     let ur5 = Model::from_urdf_file(workspace_root().join("dynagen/robots/ur5.urdf")).unwrap();
     let scene = Scene::new()
-        .function(dynagen::scene::Function::Coriolis)
         .gravity(dynagen::scene::Gravity::Input)
         .tip_wrench("ee_link")
         .payload_input("ee_link")

@@ -17,12 +17,10 @@
 //! default options it uses neither std nor any crate, so it also compiles
 //! in a `#![no_std]` crate.
 
-use super::{
-    generate, generate_scene, CodegenError, CodegenOptions, ForwardDynamicsMethod, Functions, GeneratedModule,
-    ScalarType,
-};
+use super::{generate_scene, CodegenError, CodegenOptions, ForwardDynamicsMethod, Function, GeneratedModule, ScalarType, Trig};
 use crate::model::{Model, ModelError};
-use crate::scene::{Function as SceneFunction, Scene, SceneError, SceneModel};
+use crate::scene::{Scene, SceneError, SceneFile};
+use crate::symbolic::Rewrites;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -38,6 +36,55 @@ enum RobotInput {
 enum SceneInput {
     Scene(Box<Scene>),
     File(PathBuf),
+}
+
+/// One option set on the builder: applied over the [`options`](Builder::options)
+/// and a scene file's code keys, in the order the setters were called.
+#[derive(Clone, Debug)]
+enum Setting {
+    Name(String),
+    Functions(Vec<String>),
+    Scalar(ScalarType),
+    ForwardDynamics(ForwardDynamicsMethod),
+    SnapRounding(bool),
+    RegroupInertia(bool),
+    Rewrites(Rewrites),
+    Trig(Trig),
+    SplitLets(Option<usize>),
+    Fma(bool),
+    RuntimeDispatch(bool),
+    Source(String),
+}
+
+impl Setting {
+    fn apply(&self, mut o: CodegenOptions) -> Result<CodegenOptions, BuildError> {
+        match self.clone() {
+            Setting::Name(n) => o.name = Some(n),
+            Setting::Functions(names) => {
+                // The names replace the functions without a frame; frame
+                // functions (a scene file's) stay unless named too.
+                let mut list = Vec::new();
+                for name in &names {
+                    let f: Function = name.parse().map_err(|_| BuildError::UnknownFunction { name: name.clone() })?;
+                    list.push(f);
+                }
+                let frames = o.functions.iter().filter(|f| matches!(f, Function::FramePose(_) | Function::FrameJacobian(_)));
+                list.extend(frames.cloned().collect::<Vec<_>>());
+                o = o.functions(list);
+            }
+            Setting::Scalar(x) => o.scalar = x,
+            Setting::ForwardDynamics(x) => o.forward_dynamics = x,
+            Setting::SnapRounding(x) => o.snap_rounding = x,
+            Setting::RegroupInertia(x) => o.regroup_inertia = x,
+            Setting::Rewrites(x) => o.rewrites = x,
+            Setting::Trig(x) => o.trig = x,
+            Setting::SplitLets(x) => o.split_lets = x,
+            Setting::Fma(x) => o.fma = x,
+            Setting::RuntimeDispatch(x) => o.runtime_dispatch = x,
+            Setting::Source(x) => o.source = Some(x),
+        }
+        Ok(o)
+    }
 }
 
 /// Generates a robot's dynamics module from a build script, in the manner
@@ -64,8 +111,8 @@ enum SceneInput {
 pub struct Builder {
     robot: Option<RobotInput>,
     scene: Option<SceneInput>,
-    functions: Option<Vec<String>>,
     options: CodegenOptions,
+    settings: Vec<Setting>,
     file_name: Option<String>,
     out_dir: Option<PathBuf>,
     cargo_output: Option<bool>,
@@ -121,9 +168,9 @@ pub enum BuildError {
         #[source]
         source: Box<SceneError>,
     },
-    /// A function name that is not one of the generated-code contract or
-    /// `coriolis`.
-    #[error("dynagen: unknown function \"{name}\" (the functions are {}, coriolis)", super::FUNCTION_NAMES.join(", "))]
+    /// A function name that is not one of [`Function::NAMES`] (or
+    /// `frame_pose:FRAME`, `frame_jacobian:FRAME`).
+    #[error("dynagen: unknown function \"{name}\" (the functions are {}, frame_pose:FRAME, frame_jacobian:FRAME)", Function::NAMES.join(", "))]
     UnknownFunction {
         /// The name given.
         name: String,
@@ -152,33 +199,6 @@ pub enum BuildError {
         #[source]
         source: std::io::Error,
     },
-}
-
-impl Functions {
-    /// The functions named, from the names of the generated-code contract
-    /// (`inverse_dynamics`, `mass_matrix`, `bias_forces`, `gravity_torques`,
-    /// `forward_dynamics`); an unknown name is given back as the error.
-    pub fn from_names<S: AsRef<str>>(names: impl IntoIterator<Item = S>) -> Result<Functions, String> {
-        let mut f = Functions {
-            inverse_dynamics: false,
-            mass_matrix: false,
-            bias_forces: false,
-            gravity_torques: false,
-            forward_dynamics: false,
-        };
-        for name in names {
-            let slot = match name.as_ref().trim() {
-                "inverse_dynamics" => &mut f.inverse_dynamics,
-                "mass_matrix" => &mut f.mass_matrix,
-                "bias_forces" => &mut f.bias_forces,
-                "gravity_torques" => &mut f.gravity_torques,
-                "forward_dynamics" => &mut f.forward_dynamics,
-                other => return Err(other.to_string()),
-            };
-            *slot = true;
-        }
-        Ok(f)
-    }
 }
 
 /// A module name from a robot name: lower case, `_` for anything that is
@@ -213,76 +233,89 @@ impl Builder {
         self.robot = Some(RobotInput::Model(Box::new(model)));
         self
     }
-    /// A scene: the module then has only the scene's functions, with
-    /// everything it fixes folded in and its run-time inputs as arguments
-    /// (see [`generate_scene`](super::generate_scene)). The output file is
-    /// named after the scene's name if it has one. [`functions`](Builder::functions)
-    /// replaces the scene's functions other than the frame functions;
-    /// [`scalar`](Builder::scalar)`(F32)` makes it `f32` whatever the scene
-    /// says; the rounding snap, the forward-dynamics method and the
-    /// trigonometry (for a std target) come from the builder.
+    /// A scene: the physics to model (see [`generate_scene`]); a plain
+    /// module is the default scene's.
     pub fn scene(mut self, scene: Scene) -> Self {
         self.scene = Some(SceneInput::Scene(Box::new(scene)));
         self
     }
-    /// A scene from a TOML file (see [`scene`](crate::scene)); as
-    /// [`scene`](Builder::scene). In a build script, cargo reruns it when the
-    /// file changes.
+    /// A scene from a TOML file (see [`scene`](crate::scene)): its physics,
+    /// and its code keys (`name`, `functions`, `frame_pose`,
+    /// `frame_jacobian`, `scalar`, `target`) over [`options`](Builder::options),
+    /// under every other setter. In a build script, cargo reruns it when
+    /// the file changes.
     pub fn scene_file(mut self, path: impl AsRef<Path>) -> Self {
         self.scene = Some(SceneInput::File(path.as_ref().to_path_buf()));
         self
     }
-    /// Only these functions, by name (`inverse_dynamics`, `mass_matrix`,
-    /// `bias_forces`, `gravity_torques`, `forward_dynamics`, `coriolis`);
-    /// default all five (or the scene's). `coriolis` is a scene function:
-    /// without a scene it makes the module the default scene's.
-    pub fn functions<S: AsRef<str>>(mut self, names: &[S]) -> Self {
-        self.functions = Some(names.iter().map(|s| s.as_ref().to_string()).collect());
-        self
-    }
-    /// The float type (`f64`).
-    pub fn scalar(mut self, scalar: ScalarType) -> Self {
-        self.options.scalar = scalar;
-        self
-    }
-    /// The forward-dynamics algorithm emitted (the articulated-body algorithm).
-    pub fn forward_dynamics(mut self, method: ForwardDynamicsMethod) -> Self {
-        self.options.forward_dynamics = method;
-        self
-    }
-    /// Replace model constants that are 0 or ±1 up to rounding (on); see
-    /// [`codegen`](super).
-    pub fn snap_rounding(mut self, on: bool) -> Self {
-        self.options.snap_rounding = on;
-        self
-    }
-    /// The longest body emitted as one function, in `let`s (`None`: no
-    /// limit); longer ones become private parts (default
-    /// [`DEFAULT_SPLIT_LETS`](super::DEFAULT_SPLIT_LETS); see
-    /// [`CodegenOptions::split_lets`]).
-    pub fn split_lets(mut self, lets: Option<usize>) -> Self {
-        self.options.split_lets = lets;
-        self
-    }
-    /// Write `a·b ± c` as fused multiply-adds (on); see
-    /// [`CodegenOptions::fma`].
-    pub fn fma(mut self, on: bool) -> Self {
-        self.options.fma = on;
-        self
-    }
-    /// Compile the functions also for AVX2 and FMA, picked at run time on
-    /// x86-64 builds without those target features (on); see
-    /// [`CodegenOptions::runtime_dispatch`].
-    pub fn runtime_dispatch(mut self, on: bool) -> Self {
-        self.options.runtime_dispatch = on;
-        self
-    }
-    /// All code-generation options at once (replaces the scalar, forward
-    /// dynamics, snap and function choices made so far).
+    /// Every code-generation option at once, as the base that a scene
+    /// file's keys and this builder's other setters (before or after this
+    /// call) change.
     pub fn options(mut self, options: CodegenOptions) -> Self {
         self.options = options;
-        self.functions = None;
         self
+    }
+    fn set(mut self, setting: Setting) -> Self {
+        self.settings.push(setting);
+        self
+    }
+    /// The module's name ([`CodegenOptions::name`]): the header's, and the
+    /// output file's `<name>.rs` unless [`file_name`](Builder::file_name)
+    /// says otherwise.
+    pub fn name(self, name: &str) -> Self {
+        self.set(Setting::Name(name.to_string()))
+    }
+    /// Only these functions, by name (`inverse_dynamics`, `mass_matrix`,
+    /// `bias_forces`, `gravity_torques`, `coriolis`, `forward_dynamics`,
+    /// `frame_pose:FRAME`, `frame_jacobian:FRAME`); default the five of the
+    /// contract. A scene file's frame functions stay.
+    pub fn functions<S: AsRef<str>>(self, names: &[S]) -> Self {
+        self.set(Setting::Functions(names.iter().map(|s| s.as_ref().to_string()).collect()))
+    }
+    /// The float type ([`CodegenOptions::scalar`], `f64`).
+    pub fn scalar(self, scalar: ScalarType) -> Self {
+        self.set(Setting::Scalar(scalar))
+    }
+    /// The forward-dynamics algorithm ([`CodegenOptions::forward_dynamics`]).
+    pub fn forward_dynamics(self, method: ForwardDynamicsMethod) -> Self {
+        self.set(Setting::ForwardDynamics(method))
+    }
+    /// Where the sines and cosines come from ([`CodegenOptions::trig`]).
+    pub fn trig(self, trig: Trig) -> Self {
+        self.set(Setting::Trig(trig))
+    }
+    /// Replace model constants that are 0 or ±1 up to rounding
+    /// ([`CodegenOptions::snap_rounding`], on).
+    pub fn snap_rounding(self, on: bool) -> Self {
+        self.set(Setting::SnapRounding(on))
+    }
+    /// Move the inertia a joint cannot move to its parent
+    /// ([`CodegenOptions::regroup_inertia`], on).
+    pub fn regroup_inertia(self, on: bool) -> Self {
+        self.set(Setting::RegroupInertia(on))
+    }
+    /// The value-changing graph rewrites ([`CodegenOptions::rewrites`]).
+    pub fn rewrites(self, rewrites: Rewrites) -> Self {
+        self.set(Setting::Rewrites(rewrites))
+    }
+    /// The longest body emitted as one function, in `let`s
+    /// ([`CodegenOptions::split_lets`]).
+    pub fn split_lets(self, lets: Option<usize>) -> Self {
+        self.set(Setting::SplitLets(lets))
+    }
+    /// Write `a·b ± c` as fused multiply-adds ([`CodegenOptions::fma`], on).
+    pub fn fma(self, on: bool) -> Self {
+        self.set(Setting::Fma(on))
+    }
+    /// Compile the functions also for AVX2 and FMA, picked at run time
+    /// ([`CodegenOptions::runtime_dispatch`], on).
+    pub fn runtime_dispatch(self, on: bool) -> Self {
+        self.set(Setting::RuntimeDispatch(on))
+    }
+    /// The model's source for the header ([`CodegenOptions::source`];
+    /// default: the URDF's path).
+    pub fn source(self, source: &str) -> Self {
+        self.set(Setting::Source(source.to_string()))
     }
     /// The output file's name, `<name>.rs` (default: from the robot's name,
     /// see [`module_name`]).
@@ -308,9 +341,9 @@ impl Builder {
         self
     }
 
-    /// What to generate, the options and the input files, without writing
+    /// The applied scene, the options and the input files, without writing
     /// anything.
-    fn prepare(&self) -> Result<(Target, CodegenOptions, Option<String>, Vec<PathBuf>), BuildError> {
+    fn prepare(&self) -> Result<(crate::scene::SceneModel, CodegenOptions, Vec<PathBuf>), BuildError> {
         let mut inputs = Vec::new();
         let mut options = self.options.clone();
         let model = match &self.robot {
@@ -324,59 +357,33 @@ impl Builder {
                 Model::from_urdf_file(path).map_err(|source| BuildError::Robot { path: path.clone(), source })?
             }
         };
-        // `coriolis` is a scene function: asking for it means the default scene.
-        let coriolis = self.functions.as_ref().is_some_and(|f| f.iter().any(|n| n.trim() == "coriolis"));
-        let default_scene = SceneInput::Scene(Box::default());
-        let scene_input = match &self.scene {
-            None if coriolis => Some(&default_scene),
-            s => s.as_ref(),
-        };
-        let Some(input) = scene_input else {
-            if let Some(names) = &self.functions {
-                options.functions =
-                    Functions::from_names(names).map_err(|name| BuildError::UnknownFunction { name })?;
-            }
-            return Ok((Target::Model(Box::new(model)), options, None, inputs));
-        };
-        let (mut scene, label) = match input {
-            SceneInput::Scene(s) => ((**s).clone(), "(given in Rust)".to_string()),
-            SceneInput::File(path) => {
+        let (scene, label) = match &self.scene {
+            None => (Scene::default(), "(default)".to_string()),
+            Some(SceneInput::Scene(s)) => ((**s).clone(), "(given in Rust)".to_string()),
+            Some(SceneInput::File(path)) => {
                 inputs.push(path.clone());
-                let s =
-                    Scene::from_toml_file(path).map_err(|source| BuildError::Scene { path: path.clone(), source })?;
-                (s, path.display().to_string())
+                let file = SceneFile::from_toml_file(path)
+                    .map_err(|source| BuildError::Scene { path: path.clone(), source })?;
+                options = file.code.apply(options);
+                (file.scene, path.display().to_string())
             }
         };
-        if let Some(names) = &self.functions {
-            let mut functions = Vec::new();
-            for name in names {
-                let f = SceneFunction::from_name(name.trim())
-                    .ok_or_else(|| BuildError::UnknownFunction { name: name.clone() })?;
-                functions.push(f);
-            }
-            functions.extend(
-                scene
-                    .functions
-                    .iter()
-                    .filter(|f| matches!(f, SceneFunction::FramePose(_) | SceneFunction::FrameJacobian(_)))
-                    .cloned(),
-            );
-            scene.functions = functions;
+        for s in &self.settings {
+            options = s.apply(options)?;
         }
-        let name = scene.name.clone();
         let applied = scene.apply(&model).map_err(|source| BuildError::SceneRobot {
             scene: label,
             robot: self.robot_label(),
             source: Box::new(source),
         })?;
-        Ok((Target::Scene(Box::new(applied)), options, name, inputs))
+        Ok((applied, options, inputs))
     }
 
     /// Generates the module without writing it or printing anything (what
     /// the proc-macros and the `dynagen` command use).
     pub fn generate_module(&self) -> Result<GeneratedModule, BuildError> {
-        let (target, options, _, _) = self.prepare()?;
-        target.generate(&options).map_err(|source| BuildError::Codegen { robot: self.robot_label(), source })
+        let (scene, options, _) = self.prepare()?;
+        generate_scene(&scene, &options).map_err(|source| BuildError::Codegen { robot: self.robot_label(), source })
     }
 
     fn robot_label(&self) -> String {
@@ -392,7 +399,7 @@ impl Builder {
     /// the URDF and the scene file. The file is rewritten only when its
     /// content changes.
     pub fn generate(&self) -> Result<GeneratedFile, BuildError> {
-        let (target, options, scene_name, inputs) = self.prepare()?;
+        let (scene, options, inputs) = self.prepare()?;
         let out_env = std::env::var_os("OUT_DIR");
         if self.cargo_output.unwrap_or(out_env.is_some()) {
             for p in &inputs {
@@ -404,16 +411,16 @@ impl Builder {
             (None, Some(d)) => PathBuf::from(d),
             (None, None) => return Err(BuildError::NoOutDir),
         };
-        let file = match (&self.file_name, scene_name) {
+        let file = match (&self.file_name, &options.name) {
             (Some(f), _) => f.clone(),
-            (None, Some(n)) => format!("{}.rs", module_name(&n)),
-            (None, None) => format!("{}.rs", module_name(target.robot_name())),
+            (None, Some(n)) => format!("{}.rs", module_name(n)),
+            (None, None) => format!("{}.rs", module_name(&scene.model.name)),
         };
         if file.contains(['/', '\\']) || !file.ends_with(".rs") || file == ".rs" {
             return Err(BuildError::BadFileName(file));
         }
-        let module =
-            target.generate(&options).map_err(|source| BuildError::Codegen { robot: self.robot_label(), source })?;
+        let module = generate_scene(&scene, &options)
+            .map_err(|source| BuildError::Codegen { robot: self.robot_label(), source })?;
         let path = dir.join(&file);
         let unchanged = std::fs::read(&path).is_ok_and(|old| old == module.source.as_bytes());
         if !unchanged {
@@ -422,27 +429,6 @@ impl Builder {
                 .map_err(|source| BuildError::Write { path: path.clone(), source })?;
         }
         Ok(GeneratedFile { path, module, inputs })
-    }
-}
-
-/// What a builder generates: a model's module, or a scene's.
-enum Target {
-    Model(Box<Model>),
-    Scene(Box<SceneModel>),
-}
-
-impl Target {
-    fn robot_name(&self) -> &str {
-        match self {
-            Target::Model(m) => &m.name,
-            Target::Scene(s) => &s.model.name,
-        }
-    }
-    fn generate(&self, options: &CodegenOptions) -> Result<GeneratedModule, CodegenError> {
-        match self {
-            Target::Model(m) => generate(m, options),
-            Target::Scene(s) => generate_scene(s, options),
-        }
     }
 }
 

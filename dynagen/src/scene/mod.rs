@@ -1,16 +1,18 @@
 //! Scenes: what a controller needs from the robot, and nothing more.
 //!
-//! A [`Scene`] says which functions to generate, where gravity comes from,
-//! whether a tip wrench is a run-time input, which part of the robot to
-//! keep (a sub-tree), which joints to lock, which payloads to carry, and the
-//! armature and friction of each joint. [`Scene::apply`] turns a [`Model`]
-//! and a scene into a [`SceneModel`]: the reduced model with every constant
-//! folded in, plus the per-joint vectors and run-time inputs. The generic
-//! solver runs it through [`SceneRobot`]; code generation
-//! ([`generate_scene`](crate::codegen::generate_scene), the `Builder`'s
-//! `.scene(..)`, `dynagen generate --scene`, the macros' scene keys)
-//! consumes the same [`SceneModel`] and traces the same functions,
-//! [`dynamics`].
+//! A [`Scene`] says the physics: where gravity comes from, whether a tip
+//! wrench is a run-time input, which part of the robot to keep (a
+//! sub-tree), which joints to lock, which payloads to carry, and the
+//! armature and friction of each joint. What code to write (the functions,
+//! the scalar, the trigonometry, …) is
+//! [`CodegenOptions`](crate::codegen::CodegenOptions)'. [`Scene::apply`]
+//! turns a [`Model`] and a scene into a [`SceneModel`]: the reduced model
+//! with every constant folded in, plus the per-joint vectors and run-time
+//! inputs. The generic solver runs it through [`SceneRobot`]; code
+//! generation ([`generate_scene`](crate::codegen::generate_scene), the
+//! `Builder`'s `.scene(..)`, `dynagen generate --scene`, the macros' scene
+//! keys) consumes the same [`SceneModel`] and traces the same functions,
+//! [`dynamics`]. A plain module is the default scene's.
 //!
 //! # The equations of a scene
 //!
@@ -40,7 +42,7 @@
 //! [`Scene::coulomb_velocity`]. A smaller v_ε is closer to sign(q̇) but
 //! makes forward dynamics stiffer (the slope at rest is f/v_ε). Generated
 //! code takes the square root from std (`f64::sqrt`, with
-//! [`Trig::Std`](crate::codegen::Trig::Std)), from `libm` (target
+//! [`Trig::Std`](crate::codegen::Trig::Std)), from `libm` ([`Trig::Libm`](crate::codegen::Trig::Libm),
 //! `no_std_libm`), or else from the module's own `sqrt`, which needs
 //! neither and is correctly rounded like the other two: every target
 //! generates Coulomb friction.
@@ -84,21 +86,25 @@
 //!
 //! Every key is optional; unknown keys are errors naming the key. Vectors
 //! are in the original robot's base frame, payloads in their link's frame.
+//! A scene file may also carry code-generation keys, which
+//! [`SceneFile`] reads apart from the physics and which set
+//! [`CodegenOptions`](crate::codegen::CodegenOptions) (options set in Rust
+//! or on the command line win over them).
 //!
 //! ```toml
+//! # Code-generation keys (CodegenOptions' name, functions, scalar, trig):
 //! name = "ur5_controller"      # the generated module's name
-//!
-//! # What code generation emits: any of inverse_dynamics, mass_matrix,
-//! # bias_forces, gravity_torques, coriolis, forward_dynamics (default: all
-//! # but coriolis), plus the pose and the body Jacobian of named frames.
+//! # Any of inverse_dynamics, mass_matrix, bias_forces, gravity_torques,
+//! # coriolis, forward_dynamics (default: all but coriolis), plus the pose
+//! # and the body Jacobian of named frames.
 //! functions = ["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "forward_dynamics"]
 //! frame_pose = ["ee_link"]
 //! frame_jacobian = ["ee_link"]
 //! scalar = "f64"               # or "f32"
-//! target = "std"               # std allowed; the trigonometry is the code-generation
-//!                              # options' (batched, no_std, by default); or "no_std_libm",
-//!                              # "no_std_sincos" (the sines and cosines as arguments)
+//! target = "std"               # std allowed (the trigonometry stays the options'); or
+//!                              # "no_std_libm" (trig libm), "no_std_sincos" (trig inputs)
 //!
+//! # The physics:
 //! # The wrench the robot applies to its environment at this link, in the
 //! # link's frame, as a run-time input (no key: no tip wrench).
 //! tip_wrench = "ee_link"
@@ -151,6 +157,7 @@ mod toml;
 
 pub use error::{SceneError, SceneWarning};
 pub use reduce::{InputPayload, ResolvedGravity, SceneModel};
+pub use toml::{CodeKeys, SceneFile};
 pub use robot::{SceneInputError, SceneInputs, SceneRobot};
 
 use crate::model::Model;
@@ -159,71 +166,6 @@ use std::collections::HashSet;
 
 /// The default smoothing velocity of Coulomb friction, v_ε (rad/s or m/s).
 pub const DEFAULT_COULOMB_VELOCITY: f64 = 0.01;
-
-/// A function code generation can emit for a scene.
-#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Function {
-    /// τ(q, q̇, q̈) (with the tip wrench when it is an input).
-    InverseDynamics,
-    /// M(q), armature included.
-    MassMatrix,
-    /// h(q, q̇) = C(q, q̇)q̇ + g(q) + friction.
-    BiasForces,
-    /// g(q).
-    GravityTorques,
-    /// C(q, q̇)q̇.
-    Coriolis,
-    /// q̈(q, q̇, τ).
-    ForwardDynamics,
-    /// The pose of a frame in the base frame.
-    FramePose(String),
-    /// The body Jacobian of a frame (in the frame itself: J_bᵀF_tip is the
-    /// torque of a wrench given in that frame).
-    FrameJacobian(String),
-}
-
-impl Function {
-    /// What a scene generates unless it says otherwise: the five functions of
-    /// the generated-code contract.
-    pub const DEFAULT: [Function; 5] = [
-        Function::InverseDynamics,
-        Function::MassMatrix,
-        Function::BiasForces,
-        Function::GravityTorques,
-        Function::ForwardDynamics,
-    ];
-    /// The function without a frame named `name` (`inverse_dynamics`,
-    /// `mass_matrix`, `bias_forces`, `gravity_torques`, `coriolis`,
-    /// `forward_dynamics`), if it is one.
-    pub fn from_name(name: &str) -> Option<Function> {
-        Some(match name {
-            "inverse_dynamics" => Function::InverseDynamics,
-            "mass_matrix" => Function::MassMatrix,
-            "bias_forces" => Function::BiasForces,
-            "gravity_torques" => Function::GravityTorques,
-            "coriolis" => Function::Coriolis,
-            "forward_dynamics" => Function::ForwardDynamics,
-            _ => return None,
-        })
-    }
-    /// The names [`from_name`](Self::from_name) knows.
-    pub const NAMES: [&'static str; 6] =
-        ["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "coriolis", "forward_dynamics"];
-    /// The function's name in generated code and in TOML (`frame_pose` and
-    /// `frame_jacobian` for the frame functions).
-    pub fn name(&self) -> &'static str {
-        match self {
-            Function::InverseDynamics => "inverse_dynamics",
-            Function::MassMatrix => "mass_matrix",
-            Function::BiasForces => "bias_forces",
-            Function::GravityTorques => "gravity_torques",
-            Function::Coriolis => "coriolis",
-            Function::ForwardDynamics => "forward_dynamics",
-            Function::FramePose(_) => "frame_pose",
-            Function::FrameJacobian(_) => "frame_jacobian",
-        }
-    }
-}
 
 /// Where gravity comes from.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -311,34 +253,8 @@ pub struct Payload {
     pub value: PayloadValue,
 }
 
-/// The float type of generated code (code generation only: the generic
-/// solver runs on `f64`); also [`codegen::ScalarType`](crate::codegen::ScalarType).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum ScalarType {
-    /// `f64`.
-    #[default]
-    F64,
-    /// `f32` (constants rounded to `f32`).
-    F32,
-}
-
-/// What generated code may use (code generation only).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Target {
-    /// std allowed, not required: the sines and cosines (and square roots)
-    /// come from the code-generation options'
-    /// [`trig`](crate::codegen::CodegenOptions::trig), by default the
-    /// module's own (batched, `#![no_std]`, no dependency); std's
-    /// `f64::sin_cos` with [`Trig::Std`](crate::codegen::Trig::Std).
-    #[default]
-    Std,
-    /// `#![no_std]`, sines and cosines from the `libm` crate.
-    NoStdLibm,
-    /// `#![no_std]`, the sines and cosines of q are arguments.
-    NoStdSinCos,
-}
-
-/// What to generate for a robot, and how to model it. See the
+/// How to model a robot for a controller: the physics a module or
+/// [`SceneRobot`] computes (code options are [`CodegenOptions`](crate::codegen::CodegenOptions)). See the
 /// [module docs](self) for the equations, the reductions and the TOML form.
 ///
 /// ```
@@ -354,10 +270,6 @@ pub enum Target {
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
-    /// The generated module's name, if given.
-    pub name: Option<String>,
-    /// The functions code generation emits (default: [`Function::DEFAULT`]).
-    pub functions: Vec<Function>,
     /// Where gravity comes from.
     pub gravity: Gravity,
     /// The link or frame at which a tip wrench is a run-time input.
@@ -376,17 +288,11 @@ pub struct Scene {
     pub coulomb_friction: Vec<(String, f64)>,
     /// Smoothing velocity of Coulomb friction, v_ε.
     pub coulomb_velocity: f64,
-    /// Scalar type of generated code.
-    pub scalar: ScalarType,
-    /// std or no_std generated code.
-    pub target: Target,
 }
 
 impl Default for Scene {
     fn default() -> Self {
         Scene {
-            name: None,
-            functions: Function::DEFAULT.to_vec(),
             gravity: Gravity::Default,
             tip_wrench: None,
             subtree: None,
@@ -396,34 +302,15 @@ impl Default for Scene {
             viscous_friction: Vec::new(),
             coulomb_friction: Vec::new(),
             coulomb_velocity: DEFAULT_COULOMB_VELOCITY,
-            scalar: ScalarType::F64,
-            target: Target::Std,
         }
     }
 }
 
 impl Scene {
-    /// The default scene: the whole robot, the model's gravity, the five
-    /// default functions, no payload, armature or friction.
+    /// The default scene: the whole robot, the model's gravity, no tip
+    /// wrench, payload, armature or friction (a plain module's).
     pub fn new() -> Self {
         Self::default()
-    }
-    /// Sets the generated module's name.
-    pub fn name(mut self, name: &str) -> Self {
-        self.name = Some(name.to_string());
-        self
-    }
-    /// Sets the functions to generate (replacing the default ones).
-    pub fn functions(mut self, functions: impl IntoIterator<Item = Function>) -> Self {
-        self.functions = functions.into_iter().collect();
-        self
-    }
-    /// Adds a function to generate.
-    pub fn function(mut self, function: Function) -> Self {
-        if !self.functions.contains(&function) {
-            self.functions.push(function);
-        }
-        self
     }
     /// Sets where gravity comes from.
     pub fn gravity(mut self, gravity: Gravity) -> Self {
@@ -475,17 +362,6 @@ impl Scene {
         self.coulomb_velocity = v;
         self
     }
-    /// Sets the scalar type of generated code.
-    pub fn scalar(mut self, scalar: ScalarType) -> Self {
-        self.scalar = scalar;
-        self
-    }
-    /// Sets the target of generated code.
-    pub fn target(mut self, target: Target) -> Self {
-        self.target = target;
-        self
-    }
-
     /// Whether the tip wrench, gravity or a payload is a run-time input.
     pub fn has_inputs(&self) -> bool {
         self.gravity == Gravity::Input
@@ -496,9 +372,6 @@ impl Scene {
     /// The checks that need no robot: numbers, duplicates and
     /// contradictions. [`apply`](Self::apply) runs them first.
     pub fn check(&self) -> Result<(), SceneError> {
-        if self.functions.is_empty() {
-            return Err(SceneError::NoFunctions);
-        }
         if !(self.coulomb_velocity.is_finite() && self.coulomb_velocity > 0.0) {
             return Err(SceneError::BadCoulombVelocity(self.coulomb_velocity));
         }

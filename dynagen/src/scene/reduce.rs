@@ -7,7 +7,7 @@
 //! [`Model::from_description`] builds the reduced model with the same checks
 //! and the same merging of fixed joints as any other robot.
 
-use super::{Function, Gravity, PayloadInertia, PayloadValue, ScalarType, Scene, SceneError, SceneWarning, Target};
+use super::{Gravity, PayloadInertia, PayloadValue, Scene, SceneError, SceneWarning};
 use crate::algorithms::joint::joint_transform;
 use crate::algorithms::{kinematics, Workspace};
 use crate::model::{Inertial, JointDescription, JointKind, JointType, LinkDescription, Model, RobotDescription};
@@ -62,10 +62,6 @@ pub struct SceneModel {
     /// The scene as given (for a generated file's header,
     /// [`Scene::to_toml_string`] writes it out).
     pub scene: Scene,
-    /// The generated module's name, if the scene gave one.
-    pub name: Option<String>,
-    /// The functions to generate, without repeats.
-    pub functions: Vec<Function>,
     /// Gravity, resolved.
     pub gravity: ResolvedGravity,
     /// The frame (index into the reduced model's frames) of the tip wrench
@@ -81,10 +77,9 @@ pub struct SceneModel {
     pub coulomb_velocity: f64,
     /// Payloads given at run time, in the scene's order.
     pub input_payloads: Vec<InputPayload>,
-    /// Scalar type of generated code.
-    pub scalar: ScalarType,
-    /// Target of generated code.
-    pub target: Target,
+    /// The original model's frames (links) that the reduced model does not
+    /// have, with why (for errors that name them).
+    pub left_out_frames: Vec<(String, &'static str)>,
     /// The original moving joints that are fixed in the reduced model
     /// (locked, or merged below a tip), with the position they are fixed at.
     pub fixed_joints: Vec<(String, f64)>,
@@ -105,6 +100,28 @@ impl SceneModel {
     /// The reduced model's joint names, in the order of every vector.
     pub fn joint_names(&self) -> Vec<&str> {
         self.model.joint_names()
+    }
+    /// The index of frame `name` in the reduced model, for the option
+    /// `what` (`frame_pose`, …); the error says why a frame of the original
+    /// model is not there.
+    pub fn frame(&self, what: &'static str, name: &str) -> Result<usize, SceneError> {
+        if let Some(f) = self.model.frame_index(name) {
+            return Ok(f);
+        }
+        match self.left_out_frames.iter().find(|(f, _)| f == name) {
+            Some((_, why)) => Err(SceneError::LinkNotInScene { what, link: name.to_string(), why }),
+            None => Err(SceneError::UnknownLink { what, name: name.to_string() }),
+        }
+    }
+    /// Whether the scene adds nothing to the rigid-body equations: no
+    /// armature, friction, tip wrench, gravity input or payload input (its
+    /// functions are those of the contract, on the reduced model).
+    pub fn is_plain(&self) -> bool {
+        !self.has_armature()
+            && !self.has_friction()
+            && self.tip_wrench_frame.is_none()
+            && self.gravity != ResolvedGravity::Input
+            && self.input_payloads.is_empty()
     }
     /// Whether any joint has armature.
     pub fn has_armature(&self) -> bool {
@@ -273,13 +290,9 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
     for p in &scene.payloads {
         check_frame("payload", &p.link)?;
     }
-    for f in &scene.functions {
-        match f {
-            Function::FramePose(name) => check_frame("frame_pose", name)?,
-            Function::FrameJacobian(name) => check_frame("frame_jacobian", name)?,
-            _ => {}
-        }
-    }
+    let left_out_frames: Vec<(String, &'static str)> = (0..model.frames.len())
+        .filter_map(|f| frame_kept(f).err().map(|why| (model.frames[f].name.clone(), why)))
+        .collect();
 
     let mut warnings = Vec::new();
     for b in 0..n {
@@ -403,7 +416,18 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
         }
     }
 
-    let reduced = Model::from_description(&desc)?;
+    // A scene that reduces nothing keeps the model as it is, bit for bit:
+    // rebuilding it from the description would round its constants anew.
+    let reduces = scene.subtree.is_some()
+        || !scene.locks.is_empty()
+        || scene.payloads.iter().any(|p| matches!(p.value, PayloadValue::Constant(_)));
+    let reduced = if reduces {
+        Model::from_description(&desc)?
+    } else {
+        let mut m = model.clone();
+        m.gravity = Vec3(desc.gravity.unwrap_or([0.0; 3]));
+        m
+    };
     let mut input_payloads = Vec::new();
     for p in &scene.payloads {
         let frame = reduced.frame_index(&p.link).ok_or_else(|| SceneError::LinkNotInScene {
@@ -433,26 +457,17 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
     let per_joint = |k: usize| -> Vec<f64> {
         reduced.bodies.iter().map(|b| model.joint_index(&b.joint.name).map_or(0.0, |i| coef[k][i])).collect()
     };
-    let mut functions: Vec<Function> = Vec::new();
-    for f in &scene.functions {
-        if !functions.contains(f) {
-            functions.push(f.clone());
-        }
-    }
     Ok(SceneModel {
         armature: per_joint(0),
         viscous_friction: per_joint(1),
         coulomb_friction: per_joint(2),
         model: reduced,
         scene: scene.clone(),
-        name: scene.name.clone(),
-        functions,
         gravity,
         tip_wrench_frame,
         coulomb_velocity: scene.coulomb_velocity,
         input_payloads,
-        scalar: scene.scalar,
-        target: scene.target,
+        left_out_frames,
         fixed_joints,
         removed_joints,
         dropped_links,

@@ -1,13 +1,14 @@
 //! Scenes as TOML (the format is documented in the [scene docs](super)).
 
-use super::{Function, Gravity, Payload, PayloadInertia, PayloadValue, ScalarType, Scene, SceneError, SubTree, Target};
+use super::{Gravity, Payload, PayloadInertia, PayloadValue, Scene, SceneError, SubTree};
+use crate::codegen::{CodegenOptions, Function, ScalarType, Trig};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
 
 #[derive(Debug, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct SceneFile {
+struct FileText {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     name: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -125,28 +126,79 @@ impl FunctionName {
     }
 }
 
-fn scene_from_file(f: SceneFile) -> Result<Scene, SceneError> {
-    let mut scene = Scene { name: f.name, tip_wrench: f.tip_wrench, ..Scene::default() };
-    if let Some(list) = f.functions {
-        scene.functions = Vec::new();
-        for x in list {
-            scene = scene.function(x.function());
+/// The code-generation keys a scene file may carry; each sets the
+/// [`CodegenOptions`] field of its name unless that was set otherwise.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CodeKeys {
+    /// `name`.
+    pub name: Option<String>,
+    /// `functions`, `frame_pose` and `frame_jacobian` (`None` if the file
+    /// has none of them).
+    pub functions: Option<Vec<Function>>,
+    /// `scalar`.
+    pub scalar: Option<ScalarType>,
+    /// `target`: `no_std_libm` is [`Trig::Libm`], `no_std_sincos`
+    /// [`Trig::Inputs`]; `std` leaves the trigonometry to the options.
+    pub trig: Option<Trig>,
+}
+
+impl CodeKeys {
+    /// `options` with the file's keys applied.
+    pub fn apply(&self, mut options: CodegenOptions) -> CodegenOptions {
+        if let Some(n) = &self.name {
+            options.name = Some(n.clone());
         }
+        if let Some(f) = &self.functions {
+            options = options.functions(f.iter().cloned());
+        }
+        if let Some(s) = self.scalar {
+            options.scalar = s;
+        }
+        if let Some(t) = self.trig {
+            options.trig = t;
+        }
+        options
     }
-    for frame in f.frame_pose {
-        scene = scene.function(Function::FramePose(frame));
+}
+
+/// A scene file: the physics, and the code-generation keys beside it.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SceneFile {
+    /// The physics.
+    pub scene: Scene,
+    /// The code-generation keys.
+    pub code: CodeKeys,
+}
+
+fn scene_from_file(f: FileText) -> Result<SceneFile, SceneError> {
+    let mut scene = Scene { tip_wrench: f.tip_wrench, ..Scene::default() };
+    let mut code = CodeKeys { name: f.name, ..CodeKeys::default() };
+    if f.functions.is_some() || !f.frame_pose.is_empty() || !f.frame_jacobian.is_empty() {
+        let mut list: Vec<Function> = match f.functions {
+            Some(names) => names.into_iter().map(FunctionName::function).collect(),
+            None => Function::DEFAULT.to_vec(),
+        };
+        list.extend(f.frame_pose.into_iter().map(Function::FramePose));
+        list.extend(f.frame_jacobian.into_iter().map(Function::FrameJacobian));
+        let mut functions = Vec::new();
+        for x in list {
+            if !functions.contains(&x) {
+                functions.push(x);
+            }
+        }
+        if functions.is_empty() {
+            return Err(SceneError::NoFunctions);
+        }
+        code.functions = Some(functions);
     }
-    for frame in f.frame_jacobian {
-        scene = scene.function(Function::FrameJacobian(frame));
-    }
-    scene.scalar = match f.scalar {
-        Some(ScalarName::F32) => ScalarType::F32,
-        _ => ScalarType::F64,
-    };
-    scene.target = match f.target {
-        Some(TargetName::NoStdLibm) => Target::NoStdLibm,
-        Some(TargetName::NoStdSincos) => Target::NoStdSinCos,
-        _ => Target::Std,
+    code.scalar = f.scalar.map(|s| match s {
+        ScalarName::F32 => ScalarType::F32,
+        ScalarName::F64 => ScalarType::F64,
+    });
+    code.trig = match f.target {
+        Some(TargetName::NoStdLibm) => Some(Trig::Libm),
+        Some(TargetName::NoStdSincos) => Some(Trig::Inputs),
+        _ => None,
     };
     if let Some(v) = f.coulomb_velocity {
         scene.coulomb_velocity = v;
@@ -210,34 +262,11 @@ fn scene_from_file(f: SceneFile) -> Result<Scene, SceneError> {
         scene.payloads.push(Payload { link: p.link, value });
     }
     scene.check()?;
-    Ok(scene)
+    Ok(SceneFile { scene, code })
 }
 
-fn file_from_scene(s: &Scene) -> SceneFile {
-    let mut f = SceneFile { name: s.name.clone(), tip_wrench: s.tip_wrench.clone(), ..SceneFile::default() };
-    let mut functions = Vec::new();
-    for x in &s.functions {
-        match x {
-            Function::InverseDynamics => functions.push(FunctionName::InverseDynamics),
-            Function::MassMatrix => functions.push(FunctionName::MassMatrix),
-            Function::BiasForces => functions.push(FunctionName::BiasForces),
-            Function::GravityTorques => functions.push(FunctionName::GravityTorques),
-            Function::Coriolis => functions.push(FunctionName::Coriolis),
-            Function::ForwardDynamics => functions.push(FunctionName::ForwardDynamics),
-            Function::FramePose(frame) => f.frame_pose.push(frame.clone()),
-            Function::FrameJacobian(frame) => f.frame_jacobian.push(frame.clone()),
-        }
-    }
-    f.functions = Some(functions);
-    f.scalar = Some(match s.scalar {
-        ScalarType::F64 => ScalarName::F64,
-        ScalarType::F32 => ScalarName::F32,
-    });
-    f.target = Some(match s.target {
-        Target::Std => TargetName::Std,
-        Target::NoStdLibm => TargetName::NoStdLibm,
-        Target::NoStdSinCos => TargetName::NoStdSincos,
-    });
+fn file_from_scene(s: &Scene) -> FileText {
+    let mut f = FileText { tip_wrench: s.tip_wrench.clone(), ..FileText::default() };
     f.coulomb_velocity = Some(s.coulomb_velocity);
     f.gravity = Some(match s.gravity {
         Gravity::Default => GravityFile { mode: Some(GravityMode::Default), vector: None },
@@ -277,15 +306,15 @@ fn file_from_scene(s: &Scene) -> SceneFile {
     f
 }
 
-impl Scene {
-    /// Reads a scene from TOML (format in the [module docs](super)), and
-    /// runs the checks that need no robot ([`Scene::check`]).
-    pub fn from_toml_str(text: &str) -> Result<Scene, SceneError> {
-        let file: SceneFile = ::toml::from_str(text).map_err(|e| SceneError::Toml(e.to_string()))?;
+impl SceneFile {
+    /// Reads a scene file from TOML (format in the [module docs](super)),
+    /// and runs the checks that need no robot ([`Scene::check`]).
+    pub fn from_toml_str(text: &str) -> Result<SceneFile, SceneError> {
+        let file: FileText = ::toml::from_str(text).map_err(|e| SceneError::Toml(e.to_string()))?;
         scene_from_file(file)
     }
-    /// Reads a scene from a TOML file.
-    pub fn from_toml_file(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
+    /// Reads a scene file.
+    pub fn from_toml_file(path: impl AsRef<Path>) -> Result<SceneFile, SceneError> {
         let path = path.as_ref();
         let text =
             std::fs::read_to_string(path).map_err(|source| SceneError::Io { path: path.to_path_buf(), source })?;
@@ -294,9 +323,21 @@ impl Scene {
             e => e,
         })
     }
+}
+
+impl Scene {
+    /// The physics of a scene file read from TOML (its code-generation keys
+    /// are checked, then left to [`SceneFile`]).
+    pub fn from_toml_str(text: &str) -> Result<Scene, SceneError> {
+        SceneFile::from_toml_str(text).map(|f| f.scene)
+    }
+    /// The physics of a scene file.
+    pub fn from_toml_file(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
+        SceneFile::from_toml_file(path).map(|f| f.scene)
+    }
     /// The scene as TOML, every option written out: reading it back gives
     /// the same scene (with the per-joint options grouped by joint, in name
-    /// order, and the frame functions after the others).
+    /// order).
     pub fn to_toml_string(&self) -> Result<String, SceneError> {
         ::toml::to_string(&file_from_scene(self)).map_err(|e| SceneError::Toml(e.to_string()))
     }

@@ -18,8 +18,8 @@ pub struct Args {
     #[arg(long, short, value_name = "FILE")]
     pub output: Option<PathBuf>,
     /// Only these functions (comma-separated): inverse_dynamics, mass_matrix,
-    /// bias_forces, gravity_torques, forward_dynamics (with --scene also
-    /// coriolis).
+    /// bias_forces, gravity_torques, coriolis, forward_dynamics,
+    /// frame_pose:FRAME, frame_jacobian:FRAME.
     #[arg(long, value_name = "a,b,...", value_delimiter = ',')]
     pub functions: Option<Vec<String>>,
     /// Generate f32 code (constants rounded to f32).
@@ -65,10 +65,11 @@ pub struct Args {
     /// stack in debug builds and compile slowly in release builds.
     #[arg(long, value_name = "N")]
     pub split_lets: Option<usize>,
-    /// A scene (TOML; see the documentation of `dynagen::scene`): only its
-    /// functions, its constants folded in, its run-time inputs (gravity,
-    /// tip wrench, payloads) as extra arguments. --functions replaces its
-    /// functions (frame functions kept), --f32 makes it f32.
+    /// A scene (TOML; see the documentation of `dynagen::scene`): its
+    /// constants folded in, its run-time inputs (gravity, tip wrench,
+    /// payloads) as extra arguments, its code keys (functions, scalar, …)
+    /// as defaults that the options given here override (--functions keeps
+    /// its frame functions).
     #[arg(long, value_name = "SCENE.toml")]
     pub scene: Option<PathBuf>,
 }
@@ -99,37 +100,40 @@ Examples:
 
 /// The builder for `args`, and the model it was given.
 fn builder(args: &Args, source: &RobotSource) -> Result<(Builder, dynagen::Model), CliError> {
+    // Only what the command line says is set: a scene file's code keys
+    // stand where it says nothing (and give way where it does).
     let trig = match (args.no_std, args.trig.as_deref()) {
-        // The library's default: batched.
-        (false, None) => Trig::default(),
-        (true, _) | (false, Some("batched")) => Trig::Batched,
-        (false, Some("std")) => Trig::Std,
-        (false, Some("libm")) => Trig::Libm,
-        (false, Some("inputs")) => Trig::Inputs,
-        (false, Some(other)) => {
-            return Err(CliError {
-                message: format!("--trig {other:?}: expected one of std, batched, libm, inputs"),
-                status: STATUS_BAD_INPUT,
-            })
+        (true, _) => Some(Trig::Batched),
+        (false, None) => None,
+        (false, Some(t)) => {
+            Some(t.parse::<Trig>().map_err(|e| CliError { message: format!("--trig: {e}"), status: STATUS_BAD_INPUT })?)
         }
     };
     let model = source.load()?;
-    let mut options = dynagen::codegen::CodegenOptions::default()
-        .scalar(if args.f32 { ScalarType::F32 } else { ScalarType::F64 })
-        .forward_dynamics(match (args.ldlt, args.aba) {
-            (true, _) => ForwardDynamicsMethod::Ldlt,
-            (_, true) => ForwardDynamicsMethod::Aba,
-            _ => ForwardDynamicsMethod::Auto,
-        })
-        .snap_rounding(!args.no_snap)
-        .fma(!args.no_fma)
-        .runtime_dispatch(!args.no_dispatch)
-        .trig(trig);
-    if let Some(n) = args.split_lets {
-        options.split_lets = (n > 0).then_some(n);
+    let mut b = Builder::new().model(model.clone()).source(&source.to_string());
+    if args.f32 {
+        b = b.scalar(ScalarType::F32);
     }
-    options.source = Some(source.to_string());
-    let mut b = Builder::new().model(model.clone()).options(options);
+    match (args.ldlt, args.aba) {
+        (true, _) => b = b.forward_dynamics(ForwardDynamicsMethod::Ldlt),
+        (_, true) => b = b.forward_dynamics(ForwardDynamicsMethod::Aba),
+        _ => {}
+    }
+    if args.no_snap {
+        b = b.snap_rounding(false);
+    }
+    if args.no_fma {
+        b = b.fma(false);
+    }
+    if args.no_dispatch {
+        b = b.runtime_dispatch(false);
+    }
+    if let Some(t) = trig {
+        b = b.trig(t);
+    }
+    if let Some(n) = args.split_lets {
+        b = b.split_lets((n > 0).then_some(n));
+    }
     if let Some(f) = &args.functions {
         b = b.functions(f);
     }
@@ -165,7 +169,7 @@ fn module(args: &Args) -> Result<(RobotSource, dynagen::Model, GeneratedModule),
 pub fn run(args: &Args) -> Result<Output, CliError> {
     let (source, model, module) = module(args)?;
     let mut notes: Vec<String> =
-        module.named_op_counts().into_iter().map(|(name, count)| format!("{name}: {count}")).collect();
+        module.op_counts().into_iter().map(|(name, count)| format!("{name}: {count}")).collect();
     let stdout = match &args.output {
         None => module.source,
         Some(path) => {

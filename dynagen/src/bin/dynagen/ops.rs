@@ -8,7 +8,8 @@
 use crate::error::{CliError, Output};
 use crate::generate::cli_error;
 use crate::robot_source::RobotSource;
-use dynagen::codegen::{generic_op_count, Builder, GeneratedModule};
+use dynagen::codegen::{generic_op_count, Builder, ForwardDynamicsMethod, GeneratedFunction, GeneratedModule};
+use dynagen::symbolic::OpCount;
 use std::fmt::Write;
 use std::path::PathBuf;
 
@@ -45,6 +46,12 @@ pub fn run(args: &Args) -> Result<Output, CliError> {
     Ok(Output { stdout: o, warnings: source.warnings(&model), notes: Vec::new() })
 }
 
+/// The generic recursion's count of the function `f` was traced from.
+fn generic_count(model: &dynagen::Model, f: &GeneratedFunction) -> OpCount {
+    let method = f.method.unwrap_or(ForwardDynamicsMethod::Aba);
+    generic_op_count(model, &f.function, method).unwrap_or_default()
+}
+
 /// The generated functions beside the generic recursion.
 fn full_table(o: &mut String, model: &dynagen::Model, module: &GeneratedModule) {
     let _ = writeln!(
@@ -59,12 +66,12 @@ fn full_table(o: &mut String, model: &dynagen::Model, module: &GeneratedModule) 
         "function", "generated", "generic", "ratio", "generated neg", "generic neg", "fused", "FP ops", "multiplies"
     );
     for f in &module.functions {
-        let generic = generic_op_count(model, f.kind);
+        let generic = generic_count(model, f);
         let (g, r) = (f.op_count.arithmetic(), generic.arithmetic());
         let _ = writeln!(
             o,
             "{:<32} {:>10} {:>10} {:>6.2}x   {:>13} {:>11}   {:>6} {:>7} {:>10}",
-            f.kind.label(),
+            f.label(),
             g,
             r,
             r as f64 / g.max(1) as f64,
@@ -82,9 +89,9 @@ fn full_table(o: &mut String, model: &dynagen::Model, module: &GeneratedModule) 
         let _ = writeln!(
             o,
             "  {}:\n    {}\n    {}\n    body with sines and cosines given: {}, {} ({} unfused)",
-            f.kind.label(),
+            f.label(),
             f.op_count,
-            generic_op_count(model, f.kind),
+            generic_count(model, f),
             fusion.op_count(body),
             fusion.critical_path(),
             body.critical_path().cycles
@@ -103,21 +110,22 @@ fn scene_table(o: &mut String, path: &std::path::Path, full: &GeneratedModule, s
         path.display()
     );
     let _ = writeln!(o, "{:<32} {:>10} {:>10} {:>12}", "function", "scene", "full", "scene - full");
-    for f in &scene.scene_functions {
+    for f in scene.functions.iter().filter(|f| f.emitted) {
         let s = f.op_count.arithmetic();
-        match full.functions.iter().find(|g| g.emitted && g.kind.fn_name() == f.name) {
+        match full.function(&f.name) {
             Some(g) => {
                 let r = g.op_count.arithmetic();
                 let diff = s as i64 - r as i64;
-                let _ = writeln!(o, "{:<32} {s:>10} {r:>10} {diff:>+12}", f.name);
+                let _ = writeln!(o, "{:<32} {s:>10} {r:>10} {diff:>+12}", f.label());
             }
             None => {
-                let _ = writeln!(o, "{:<32} {s:>10} {:>10} {:>12}", f.name, "-", "-");
+                let _ = writeln!(o, "{:<32} {s:>10} {:>10} {:>12}", f.label(), "-", "-");
             }
         }
     }
     let _ = writeln!(o, "\nbreakdown (scene):");
-    for f in &scene.scene_functions {
-        let _ = writeln!(o, "  {}: {}", f.name, f.op_count);
+    for f in &scene.functions {
+        let note = if f.emitted { "" } else { " [not emitted]" };
+        let _ = writeln!(o, "  {}{note}: {}", f.label(), f.op_count);
     }
 }

@@ -1,7 +1,7 @@
 //! The gravity torques as code generation traces them when the model has
 //! point masses on prismatic joints without children (a gripper's fingers,
-//! as [`center_prismatic_leaves`](super::center_prismatic_leaves) and
-//! [`regroup_inertia`](super::regroup_inertia) leave them).
+//! as [`center_prismatic_leaves`](crate::codegen::center_prismatic_leaves) and
+//! [`regroup_inertia`](crate::codegen::regroup_inertia) leave them).
 //!
 //! Under gravity alone nothing moves, and the weight of a point mass `m` at
 //! `p(q) = p₀ + d q` in its parent's frame (`d` the joint's axis there) is
@@ -21,7 +21,7 @@
 //! there the fold does not pay (their finger terms are near the minimum
 //! already); they keep the model as it is.
 
-use super::regroup_inertia;
+use crate::codegen::regroup_inertia;
 use crate::algorithms::rnea::rnea_with_payloads;
 use crate::algorithms::{BodyInertia, Workspace};
 use crate::model::{JointKind, Model};
@@ -112,7 +112,7 @@ pub(crate) fn gravity_torques<S: Scalar>(
 mod tests {
     use super::*;
     use crate::algorithms::bias;
-    use crate::codegen::{prepare_model, CodegenOptions};
+    use crate::codegen::{prepare::prepare_model, CodegenOptions};
 
     /// The folded gravity torques of the prepared Panda equal the generic
     /// solver's on the original model, and the fold found both fingers.

@@ -53,7 +53,7 @@ fn indices(alignment: AxisAlignment) -> Option<(usize, usize, usize)> {
 }
 
 /// A copy of `model` with the inertial parameters regrouped (see the
-/// documentation of [`CodegenOptions::regroup_inertia`](super::CodegenOptions::regroup_inertia)
+/// documentation of [`CodegenOptions::regroup_inertia`](crate::codegen::CodegenOptions::regroup_inertia)
 /// and the comments of `codegen/grouping.rs`).
 pub fn regroup_inertia(model: &Model) -> Model {
     let mut m = model.clone();

@@ -5,14 +5,12 @@
 //! as `syn` syntax (parsing it back from tokens would dominate the
 //! generator's run time).
 
-use super::literal::float_literal_text;
 use super::split::{self, Body, Line, PartParam};
-use super::trace::FunctionKind;
-use super::{CodegenError, ScalarType, Trig};
+use super::syntax::{array, binary, call, float, ident, index, let_stmt, method, pat, path, unary};
+use crate::codegen::{CodegenError, CodegenOptions, ScalarType, Trig};
 use crate::symbolic::{Function, Fusion, Node};
-use proc_macro2::{Ident, Span, TokenStream};
+use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
-use syn::punctuated::Punctuated;
 use syn::{BinOp, Expr, Pat, Stmt, UnOp};
 
 /// The Rust type of the scalar.
@@ -21,79 +19,6 @@ pub(crate) fn scalar_type(scalar: ScalarType) -> TokenStream {
         ScalarType::F64 => quote!(f64),
         ScalarType::F32 => quote!(f32),
     }
-}
-
-fn ident(name: &str) -> Ident {
-    Ident::new(name, Span::call_site())
-}
-pub(super) fn path(id: Ident) -> Expr {
-    Expr::Path(syn::ExprPath { attrs: vec![], qself: None, path: syn::Path::from(id) })
-}
-fn float(x: f64, scalar: ScalarType) -> Option<Expr> {
-    let text = float_literal_text(x, scalar)?;
-    let (neg, digits) = match text.strip_prefix('-') {
-        Some(d) => (true, d),
-        None => (false, text.as_str()),
-    };
-    let lit =
-        Expr::Lit(syn::ExprLit { attrs: vec![], lit: syn::Lit::Float(syn::LitFloat::new(digits, Span::call_site())) });
-    Some(if neg { unary(UnOp::Neg(Default::default()), lit) } else { lit })
-}
-pub(super) fn index(array: &str, i: usize) -> Expr {
-    Expr::Index(syn::ExprIndex {
-        attrs: vec![],
-        expr: Box::new(path(ident(array))),
-        bracket_token: Default::default(),
-        index: Box::new(Expr::Lit(syn::ExprLit {
-            attrs: vec![],
-            lit: syn::Lit::Int(syn::LitInt::new(&i.to_string(), Span::call_site())),
-        })),
-    })
-}
-fn binary(a: &Expr, op: BinOp, b: &Expr) -> Expr {
-    Expr::Binary(syn::ExprBinary { attrs: vec![], left: Box::new(a.clone()), op, right: Box::new(b.clone()) })
-}
-fn unary(op: UnOp, a: Expr) -> Expr {
-    Expr::Unary(syn::ExprUnary { attrs: vec![], op, expr: Box::new(a) })
-}
-fn method(receiver: &Expr, name: &str) -> Expr {
-    Expr::MethodCall(syn::ExprMethodCall {
-        attrs: vec![],
-        receiver: Box::new(receiver.clone()),
-        dot_token: Default::default(),
-        method: ident(name),
-        turbofish: None,
-        paren_token: Default::default(),
-        args: Punctuated::new(),
-    })
-}
-fn call(segments: &[&str], args: &[&Expr]) -> Expr {
-    let path = syn::Path {
-        leading_colon: None,
-        segments: segments.iter().map(|s| syn::PathSegment::from(ident(s))).collect(),
-    };
-    Expr::Call(syn::ExprCall {
-        attrs: vec![],
-        func: Box::new(Expr::Path(syn::ExprPath { attrs: vec![], qself: None, path })),
-        paren_token: Default::default(),
-        args: args.iter().map(|&a| a.clone()).collect(),
-    })
-}
-pub(super) fn pat(id: Ident) -> Pat {
-    Pat::Ident(syn::PatIdent { attrs: vec![], by_ref: None, mutability: None, ident: id, subpat: None })
-}
-pub(super) fn let_stmt(pat: Pat, e: Expr) -> Stmt {
-    Stmt::Local(syn::Local {
-        attrs: vec![],
-        let_token: Default::default(),
-        modifiers: Default::default(),
-        pat,
-        init: Some(syn::LocalInit { eq_token: Default::default(), expr: Box::new(e), diverge: None }),
-        semi_token: Default::default(),
-    })
-}
-fn array(elems: impl IntoIterator<Item = Expr>) -> Expr {
-    Expr::Array(syn::ExprArray { attrs: vec![], bracket_token: Default::default(), elems: elems.into_iter().collect() })
 }
 
 /// A length of a parameter or of the output: the number of joints (`DOF`)
@@ -116,7 +41,7 @@ impl Dim {
             }
         }
     }
-    fn value(self, n: usize) -> usize {
+    pub(crate) fn value(self, n: usize) -> usize {
         match self {
             Dim::Dof => n,
             Dim::Fixed(k) => k,
@@ -136,14 +61,6 @@ pub(crate) enum Shape {
 
 impl Shape {
     /// The shape of a function of the generated-code contract.
-    pub(crate) fn of(kind: FunctionKind) -> Shape {
-        if kind.is_matrix() {
-            Shape::Matrix(Dim::Dof, Dim::Dof)
-        } else {
-            Shape::Vector(Dim::Dof)
-        }
-    }
-    /// The Rust type.
     pub(crate) fn tokens(self, scalar: ScalarType) -> TokenStream {
         let ty = scalar_type(scalar);
         match self {
@@ -200,26 +117,22 @@ pub(crate) struct Signature {
     pub output: Shape,
 }
 
-/// `[T; DOF]`, or `[[T; DOF]; DOF]` for the mass matrix.
-pub(crate) fn return_type(kind: FunctionKind, scalar: ScalarType) -> TokenStream {
-    Shape::of(kind).tokens(scalar)
-}
 
 /// How bodies are written: split into parts, fused multiply-adds, copies
 /// for AVX2 and FMA chosen at run time.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct BodyStyle {
-    /// [`CodegenOptions::split_lets`](super::CodegenOptions::split_lets).
+    /// [`CodegenOptions::split_lets`](crate::codegen::CodegenOptions::split_lets).
     pub split_lets: Option<usize>,
-    /// [`CodegenOptions::fma`](super::CodegenOptions::fma).
+    /// [`CodegenOptions::fma`](crate::codegen::CodegenOptions::fma).
     pub fma: bool,
-    /// [`CodegenOptions::runtime_dispatch`](super::CodegenOptions::runtime_dispatch).
+    /// [`CodegenOptions::runtime_dispatch`](crate::codegen::CodegenOptions::runtime_dispatch).
     pub dispatch: bool,
 }
 
 impl BodyStyle {
     /// The style `options` ask for.
-    pub(crate) fn of(options: &super::CodegenOptions) -> BodyStyle {
+    pub(crate) fn of(options: &CodegenOptions) -> BodyStyle {
         BodyStyle { split_lets: options.split_lets, fma: options.fma, dispatch: options.runtime_dispatch }
     }
 }

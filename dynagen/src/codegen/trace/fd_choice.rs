@@ -2,8 +2,7 @@
 //! generator ([`ForwardDynamicsMethod::Auto`]).
 //!
 //! Both are traced. The articulated-body algorithm (ABA) is the accurate
-//! one on long chains (64 joints: 1e-12 against 7e-10 for CRBA + LᵀDL);
-//! on short ones both are accurate and CRBA + LᵀDL is the faster body: its
+//! one on long chains (`docs/performance.md` has the errors); on short ones both are accurate and CRBA + LᵀDL is the faster body: its
 //! critical path is about half of ABA's, whose inward pass waits on one
 //! division per joint and on the articulated inertia that depends on it.
 //! So the generator measures instead of guessing:
@@ -21,12 +20,10 @@
 //! LᵀDL is chosen when it is estimated faster and its worst error is at
 //! most twice ABA's plus 2 ε (a difference of an ulp or two, the level of
 //! rounding noise); otherwise ABA. The states are fixed, so the choice is
-//! deterministic. On the bundled robots: the UR5 gets LᵀDL (3.8e-16
-//! against 1.7e-16), the Panda keeps ABA (LᵀDL's 2.3e-15 is 5.8 times
-//! ABA's 4.0e-16: faster, but not as accurate; the module headers carry
-//! the current figures).
+//! deterministic. Each module's header says which was chosen and gives
+//! both figures.
 
-use super::{ForwardDynamicsMethod, GeneratedFunction};
+use crate::codegen::ForwardDynamicsMethod;
 use crate::symbolic::Function;
 use crate::DoubleDouble;
 
@@ -90,16 +87,6 @@ fn errors(aba: &Function, ldlt: &Function, inputs: &[(String, usize)]) -> (f64, 
         e_ldlt = e_ldlt.max(err(&l));
     }
     (e_aba, e_ldlt)
-}
-
-/// Chooses between the traced ABA and LᵀDL of an `n`-joint model.
-pub(crate) fn choose(aba: &GeneratedFunction, ldlt: &GeneratedFunction, n: usize) -> FdChoice {
-    let inputs = ["q", "qd", "tau"].map(|name| (name.to_string(), n));
-    choose_between(
-        [&aba.function, &aba.sin_cos_inputs.function],
-        [&ldlt.function, &ldlt.sin_cos_inputs.function],
-        &inputs,
-    )
 }
 
 /// Chooses between a traced ABA and LᵀDL, each given as (the function of

@@ -376,7 +376,7 @@ pub(crate) fn plan(model: &Model, rewrites: Rewrites) -> Result<Plan, TraceActiv
 mod tests {
     use super::*;
     use crate::algorithms::crba::crba;
-    use crate::codegen::{prepare_model, CodegenOptions};
+    use crate::codegen::{prepare::prepare_model, CodegenOptions};
 
     fn bundled(name: &str) -> Model {
         Model::from_urdf_file(format!("{}/robots/{name}.urdf", env!("CARGO_MANIFEST_DIR"))).unwrap()

@@ -1,6 +1,6 @@
 //! Float literals that read back as exactly the same number.
 
-use super::ScalarType;
+use crate::codegen::ScalarType;
 
 /// The text of a float literal for `x` in `scalar`: Rust's shortest
 /// representation that reads back as the same value (`{:?}`), which always

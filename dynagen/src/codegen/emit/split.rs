@@ -27,8 +27,8 @@
 //! Every value is computed by the same operations in the same order as
 //! unsplit, so the results are bit for bit the same.
 
-use super::emit::{index, let_stmt, pat, path};
-use super::CodegenError;
+use super::syntax::{index, let_stmt, pat, path};
+use crate::codegen::CodegenError;
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::BTreeSet;

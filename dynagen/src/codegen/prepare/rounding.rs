@@ -1,6 +1,32 @@
 //! Model constants that are 0 or ±1 up to rounding.
 //!
-//! See the [module documentation](super) for the rule and why.
+//! A robot file that turns a frame by `rpy="0 1.5707963267948966 0"` means
+//! a quarter turn, but `cos(1.5707963267948966)` is `6.1e-17` in `f64`, not
+//! 0, and every product with it would survive into the generated code as an
+//! operation. With [`CodegenOptions::snap_rounding`](crate::codegen::CodegenOptions::snap_rounding) (on by default) the
+//! generator first replaces, in a copy of the model, every constant within
+//! [`ROUNDING_TOLERANCE`] (4 ulps) *times the scale of the quantity it
+//! belongs to* of 0, or (rotation entries and unit axes) of ±1, by that
+//! value:
+//!
+//! - rotation entries and unit-axis components: scale 1 (both are entries
+//!   of unit vectors);
+//! - translations, first moments of mass `m·c`, axes as given, gravity:
+//!   the vector's norm;
+//! - rotational inertias: the sum of the diagonal's magnitudes.
+//!
+//! Why this tolerance: each of these constants was itself computed in `f64`
+//! (from rpy angles, a normalisation, an inertia rotation and shift), which
+//! already put rounding errors of a few ulps of the quantity's scale in it.
+//! A change of that size is below what the file's own numbers determine
+//! after parsing, and it changes the generated results by no more than the
+//! generic solver's own rounding (the tests compare at 1e-12). A larger
+//! tolerance would need the precision the file printed, which the model no
+//! longer knows, and a file's number is taken at its word: `1.570796325`
+//! (the ur_description UR5's quarter turn) is 1.8e-9 rad away from π/2,
+//! more than its nine printed decimals allow for, so its `cos` of `1.8e-9`
+//! stays. Masses are never changed. What was replaced is listed in
+//! [`GeneratedModule::snapped`](crate::codegen::GeneratedModule::snapped) and counted in the header.
 
 use crate::model::Model;
 use crate::spatial::{Inertia, Mat3, Sym3, Transform, Vec3};

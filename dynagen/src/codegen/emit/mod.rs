@@ -1,0 +1,104 @@
+//! Emitting: traced functions → the module's Rust source. Each emitted
+//! function becomes its body `NAME_sc` ([`statements`], long bodies split
+//! into parts by [`split`]) and, unless the caller brings the sines and
+//! cosines, its public `NAME` ([`wrapper`]); [`header`] writes what the
+//! module was made from; the sine and cosine kernel's text is appended.
+
+mod header;
+mod literal;
+mod split;
+mod statements;
+mod syntax;
+mod wrapper;
+
+pub use literal::float_literal_text;
+pub(crate) use statements::{tidy_dispatch, BodyStyle, Dim, Param, Shape, Signature};
+
+use super::trace::fd_choice::FdChoice;
+use super::{module_name, sin_cos, CodegenError, CodegenOptions, GeneratedFunction, SnappedConstant, Trig};
+use crate::model::JointKind;
+use crate::scene::SceneModel;
+use quote::quote;
+
+/// The name of a run-time payload's argument.
+pub fn payload_argument(link: &str) -> String {
+    format!("payload_{}", module_name(link).trim_start_matches('_'))
+}
+
+/// What the emitted module is made of.
+pub(crate) struct ModuleParts<'a> {
+    /// The scene (its original reduced model: the header's hash and names).
+    pub scene: &'a SceneModel,
+    /// The prepared scene the functions were traced on.
+    pub prepared: &'a SceneModel,
+    pub options: &'a CodegenOptions,
+    pub functions: &'a [GeneratedFunction],
+    pub fd: &'a FdChoice,
+    pub snapped: &'a [SnappedConstant],
+    pub hash: u64,
+    /// The header's line on a run-time dispatch left out (or empty).
+    pub dispatch_note: &'a str,
+}
+
+/// The module's source: header, constants, the emitted functions, kernel.
+pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError> {
+    let ModuleParts { scene, prepared, options, functions, .. } = *parts;
+    let model = &prepared.model;
+    let n = model.dof();
+    let joint_names = model.joint_names();
+    let n_lit = proc_macro2::Literal::usize_unsuffixed(n);
+    let consts = quote! {
+        #[doc = " The number of degrees of freedom (joints)."]
+        pub const DOF: usize = #n_lit;
+        #[doc = " The joint names, in the order of every index of the functions below."]
+        pub const JOINT_NAMES: [&str; DOF] = [#(#joint_names),*];
+    };
+    let mut items = wrapper::parse_items(consts)?;
+    items.push(wrapper::parse_item(sin_cos::sin_cos_all_item(options.scalar))?);
+    let has_prismatic = model.bodies.iter().any(|b| b.joint.kind == JointKind::Prismatic);
+    let mut split_functions = Vec::new();
+    for f in functions.iter().filter(|f| f.emitted) {
+        let (sc, name) = (&f.sin_cos_inputs, &f.name);
+        let ldlt = f.method == Some(super::ForwardDynamicsMethod::Ldlt);
+        let ps = f.function.params(prepared);
+        let mut sc_params = vec![Param::dof("s"), Param::dof("c")];
+        if has_prismatic {
+            sc_params.push(Param::dof("q"));
+        }
+        sc_params.extend(ps[1..].iter().cloned());
+        let sc_name = format!("{name}_sc");
+        let signature = Signature { name: sc_name.clone(), params: sc_params, output: f.function.shape() };
+        let sc_count = super::counted(&sc.function, options.fma);
+        let doc = format!("{}\n\n{}", f.function.doc(prepared, ldlt, &sc_count), wrapper::sc_doc(has_prismatic));
+        let style = BodyStyle::of(options);
+        let emitted = statements::emit_function(&sc.function, &signature, options.scalar, options.trig, n, &doc, style)?;
+        let sc_split = split::parts_of(&emitted);
+        if let Some(parts) = sc_split {
+            split_functions.push((sc_name.clone(), parts));
+        }
+        items.extend(emitted);
+        if options.trig != Trig::Inputs {
+            let doc = format!(
+                "{}\n\n The sines and cosines of the joint angles by {}, then [`{sc_name}`].",
+                f.function.doc(prepared, ldlt, &f.op_count),
+                wrapper::trig_source(options.trig, options.scalar)
+            );
+            let ret = f.function.shape().tokens(options.scalar);
+            let body = wrapper::ScBody { trace: sc, has_prismatic, split: sc_split.is_some() };
+            items.extend(wrapper::parse_items(wrapper::wrapper(name, &ps, ret, body, options, &doc))?);
+        }
+    }
+    let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
+    let body = tidy_dispatch(&prettyplease::unparse(&file));
+    let facts = header::HeaderFacts {
+        scene,
+        options,
+        fd: parts.fd,
+        functions,
+        snapped: parts.snapped,
+        hash: parts.hash,
+    };
+    let header = header::header(&facts) + &split::header_note(options.split_lets, &split_functions) + parts.dispatch_note;
+    let kernel = sin_cos::kernel_source(options.scalar, options.runtime_dispatch);
+    Ok(format!("{header}\n{body}\n{kernel}"))
+}

@@ -1,0 +1,197 @@
+//! `NAME(q, …)`: the public function that computes the sines and cosines
+//! its body reads and calls `NAME_sc`, with the AVX2 and FMA copy of the
+//! run-time dispatch.
+
+use super::{literal, Param};
+use crate::codegen::sin_cos;
+use crate::codegen::trace::SinCosTrace;
+use crate::codegen::{CodegenError, CodegenOptions, ScalarType, Trig};
+use quote::quote;
+
+pub(super) fn parse_item(tokens: proc_macro2::TokenStream) -> Result<syn::Item, CodegenError> {
+    syn::parse2(tokens).map_err(|e| CodegenError::Internal(e.to_string()))
+}
+
+pub(super) fn sc_doc(has_prismatic: bool) -> String {
+    let q = if has_prismatic { " `q` is read for the prismatic joints only." } else { "" };
+    format!(
+        " Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a \
+         non-unit axis, see the caller); the entries of prismatic joints are not read.{q}"
+    )
+}
+
+pub(super) fn trig_source(trig: Trig, scalar: ScalarType) -> &'static str {
+    match (trig, scalar) {
+        (Trig::Std, ScalarType::F64) => "`f64::sin_cos`",
+        (Trig::Std, ScalarType::F32) => "`f32::sin_cos`",
+        (Trig::Batched, ScalarType::F64) => "`sin_cos_array` (only the angles the body reads)",
+        (Trig::Batched, ScalarType::F32) => "`sin_cos_array_f32` (only the angles the body reads)",
+        (Trig::Libm, ScalarType::F64) => "`libm::sincos`",
+        (Trig::Libm, ScalarType::F32) => "`libm::sincosf`",
+        (Trig::Inputs, _) => "the caller",
+    }
+}
+
+/// What [`wrapper`] calls: the body `NAME_sc`, the angles it reads, whether
+/// it takes `q` too (for its prismatic joints) and whether it is split into
+/// parts.
+pub(super) struct ScBody<'a> {
+    pub trace: &'a SinCosTrace,
+    pub has_prismatic: bool,
+    pub split: bool,
+}
+
+/// `NAME(q, …)`: the sines and cosines, then `NAME_sc`. `params` start
+/// with `q`.
+pub(super) fn wrapper(
+    fn_name: &str,
+    params: &[Param],
+    ret: proc_macro2::TokenStream,
+    body: ScBody<'_>,
+    options: &CodegenOptions,
+    doc: &str,
+) -> proc_macro2::TokenStream {
+    let ScBody { trace: sc, has_prismatic, split: sc_split } = body;
+    let name = quote::format_ident!("{}", fn_name);
+    let sc_name = quote::format_ident!("{}_sc", fn_name);
+    let typed: Vec<proc_macro2::TokenStream> = params.iter().map(|p| p.tokens(options.scalar)).collect();
+    let rest: Vec<proc_macro2::Ident> = params[1..].iter().map(|p| quote::format_ident!("{}", p.name)).collect();
+    let q_arg = if has_prismatic { quote!(q,) } else { quote!() };
+    let angle = |i: usize, k: f64| {
+        let i = proc_macro2::Literal::usize_unsuffixed(i);
+        if k == 1.0 {
+            quote!(q[#i])
+        } else {
+            let k = literal::float_literal_text(k, options.scalar).unwrap_or_else(|| "1.0".into());
+            let k: proc_macro2::TokenStream = k.parse().expect("a float literal");
+            quote!(q[#i] * #k)
+        }
+    };
+    // The batched trigonometry, then `NAME_sc`: `all` computes every sine and cosine, `some` those
+    // of the angles it is given, `sc` calls the body.
+    let batched = |all: proc_macro2::TokenStream,
+                   some: &dyn Fn(usize) -> proc_macro2::TokenStream,
+                   sc_call: &dyn Fn(proc_macro2::TokenStream) -> proc_macro2::TokenStream| {
+        // Only the angles NAME_sc reads (the UR5's g reads 3 of 6, the Panda's functions 7 of 9).
+        let read: Vec<(usize, f64)> =
+            sc.angle_scale.iter().enumerate().filter_map(|(i, k)| k.map(|k| (i, k))).collect();
+        if read.len() == sc.angle_scale.len() && read.iter().all(|&(_, k)| k == 1.0) {
+            let call = sc_call(quote!(&s, &c, #q_arg #(#rest),*));
+            quote! {
+                let (s, c) = #all;
+                #call
+            }
+        } else {
+            let batch = some(read.len());
+            let angles = read.iter().map(|&(i, k)| angle(i, k));
+            let mut s_entries = Vec::new();
+            let mut c_entries = Vec::new();
+            let mut j = 0;
+            for k in &sc.angle_scale {
+                if k.is_some() {
+                    let lit = proc_macro2::Literal::usize_unsuffixed(j);
+                    s_entries.push(quote!(s[#lit]));
+                    c_entries.push(quote!(c[#lit]));
+                    j += 1;
+                } else {
+                    s_entries.push(quote!(0.0));
+                    c_entries.push(quote!(1.0));
+                }
+            }
+            let call = if read.is_empty() { quote!() } else { quote!(let (s, c) = #batch(&[#(#angles),*]);) };
+            let sc_call = sc_call(quote!(&[#(#s_entries),*], &[#(#c_entries),*], #q_arg #(#rest),*));
+            quote! {
+                #call
+                #sc_call
+            }
+        }
+    };
+    let body = if options.trig == Trig::Batched {
+        let batch = sin_cos::batch_function(options.scalar);
+        batched(quote!(sin_cos_all(q)), &|_| batch.clone(), &|args| quote!(#sc_name(#args)))
+    } else {
+        let mut stmts = Vec::new();
+        let mut s_entries = Vec::new();
+        let mut c_entries = Vec::new();
+        for (i, k) in sc.angle_scale.iter().enumerate() {
+            match k {
+                Some(k) => {
+                    let (si, ci) = (quote::format_ident!("s{i}"), quote::format_ident!("c{i}"));
+                    let a = angle(i, *k);
+                    let call = match (options.trig, options.scalar) {
+                        (Trig::Libm, ScalarType::F64) => quote!(libm::sincos(#a)),
+                        (Trig::Libm, ScalarType::F32) => quote!(libm::sincosf(#a)),
+                        _ if *k == 1.0 => quote!(#a.sin_cos()),
+                        _ => quote!((#a).sin_cos()),
+                    };
+                    stmts.push(quote!(let (#si, #ci) = #call;));
+                    s_entries.push(quote!(#si));
+                    c_entries.push(quote!(#ci));
+                }
+                None => {
+                    s_entries.push(quote!(0.0));
+                    c_entries.push(quote!(1.0));
+                }
+            }
+        }
+        quote! {
+            #(#stmts)*
+            #sc_name(&[#(#s_entries),*], &[#(#c_entries),*], #q_arg #(#rest),*)
+        }
+    };
+    let doc = doc.lines();
+    if !(options.runtime_dispatch && options.trig == Trig::Batched) {
+        return quote! {
+            #(#[doc = #doc])*
+            #[inline]
+            pub fn #name(#(#typed),*) -> #ret {
+                #body
+            }
+        };
+    }
+    // With run-time dispatch, the batched sines and cosines and the body are inlined into an AVX2
+    // and FMA copy of `NAME`, as in a native build: no second check, no call of the kernel or of
+    // `NAME_sc_avx2_fma` with the sines and cosines through memory. (The body is compiled a second
+    // time for it; inlined, the UR5's τ took 70 ns instead of 78.) A body split into parts is
+    // called as `NAME_sc_avx2_fma`, the chain of its parts.
+    let fast = quote::format_ident!("{}_avx2_fma", fn_name);
+    let sc_fast = quote::format_ident!("{}_sc_avx2_fma", fn_name);
+    let sc_on = quote::format_ident!("{}_sc_on", fn_name);
+    let on = match options.scalar {
+        ScalarType::F64 => quote!(sin_cos_array_on),
+        ScalarType::F32 => quote!(sin_cos_array_f32_on),
+    };
+    let fast_body = batched(
+        quote!(#on::<Avx2Fma, DOF>(q)),
+        &|n| {
+            let n = proc_macro2::Literal::usize_unsuffixed(n);
+            quote!(#on::<Avx2Fma, #n>)
+        },
+        &|args| if sc_split { quote!(unsafe { #sc_fast(#args) }) } else { quote!(#sc_on::<Avx2Fma>(#args)) },
+    );
+    let args = params.iter().map(|p| quote::format_ident!("{}", p.name));
+    let fast_doc = format!(" [`{fn_name}`] compiled for processors with AVX2 and FMA.");
+    quote! {
+        #(#[doc = #doc])*
+        #[inline]
+        pub fn #name(#(#typed),*) -> #ret {
+            #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+            if has_avx2_and_fma() {
+                return unsafe { #fast(#(#args),*) };
+            }
+            #body
+        }
+        #[doc = #fast_doc]
+        #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+        #[target_feature(enable = "avx2,fma")]
+        unsafe fn #fast(#(#typed),*) -> #ret {
+            #fast_body
+        }
+    }
+}
+
+/// The items of `tokens`.
+pub(super) fn parse_items(tokens: proc_macro2::TokenStream) -> Result<Vec<syn::Item>, CodegenError> {
+    syn::parse2::<syn::File>(tokens).map(|f| f.items).map_err(|e| CodegenError::Internal(e.to_string()))
+}
+

@@ -1,0 +1,220 @@
+//! The functions a module can have: one enum, and the one table of each
+//! function's arguments, output shape and documentation.
+
+use super::emit::{payload_argument, Dim, Param, Shape};
+use crate::scene::{ResolvedGravity, SceneModel};
+use crate::symbolic::OpCount;
+use std::fmt::Write;
+use std::str::FromStr;
+
+/// A function code generation can emit. The Rust name of each is
+/// [`Function::rust_name`]; `FramePose` and `FrameJacobian` name a frame
+/// (link) of the robot.
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Function {
+    /// `inverse_dynamics(q, qd, qdd) -> τ` by the recursive Newton-Euler
+    /// algorithm (with a scene's armature, friction and tip wrench).
+    InverseDynamics,
+    /// `mass_matrix(q) -> M` by the composite-rigid-body algorithm, armature
+    /// included.
+    MassMatrix,
+    /// `bias_forces(q, qd) -> h = C(q, q̇)q̇ + g(q) + friction`.
+    BiasForces,
+    /// `gravity_torques(q) -> g(q)`.
+    GravityTorques,
+    /// `coriolis(q, qd) -> C(q, q̇)q̇`.
+    Coriolis,
+    /// `forward_dynamics(q, qd, tau) -> q̈`, by the articulated-body
+    /// algorithm or CRBA + LᵀDL (see [`ForwardDynamicsMethod`](super::ForwardDynamicsMethod)).
+    ForwardDynamics,
+    /// `frame_pose_FRAME(q)`: the pose of a frame in the base frame.
+    FramePose(String),
+    /// `frame_jacobian_FRAME(q)`: the body Jacobian of a frame (in the
+    /// frame itself: JᵀF is the torque of a wrench given in that frame).
+    FrameJacobian(String),
+}
+
+impl Function {
+    /// What a module has unless told otherwise: the five functions of the
+    /// generated-code contract.
+    pub const DEFAULT: [Function; 5] = [
+        Function::InverseDynamics,
+        Function::MassMatrix,
+        Function::BiasForces,
+        Function::GravityTorques,
+        Function::ForwardDynamics,
+    ];
+    /// The names of the functions without a frame, in the order a module
+    /// lists them.
+    pub const NAMES: [&'static str; 6] =
+        ["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "coriolis", "forward_dynamics"];
+
+    /// The function without a frame named `name`, if it is one.
+    pub fn from_name(name: &str) -> Option<Function> {
+        Some(match name.trim() {
+            "inverse_dynamics" => Function::InverseDynamics,
+            "mass_matrix" => Function::MassMatrix,
+            "bias_forces" => Function::BiasForces,
+            "gravity_torques" => Function::GravityTorques,
+            "coriolis" => Function::Coriolis,
+            "forward_dynamics" => Function::ForwardDynamics,
+            _ => return None,
+        })
+    }
+    /// The function's kind as TOML and the option lists spell it
+    /// (`frame_pose` and `frame_jacobian` for the frame functions).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Function::InverseDynamics => "inverse_dynamics",
+            Function::MassMatrix => "mass_matrix",
+            Function::BiasForces => "bias_forces",
+            Function::GravityTorques => "gravity_torques",
+            Function::Coriolis => "coriolis",
+            Function::ForwardDynamics => "forward_dynamics",
+            Function::FramePose(_) => "frame_pose",
+            Function::FrameJacobian(_) => "frame_jacobian",
+        }
+    }
+    /// The function's name in generated code (`frame_pose_ee_link` for a
+    /// frame function).
+    pub fn rust_name(&self) -> String {
+        let frame = |f: &str| super::module_name(f).trim_start_matches('_').to_string();
+        match self {
+            Function::FramePose(f) => format!("frame_pose_{}", frame(f)),
+            Function::FrameJacobian(f) => format!("frame_jacobian_{}", frame(f)),
+            f => f.name().to_string(),
+        }
+    }
+    /// The state vectors it takes, in argument order.
+    pub fn vectors(&self) -> &'static [&'static str] {
+        match self {
+            Function::InverseDynamics => &["q", "qd", "qdd"],
+            Function::BiasForces | Function::Coriolis => &["q", "qd"],
+            Function::ForwardDynamics => &["q", "qd", "tau"],
+            _ => &["q"],
+        }
+    }
+    /// Which run-time loads of a scene it reads: (gravity, tip wrench,
+    /// payloads).
+    pub(crate) fn loads(&self) -> (bool, bool, bool) {
+        match self {
+            Function::InverseDynamics | Function::ForwardDynamics => (true, true, true),
+            Function::BiasForces | Function::GravityTorques => (true, false, true),
+            Function::MassMatrix | Function::Coriolis => (false, false, true),
+            Function::FramePose(_) | Function::FrameJacobian(_) => (false, false, false),
+        }
+    }
+    /// Its arguments in `scene`: the state vectors, then the scene's
+    /// run-time inputs it reads (gravity, tip wrench, payloads).
+    pub(crate) fn params(&self, scene: &SceneModel) -> Vec<Param> {
+        let mut p: Vec<Param> = self.vectors().iter().map(|v| Param::dof(v)).collect();
+        let (gravity, tip, payloads) = self.loads();
+        if gravity && scene.gravity == ResolvedGravity::Input {
+            p.push(Param::fixed("gravity", 3));
+        }
+        if tip && scene.tip_wrench_frame.is_some() {
+            p.push(Param::fixed("f_tip", 6));
+        }
+        if payloads {
+            p.extend(scene.input_payloads.iter().map(|pl| Param::fixed(&payload_argument(&pl.link), 10)));
+        }
+        p
+    }
+    /// Its output's shape.
+    pub(crate) fn shape(&self) -> Shape {
+        match self {
+            Function::MassMatrix => Shape::Matrix(Dim::Dof, Dim::Dof),
+            Function::FramePose(_) => Shape::Matrix(Dim::Fixed(4), Dim::Fixed(4)),
+            Function::FrameJacobian(_) => Shape::Matrix(Dim::Fixed(6), Dim::Dof),
+            _ => Shape::Vector(Dim::Dof),
+        }
+    }
+    /// The number of outputs for `n` joints.
+    pub(crate) fn output_len(&self, n: usize) -> usize {
+        match self.shape() {
+            Shape::Vector(d) => d.value(n),
+            Shape::Matrix(r, c) => r.value(n) * c.value(n),
+        }
+    }
+    /// The doc comment of `NAME` in `scene`'s module (`count`: its
+    /// operations). A scene without armature, friction or tip wrench says
+    /// what a plain module says.
+    pub(crate) fn doc(&self, scene: &SceneModel, ldlt: bool, count: &OpCount) -> String {
+        let plain = scene.is_plain();
+        let what = match self {
+            Function::InverseDynamics if plain => {
+                "Inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton-Euler algorithm.".to_string()
+            }
+            Function::InverseDynamics => "Inverse dynamics τ = (M(q) + diag(armature))q̈ + C(q, q̇)q̇ + g(q) + friction + J(q)ᵀF_tip, by the recursive Newton-Euler algorithm.".to_string(),
+            Function::MassMatrix if plain => {
+                "The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).".to_string()
+            }
+            Function::MassMatrix => "The mass matrix M(q) + diag(armature) by the composite-rigid-body algorithm (symmetric, `[row][col]`).".to_string(),
+            Function::BiasForces if plain => "The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).".to_string(),
+            Function::BiasForces => "The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q) + friction.".to_string(),
+            Function::GravityTorques => "The gravity torques g(q).".to_string(),
+            Function::Coriolis => "The Coriolis and centripetal torques C(q, q̇)q̇.".to_string(),
+            Function::ForwardDynamics if plain && ldlt => {
+                "Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by CRBA, RNEA and a sparse LᵀDL solve.".to_string()
+            }
+            Function::ForwardDynamics if plain => {
+                "Forward dynamics q̈ = M(q)⁻¹(τ − h(q, q̇)) by the articulated-body algorithm.".to_string()
+            }
+            Function::ForwardDynamics => {
+                "Forward dynamics q̈ = (M(q) + diag(armature))⁻¹(τ − h(q, q̇) − J(q)ᵀF_tip).".to_string()
+            }
+            Function::FramePose(frame) => {
+                format!("The pose of frame `{frame}` in the base frame, as a homogeneous matrix `[row][col]`.")
+            }
+            Function::FrameJacobian(frame) => format!(
+                "The body Jacobian of frame `{frame}` (6 × DOF, rows (ω; v), in the frame): its twist is `J q̇`, and `Jᵀ F` is the joint torque of a wrench `F` given in the frame."
+            ),
+        };
+        if plain {
+            return format!(
+                " {what}\n\n Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity {:?} m/s² in the base frame.\n {count}.",
+                scene.model.gravity.0
+            );
+        }
+        let mut args = String::new();
+        for p in self.params(scene) {
+            let what = match p.name.as_str() {
+                "gravity" => "`gravity`: m/s², in the base frame.".to_string(),
+                "f_tip" => {
+                    let frame = scene.tip_wrench_frame.map(|i| scene.model.frames[i].name.as_str()).unwrap_or("");
+                    format!(
+                        "`f_tip`: the wrench (m; f) frame `{frame}` applies to its environment, in that frame (N·m; N)."
+                    )
+                }
+                name if name.starts_with("payload_") => format!(
+                    "`{name}`: [mass, cx, cy, cz, ixx, iyy, izz, ixy, ixz, iyz], kg, m and kg·m² about the centre of mass, in the link's frame."
+                ),
+                _ => continue,
+            };
+            let _ = write!(args, "\n {what}");
+        }
+        format!(" {what}\n\n Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N.{args}\n {count}.")
+    }
+}
+
+impl FromStr for Function {
+    type Err = String;
+    /// A function without a frame by its name, or `frame_pose:FRAME` /
+    /// `frame_jacobian:FRAME`; the error says what the names are.
+    fn from_str(s: &str) -> Result<Function, String> {
+        let s = s.trim();
+        if let Some(f) = Function::from_name(s) {
+            return Ok(f);
+        }
+        match s.split_once(':') {
+            Some(("frame_pose", frame)) if !frame.trim().is_empty() => Ok(Function::FramePose(frame.trim().into())),
+            Some(("frame_jacobian", frame)) if !frame.trim().is_empty() => {
+                Ok(Function::FrameJacobian(frame.trim().into()))
+            }
+            _ => Err(format!(
+                "unknown function \"{s}\" (the functions are {}, frame_pose:FRAME, frame_jacobian:FRAME)",
+                Function::NAMES.join(", ")
+            )),
+        }
+    }
+}

@@ -1,0 +1,334 @@
+//! What code generation is asked for: [`CodegenOptions`] and its enums.
+//! Each enum parses from the one spelling the command line, the macros and
+//! scene files share ([`FromStr`]).
+
+use super::Function;
+use crate::symbolic::Rewrites;
+use std::str::FromStr;
+
+/// The float type of the generated code.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ScalarType {
+    /// `f64`.
+    #[default]
+    F64,
+    /// `f32` (constants rounded to `f32`).
+    F32,
+}
+
+/// How the generated `forward_dynamics` computes q̈.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ForwardDynamicsMethod {
+    /// Whichever of the two is faster without being less accurate, measured
+    /// on the model when the module is generated (see
+    /// [`fd_choice`](super::fd_choice)); with a run-time payload, LᵀDL (the
+    /// articulated-body algorithm has no payload input).
+    #[default]
+    Auto,
+    /// The articulated-body algorithm: the accurate one on long chains.
+    Aba,
+    /// M by CRBA, h by RNEA, then a sparse LᵀDL solve.
+    Ldlt,
+}
+
+/// Where the generated code gets the sines and cosines of the joint
+/// angles from.
+///
+/// Every function has one body, `NAME_sc(s, c, [q,] …)`, which reads the
+/// sine `s[i]` and cosine `c[i]` of each joint's angle θᵢ = `q[i]` (times
+/// `|axis|` when a revolute joint's axis is not a unit vector; the entries
+/// of prismatic joints are not read) and takes `q` only when the model has
+/// a prismatic joint. Except with [`Trig::Inputs`], the module also has the
+/// contract's `NAME(q, …)`, which computes the sines and cosines and calls
+/// `NAME_sc`. Every module has `sin_cos_all(q)`, the batched sine and
+/// cosine of [`sin_cos_array`](super::sin_cos_array) (no std, no dependency, within 1 ulp).
+///
+/// Why `Batched` is the default:
+///
+/// - **Speed.** Whole generated functions, sines and cosines included, run
+///   faster than with std's `sin_cos` on every machine measured
+///   (`docs/performance.md`).
+/// - **Accuracy.** Within 1 ulp for every finite angle, close to std's
+///   (`tests` of the kernel measure both); the bodies' own rounding is far
+///   larger.
+/// - **No std, no dependency.** The default module is then `#![no_std]`
+///   and depends on nothing (a scene's square roots too: the module's own,
+///   correctly rounded `sqrt`), which is what a module vendored into a
+///   real-time controller needs.
+///
+/// [`Trig::Std`] remains an option (`--trig std`, the macros' `trig =
+/// std`), for code that wants the platform's `sin_cos`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Trig {
+    /// `NAME(q, …)` calls `f64::sin_cos` (or `f32::sin_cos`) per joint, and
+    /// a scene's square roots are `f64::sqrt`: needs std.
+    Std,
+    /// `NAME(q, …)` calls the module's `sin_cos_array` on the angles its
+    /// body reads, and a scene's square roots are the module's `sqrt`
+    /// (`sqrtf`): `#![no_std]`, no dependency, faster than `Std` in the
+    /// benchmarks. The default.
+    #[default]
+    Batched,
+    /// `NAME(q, …)` calls `libm::sincos` (`libm::sincosf` for `f32`), and a
+    /// scene's square roots are `libm::sqrt` (`sqrtf`): `#![no_std]`, needs
+    /// the `libm` crate.
+    Libm,
+    /// Only the `NAME_sc` functions (and `sin_cos_all`), a scene's square
+    /// roots the module's `sqrt`: `#![no_std]`, no dependency; the caller
+    /// brings the sines and cosines.
+    Inputs,
+}
+
+impl Trig {
+    /// Whether the module needs std (only [`Trig::Std`] does).
+    pub fn needs_std(self) -> bool {
+        self == Trig::Std
+    }
+}
+
+/// What to generate and how. Every field has a chained setter, so a
+/// build-script builder or a macro can fill it in one expression.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CodegenOptions {
+    /// The module's name, for the header and the [`Builder`](super::Builder)'s
+    /// output file (default: the robot's).
+    pub name: Option<String>,
+    /// The float type of the output (`f64`).
+    pub scalar: ScalarType,
+    /// Which functions, in the order the module lists them
+    /// ([`Function::DEFAULT`]: the five of the generated-code contract).
+    pub functions: Vec<Function>,
+    /// The forward-dynamics algorithm emitted (the faster one that is as
+    /// accurate, [`ForwardDynamicsMethod::Auto`]); both are traced and
+    /// counted in the header.
+    pub forward_dynamics: ForwardDynamicsMethod,
+    /// Replace constants that are 0 or ±1 up to rounding (on); see the
+    /// [module documentation](self).
+    pub snap_rounding: bool,
+    /// Move the inertia a joint cannot move to its parent (on); see
+    /// [`regroup_inertia`] (with the body frames moved first:
+    /// [`center_prismatic_leaves`], [`slide_origins_along_axes`]).
+    pub regroup_inertia: bool,
+    /// The value-changing graph rewrites (on); see [`Rewrites`].
+    pub rewrites: Rewrites,
+    /// Where the model came from (a file name), for the header.
+    pub source: Option<String>,
+    /// Where the sines and cosines come from ([`Trig::Batched`]: the
+    /// module's own, no std).
+    pub trig: Trig,
+    /// A function body of more than this many `let`s is emitted as private
+    /// parts of at most this many, called in order by the public function
+    /// ([`DEFAULT_SPLIT_LETS`]; `None`: never split). Splitting keeps rustc
+    /// from overflowing its stack on long bodies in debug builds and bounds
+    /// LLVM's super-linear passes in release builds; the results are bit
+    /// for bit those of the unsplit body.
+    pub split_lets: Option<usize>,
+    /// Write `a·b ± c` as `fma(a, b, ±c)` (on): one fused multiply-add
+    /// with a single rounding where the target has one (x86-64 built with
+    /// the `fma` target feature, aarch64), else `a * b + c`, bit for bit
+    /// the unfused code; see [`crate::symbolic::Fusion`] for which sums.
+    /// On by default: it costs nothing where the target has no fused
+    /// multiply-add (the same bits, the same instructions), and where it
+    /// has, the bodies, bound by the floating-point ports, run fewer
+    /// operations (`benches/README.md`, "Run 7"); with
+    /// [`runtime_dispatch`](Self::runtime_dispatch) a default x86-64 build
+    /// has a copy with FMA too. Off, the bodies give the
+    /// same bits on every target. (The module's `sin_cos_array` fuses its
+    /// polynomials wherever the target has FMA, either way: within 1 ulp
+    /// both ways.)
+    pub fma: bool,
+    /// On x86-64 builds without the `avx2` and `fma` target features (a
+    /// default `cargo build`), compile every public function twice, once
+    /// for the build's target and once for AVX2 and FMA, and pick the copy
+    /// at run time by what the processor has (on): see the [module
+    /// documentation](self). Builds that have both features, and other
+    /// targets, get one copy, as without it. On by default, because most
+    /// x86-64 processors in use have both and the bodies are bound by the
+    /// floating-point ports: a default build then runs as fast as a native
+    /// one. The price: a default build's results differ in the last bits
+    /// between machines with and without FMA (on both they are within the
+    /// accuracy the tests check, 1e-12 of the generic solver), and the
+    /// bodies are compiled twice. Off, a build gives the same bits on every
+    /// x86-64 machine. [`generate`](super::generate) leaves it out of modules of more than
+    /// [`DISPATCH_MAX_OPS`] operations (slow to compile), and says so in
+    /// the header.
+    pub runtime_dispatch: bool,
+}
+
+/// [`generate`](super::generate) leaves the run-time dispatch out of a
+/// module whose emitted functions take more operations than this (their
+/// sum, as the header counts them), and says so in the header: rustc
+/// compiles the AVX2 and FMA copies of long bodies (written with
+/// `core::arch`'s `_mm_fmadd_sd`, as `f64::mul_add` is not in `core`) far
+/// more slowly than the body grows; the compile times behind the limit are
+/// in `docs/performance.md`. The bundled robots are under it.
+pub const DISPATCH_MAX_OPS: usize = 5_000;
+
+/// The default [`CodegenOptions::split_lets`]: 2,500 `let`s. rustc with
+/// debug information overflows its stack at somewhat more `let`s in one
+/// function (`docs/performance.md`); the bodies of the bundled robots stay
+/// whole.
+pub const DEFAULT_SPLIT_LETS: usize = 2500;
+
+impl Default for CodegenOptions {
+    fn default() -> Self {
+        CodegenOptions {
+            name: None,
+            scalar: ScalarType::F64,
+            functions: Function::DEFAULT.to_vec(),
+            forward_dynamics: ForwardDynamicsMethod::Auto,
+            snap_rounding: true,
+            regroup_inertia: true,
+            rewrites: Rewrites::default(),
+            source: None,
+            trig: Trig::default(),
+            split_lets: Some(DEFAULT_SPLIT_LETS),
+            fma: true,
+            runtime_dispatch: true,
+        }
+    }
+}
+
+impl CodegenOptions {
+    /// Sets the float type.
+    pub fn scalar(mut self, scalar: ScalarType) -> Self {
+        self.scalar = scalar;
+        self
+    }
+    /// Sets which functions to generate (repeats are dropped).
+    pub fn functions(mut self, functions: impl IntoIterator<Item = Function>) -> Self {
+        self.functions.clear();
+        for f in functions {
+            if !self.functions.contains(&f) {
+                self.functions.push(f);
+            }
+        }
+        self
+    }
+    /// Adds a function to generate.
+    pub fn function(mut self, function: Function) -> Self {
+        if !self.functions.contains(&function) {
+            self.functions.push(function);
+        }
+        self
+    }
+    /// Sets the module's name.
+    pub fn name(mut self, name: impl Into<String>) -> Self {
+        self.name = Some(name.into());
+        self
+    }
+    /// Sets the forward-dynamics algorithm.
+    pub fn forward_dynamics(mut self, method: ForwardDynamicsMethod) -> Self {
+        self.forward_dynamics = method;
+        self
+    }
+    /// Turns the rounding snap on or off.
+    pub fn snap_rounding(mut self, on: bool) -> Self {
+        self.snap_rounding = on;
+        self
+    }
+    /// Turns the regrouping of inertial parameters on or off.
+    pub fn regroup_inertia(mut self, on: bool) -> Self {
+        self.regroup_inertia = on;
+        self
+    }
+    /// Sets the value-changing rewrites.
+    pub fn rewrites(mut self, rewrites: Rewrites) -> Self {
+        self.rewrites = rewrites;
+        self
+    }
+    /// Sets where the sines and cosines come from.
+    pub fn trig(mut self, trig: Trig) -> Self {
+        self.trig = trig;
+        self
+    }
+    /// Sets the longest body emitted as one function (`None`: no limit).
+    pub fn split_lets(mut self, lets: Option<usize>) -> Self {
+        self.split_lets = lets;
+        self
+    }
+    /// Turns fused multiply-adds on or off.
+    pub fn fma(mut self, on: bool) -> Self {
+        self.fma = on;
+        self
+    }
+    /// Turns the run-time choice of AVX2 and FMA copies on or off.
+    pub fn runtime_dispatch(mut self, on: bool) -> Self {
+        self.runtime_dispatch = on;
+        self
+    }
+    /// Names the model's source for the header.
+    pub fn source(mut self, source: impl Into<String>) -> Self {
+        self.source = Some(source.into());
+        self
+    }
+}
+
+/// `options` with the run-time dispatch left out if the module's functions
+/// take `ops` operations, over [`DISPATCH_MAX_OPS`], and the header's line
+/// that says so (empty when nothing was left out).
+pub(super) fn within_dispatch_limit(options: &CodegenOptions, ops: usize) -> (CodegenOptions, String) {
+    if !options.runtime_dispatch || ops <= DISPATCH_MAX_OPS {
+        return (options.clone(), String::new());
+    }
+    let note = format!(
+        "// Run-time dispatch was asked for but left out: the functions take {ops} operations, over\n\
+         //   the {DISPATCH_MAX_OPS} up to which it is emitted (rustc compiles the fused copies of long bodies slowly).\n"
+    );
+    (CodegenOptions { runtime_dispatch: false, ..options.clone() }, note)
+}
+
+
+/// The text after `what` in an error of [`FromStr`]: the spellings accepted.
+fn expected(what: &str, given: &str, names: &[&str]) -> String {
+    format!("unknown {what} \"{given}\" (expected {})", names.join(", "))
+}
+
+impl FromStr for ScalarType {
+    type Err = String;
+    /// `f64` or `f32`.
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.trim() {
+            "f64" => Ok(ScalarType::F64),
+            "f32" => Ok(ScalarType::F32),
+            other => Err(expected("scalar", other, &["f64", "f32"])),
+        }
+    }
+}
+
+impl FromStr for Trig {
+    type Err = String;
+    /// `batched`, `std`, `libm` or `inputs`.
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.trim() {
+            "batched" => Ok(Trig::Batched),
+            "std" => Ok(Trig::Std),
+            "libm" => Ok(Trig::Libm),
+            "inputs" => Ok(Trig::Inputs),
+            other => Err(expected("trigonometry", other, &["batched", "std", "libm", "inputs"])),
+        }
+    }
+}
+
+impl FromStr for ForwardDynamicsMethod {
+    type Err = String;
+    /// `auto`, `aba` or `ldlt`.
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.trim() {
+            "auto" => Ok(ForwardDynamicsMethod::Auto),
+            "aba" => Ok(ForwardDynamicsMethod::Aba),
+            "ldlt" => Ok(ForwardDynamicsMethod::Ldlt),
+            other => Err(expected("forward-dynamics method", other, &["auto", "aba", "ldlt"])),
+        }
+    }
+}
+
+impl ScalarType {
+    /// The Rust type's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            ScalarType::F64 => "f64",
+            ScalarType::F32 => "f32",
+        }
+    }
+}

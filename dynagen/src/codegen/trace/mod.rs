@@ -1,0 +1,289 @@
+//! Tracing: each function a module asks for, run on the symbolic scalar
+//! ([`Expr`]) through the same algorithms the generic solver runs, gives an
+//! expression graph of the model's constants and the function's inputs.
+//!
+//! A few functions are traced from a variant of their algorithm that is
+//! cheaper to unroll and computes the same quantity: the mass matrix (here,
+//! and in the LᵀDL forward dynamics) from the planned CRBA of
+//! [`mass_matrix`], the gravity torques of a model with point masses on
+//! prismatic leaves from [`gravity_fold`]. Forward dynamics is traced both
+//! ways, by the articulated-body algorithm and by CRBA + LᵀDL, and
+//! [`fd_choice`] keeps one. [`sin_cos`] then turns the sines and cosines of
+//! the joint angles into inputs: the body every emitted function has.
+
+pub mod fd_choice;
+mod generic_count;
+mod gravity_fold;
+mod mass_matrix;
+mod sin_cos;
+
+pub use generic_count::generic_op_count;
+pub use sin_cos::{sin_cos_from_q, sin_cos_inputs, SinCosTrace};
+
+use super::emit::payload_argument;
+use super::{counted, CodegenError, CodegenOptions, ForwardDynamicsMethod, Function, GeneratedFunction};
+use crate::algorithms::{kinematics, ldlt, rnea, BodyInertia, TipWrench, Workspace};
+use crate::scene::{dynamics, ResolvedGravity, SceneModel};
+use crate::spatial::{Force, Inertia, Sym3, Transform, Vec3};
+use crate::symbolic::{factor, Expr, Function as Traced, Rewrites, Tracer};
+
+/// Traces `f` of `scene` as the generated module computes it, factored (on
+/// `scene.model` as it is: [`generate`](super::generate) prepares the model
+/// first). `method` picks the forward-dynamics algorithm (`Auto` is the
+/// articulated-body algorithm here); a scene with run-time payloads always
+/// takes LᵀDL.
+pub fn trace(
+    scene: &SceneModel,
+    f: &Function,
+    method: ForwardDynamicsMethod,
+    rewrites: Rewrites,
+) -> Result<Traced, CodegenError> {
+    Ok(factor(&trace_unfactored(scene, f, method, rewrites)?, rewrites))
+}
+
+/// Every function `options` ask for, traced on the prepared `scene`, each
+/// with its `NAME_sc` body and operation count, and the forward dynamics
+/// chosen. With [`ForwardDynamicsMethod::Auto`] both forward dynamics are
+/// traced and [`fd_choice`] marks one emitted (a scene with run-time
+/// payloads has LᵀDL alone).
+pub(crate) fn trace_module(
+    scene: &SceneModel,
+    options: &CodegenOptions,
+) -> Result<(Vec<GeneratedFunction>, fd_choice::FdChoice), CodegenError> {
+    let n = scene.dof();
+    let payloads = !scene.input_payloads.is_empty();
+    let methods: &[ForwardDynamicsMethod] = match options.forward_dynamics {
+        _ if payloads => &[ForwardDynamicsMethod::Ldlt],
+        ForwardDynamicsMethod::Auto => &[ForwardDynamicsMethod::Aba, ForwardDynamicsMethod::Ldlt],
+        ForwardDynamicsMethod::Aba => &[ForwardDynamicsMethod::Aba],
+        ForwardDynamicsMethod::Ldlt => &[ForwardDynamicsMethod::Ldlt],
+    };
+    let mut functions = Vec::new();
+    for f in &options.functions {
+        let inputs: Vec<(String, usize)> = f.params(scene).iter().map(|p| (p.name.clone(), p.len_value(n))).collect();
+        let variants: Vec<Option<ForwardDynamicsMethod>> =
+            if *f == Function::ForwardDynamics { methods.iter().map(|&m| Some(m)).collect() } else { vec![None] };
+        for method in variants {
+            let traced = trace_unfactored(scene, f, method.unwrap_or(ForwardDynamicsMethod::Aba), options.rewrites)?;
+            let sc = sin_cos_inputs(&traced, n, options.rewrites).map_err(CodegenError::Internal)?;
+            let traced = sin_cos_from_q(&sc, options.rewrites);
+            let op_count = counted(&traced, options.fma);
+            functions.push(GeneratedFunction {
+                function: f.clone(),
+                method,
+                name: f.rust_name(),
+                emitted: true,
+                inputs: inputs.clone(),
+                traced,
+                sin_cos_inputs: sc,
+                op_count,
+            });
+        }
+    }
+    let fd = |method| fd_choice::FdChoice { method, why: String::new() };
+    let find = |m| functions.iter().find(|g| g.method == Some(m));
+    let choice = match (find(ForwardDynamicsMethod::Aba), find(ForwardDynamicsMethod::Ldlt)) {
+        (Some(aba), Some(ldlt)) => fd_choice::choose_between(
+            [&aba.traced, &aba.sin_cos_inputs.function],
+            [&ldlt.traced, &ldlt.sin_cos_inputs.function],
+            &aba.inputs,
+        ),
+        _ if payloads => fd_choice::FdChoice {
+            method: ForwardDynamicsMethod::Ldlt,
+            why: "CRBA with the input payloads' inertias and the armature on M's diagonal, RNEA, and a sparse \
+                  LTDL solve"
+                .to_string(),
+        },
+        (None, Some(_)) => fd(ForwardDynamicsMethod::Ldlt),
+        _ => fd(ForwardDynamicsMethod::Aba),
+    };
+    for g in &mut functions {
+        if let Some(m) = g.method {
+            g.emitted = m == choice.method;
+        }
+    }
+    Ok((functions, choice))
+}
+
+/// The run-time loads a function of a scene reads, as symbolic inputs (or
+/// folded constants): gravity, the tip wrench, the payloads.
+struct Loads {
+    gravity: Option<Vec3<Expr>>,
+    tips: Vec<TipWrench<Expr>>,
+    payloads: Vec<BodyInertia<Expr>>,
+}
+
+impl Loads {
+    /// The loads of `f` in `scene`, the inputs declared on `tracer` in
+    /// argument order (after the state vectors).
+    fn of(scene: &SceneModel, f: &Function, tracer: &Tracer) -> Loads {
+        let model = &scene.model;
+        let (gravity, tip, payloads) = f.loads();
+        let gravity = match scene.gravity {
+            _ if !gravity => None,
+            ResolvedGravity::None => None,
+            ResolvedGravity::Constant(_) => Some(Vec3::from_f64(&model.gravity)),
+            ResolvedGravity::Input => {
+                let g = tracer.inputs("gravity", 3);
+                Some(Vec3([g[0], g[1], g[2]]))
+            }
+        };
+        let tips = match scene.tip_wrench_frame {
+            Some(frame) if tip => {
+                let w = tracer.inputs("f_tip", 6);
+                vec![TipWrench { frame, wrench: Force::from_array([w[0], w[1], w[2], w[3], w[4], w[5]]) }]
+            }
+            _ => Vec::new(),
+        };
+        let mut list = Vec::new();
+        for p in scene.input_payloads.iter().filter(|_| payloads) {
+            let v = tracer.inputs(&payload_argument(&p.link), 10);
+            // On the base a payload moves nothing; on a body it enters the
+            // recursions as one more body inertia, moved into the body's
+            // frame (frames move with the bodies the preparation slides, so
+            // this is exact in the prepared model).
+            let Some(body) = model.frames[p.frame].body else { continue };
+            let inertia =
+                Inertia::from_mass_com_inertia(v[0], Vec3([v[1], v[2], v[3]]), Sym3([v[4], v[5], v[6], v[7], v[8], v[9]]));
+            let place = Transform::<Expr>::from_f64(&model.frames[p.frame].placement);
+            list.push(BodyInertia { body, inertia: place.inertia_to_parent(&inertia) });
+        }
+        Loads { gravity, tips, payloads: list }
+    }
+}
+
+/// Traces `f` of `scene` without factoring; see [`trace`].
+pub(crate) fn trace_unfactored(
+    scene: &SceneModel,
+    f: &Function,
+    method: ForwardDynamicsMethod,
+    rewrites: Rewrites,
+) -> Result<Traced, CodegenError> {
+    let model = &scene.model;
+    let n = model.dof();
+    let use_ldlt =
+        *f == Function::ForwardDynamics && (method == ForwardDynamicsMethod::Ldlt || !scene.input_payloads.is_empty());
+    // The mass-matrix plan is made (traced) before this trace starts.
+    let plan = if *f == Function::MassMatrix || use_ldlt { Some(mass_matrix::plan(model, rewrites)?) } else { None };
+    let frame = match f {
+        Function::FramePose(name) | Function::FrameJacobian(name) => {
+            Some(scene.frame(f.name(), name).map_err(|e| CodegenError::Scene(Box::new(e)))?)
+        }
+        _ => None,
+    };
+    let tracer = Tracer::start_with(rewrites)?;
+    let args: Vec<Vec<Expr>> = f.vectors().iter().map(|name| tracer.inputs(name, n)).collect();
+    let loads = Loads::of(scene, f, &tracer);
+    let mut ws = Workspace::<Expr>::new(model);
+    let zero = tracer.constant(0.0);
+    let mut out = vec![zero; f.output_len(n)];
+    let (q, g, pl) = (&args[0], loads.gravity.as_ref(), &loads.payloads[..]);
+    match f {
+        Function::InverseDynamics => {
+            dynamics::inverse_dynamics_with_payloads(scene, &mut ws, q, &args[1], &args[2], g, &loads.tips, pl, &mut out)
+        }
+        Function::MassMatrix => {
+            mass_matrix::mass_matrix(model, &mut ws, q, pl, plan.as_ref().expect("planned above"), &mut out);
+            dynamics::add_armature_diagonal(scene, &mut out);
+        }
+        Function::BiasForces if pl.is_empty() => dynamics::bias_forces(scene, &mut ws, q, &args[1], g, &mut out),
+        Function::BiasForces => {
+            rnea::rnea_with_payloads(model, &mut ws, q, Some(&args[1]), None, g, &[], pl, &mut out);
+            dynamics::add_friction(scene, &args[1], &mut out);
+        }
+        Function::GravityTorques => match (g, gravity_fold::fold_for_gravity(model)) {
+            // Point masses on prismatic leaves folded into their parents; the
+            // model's own workspace does not fit the folded model.
+            (Some(g), Some((folded, leaves))) if pl.is_empty() => {
+                let mut ws = Workspace::<Expr>::new(&folded);
+                gravity_fold::gravity_torques(&folded, &leaves, &mut ws, q, g, &mut out);
+            }
+            (Some(_), _) if !pl.is_empty() => {
+                rnea::rnea_with_payloads(model, &mut ws, q, None, None, g, &[], pl, &mut out)
+            }
+            _ => dynamics::gravity_torques(scene, &mut ws, q, g, &mut out),
+        },
+        Function::Coriolis if pl.is_empty() => dynamics::coriolis(scene, &mut ws, q, &args[1], &mut out),
+        Function::Coriolis => rnea::rnea_with_payloads(model, &mut ws, q, Some(&args[1]), None, None, &[], pl, &mut out),
+        Function::ForwardDynamics if use_ldlt => {
+            // M by the planned CRBA with the armature on its diagonal, h by
+            // RNEA, on τ − friction, then the sparse LᵀDL solve.
+            let plan = plan.as_ref().expect("planned above");
+            let mut rhs = args[2].clone();
+            dynamics::sub_friction(scene, &args[1], &mut rhs);
+            rnea::rnea_with_payloads(model, &mut ws, q, Some(&args[1]), None, g, &loads.tips, pl, &mut out);
+            for i in 0..n {
+                out[i] = rhs[i] - out[i];
+            }
+            let mut m = vec![zero; n * n];
+            mass_matrix::mass_matrix(model, &mut ws, q, pl, plan, &mut m);
+            dynamics::add_armature_diagonal(scene, &mut m);
+            ldlt::factorise(model, &mut m);
+            ldlt::solve(model, &m, &mut out);
+        }
+        Function::ForwardDynamics => {
+            let mut scratch = vec![zero; n];
+            dynamics::forward_dynamics(scene, &mut ws, q, &args[1], &args[2], g, &loads.tips, &mut scratch, &mut out)
+        }
+        Function::FramePose(_) | Function::FrameJacobian(_) => {
+            let frame = frame.expect("looked up above");
+            kinematics::forward_kinematics(model, &mut ws, q);
+            if matches!(f, Function::FramePose(_)) {
+                let t = kinematics::frame_pose(model, &ws, frame).to_homogeneous();
+                for (o, x) in out.iter_mut().zip(t.iter().flatten()) {
+                    *o = *x;
+                }
+            } else {
+                kinematics::body_jacobian(model, &ws, frame, &mut out);
+            }
+        }
+    }
+    drop(ws);
+    let graph = tracer.finish();
+    Ok(Traced::new(&f.rust_name(), &graph, &out))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algorithms::{crba, forward_dynamics};
+    use crate::codegen::{prepare, CodegenOptions};
+    use crate::scene::Scene;
+
+    /// The codegen variant of CRBA never needs more operations than the
+    /// generic one it replaces in the trace.
+    #[test]
+    fn the_planned_mass_matrix_is_no_costlier_than_the_generic_crba() {
+        let opts = CodegenOptions::default();
+        for name in ["ur5", "panda", "torso_two_arms", "planar_2link"] {
+            let path = format!("{}/robots/{name}.urdf", env!("CARGO_MANIFEST_DIR"));
+            let model = crate::Model::from_urdf_file(path).unwrap();
+            let (scene, _) = prepare::prepare(&Scene::default().apply(&model).unwrap(), &opts);
+            let (model, n) = (&scene.model, scene.dof());
+            let count = |f: Traced| sin_cos_inputs(&f, n, opts.rewrites).unwrap().function.op_count();
+            // The same two functions with the generic CRBA: M, and the LᵀDL forward dynamics.
+            let generic = |f: &Function| {
+                let tracer = Tracer::start_with(opts.rewrites).unwrap();
+                let args: Vec<Vec<Expr>> = f.vectors().iter().map(|v| tracer.inputs(v, n)).collect();
+                let mut ws = Workspace::<Expr>::new(model);
+                let mut out = vec![Expr::zero(); f.output_len(n)];
+                let g = Vec3::from_f64(&model.gravity);
+                match f {
+                    Function::MassMatrix => crba::crba(model, &mut ws, &args[0], &mut out),
+                    _ => forward_dynamics::forward_dynamics_ldlt(
+                        model, &mut ws, &args[0], &args[1], &args[2], Some(&g), &[], &mut out,
+                    ),
+                }
+                drop(ws);
+                count(Traced::new(&f.rust_name(), &tracer.finish(), &out))
+            };
+            for f in [Function::MassMatrix, Function::ForwardDynamics] {
+                let generic = generic(&f);
+                let planned =
+                    count(trace_unfactored(&scene, &f, ForwardDynamicsMethod::Ldlt, opts.rewrites).unwrap());
+                println!("{name} {f:?}: generic CRBA {generic}, planned {planned}");
+                assert!(planned.total() <= generic.total(), "{name} {f:?}: {planned} vs {generic}");
+            }
+        }
+    }
+}
