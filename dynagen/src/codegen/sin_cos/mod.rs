@@ -3,7 +3,7 @@
 //! `core` has no `sin` or `cos` on stable Rust, so a `#![no_std]` module
 //! either needs the `libm` crate, takes the sines and cosines as inputs, or
 //! brings its own: [`sin_cos_array`] is that one, written once in
-//! `sin_cos_kernel.rs` (and, for `f32` modules, `sin_cos_kernel_f32.rs`) and
+//! `kernel.rs` (and, for `f32` modules, `kernel_f32.rs`) and
 //! copied verbatim into each module (it is compiled here too, for the tests
 //! and the benchmarks). Each module has
 //!
@@ -52,15 +52,14 @@ use quote::quote;
 #[allow(dead_code)]
 const RUNTIME_DISPATCH: bool = false;
 
-include!("sin_cos_kernel.rs");
-include!("sin_cos_kernel_f32.rs");
+include!("kernel.rs");
+include!("kernel_f32.rs");
 
 /// The kernel's source text, as copied into generated `f64` modules.
-pub(crate) const KERNEL_SOURCE: &str = include_str!("sin_cos_kernel.rs");
+pub(crate) const KERNEL_SOURCE: &str = include_str!("kernel.rs");
 
 /// The kernel's source text for generated `f32` modules.
-pub(crate) const KERNEL_SOURCE_F32: &str =
-    concat!(include_str!("sin_cos_kernel.rs"), include_str!("sin_cos_kernel_f32.rs"));
+pub(crate) const KERNEL_SOURCE_F32: &str = concat!(include_str!("kernel.rs"), include_str!("kernel_f32.rs"));
 
 /// The kernel text a module of scalar `scalar` carries, after the constant
 /// `RUNTIME_DISPATCH` ([`CodegenOptions::runtime_dispatch`](super::CodegenOptions::runtime_dispatch)).
