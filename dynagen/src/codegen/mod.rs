@@ -127,6 +127,8 @@ pub use hash::{canonical_text, fnv1a64, model_hash};
 pub use literal::float_literal_text;
 pub use rounding::{snap_rounding, SnappedConstant, ROUNDING_TOLERANCE};
 pub use scene::{generate_scene, payload_argument, scene_function_name, trace_scene, SceneFunction};
+#[doc(hidden)]
+pub use sin_cos::kernel_internals;
 pub use sin_cos::{sin_cos_array, sin_cos_array_f32, sin_cos_batch, sin_cos_kernel, sin_cos_kernel_f32};
 pub use trace::{sin_cos_from_q, sin_cos_inputs, trace, trace_sin_cos_inputs, FunctionKind, SinCosTrace};
 
