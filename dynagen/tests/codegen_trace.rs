@@ -1,5 +1,6 @@
-//! The traced functions, evaluated by the graph interpreter, against the
-//! generic f64 solver on random states of every bundled robot.
+//! The trace stage: the traced functions, evaluated by the graph
+//! interpreter, against the generic f64 solver on random states of every
+//! bundled robot, and the UR5's operation counts.
 
 mod support;
 
