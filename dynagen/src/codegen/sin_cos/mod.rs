@@ -4,8 +4,8 @@
 //! either needs the `libm` crate, takes the sines and cosines as inputs, or
 //! brings its own: [`sin_cos_array`] is that one, written once in
 //! `kernel.rs` (and, for `f32` modules, `kernel_f32.rs`) and
-//! copied verbatim into each module (it is compiled here too, for the tests
-//! and the benchmarks). Each module has
+//! copied verbatim into each module (it is compiled here too, for the tests,
+//! `dynagen/tests/sin_cos_kernel.rs`, and the benchmarks). Each module has
 //!
 //! ```text
 //! pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF])
