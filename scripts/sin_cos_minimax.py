@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Minimax coefficients of the batched sine and cosine of generated modules
-(dynagen/src/codegen/sin_cos_kernel.rs), by the Remez exchange algorithm in
+(dynagen/src/codegen/sin_cos/kernel.rs), by the Remez exchange algorithm in
 50-digit arithmetic (mpmath), rounded to the nearest double.
 
     pip install mpmath

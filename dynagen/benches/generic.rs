@@ -8,12 +8,17 @@
 //! Run with `cargo bench --bench generic -- --warm-up-time 1 --measurement-time 3`;
 //! results are in `benches/README.md`.
 
+// The integration tests' support module: its xorshift generator.
+#[path = "../tests/support/mod.rs"]
+mod support;
+
 use criterion::{criterion_group, criterion_main, Criterion};
 use dynagen::algorithms::{aba, bias, crba, forward_dynamics, rnea, Workspace};
 use dynagen::spatial::Vec3;
 use dynagen::Model;
 use std::hint::black_box;
 use std::path::Path;
+use support::Rng;
 
 /// How many states are cycled through.
 const STATES: usize = 16;
@@ -25,24 +30,8 @@ struct State {
     qdd: Vec<f64>,
 }
 
-/// A small deterministic generator (xorshift64*), uniform in [-1, 1).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let x = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d);
-        (x >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-    fn vec(&mut self, n: usize, scale: f64) -> Vec<f64> {
-        (0..n).map(|_| scale * self.next()).collect()
-    }
-}
-
 fn states(n: usize) -> Vec<State> {
-    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut rng = Rng::new(0x9e37_79b9_7f4a_7c15);
     (0..STATES).map(|_| State { q: rng.vec(n, 3.0), qd: rng.vec(n, 2.0), qdd: rng.vec(n, 5.0) }).collect()
 }
 

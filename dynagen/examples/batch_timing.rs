@@ -18,29 +18,21 @@
 //! `CALLS=n` makes n calls of each algorithm without timing (for counting
 //! instructions under `valgrind --tool=callgrind`).
 
+// The integration tests' support module: its xorshift generator.
+#[path = "../tests/support/mod.rs"]
+mod support;
+
 use dynagen::algorithms::{aba, bias, crba, forward_dynamics, rnea, Workspace};
 use dynagen::spatial::Vec3;
 use dynagen::Model;
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Instant;
+use support::Rng;
 
 const STATES: usize = 16;
 const BATCH: usize = 1000;
 const BATCHES: usize = 300;
-
-/// `n` numbers uniform in `[-scale, scale)` from a xorshift64* generator.
-fn uniform(seed: &mut u64, n: usize, scale: f64) -> Vec<f64> {
-    (0..n)
-        .map(|_| {
-            *seed ^= *seed >> 12;
-            *seed ^= *seed << 25;
-            *seed ^= *seed >> 27;
-            let x = seed.wrapping_mul(0x2545_f491_4f6c_dd1d);
-            scale * ((x >> 11) as f64 / (1u64 << 52) as f64 - 1.0)
-        })
-        .collect()
-}
 
 /// "min/median" ns per call of `f(state index)`.
 fn time(calls: Option<usize>, mut f: impl FnMut(usize)) -> String {
@@ -72,10 +64,9 @@ fn main() {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("robots").join(format!("{robot}.urdf"));
         let model = Model::from_urdf_file(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let n = model.dof();
-        let mut seed = 0x9e37_79b9_7f4a_7c15;
-        let states: Vec<[Vec<f64>; 3]> = (0..STATES)
-            .map(|_| [uniform(&mut seed, n, 3.0), uniform(&mut seed, n, 2.0), uniform(&mut seed, n, 5.0)])
-            .collect();
+        let mut rng = Rng::new(0x9e37_79b9_7f4a_7c15);
+        let states: Vec<[Vec<f64>; 3]> =
+            (0..STATES).map(|_| [rng.vec(n, 3.0), rng.vec(n, 2.0), rng.vec(n, 5.0)]).collect();
         let g = Vec3(model.gravity.0);
         let mut ws = Workspace::<f64>::new(&model);
         let (mut out, mut m) = (vec![0.0; n], vec![0.0; n * n]);

@@ -2,13 +2,15 @@
 //! checked against the library called here on the same input, and every
 //! kind of bad input giving one error line that names the file and the item.
 
+mod support;
+
 use assert_cmd::Command;
 use dynagen::Robot;
 use nalgebra::{DVector, Vector3};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
-const ROBOTS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/robots");
+use support::ROBOTS;
 
 fn dynagen() -> Command {
     Command::cargo_bin("dynagen").expect("the dynagen binary is built for integration tests")
@@ -26,10 +28,6 @@ fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     let p = dir.join(name);
     std::fs::write(&p, text).unwrap();
     p
-}
-
-fn ur5() -> Robot {
-    Robot::from_urdf_file(format!("{ROBOTS}/ur5.urdf")).unwrap()
 }
 
 /// Runs and expects failure with `status`: stderr is one line `error: …`,
@@ -63,7 +61,7 @@ fn inspect_the_bundled_ur5_from_any_directory() {
 
     // The joint table lists every joint in the library's order, with its
     // index, type, axis and limits (UR5: ±2π rad, π rad/s; 150 and 28 N·m).
-    let robot = ur5();
+    let robot = support::robot("ur5");
     let names = robot.joint_names();
     assert_eq!(names.len(), 6);
     let axes = ["(0, 0, 1)", "(0, 1, 0)", "(0, 1, 0)", "(0, 1, 0)", "(0, 0, 1)", "(0, 1, 0)"];
@@ -295,7 +293,7 @@ fn eval_on_the_bundled_ur5_agrees_bit_for_bit_with_the_library() {
     let file = write(&dir, "states.json", &states_file(&states));
     let out = succeeds(dynagen().arg("eval").arg("--input").arg(&file));
     let doc: Value = serde_json::from_str(&out).unwrap();
-    let mut robot = ur5();
+    let mut robot = support::robot("ur5");
     let names: Vec<&str> = doc["joint_names"].as_array().unwrap().iter().map(|v| v.as_str().unwrap()).collect();
     assert_eq!(names, robot.joint_names());
     let results = doc["results"].as_array().unwrap();
@@ -357,12 +355,12 @@ fn eval_on_a_file_with_gravity_agrees_bit_for_bit_with_the_library() {
 #[test]
 fn eval_accepts_integers_and_checks_joint_names() {
     let dir = scratch("eval_joint_names");
-    let robot = ur5();
+    let robot = support::robot("ur5");
     let names: Vec<String> = robot.joint_names().iter().map(|n| format!("\"{n}\"")).collect();
     let good = format!("{{\"joint_names\": [{}], \"states\": [{{\"q\": [0, 1, 0, 0, 0, 0]}}]}}", names.join(", "));
     let out = succeeds(dynagen().args(["eval", "--input", "-"]).write_stdin(good));
     let doc: Value = serde_json::from_str(&out).unwrap();
-    let mut robot = ur5();
+    let mut robot = support::robot("ur5");
     let g = robot.gravity_torques(&DVector::from_column_slice(&[0.0, 1.0, 0.0, 0.0, 0.0, 0.0])).unwrap();
     bits_eq("g", &doc["results"][0]["g"], g.as_slice());
 
@@ -651,8 +649,7 @@ fn generate_errors_are_one_line_naming_the_option_or_file() {
     let out = succeeds(dynagen().args(["generate", "--functions", "coriolis,inverse_dynamics"]));
     assert!(out.contains("pub fn coriolis(q: &[f64; DOF], qd: &[f64; DOF])") && !out.contains("fn mass_matrix"));
     // The bundled controller scene.
-    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/ur5_controller.toml");
-    let out = succeeds(dynagen().args(["generate", "--scene", scene]));
+    let out = succeeds(dynagen().args(["generate", "--scene"]).arg(support::scene_path("ur5_controller")));
     assert!(out.contains("in the scene \"ur5_controller\""), "{out}");
     assert!(out.contains("f_tip: &[f64; 6]") && out.contains("pub fn frame_jacobian_ee_link("), "{out}");
     assert!(out.contains("//   functions not generated: coriolis"), "{out}");

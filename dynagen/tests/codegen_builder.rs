@@ -2,12 +2,14 @@
 //! `codegen::generate`'s source, written only when it changes, and every
 //! error's message names the file and the item.
 
+mod support;
+
 use dynagen::codegen::{generate, BuildError, CodegenOptions, Functions, ScalarType};
 use dynagen::scene::{Gravity, Scene};
 use dynagen::Builder;
 use std::path::{Path, PathBuf};
 
-const ROBOTS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/robots");
+use support::ROBOTS;
 
 fn scratch(test: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("builder").join(test);

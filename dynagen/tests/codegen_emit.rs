@@ -1,19 +1,17 @@
 //! The emitted Rust: determinism, literals, header, contract, and what the
 //! generator does with constants that are 0 or ±1 up to rounding.
 
+mod support;
+
 use dynagen::codegen::{
     float_literal_text, generate, model_hash, snap_rounding, CodegenOptions, FunctionKind, Functions, ScalarType, Trig,
 };
 use dynagen::model::{Inertial, JointDescription, RobotBuilder};
 use dynagen::Model;
 
-fn ur5() -> Model {
-    Model::from_urdf_file(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/ur5.urdf")).unwrap()
-}
-
 #[test]
 fn generating_twice_gives_the_same_bytes() {
-    let model = ur5();
+    let model = support::model("ur5");
     let opts = CodegenOptions::default().source("ur5.urdf");
     let a = generate(&model, &opts).unwrap().source;
     let b = generate(&model, &opts).unwrap().source;
@@ -30,7 +28,7 @@ fn generating_twice_gives_the_same_bytes() {
 
 #[test]
 fn the_module_follows_the_contract_and_parses() {
-    let module = generate(&ur5(), &CodegenOptions::default().source("ur5.urdf")).unwrap();
+    let module = generate(&support::model("ur5"), &CodegenOptions::default().source("ur5.urdf")).unwrap();
     let src = &module.source;
     for sig in [
         "pub const DOF: usize = 6;",
@@ -64,7 +62,7 @@ fn the_module_follows_the_contract_and_parses() {
     // The default sines and cosines are the module's own: no std.
     assert!(!src.contains(".sin_cos()") && !src.contains("libm"));
     // std's, asked for: one `.sin_cos()` per angle a body reads (below for the default).
-    let std = generate(&ur5(), &CodegenOptions::default().trig(Trig::Std)).unwrap();
+    let std = generate(&support::model("ur5"), &CodegenOptions::default().trig(Trig::Std)).unwrap();
     for f in std.functions.iter().filter(|f| f.emitted) {
         let wrapper = function_text(&std.source, &format!("pub fn {}(", f.kind.fn_name()));
         assert_eq!(wrapper.matches(".sin_cos()").count(), f.op_count.sin_cos, "{wrapper}");
@@ -125,7 +123,7 @@ fn a_selection_of_functions_and_f32() {
         gravity_torques: true,
         forward_dynamics: false,
     });
-    let module = generate(&ur5(), &opts).unwrap();
+    let module = generate(&support::model("ur5"), &opts).unwrap();
     let src = &module.source;
     assert!(src.contains("pub fn mass_matrix(q: &[f32; DOF]) -> [[f32; DOF]; DOF]"));
     assert!(src.contains("pub fn gravity_torques(q: &[f32; DOF]) -> [f32; DOF]"));
@@ -251,7 +249,7 @@ fn constants_within_rounding_of_zero_or_one() {
 
 #[test]
 fn the_mass_matrix_is_computed_once_per_pair() {
-    let module = generate(&ur5(), &CodegenOptions::default()).unwrap();
+    let module = generate(&support::model("ur5"), &CodegenOptions::default()).unwrap();
     let f = module.function(FunctionKind::MassMatrix).unwrap();
     let n = 6;
     let out = f.outputs();
@@ -264,13 +262,15 @@ fn the_mass_matrix_is_computed_once_per_pair() {
 
 #[test]
 fn a_constant_without_a_literal_is_an_error_naming_the_function() {
-    let mut model = ur5();
+    let mut model = support::model("ur5");
     model.gravity = dynagen::spatial::Vec3([f64::INFINITY, 0.0, 0.0]);
     let Err(err) = generate(&model, &CodegenOptions::default()) else { panic!("an infinite gravity was accepted") };
     let msg = err.to_string();
     assert!(msg.contains("function inverse_dynamics") && msg.contains("inf"), "{msg}");
     // and a trace already running on the thread is reported, not a panic
     let _t = dynagen::symbolic::Tracer::start().unwrap();
-    let Err(err) = generate(&ur5(), &CodegenOptions::default()) else { panic!("a nested trace was accepted") };
+    let Err(err) = generate(&support::model("ur5"), &CodegenOptions::default()) else {
+        panic!("a nested trace was accepted")
+    };
     assert!(err.to_string().contains("already active"), "{err}");
 }

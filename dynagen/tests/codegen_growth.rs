@@ -2,13 +2,11 @@
 //! number of joints for τ (RNEA is O(n)), quadratic for M (n(n+1)/2
 //! entries, each a projection of a force carried up the chain).
 
-#[path = "support/skewed_chain.rs"]
-mod skewed_chain;
+mod support;
 
 use dynagen::codegen::{trace, FunctionKind};
 use dynagen::symbolic::Rewrites;
-use dynagen::Model;
-use skewed_chain::skewed_chain as chain;
+use support::skewed_chain::skewed_chain as chain;
 
 #[test]
 fn op_counts_grow_linearly_for_tau_and_quadratically_for_m() {
@@ -94,8 +92,7 @@ fn bundled_op_counts_do_not_grow() {
         ),
     ];
     for (robot, limits) in limits {
-        let path = format!("{}/robots/{robot}.urdf", env!("CARGO_MANIFEST_DIR"));
-        let module = generate(&Model::from_urdf_file(&path).unwrap(), &CodegenOptions::default()).unwrap();
+        let module = generate(&support::model(robot), &CodegenOptions::default()).unwrap();
         for (kind, limit, path_limit) in limits {
             let f = module.functions.iter().find(|f| f.kind == kind).unwrap();
             let (count, path) = (f.op_count, f.sin_cos_inputs.function.critical_path());
@@ -129,8 +126,7 @@ fn forward_dynamics_is_chosen_by_speed_and_accuracy() {
         gravity_torques: false,
         forward_dynamics: true,
     };
-    let robot =
-        |name: &str| Model::from_urdf_file(format!("{}/robots/{name}.urdf", env!("CARGO_MANIFEST_DIR"))).unwrap();
+    let robot = support::model;
     // The UR5: LTDL as accurate and faster. The Panda: LTDL faster but
     // 4.5 times ABA's error (1.8e-15 against 4.0e-16). A 40-joint chain: ABA
     // faster and far more accurate.

@@ -4,6 +4,8 @@
 //! `tests/tests/generated_scene.rs` compiles two of them), and the
 //! operation count of each option against the full scene's.
 
+mod support;
+
 use dynagen::codegen::{generate_scene, CodegenOptions, FunctionKind, GeneratedModule, Trig};
 use dynagen::scene::{
     Function, Gravity, PayloadInertia, ResolvedGravity, ScalarType, Scene, SceneInputs, SceneModel, SceneRobot, Target,
@@ -11,40 +13,17 @@ use dynagen::scene::{
 use dynagen::Model;
 use nalgebra::{DVector, Vector3, Vector6};
 use std::sync::OnceLock;
+use support::{norm_rel_err, Rng};
 
-/// A small deterministic generator (xorshift64*), uniform in [-1, 1).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let x = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d);
-        (x >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-    fn vec(&mut self, n: usize, scale: f64) -> Vec<f64> {
-        (0..n).map(|_| scale * self.next()).collect()
-    }
-    /// A physical payload: mass in [0.5, 1.5] kg, centre of mass within
-    /// 10 cm, a positive diagonal inertia with a small product.
-    fn payload(&mut self) -> PayloadInertia {
-        let d = [2e-3 + 2e-4 * self.next(), 2e-3 + 2e-4 * self.next(), 1.5e-3 + 2e-4 * self.next()];
-        PayloadInertia::new(
-            1.0 + 0.5 * self.next(),
-            [0.1 * self.next(), 0.1 * self.next(), 0.1 * self.next()],
-            [d[0], d[1], d[2], 1e-5 * self.next(), 0.0, 0.0],
-        )
-    }
-}
-
-fn ur5() -> Model {
-    Model::from_urdf_file(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/ur5.urdf")).unwrap()
-}
-
-fn rel_err(got: &[f64], want: &[f64]) -> f64 {
-    let norm = want.iter().map(|x| x * x).sum::<f64>().sqrt().max(1e-300);
-    let diff = got.iter().zip(want).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
-    diff / norm
+/// A physical payload: mass in [0.5, 1.5] kg, centre of mass within
+/// 10 cm, a positive diagonal inertia with a small product.
+fn payload(rng: &mut Rng) -> PayloadInertia {
+    let d = [2e-3 + 2e-4 * rng.signed(), 2e-3 + 2e-4 * rng.signed(), 1.5e-3 + 2e-4 * rng.signed()];
+    PayloadInertia::new(
+        1.0 + 0.5 * rng.signed(),
+        [0.1 * rng.signed(), 0.1 * rng.signed(), 0.1 * rng.signed()],
+        [d[0], d[1], d[2], 1e-5 * rng.signed(), 0.0, 0.0],
+    )
 }
 
 /// Row-major entries of an nalgebra matrix.
@@ -74,13 +53,13 @@ fn check_with(
     let module = generate_scene(&applied, options).unwrap();
     let mut robot = SceneRobot::new(applied.clone());
     let n = applied.dof();
-    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut rng = Rng::new(0x9e37_79b9_7f4a_7c15);
     let f32 = applied.scalar == ScalarType::F32;
     for _ in 0..states {
         let (q, qd, qdd, tau) = (rng.vec(n, 3.0), rng.vec(n, 2.0), rng.vec(n, 5.0), rng.vec(n, 20.0));
-        let gravity = [rng.next(), rng.next(), -9.81 + rng.next()];
+        let gravity = [rng.signed(), rng.signed(), -9.81 + rng.signed()];
         let f_tip = rng.vec(6, 10.0);
-        let payloads: Vec<PayloadInertia> = applied.input_payloads.iter().map(|_| rng.payload()).collect();
+        let payloads: Vec<PayloadInertia> = applied.input_payloads.iter().map(|_| payload(&mut rng)).collect();
         let mut named: Vec<(String, Vec<f64>)> = vec![
             ("q".into(), q.clone()),
             ("qd".into(), qd.clone()),
@@ -124,7 +103,7 @@ fn check_with(
                 Function::FrameJacobian(frame) => rows(&robot.frame_jacobian(frame, &dv(&q)).unwrap()),
             };
             assert_eq!(got.len(), want.len(), "{}", f.name);
-            let e = rel_err(&got, &want);
+            let e = norm_rel_err(&got, &want, 1e-300);
             // g(q) = 0 without gravity: compare absolutely.
             let e = if want.iter().all(|x| *x == 0.0) { got.iter().fold(0.0f64, |m, x| m.max(x.abs())) } else { e };
             assert!(e < tol, "{}: relative error {e:e}\n got {got:?}\nwant {want:?}", f.name);
@@ -149,7 +128,7 @@ fn full_scene() -> Scene {
 /// The full scene's module, generated once and checked against SceneRobot.
 fn full() -> &'static GeneratedModule {
     static FULL: OnceLock<GeneratedModule> = OnceLock::new();
-    FULL.get_or_init(|| check(&ur5(), &full_scene(), 5, 1e-12).1)
+    FULL.get_or_init(|| check(&support::model("ur5"), &full_scene(), 5, 1e-12).1)
 }
 
 const ALL: [&str; 8] = [
@@ -185,7 +164,7 @@ fn the_full_scene_is_the_plain_module() {
     // the scene path adds nothing when the scene asks for nothing.
     // The forward dynamics is chosen between ABA and CRBA + LᵀDL as the
     // plain module's is (the UR5 gets LᵀDL, with the same sentence why).
-    let plain = dynagen::codegen::generate(&ur5(), &CodegenOptions::default()).unwrap();
+    let plain = dynagen::codegen::generate(&support::model("ur5"), &CodegenOptions::default()).unwrap();
     for (kinds, name) in [
         (&[FunctionKind::InverseDynamics][..], "inverse_dynamics"),
         (&[FunctionKind::MassMatrix], "mass_matrix"),
@@ -212,7 +191,7 @@ fn the_full_scene_is_the_plain_module() {
 #[test]
 fn a_function_subset_emits_only_those() {
     let scene = Scene::new().functions([Function::InverseDynamics, Function::Coriolis]);
-    let (_, m) = check(&ur5(), &scene, 5, 1e-12);
+    let (_, m) = check(&support::model("ur5"), &scene, 5, 1e-12);
     let d = deltas("functions = [inverse_dynamics, coriolis]", &m);
     assert_eq!((delta(&d, "inverse_dynamics"), delta(&d, "coriolis")), (0, 0));
     for f in ["mass_matrix", "bias_forces", "gravity_torques", "forward_dynamics", "frame_pose"] {
@@ -229,7 +208,7 @@ fn a_function_subset_emits_only_those() {
 #[test]
 fn torque_only_without_gravity_has_fewer_operations_and_no_mass_matrix() {
     let scene = Scene::new().functions([Function::InverseDynamics]).gravity(Gravity::None);
-    let (_, m) = check(&ur5(), &scene, 5, 1e-12);
+    let (_, m) = check(&support::model("ur5"), &scene, 5, 1e-12);
     let d = deltas("tau only, gravity none", &m);
     assert!(delta(&d, "inverse_dynamics") < 0);
     assert!(!m.source.contains("fn mass_matrix") && m.source.contains("pub fn inverse_dynamics("));
@@ -238,7 +217,7 @@ fn torque_only_without_gravity_has_fewer_operations_and_no_mass_matrix() {
 
 #[test]
 fn gravity_none_removes_every_gravity_term() {
-    let (_, m) = check(&ur5(), &full_scene().gravity(Gravity::None), 5, 1e-12);
+    let (_, m) = check(&support::model("ur5"), &full_scene().gravity(Gravity::None), 5, 1e-12);
     let d = deltas("gravity none", &m);
     assert_eq!(ops(&m, "gravity_torques"), 0);
     for f in ["inverse_dynamics", "bias_forces", "forward_dynamics"] {
@@ -252,12 +231,14 @@ fn gravity_none_removes_every_gravity_term() {
 #[test]
 fn constant_gravity_is_folded_and_costs_no_more_than_an_input() {
     // The model's own vector given as a constant: the same module.
-    let (_, same) = check(&ur5(), &full_scene().gravity(Gravity::Constant([0.0, 0.0, -9.81])), 3, 1e-12);
+    let (_, same) =
+        check(&support::model("ur5"), &full_scene().gravity(Gravity::Constant([0.0, 0.0, -9.81])), 3, 1e-12);
     assert!(deltas("gravity constant (0, 0, -9.81)", &same).iter().all(|(_, x)| *x == 0));
     // A tilted vector: three components instead of one to propagate.
-    let (_, tilted) = check(&ur5(), &full_scene().gravity(Gravity::Constant([1.0, -2.0, -9.0])), 5, 1e-12);
+    let (_, tilted) =
+        check(&support::model("ur5"), &full_scene().gravity(Gravity::Constant([1.0, -2.0, -9.0])), 5, 1e-12);
     let dt = deltas("gravity constant (1, -2, -9)", &tilted);
-    let (_, input) = check(&ur5(), &full_scene().gravity(Gravity::Input), 5, 1e-12);
+    let (_, input) = check(&support::model("ur5"), &full_scene().gravity(Gravity::Input), 5, 1e-12);
     let di = deltas("gravity input", &input);
     assert!(input.source.contains("gravity: &[f64; 3]"));
     for f in ["inverse_dynamics", "bias_forces", "gravity_torques", "forward_dynamics"] {
@@ -273,7 +254,7 @@ fn constant_gravity_is_folded_and_costs_no_more_than_an_input() {
 
 #[test]
 fn a_tip_wrench_input_costs_less_than_its_jacobian_transpose() {
-    let (_, m) = check(&ur5(), &full_scene().tip_wrench("ee_link"), 5, 1e-12);
+    let (_, m) = check(&support::model("ur5"), &full_scene().tip_wrench("ee_link"), 5, 1e-12);
     let d = deltas("tip wrench input at ee_link", &m);
     assert!(m.source.contains("f_tip: &[f64; 6]"));
     // What J_bᵀF would cost on its own: the Jacobian plus 6n products and
@@ -291,7 +272,7 @@ fn a_tip_wrench_input_costs_less_than_its_jacobian_transpose() {
 #[test]
 fn a_subtree_drops_joints_and_operations() {
     let scene = full_scene().subtree("base_link", &["wrist_1_link"]).functions(Function::DEFAULT);
-    let (applied, m) = check(&ur5(), &scene, 5, 1e-12);
+    let (applied, m) = check(&support::model("ur5"), &scene, 5, 1e-12);
     assert_eq!(applied.dof(), 4);
     let d = deltas("subtree base_link -> wrist_1_link", &m);
     // g of the regrouped UR5 reads only the shoulder, elbow and wrist-1
@@ -304,8 +285,12 @@ fn a_subtree_drops_joints_and_operations() {
 
 #[test]
 fn a_locked_joint_folds_and_drops_operations() {
-    let (applied, m) =
-        check(&ur5(), &full_scene().lock("wrist_3_joint", 0.3).lock("shoulder_pan_joint", -1.0), 5, 1e-12);
+    let (applied, m) = check(
+        &support::model("ur5"),
+        &full_scene().lock("wrist_3_joint", 0.3).lock("shoulder_pan_joint", -1.0),
+        5,
+        1e-12,
+    );
     assert_eq!(applied.dof(), 4);
     let d = deltas("lock wrist_3_joint, shoulder_pan_joint", &m);
     // g does not depend on either joint (the pan axis is vertical, wrist 3
@@ -318,9 +303,9 @@ fn a_locked_joint_folds_and_drops_operations() {
 #[test]
 fn constant_and_input_payloads() {
     let p = PayloadInertia::new(1.2, [0.0, 0.0, 0.06], [0.0018, 0.0018, 0.0012, 0.0, 0.0, 0.0]);
-    let (_, constant) = check(&ur5(), &full_scene().payload("ee_link", p), 5, 1e-12);
+    let (_, constant) = check(&support::model("ur5"), &full_scene().payload("ee_link", p), 5, 1e-12);
     let dc = deltas("constant payload on ee_link", &constant);
-    let (_, input) = check(&ur5(), &full_scene().payload_input("ee_link"), 5, 1e-12);
+    let (_, input) = check(&support::model("ur5"), &full_scene().payload_input("ee_link"), 5, 1e-12);
     let di = deltas("input payload on ee_link", &input);
     assert!(input.source.contains("payload_ee_link: &[f64; 10]"));
     // With a payload input the forward dynamics can only be CRBA + LᵀDL (ABA
@@ -367,7 +352,7 @@ fn constant_and_input_payloads() {
 #[test]
 fn armature_adds_one_product_and_sum_per_joint() {
     let scene = full_scene().armature("elbow_joint", 0.3).armature("wrist_1_joint", 0.05);
-    let (_, m) = check(&ur5(), &scene, 5, 1e-12);
+    let (_, m) = check(&support::model("ur5"), &scene, 5, 1e-12);
     let d = deltas("armature on 2 joints", &m);
     // τ: a·q̈ and its sum; M: a on the diagonal.
     assert_eq!(delta(&d, "inverse_dynamics"), 4);
@@ -386,9 +371,10 @@ fn armature_adds_one_product_and_sum_per_joint() {
 
 #[test]
 fn viscous_and_coulomb_friction_cost_what_their_formulas_do() {
-    let (_, viscous) = check(&ur5(), &full_scene().viscous("elbow_joint", 0.8), 5, 1e-12);
+    let (_, viscous) = check(&support::model("ur5"), &full_scene().viscous("elbow_joint", 0.8), 5, 1e-12);
     let dv = deltas("viscous friction on 1 joint", &viscous);
-    let (_, coulomb) = check(&ur5(), &full_scene().coulomb("elbow_joint", 2.0).coulomb_velocity(0.05), 5, 1e-12);
+    let (_, coulomb) =
+        check(&support::model("ur5"), &full_scene().coulomb("elbow_joint", 2.0).coulomb_velocity(0.05), 5, 1e-12);
     let dc = deltas("Coulomb friction on 1 joint", &coulomb);
     for f in ["inverse_dynamics", "bias_forces", "forward_dynamics"] {
         // b·q̇ and its sum; f·q̇/√(q̇² + v²): ², +, √, /, ·, sum.
@@ -403,10 +389,11 @@ fn viscous_and_coulomb_friction_cost_what_their_formulas_do() {
 #[test]
 fn f32_scenes_match_in_f32() {
     let scene = full_scene().scalar(ScalarType::F32).tip_wrench("ee_link").gravity(Gravity::Input);
-    let (_, m) = check(&ur5(), &scene, 10, 1e-5);
+    let (_, m) = check(&support::model("ur5"), &scene, 10, 1e-5);
     assert!(m.source.contains("pub fn inverse_dynamics(\n    q: &[f32; DOF],") || m.source.contains("q: &[f32; DOF]"));
     assert!(m.source.contains("gravity: &[f32; 3]") && !m.source.contains("f64; DOF"));
-    let (_, f64_module) = check(&ur5(), &full_scene().tip_wrench("ee_link").gravity(Gravity::Input), 1, 1e-12);
+    let (_, f64_module) =
+        check(&support::model("ur5"), &full_scene().tip_wrench("ee_link").gravity(Gravity::Input), 1, 1e-12);
     for f in ALL {
         assert_eq!(ops(&m, f), ops(&f64_module, f), "{f}");
     }
@@ -415,11 +402,11 @@ fn f32_scenes_match_in_f32() {
 #[test]
 fn no_std_targets() {
     let libm = full_scene().target(Target::NoStdLibm).coulomb("elbow_joint", 1.0);
-    let (_, m) = check(&ur5(), &libm, 2, 1e-12);
+    let (_, m) = check(&support::model("ur5"), &libm, 2, 1e-12);
     assert!(m.source.contains("libm::sincos(") && m.source.contains("libm::sqrt("));
     assert!(!m.source.contains(".sin_cos()") && !m.source.contains(".sqrt()"));
     let inputs = full_scene().target(Target::NoStdSinCos).tip_wrench("ee_link");
-    let (_, m) = check(&ur5(), &inputs, 2, 1e-12);
+    let (_, m) = check(&support::model("ur5"), &inputs, 2, 1e-12);
     assert!(m.source.contains("pub fn inverse_dynamics_sc(") && !m.source.contains("pub fn inverse_dynamics("));
     assert!(deltas("no_std_sincos, tip wrench", &m).iter().all(|(f, x)| *x == 0 || f.contains("dynamics")));
 }
@@ -441,7 +428,7 @@ fn coulomb_friction_without_std_uses_the_module_sqrt() {
     ];
     for (label, scene, options, sqrt) in cases {
         let tol = if sqrt == "sqrtf" { 1e-5 } else { 1e-12 };
-        let (_, m) = check_with(&ur5(), &scene, &options, 2, tol);
+        let (_, m) = check_with(&support::model("ur5"), &scene, &options, 2, tol);
         let src = &m.source;
         assert!(!src.contains(".sqrt()") && !src.contains("libm") && !src.contains(".sin_cos()"), "{label}");
         // One square root per body with friction: τ, h and the forward dynamics.
@@ -453,14 +440,13 @@ fn coulomb_friction_without_std_uses_the_module_sqrt() {
         }
     }
     // With std's trigonometry, std's square root.
-    let (_, m) = check_with(&ur5(), &friction(), &CodegenOptions::default().trig(Trig::Std), 1, 1e-12);
+    let (_, m) = check_with(&support::model("ur5"), &friction(), &CodegenOptions::default().trig(Trig::Std), 1, 1e-12);
     assert_eq!(m.source.matches(".sqrt()").count(), 3);
 }
 
 #[test]
 fn branched_and_prismatic_robots() {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/robots/");
-    let panda = Model::from_urdf_file(format!("{dir}panda.urdf")).unwrap();
+    let panda = support::model("panda");
     // Prismatic fingers: the _sc functions also take q, then the inputs.
     let scene = Scene::new()
         .function(Function::Coriolis)
@@ -484,7 +470,7 @@ fn branched_and_prismatic_robots() {
         .payload_input("panda_rightfinger");
     let (applied, _) = check(&panda, &scene, 3, 1e-12);
     assert_eq!(applied.dof(), 9);
-    let torso = Model::from_urdf_file(format!("{dir}torso_two_arms.urdf")).unwrap();
+    let torso = support::model("torso_two_arms");
     let scene = Scene::new()
         .subtree("torso", &["left_hand"])
         .function(Function::FramePose("left_hand".into()))

@@ -2,13 +2,11 @@
 //! functions each kind emits, and that the `NAME_sc` body computes the same
 //! numbers as the function of `q` when given the sines and cosines.
 
+mod support;
+
 use dynagen::codegen::{generate, CodegenOptions, FunctionKind, ScalarType, Trig};
 use dynagen::model::{Inertial, JointDescription, RobotBuilder};
 use dynagen::Model;
-
-fn ur5() -> Model {
-    Model::from_urdf_file(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/ur5.urdf")).unwrap()
-}
 
 /// A chain with a non-unit revolute axis (turns by 2q) and a prismatic joint.
 fn skewed() -> Model {
@@ -30,7 +28,7 @@ fn source(model: &Model, trig: Trig) -> String {
 
 #[test]
 fn each_trig_kind_emits_its_functions() {
-    let model = ur5();
+    let model = support::model("ur5");
     let std = source(&model, Trig::Std);
     assert!(std.contains("let (s1, c1) = q[1].sin_cos();"));
     assert!(std.contains("// Trigonometry: NAME(q, ...) computes the sines and cosines by std's sin_cos (needs std)."));
@@ -75,7 +73,7 @@ fn each_trig_kind_emits_its_functions() {
 fn the_default_is_the_batched_trigonometry() {
     assert_eq!(Trig::default(), Trig::Batched);
     assert_eq!(CodegenOptions::default().trig, Trig::Batched);
-    for model in [ur5(), skewed()] {
+    for model in [support::model("ur5"), skewed()] {
         let default = generate(&model, &CodegenOptions::default()).unwrap().source;
         assert_eq!(default, source(&model, Trig::Batched), "{}", model.name);
         assert!(default.contains("= sin_cos_array(&["), "{default}");
@@ -116,7 +114,7 @@ fn non_unit_axes_and_prismatic_joints() {
 
 #[test]
 fn the_body_with_sines_and_cosines_given_computes_the_function_of_q() {
-    for model in [ur5(), skewed()] {
+    for model in [support::model("ur5"), skewed()] {
         let module = generate(&model, &CodegenOptions::default()).unwrap();
         let n = model.dof();
         for f in &module.functions {
@@ -157,8 +155,10 @@ fn the_dispatched_batched_copy_inlines_its_body_unless_it_is_split() {
         let head = format!("unsafe fn {name}_avx2_fma(");
         src.split(&head).nth(1).unwrap_or_else(|| panic!("no {head}")).split("\n}\n").next().unwrap().to_string()
     };
-    let whole = source(&ur5(), Trig::Batched);
-    let split = generate(&ur5(), &CodegenOptions::default().trig(Trig::Batched).split_lets(Some(40))).unwrap().source;
+    let whole = source(&support::model("ur5"), Trig::Batched);
+    let split = generate(&support::model("ur5"), &CodegenOptions::default().trig(Trig::Batched).split_lets(Some(40)))
+        .unwrap()
+        .source;
     for name in ["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "forward_dynamics"] {
         let copy = fast_copy(&whole, name);
         assert!(copy.contains("sin_cos_array_on::<Avx2Fma,"), "{name}: {copy}");

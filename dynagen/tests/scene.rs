@@ -6,6 +6,8 @@
 //! against the plain solver with that gravity, forward dynamics against
 //! inverse dynamics, TOML round trips, and every error naming its item.
 
+mod support;
+
 use dynagen::scene::{
     Function, Gravity, PayloadInertia, Scene, SceneError, SceneInputError, SceneInputs, SceneModel, SceneRobot,
     SceneWarning,
@@ -13,18 +15,7 @@ use dynagen::scene::{
 use dynagen::{Model, Robot};
 use nalgebra::{DMatrix, DVector, Vector3, Vector6};
 use std::path::PathBuf;
-
-fn robot_path(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("robots/{name}.urdf"))
-}
-
-fn model(name: &str) -> Model {
-    Model::from_urdf_file(robot_path(name)).unwrap()
-}
-
-fn full(name: &str) -> Robot {
-    Robot::from_urdf_file(robot_path(name)).unwrap()
-}
+use support::{model, robot as full, robot_path};
 
 /// A deterministic pseudo-random vector with entries in (−scale, scale).
 fn state(n: usize, seed: u64, scale: f64) -> DVector<f64> {
@@ -496,8 +487,7 @@ fn forward_dynamics_inverts_inverse_dynamics_under_every_option() {
 
 #[test]
 fn toml_round_trip_and_the_example_scene() {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let example = Scene::from_toml_file(dir.join("scenes/ur5_controller.toml")).unwrap();
+    let example = Scene::from_toml_file(support::scene_path("ur5_controller")).unwrap();
     assert_eq!(example.name.as_deref(), Some("ur5_controller"));
     assert_eq!(example.armature.len(), 6);
     assert!(example.functions.contains(&Function::FrameJacobian("ee_link".into())));

@@ -4,6 +4,8 @@
 //! link or joint; and what import and validation must get right when they
 //! accept: fixed-joint merging, axis normalisation, joint order, frames.
 
+mod support;
+
 use dynagen::model::{
     BuildOptions, Inertial, JointDescription, JointType, ModernRoboticsLists, RobotBuilder, RobotDescription,
 };
@@ -1129,9 +1131,8 @@ fn joint_order_is_depth_first_children_in_file_order_whatever_the_order_of_the_f
 
 #[test]
 fn bundled_robots_load_in_strict_mode() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("robots");
     let mut seen = 0;
-    for entry in std::fs::read_dir(&dir).unwrap() {
+    for entry in std::fs::read_dir(support::ROBOTS).unwrap() {
         let path = entry.unwrap().path();
         if path.extension().is_some_and(|e| e == "urdf") {
             let m = Model::from_urdf_file_with(&path, &BuildOptions { strict: true })

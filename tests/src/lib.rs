@@ -1,6 +1,7 @@
-//! Shared helpers of the integration tests in `tests/tests/`: a small
-//! deterministic random generator, robot families for stiff and extreme
-//! cases, and error measures.
+//! Shared helpers of the integration tests in `tests/tests/` (and of the
+//! tests of `tests/no-std-check`): a small deterministic random generator,
+//! the bundled robots, robot families for stiff and extreme cases, and
+//! error measures.
 
 use dynagen::model::{Inertial, JointDescription, RobotBuilder};
 use dynagen::Model;
@@ -97,6 +98,16 @@ pub fn rel_err(a: &[f64], b: &[f64], floor: f64) -> f64 {
     a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max) / scale
 }
 
+/// ‖got − want‖ / max(‖want‖, `floor`) in Euclidean norms: the error
+/// relative to the reference's size (`floor` bounds the divisor away from
+/// zero: a tiny floor compares an all-zero `want` absolutely).
+pub fn norm_rel_err(got: &[f64], want: &[f64], floor: f64) -> f64 {
+    assert_eq!(got.len(), want.len());
+    let norm = want.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let diff = got.iter().zip(want).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
+    diff / norm.max(floor)
+}
+
 /// The bundled robots vendored in `generated/` (each `dynagen/robots/<name>.urdf`
 /// → `generated/src/<name>.rs`).
 pub const BUNDLED: [&str; 4] = ["ur5", "panda", "torso_two_arms", "planar_2link"];
@@ -158,9 +169,24 @@ pub fn cancelling_state(
     (q, qd, tau)
 }
 
+/// A bundled robot's URDF file, `dynagen/robots/<name>.urdf`.
+pub fn bundled_urdf(name: &str) -> std::path::PathBuf {
+    workspace_root().join(format!("dynagen/robots/{name}.urdf"))
+}
+
 /// A bundled robot's model (`dynagen/robots/<name>.urdf`).
 pub fn bundled_model(name: &str) -> Model {
-    Model::from_urdf_file(workspace_root().join(format!("dynagen/robots/{name}.urdf"))).expect("a bundled robot")
+    Model::from_urdf_file(bundled_urdf(name)).expect("a bundled robot")
+}
+
+/// A bundled robot for the generic solver.
+pub fn bundled_robot(name: &str) -> dynagen::Robot {
+    dynagen::Robot::from_urdf_file(bundled_urdf(name)).expect("a bundled robot")
+}
+
+/// A bundled scene's file, `dynagen/scenes/<name>.toml`.
+pub fn bundled_scene(name: &str) -> std::path::PathBuf {
+    workspace_root().join(format!("dynagen/scenes/{name}.toml"))
 }
 
 /// A chain of `n` links with random unit axes (every fifth joint prismatic),

@@ -6,9 +6,10 @@
 //! `dynagen::Builder`: with the default options (the batched trigonometry,
 //! no std) and in f32.
 
-use dynagen::Robot;
 use dynagen_generated::{panda, planar_2link, torso_two_arms, ur5};
-use dynagen_tests::{bundled_module, workspace_root, Rng, BUNDLED, REGENERATE_COMMAND};
+use dynagen_tests::{
+    bundled_model, bundled_module, bundled_robot, norm_rel_err, workspace_root, Rng, BUNDLED, REGENERATE_COMMAND,
+};
 use nalgebra::DVector;
 
 #[allow(dead_code)]
@@ -35,21 +36,12 @@ fn committed_modules_equal_a_fresh_generation() {
     );
 }
 
-/// |got − want| / |want| (Euclidean norms; an all-zero `want` compares absolutely).
-fn rel_err(got: &[f64], want: &[f64]) -> f64 {
-    assert_eq!(got.len(), want.len());
-    let norm = want.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let diff = got.iter().zip(want).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
-    diff / norm.max(1e-300)
-}
-
 /// Checks one generated module against the generic solver on `cases` random
 /// states; returns the worst relative error of (τ, M, h, g, q̈).
 macro_rules! check_module {
     ($m:ident, $cases:expr, $seed:expr) => {{
         const N: usize = $m::DOF;
-        let mut robot =
-            Robot::from_urdf_file(workspace_root().join(concat!("dynagen/robots/", stringify!($m), ".urdf"))).unwrap();
+        let mut robot = bundled_robot(stringify!($m));
         assert_eq!(N, robot.dof());
         assert_eq!($m::JOINT_NAMES.to_vec(), robot.joint_names());
         let mut rng = Rng::new($seed);
@@ -105,7 +97,7 @@ macro_rules! check_module {
                 ),
             ];
             for (k, (name, got, want)) in checks.iter().enumerate() {
-                let e = rel_err(got, want);
+                let e = norm_rel_err(got, want, 1e-300);
                 worst[k] = worst[k].max(e);
                 assert!(
                     e < 1e-12,
@@ -151,7 +143,7 @@ mod default_options {
 fn the_default_module_is_batched_without_std_and_matches_the_generic_solver() {
     use dynagen::codegen::{generate, CodegenOptions};
     let source = std::fs::read_to_string(concat!(env!("OUT_DIR"), "/ur5_f64.rs")).unwrap();
-    let model = dynagen::Model::from_urdf_file(workspace_root().join("dynagen/robots/ur5.urdf")).unwrap();
+    let model = bundled_model("ur5");
     let library = generate(&model, &CodegenOptions::default().source("../dynagen/robots/ur5.urdf")).unwrap();
     assert!(source == library.source, "the build script's module is not generate()'s with the default options");
     // The module's own batched sines and cosines: nothing from std.
@@ -163,7 +155,7 @@ fn the_default_module_is_batched_without_std_and_matches_the_generic_solver() {
 
 #[test]
 fn ur5_f32_is_close() {
-    let mut robot = Robot::from_urdf_file(workspace_root().join("dynagen/robots/ur5.urdf")).unwrap();
+    let mut robot = bundled_robot("ur5");
     let mut rng = Rng::new(7);
     for _ in 0..100 {
         let mut arr = |a: f64| -> [f64; 6] { core::array::from_fn(|_| rng.range(-a, a)) };
@@ -172,7 +164,7 @@ fn ur5_f32_is_close() {
         let got = ur5_f32::inverse_dynamics(&f(&q), &f(&qd), &f(&qdd)).map(f64::from);
         let v = |a: &[f64; 6]| DVector::from_column_slice(a);
         let want = robot.inverse_dynamics(&v(&q), &v(&qd), &v(&qdd)).unwrap();
-        let e = rel_err(&got, want.as_slice());
+        let e = norm_rel_err(&got, want.as_slice(), 1e-300);
         assert!(e < 1e-4, "f32 inverse dynamics: relative error {e:e}");
     }
 }

@@ -26,8 +26,8 @@
 
 use dynagen::codegen::{generate, CodegenOptions, Function as Kind, GeneratedFunction, ScalarType};
 use dynagen::symbolic::Function;
-use dynagen::{DoubleDouble, Model, Robot, Scalar};
-use dynagen_tests::{rel_err, workspace_root, Rng};
+use dynagen::{DoubleDouble, Robot, Scalar};
+use dynagen_tests::{bundled_model, bundled_robot, rel_err, Rng};
 use nalgebra::DVector;
 use std::fmt::Write;
 
@@ -64,10 +64,6 @@ fn states(count: usize, seed: u64) -> Vec<State> {
         .collect()
 }
 
-fn ur5_model() -> Model {
-    Model::from_urdf_file(workspace_root().join("dynagen/robots/ur5.urdf")).unwrap()
-}
-
 /// The inputs of an emitted body `NAME_sc` at state `x`.
 fn inputs(x: &State) -> Vec<(&'static str, &[f64])> {
     vec![("s", &x.s), ("c", &x.c), ("q", &x.q), ("qd", &x.qd), ("qdd", &x.qdd), ("tau", &x.tau)]
@@ -78,7 +74,7 @@ fn bits(x: &[f64]) -> Vec<u64> {
 }
 
 fn emitted(options: &CodegenOptions) -> Vec<GeneratedFunction> {
-    let module = generate(&ur5_model(), options).unwrap();
+    let module = generate(&bundled_model("ur5"), options).unwrap();
     module.functions.into_iter().filter(|f| f.emitted).collect()
 }
 
@@ -153,13 +149,13 @@ fn this_build_gives_the_bits_of_its_target_or_of_its_processor() {
 
 #[test]
 fn without_fma_nothing_is_fused() {
-    let module = generate(&ur5_model(), &CodegenOptions::default().fma(false)).unwrap();
+    let module = generate(&bundled_model("ur5"), &CodegenOptions::default().fma(false)).unwrap();
     let bodies = |src: &str| src.split("// The sine and cosine of joint angles").next().unwrap().to_string();
     assert_eq!(bodies(&module.source).lines().filter(|l| is_fused_let(l)).count(), 0, "no body calls fma");
     assert!(on_source_has_fused_lets());
     assert!(module.source.contains("// Fused multiply-adds: off"));
     assert!(module.functions.iter().all(|f| f.op_count.fused == 0 && f.op_count.fp_ops() == f.op_count.arithmetic()));
-    let on = generate(&ur5_model(), &CodegenOptions::default()).unwrap();
+    let on = generate(&bundled_model("ur5"), &CodegenOptions::default()).unwrap();
     for (a, b) in module.functions.iter().zip(&on.functions) {
         // The same traced operations, counted the same; fused on top.
         assert_eq!((a.op_count.add, a.op_count.mul), (b.op_count.add, b.op_count.mul));
@@ -174,7 +170,7 @@ fn is_fused_let(line: &str) -> bool {
 }
 
 fn on_source_has_fused_lets() -> bool {
-    let on = generate(&ur5_model(), &CodegenOptions::default()).unwrap();
+    let on = generate(&bundled_model("ur5"), &CodegenOptions::default()).unwrap();
     on.source.lines().any(is_fused_let)
 }
 
@@ -290,8 +286,8 @@ fn the_fused_path_compiled_with_the_fma_feature_rounds_once_and_stays_accurate()
         eprintln!("this machine has no fused multiply-add: the fused path is not run here");
         return;
     }
-    let f64_module = generate(&ur5_model(), &CodegenOptions::default()).unwrap();
-    let f32_module = generate(&ur5_model(), &CodegenOptions::default().scalar(ScalarType::F32)).unwrap();
+    let f64_module = generate(&bundled_model("ur5"), &CodegenOptions::default()).unwrap();
+    let f32_module = generate(&bundled_model("ur5"), &CodegenOptions::default().scalar(ScalarType::F32)).unwrap();
     let pick = |m: &dynagen::codegen::GeneratedModule| -> Vec<GeneratedFunction> {
         m.functions.iter().filter(|f| f.emitted).cloned().collect()
     };
@@ -366,7 +362,7 @@ fn the_fused_path_compiled_with_the_fma_feature_rounds_once_and_stays_accurate()
     } else {
         eprintln!("this machine lacks AVX2 or FMA: the run-time dispatch is not run here");
     }
-    let mut robot = Robot::from_urdf_file(workspace_root().join("dynagen/robots/ur5.urdf")).unwrap();
+    let mut robot = bundled_robot("ur5");
     let (mut lines, mut differ, mut worst) = (0, [0usize; 2], [0.0f64; 2]);
     let (mut kernel_worst, mut kernel_differ) = ([0.0f64; 4], 0);
     let exact: Vec<(DoubleDouble, DoubleDouble)> = angles.iter().map(|&x| DoubleDouble::from(x).sin_cos()).collect();

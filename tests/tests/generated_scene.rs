@@ -4,8 +4,7 @@
 //! input, and an f32 UR5 with only τ and no gravity.
 
 use dynagen::scene::{PayloadInertia, Scene, SceneInputs, SceneRobot};
-use dynagen::Model;
-use dynagen_tests::{workspace_root, Rng};
+use dynagen_tests::{bundled_model, bundled_scene, norm_rel_err, Rng};
 use nalgebra::{DVector, Vector3, Vector6};
 
 #[allow(dead_code)]
@@ -21,17 +20,6 @@ mod ur5_tau_f32 {
     include!(concat!(env!("OUT_DIR"), "/ur5_tau_f32.rs"));
 }
 
-fn ur5() -> Model {
-    Model::from_urdf_file(workspace_root().join("dynagen/robots/ur5.urdf")).unwrap()
-}
-
-fn rel_err(got: &[f64], want: &[f64]) -> f64 {
-    assert_eq!(got.len(), want.len());
-    let norm = want.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let diff = got.iter().zip(want).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
-    diff / norm.max(1e-300)
-}
-
 fn flat<const R: usize, const C: usize>(m: [[f64; C]; R]) -> Vec<f64> {
     m.iter().flatten().copied().collect()
 }
@@ -45,8 +33,8 @@ fn rows<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f64, R, C>>(
 #[test]
 fn ur5_controller_module_matches_the_scene_robot() {
     use ur5_controller as m;
-    let scene = Scene::from_toml_file(workspace_root().join("dynagen/scenes/ur5_controller.toml")).unwrap();
-    let mut robot = SceneRobot::new(scene.apply(&ur5()).unwrap());
+    let scene = Scene::from_toml_file(bundled_scene("ur5_controller")).unwrap();
+    let mut robot = SceneRobot::new(scene.apply(&bundled_model("ur5")).unwrap());
     assert_eq!(m::JOINT_NAMES.to_vec(), robot.joint_names());
     let mut rng = Rng::new(11);
     let mut worst = 0.0f64;
@@ -86,7 +74,7 @@ fn ur5_controller_module_matches_the_scene_robot() {
             ),
         ];
         for (name, got, want) in checks {
-            let e = rel_err(&got, &want);
+            let e = norm_rel_err(&got, &want, 1e-300);
             worst = worst.max(e);
             assert!(e < 1e-12, "{name}: relative error {e:e}\n got {got:?}\nwant {want:?}");
         }
@@ -104,7 +92,7 @@ fn ur5_inputs_module_matches_the_scene_robot() {
         .lock("wrist_3_joint", 0.2)
         .armature("elbow_joint", 0.2)
         .coulomb("shoulder_lift_joint", 2.0);
-    let mut robot = SceneRobot::new(scene.apply(&ur5()).unwrap());
+    let mut robot = SceneRobot::new(scene.apply(&bundled_model("ur5")).unwrap());
     assert_eq!(m::DOF, 5);
     let mut rng = Rng::new(12);
     for _ in 0..200 {
@@ -168,7 +156,7 @@ fn ur5_inputs_module_matches_the_scene_robot() {
             ),
         ];
         for (name, got, want) in checks {
-            let e = rel_err(&got, &want);
+            let e = norm_rel_err(&got, &want, 1e-300);
             assert!(e < 1e-12, "{name}: relative error {e:e}\n got {got:?}\nwant {want:?}");
         }
     }
@@ -180,7 +168,7 @@ fn ur5_f32_torque_module_matches_the_scene_robot() {
     let source = std::fs::read_to_string(concat!(env!("OUT_DIR"), "/ur5_tau_f32.rs")).unwrap();
     assert!(!source.contains("fn mass_matrix") && !source.contains("fn forward_dynamics"));
     let scene = Scene::new().gravity(dynagen::scene::Gravity::None);
-    let mut robot = SceneRobot::new(scene.apply(&ur5()).unwrap());
+    let mut robot = SceneRobot::new(scene.apply(&bundled_model("ur5")).unwrap());
     let mut rng = Rng::new(13);
     let mut worst = 0.0f64;
     for _ in 0..200 {
@@ -191,7 +179,7 @@ fn ur5_f32_torque_module_matches_the_scene_robot() {
         // The reference at the f32-rounded state.
         let v = |a: &[f64; m::DOF]| DVector::from_iterator(m::DOF, a.iter().map(|&x| f64::from(x as f32)));
         let want = robot.inverse_dynamics(&v(&q), &v(&qd), &v(&qdd)).unwrap();
-        let e = rel_err(&got, want.as_slice());
+        let e = norm_rel_err(&got, want.as_slice(), 1e-300);
         worst = worst.max(e);
         assert!(e < 1e-5, "f32 inverse_dynamics: relative error {e:e}");
     }

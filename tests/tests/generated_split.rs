@@ -9,8 +9,7 @@
 
 use dynagen::codegen::DEFAULT_SPLIT_LETS;
 use dynagen::scene::{Scene, SceneInputs, SceneRobot};
-use dynagen::Model;
-use dynagen_tests::{rel_err, workspace_root, Rng};
+use dynagen_tests::{bundled_model, rel_err, Rng};
 use nalgebra::DVector;
 
 #[path = "../../dynagen/tests/support/skewed_chain.rs"]
@@ -127,7 +126,7 @@ fn a_split_scene_gives_the_same_bits_as_the_whole_one() {
     }
     // The split scene is the whole one's scene (a sanity check that both
     // are the UR5 with the inputs, against the generic solver once).
-    let ur5 = Model::from_urdf_file(workspace_root().join("dynagen/robots/ur5.urdf")).unwrap();
+    let ur5 = bundled_model("ur5");
     let scene = Scene::new()
         .gravity(dynagen::scene::Gravity::Input)
         .tip_wrench("ee_link")

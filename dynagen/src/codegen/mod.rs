@@ -47,6 +47,8 @@ pub use prepare::{
     canonical_text, center_prismatic_leaves, fnv1a64, model_hash, regroup_inertia, slide_origins_along_axes,
     snap_rounding, SnappedConstant, ROUNDING_TOLERANCE,
 };
+#[doc(hidden)]
+pub use sin_cos::kernel_internals;
 pub use sin_cos::{sin_cos_array, sin_cos_array_f32, sin_cos_batch, sin_cos_kernel, sin_cos_kernel_f32};
 pub use trace::{fd_choice, generic_op_count, sin_cos_from_q, sin_cos_inputs, trace, SinCosTrace};
 

@@ -1,7 +1,9 @@
 //! A serial chain with skewed placements and full inertias, so that nothing
 //! folds away by accident of symmetry: the chain of the operation-count
-//! growth test (`tests/codegen_growth.rs`) and of the code-generation
-//! scaling example (`examples/codegen_scaling.rs`), which include this file.
+//! growth test (`tests/codegen_growth.rs`, through the support module), of
+//! the code-generation scaling example (`examples/codegen_scaling.rs`) and
+//! of the split modules of `tests/build_split.rs` and
+//! `tests/tests/generated_split.rs` in the workspace, which include this file.
 
 use dynagen::model::{Inertial, JointDescription, RobotBuilder};
 use dynagen::Model;

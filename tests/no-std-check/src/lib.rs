@@ -74,6 +74,7 @@ mod tests {
     extern crate std;
     use super::*;
     use dynagen::Robot;
+    use dynagen_tests::{bundled_model, bundled_robot, bundled_scene, norm_rel_err};
     use nalgebra::DVector;
     use std::vec::Vec;
 
@@ -90,17 +91,6 @@ mod tests {
         fn array<const N: usize>(&mut self, scale: f64) -> [f64; N] {
             core::array::from_fn(|_| scale * self.next())
         }
-    }
-
-    fn robot(name: &str) -> Robot {
-        Robot::from_urdf_file(std::format!("{}/../../dynagen/robots/{name}.urdf", env!("CARGO_MANIFEST_DIR"))).unwrap()
-    }
-
-    /// |got − want| / max(|want|, 1) (Euclidean norms).
-    fn rel_err(got: &[f64], want: &[f64]) -> f64 {
-        let norm = want.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let diff = got.iter().zip(want).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
-        diff / norm.max(1.0)
     }
 
     /// What the generic solver gives at one state: τ, M (row-major), h, g, q̈.
@@ -122,7 +112,7 @@ mod tests {
 
     #[test]
     fn ur5_every_no_std_variant_matches_the_generic_solver() {
-        let mut robot = robot("ur5");
+        let mut robot = bundled_robot("ur5");
         let mut rng = Rng(0x1234_5678_9abc_def1);
         let mut worst = [0.0f64; 4];
         for _ in 0..200 {
@@ -155,7 +145,7 @@ mod tests {
             ];
             for (k, got) in variants.iter().enumerate() {
                 for (g, w) in got.iter().zip(&want) {
-                    worst[k] = worst[k].max(rel_err(g, w));
+                    worst[k] = worst[k].max(norm_rel_err(g, w, 1.0));
                 }
             }
             // f32: the libm and batched f32 modules agree with f64 to f32 precision.
@@ -165,7 +155,7 @@ mod tests {
                 [ur5_libm_f32::inverse_dynamics(&qf, &qdf, &qddf), ur5_batched_f32::inverse_dynamics(&qf, &qdf, &qddf)]
             {
                 let got: Vec<f64> = got.iter().map(|&x| f64::from(x)).collect();
-                worst[3] = worst[3].max(rel_err(&got, &want[0]));
+                worst[3] = worst[3].max(norm_rel_err(&got, &want[0], 1.0));
             }
         }
         std::eprintln!(
@@ -181,7 +171,7 @@ mod tests {
 
     #[test]
     fn panda_with_sines_and_cosines_as_inputs_matches_the_generic_solver() {
-        let mut robot = robot("panda");
+        let mut robot = bundled_robot("panda");
         assert_eq!(panda_inputs::DOF, robot.dof());
         let mut rng = Rng(0x0bad_cafe_f00d_d00d);
         for _ in 0..100 {
@@ -201,7 +191,7 @@ mod tests {
                 panda_inputs::forward_dynamics_sc(&s, &c, &q, &qd, &tau).to_vec(),
             ];
             for (k, (g, w)) in got.iter().zip(&want).enumerate() {
-                assert!(rel_err(g, w) < 1e-11, "function {k}: {g:?} vs {w:?}");
+                assert!(norm_rel_err(g, w, 1.0) < 1e-11, "function {k}: {g:?} vs {w:?}");
             }
         }
     }
@@ -210,10 +200,9 @@ mod tests {
     fn no_std_scene_modules_match_the_scene_robot() {
         use dynagen::scene::{Gravity, Scene, SceneInputs, SceneRobot};
         use nalgebra::{Vector3, Vector6};
-        let path = |p: &str| std::format!("{}/../../dynagen/{p}", env!("CARGO_MANIFEST_DIR"));
-        let ur5 = dynagen::Model::from_urdf_file(path("robots/ur5.urdf")).unwrap();
+        let ur5 = bundled_model("ur5");
         let mut controller =
-            SceneRobot::new(Scene::from_toml_file(path("scenes/ur5_controller.toml")).unwrap().apply(&ur5).unwrap());
+            SceneRobot::new(Scene::from_toml_file(bundled_scene("ur5_controller")).unwrap().apply(&ur5).unwrap());
         let tau_scene = Scene::new().gravity(Gravity::Input).tip_wrench("ee_link").viscous("elbow_joint", 0.5);
         let mut tau_robot = SceneRobot::new(tau_scene.apply(&ur5).unwrap());
         let mut rng = Rng(0x0bad_cafe_1234_5678);
@@ -253,16 +242,20 @@ mod tests {
                 ),
             ];
             for (got, want) in &checks {
-                let e = rel_err(got, want);
+                let e = norm_rel_err(got, want, 1.0);
                 assert!(e < 1e-12, "relative error {e:e}: {got:?} vs {want:?}");
             }
             // f32, against the f64 values (τ and h: the friction's sqrtf).
             let f32s = |x: &[f64; 6]| x.map(|v| v as f32);
             let widen = |x: [f32; 6]| x.map(f64::from).to_vec();
             let (qf, qdf, qddf, ff) = (f32s(&q), f32s(&qd), f32s(&qdd), f32s(&f));
-            let e = rel_err(&widen(ur5_controller_batched_f32::inverse_dynamics(&qf, &qdf, &qddf, &ff)), &want_tau);
+            let e = norm_rel_err(
+                &widen(ur5_controller_batched_f32::inverse_dynamics(&qf, &qdf, &qddf, &ff)),
+                &want_tau,
+                1.0,
+            );
             assert!(e < 1e-4, "f32 inverse_dynamics: relative error {e:e}");
-            let e = rel_err(&widen(ur5_controller_batched_f32::bias_forces(&qf, &qdf)), &want_h);
+            let e = norm_rel_err(&widen(ur5_controller_batched_f32::bias_forces(&qf, &qdf)), &want_h, 1.0);
             assert!(e < 1e-4, "f32 bias_forces: relative error {e:e}");
         }
     }

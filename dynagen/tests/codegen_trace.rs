@@ -1,41 +1,20 @@
-//! The traced functions, evaluated by the graph interpreter, against the
-//! generic f64 solver on random states of every bundled robot.
+//! The trace stage: the traced functions, evaluated by the graph
+//! interpreter, against the generic f64 solver on random states of every
+//! bundled robot, and the UR5's operation counts.
+
+mod support;
 
 use dynagen::codegen::{generate, CodegenOptions, ForwardDynamicsMethod, FunctionKind};
 use dynagen::symbolic::Rewrites;
 use dynagen::{Model, Robot};
 use nalgebra::DVector;
-
-/// A small deterministic generator (xorshift64*), uniform in [-1, 1).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let x = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d);
-        (x >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-    fn vec(&mut self, n: usize, scale: f64) -> Vec<f64> {
-        (0..n).map(|_| scale * self.next()).collect()
-    }
-}
-
-fn robot_path(name: &str) -> String {
-    format!("{}/robots/{name}.urdf", env!("CARGO_MANIFEST_DIR"))
-}
-
-fn rel_err(got: &[f64], want: &[f64]) -> f64 {
-    let norm = want.iter().map(|x| x * x).sum::<f64>().sqrt().max(1e-300);
-    let diff = got.iter().zip(want).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
-    diff / norm
-}
+use support::{norm_rel_err, Rng};
 
 fn check_model(model: &Model, options: &CodegenOptions, states: usize, tol: f64) {
     let n = model.dof();
     let module = generate(model, options).unwrap();
     let mut robot = Robot::new(model.clone());
-    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut rng = Rng::new(0x9e37_79b9_7f4a_7c15);
     let mut worst = [0.0f64; 6];
     for _ in 0..states {
         let (q, qd, qdd, tau) = (rng.vec(n, 3.0), rng.vec(n, 2.0), rng.vec(n, 5.0), rng.vec(n, 20.0));
@@ -57,7 +36,7 @@ fn check_model(model: &Model, options: &CodegenOptions, states: usize, tol: f64)
                     robot.forward_dynamics_ldlt(&dv(&q), &dv(&qd), &dv(&tau)).unwrap().as_slice().to_vec()
                 }
             };
-            let e = rel_err(&got, &want);
+            let e = norm_rel_err(&got, &want, 1e-300);
             worst[k] = worst[k].max(e);
             assert!(e < tol, "{} {}: relative error {e:e}\n got {got:?}\nwant {want:?}", model.name, kind.label());
         }
@@ -68,7 +47,7 @@ fn check_model(model: &Model, options: &CodegenOptions, states: usize, tol: f64)
 #[test]
 fn interpreter_matches_generic_solver_on_bundled_robots() {
     for name in ["ur5", "panda", "torso_two_arms", "planar_2link"] {
-        let model = Model::from_urdf_file(robot_path(name)).unwrap();
+        let model = support::model(name);
         check_model(&model, &CodegenOptions::default(), 50, 1e-12);
     }
 }
@@ -140,7 +119,7 @@ fn interpreter_matches_generic_solver_on_a_skewed_gripper() {
 
 #[test]
 fn interpreter_matches_without_snap_or_rewrites() {
-    let model = Model::from_urdf_file(robot_path("ur5")).unwrap();
+    let model = support::model("ur5");
     let opts = CodegenOptions::default().snap_rounding(false).rewrites(Rewrites::exact());
     check_model(&model, &opts, 50, 1e-12);
     let opts = CodegenOptions::default().forward_dynamics(ForwardDynamicsMethod::Ldlt);
@@ -149,7 +128,7 @@ fn interpreter_matches_without_snap_or_rewrites() {
 
 #[test]
 fn ur5_op_counts() {
-    let model = Model::from_urdf_file(robot_path("ur5")).unwrap();
+    let model = support::model("ur5");
     for (label, opts) in [
         ("default", CodegenOptions::default()),
         ("no snap", CodegenOptions::default().snap_rounding(false)),

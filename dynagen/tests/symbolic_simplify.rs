@@ -1,5 +1,5 @@
-//! The simplification rules of the expression graph, one by one, and the
-//! trace session's guarantees.
+//! The symbolic expression graph (`dynagen::symbolic`): its simplification
+//! rules, one by one, and the trace session's guarantees.
 
 use dynagen::symbolic::{Expr, Function, Graph, Node, Rewrites, TraceActive, Tracer};
 use dynagen::Scalar;
