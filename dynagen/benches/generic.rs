@@ -6,7 +6,7 @@
 //! call after call so that the branch predictor does not learn one state.
 //!
 //! Run with `cargo bench --bench generic -- --warm-up-time 1 --measurement-time 3`;
-//! results are in `benches/README.md`.
+//! results are in `docs/performance.md` (how to run it: `benches/README.md`).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use dynagen::algorithms::{aba, bias, crba, forward_dynamics, rnea, Workspace};
