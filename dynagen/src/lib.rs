@@ -23,13 +23,11 @@
 //! `OUT_DIR`:
 //!
 //! ```no_run
-//! // build.rs
-//! fn main() {
-//!     dynagen::Builder::new()
-//!         .urdf("robots/ur5.urdf")
-//!         .generate()
-//!         .expect("generating the UR5 dynamics");
-//! }
+//! // build.rs, in `fn main()`:
+//! dynagen::Builder::new()
+//!     .urdf("robots/ur5.urdf")
+//!     .generate()
+//!     .expect("generating the UR5 dynamics");
 //! ```
 //!
 //! and the crate includes it:
