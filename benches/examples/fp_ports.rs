@@ -3,7 +3,7 @@
 //! whether they share pipes.
 //!
 //! The generated bodies are long straight-line code, bound by throughput
-//! (`benches/README.md`, run 12). On cores whose two floating-point pipes do
+//! (`docs/performance.md`, "What bounds the bodies"). On cores whose two floating-point pipes do
 //! both multiplications and additions (Intel's), a body takes at least
 //! `FP ops / 2` cycles (`dynagen ops`, column "FP ops"); on cores with two
 //! multiply pipes and two separate adders (AMD Zen 4 and 5), at least

@@ -6,7 +6,7 @@
 //! call after call so that the branch predictor does not learn one state.
 //!
 //! Run with `cargo bench --bench generic -- --warm-up-time 1 --measurement-time 3`;
-//! results are in `benches/README.md`.
+//! results are in `docs/performance.md` (how to run it: `benches/README.md`).
 
 // The integration tests' support module: its xorshift generator.
 #[path = "../tests/support/mod.rs"]

@@ -31,7 +31,7 @@
 //! time (which a loaded machine disturbs less), in the process that runs
 //! this example: build it in release mode. The chain is the one of
 //! `tests/codegen_growth.rs` (skewed placements, full inertias, axes
-//! cycling through z, y, x). Results: `benches/README.md`.
+//! cycling through z, y, x). Results: `docs/performance.md`.
 
 #[path = "../tests/support/skewed_chain.rs"]
 mod skewed_chain;

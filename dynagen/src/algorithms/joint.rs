@@ -460,8 +460,9 @@ pub(crate) fn traced<S: Scalar>(_: &Mat3<S>) -> bool {
 /// `$x` (a `Transform` computed by [`joint_transform`] for this joint),
 /// chosen from the model's constants. A quarter-turn placement before an
 /// aligned axis is taken as [`Permuted`] only when tracing
-/// ([`Scalar::TRACED`]): on `f64` the extra arms made the generic CRBA 13 %
-/// slower in instructions (code size), and there the arm is compiled out.
+/// ([`Scalar::TRACED`]): on `f64` the extra arms made the generic CRBA
+/// slower (code size; `docs/performance.md`), and there the arm is compiled
+/// out.
 macro_rules! with_rotation {
     ($joint:expr, $x:expr, |$r:ident| $body:expr) => {{
         use $crate::algorithms::joint::{AboutAxis, Dense};

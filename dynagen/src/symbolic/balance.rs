@@ -19,11 +19,10 @@
 //! is negative, which the original had to pay for too).
 //!
 //! Products are left as traced: rebalancing chains of multiplications the
-//! same way shortened the critical path a little more (UR5 ABA 314 → 310
-//! cycles) but made the compiled UR5 τ body 7 % slower, measured
-//! (`benches/examples/interleaved.rs`), where sums alone made it 10 %
-//! faster: the critical path is not the only limit (register pressure and
-//! the overlap of consecutive calls are others).
+//! same way shortened the critical path a little more but made the compiled
+//! bodies slower, measured (`docs/performance.md`, "Design choices decided
+//! by a measurement"): the critical path is not the only limit (register
+//! pressure and the overlap of consecutive calls are others).
 //!
 //! Reassociation changes rounding: `(a + b) + c` and `a + (b + c)` may
 //! differ in the last bits, by at most about `n·ε·Σ|leaf|` for `n` leaves,
@@ -43,11 +42,9 @@ use std::collections::BinaryHeap;
 /// A sum is rebuilt only if that makes it ready earlier (by at least this
 /// many cycles); otherwise it stays as traced. A tree keeps more partial
 /// sums alive at once than the traced chain, which costs register spills:
-/// with every sum rebuilt, gain or not, the Panda's h body came out 7 %
-/// slower than before reassociation; rebuilding only where it helps made
-/// that difference vanish into the noise (±5 %) and kept every critical
-/// path as short. Two additions (8 cycles) instead would have kept only
-/// part of the gain (UR5 τ 124 cycles instead of 108).
+/// rebuilding every sum, gain or not, measured slower than rebuilding only
+/// where it helps, and a larger threshold kept only part of the gain
+/// (`docs/performance.md`, "Design choices decided by a measurement").
 const MIN_GAIN: u32 = 1;
 
 /// The ready time of every node of a graph, extended as the graph grows.

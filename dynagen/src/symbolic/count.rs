@@ -63,8 +63,8 @@ impl OpCount {
     /// sums is two). Processors with two multiply-capable floating-point
     /// pipes and separate adders (AMD Zen 4 and 5) start at most two of
     /// these a cycle, so a throughput-bound body takes at least half this
-    /// many cycles, however few its additions are (`benches/README.md`,
-    /// run 12); on Intel cores, whose adders are the same two pipes, the
+    /// many cycles, however few its additions are (`docs/performance.md`,
+    /// "What bounds the bodies"); on Intel cores, whose adders are the same two pipes, the
     /// bound is half of [`OpCount::fp_ops`].
     pub fn multiplies(&self) -> usize {
         self.mul - self.mul_folded + self.fused

@@ -18,8 +18,8 @@
 //!   sum's operand. A product with another use (an output, a factor of
 //!   another product) is computed anyway, so fusing it saves nothing; it
 //!   would only shorten chains, and fusing such products too measured
-//!   slower on the mass matrices (UR5 and Panda, `benches/README.md`,
-//!   run 7).
+//!   slower on the mass matrices (`docs/performance.md`, "Design choices
+//!   decided by a measurement").
 //! - When both operands of a sum can be folded, the one ready later (by
 //!   the latency-weighted depth of [`Latency`]) is fused, so that its
 //!   multiplication leaves the critical path; the other is then computed

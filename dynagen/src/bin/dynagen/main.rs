@@ -56,7 +56,7 @@ enum Command {
     /// Measure every way dynagen computes the dynamics — generic and generated,
     /// f64 and f32, two forward dynamics — for speed and for accuracy against
     /// a double-double reference, on the bundled robots: writes docs/report.md
-    /// and its plots. Runs `cargo run --release -p dynagen-report` in the
+    /// and its plots (with --quick, a temporary folder). Runs `cargo run --release -p dynagen-report` in the
     /// dynagen workspace this binary was built from (DYNAGEN_WORKSPACE names
     /// another).
     Report(report::Args),

@@ -1,5 +1,6 @@
 //! `dynagen report`: the error-versus-run-time report (docs/report.md and
-//! its plots). The report measures code generated for the bundled robots,
+//! its plots; a `--quick` run writes into a temporary folder unless `--out`
+//! says where). The report measures code generated for the bundled robots,
 //! which has to be compiled into it, so it is its own program in the
 //! workspace (`report/`, package `dynagen-report`); this subcommand runs it
 //! with cargo in the dynagen workspace this binary was built from, its
@@ -21,7 +22,8 @@ pub struct Args {
     #[arg(long)]
     pub quick: bool,
     /// Where to write report.md and report/*.svg (default: the workspace's
-    /// docs/).
+    /// docs/ for a full run; a temporary folder with --quick, so that a smoke
+    /// run does not replace the committed report).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
 }
