@@ -3,20 +3,22 @@
 //! One pipeline, a folder a stage (`docs/architecture.md` has the map and
 //! where to add a function):
 //!
-//! 1. [`prepare`]: the model's constants snapped and its inertias regrouped
-//!    (exact within the file's precision);
-//! 2. [`trace`]: each asked [`Function`] run on the symbolic scalar through
-//!    the generic algorithms, the forward dynamics both ways and one kept
-//!    ([`fd_choice`]), the sines and cosines made inputs;
-//! 3. [`emit`]: one `NAME_sc` body and one `NAME` wrapper a function, the
+//! 1. `prepare/`: the model's constants snapped ([`snap_rounding`]) and its
+//!    inertias regrouped ([`regroup_inertia`]), exact within the file's
+//!    precision;
+//! 2. `trace/`: each asked [`Function`] run on the symbolic scalar through
+//!    the generic algorithms ([`trace()`]), the forward dynamics both ways
+//!    and one kept ([`fd_choice`]), the sines and cosines made inputs
+//!    ([`sin_cos_inputs`]);
+//! 3. `emit/`: one `NAME_sc` body and one `NAME` wrapper a function, the
 //!    header, the sine and cosine kernel ([`sin_cos_array`]);
 //! 4. the front doors: [`generate`] and [`generate_scene`], the build
 //!    script's [`Builder`], the macros and the command line on top of it.
 //!
 //! A plain module is the default scene's: [`generate`] applies
-//! [`Scene::default`](crate::scene::Scene) and runs [`generate_scene`].
-//! What to model is the [`Scene`](crate::scene::Scene); what code to write,
-//! [`CodegenOptions`]. The same model and options give a byte-identical file.
+//! `Scene::default()` and runs [`generate_scene`]. What to model (the
+//! physics) is a `Scene`'s; what code to write, [`CodegenOptions`]'. The
+//! same model and options give a byte-identical file.
 //!
 //! ```
 //! use dynagen::codegen::{generate, CodegenOptions};
@@ -32,16 +34,18 @@
 //! ```
 
 mod builder;
-pub mod emit;
+mod emit;
 mod function;
+mod module;
 mod options;
-pub mod prepare;
+mod prepare;
 mod sin_cos;
-pub mod trace;
+mod trace;
 
 pub use builder::{module_name, BuildError, Builder, GeneratedFile};
 pub use emit::{float_literal_text, payload_argument};
 pub use function::Function;
+pub use module::{GeneratedFunction, GeneratedModule};
 pub use options::{CodegenOptions, ForwardDynamicsMethod, ScalarType, Trig, DEFAULT_SPLIT_LETS, DISPATCH_MAX_OPS};
 pub use prepare::{
     canonical_text, center_prismatic_leaves, fnv1a64, model_hash, regroup_inertia, slide_origins_along_axes,
@@ -88,71 +92,6 @@ pub enum CodegenError {
     /// The generated tokens did not parse as a Rust file (a bug of dynagen).
     #[error("internal error: generated code does not parse: {0}")]
     Internal(String),
-}
-
-/// One traced function of a module.
-#[derive(Clone, Debug, PartialEq)]
-pub struct GeneratedFunction {
-    /// Which function.
-    pub function: Function,
-    /// For forward dynamics, the algorithm it was traced from (ABA or
-    /// LᵀDL); `None` for the others.
-    pub method: Option<ForwardDynamicsMethod>,
-    /// Its Rust name (`frame_pose_ee_link` for a frame function).
-    pub name: String,
-    /// Whether it is in the source (the forward dynamics not chosen is
-    /// traced and counted only).
-    pub emitted: bool,
-    /// Its arguments in order, with their lengths (`NAME_sc` takes `s` and
-    /// `c` instead of `q`, and `q` too if a joint is prismatic).
-    pub inputs: Vec<(String, usize)>,
-    /// The traced, dead-code-eliminated function of `q` (evaluate it with
-    /// [`Traced::eval`], inputs by the names of [`inputs`](Self::inputs)).
-    pub traced: Traced,
-    /// The same with the sines and cosines as inputs: the body of `NAME_sc`.
-    pub sin_cos_inputs: SinCosTrace,
-    /// Its operation count.
-    pub op_count: OpCount,
-}
-
-impl GeneratedFunction {
-    /// The name, with the forward dynamics' algorithm: `forward_dynamics
-    /// (ABA)`, `forward_dynamics (CRBA + LTDL)`.
-    pub fn label(&self) -> String {
-        match self.method {
-            Some(ForwardDynamicsMethod::Ldlt) => format!("{} (CRBA + LTDL)", self.name),
-            Some(_) => format!("{} (ABA)", self.name),
-            None => self.name.clone(),
-        }
-    }
-}
-
-/// A generated module.
-#[derive(Clone, Debug, PartialEq)]
-pub struct GeneratedModule {
-    /// The formatted Rust source, header included.
-    pub source: String,
-    /// Every traced function, in the module's order (both forward dynamics
-    /// where both were traced, the one not emitted marked so).
-    pub functions: Vec<GeneratedFunction>,
-    /// The model constants replaced by 0 or ±1.
-    pub snapped: Vec<SnappedConstant>,
-    /// FNV-1a of the (reduced) model's [`canonical_text`].
-    pub model_hash: u64,
-}
-
-impl GeneratedModule {
-    /// The emitted function named `name` (`inverse_dynamics`,
-    /// `frame_pose_ee_link`, …).
-    pub fn function(&self, name: &str) -> Option<&GeneratedFunction> {
-        self.functions.iter().find(|f| f.emitted && f.name == name)
-    }
-    /// Every traced function's [`label`](GeneratedFunction::label) and
-    /// operation count (the forward dynamics not emitted marked so).
-    pub fn op_counts(&self) -> Vec<(String, OpCount)> {
-        let note = |f: &GeneratedFunction| if f.emitted { "" } else { " [not emitted]" };
-        self.functions.iter().map(|f| (format!("{}{}", f.label(), note(f)), f.op_count)).collect()
-    }
 }
 
 /// The operation count of `f`, with its fused multiply-adds if `fma`.

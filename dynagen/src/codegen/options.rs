@@ -102,12 +102,13 @@ pub struct CodegenOptions {
     /// accurate, [`ForwardDynamicsMethod::Auto`]); both are traced and
     /// counted in the header.
     pub forward_dynamics: ForwardDynamicsMethod,
-    /// Replace constants that are 0 or ±1 up to rounding (on); see the
-    /// [module documentation](self).
+    /// Replace constants that are 0 or ±1 up to rounding (on); see
+    /// [`snap_rounding`](super::snap_rounding) for the rule and why.
     pub snap_rounding: bool,
     /// Move the inertia a joint cannot move to its parent (on); see
-    /// [`regroup_inertia`] (with the body frames moved first:
-    /// [`center_prismatic_leaves`], [`slide_origins_along_axes`]).
+    /// [`regroup_inertia`](super::regroup_inertia) (with the body frames
+    /// moved first: [`center_prismatic_leaves`](super::center_prismatic_leaves),
+    /// [`slide_origins_along_axes`](super::slide_origins_along_axes)).
     pub regroup_inertia: bool,
     /// The value-changing graph rewrites (on); see [`Rewrites`].
     pub rewrites: Rewrites,
@@ -140,8 +141,8 @@ pub struct CodegenOptions {
     /// On x86-64 builds without the `avx2` and `fma` target features (a
     /// default `cargo build`), compile every public function twice, once
     /// for the build's target and once for AVX2 and FMA, and pick the copy
-    /// at run time by what the processor has (on): see the [module
-    /// documentation](self). Builds that have both features, and other
+    /// at run time by what the processor has (on): see
+    /// `docs/architecture.md`. Builds that have both features, and other
     /// targets, get one copy, as without it. On by default, because most
     /// x86-64 processors in use have both and the bodies are bound by the
     /// floating-point ports: a default build then runs as fast as a native

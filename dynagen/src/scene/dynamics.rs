@@ -139,7 +139,7 @@ pub fn coriolis<S: Scalar>(scene: &SceneModel, ws: &mut Workspace<S>, q: &[S], q
 /// q̈ = (M(q) + diag(armature))⁻¹(τ − friction − h(q, q̇) − J(q)ᵀF_tip), by
 /// the articulated-body algorithm on τ − friction with the armature in its
 /// joint inertias ([`aba::aba_with_armature`]): exact, O(n), and the most
-/// accurate method (see DESIGN.md). `scratch` (n entries) holds τ − friction.
+/// accurate method (`docs/performance.md`). `scratch` (n entries) holds τ − friction.
 #[allow(clippy::too_many_arguments)]
 pub fn forward_dynamics<S: Scalar>(
     scene: &SceneModel,

@@ -12,13 +12,13 @@ struct FileText {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     name: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    functions: Option<Vec<FunctionName>>,
+    functions: Option<Vec<String>>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     frame_pose: Vec<String>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     frame_jacobian: Vec<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    scalar: Option<ScalarName>,
+    scalar: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     target: Option<TargetName>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -33,24 +33,6 @@ struct FileText {
     joints: BTreeMap<String, JointFile>,
     #[serde(default, rename = "payload", skip_serializing_if = "Vec::is_empty")]
     payloads: Vec<PayloadFile>,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-enum FunctionName {
-    InverseDynamics,
-    MassMatrix,
-    BiasForces,
-    GravityTorques,
-    Coriolis,
-    ForwardDynamics,
-}
-
-#[derive(Clone, Copy, Debug, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-enum ScalarName {
-    F64,
-    F32,
 }
 
 #[derive(Clone, Copy, Debug, Serialize, Deserialize)]
@@ -113,19 +95,6 @@ struct PayloadFile {
     inertia: Option<[f64; 6]>,
 }
 
-impl FunctionName {
-    fn function(self) -> Function {
-        match self {
-            FunctionName::InverseDynamics => Function::InverseDynamics,
-            FunctionName::MassMatrix => Function::MassMatrix,
-            FunctionName::BiasForces => Function::BiasForces,
-            FunctionName::GravityTorques => Function::GravityTorques,
-            FunctionName::Coriolis => Function::Coriolis,
-            FunctionName::ForwardDynamics => Function::ForwardDynamics,
-        }
-    }
-}
-
 /// The code-generation keys a scene file may carry; each sets the
 /// [`CodegenOptions`] field of its name unless that was set otherwise.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -175,7 +144,18 @@ fn scene_from_file(f: FileText) -> Result<SceneFile, SceneError> {
     let mut code = CodeKeys { name: f.name, ..CodeKeys::default() };
     if f.functions.is_some() || !f.frame_pose.is_empty() || !f.frame_jacobian.is_empty() {
         let mut list: Vec<Function> = match f.functions {
-            Some(names) => names.into_iter().map(FunctionName::function).collect(),
+            // The spelling the command line and the macros read too.
+            Some(names) => names
+                .iter()
+                .map(|n| {
+                    Function::from_name(n).ok_or_else(|| {
+                        SceneError::Toml(format!(
+                            "functions: unknown function \"{n}\" (expected one of {})",
+                            Function::NAMES.join(", ")
+                        ))
+                    })
+                })
+                .collect::<Result<_, _>>()?,
             None => Function::DEFAULT.to_vec(),
         };
         list.extend(f.frame_pose.into_iter().map(Function::FramePose));
@@ -191,10 +171,11 @@ fn scene_from_file(f: FileText) -> Result<SceneFile, SceneError> {
         }
         code.functions = Some(functions);
     }
-    code.scalar = f.scalar.map(|s| match s {
-        ScalarName::F32 => ScalarType::F32,
-        ScalarName::F64 => ScalarType::F64,
-    });
+    // The spelling the command line and the macros read too.
+    code.scalar = match f.scalar {
+        Some(s) => Some(s.parse::<ScalarType>().map_err(SceneError::Toml)?),
+        None => None,
+    };
     code.trig = match f.target {
         Some(TargetName::NoStdLibm) => Some(Trig::Libm),
         Some(TargetName::NoStdSincos) => Some(Trig::Inputs),

@@ -147,6 +147,21 @@ impl Graph {
         self.intern(Node::Input { name: n as u32, index })
     }
 
+    /// An arithmetic node (`+ - * /`, negation, square root) of this
+    /// graph's ids, built through the simplifying constructors; `None` for
+    /// the other kinds, which a copying pass maps itself.
+    pub fn arithmetic(&mut self, node: Node) -> Option<NodeId> {
+        Some(match node {
+            Node::Add(a, b) => self.add(a, b),
+            Node::Sub(a, b) => self.sub(a, b),
+            Node::Mul(a, b) => self.mul(a, b),
+            Node::Div(a, b) => self.div(a, b),
+            Node::Neg(a) => self.neg(a),
+            Node::Sqrt(a) => self.sqrt(a),
+            _ => return None,
+        })
+    }
+
     /// `a + b`.
     pub fn add(&mut self, a: NodeId, b: NodeId) -> NodeId {
         match (self.constant_value(a), self.constant_value(b)) {

@@ -114,7 +114,9 @@ pub(crate) fn header(facts: &HeaderFacts) -> String {
         }
         ForwardDynamicsMethod::Ldlt => "CRBA + LTDL, as asked: fewer operations, less accurate on long chains",
     };
-    let _ = writeln!(h, "// Forward dynamics: {why}.");
+    if functions.iter().any(|f| f.function == Function::ForwardDynamics) {
+        let _ = writeln!(h, "// Forward dynamics: {why}.");
+    }
     let _ = writeln!(
         h,
         "// Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]\n\

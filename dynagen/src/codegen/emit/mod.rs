@@ -1,7 +1,7 @@
 //! Emitting: traced functions → the module's Rust source. Each emitted
-//! function becomes its body `NAME_sc` ([`statements`], long bodies split
-//! into parts by [`split`]) and, unless the caller brings the sines and
-//! cosines, its public `NAME` ([`wrapper`]); [`header`] writes what the
+//! function becomes its body `NAME_sc` (`statements.rs`, long bodies split
+//! into parts by `split.rs`) and, unless the caller brings the sines and
+//! cosines, its public `NAME` (`wrapper.rs`); `header.rs` writes what the
 //! module was made from; the sine and cosine kernel's text is appended.
 
 mod header;

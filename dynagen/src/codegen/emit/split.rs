@@ -2,16 +2,14 @@
 //!
 //! A generated body is one `let` per operation in a single basic block, and
 //! two things in rustc grow worse than linearly with its length (measured in
-//! `benches/README.md`, "Long chains"):
+//! `docs/performance.md`, "Long chains"):
 //!
 //! - with debug information (cargo's default `dev` profile), every `let`
 //!   opens a lexical scope nested in the previous one, and LLVM's DWARF
-//!   writer recurses once per scope: rustc overflows its stack at about
-//!   2,900 `let`s in one function (a 7-joint chain's forward dynamics is
-//!   past that);
+//!   writer recurses once per scope: rustc overflows its stack on a few
+//!   thousand `let`s in one function;
 //! - in release builds, LLVM's SLP vectoriser and DAG combiner take time
-//!   super-linear in the size of a basic block (a 30-joint mass matrix,
-//!   19,000 `let`s, takes 13 s to compile).
+//!   super-linear in the size of a basic block.
 //!
 //! So a body longer than [`CodegenOptions::split_lets`](super::CodegenOptions::split_lets)
 //! `let`s becomes private `#[inline(never)]` functions `NAME_part1`,

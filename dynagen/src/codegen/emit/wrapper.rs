@@ -152,7 +152,7 @@ pub(super) fn wrapper(
     // With run-time dispatch, the batched sines and cosines and the body are inlined into an AVX2
     // and FMA copy of `NAME`, as in a native build: no second check, no call of the kernel or of
     // `NAME_sc_avx2_fma` with the sines and cosines through memory. (The body is compiled a second
-    // time for it; inlined, the UR5's τ took 70 ns instead of 78.) A body split into parts is
+    // time for it; inlined it is faster, docs/performance.md.) A body split into parts is
     // called as `NAME_sc_avx2_fma`, the chain of its parts.
     let fast = quote::format_ident!("{}_avx2_fma", fn_name);
     let sc_fast = quote::format_ident!("{}_sc_avx2_fma", fn_name);

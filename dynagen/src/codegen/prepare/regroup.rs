@@ -54,7 +54,7 @@ fn indices(alignment: AxisAlignment) -> Option<(usize, usize, usize)> {
 
 /// A copy of `model` with the inertial parameters regrouped (see the
 /// documentation of [`CodegenOptions::regroup_inertia`](crate::codegen::CodegenOptions::regroup_inertia)
-/// and the comments of `codegen/grouping.rs`).
+/// and the comments of `codegen/prepare/regroup.rs`).
 pub fn regroup_inertia(model: &Model) -> Model {
     let mut m = model.clone();
     for i in (0..m.bodies.len()).rev() {

@@ -37,10 +37,8 @@ use crate::symbolic::{Expr, Function, Node, Rewrites, TraceActive, Tracer};
 use crate::Scalar;
 
 /// Above this many joints [`plan`] keeps the generic algorithm's choices:
-/// tracing every choice grows as n³. On the skewed chains of
-/// `tests/codegen_growth.rs` (debug build) planning takes about 3 s at 16
-/// joints and 12 s at 32, for 8 % fewer operations in M at 16 joints (6,422
-/// → 5,917) and 5 % at 32 (23,824 → 22,696).
+/// tracing every choice grows as n³, and on long chains it saves a few per
+/// cent of M's operations for seconds of planning (`docs/performance.md`).
 pub(crate) const MAX_PLANNED_DOF: usize = 24;
 
 /// For each entry `(i, j)` with `i ≤ j` (row-major index `i·n + j`), which

@@ -249,6 +249,7 @@ mod tests {
     use crate::algorithms::{crba, forward_dynamics};
     use crate::codegen::{prepare, CodegenOptions};
     use crate::scene::Scene;
+    use crate::Scalar;
 
     /// The codegen variant of CRBA never needs more operations than the
     /// generic one it replaces in the trace.

@@ -36,16 +36,13 @@ pub fn sin_cos_inputs(f: &Function, n: usize, rewrites: Rewrites) -> Result<SinC
     // For each SinCos node: its joint.
     let mut sc_joint: Vec<usize> = vec![usize::MAX; nodes.len()];
     for (id, node) in nodes.iter().enumerate() {
-        let m = |x: NodeId| new[x as usize];
+        if let Some(id) = g.arithmetic(node.map_operands(|x| new[x as usize])) {
+            new.push(id);
+            continue;
+        }
         let mapped = match *node {
             Node::Const(_) => g.constant(node.constant().unwrap_or_default()),
             Node::Input { name, index } => g.input(&f.input_names()[name as usize], index as usize),
-            Node::Add(a, b) => g.add(m(a), m(b)),
-            Node::Sub(a, b) => g.sub(m(a), m(b)),
-            Node::Mul(a, b) => g.mul(m(a), m(b)),
-            Node::Div(a, b) => g.div(m(a), m(b)),
-            Node::Neg(a) => g.neg(m(a)),
-            Node::Sqrt(a) => g.sqrt(m(a)),
             Node::SinCos(a) => {
                 let (joint, scale) = match (joint_of(a), nodes[a as usize]) {
                     (Some(i), _) => (i, 1.0),
@@ -68,6 +65,7 @@ pub fn sin_cos_inputs(f: &Function, n: usize, rewrites: Rewrites) -> Result<SinC
             }
             Node::Sin(sc) => g.input("s", sc_joint[sc as usize]),
             Node::Cos(sc) => g.input("c", sc_joint[sc as usize]),
+            _ => unreachable!("arithmetic is mapped above"),
         };
         new.push(mapped);
     }
@@ -100,7 +98,10 @@ pub fn sin_cos_from_q(sc: &SinCosTrace, rewrites: Rewrites) -> Function {
     }
     let mut new: Vec<NodeId> = Vec::with_capacity(f.nodes().len());
     for node in f.nodes() {
-        let m = |x: NodeId| new[x as usize];
+        if let Some(id) = g.arithmetic(node.map_operands(|x| new[x as usize])) {
+            new.push(id);
+            continue;
+        }
         let mapped = match *node {
             Node::Const(_) => g.constant(node.constant().unwrap_or_default()),
             Node::Input { name, index } => {
@@ -125,13 +126,8 @@ pub fn sin_cos_from_q(sc: &SinCosTrace, rewrites: Rewrites) -> Function {
                     g.input(name, index as usize)
                 }
             }
-            Node::Add(a, b) => g.add(m(a), m(b)),
-            Node::Sub(a, b) => g.sub(m(a), m(b)),
-            Node::Mul(a, b) => g.mul(m(a), m(b)),
-            Node::Div(a, b) => g.div(m(a), m(b)),
-            Node::Neg(a) => g.neg(m(a)),
-            Node::Sqrt(a) => g.sqrt(m(a)),
             Node::SinCos(_) | Node::Sin(_) | Node::Cos(_) => unreachable!("an _sc function has no sines"),
+            _ => unreachable!("arithmetic is mapped above"),
         };
         new.push(mapped);
     }
