@@ -46,12 +46,18 @@ fn main() {
             ("f64_ldlt", base.clone().functions(fd_only.clone()).forward_dynamics(ForwardDynamicsMethod::Ldlt)),
             (
                 "f64_ldlt_batched",
-                base.clone().functions(fd_only.clone()).forward_dynamics(ForwardDynamicsMethod::Ldlt).trig(Trig::Batched),
+                base.clone()
+                    .functions(fd_only.clone())
+                    .forward_dynamics(ForwardDynamicsMethod::Ldlt)
+                    .trig(Trig::Batched),
             ),
             ("f32", base.clone().scalar(ScalarType::F32)),
             (
                 "f32_ldlt",
-                base.clone().scalar(ScalarType::F32).functions(fd_only.clone()).forward_dynamics(ForwardDynamicsMethod::Ldlt),
+                base.clone()
+                    .scalar(ScalarType::F32)
+                    .functions(fd_only.clone())
+                    .forward_dynamics(ForwardDynamicsMethod::Ldlt),
             ),
         ];
         let _ = writeln!(glue, "/// `{rel}`.\n#[allow(dead_code)]\npub mod {robot} {{");

@@ -229,7 +229,8 @@ impl SceneOptions {
                     let f = self.name(&n);
                     let pose = k == "frame_pose";
                     self.edit_code(move |mut file| {
-                        let frame = if pose { Function::FramePose(f.clone()) } else { Function::FrameJacobian(f.clone()) };
+                        let frame =
+                            if pose { Function::FramePose(f.clone()) } else { Function::FrameJacobian(f.clone()) };
                         let list = file.code.functions.get_or_insert_with(|| Function::DEFAULT.to_vec());
                         if !list.contains(&frame) {
                             list.push(frame);

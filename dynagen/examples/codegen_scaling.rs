@@ -36,7 +36,7 @@
 #[path = "../tests/support/skewed_chain.rs"]
 mod skewed_chain;
 
-use dynagen::codegen::{generate, CodegenOptions, FunctionKind, Functions, DEFAULT_SPLIT_LETS};
+use dynagen::codegen::{generate, CodegenOptions, ForwardDynamicsMethod, Function, DEFAULT_SPLIT_LETS};
 use dynagen::Model;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -247,15 +247,17 @@ fn main() {
             module = Some(m);
         }
         let module = module.expect("one run");
-        let count = |k: FunctionKind| module.functions.iter().find(|f| f.kind == k).map_or(0, |f| f.op_count.total());
+        let count = |k: Function, method: Option<ForwardDynamicsMethod>| {
+            module.functions.iter().find(|f| f.function == k && f.method == method).map_or(0, |f| f.op_count.total())
+        };
         let (lets, parts) = longest_and_parts(&module.source);
         println!(
             "{name:>8} {:>6} {:>6} {:>6} {:>6} {:>7} {best:>9.1} {best_cpu:>9.1} {:>7} {lets:>6} {parts:>5}",
-            count(FunctionKind::InverseDynamics),
-            count(FunctionKind::MassMatrix),
-            count(FunctionKind::BiasForces),
-            count(FunctionKind::GravityTorques),
-            count(FunctionKind::ForwardDynamicsAba),
+            count(Function::InverseDynamics, None),
+            count(Function::MassMatrix, None),
+            count(Function::BiasForces, None),
+            count(Function::GravityTorques, None),
+            count(Function::ForwardDynamics, Some(ForwardDynamicsMethod::Aba)),
             module.source.len() / 1024,
         );
         if !a.compile {
@@ -263,21 +265,14 @@ fn main() {
         }
         let mut modules = Vec::new();
         if a.per_function {
-            let none = Functions {
-                inverse_dynamics: false,
-                mass_matrix: false,
-                bias_forces: false,
-                gravity_torques: false,
-                forward_dynamics: false,
-            };
-            for (label, functions) in [
-                ("tau", Functions { inverse_dynamics: true, ..none }),
-                ("M", Functions { mass_matrix: true, ..none }),
-                ("h", Functions { bias_forces: true, ..none }),
-                ("g", Functions { gravity_torques: true, ..none }),
-                ("FD", Functions { forward_dynamics: true, ..none }),
+            for (label, function) in [
+                ("tau", Function::InverseDynamics),
+                ("M", Function::MassMatrix),
+                ("h", Function::BiasForces),
+                ("g", Function::GravityTorques),
+                ("FD", Function::ForwardDynamics),
             ] {
-                let m = generate(model, &options.clone().functions(functions)).expect("generating");
+                let m = generate(model, &options.clone().functions([function])).expect("generating");
                 modules.push((label, m.source));
             }
         } else {

@@ -11,7 +11,7 @@ fn main() {
     let model = Model::from_urdf_file(&path).unwrap();
     let module = generate(&model, &CodegenOptions::default()).unwrap();
     for f in &module.functions {
-        let nodes = f.function.nodes();
+        let nodes = f.traced.nodes();
         let kind = |id: u32| match nodes[id as usize] {
             Node::Const(_) => "const",
             Node::Input { .. } => "input",
@@ -35,7 +35,7 @@ fn main() {
         }
         println!(
             "{:32} {}\n{:32} mul by constant {mul_const}, by sin/cos {mul_trig}, other {mul_other}; add/sub of a constant {addsub_const}",
-            f.kind.label(),
+            f.label(),
             f.op_count,
             ""
         );

@@ -4,7 +4,7 @@
 
 mod support;
 
-use dynagen::codegen::{generate, BuildError, CodegenOptions, Functions, ScalarType};
+use dynagen::codegen::{generate, BuildError, CodegenOptions, Function, ScalarType};
 use dynagen::scene::{Gravity, Scene};
 use dynagen::Builder;
 use std::path::{Path, PathBuf};
@@ -32,10 +32,8 @@ fn writes_the_generators_source_named_after_the_robot() {
     assert_eq!(written.path, dir.join("planar_2link.rs"));
     assert_eq!(written.inputs, vec![PathBuf::from(&urdf)]);
     let model = dynagen::Model::from_urdf_file(&urdf).unwrap();
-    let opts = CodegenOptions::default()
-        .source(urdf.clone())
-        .scalar(ScalarType::F32)
-        .functions(Functions::from_names(["gravity_torques"]).unwrap());
+    let opts =
+        CodegenOptions::default().source(urdf.clone()).scalar(ScalarType::F32).functions([Function::GravityTorques]);
     let want = generate(&model, &opts).unwrap().source;
     assert_eq!(std::fs::read_to_string(&written.path).unwrap(), want);
     // Includable in a `mod`: no inner attribute anywhere.
@@ -118,7 +116,8 @@ fn errors_name_the_file_and_the_item() {
     // A scene with a run-time gravity and coriolis: generated, with the input.
     let written = Builder::new()
         .urdf(&ur5)
-        .scene(Scene::new().name("ur5 gravity input").gravity(Gravity::Input))
+        .scene(Scene::new().gravity(Gravity::Input))
+        .name("ur5 gravity input")
         .functions(&["gravity_torques", "coriolis"])
         .out_dir(&dir)
         .generate()

@@ -4,7 +4,7 @@
 mod support;
 
 use dynagen::codegen::{
-    float_literal_text, generate, model_hash, snap_rounding, CodegenOptions, FunctionKind, Functions, ScalarType, Trig,
+    float_literal_text, generate, model_hash, snap_rounding, CodegenOptions, Function, ScalarType, Trig,
 };
 use dynagen::model::{Inertial, JointDescription, RobotBuilder};
 use dynagen::Model;
@@ -49,7 +49,7 @@ fn the_module_follows_the_contract_and_parses() {
     assert!(src.contains("// Model source: ur5.urdf"));
     assert!(src.contains(&format!("{:016x}", module.model_hash)));
     for f in &module.functions {
-        assert!(src.contains(&format!("//   {}", f.kind.label())), "{}", f.kind.label());
+        assert!(src.contains(&format!("//   {}", f.label())), "{}", f.label());
         assert!(src.contains(&f.op_count.to_string()));
     }
     // every item has rustdoc
@@ -64,7 +64,7 @@ fn the_module_follows_the_contract_and_parses() {
     // std's, asked for: one `.sin_cos()` per angle a body reads (below for the default).
     let std = generate(&support::model("ur5"), &CodegenOptions::default().trig(Trig::Std)).unwrap();
     for f in std.functions.iter().filter(|f| f.emitted) {
-        let wrapper = function_text(&std.source, &format!("pub fn {}(", f.kind.fn_name()));
+        let wrapper = function_text(&std.source, &format!("pub fn {}(", f.name));
         assert_eq!(wrapper.matches(".sin_cos()").count(), f.op_count.sin_cos, "{wrapper}");
         assert!(!wrapper.contains("sin_cos_array"), "{wrapper}");
     }
@@ -74,7 +74,7 @@ fn the_module_follows_the_contract_and_parses() {
         let split = |head: &str| function_text(src, head);
         // run-time dispatch (on by default): the body is the generic `NAME_sc_on`, which the public
         // `NAME_sc` runs for the baseline and `NAME_sc_avx2_fma` for AVX2 and FMA
-        let name = format!("{}_sc", f.kind.fn_name());
+        let name = format!("{}_sc", f.name);
         let public = split(&format!("pub fn {name}("));
         assert!(public.contains(&format!("return unsafe {{ {name}_avx2_fma(")), "{public}");
         assert!(public.contains(&format!("{name}_on::<Baseline>(")), "{public}");
@@ -88,7 +88,7 @@ fn the_module_follows_the_contract_and_parses() {
         assert_eq!(body.matches("let t").count(), sc.total() - fused.mul_folded);
         assert_eq!(body.matches(" = I::fma(").count(), fused.fused);
         assert_eq!(sc.sin_cos, 0);
-        let wrapper = split(&format!("pub fn {}(", f.kind.fn_name()));
+        let wrapper = split(&format!("pub fn {}(", f.name));
         assert_eq!(batched_angles(wrapper), f.op_count.sin_cos, "{wrapper}");
         assert_eq!(sc.total() + f.op_count.sin_cos, f.op_count.total());
     }
@@ -116,13 +116,8 @@ fn batched_angles(wrapper: &str) -> usize {
 
 #[test]
 fn a_selection_of_functions_and_f32() {
-    let opts = CodegenOptions::default().scalar(ScalarType::F32).functions(Functions {
-        inverse_dynamics: false,
-        mass_matrix: true,
-        bias_forces: false,
-        gravity_torques: true,
-        forward_dynamics: false,
-    });
+    let opts =
+        CodegenOptions::default().scalar(ScalarType::F32).functions([Function::MassMatrix, Function::GravityTorques]);
     let module = generate(&support::model("ur5"), &opts).unwrap();
     let src = &module.source;
     assert!(src.contains("pub fn mass_matrix(q: &[f32; DOF]) -> [[f32; DOF]; DOF]"));
@@ -131,7 +126,10 @@ fn a_selection_of_functions_and_f32() {
     assert!(src.contains("// Left out: bias_forces, forward_dynamics, inverse_dynamics."));
     let before_kernel = src.split("// The sine and cosine of joint angles").next().unwrap();
     assert!(!before_kernel.contains("[f64"), "f64 only inside the sine-cosine kernel");
-    assert!(module.function(FunctionKind::InverseDynamics).is_none());
+    assert!(module.function("inverse_dynamics").is_none());
+    // (nor traced and left out of the source: only the two asked for)
+    let traced: Vec<&Function> = module.functions.iter().map(|f| &f.function).collect();
+    assert_eq!(traced, [&Function::MassMatrix, &Function::GravityTorques]);
 }
 
 #[test]
@@ -218,10 +216,10 @@ fn constants_within_rounding_of_zero_or_one() {
     assert!(body(&off).contains("e-17"), "without the snap they do");
     assert!(on.op_counts()[0].1.total() < off.op_counts()[0].1.total());
     let (q, qd, qdd) = ([0.3, -1.2], [0.7, 2.0], [-0.4, 1.5]);
-    for kind in [FunctionKind::InverseDynamics, FunctionKind::MassMatrix] {
+    for kind in [Function::InverseDynamics, Function::MassMatrix] {
         let args: [(&str, &[f64]); 3] = [("q", &q), ("qd", &qd), ("qdd", &qdd)];
-        let a = on.function(kind).unwrap().eval(&args).unwrap();
-        let b = off.function(kind).unwrap().eval(&args).unwrap();
+        let a = on.function(&kind.rust_name()).unwrap().traced.eval(&args).unwrap();
+        let b = off.function(&kind.rust_name()).unwrap().traced.eval(&args).unwrap();
         let norm = b.iter().map(|x| x * x).sum::<f64>().sqrt();
         for (x, y) in a.iter().zip(&b) {
             assert!((x - y).abs() <= 1e-15 * norm, "{kind:?}: {x} vs {y}");
@@ -250,7 +248,7 @@ fn constants_within_rounding_of_zero_or_one() {
 #[test]
 fn the_mass_matrix_is_computed_once_per_pair() {
     let module = generate(&support::model("ur5"), &CodegenOptions::default()).unwrap();
-    let f = module.function(FunctionKind::MassMatrix).unwrap();
+    let f = &module.function("mass_matrix").unwrap().traced;
     let n = 6;
     let out = f.outputs();
     for i in 0..n {

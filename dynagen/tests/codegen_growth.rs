@@ -4,7 +4,8 @@
 
 mod support;
 
-use dynagen::codegen::{trace, FunctionKind};
+use dynagen::codegen::{trace, ForwardDynamicsMethod, Function};
+use dynagen::scene::Scene;
 use dynagen::symbolic::Rewrites;
 use support::skewed_chain::skewed_chain as chain;
 
@@ -14,9 +15,11 @@ fn op_counts_grow_linearly_for_tau_and_quadratically_for_m() {
     let mut rows = Vec::new();
     println!("{:>6} {:>10} {:>10} {:>10} {:>10}", "joints", "tau", "tau/n", "M", "M/n^2");
     for &n in &sizes {
-        let model = chain(n);
-        let tau = trace(&model, FunctionKind::InverseDynamics, Rewrites::default()).unwrap().op_count().total();
-        let m = trace(&model, FunctionKind::MassMatrix, Rewrites::default()).unwrap().op_count().total();
+        let scene = Scene::default().apply(&chain(n)).unwrap();
+        let count = |f: Function| {
+            trace(&scene, &f, ForwardDynamicsMethod::Aba, Rewrites::default()).unwrap().op_count().total()
+        };
+        let (tau, m) = (count(Function::InverseDynamics), count(Function::MassMatrix));
         println!("{n:>6} {tau:>10} {:>10.1} {m:>10} {:>10.1}", tau as f64 / n as f64, m as f64 / (n * n) as f64);
         rows.push((n, tau, m));
     }
@@ -38,7 +41,7 @@ fn op_counts_grow_linearly_for_tau_and_quadratically_for_m() {
 /// body frames slid along their axes, Khalil's U matrix and the gyroscopic
 /// moment from `ω ωᵀ` in the RNEA, classic accelerations and exact zeros
 /// along S in the ABA, each mass-matrix entry formed where it is cheapest
-/// (`codegen/mass_matrix.rs`; UR5 M was 171, LTDL 542; Panda M 654, LTDL
+/// (`codegen/trace/mass_matrix.rs`; UR5 M was 171, LTDL 542; Panda M 654, LTDL
 /// 1826), inertias turned about the joint axis before a quarter-turn
 /// placement when traced (`joint::Permuted`; ABA UR5 620, Panda 1872), the
 /// traced RNEA's moment grouped by the entries of `Ī` (`rnea::inertial_moment`;
@@ -49,7 +52,7 @@ fn op_counts_grow_linearly_for_tau_and_quadratically_for_m() {
 /// others fell), the second finger's column of M the first's negated
 /// (`mass_matrix::mirrored_column`; Panda M 564, LTDL 1592), the fingers'
 /// weights in g split into masses fixed to the hand, regrouped, and first
-/// moments `m d q` (`codegen/leaves.rs`; Panda g 189, 108 cycles), and sums
+/// moments `m d q` (`codegen/trace/gravity_fold.rs`; Panda g 189, 108 cycles), and sums
 /// reassociated for a shorter
 /// critical path (see `benches/README.md`), and the traced ABA's transform
 /// to the parent distributed over the rank-one update (`aba::aba_impl`,
@@ -65,48 +68,44 @@ fn op_counts_grow_linearly_for_tau_and_quadratically_for_m() {
 #[test]
 fn bundled_op_counts_do_not_grow() {
     use dynagen::codegen::{generate, CodegenOptions};
-    /// (function, operations, critical path of the body in cycles)
-    type Limit = (FunctionKind, usize, u32);
+    use ForwardDynamicsMethod::{Aba, Ldlt};
+    /// (function, forward-dynamics method, operations, critical path of the body in cycles)
+    type Limit = (Function, Option<ForwardDynamicsMethod>, usize, u32);
     let limits: [(&str, [Limit; 6]); 2] = [
         (
             "ur5",
             [
-                (FunctionKind::InverseDynamics, 282, 108),
-                (FunctionKind::MassMatrix, 131, 44),
-                (FunctionKind::BiasForces, 253, 105),
-                (FunctionKind::GravityTorques, 19, 32),
-                (FunctionKind::ForwardDynamicsAba, 644, 202),
-                (FunctionKind::ForwardDynamicsLdlt, 498, 162),
+                (Function::InverseDynamics, None, 282, 108),
+                (Function::MassMatrix, None, 131, 44),
+                (Function::BiasForces, None, 253, 105),
+                (Function::GravityTorques, None, 19, 32),
+                (Function::ForwardDynamics, Some(Aba), 644, 202),
+                (Function::ForwardDynamics, Some(Ldlt), 498, 162),
             ],
         ),
         (
             "panda",
             [
-                (FunctionKind::InverseDynamics, 692, 160),
-                (FunctionKind::MassMatrix, 515, 104),
-                (FunctionKind::BiasForces, 661, 161),
-                (FunctionKind::GravityTorques, 122, 96),
-                (FunctionKind::ForwardDynamicsAba, 1661, 324),
-                (FunctionKind::ForwardDynamicsLdlt, 1508, 242),
+                (Function::InverseDynamics, None, 692, 160),
+                (Function::MassMatrix, None, 515, 104),
+                (Function::BiasForces, None, 661, 161),
+                (Function::GravityTorques, None, 122, 96),
+                (Function::ForwardDynamics, Some(Aba), 1661, 324),
+                (Function::ForwardDynamics, Some(Ldlt), 1508, 242),
             ],
         ),
     ];
     for (robot, limits) in limits {
         let module = generate(&support::model(robot), &CodegenOptions::default()).unwrap();
-        for (kind, limit, path_limit) in limits {
-            let f = module.functions.iter().find(|f| f.kind == kind).unwrap();
+        for (kind, method, limit, path_limit) in limits {
+            let f = module.functions.iter().find(|f| f.function == kind && f.method == method).unwrap();
             let (count, path) = (f.op_count, f.sin_cos_inputs.function.critical_path());
-            println!("{robot} {}: {count}; body {path}", kind.label());
-            assert!(
-                count.total() <= limit,
-                "{robot} {}: {} operations, more than {limit}",
-                kind.label(),
-                count.total()
-            );
+            println!("{robot} {}: {count}; body {path}", f.label());
+            assert!(count.total() <= limit, "{robot} {}: {} operations, more than {limit}", f.label(), count.total());
             assert!(
                 path.cycles <= path_limit,
                 "{robot} {}: critical path {} cycles, more than {path_limit}",
-                kind.label(),
+                f.label(),
                 path.cycles
             );
         }
@@ -118,28 +117,21 @@ fn bundled_op_counts_do_not_grow() {
 /// a long chain (where LTDL loses digits); the header says which and why.
 #[test]
 fn forward_dynamics_is_chosen_by_speed_and_accuracy() {
-    use dynagen::codegen::{generate, CodegenOptions, Functions};
-    let only_fd = Functions {
-        inverse_dynamics: false,
-        mass_matrix: false,
-        bias_forces: false,
-        gravity_torques: false,
-        forward_dynamics: true,
-    };
+    use dynagen::codegen::{generate, CodegenOptions};
+    use ForwardDynamicsMethod::{Aba, Ldlt};
+    let only_fd = [Function::ForwardDynamics];
     let robot = support::model;
     // The UR5: LTDL as accurate and faster. The Panda: LTDL faster but
     // 4.5 times ABA's error (1.8e-15 against 4.0e-16). A 40-joint chain: ABA
     // faster and far more accurate.
-    for (name, model, want) in [
-        ("ur5", robot("ur5"), FunctionKind::ForwardDynamicsLdlt),
-        ("panda", robot("panda"), FunctionKind::ForwardDynamicsAba),
-        ("chain", chain(40), FunctionKind::ForwardDynamicsAba),
-    ] {
-        let module = generate(&model, &CodegenOptions::default().functions(only_fd)).unwrap();
-        let emitted: Vec<FunctionKind> = module.functions.iter().filter(|f| f.emitted).map(|f| f.kind).collect();
+    for (name, model, want) in [("ur5", robot("ur5"), Ldlt), ("panda", robot("panda"), Aba), ("chain", chain(40), Aba)]
+    {
+        let module = generate(&model, &CodegenOptions::default().functions(only_fd.clone())).unwrap();
+        let emitted: Vec<(Function, Option<ForwardDynamicsMethod>)> =
+            module.functions.iter().filter(|f| f.emitted).map(|f| (f.function.clone(), f.method)).collect();
         let line = module.source.lines().find(|l| l.starts_with("// Forward dynamics:")).unwrap();
         println!("{name}: {line}");
-        assert_eq!(emitted, [want], "{name}: {line}");
+        assert_eq!(emitted, [(Function::ForwardDynamics, Some(want))], "{name}: {line}");
         assert!(line.contains("chosen as"), "{name}: {line}");
     }
 }

@@ -6,9 +6,9 @@
 
 mod support;
 
-use dynagen::codegen::{generate_scene, CodegenOptions, FunctionKind, GeneratedModule, Trig};
+use dynagen::codegen::{generate_scene, CodegenError, CodegenOptions, Function, GeneratedModule, ScalarType, Trig};
 use dynagen::scene::{
-    Function, Gravity, PayloadInertia, ResolvedGravity, ScalarType, Scene, SceneInputs, SceneModel, SceneRobot, Target,
+    Gravity, PayloadInertia, ResolvedGravity, Scene, SceneError, SceneFile, SceneInputs, SceneModel, SceneRobot,
 };
 use dynagen::Model;
 use nalgebra::{DVector, Vector3, Vector6};
@@ -33,12 +33,13 @@ fn rows<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f64, R, C>>(
     (0..m.nrows()).flat_map(|r| (0..m.ncols()).map(move |c| m[(r, c)])).collect()
 }
 
-/// Generates `scene` for `model` with the default options, and checks every
-/// function against [`SceneRobot`] on `states` random states (f64 graph
-/// evaluation within `tol`, or f32 evaluation within `tol` when the scene is
-/// f32).
+/// Generates `scene` for `model` with the full options ([`full_options`]),
+/// and checks every traced function (both forward dynamics where both were
+/// traced) against [`SceneRobot`] on `states` random states (f64 graph
+/// evaluation within `tol`, or f32 evaluation within `tol` when the options
+/// are f32).
 fn check(model: &Model, scene: &Scene, states: usize, tol: f64) -> (SceneModel, GeneratedModule) {
-    check_with(model, scene, &CodegenOptions::default(), states, tol)
+    check_with(model, scene, &full_options(), states, tol)
 }
 
 /// [`check`] with `options`.
@@ -54,7 +55,7 @@ fn check_with(
     let mut robot = SceneRobot::new(applied.clone());
     let n = applied.dof();
     let mut rng = Rng::new(0x9e37_79b9_7f4a_7c15);
-    let f32 = applied.scalar == ScalarType::F32;
+    let f32 = options.scalar == ScalarType::F32;
     for _ in 0..states {
         let (q, qd, qdd, tau) = (rng.vec(n, 3.0), rng.vec(n, 2.0), rng.vec(n, 5.0), rng.vec(n, 20.0));
         let gravity = [rng.signed(), rng.signed(), -9.81 + rng.signed()];
@@ -81,7 +82,7 @@ fn check_with(
             payloads: &payloads,
         };
         let dv = |v: &Vec<f64>| DVector::from_column_slice(v);
-        for f in &module.scene_functions {
+        for f in &module.functions {
             let got: Vec<f64> = if f32 {
                 f.traced.eval_as::<f32>(&inputs).unwrap().into_iter().map(f64::from).collect()
             } else {
@@ -102,27 +103,43 @@ fn check_with(
                 Function::FramePose(frame) => rows(&robot.frame_pose(frame, &dv(&q)).unwrap()),
                 Function::FrameJacobian(frame) => rows(&robot.frame_jacobian(frame, &dv(&q)).unwrap()),
             };
-            assert_eq!(got.len(), want.len(), "{}", f.name);
+            assert_eq!(got.len(), want.len(), "{}", f.label());
             let e = norm_rel_err(&got, &want, 1e-300);
             // g(q) = 0 without gravity: compare absolutely.
             let e = if want.iter().all(|x| *x == 0.0) { got.iter().fold(0.0f64, |m, x| m.max(x.abs())) } else { e };
-            assert!(e < tol, "{}: relative error {e:e}\n got {got:?}\nwant {want:?}", f.name);
+            assert!(e < tol, "{}: relative error {e:e}\n got {got:?}\nwant {want:?}", f.label());
         }
     }
     (applied, module)
 }
 
 fn ops(module: &GeneratedModule, name: &str) -> usize {
-    module.scene_function(name).unwrap_or_else(|| panic!("no function {name}")).op_count.total()
+    module.function(name).unwrap_or_else(|| panic!("no function {name}")).op_count.total()
 }
 
-/// The full scene: the five functions plus coriolis and the end-effector's
-/// pose and Jacobian.
+/// The full scene: the whole robot, with the full options.
 fn full_scene() -> Scene {
     Scene::new()
+}
+
+/// The full options: the five functions plus coriolis and the
+/// end-effector's pose and Jacobian.
+fn full_options() -> CodegenOptions {
+    CodegenOptions::default()
         .function(Function::Coriolis)
         .function(Function::FramePose("ee_link".into()))
         .function(Function::FrameJacobian("ee_link".into()))
+}
+
+/// The sum of the operation counts of the functions `module` emits.
+fn emitted_total(module: &GeneratedModule) -> usize {
+    module.functions.iter().filter(|f| f.emitted).map(|f| f.op_count.total()).sum()
+}
+
+/// [`full_options`] with the code keys of a scene file whose text is
+/// `toml` applied (`target = ...`, `scalar = ...`).
+fn with_keys(toml: &str) -> CodegenOptions {
+    SceneFile::from_toml_str(toml).unwrap().code.apply(full_options())
 }
 
 /// The full scene's module, generated once and checked against SceneRobot.
@@ -146,7 +163,7 @@ const ALL: [&str; 8] = [
 fn deltas(label: &str, module: &GeneratedModule) -> Vec<(&'static str, i64)> {
     let d: Vec<(&str, i64)> = ALL
         .iter()
-        .filter(|f| module.scene_function(f).is_some())
+        .filter(|f| module.function(f).is_some())
         .map(|f| (*f, ops(module, f) as i64 - ops(full(), f) as i64))
         .collect();
     let text: Vec<String> = d.iter().map(|(f, x)| format!("{f} {} ({x:+})", ops(module, f))).collect();
@@ -165,54 +182,59 @@ fn the_full_scene_is_the_plain_module() {
     // The forward dynamics is chosen between ABA and CRBA + LᵀDL as the
     // plain module's is (the UR5 gets LᵀDL, with the same sentence why).
     let plain = dynagen::codegen::generate(&support::model("ur5"), &CodegenOptions::default()).unwrap();
-    for (kinds, name) in [
-        (&[FunctionKind::InverseDynamics][..], "inverse_dynamics"),
-        (&[FunctionKind::MassMatrix], "mass_matrix"),
-        (&[FunctionKind::BiasForces], "bias_forces"),
-        (&[FunctionKind::GravityTorques], "gravity_torques"),
-        (&[FunctionKind::ForwardDynamicsAba, FunctionKind::ForwardDynamicsLdlt], "forward_dynamics"),
-    ] {
-        let p = plain.functions.iter().find(|f| kinds.contains(&f.kind) && f.emitted).unwrap();
-        assert_eq!(full().scene_function(name).unwrap().op_count, p.op_count, "{name}");
+    for name in ["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "forward_dynamics"] {
+        let p = plain.function(name).unwrap();
+        let s = full().function(name).unwrap();
+        assert_eq!((s.op_count, s.method), (p.op_count, p.method), "{name}");
+    }
+    // Both forward dynamics are traced and counted in both, one emitted.
+    for m in [&plain, full()] {
+        let fd: Vec<_> = m.functions.iter().filter(|f| f.function == Function::ForwardDynamics).collect();
+        assert_eq!(fd.len(), 2);
+        assert_eq!(fd.iter().filter(|f| f.emitted).count(), 1);
     }
     let why = |source: &str| source.lines().find(|l| l.starts_with("// Forward dynamics: ")).map(str::to_string);
     assert!(why(&plain.source).unwrap().contains("CRBA + LTDL, chosen as faster and as accurate"));
-    // The same choice for the same estimated cycles; the errors may differ
-    // in their last digit: the scene's functions are traced by another path
-    // (codegen/scene.rs), and the double-double reference is itself a traced
-    // ABA whose model constants were folded in f64 (the distributed ABA of
-    // traced code made plain 3.8e-16 and scene 3.7e-16 for LᵀDL).
-    let choice = |source: &str| why(source).unwrap().split("; worst relative error").next().unwrap().to_string();
-    assert_eq!(choice(&full().source), choice(&plain.source));
+    // The same choice for the same estimated cycles and the same errors:
+    // both modules are traced by one pipeline (codegen/trace/mod.rs). (When
+    // scenes were traced by another path, the errors could differ in their
+    // last digit: plain 3.8e-16 and scene 3.7e-16 for LᵀDL.)
+    assert_eq!(why(&full().source), why(&plain.source));
     assert!(why(&full().source).unwrap().contains("; worst relative error on 16 states against double-double"));
     deltas("full scene", full());
 }
 
 #[test]
 fn a_function_subset_emits_only_those() {
-    let scene = Scene::new().functions([Function::InverseDynamics, Function::Coriolis]);
-    let (_, m) = check(&support::model("ur5"), &scene, 5, 1e-12);
+    let options = CodegenOptions::default().functions([Function::InverseDynamics, Function::Coriolis]);
+    let (_, m) = check_with(&support::model("ur5"), &Scene::new(), &options, 5, 1e-12);
     let d = deltas("functions = [inverse_dynamics, coriolis]", &m);
     assert_eq!((delta(&d, "inverse_dynamics"), delta(&d, "coriolis")), (0, 0));
     for f in ["mass_matrix", "bias_forces", "gravity_torques", "forward_dynamics", "frame_pose"] {
         assert!(!m.source.contains(&format!("fn {f}")), "{f} emitted");
     }
-    assert!(m
-        .source
-        .contains("//   functions not generated: mass_matrix, bias_forces, gravity_torques, forward_dynamics"));
-    let total: usize = m.scene_functions.iter().map(|f| f.op_count.total()).sum();
-    let full_total: usize = full().scene_functions.iter().map(|f| f.op_count.total()).sum();
+    // The default scene with fewer functions: the plain header's list of
+    // the contract functions left out (alphabetical).
+    assert!(m.source.contains("\n// Left out: bias_forces, forward_dynamics, gravity_torques, mass_matrix.\n"));
+    let total = emitted_total(&m);
+    let full_total = emitted_total(full());
     assert!(total < full_total / 3, "{total} vs {full_total}");
 }
 
 #[test]
 fn torque_only_without_gravity_has_fewer_operations_and_no_mass_matrix() {
-    let scene = Scene::new().functions([Function::InverseDynamics]).gravity(Gravity::None);
-    let (_, m) = check(&support::model("ur5"), &scene, 5, 1e-12);
+    let scene = Scene::new().gravity(Gravity::None);
+    let options = CodegenOptions::default().functions([Function::InverseDynamics]);
+    let (_, m) = check_with(&support::model("ur5"), &scene, &options, 5, 1e-12);
     let d = deltas("tau only, gravity none", &m);
     assert!(delta(&d, "inverse_dynamics") < 0);
     assert!(!m.source.contains("fn mass_matrix") && m.source.contains("pub fn inverse_dynamics("));
     assert!(m.source.contains("//   gravity: none"));
+    // A scene other than the default one lists the functions it leaves out
+    // in its own section, in the module's order.
+    assert!(m.source.contains(
+        "\n//   functions not generated: mass_matrix, bias_forces, gravity_torques, coriolis, forward_dynamics\n"
+    ));
 }
 
 #[test]
@@ -271,8 +293,9 @@ fn a_tip_wrench_input_costs_less_than_its_jacobian_transpose() {
 
 #[test]
 fn a_subtree_drops_joints_and_operations() {
-    let scene = full_scene().subtree("base_link", &["wrist_1_link"]).functions(Function::DEFAULT);
-    let (applied, m) = check(&support::model("ur5"), &scene, 5, 1e-12);
+    let scene = full_scene().subtree("base_link", &["wrist_1_link"]);
+    let options = CodegenOptions::default().functions(Function::DEFAULT);
+    let (applied, m) = check_with(&support::model("ur5"), &scene, &options, 5, 1e-12);
     assert_eq!(applied.dof(), 4);
     let d = deltas("subtree base_link -> wrist_1_link", &m);
     // g of the regrouped UR5 reads only the shoulder, elbow and wrist-1
@@ -332,7 +355,7 @@ fn constant_and_input_payloads() {
         // last body mass and first moments again, which every joint then
         // carries (g: 19 → 46). That is bounded by a second full body on
         // the chain, under half of the function (M: +57 on 131 since the
-        // mass matrix is planned, codegen/mass_matrix.rs; it was under 2/5
+        // mass matrix is planned, codegen/trace/mass_matrix.rs; it was under 2/5
         // of the 171 before).
         let full_ops = ops(full(), f) as i64;
         assert!(delta(&dc, f) > 0 && delta(&dc, f) <= full_ops.max(100) / 2, "{f}: {}", delta(&dc, f));
@@ -388,8 +411,10 @@ fn viscous_and_coulomb_friction_cost_what_their_formulas_do() {
 
 #[test]
 fn f32_scenes_match_in_f32() {
-    let scene = full_scene().scalar(ScalarType::F32).tip_wrench("ee_link").gravity(Gravity::Input);
-    let (_, m) = check(&support::model("ur5"), &scene, 10, 1e-5);
+    let scene = full_scene().tip_wrench("ee_link").gravity(Gravity::Input);
+    let (_, m) = check_with(&support::model("ur5"), &scene, &full_options().scalar(ScalarType::F32), 10, 1e-5);
+    // A scene file's `scalar = "f32"` is the same options.
+    assert_eq!(with_keys("scalar = \"f32\""), full_options().scalar(ScalarType::F32));
     assert!(m.source.contains("pub fn inverse_dynamics(\n    q: &[f32; DOF],") || m.source.contains("q: &[f32; DOF]"));
     assert!(m.source.contains("gravity: &[f32; 3]") && !m.source.contains("f64; DOF"));
     let (_, f64_module) =
@@ -401,12 +426,17 @@ fn f32_scenes_match_in_f32() {
 
 #[test]
 fn no_std_targets() {
-    let libm = full_scene().target(Target::NoStdLibm).coulomb("elbow_joint", 1.0);
-    let (_, m) = check(&support::model("ur5"), &libm, 2, 1e-12);
+    // A scene file's target is the options' trigonometry.
+    let libm = full_scene().coulomb("elbow_joint", 1.0);
+    let options = with_keys("target = \"no_std_libm\"");
+    assert_eq!(options, full_options().trig(Trig::Libm));
+    let (_, m) = check_with(&support::model("ur5"), &libm, &options, 2, 1e-12);
     assert!(m.source.contains("libm::sincos(") && m.source.contains("libm::sqrt("));
     assert!(!m.source.contains(".sin_cos()") && !m.source.contains(".sqrt()"));
-    let inputs = full_scene().target(Target::NoStdSinCos).tip_wrench("ee_link");
-    let (_, m) = check(&support::model("ur5"), &inputs, 2, 1e-12);
+    let inputs = full_scene().tip_wrench("ee_link");
+    let options = with_keys("target = \"no_std_sincos\"");
+    assert_eq!(options, full_options().trig(Trig::Inputs));
+    let (_, m) = check_with(&support::model("ur5"), &inputs, &options, 2, 1e-12);
     assert!(m.source.contains("pub fn inverse_dynamics_sc(") && !m.source.contains("pub fn inverse_dynamics("));
     assert!(deltas("no_std_sincos, tip wrench", &m).iter().all(|(f, x)| *x == 0 || f.contains("dynamics")));
 }
@@ -420,11 +450,11 @@ fn no_std_targets() {
 #[test]
 fn coulomb_friction_without_std_uses_the_module_sqrt() {
     let friction = || full_scene().coulomb("elbow_joint", 1.0).viscous("wrist_1_joint", 0.5);
-    let batched = CodegenOptions::default().trig(Trig::Batched);
+    let batched = full_options().trig(Trig::Batched);
     let cases = [
         ("batched", friction(), batched.clone(), "sqrt"),
-        ("no_std_sincos", friction().target(Target::NoStdSinCos), CodegenOptions::default(), "sqrt"),
-        ("batched f32", friction().scalar(ScalarType::F32), batched, "sqrtf"),
+        ("no_std_sincos", friction(), with_keys("target = \"no_std_sincos\""), "sqrt"),
+        ("batched f32", friction(), batched.scalar(ScalarType::F32), "sqrtf"),
     ];
     for (label, scene, options, sqrt) in cases {
         let tol = if sqrt == "sqrtf" { 1e-5 } else { 1e-12 };
@@ -436,11 +466,11 @@ fn coulomb_friction_without_std_uses_the_module_sqrt() {
         assert_eq!(calls.count(), 3, "{label}");
         assert!(src.contains(&format!("\nfn {sqrt}(")), "{label}: the kernel text's {sqrt}");
         for f in ["inverse_dynamics", "bias_forces", "forward_dynamics"] {
-            assert_eq!(m.scene_function(f).unwrap().op_count.sqrt, 1, "{label}: {f}");
+            assert_eq!(m.function(f).unwrap().op_count.sqrt, 1, "{label}: {f}");
         }
     }
     // With std's trigonometry, std's square root.
-    let (_, m) = check_with(&support::model("ur5"), &friction(), &CodegenOptions::default().trig(Trig::Std), 1, 1e-12);
+    let (_, m) = check_with(&support::model("ur5"), &friction(), &full_options().trig(Trig::Std), 1, 1e-12);
     assert_eq!(m.source.matches(".sqrt()").count(), 3);
 }
 
@@ -448,35 +478,31 @@ fn coulomb_friction_without_std_uses_the_module_sqrt() {
 fn branched_and_prismatic_robots() {
     let panda = support::model("panda");
     // Prismatic fingers: the _sc functions also take q, then the inputs.
+    let options =
+        CodegenOptions::default().function(Function::Coriolis).function(Function::FrameJacobian("panda_hand".into()));
     let scene = Scene::new()
-        .function(Function::Coriolis)
-        .function(Function::FrameJacobian("panda_hand".into()))
         .gravity(Gravity::Input)
         .tip_wrench("panda_hand")
         .payload_input("panda_hand")
         .lock("panda_joint7", 0.3)
         .armature("panda_joint2", 0.2)
         .viscous("panda_finger_joint1", 3.0);
-    let (applied, _) = check(&panda, &scene, 3, 1e-12);
+    let (applied, _) = check_with(&panda, &scene, &options, 3, 1e-12);
     assert_eq!(applied.dof(), 8);
     // A finger's frame, a wrench and a payload on it: code generation moves
     // the finger's frame to its centre of mass (`center_prismatic_leaves`),
     // the frame keeps its pose and the payload its place; with a payload the
     // second finger's column of M is no longer the first's mirror image.
-    let scene = Scene::new()
+    let options = CodegenOptions::default()
         .function(Function::FramePose("panda_leftfinger".into()))
-        .function(Function::FrameJacobian("panda_rightfinger".into()))
-        .tip_wrench("panda_leftfinger")
-        .payload_input("panda_rightfinger");
-    let (applied, _) = check(&panda, &scene, 3, 1e-12);
+        .function(Function::FrameJacobian("panda_rightfinger".into()));
+    let scene = Scene::new().tip_wrench("panda_leftfinger").payload_input("panda_rightfinger");
+    let (applied, _) = check_with(&panda, &scene, &options, 3, 1e-12);
     assert_eq!(applied.dof(), 9);
     let torso = support::model("torso_two_arms");
-    let scene = Scene::new()
-        .subtree("torso", &["left_hand"])
-        .function(Function::FramePose("left_hand".into()))
-        .tip_wrench("left_hand")
-        .coulomb("left_elbow_joint", 1.0);
-    let (applied, m) = check(&torso, &scene, 3, 1e-12);
+    let options = CodegenOptions::default().function(Function::FramePose("left_hand".into()));
+    let scene = Scene::new().subtree("torso", &["left_hand"]).tip_wrench("left_hand").coulomb("left_elbow_joint", 1.0);
+    let (applied, m) = check_with(&torso, &scene, &options, 3, 1e-12);
     assert!(!applied.dropped_links.is_empty());
     assert!(m.source.contains("//   bodies dropped: right_"), "{}", &m.source[..2000]);
 }
@@ -492,10 +518,19 @@ fn codegen_errors_name_the_item() {
         .joint(dynagen::model::JointDescription::fixed("f", "a-b", "a_b"))
         .build()
         .unwrap();
-    let scene = Scene::new().function(Function::FramePose("a-b".into())).function(Function::FramePose("a_b".into()));
-    let e = generate_scene(&scene.apply(&model).unwrap(), &CodegenOptions::default()).unwrap_err();
+    let applied = Scene::new().apply(&model).unwrap();
+    let options = CodegenOptions::default()
+        .function(Function::FramePose("a-b".into()))
+        .function(Function::FramePose("a_b".into()));
+    let e = generate_scene(&applied, &options).unwrap_err();
+    assert!(matches!(e, CodegenError::DuplicateName(_)), "{e}");
     assert!(e.to_string().contains("frame_pose_a_b"), "{e}");
-    // A scene without functions.
-    let e = Scene::new().functions([]).apply(&model).unwrap_err();
+    // No functions: options without any, and a scene file whose lists are
+    // empty.
+    let e = generate_scene(&applied, &CodegenOptions::default().functions([])).unwrap_err();
+    assert!(matches!(e, CodegenError::NoFunctions), "{e}");
+    assert!(e.to_string().contains("no function"), "{e}");
+    let e = SceneFile::from_toml_str("functions = []").unwrap_err();
+    assert!(matches!(e, SceneError::NoFunctions), "{e}");
     assert!(e.to_string().contains("no function"), "{e}");
 }

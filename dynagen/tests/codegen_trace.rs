@@ -4,7 +4,7 @@
 
 mod support;
 
-use dynagen::codegen::{generate, CodegenOptions, ForwardDynamicsMethod, FunctionKind};
+use dynagen::codegen::{generate, CodegenOptions, ForwardDynamicsMethod, Function};
 use dynagen::symbolic::Rewrites;
 use dynagen::{Model, Robot};
 use nalgebra::DVector;
@@ -13,32 +13,45 @@ use support::{norm_rel_err, Rng};
 fn check_model(model: &Model, options: &CodegenOptions, states: usize, tol: f64) {
     let n = model.dof();
     let module = generate(model, options).unwrap();
+    // Every function of the module is traced (the forward dynamics both
+    // ways, the one not emitted counted in the header), and each is checked
+    // below.
+    use ForwardDynamicsMethod::{Aba, Ldlt};
+    let methods = vec![Aba, Ldlt];
+    let mut expected: Vec<(Function, Option<ForwardDynamicsMethod>)> =
+        [Function::InverseDynamics, Function::MassMatrix, Function::BiasForces, Function::GravityTorques]
+            .into_iter()
+            .map(|f| (f, None))
+            .collect();
+    expected.extend(methods.into_iter().map(|m| (Function::ForwardDynamics, Some(m))));
+    let traced: Vec<_> = module.functions.iter().map(|f| (f.function.clone(), f.method)).collect();
+    assert_eq!(traced, expected, "{}", model.name);
     let mut robot = Robot::new(model.clone());
     let mut rng = Rng::new(0x9e37_79b9_7f4a_7c15);
     let mut worst = [0.0f64; 6];
     for _ in 0..states {
         let (q, qd, qdd, tau) = (rng.vec(n, 3.0), rng.vec(n, 2.0), rng.vec(n, 5.0), rng.vec(n, 20.0));
         let dv = |v: &Vec<f64>| DVector::from_column_slice(v);
-        for (k, kind) in FunctionKind::ALL.into_iter().enumerate() {
-            let f = module.function(kind).unwrap();
-            let got = f.eval(&[("q", &q), ("qd", &qd), ("qdd", &qdd), ("tau", &tau)]).unwrap();
-            let want: Vec<f64> = match kind {
-                FunctionKind::InverseDynamics => {
+        for (k, f) in module.functions.iter().enumerate() {
+            let got = f.traced.eval(&[("q", &q), ("qd", &qd), ("qdd", &qdd), ("tau", &tau)]).unwrap();
+            let want: Vec<f64> = match (&f.function, f.method) {
+                (Function::InverseDynamics, None) => {
                     robot.inverse_dynamics(&dv(&q), &dv(&qd), &dv(&qdd)).unwrap().as_slice().to_vec()
                 }
-                FunctionKind::MassMatrix => robot.mass_matrix(&dv(&q)).unwrap().transpose().as_slice().to_vec(),
-                FunctionKind::BiasForces => robot.bias_forces(&dv(&q), &dv(&qd)).unwrap().as_slice().to_vec(),
-                FunctionKind::GravityTorques => robot.gravity_torques(&dv(&q)).unwrap().as_slice().to_vec(),
-                FunctionKind::ForwardDynamicsAba => {
+                (Function::MassMatrix, None) => robot.mass_matrix(&dv(&q)).unwrap().transpose().as_slice().to_vec(),
+                (Function::BiasForces, None) => robot.bias_forces(&dv(&q), &dv(&qd)).unwrap().as_slice().to_vec(),
+                (Function::GravityTorques, None) => robot.gravity_torques(&dv(&q)).unwrap().as_slice().to_vec(),
+                (Function::ForwardDynamics, Some(Aba)) => {
                     robot.forward_dynamics(&dv(&q), &dv(&qd), &dv(&tau)).unwrap().as_slice().to_vec()
                 }
-                FunctionKind::ForwardDynamicsLdlt => {
+                (Function::ForwardDynamics, Some(Ldlt)) => {
                     robot.forward_dynamics_ldlt(&dv(&q), &dv(&qd), &dv(&tau)).unwrap().as_slice().to_vec()
                 }
+                other => panic!("unexpected function {other:?}"),
             };
             let e = norm_rel_err(&got, &want, 1e-300);
             worst[k] = worst[k].max(e);
-            assert!(e < tol, "{} {}: relative error {e:e}\n got {got:?}\nwant {want:?}", model.name, kind.label());
+            assert!(e < tol, "{} {}: relative error {e:e}\n got {got:?}\nwant {want:?}", model.name, f.label());
         }
     }
     println!("{}: worst relative errors {:?}", model.name, worst.map(|e| format!("{e:.1e}")));

@@ -4,7 +4,7 @@
 
 mod support;
 
-use dynagen::codegen::{generate, CodegenOptions, FunctionKind, ScalarType, Trig};
+use dynagen::codegen::{generate, CodegenOptions, Function, ScalarType, Trig};
 use dynagen::model::{Inertial, JointDescription, RobotBuilder};
 use dynagen::Model;
 
@@ -86,15 +86,20 @@ fn the_default_is_the_batched_trigonometry() {
     }
 }
 
-/// A scene's target: `std` takes the options' trigonometry, the no_std
+/// A scene file's target: `std` takes the options' trigonometry, the no_std
 /// targets their own whatever the options say.
 #[test]
 fn a_scene_target_picks_the_trigonometry() {
-    use dynagen::scene::Target;
+    use dynagen::scene::SceneFile;
+    let keys = |target: &str| SceneFile::from_toml_str(&format!("target = \"{target}\"\n")).unwrap().code;
+    assert_eq!(keys("std").trig, None);
+    assert_eq!(keys("no_std_libm").trig, Some(Trig::Libm));
+    assert_eq!(keys("no_std_sincos").trig, Some(Trig::Inputs));
     for trig in [Trig::Std, Trig::Batched, Trig::Libm, Trig::Inputs] {
-        assert_eq!(Trig::for_target(Target::Std, trig), trig);
-        assert_eq!(Trig::for_target(Target::NoStdLibm, trig), Trig::Libm);
-        assert_eq!(Trig::for_target(Target::NoStdSinCos, trig), Trig::Inputs);
+        let options = CodegenOptions::default().trig(trig);
+        assert_eq!(keys("std").apply(options.clone()).trig, trig);
+        assert_eq!(keys("no_std_libm").apply(options.clone()).trig, Trig::Libm);
+        assert_eq!(keys("no_std_sincos").apply(options).trig, Trig::Inputs);
     }
 }
 
@@ -126,15 +131,15 @@ fn the_body_with_sines_and_cosines_given_computes_the_function_of_q() {
                 let angle: Vec<f64> = (0..n).map(|i| q[i] * sc.angle_scale[i].unwrap_or(1.0)).collect();
                 let s: Vec<f64> = angle.iter().map(|a| a.sin()).collect();
                 let c: Vec<f64> = angle.iter().map(|a| a.cos()).collect();
-                let third_name = match f.kind {
-                    FunctionKind::InverseDynamics => "qdd",
+                let third_name = match f.function {
+                    Function::InverseDynamics => "qdd",
                     _ => "tau",
                 };
                 let inputs = [("q", &q[..]), ("qd", &qd[..]), (third_name, &third[..]), ("s", &s[..]), ("c", &c[..])];
-                let want = f.function.eval(&inputs).unwrap();
+                let want = f.traced.eval(&inputs).unwrap();
                 let got = sc.function.eval(&inputs).unwrap();
                 for (a, b) in got.iter().zip(&want) {
-                    assert!((a - b).abs() <= 1e-12 * (1.0 + b.abs()), "{:?} {} vs {}", f.kind, a, b);
+                    assert!((a - b).abs() <= 1e-12 * (1.0 + b.abs()), "{} {} vs {}", f.label(), a, b);
                 }
             }
             // The sc body has no sine left, and the q function one per joint angle it reads.

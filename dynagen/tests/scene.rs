@@ -8,9 +8,10 @@
 
 mod support;
 
+use dynagen::codegen::{generate_scene, CodegenError, CodegenOptions, Function, ScalarType, Trig};
 use dynagen::scene::{
-    Function, Gravity, PayloadInertia, Scene, SceneError, SceneInputError, SceneInputs, SceneModel, SceneRobot,
-    SceneWarning,
+    CodeKeys, Gravity, PayloadInertia, Scene, SceneError, SceneFile, SceneInputError, SceneInputs, SceneModel,
+    SceneRobot, SceneWarning,
 };
 use dynagen::{Model, Robot};
 use nalgebra::{DMatrix, DVector, Vector3, Vector6};
@@ -487,10 +488,14 @@ fn forward_dynamics_inverts_inverse_dynamics_under_every_option() {
 
 #[test]
 fn toml_round_trip_and_the_example_scene() {
+    // The file's code-generation keys are in `SceneFile::code`, its physics
+    // in `SceneFile::scene` (which `Scene::from_toml_file` gives alone).
+    let file = SceneFile::from_toml_file(support::scene_path("ur5_controller")).unwrap();
     let example = Scene::from_toml_file(support::scene_path("ur5_controller")).unwrap();
-    assert_eq!(example.name.as_deref(), Some("ur5_controller"));
+    assert_eq!(file.scene, example);
+    assert_eq!(file.code.name.as_deref(), Some("ur5_controller"));
     assert_eq!(example.armature.len(), 6);
-    assert!(example.functions.contains(&Function::FrameJacobian("ee_link".into())));
+    assert!(file.code.functions.as_ref().unwrap().contains(&Function::FrameJacobian("ee_link".into())));
     let applied = example.apply(&model("ur5")).unwrap();
     assert_eq!(applied.dof(), 6);
     assert_eq!(applied.tip_wrench_frame, applied.model.frame_index("ee_link"));
@@ -523,12 +528,24 @@ fn toml_round_trip_and_the_example_scene() {
         mass = 0.4
         com = [0.1, 0.0, 0.0]
     "#;
+    let file = SceneFile::from_toml_str(text).unwrap();
     let scene = Scene::from_toml_str(text).unwrap();
-    let built = Scene::new()
+    assert_eq!(file.scene, scene);
+    // The code keys: `target = "no_std_libm"` is the libm trigonometry.
+    let code = CodeKeys {
+        name: Some("left_arm".into()),
+        functions: Some(vec![Function::InverseDynamics, Function::Coriolis, Function::FramePose("left_ee".into())]),
+        scalar: Some(ScalarType::F32),
+        trig: Some(Trig::Libm),
+    };
+    assert_eq!(file.code, code);
+    let options = CodegenOptions::default()
         .name("left_arm")
         .functions([Function::InverseDynamics, Function::Coriolis, Function::FramePose("left_ee".into())])
-        .scalar(dynagen::scene::ScalarType::F32)
-        .target(dynagen::scene::Target::NoStdLibm)
+        .scalar(ScalarType::F32)
+        .trig(Trig::Libm);
+    assert_eq!(file.code.apply(CodegenOptions::default()), options);
+    let built = Scene::new()
         .tip_wrench("left_ee")
         .coulomb_velocity(0.002)
         .gravity(Gravity::Input)
@@ -546,6 +563,14 @@ fn toml_round_trip_and_the_example_scene() {
     assert_eq!(scene.apply(&model("torso_two_arms")).unwrap(), built.apply(&model("torso_two_arms")).unwrap());
     // Defaults: an empty file is the default scene.
     assert_eq!(Scene::from_toml_str("").unwrap(), Scene::new());
+    assert_eq!(SceneFile::from_toml_str("").unwrap().code, CodeKeys::default());
+    assert_eq!(CodeKeys::default().apply(CodegenOptions::default()), CodegenOptions::default());
+    // The other targets: std leaves the options' trigonometry, no_std_sincos
+    // is sines and cosines as inputs.
+    let trig = |t: &str| SceneFile::from_toml_str(&format!("target = \"{t}\"")).unwrap().code.trig;
+    assert_eq!(trig("std"), None);
+    assert_eq!(trig("no_std_sincos"), Some(Trig::Inputs));
+    assert_eq!(trig("no_std_libm"), Some(Trig::Libm));
     // A vector alone means a constant.
     let s = Scene::from_toml_str("[gravity]\nvector = [0.0, 0.0, -1.62]").unwrap();
     assert_eq!(s.gravity, Gravity::Constant([0.0, 0.0, -1.62]));
@@ -557,6 +582,16 @@ fn assert_names(result: Result<impl std::fmt::Debug, SceneError>, item: &str) {
     let e = result.expect_err("the scene must be refused");
     let msg = e.to_string();
     assert!(msg.contains(item), "error does not name {item:?}: {msg}");
+}
+
+/// Code generation of `function` on `scene` is refused with the scene's
+/// error, which names `item`.
+#[track_caller]
+fn assert_frame_refused(scene: &SceneModel, function: Function, item: &str) {
+    match generate_scene(scene, &CodegenOptions::default().functions([function])) {
+        Err(CodegenError::Scene(e)) => assert!(e.to_string().contains(item), "error does not name {item:?}: {e}"),
+        other => panic!("the frame {item:?} must be refused with a scene error: {:?}", other.map(|m| m.source.len())),
+    }
 }
 
 #[test]
@@ -573,7 +608,11 @@ fn every_error_names_its_item() {
     assert_names(Scene::new().armature("nope_joint", 0.1).apply(&ur5), "nope_joint");
     assert_names(Scene::new().tip_wrench("nope_frame").apply(&ur5), "nope_frame");
     assert_names(Scene::new().payload("nope_link", ok).apply(&ur5), "nope_link");
-    assert_names(Scene::new().function(Function::FramePose("nope_frame".into())).apply(&ur5), "nope_frame");
+    // A frame function's frame is checked on the applied scene (and by
+    // code generation, which refuses it with the scene's error).
+    let plain = Scene::new().apply(&ur5).unwrap();
+    assert_names(plain.frame("frame_pose", "nope_frame"), "nope_frame");
+    assert_frame_refused(&plain, Function::FramePose("nope_frame".into()), "nope_frame");
     // Sub-trees.
     assert_names(Scene::new().subtree("wrist_2_link", &["upper_arm_link"]).apply(&ur5), "upper_arm_link");
     assert_names(Scene::new().subtree("wrist_2_link", &["wrist_2_link"]).apply(&ur5), "wrist_2_link");
@@ -609,7 +648,9 @@ fn every_error_names_its_item() {
     assert_names(arm.clone().payload("right_forearm", ok).apply(&torso), "right_forearm");
     assert_names(arm.clone().armature("right_elbow_joint", 0.1).apply(&torso), "right_elbow_joint");
     assert_names(arm.clone().viscous("torso_yaw_joint", 0.1).apply(&torso), "torso_yaw_joint");
-    assert_names(arm.clone().function(Function::FrameJacobian("base".into())).apply(&torso), "base");
+    let arm_applied = arm.clone().apply(&torso).unwrap();
+    assert_names(arm_applied.frame("frame_jacobian", "base"), "base");
+    assert_frame_refused(&arm_applied, Function::FrameJacobian("base".into()), "base");
     assert_names(
         arm.clone().lock("left_wrist_joint", 0.0).armature("left_wrist_joint", 1.0).apply(&torso),
         "left_wrist_joint",

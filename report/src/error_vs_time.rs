@@ -109,7 +109,9 @@ impl Func {
             Func::H => bias::bias_forces(model, ws, &args[0], &args[1], g, out),
             Func::G => bias::gravity_torques(model, ws, &args[0], gravity, out),
             Func::FdAba => aba::aba(model, ws, &args[0], &args[1], &args[2], g, &[], out),
-            Func::FdLdlt => forward_dynamics::forward_dynamics_ldlt(model, ws, &args[0], &args[1], &args[2], g, &[], out),
+            Func::FdLdlt => {
+                forward_dynamics::forward_dynamics_ldlt(model, ws, &args[0], &args[1], &args[2], g, &[], out)
+            }
         }
     }
 }

@@ -48,11 +48,7 @@ fn main() {
         ("ur5_controller_sincos.rs", controller, base.clone().trig(Trig::Inputs)),
         ("ur5_controller_batched.rs", controller, base.clone().trig(Trig::Batched)),
         ("ur5_controller_batched_f32.rs", controller, base.clone().trig(Trig::Batched).scalar(ScalarType::F32)),
-        (
-            "ur5_tau_sincos.rs",
-            &torque,
-            base.clone().functions([Function::InverseDynamics]).trig(Trig::Inputs),
-        ),
+        ("ur5_tau_sincos.rs", &torque, base.clone().functions([Function::InverseDynamics]).trig(Trig::Inputs)),
     ];
     for (file, scene, opts) in scenes {
         let applied = scene.apply(&ur5).unwrap_or_else(|e| panic!("{file}: {e}"));

@@ -17,7 +17,9 @@
 //! default options it uses neither std nor any crate, so it also compiles
 //! in a `#![no_std]` crate.
 
-use super::{generate_scene, CodegenError, CodegenOptions, ForwardDynamicsMethod, Function, GeneratedModule, ScalarType, Trig};
+use super::{
+    generate_scene, CodegenError, CodegenOptions, ForwardDynamicsMethod, Function, GeneratedModule, ScalarType, Trig,
+};
 use crate::model::{Model, ModelError};
 use crate::scene::{Scene, SceneError, SceneFile};
 use crate::symbolic::Rewrites;
@@ -68,7 +70,8 @@ impl Setting {
                     let f: Function = name.parse().map_err(|_| BuildError::UnknownFunction { name: name.clone() })?;
                     list.push(f);
                 }
-                let frames = o.functions.iter().filter(|f| matches!(f, Function::FramePose(_) | Function::FrameJacobian(_)));
+                let frames =
+                    o.functions.iter().filter(|f| matches!(f, Function::FramePose(_) | Function::FrameJacobian(_)));
                 list.extend(frames.cloned().collect::<Vec<_>>());
                 o = o.functions(list);
             }

@@ -67,4 +67,3 @@ impl GeneratedModule {
         self.functions.iter().map(|f| (format!("{}{}", f.label(), note(f)), f.op_count)).collect()
     }
 }
-

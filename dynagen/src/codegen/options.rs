@@ -279,7 +279,6 @@ pub(super) fn within_dispatch_limit(options: &CodegenOptions, ops: usize) -> (Co
     (CodegenOptions { runtime_dispatch: false, ..options.clone() }, note)
 }
 
-
 /// The text after `what` in an error of [`FromStr`]: the spellings accepted.
 fn expected(what: &str, given: &str, names: &[&str]) -> String {
     format!("unknown {what} \"{given}\" (expected {})", names.join(", "))

@@ -157,8 +157,8 @@ mod toml;
 
 pub use error::{SceneError, SceneWarning};
 pub use reduce::{InputPayload, ResolvedGravity, SceneModel};
-pub use toml::{CodeKeys, SceneFile};
 pub use robot::{SceneInputError, SceneInputs, SceneRobot};
+pub use toml::{CodeKeys, SceneFile};
 
 use crate::model::Model;
 use crate::spatial::Sym3;

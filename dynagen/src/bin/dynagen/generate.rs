@@ -105,9 +105,9 @@ fn builder(args: &Args, source: &RobotSource) -> Result<(Builder, dynagen::Model
     let trig = match (args.no_std, args.trig.as_deref()) {
         (true, _) => Some(Trig::Batched),
         (false, None) => None,
-        (false, Some(t)) => {
-            Some(t.parse::<Trig>().map_err(|e| CliError { message: format!("--trig: {e}"), status: STATUS_BAD_INPUT })?)
-        }
+        (false, Some(t)) => Some(
+            t.parse::<Trig>().map_err(|e| CliError { message: format!("--trig: {e}"), status: STATUS_BAD_INPUT })?,
+        ),
     };
     let model = source.load()?;
     let mut b = Builder::new().model(model.clone()).source(&source.to_string());

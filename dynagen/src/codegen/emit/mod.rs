@@ -71,7 +71,8 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
         let sc_count = super::counted(&sc.function, options.fma);
         let doc = format!("{}\n\n{}", f.function.doc(prepared, ldlt, &sc_count), wrapper::sc_doc(has_prismatic));
         let style = BodyStyle::of(options);
-        let emitted = statements::emit_function(&sc.function, &signature, options.scalar, options.trig, n, &doc, style)?;
+        let emitted =
+            statements::emit_function(&sc.function, &signature, options.scalar, options.trig, n, &doc, style)?;
         let sc_split = split::parts_of(&emitted);
         if let Some(parts) = sc_split {
             split_functions.push((sc_name.clone(), parts));
@@ -90,15 +91,10 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
     }
     let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
     let body = tidy_dispatch(&prettyplease::unparse(&file));
-    let facts = header::HeaderFacts {
-        scene,
-        options,
-        fd: parts.fd,
-        functions,
-        snapped: parts.snapped,
-        hash: parts.hash,
-    };
-    let header = header::header(&facts) + &split::header_note(options.split_lets, &split_functions) + parts.dispatch_note;
+    let facts =
+        header::HeaderFacts { scene, options, fd: parts.fd, functions, snapped: parts.snapped, hash: parts.hash };
+    let header =
+        header::header(&facts) + &split::header_note(options.split_lets, &split_functions) + parts.dispatch_note;
     let kernel = sin_cos::kernel_source(options.scalar, options.runtime_dispatch);
     Ok(format!("{header}\n{body}\n{kernel}"))
 }

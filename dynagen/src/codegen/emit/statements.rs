@@ -117,7 +117,6 @@ pub(crate) struct Signature {
     pub output: Shape,
 }
 
-
 /// How bodies are written: split into parts, fused multiply-adds, copies
 /// for AVX2 and FMA chosen at run time.
 #[derive(Clone, Copy, Debug)]

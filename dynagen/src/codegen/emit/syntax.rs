@@ -79,4 +79,3 @@ pub(crate) fn let_stmt(pat: Pat, e: Expr) -> Stmt {
 pub(crate) fn array(elems: impl IntoIterator<Item = Expr>) -> Expr {
     Expr::Array(syn::ExprArray { attrs: vec![], bracket_token: Default::default(), elems: elems.into_iter().collect() })
 }
-

@@ -194,4 +194,3 @@ pub(super) fn wrapper(
 pub(super) fn parse_items(tokens: proc_macro2::TokenStream) -> Result<Vec<syn::Item>, CodegenError> {
     syn::parse2::<syn::File>(tokens).map(|f| f.items).map_err(|e| CodegenError::Internal(e.to_string()))
 }
-

@@ -68,7 +68,9 @@ mod tests {
             .unwrap();
         let scene = crate::scene::Scene::default().apply(&model).unwrap();
         let methods = [ForwardDynamicsMethod::Aba, ForwardDynamicsMethod::Ldlt];
-        for (f, method) in Function::DEFAULT.iter().map(|f| (f, methods[0])).chain([(&Function::ForwardDynamics, methods[1])]) {
+        for (f, method) in
+            Function::DEFAULT.iter().map(|f| (f, methods[0])).chain([(&Function::ForwardDynamics, methods[1])])
+        {
             let generic = generic_op_count(&model, f, method).unwrap();
             let traced = super::super::trace(&scene, f, method, Default::default()).unwrap().op_count();
             // Two joints: two sin_cos per pass over the tree (LᵀDL forward

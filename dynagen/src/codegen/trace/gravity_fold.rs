@@ -21,9 +21,9 @@
 //! there the fold does not pay (their finger terms are near the minimum
 //! already); they keep the model as it is.
 
-use crate::codegen::regroup_inertia;
 use crate::algorithms::rnea::rnea_with_payloads;
 use crate::algorithms::{BodyInertia, Workspace};
+use crate::codegen::regroup_inertia;
 use crate::model::{JointKind, Model};
 use crate::spatial::{Inertia, Sym3, Vec3};
 use crate::Scalar;

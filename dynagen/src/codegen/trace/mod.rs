@@ -52,11 +52,10 @@ pub(crate) fn trace_module(
 ) -> Result<(Vec<GeneratedFunction>, fd_choice::FdChoice), CodegenError> {
     let n = scene.dof();
     let payloads = !scene.input_payloads.is_empty();
+    // Both forward dynamics are traced and counted, whichever is emitted.
     let methods: &[ForwardDynamicsMethod] = match options.forward_dynamics {
         _ if payloads => &[ForwardDynamicsMethod::Ldlt],
-        ForwardDynamicsMethod::Auto => &[ForwardDynamicsMethod::Aba, ForwardDynamicsMethod::Ldlt],
-        ForwardDynamicsMethod::Aba => &[ForwardDynamicsMethod::Aba],
-        ForwardDynamicsMethod::Ldlt => &[ForwardDynamicsMethod::Ldlt],
+        _ => &[ForwardDynamicsMethod::Aba, ForwardDynamicsMethod::Ldlt],
     };
     let mut functions = Vec::new();
     for f in &options.functions {
@@ -83,18 +82,20 @@ pub(crate) fn trace_module(
     let fd = |method| fd_choice::FdChoice { method, why: String::new() };
     let find = |m| functions.iter().find(|g| g.method == Some(m));
     let choice = match (find(ForwardDynamicsMethod::Aba), find(ForwardDynamicsMethod::Ldlt)) {
-        (Some(aba), Some(ldlt)) => fd_choice::choose_between(
-            [&aba.traced, &aba.sin_cos_inputs.function],
-            [&ldlt.traced, &ldlt.sin_cos_inputs.function],
-            &aba.inputs,
-        ),
+        (Some(aba), Some(ldlt)) if options.forward_dynamics == ForwardDynamicsMethod::Auto => {
+            fd_choice::choose_between(
+                [&aba.traced, &aba.sin_cos_inputs.function],
+                [&ldlt.traced, &ldlt.sin_cos_inputs.function],
+                &aba.inputs,
+            )
+        }
         _ if payloads => fd_choice::FdChoice {
             method: ForwardDynamicsMethod::Ldlt,
             why: "CRBA with the input payloads' inertias and the armature on M's diagonal, RNEA, and a sparse \
                   LTDL solve"
                 .to_string(),
         },
-        (None, Some(_)) => fd(ForwardDynamicsMethod::Ldlt),
+        _ if options.forward_dynamics == ForwardDynamicsMethod::Ldlt => fd(ForwardDynamicsMethod::Ldlt),
         _ => fd(ForwardDynamicsMethod::Aba),
     };
     for g in &mut functions {
@@ -143,8 +144,11 @@ impl Loads {
             // frame (frames move with the bodies the preparation slides, so
             // this is exact in the prepared model).
             let Some(body) = model.frames[p.frame].body else { continue };
-            let inertia =
-                Inertia::from_mass_com_inertia(v[0], Vec3([v[1], v[2], v[3]]), Sym3([v[4], v[5], v[6], v[7], v[8], v[9]]));
+            let inertia = Inertia::from_mass_com_inertia(
+                v[0],
+                Vec3([v[1], v[2], v[3]]),
+                Sym3([v[4], v[5], v[6], v[7], v[8], v[9]]),
+            );
             let place = Transform::<Expr>::from_f64(&model.frames[p.frame].placement);
             list.push(BodyInertia { body, inertia: place.inertia_to_parent(&inertia) });
         }
@@ -179,9 +183,17 @@ pub(crate) fn trace_unfactored(
     let mut out = vec![zero; f.output_len(n)];
     let (q, g, pl) = (&args[0], loads.gravity.as_ref(), &loads.payloads[..]);
     match f {
-        Function::InverseDynamics => {
-            dynamics::inverse_dynamics_with_payloads(scene, &mut ws, q, &args[1], &args[2], g, &loads.tips, pl, &mut out)
-        }
+        Function::InverseDynamics => dynamics::inverse_dynamics_with_payloads(
+            scene,
+            &mut ws,
+            q,
+            &args[1],
+            &args[2],
+            g,
+            &loads.tips,
+            pl,
+            &mut out,
+        ),
         Function::MassMatrix => {
             mass_matrix::mass_matrix(model, &mut ws, q, pl, plan.as_ref().expect("planned above"), &mut out);
             dynamics::add_armature_diagonal(scene, &mut out);
@@ -204,7 +216,9 @@ pub(crate) fn trace_unfactored(
             _ => dynamics::gravity_torques(scene, &mut ws, q, g, &mut out),
         },
         Function::Coriolis if pl.is_empty() => dynamics::coriolis(scene, &mut ws, q, &args[1], &mut out),
-        Function::Coriolis => rnea::rnea_with_payloads(model, &mut ws, q, Some(&args[1]), None, None, &[], pl, &mut out),
+        Function::Coriolis => {
+            rnea::rnea_with_payloads(model, &mut ws, q, Some(&args[1]), None, None, &[], pl, &mut out)
+        }
         Function::ForwardDynamics if use_ldlt => {
             // M by the planned CRBA with the armature on its diagonal, h by
             // RNEA, on τ − friction, then the sparse LᵀDL solve.
@@ -272,7 +286,14 @@ mod tests {
                 match f {
                     Function::MassMatrix => crba::crba(model, &mut ws, &args[0], &mut out),
                     _ => forward_dynamics::forward_dynamics_ldlt(
-                        model, &mut ws, &args[0], &args[1], &args[2], Some(&g), &[], &mut out,
+                        model,
+                        &mut ws,
+                        &args[0],
+                        &args[1],
+                        &args[2],
+                        Some(&g),
+                        &[],
+                        &mut out,
                     ),
                 }
                 drop(ws);
@@ -280,8 +301,7 @@ mod tests {
             };
             for f in [Function::MassMatrix, Function::ForwardDynamics] {
                 let generic = generic(&f);
-                let planned =
-                    count(trace_unfactored(&scene, &f, ForwardDynamicsMethod::Ldlt, opts.rewrites).unwrap());
+                let planned = count(trace_unfactored(&scene, &f, ForwardDynamicsMethod::Ldlt, opts.rewrites).unwrap());
                 println!("{name} {f:?}: generic CRBA {generic}, planned {planned}");
                 assert!(planned.total() <= generic.total(), "{name} {f:?}: {planned} vs {generic}");
             }
