@@ -13,7 +13,7 @@
 
 use crate::algorithms::compensated::CompensatedSolver;
 use crate::algorithms::integrators::IntegratorScratch;
-use crate::algorithms::{aba, bias, crba, forward_dynamics, kinematics, rnea, TipWrench, Workspace};
+use crate::algorithms::{aba, bias, crba, forward_dynamics, kinematics, rnea, Loads, TipWrench, Workspace};
 use crate::model::{BuildOptions, Model, ModelError};
 use crate::spatial::{Force, Vec3};
 use nalgebra::{DMatrix, DVector, Matrix4, Matrix6xX, Vector3, Vector6};
@@ -232,8 +232,7 @@ impl Robot {
             q.as_slice(),
             Some(qd.as_slice()),
             Some(qdd.as_slice()),
-            Some(&g),
-            &self.tips,
+            Loads::gravity(&g).with_tips(&self.tips),
             tau.as_mut_slice(),
         );
         Ok(())
@@ -255,7 +254,7 @@ impl Robot {
             return Err(InputError::WrongLength { what: "M", got: m.len(), expected: n });
         }
         // M is symmetric, so row-major and nalgebra's column-major agree.
-        crba::crba(&self.model, &mut self.ws, q.as_slice(), m.as_mut_slice());
+        crba::crba(&self.model, &mut self.ws, q.as_slice(), Loads::none(), m.as_mut_slice());
         Ok(())
     }
 
@@ -346,8 +345,7 @@ impl Robot {
             q.as_slice(),
             qd.as_slice(),
             tau.as_slice(),
-            Some(&g),
-            &self.tips,
+            Loads::gravity(&g).with_tips(&self.tips),
             qdd.as_mut_slice(),
         );
         Ok(())
@@ -371,8 +369,7 @@ impl Robot {
             q.as_slice(),
             qd.as_slice(),
             tau.as_slice(),
-            Some(&g),
-            &self.tips,
+            Loads::gravity(&g).with_tips(&self.tips),
             qdd.as_mut_slice(),
         );
         Ok(qdd)

@@ -2,6 +2,7 @@
 //! torques nearly balance the bias forces at high speed (see
 //! [`algorithms::compensated`](crate::algorithms::compensated)).
 
+use crate::algorithms::Loads;
 use crate::robot::{InputError, Robot};
 use nalgebra::DVector;
 
@@ -54,12 +55,10 @@ impl Robot {
         let g = self.model.gravity;
         self.comp.solve(
             &self.model,
-            &mut self.ws,
             q.as_slice(),
             qd.as_slice(),
             tau.as_slice(),
-            Some(&g),
-            &self.tips,
+            Loads::gravity(&g).with_tips(&self.tips),
             qdd.as_mut_slice(),
         );
         Ok(())

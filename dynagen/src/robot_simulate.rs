@@ -33,7 +33,7 @@
 //! ```
 
 use crate::algorithms::integrators::{self, Integrator, StepInputs};
-use crate::algorithms::{rnea, TipWrench};
+use crate::algorithms::{rnea, Loads, TipWrench};
 use crate::robot::{InputError, Robot};
 use crate::spatial::Force;
 use nalgebra::{DMatrix, DVector};
@@ -119,14 +119,13 @@ impl Robot {
         self.check("tau", tau.as_slice())?;
         check_dt(dt)?;
         let g = self.model.gravity;
-        let inputs = StepInputs { tau: tau.as_slice(), gravity: Some(&g), tips: &self.tips };
+        let inputs = StepInputs { dt, tau: tau.as_slice(), loads: Loads::gravity(&g).with_tips(&self.tips) };
         integrators::step(
             integrator,
             &self.model,
             &mut self.ws,
             &mut self.integ,
             &inputs,
-            dt,
             q.as_mut_slice(),
             qd.as_mut_slice(),
         );
@@ -158,7 +157,15 @@ impl Robot {
             self.load_row("qd", qd, r, &mut qdr)?;
             self.load_row("qdd", qdd, r, &mut qddr)?;
             Self::load_tip_row(tip.as_ref(), r, &mut tips)?;
-            rnea::rnea(&self.model, &mut self.ws, &qr, Some(&qdr), Some(&qddr), Some(&g), &tips, &mut taur);
+            rnea::rnea(
+                &self.model,
+                &mut self.ws,
+                &qr,
+                Some(&qdr),
+                Some(&qddr),
+                Loads::gravity(&g).with_tips(&tips),
+                &mut taur,
+            );
             for (j, t) in taur.iter().enumerate() {
                 out[(r, j)] = *t;
             }
@@ -212,9 +219,9 @@ impl Robot {
             }
             self.load_row("tau", tau, r, &mut taur)?;
             Self::load_tip_row(tip.as_ref(), r, &mut tips)?;
-            let inputs = StepInputs { tau: &taur, gravity: Some(&g), tips: &tips };
+            let inputs = StepInputs { dt: h, tau: &taur, loads: Loads::gravity(&g).with_tips(&tips) };
             for _ in 0..int_res {
-                integrators::step(integrator, &self.model, &mut self.ws, &mut self.integ, &inputs, h, &mut q, &mut qd);
+                integrators::step(integrator, &self.model, &mut self.ws, &mut self.integ, &inputs, &mut q, &mut qd);
             }
         }
         Ok((qs, qds))

@@ -29,9 +29,8 @@
 //! N·m or N; gravity (m/s²) in the base frame; tip wrenches in their frames.
 
 use super::aba::aba;
-use super::{TipWrench, Workspace};
+use super::{Loads, Workspace};
 use crate::model::Model;
-use crate::spatial::Vec3;
 use crate::Scalar;
 
 /// Which scheme advances the state by one step.
@@ -49,15 +48,16 @@ pub enum Integrator {
     ImplicitEuler,
 }
 
-/// What acts on the robot during a step, held constant over it.
+/// A step: its length, and what acts on the robot during it, held
+/// constant over it.
 #[derive(Clone, Copy, Debug)]
 pub struct StepInputs<'a, S> {
+    /// The step's length (s).
+    pub dt: S,
     /// Joint torques (N·m) or forces (N), in joint order.
     pub tau: &'a [S],
-    /// Gravity in the base frame (m/s²); `None` for none.
-    pub gravity: Option<&'a Vec3<S>>,
-    /// Wrenches the robot applies to its environment, each in its frame.
-    pub tips: &'a [TipWrench<S>],
+    /// Gravity, tip wrenches, payloads and armature (see [`Loads`]).
+    pub loads: Loads<'a, S>,
 }
 
 /// Scratch for the integrators: the accelerations and the intermediate
@@ -133,12 +133,11 @@ pub fn euler<S: Scalar>(
     ws: &mut Workspace<S>,
     scratch: &mut IntegratorScratch<S>,
     inputs: &StepInputs<'_, S>,
-    dt: S,
     q: &mut [S],
     qd: &mut [S],
 ) {
     check(model, ws, scratch, q, qd, inputs.tau);
-    euler_with(scratch, dt, q, qd, |q, qd, qdd| aba(model, ws, q, qd, inputs.tau, inputs.gravity, inputs.tips, qdd));
+    euler_with(scratch, inputs.dt, q, qd, |q, qd, qdd| aba(model, ws, q, qd, inputs.tau, inputs.loads, qdd));
 }
 
 /// [`euler`] with the accelerations from `accel(q, q̇, q̈_out)`.
@@ -167,13 +166,12 @@ pub fn semi_implicit_euler<S: Scalar>(
     ws: &mut Workspace<S>,
     scratch: &mut IntegratorScratch<S>,
     inputs: &StepInputs<'_, S>,
-    dt: S,
     q: &mut [S],
     qd: &mut [S],
 ) {
     check(model, ws, scratch, q, qd, inputs.tau);
-    semi_implicit_euler_with(scratch, dt, q, qd, |q, qd, qdd| {
-        aba(model, ws, q, qd, inputs.tau, inputs.gravity, inputs.tips, qdd)
+    semi_implicit_euler_with(scratch, inputs.dt, q, qd, |q, qd, qdd| {
+        aba(model, ws, q, qd, inputs.tau, inputs.loads, qdd)
     });
 }
 
@@ -207,12 +205,11 @@ pub fn rk4<S: Scalar>(
     ws: &mut Workspace<S>,
     scratch: &mut IntegratorScratch<S>,
     inputs: &StepInputs<'_, S>,
-    dt: S,
     q: &mut [S],
     qd: &mut [S],
 ) {
     check(model, ws, scratch, q, qd, inputs.tau);
-    rk4_with(scratch, dt, q, qd, |q, qd, qdd| aba(model, ws, q, qd, inputs.tau, inputs.gravity, inputs.tips, qdd));
+    rk4_with(scratch, inputs.dt, q, qd, |q, qd, qdd| aba(model, ws, q, qd, inputs.tau, inputs.loads, qdd));
 }
 
 /// [`rk4`] with the accelerations from `accel(q, q̇, q̈_out)`.
@@ -381,14 +378,11 @@ pub fn implicit_euler<S: Scalar>(
     ws: &mut Workspace<S>,
     scratch: &mut IntegratorScratch<S>,
     inputs: &StepInputs<'_, S>,
-    dt: S,
     q: &mut [S],
     qd: &mut [S],
 ) -> NewtonOutcome {
     check(model, ws, scratch, q, qd, inputs.tau);
-    implicit_euler_with(scratch, dt, q, qd, |q, qd, qdd| {
-        aba(model, ws, q, qd, inputs.tau, inputs.gravity, inputs.tips, qdd)
-    })
+    implicit_euler_with(scratch, inputs.dt, q, qd, |q, qd, qdd| aba(model, ws, q, qd, inputs.tau, inputs.loads, qdd))
 }
 
 /// One implicit Euler step with the accelerations from `accel(q, q̇, q̈_out)`.
@@ -485,21 +479,17 @@ pub fn implicit_euler_with<S: Scalar>(
 ///
 /// # Panics
 /// If a slice or the scratch does not have the model's number of joints.
-#[allow(clippy::too_many_arguments)]
 pub fn step<S: Scalar>(
     integrator: Integrator,
     model: &Model,
     ws: &mut Workspace<S>,
     scratch: &mut IntegratorScratch<S>,
     inputs: &StepInputs<'_, S>,
-    dt: S,
     q: &mut [S],
     qd: &mut [S],
 ) {
     check(model, ws, scratch, q, qd, inputs.tau);
-    step_with(integrator, scratch, dt, q, qd, |q, qd, qdd| {
-        aba(model, ws, q, qd, inputs.tau, inputs.gravity, inputs.tips, qdd)
-    });
+    step_with(integrator, scratch, inputs.dt, q, qd, |q, qd, qdd| aba(model, ws, q, qd, inputs.tau, inputs.loads, qdd));
 }
 
 /// [`step`] with the accelerations from `accel(q, q̇, q̈_out)` (for dynamics
@@ -529,6 +519,7 @@ pub fn step_with<S: Scalar>(
 mod tests {
     use super::*;
     use crate::model::{Inertial, JointDescription, RobotBuilder};
+    use crate::spatial::Vec3;
 
     // A point mass m on a massless prismatic joint along x with a constant
     // force f: q̈ = f/m exactly, so every scheme's error is known in closed form.
@@ -546,9 +537,9 @@ mod tests {
         let mut ws = Workspace::new(&model);
         let mut scratch = IntegratorScratch::new(&model);
         let tau = [3.0]; // q̈ = 1.5
-        let inputs = StepInputs { tau: &tau, gravity: None, tips: &[] };
+        let inputs = StepInputs { dt, tau: &tau, loads: Loads::none() };
         let (mut q, mut qd) = ([0.25], [-0.5]);
-        step(integrator, &model, &mut ws, &mut scratch, &inputs, dt, &mut q, &mut qd);
+        step(integrator, &model, &mut ws, &mut scratch, &inputs, &mut q, &mut qd);
         (q[0], qd[0])
     }
 
@@ -580,10 +571,10 @@ mod tests {
             let mut scratch = IntegratorScratch::<S>::new(model);
             let g = Vec3([S::zero(), S::zero(), S::from_f64(-9.81)]);
             let tau = [S::from_f64(0.5)];
-            let inputs = StepInputs { tau: &tau, gravity: Some(&g), tips: &[] };
+            let inputs = StepInputs { dt: S::from_f64(0.01), tau: &tau, loads: Loads::gravity(&g) };
             let (mut q, mut qd) = ([S::from_f64(0.7)], [S::from_f64(-0.2)]);
             for _ in 0..20 {
-                rk4(model, &mut ws, &mut scratch, &inputs, S::from_f64(0.01), &mut q, &mut qd);
+                rk4(model, &mut ws, &mut scratch, &inputs, &mut q, &mut qd);
             }
             (q[0].to_f64().unwrap(), qd[0].to_f64().unwrap())
         }
@@ -613,7 +604,7 @@ mod tests {
         for _ in 0..steps {
             step_with(integrator, &mut scratch, dt, &mut q, &mut qd, |q, qd, qdd| {
                 let tau = [-k * q[0] - d * qd[0]];
-                aba(&model, &mut ws, q, qd, &tau, None, &[], qdd);
+                aba(&model, &mut ws, q, qd, &tau, Loads::none(), qdd);
             });
         }
         (q[0], qd[0])
@@ -652,15 +643,15 @@ mod tests {
         let run = |integrator: Integrator, steps: usize| {
             let mut ws = Workspace::<f64>::new(&model);
             let mut scratch = IntegratorScratch::new(&model);
-            let inputs = StepInputs { tau: &tau, gravity: Some(&g), tips: &[] };
-            let (mut q, mut qd) = ([0.8, -0.4], [0.0, 0.5]);
             let dt = 0.5 / steps as f64;
+            let inputs = StepInputs { dt, tau: &tau, loads: Loads::gravity(&g) };
+            let (mut q, mut qd) = ([0.8, -0.4], [0.0, 0.5]);
             for _ in 0..steps {
                 if integrator == Integrator::ImplicitEuler {
-                    let out = implicit_euler(&model, &mut ws, &mut scratch, &inputs, dt, &mut q, &mut qd);
+                    let out = implicit_euler(&model, &mut ws, &mut scratch, &inputs, &mut q, &mut qd);
                     assert!(out.converged, "Newton did not converge: {out:?}");
                 } else {
-                    step(integrator, &model, &mut ws, &mut scratch, &inputs, dt, &mut q, &mut qd);
+                    step(integrator, &model, &mut ws, &mut scratch, &inputs, &mut q, &mut qd);
                 }
             }
             [q[0], q[1], qd[0], qd[1]]

@@ -18,7 +18,9 @@ pub mod integrators;
 pub mod joint;
 pub mod kinematics;
 pub mod ldlt;
+mod loads;
 pub mod rnea;
 mod workspace;
 
-pub use workspace::{BodyInertia, TipWrench, Workspace};
+pub use loads::{BodyInertia, Loads, TipWrench};
+pub use workspace::Workspace;

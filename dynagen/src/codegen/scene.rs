@@ -43,7 +43,7 @@ use super::{
     fd_choice, module_name, parse_item, prepare_model, sin_cos, trig_source, wrapper, CodegenError, CodegenOptions,
     ForwardDynamicsMethod, GeneratedModule, ScalarType, SnappedConstant, Trig, GENERATOR_VERSION,
 };
-use crate::algorithms::{kinematics, rnea, BodyInertia, TipWrench, Workspace};
+use crate::algorithms::{kinematics, rnea, BodyInertia, Loads, TipWrench, Workspace};
 use crate::model::{JointKind, Model};
 use crate::scene::{dynamics, Function as SceneFn, ResolvedGravity, SceneModel};
 use crate::spatial::{Force, Inertia, Sym3, Transform, Vec3};
@@ -219,7 +219,7 @@ fn trace_unfactored(
     let (q, pl) = (&args[0], &payloads[..]);
     match f {
         SceneFn::InverseDynamics => {
-            dynamics::inverse_dynamics_with_payloads(scene, &mut ws, q, &args[1], &args[2], g, &tips, pl, &mut out);
+            dynamics::inverse_dynamics(scene, &mut ws, q, &args[1], &args[2], Loads::new(g, &tips, pl), &mut out);
         }
         SceneFn::MassMatrix => {
             let plan = plan.as_ref().expect("planned above");
@@ -227,16 +227,16 @@ fn trace_unfactored(
             dynamics::add_armature_diagonal(scene, &mut out);
         }
         SceneFn::BiasForces if p => {
-            rnea::rnea_with_payloads(model, &mut ws, q, Some(&args[1]), None, g, &[], pl, &mut out);
+            rnea::rnea(model, &mut ws, q, Some(&args[1]), None, Loads::new(g, &[], pl), &mut out);
             dynamics::add_friction(scene, &args[1], &mut out);
         }
         SceneFn::BiasForces => dynamics::bias_forces(scene, &mut ws, q, &args[1], g, &mut out),
         SceneFn::GravityTorques if p && g.is_some() => {
-            rnea::rnea_with_payloads(model, &mut ws, q, None, None, g, &[], pl, &mut out);
+            rnea::rnea(model, &mut ws, q, None, None, Loads::new(g, &[], pl), &mut out);
         }
         SceneFn::GravityTorques => dynamics::gravity_torques(scene, &mut ws, q, g, &mut out),
         SceneFn::Coriolis if p => {
-            rnea::rnea_with_payloads(model, &mut ws, q, Some(&args[1]), None, None, &[], pl, &mut out);
+            rnea::rnea(model, &mut ws, q, Some(&args[1]), None, Loads::new(None, &[], pl), &mut out);
         }
         SceneFn::Coriolis => dynamics::coriolis(scene, &mut ws, q, &args[1], &mut out),
         SceneFn::ForwardDynamics if use_ldlt => {
@@ -249,8 +249,7 @@ fn trace_unfactored(
             ldlt_forward_dynamics(model, &mut ws, q, &args[1], &rhs, &steps, armature, &mut out);
         }
         SceneFn::ForwardDynamics => {
-            let mut scratch = vec![zero; n];
-            dynamics::forward_dynamics(scene, &mut ws, q, &args[1], &args[2], g, &tips, &mut scratch, &mut out)
+            dynamics::forward_dynamics(scene, &mut ws, q, &args[1], &args[2], Loads::new(g, &tips, &[]), &mut out)
         }
         SceneFn::FramePose(name) | SceneFn::FrameJacobian(name) => {
             let frame = model.frame_index(name).expect("checked by Scene::apply");

@@ -1,7 +1,7 @@
 //! The functions of a generated module, traced from the generic algorithms.
 
 use super::{leaves, mass_matrix};
-use crate::algorithms::{aba, bias, crba, forward_dynamics, ldlt, rnea, BodyInertia, TipWrench, Workspace};
+use crate::algorithms::{aba, bias, crba, forward_dynamics, ldlt, rnea, BodyInertia, Loads, TipWrench, Workspace};
 use crate::model::Model;
 use crate::spatial::Vec3;
 use crate::symbolic::{balance, factor, Expr, Function, Graph, Latency, Node, NodeId, Rewrites, TraceActive, Tracer};
@@ -80,15 +80,23 @@ impl FunctionKind {
         let g = Some(gravity);
         match self {
             FunctionKind::InverseDynamics => {
-                rnea::rnea(model, ws, &args[0], Some(&args[1]), Some(&args[2]), g, &[], out)
+                rnea::rnea(model, ws, &args[0], Some(&args[1]), Some(&args[2]), Loads::new(g, &[], &[]), out)
             }
-            FunctionKind::MassMatrix => crba::crba(model, ws, &args[0], out),
+            FunctionKind::MassMatrix => crba::crba(model, ws, &args[0], Loads::none(), out),
             FunctionKind::BiasForces => bias::bias_forces(model, ws, &args[0], &args[1], g, out),
             FunctionKind::GravityTorques => bias::gravity_torques(model, ws, &args[0], gravity, out),
-            FunctionKind::ForwardDynamicsAba => aba::aba(model, ws, &args[0], &args[1], &args[2], g, &[], out),
-            FunctionKind::ForwardDynamicsLdlt => {
-                forward_dynamics::forward_dynamics_ldlt(model, ws, &args[0], &args[1], &args[2], g, &[], out)
+            FunctionKind::ForwardDynamicsAba => {
+                aba::aba(model, ws, &args[0], &args[1], &args[2], Loads::new(g, &[], &[]), out)
             }
+            FunctionKind::ForwardDynamicsLdlt => forward_dynamics::forward_dynamics_ldlt(
+                model,
+                ws,
+                &args[0],
+                &args[1],
+                &args[2],
+                Loads::new(g, &[], &[]),
+                out,
+            ),
         }
     }
 }
@@ -158,7 +166,7 @@ pub(crate) fn ldlt_forward_dynamics(
     out: &mut [Expr],
 ) {
     let n = model.dof();
-    rnea::rnea_with_payloads(model, ws, q, Some(qd), None, steps.gravity, steps.tips, steps.payloads, out);
+    rnea::rnea(model, ws, q, Some(qd), None, Loads::new(steps.gravity, steps.tips, steps.payloads), out);
     for i in 0..n {
         out[i] = rhs[i] - out[i];
     }

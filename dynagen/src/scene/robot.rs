@@ -11,7 +11,7 @@
 
 use super::dynamics;
 use super::{PayloadInertia, ResolvedGravity, SceneError, SceneModel};
-use crate::algorithms::{kinematics, TipWrench, Workspace};
+use crate::algorithms::{kinematics, Loads, TipWrench, Workspace};
 use crate::robot::InputError;
 use crate::spatial::{Force, Inertia, Vec3};
 use nalgebra::{DMatrix, DVector, Matrix4, Matrix6xX, Vector3, Vector6};
@@ -79,7 +79,6 @@ pub struct SceneRobot {
     base_inertia: Vec<Inertia<f64>>,
     ws: Workspace<f64>,
     tips: Vec<TipWrench<f64>>,
-    scratch: Vec<f64>,
     jac: Vec<f64>,
 }
 
@@ -96,14 +95,7 @@ impl SceneRobot {
         let n = scene.dof();
         let ws = Workspace::new(&scene.model);
         let base_inertia = scene.model.bodies.iter().map(|b| b.inertia).collect();
-        SceneRobot {
-            scene,
-            base_inertia,
-            ws,
-            tips: Vec::with_capacity(1),
-            scratch: vec![0.0; n],
-            jac: vec![0.0; 6 * n],
-        }
+        SceneRobot { scene, base_inertia, ws, tips: Vec::with_capacity(1), jac: vec![0.0; 6 * n] }
     }
     /// The applied scene (its model's inertias include the input payloads of
     /// the last call).
@@ -234,8 +226,7 @@ impl SceneRobot {
             q.as_slice(),
             qd.as_slice(),
             qdd.as_slice(),
-            g.as_ref(),
-            &self.tips,
+            Loads::new(g.as_ref(), &self.tips, &[]),
             tau.as_mut_slice(),
         );
         Ok(())
@@ -420,9 +411,7 @@ impl SceneRobot {
             q.as_slice(),
             qd.as_slice(),
             tau.as_slice(),
-            g.as_ref(),
-            &self.tips,
-            &mut self.scratch,
+            Loads::new(g.as_ref(), &self.tips, &[]),
             qdd.as_mut_slice(),
         );
         Ok(())
