@@ -29,6 +29,7 @@
 //! N·m or N; gravity (m/s²) in the base frame; tip wrenches in their frames.
 
 use super::aba::aba;
+use super::lu::{self, magnitude};
 use super::{Loads, Workspace};
 use crate::model::Model;
 use crate::Scalar;
@@ -114,12 +115,26 @@ pub fn euler_step<S: Scalar>(q: &mut [S], qd: &mut [S], qdd: &[S], dt: S) {
     }
 }
 
-fn check<S: Scalar>(model: &Model, ws: &Workspace<S>, scratch: &IntegratorScratch<S>, q: &[S], qd: &[S], tau: &[S]) {
+/// One step of `integrator` with the accelerations of the articulated-body
+/// algorithm under `inputs`, after checking the lengths: what [`euler`],
+/// [`semi_implicit_euler`], [`rk4`], [`implicit_euler`] and [`step`] do.
+/// Returns the implicit scheme's Newton outcome, when it ran.
+fn step_by_aba<S: Scalar>(
+    integrator: Integrator,
+    model: &Model,
+    ws: &mut Workspace<S>,
+    scratch: &mut IntegratorScratch<S>,
+    inputs: &StepInputs<'_, S>,
+    q: &mut [S],
+    qd: &mut [S],
+) -> Option<NewtonOutcome> {
     let n = model.dof();
     assert!(
-        q.len() == n && qd.len() == n && tau.len() == n && ws.dof() == n && scratch.dof() == n,
+        q.len() == n && qd.len() == n && inputs.tau.len() == n && ws.dof() == n && scratch.dof() == n,
         "integrators: slices and scratch must have the model's {n} joints"
     );
+    let accel = |q: &[S], qd: &[S], qdd: &mut [S]| aba(model, ws, q, qd, inputs.tau, inputs.loads, qdd);
+    step_with_outcome(integrator, scratch, inputs.dt, q, qd, accel)
 }
 
 /// One explicit Euler step of the forward dynamics (the Modern Robotics
@@ -136,8 +151,7 @@ pub fn euler<S: Scalar>(
     q: &mut [S],
     qd: &mut [S],
 ) {
-    check(model, ws, scratch, q, qd, inputs.tau);
-    euler_with(scratch, inputs.dt, q, qd, |q, qd, qdd| aba(model, ws, q, qd, inputs.tau, inputs.loads, qdd));
+    step_by_aba(Integrator::Euler, model, ws, scratch, inputs, q, qd);
 }
 
 /// [`euler`] with the accelerations from `accel(q, q̇, q̈_out)`.
@@ -169,10 +183,7 @@ pub fn semi_implicit_euler<S: Scalar>(
     q: &mut [S],
     qd: &mut [S],
 ) {
-    check(model, ws, scratch, q, qd, inputs.tau);
-    semi_implicit_euler_with(scratch, inputs.dt, q, qd, |q, qd, qdd| {
-        aba(model, ws, q, qd, inputs.tau, inputs.loads, qdd)
-    });
+    step_by_aba(Integrator::SemiImplicitEuler, model, ws, scratch, inputs, q, qd);
 }
 
 /// [`semi_implicit_euler`] with the accelerations from `accel(q, q̇, q̈_out)`.
@@ -208,8 +219,7 @@ pub fn rk4<S: Scalar>(
     q: &mut [S],
     qd: &mut [S],
 ) {
-    check(model, ws, scratch, q, qd, inputs.tau);
-    rk4_with(scratch, inputs.dt, q, qd, |q, qd, qdd| aba(model, ws, q, qd, inputs.tau, inputs.loads, qdd));
+    step_by_aba(Integrator::Rk4, model, ws, scratch, inputs, q, qd);
 }
 
 /// [`rk4`] with the accelerations from `accel(q, q̇, q̈_out)`.
@@ -301,58 +311,6 @@ impl<S: Scalar> ImplicitScratch<S> {
     }
 }
 
-/// |x| of a numeric scalar as `f64` (∞ for one without a value).
-fn magnitude<S: Scalar>(x: S) -> f64 {
-    x.to_f64().map_or(f64::INFINITY, f64::abs)
-}
-
-/// LU factorisation with partial pivoting, in place (pivots chosen on the
-/// values' magnitudes: a numeric routine, never traced).
-fn lu_factorise<S: Scalar>(a: &mut [S], perm: &mut [usize], n: usize) {
-    for (i, p) in perm.iter_mut().enumerate() {
-        *p = i;
-    }
-    for k in 0..n {
-        let p = (k..n).max_by(|&i, &j| magnitude(a[i * n + k]).total_cmp(&magnitude(a[j * n + k]))).unwrap_or(k);
-        if p != k {
-            for c in 0..n {
-                a.swap(k * n + c, p * n + c);
-            }
-            perm.swap(k, p);
-        }
-        let inv = S::one() / a[k * n + k];
-        for i in k + 1..n {
-            let l = a[i * n + k] * inv;
-            a[i * n + k] = l;
-            for c in k + 1..n {
-                let u = a[k * n + c];
-                a[i * n + c] -= l * u;
-            }
-        }
-    }
-}
-
-/// Solves LU·x = P·b in place of `b` (with `tmp` as scratch).
-fn lu_solve<S: Scalar>(a: &[S], perm: &[usize], n: usize, b: &mut [S], tmp: &mut [S]) {
-    for i in 0..n {
-        tmp[i] = b[perm[i]];
-    }
-    for i in 0..n {
-        for k in 0..i {
-            let l = a[i * n + k];
-            tmp[i] -= l * tmp[k];
-        }
-    }
-    for i in (0..n).rev() {
-        for k in i + 1..n {
-            let u = a[i * n + k];
-            tmp[i] -= u * tmp[k];
-        }
-        tmp[i] = tmp[i] / a[i * n + i];
-    }
-    b.copy_from_slice(&tmp[..n]);
-}
-
 /// What a Newton solve of [`implicit_euler_with`] did.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct NewtonOutcome {
@@ -381,8 +339,8 @@ pub fn implicit_euler<S: Scalar>(
     q: &mut [S],
     qd: &mut [S],
 ) -> NewtonOutcome {
-    check(model, ws, scratch, q, qd, inputs.tau);
-    implicit_euler_with(scratch, inputs.dt, q, qd, |q, qd, qdd| aba(model, ws, q, qd, inputs.tau, inputs.loads, qdd))
+    step_by_aba(Integrator::ImplicitEuler, model, ws, scratch, inputs, q, qd)
+        .expect("the implicit scheme has an outcome")
 }
 
 /// One implicit Euler step with the accelerations from `accel(q, q̇, q̈_out)`.
@@ -441,12 +399,12 @@ pub fn implicit_euler_with<S: Scalar>(
                 v[j] = vj;
                 q1[j] = q[j] + dt * vj;
             }
-            lu_factorise(jac, perm, n);
+            lu::factorise(jac, perm, n);
         }
         for i in 0..n {
             r[i] = v[i] - qd[i] - dt * a0[i];
         }
-        lu_solve(jac, perm, n, r, tmp);
+        lu::solve(jac, perm, n, r, tmp);
         let (mut dmax, mut vmax) = (0.0f64, 1.0f64);
         for i in 0..n {
             v[i] -= r[i];
@@ -488,8 +446,7 @@ pub fn step<S: Scalar>(
     q: &mut [S],
     qd: &mut [S],
 ) {
-    check(model, ws, scratch, q, qd, inputs.tau);
-    step_with(integrator, scratch, inputs.dt, q, qd, |q, qd, qdd| aba(model, ws, q, qd, inputs.tau, inputs.loads, qdd));
+    step_by_aba(integrator, model, ws, scratch, inputs, q, qd);
 }
 
 /// [`step`] with the accelerations from `accel(q, q̇, q̈_out)` (for dynamics
@@ -505,14 +462,25 @@ pub fn step_with<S: Scalar>(
     qd: &mut [S],
     accel: impl FnMut(&[S], &[S], &mut [S]),
 ) {
+    step_with_outcome(integrator, scratch, dt, q, qd, accel);
+}
+
+/// [`step_with`], returning the implicit scheme's Newton outcome when it ran.
+fn step_with_outcome<S: Scalar>(
+    integrator: Integrator,
+    scratch: &mut IntegratorScratch<S>,
+    dt: S,
+    q: &mut [S],
+    qd: &mut [S],
+    accel: impl FnMut(&[S], &[S], &mut [S]),
+) -> Option<NewtonOutcome> {
     match integrator {
         Integrator::Euler => euler_with(scratch, dt, q, qd, accel),
         Integrator::SemiImplicitEuler => semi_implicit_euler_with(scratch, dt, q, qd, accel),
         Integrator::Rk4 => rk4_with(scratch, dt, q, qd, accel),
-        Integrator::ImplicitEuler => {
-            implicit_euler_with(scratch, dt, q, qd, accel);
-        }
+        Integrator::ImplicitEuler => return Some(implicit_euler_with(scratch, dt, q, qd, accel)),
     }
+    None
 }
 
 #[cfg(test)]
@@ -668,17 +636,7 @@ mod tests {
     }
 
     #[test]
-    fn lu_solves_with_pivoting() {
-        // A zero leading entry needs the row exchange.
-        let mut a = vec![0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0];
-        let x = [1.0, -2.0, 0.5];
-        let mut b: Vec<f64> = (0..3).map(|i| a[i * 3] * x[0] + a[i * 3 + 1] * x[1] + a[i * 3 + 2] * x[2]).collect();
-        let (mut perm, mut tmp) = (vec![0; 3], vec![0.0; 3]);
-        lu_factorise(&mut a, &mut perm, 3);
-        lu_solve(&a, &perm, 3, &mut b, &mut tmp);
-        for i in 0..3 {
-            assert!((b[i] - x[i]).abs() < 1e-15, "{b:?}");
-        }
+    fn machine_epsilon_is_the_scalars() {
         assert_eq!(machine_epsilon::<f64>(), f64::EPSILON);
         assert_eq!(machine_epsilon::<f32>(), f32::EPSILON as f64);
     }

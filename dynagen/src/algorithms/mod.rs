@@ -19,6 +19,7 @@ pub mod joint;
 pub mod kinematics;
 pub mod ldlt;
 mod loads;
+mod lu;
 pub mod rnea;
 mod workspace;
 

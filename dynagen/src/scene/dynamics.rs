@@ -131,7 +131,7 @@ pub fn forward_dynamics<S: Scalar>(
     ws.rhs = rhs;
 }
 
-/// The same q̈ as [`forward_dynamics`] through the mass matrix: M by the
+/// The same q̈ as [`forward_dynamics`](fn@forward_dynamics) through the mass matrix: M by the
 /// composite-rigid-body algorithm with the armature on its diagonal, h and
 /// J(q)ᵀF_tip by the recursive Newton-Euler algorithm, and the sparse LᵀDL
 /// solve of [`ldlt`](crate::algorithms::ldlt)
