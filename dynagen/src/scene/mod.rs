@@ -146,12 +146,11 @@
 pub mod dynamics;
 mod error;
 mod reduce;
-mod robot;
 mod toml;
 
+pub use crate::robot::scene::{SceneInputError, SceneInputs, SceneRobot};
 pub use error::{SceneError, SceneWarning};
 pub use reduce::{InputPayload, ResolvedGravity, SceneModel};
-pub use robot::{SceneInputError, SceneInputs, SceneRobot};
 
 use crate::model::Model;
 use crate::spatial::Sym3;
