@@ -13,7 +13,7 @@
 //! cycles through 8 random states. Command and results: README.md.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use dynagen::algorithms::{aba, bias, crba, rnea, Workspace};
+use dynagen::algorithms::{aba, bias, crba, rnea, Loads, Workspace};
 use dynagen::spatial::Vec3;
 use dynagen::Model;
 use dynagen_bench::{panda_batched, panda_std, ur5_batched, ur5_std, urdf};
@@ -87,7 +87,7 @@ macro_rules! robot_benches {
             let r = $robot;
             // τ
             cycle(c, &format!("{r}/tau/generic"), &st, |s| {
-                rnea::rnea(&model, &mut ws, &s.q, Some(&s.qd), Some(&s.qdd), Some(&g), &[], &mut out);
+                rnea::rnea(&model, &mut ws, &s.q, Some(&s.qd), Some(&s.qdd), Loads::gravity(&g), &mut out);
                 out[0]
             });
             cycle(c, &format!("{r}/tau/gen_std"), &st, |s| $std::inverse_dynamics(&s.q, &s.qd, &s.qdd));
@@ -96,7 +96,7 @@ macro_rules! robot_benches {
             cycle(c, &format!("{r}/tau/gen_batched"), &st, |s| $batched::inverse_dynamics(&s.q, &s.qd, &s.qdd));
             // M
             cycle(c, &format!("{r}/M/generic"), &st, |s| {
-                crba::crba(&model, &mut ws, &s.q, &mut mm);
+                crba::crba(&model, &mut ws, &s.q, Loads::none(), &mut mm);
                 mm[0]
             });
             cycle(c, &format!("{r}/M/gen_std"), &st, |s| $std::mass_matrix(&s.q));
@@ -123,7 +123,7 @@ macro_rules! robot_benches {
             cycle(c, &format!("{r}/g/gen_batched"), &st, |s| $batched::gravity_torques(&s.q));
             // forward dynamics (ABA in both)
             cycle(c, &format!("{r}/fd/generic"), &st, |s| {
-                aba::aba(&model, &mut ws, &s.q, &s.qd, &s.tau, Some(&g), &[], &mut out);
+                aba::aba(&model, &mut ws, &s.q, &s.qd, &s.tau, Loads::gravity(&g), &mut out);
                 out[0]
             });
             cycle(c, &format!("{r}/fd/gen_std"), &st, |s| $std::forward_dynamics(&s.q, &s.qd, &s.tau));

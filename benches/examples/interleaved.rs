@@ -13,7 +13,7 @@
 //!
 //! `cargo run --release -p dynagen-bench --example interleaved [ROUNDS]`
 
-use dynagen::algorithms::{aba, bias, crba, rnea, Workspace};
+use dynagen::algorithms::{aba, bias, crba, rnea, Loads, Workspace};
 use dynagen::spatial::Vec3;
 use dynagen::Model;
 use dynagen_bench::urdf;
@@ -167,10 +167,10 @@ fn robot<const N: usize>(name: &str, rounds: usize, v: Variants<N>) {
     for (k, f) in ["tau", "M", "h", "fd"].into_iter().enumerate() {
         let mut generic = |s: &[[f64; N]; 6]| {
             match k {
-                0 => rnea::rnea(&model, &mut ws, &s[0], Some(&s[1]), Some(&s[2]), Some(&g), &[], &mut out),
-                1 => crba::crba(&model, &mut ws, &s[0], &mut mm),
+                0 => rnea::rnea(&model, &mut ws, &s[0], Some(&s[1]), Some(&s[2]), Loads::gravity(&g), &mut out),
+                1 => crba::crba(&model, &mut ws, &s[0], Loads::none(), &mut mm),
                 2 => bias::bias_forces(&model, &mut ws, &s[0], &s[1], Some(&g), &mut out),
-                _ => aba::aba(&model, &mut ws, &s[0], &s[1], &s[3], Some(&g), &[], &mut out),
+                _ => aba::aba(&model, &mut ws, &s[0], &s[1], &s[3], Loads::gravity(&g), &mut out),
             }
             out[0] + mm[0]
         };

@@ -13,7 +13,7 @@
 mod support;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use dynagen::algorithms::{aba, bias, crba, forward_dynamics, rnea, Workspace};
+use dynagen::algorithms::{aba, bias, crba, forward_dynamics, rnea, Loads, Workspace};
 use dynagen::spatial::Vec3;
 use dynagen::Model;
 use std::hint::black_box;
@@ -64,8 +64,7 @@ fn bench_robot(c: &mut Criterion, name: &str, file: &str) {
                 black_box(&s.q),
                 Some(black_box(&s.qd)),
                 Some(black_box(&s.qdd)),
-                Some(&g),
-                &[],
+                Loads::gravity(&g),
                 &mut out,
             );
             black_box(&out);
@@ -81,14 +80,22 @@ fn bench_robot(c: &mut Criterion, name: &str, file: &str) {
     group.bench_function("crba", |b| {
         b.iter(|| {
             let s = next();
-            crba::crba(&model, &mut ws, black_box(&s.q), &mut m);
+            crba::crba(&model, &mut ws, black_box(&s.q), Loads::none(), &mut m);
             black_box(&m);
         })
     });
     group.bench_function("aba", |b| {
         b.iter(|| {
             let s = next();
-            aba::aba(&model, &mut ws, black_box(&s.q), black_box(&s.qd), black_box(&s.qdd), Some(&g), &[], &mut out);
+            aba::aba(
+                &model,
+                &mut ws,
+                black_box(&s.q),
+                black_box(&s.qd),
+                black_box(&s.qdd),
+                Loads::gravity(&g),
+                &mut out,
+            );
             black_box(&out);
         })
     });
@@ -101,8 +108,7 @@ fn bench_robot(c: &mut Criterion, name: &str, file: &str) {
                 black_box(&s.q),
                 black_box(&s.qd),
                 black_box(&s.qdd),
-                Some(&g),
-                &[],
+                Loads::gravity(&g),
                 &mut out,
             );
             black_box(&out);

@@ -22,7 +22,7 @@
 #[path = "../tests/support/mod.rs"]
 mod support;
 
-use dynagen::algorithms::{aba, bias, crba, forward_dynamics, rnea, Workspace};
+use dynagen::algorithms::{aba, bias, crba, forward_dynamics, rnea, Loads, Workspace};
 use dynagen::spatial::Vec3;
 use dynagen::Model;
 use std::hint::black_box;
@@ -75,7 +75,7 @@ fn main() {
         if want("rnea") {
             let t = time(calls, |k| {
                 let [q, qd, qdd] = &states[k];
-                rnea::rnea(&model, &mut ws, black_box(q), Some(qd), Some(qdd), Some(&g), &[], &mut out);
+                rnea::rnea(&model, &mut ws, black_box(q), Some(qd), Some(qdd), Loads::gravity(&g), &mut out);
                 black_box(&out);
             });
             line += &format!("  rnea {t}");
@@ -90,7 +90,7 @@ fn main() {
         }
         if want("crba") {
             let t = time(calls, |k| {
-                crba::crba(&model, &mut ws, black_box(&states[k][0]), &mut m);
+                crba::crba(&model, &mut ws, black_box(&states[k][0]), Loads::none(), &mut m);
                 black_box(&m);
             });
             line += &format!("  crba {t}");
@@ -98,7 +98,7 @@ fn main() {
         if want("aba") {
             let t = time(calls, |k| {
                 let [q, qd, tau] = &states[k];
-                aba::aba(&model, &mut ws, black_box(q), qd, tau, Some(&g), &[], &mut out);
+                aba::aba(&model, &mut ws, black_box(q), qd, tau, Loads::gravity(&g), &mut out);
                 black_box(&out);
             });
             line += &format!("  aba {t}");
@@ -112,8 +112,7 @@ fn main() {
                     black_box(q),
                     qd,
                     tau,
-                    Some(&g),
-                    &[],
+                    Loads::gravity(&g),
                     &mut out,
                 );
                 black_box(&out);

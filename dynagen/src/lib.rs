@@ -97,8 +97,6 @@ pub mod algorithms;
 pub mod codegen;
 pub mod model;
 mod robot;
-mod robot_compensated;
-mod robot_simulate;
 mod scalar;
 pub mod scene;
 pub mod spatial;
@@ -107,8 +105,7 @@ pub mod symbolic;
 pub use algorithms::integrators::Integrator;
 pub use codegen::Builder;
 pub use model::{Model, ModelError, ModelWarning, RobotBuilder};
-pub use robot::{InputError, Robot};
-pub use robot_simulate::TipWrenchHistory;
+pub use robot::{InputError, Robot, Stepping, TipWrenchHistory};
 pub use scalar::{
     Compensated, CompensatedFma, CompensatedWith, Counting, Dekker, DoubleDouble, ExactProduct, Fused, Scalar,
 };

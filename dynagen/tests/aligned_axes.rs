@@ -7,7 +7,7 @@
 //! axis is then a general one and every placement is rotated, so the
 //! general formulas run. τ, M and q̈ must agree to rounding.
 
-use dynagen::algorithms::{aba, crba, rnea, Workspace};
+use dynagen::algorithms::{aba, crba, rnea, Loads, Workspace};
 use dynagen::model::{AxisAlignment, Inertial, JointDescription, RobotDescription};
 use dynagen::spatial::{Mat3, Transform, Vec3};
 use dynagen::{Model, RobotBuilder};
@@ -111,19 +111,19 @@ fn aligned_and_turned_joint_frames_give_the_same_dynamics() {
         let qdd: Vec<f64> = (0..n).map(|k| f(k, 0.7)).collect();
 
         let (mut t1, mut t2) = (vec![0.0; n], vec![0.0; n]);
-        rnea::rnea(&fast, &mut w1, &q, Some(&qd), Some(&qdd), Some(&g), &[], &mut t1);
-        rnea::rnea(&general, &mut w2, &q, Some(&qd), Some(&qdd), Some(&g), &[], &mut t2);
+        rnea::rnea(&fast, &mut w1, &q, Some(&qd), Some(&qdd), Loads::gravity(&g), &mut t1);
+        rnea::rnea(&general, &mut w2, &q, Some(&qd), Some(&qdd), Loads::gravity(&g), &mut t2);
         close(&t1, &t2, 1e-13, "tau");
         assert!(t1.iter().all(|x| x.abs() > 1e-6), "every joint carries load: {t1:?}");
 
         let (mut m1, mut m2) = (vec![0.0; n * n], vec![0.0; n * n]);
-        crba::crba(&fast, &mut w1, &q, &mut m1);
-        crba::crba(&general, &mut w2, &q, &mut m2);
+        crba::crba(&fast, &mut w1, &q, Loads::none(), &mut m1);
+        crba::crba(&general, &mut w2, &q, Loads::none(), &mut m2);
         close(&m1, &m2, 1e-13, "M");
 
         let (mut a1, mut a2) = (vec![0.0; n], vec![0.0; n]);
-        aba::aba(&fast, &mut w1, &q, &qd, &t1, Some(&g), &[], &mut a1);
-        aba::aba(&general, &mut w2, &q, &qd, &t1, Some(&g), &[], &mut a2);
+        aba::aba(&fast, &mut w1, &q, &qd, &t1, Loads::gravity(&g), &mut a1);
+        aba::aba(&general, &mut w2, &q, &qd, &t1, Loads::gravity(&g), &mut a2);
         close(&a1, &a2, 1e-11, "qdd");
         // and forward dynamics inverts inverse dynamics
         close(&a1, &qdd, 1e-11, "aba(rnea(qdd))");

@@ -338,7 +338,7 @@ fn constant_and_input_payloads() {
     assert!(constant.source.contains("chosen as"));
     let n = 6;
     // As an input, the payload is one more inertia on its link's body
-    // (`rnea_with_payloads`, `crba_with_payloads`): its ten parameters moved
+    // (`rnea` and `crba` with it in their `Loads`): its ten parameters moved
     // into the body's frame, then m·a + U·h, Ī·ω̇ + ω×(Ī·ω) + h×a in the
     // RNEA, or one more addition to a composite inertia in the CRBA, whose
     // sum has no zero entry left to exploit up the chain. That is less than

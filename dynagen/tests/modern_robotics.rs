@@ -16,7 +16,7 @@
 //! one) and the package's results come from that file only.
 
 use dynagen::algorithms::integrators::euler_step;
-use dynagen::{Integrator, Model, Robot, TipWrenchHistory};
+use dynagen::{Integrator, Model, Robot, Stepping, TipWrenchHistory};
 use nalgebra::{dmatrix, dvector, DMatrix, DVector, Matrix4, Matrix6, Vector3, Vector6};
 use serde_json::Value;
 
@@ -262,7 +262,9 @@ fn forward_dynamics_trajectory() {
     let mut r = robot();
     r.set_gravity(Vector3::new(0., 0., -9.8)).unwrap();
     let tip = TipWrenchHistory { frame: "ee", wrenches: &ftip };
-    let (q, qd) = r.forward_dynamics_trajectory(&q0, &qd0, &tau, Some(tip), dt, int_res, Integrator::Euler).unwrap();
+    let (q, qd) = r
+        .forward_dynamics_trajectory(&q0, &qd0, &tau, Some(tip), Stepping::new(dt, int_res, Integrator::Euler))
+        .unwrap();
     let out = e["output"].as_array().unwrap();
     let (want_q, want_qd) = (matrix(&out[0]), matrix(&out[1]));
     let (eq, eqd) = ((&q - &want_q).amax(), (&qd - &want_qd).amax());
@@ -274,7 +276,7 @@ fn forward_dynamics_trajectory() {
     // sub-steps against 128 (error O(h⁴): measured 3.5e-9 rad), and both
     // first-order schemes' errors against that RK4 halving with the step.
     let run = |r: &mut Robot, res, integ| {
-        r.forward_dynamics_trajectory(&q0, &qd0, &tau, Some(tip), dt, res, integ).unwrap().0
+        r.forward_dynamics_trajectory(&q0, &qd0, &tau, Some(tip), Stepping::new(dt, res, integ)).unwrap().0
     };
     let q_rk = run(&mut r, 128, Integrator::Rk4);
     let rk_err = (&run(&mut r, 64, Integrator::Rk4) - &q_rk).amax();
@@ -312,7 +314,7 @@ fn trajectory_input_errors() {
     let (q0, qd0) = (theta(), dtheta());
     let tau = DMatrix::from_element(4, 3, 0.5);
     let run = |r: &mut Robot, tau: &DMatrix<f64>, tip: Option<TipWrenchHistory<'_>>, dt, res| {
-        r.forward_dynamics_trajectory(&q0, &qd0, tau, tip, dt, res, Integrator::Rk4).unwrap_err()
+        r.forward_dynamics_trajectory(&q0, &qd0, tau, tip, Stepping::new(dt, res, Integrator::Rk4)).unwrap_err()
     };
     let e = run(&mut r, &DMatrix::zeros(4, 2), None, 0.1, 2);
     assert!(matches!(e, InputError::WrongShape { what: "tau", rows: 4, cols: 2, expected_rows: 4, expected_cols: 3 }));
@@ -337,8 +339,9 @@ fn trajectory_input_errors() {
     let e = run(&mut r, &tau, Some(TipWrenchHistory { frame: "ee", wrenches: &f }), 0.1, 2);
     assert_eq!(e.to_string(), "row 1: tip wrench is not finite");
     // The initial state is checked like any other.
-    let e =
-        r.forward_dynamics_trajectory(&dvector![0.1, 0.2], &qd0, &tau, None, 0.1, 2, Integrator::Euler).unwrap_err();
+    let e = r
+        .forward_dynamics_trajectory(&dvector![0.1, 0.2], &qd0, &tau, None, Stepping::new(0.1, 2, Integrator::Euler))
+        .unwrap_err();
     assert!(matches!(e, InputError::WrongLength { what: "q0", got: 2, expected: 3 }));
 
     let (q, qd) = (DMatrix::zeros(5, 3), DMatrix::zeros(5, 3));

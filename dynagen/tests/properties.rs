@@ -26,7 +26,7 @@
 //! tuned to this seed's cases.)
 
 use dynagen::algorithms::integrators::{rk4, IntegratorScratch, StepInputs};
-use dynagen::algorithms::{aba, crba, energy, forward_dynamics, rnea, BodyInertia, TipWrench, Workspace};
+use dynagen::algorithms::{aba, crba, energy, forward_dynamics, rnea, BodyInertia, Loads, TipWrench, Workspace};
 use dynagen::model::{Inertial, JointDescription};
 use dynagen::spatial::{Force, Mat3, Sym3, Transform, Vec3};
 use dynagen::{Model, Robot, RobotBuilder};
@@ -331,7 +331,7 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 fn mass_matrix(model: &Model, ws: &mut Workspace<f64>, q: &[f64]) -> DMatrix<f64> {
     let n = model.dof();
     let mut m = vec![0.0; n * n];
-    crba::crba(model, ws, q, &mut m);
+    crba::crba(model, ws, q, Loads::none(), &mut m);
     DMatrix::from_row_slice(n, n, &m)
 }
 
@@ -406,8 +406,8 @@ proptest! {
 
     /// A run-time payload (an extra inertia on a body, as generated code
     /// takes input payloads) gives the same τ and M as a model whose body
-    /// inertia is the sum: `rnea_with_payloads` and `crba_with_payloads`
-    /// against `rnea` and `crba` on the changed model, to 1e-12 of their
+    /// inertia is the sum: `rnea` and `crba` with the payloads in their
+    /// `Loads` against the same on the changed model, to 1e-12 of their
     /// size (the same terms, summed in another order). The payload is a
     /// random physical inertia on a random body, given twice (split in two
     /// halves) to check that several on one body add up; the state's τ
@@ -432,17 +432,29 @@ proptest! {
         let tips = tip_wrench(&model, &s.wrench);
         let (mut ws, mut wh) = (Workspace::new(&model), Workspace::new(&heavier));
         let (mut t1, mut t2) = (vec![0.0; n], vec![0.0; n]);
-        rnea::rnea_with_payloads(&model, &mut ws, &s.q, Some(&s.qd), Some(&s.tau), Some(&g), &tips, &payloads, &mut t1);
-        rnea::rnea(&heavier, &mut wh, &s.q, Some(&s.qd), Some(&s.tau), Some(&g), &tips, &mut t2);
+        let (loads, loads_heavier) =
+            (Loads::gravity(&g).with_tips(&tips).with_payloads(&payloads), Loads::gravity(&g).with_tips(&tips));
+        rnea::rnea(&model, &mut ws, &s.q, Some(&s.qd), Some(&s.tau), loads, &mut t1);
+        rnea::rnea(&heavier, &mut wh, &s.q, Some(&s.qd), Some(&s.tau), loads_heavier, &mut t2);
         prop_assert!(max_diff(&t1, &t2) <= 1e-12 * max_abs(&t2).max(1.0), "τ: {t1:?} vs {t2:?}");
         let (mut m1, mut m2) = (vec![0.0; n * n], vec![0.0; n * n]);
-        crba::crba_with_payloads(&model, &mut ws, &s.q, &payloads, &mut m1);
-        crba::crba(&heavier, &mut wh, &s.q, &mut m2);
+        crba::crba(&model, &mut ws, &s.q, Loads::none().with_payloads(&payloads), &mut m1);
+        crba::crba(&heavier, &mut wh, &s.q, Loads::none(), &mut m2);
         prop_assert!(max_diff(&m1, &m2) <= 1e-12 * max_abs(&m2), "M: {m1:?} vs {m2:?}");
         // Without q̇ and q̈ (g only) the payload still weighs.
-        rnea::rnea_with_payloads(&model, &mut ws, &s.q, None, None, Some(&g), &[], &payloads, &mut t1);
-        rnea::rnea(&heavier, &mut wh, &s.q, None, None, Some(&g), &[], &mut t2);
+        rnea::rnea(&model, &mut ws, &s.q, None, None, Loads::gravity(&g).with_payloads(&payloads), &mut t1);
+        rnea::rnea(&heavier, &mut wh, &s.q, None, None, Loads::gravity(&g), &mut t2);
         prop_assert!(max_diff(&t1, &t2) <= 1e-12 * max_abs(&t2).max(1.0), "g: {t1:?} vs {t2:?}");
+        // The articulated-body algorithm with the payloads inverts inverse
+        // dynamics on the heavier model: a residual, 1e-10 relative to the
+        // largest of the terms it balances (τ, h + JᵀF, M q̈).
+        let (mut a, mut h) = (vec![0.0; n], vec![0.0; n]);
+        aba::aba(&model, &mut ws, &s.q, &s.qd, &s.tau, loads, &mut a);
+        rnea::rnea(&heavier, &mut wh, &s.q, Some(&s.qd), Some(&a), loads_heavier, &mut t2);
+        rnea::rnea(&heavier, &mut wh, &s.q, Some(&s.qd), None, loads_heavier, &mut h);
+        let mqdd = (DMatrix::from_row_slice(n, n, &m2) * DVector::from_column_slice(&a)).amax();
+        let scale = max_abs(&s.tau).max(max_abs(&h)).max(mqdd).max(1.0);
+        prop_assert!(max_diff(&t2, &s.tau) <= 1e-10 * scale, "aba with payloads: rnea(aba(τ)) = {t2:?} vs τ = {:?}", s.tau);
     }
 
     /// CRBA against the Modern Robotics construction (n inverse dynamics
@@ -494,8 +506,8 @@ proptest! {
         let tips = tip_wrench(&model, &s.wrench);
         let mut ws = Workspace::new(&model);
         let (mut a, mut l, mut tau, mut h) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        aba::aba(&model, &mut ws, &s.q, &s.qd, &s.tau, Some(&g), &tips, &mut a);
-        forward_dynamics::forward_dynamics_ldlt(&model, &mut ws, &s.q, &s.qd, &s.tau, Some(&g), &tips, &mut l);
+        aba::aba(&model, &mut ws, &s.q, &s.qd, &s.tau, Loads::gravity(&g).with_tips(&tips), &mut a);
+        forward_dynamics::forward_dynamics_ldlt(&model, &mut ws, &s.q, &s.qd, &s.tau, Loads::gravity(&g).with_tips(&tips), &mut l);
         let m = mass_matrix(&model, &mut ws, &s.q);
         let eig = m.symmetric_eigenvalues();
         let cond = eig.max() / eig.min();
@@ -507,11 +519,11 @@ proptest! {
         // At rest without gravity, aba_at_rest skips the velocity terms: it
         // adds only zeros fewer, so it is ABA bit for bit.
         let (mut rest, mut full) = (vec![0.0; n], vec![0.0; n]);
-        aba::aba_at_rest(&model, &mut ws, &s.q, &s.tau, &mut rest);
-        aba::aba(&model, &mut ws, &s.q, &vec![0.0; n], &s.tau, None, &[], &mut full);
+        aba::aba_at_rest(&model, &mut ws, &s.q, &s.tau, Loads::none(), &mut rest);
+        aba::aba(&model, &mut ws, &s.q, &vec![0.0; n], &s.tau, Loads::none(), &mut full);
         prop_assert_eq!(&rest, &full);
-        rnea::rnea(&model, &mut ws, &s.q, Some(&s.qd), Some(&a), Some(&g), &tips, &mut tau);
-        rnea::rnea(&model, &mut ws, &s.q, Some(&s.qd), None, Some(&g), &tips, &mut h);
+        rnea::rnea(&model, &mut ws, &s.q, Some(&s.qd), Some(&a), Loads::gravity(&g).with_tips(&tips), &mut tau);
+        rnea::rnea(&model, &mut ws, &s.q, Some(&s.qd), None, Loads::gravity(&g).with_tips(&tips), &mut h);
         let mqdd = (&m * DVector::from_column_slice(&a)).amax();
         let scale = max_abs(&s.tau).max(max_abs(&h)).max(mqdd);
         let err = max_diff(&tau, &s.tau);
@@ -578,7 +590,7 @@ proptest! {
         let tips = tip_wrench(&model, &s.wrench);
         let mut ws = Workspace::new(&model);
         let mut qdd = vec![0.0; n];
-        aba::aba(&model, &mut ws, &s.q, &s.qd, &s.tau, Some(&g), &tips, &mut qdd);
+        aba::aba(&model, &mut ws, &s.q, &s.qd, &s.tau, Loads::gravity(&g).with_tips(&tips), &mut qdd);
         let m = mass_matrix(&model, &mut ws, &s.q);
         let omega = rate(&model, &s.qd);
         let ke_along = |t: f64| {
@@ -588,8 +600,8 @@ proptest! {
         let dke_dq = derivative(ke_along, 0.05 / omega)[0];
         let dke_dqd = DVector::from_column_slice(&s.qd).dot(&(&m * DVector::from_column_slice(&qdd)));
         let (mut gt, mut jtf) = (vec![0.0; n], vec![0.0; n]);
-        rnea::rnea(&model, &mut ws, &s.q, None, None, Some(&g), &[], &mut gt);
-        rnea::rnea(&model, &mut ws, &s.q, None, None, None, &tips, &mut jtf);
+        rnea::rnea(&model, &mut ws, &s.q, None, None, Loads::gravity(&g), &mut gt);
+        rnea::rnea(&model, &mut ws, &s.q, None, None, Loads::none().with_tips(&tips), &mut jtf);
         let power = dot(&s.qd, &s.tau) - dot(&s.qd, &gt) - dot(&s.qd, &jtf);
         let ke_max = 0.5 * m.symmetric_eigenvalues().max() * dot(&s.qd, &s.qd);
         let scale = omega * ke_max + dot(&s.qd, &s.tau).abs() + dot(&s.qd, &gt).abs() + dot(&s.qd, &jtf).abs();
@@ -612,7 +624,7 @@ proptest! {
         let g = model.gravity;
         let mut ws = Workspace::new(&model);
         let mut gt = vec![0.0; n];
-        rnea::rnea(&model, &mut ws, &s.q, None, None, Some(&g), &[], &mut gt);
+        rnea::rnea(&model, &mut ws, &s.q, None, None, Loads::gravity(&g), &mut gt);
         dynagen::algorithms::kinematics::forward_kinematics(&model, &mut ws, &s.q);
         // Σ mᵢ|g|(1 + |cᵢ|), cᵢ = p + R·hᵢ/mᵢ the centre of mass in the base frame
         let moment: f64 = (0..n)
@@ -691,8 +703,8 @@ fn gravity_frequency(model: &Model, q: &[f64]) -> f64 {
         let (mut qp, mut qm) = (q.to_vec(), q.to_vec());
         qp[j] += 1e-6;
         qm[j] -= 1e-6;
-        rnea::rnea(model, &mut ws, &qp, None, None, Some(&g), &[], &mut gp);
-        rnea::rnea(model, &mut ws, &qm, None, None, Some(&g), &[], &mut gm);
+        rnea::rnea(model, &mut ws, &qp, None, None, Loads::gravity(&g), &mut gp);
+        rnea::rnea(model, &mut ws, &qm, None, None, Loads::gravity(&g), &mut gm);
         for i in 0..n {
             k[(i, j)] = (gp[i] - gm[i]) / 2e-6;
         }
@@ -713,7 +725,7 @@ fn rk4_energy_drift(model: &Model, s: &State, h: f64, steps: usize, stride: usiz
     let mut ws = Workspace::new(model);
     let mut scratch = IntegratorScratch::new(model);
     let tau = vec![0.0; n];
-    let inputs = StepInputs { tau: &tau, gravity: Some(&g), tips: &[] };
+    let inputs = StepInputs { dt: h, tau: &tau, loads: Loads::gravity(&g) };
     let (mut q, mut qd) = (s.q.clone(), s.qd.clone());
     let energy = |q: &[f64], qd: &[f64]| {
         let ke = energy::kinetic_energy(model, &mut Workspace::new(model), q, qd);
@@ -723,7 +735,7 @@ fn rk4_energy_drift(model: &Model, s: &State, h: f64, steps: usize, stride: usiz
     let (e0, size) = energy(&q, &qd);
     let mut drift = 0.0f64;
     for k in 1..=steps {
-        rk4(model, &mut ws, &mut scratch, &inputs, h, &mut q, &mut qd);
+        rk4(model, &mut ws, &mut scratch, &inputs, &mut q, &mut qd);
         if k % stride == 0 {
             drift = drift.max((energy(&q, &qd).0 - e0).abs());
         }
@@ -759,7 +771,7 @@ fn rk4_energy_drift_is_fourth_order() {
             let n = model.dof();
             let g = model.gravity;
             let mut qdd = vec![0.0; n];
-            aba::aba(&model, &mut Workspace::new(&model), &s.q, &s.qd, &vec![0.0; n], Some(&g), &[], &mut qdd);
+            aba::aba(&model, &mut Workspace::new(&model), &s.q, &s.qd, &vec![0.0; n], Loads::gravity(&g), &mut qdd);
             let omega = rate(&model, &s.qd) + max_abs(&qdd).sqrt() + gravity_frequency(&model, &s.q);
             let h = 0.07 / omega;
             let (d1, size) = rk4_energy_drift(&model, &s, h, 24, 1);

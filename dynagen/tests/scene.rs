@@ -704,7 +704,7 @@ fn run_time_inputs_are_checked() {
 /// needs: f32 and the double-double reference agree with f64.
 #[test]
 fn scene_dynamics_run_on_every_scalar() {
-    use dynagen::algorithms::{TipWrench, Workspace};
+    use dynagen::algorithms::{Loads, TipWrench, Workspace};
     use dynagen::scene::dynamics;
     use dynagen::spatial::{Force, Vec3};
     use dynagen::{DoubleDouble, Scalar};
@@ -741,11 +741,10 @@ fn scene_dynamics_run_on_every_scalar() {
         let tips =
             [TipWrench { frame: scene.tip_wrench_frame.unwrap(), wrench: Force::from_array(w.map(S::from_f64)) }];
         let mut ws = Workspace::<S>::new(&scene.model);
-        let (mut tau, mut m, mut qdd2, mut scratch) =
-            (vec![S::zero(); n], vec![S::zero(); n * n], vec![S::zero(); n], vec![S::zero(); n]);
-        dynamics::inverse_dynamics(scene, &mut ws, &q, &qd, &qdd, Some(&g), &tips, &mut tau);
+        let (mut tau, mut m, mut qdd2) = (vec![S::zero(); n], vec![S::zero(); n * n], vec![S::zero(); n]);
+        dynamics::inverse_dynamics(scene, &mut ws, &q, &qd, &qdd, Loads::gravity(&g).with_tips(&tips), &mut tau);
         dynamics::mass_matrix(scene, &mut ws, &q, &mut m);
-        dynamics::forward_dynamics(scene, &mut ws, &q, &qd, &tau, Some(&g), &tips, &mut scratch, &mut qdd2);
+        dynamics::forward_dynamics(scene, &mut ws, &q, &qd, &tau, Loads::gravity(&g).with_tips(&tips), &mut qdd2);
         let f = |x: &[S]| x.iter().map(|v| v.to_f64().unwrap()).collect::<Vec<f64>>();
         [f(&tau), f(&m), f(&qdd2)]
     }
@@ -874,7 +873,7 @@ fn a_locked_branch_with_a_tip_keeps_its_mass() {
 /// a tip wrench.
 #[test]
 fn armature_in_the_articulated_body_algorithm_matches_m_plus_armature_solve() {
-    use dynagen::algorithms::{TipWrench, Workspace};
+    use dynagen::algorithms::{Loads, TipWrench, Workspace};
     use dynagen::scene::dynamics;
     use dynagen::spatial::Force;
     for (name, scene) in [
@@ -901,22 +900,48 @@ fn armature_in_the_articulated_body_algorithm_matches_m_plus_armature_solve() {
                 .map(|frame| TipWrench { frame, wrench: Force::from_array([0.1, -0.2, 0.3, 3.0, 1.0, -5.0]) })
                 .into_iter()
                 .collect();
-            let (mut aba, mut ldlt, mut scratch) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+            let (mut aba, mut ldlt) = (vec![0.0; n], vec![0.0; n]);
             let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());
-            dynamics::forward_dynamics(&scene, &mut ws, q, qd, tau, Some(&g), &tips, &mut scratch, &mut aba);
-            dynamics::forward_dynamics_ldlt(&scene, &mut ws, q, qd, tau, Some(&g), &tips, &mut scratch, &mut ldlt);
+            dynamics::forward_dynamics(&scene, &mut ws, q, qd, tau, Loads::gravity(&g).with_tips(&tips), &mut aba);
+            dynamics::forward_dynamics_ldlt(
+                &scene,
+                &mut ws,
+                q,
+                qd,
+                tau,
+                Loads::gravity(&g).with_tips(&tips),
+                &mut ldlt,
+            );
             // M + diag(a) and τ − h − JᵀF − friction, solved by LU.
             let mut m = vec![0.0; n * n];
             dynamics::mass_matrix(&scene, &mut ws, q, &mut m);
             let mut rhs = vec![0.0; n];
-            dynamics::inverse_dynamics(&scene, &mut ws, q, qd, &vec![0.0; n], Some(&g), &tips, &mut rhs);
+            dynamics::inverse_dynamics(
+                &scene,
+                &mut ws,
+                q,
+                qd,
+                &vec![0.0; n],
+                Loads::gravity(&g).with_tips(&tips),
+                &mut rhs,
+            );
             let rhs = DVector::from_iterator(n, tau.iter().zip(&rhs).map(|(t, h)| t - h));
             let lu = DMatrix::from_row_slice(n, n, &m).lu().solve(&rhs).unwrap();
             assert_close(&aba, lu.as_slice(), 1e-11, &format!("{name}: ABA with armature vs LU"));
             assert_close(&aba, &ldlt, 1e-11, &format!("{name}: ABA with armature vs LTDL"));
-            // and armature changes the answer
+            // and armature changes the answer (the same τ − friction, without it)
             let mut plain = vec![0.0; n];
-            dynagen::algorithms::aba::aba(&scene.model, &mut ws, q, qd, &scratch, Some(&g), &tips, &mut plain);
+            let mut scratch = tau.to_vec();
+            dynamics::sub_friction(&scene, qd, &mut scratch);
+            dynagen::algorithms::aba::aba(
+                &scene.model,
+                &mut ws,
+                q,
+                qd,
+                &scratch,
+                Loads::gravity(&g).with_tips(&tips),
+                &mut plain,
+            );
             assert!(plain.iter().zip(&aba).any(|(a, b)| (a - b).abs() > 1e-6), "{name}: armature had no effect");
         }
     }

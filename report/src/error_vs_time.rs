@@ -21,7 +21,7 @@
 use crate::plot::{self, Series};
 use crate::report::Report;
 use dynagen::algorithms::Workspace;
-use dynagen::algorithms::{aba, bias, crba, forward_dynamics, rnea};
+use dynagen::algorithms::{aba, bias, crba, forward_dynamics, rnea, Loads};
 use dynagen::model::JointKind;
 use dynagen::spatial::Vec3;
 use dynagen::{DoubleDouble, Model, Scalar};
@@ -104,14 +104,20 @@ impl Func {
     fn run<S: Scalar>(self, model: &Model, ws: &mut Workspace<S>, args: &[Vec<S>], gravity: &Vec3<S>, out: &mut [S]) {
         let g = Some(gravity);
         match self {
-            Func::Tau => rnea::rnea(model, ws, &args[0], Some(&args[1]), Some(&args[2]), g, &[], out),
-            Func::M => crba::crba(model, ws, &args[0], out),
+            Func::Tau => rnea::rnea(model, ws, &args[0], Some(&args[1]), Some(&args[2]), Loads::gravity(gravity), out),
+            Func::M => crba::crba(model, ws, &args[0], Loads::none(), out),
             Func::H => bias::bias_forces(model, ws, &args[0], &args[1], g, out),
             Func::G => bias::gravity_torques(model, ws, &args[0], gravity, out),
-            Func::FdAba => aba::aba(model, ws, &args[0], &args[1], &args[2], g, &[], out),
-            Func::FdLdlt => {
-                forward_dynamics::forward_dynamics_ldlt(model, ws, &args[0], &args[1], &args[2], g, &[], out)
-            }
+            Func::FdAba => aba::aba(model, ws, &args[0], &args[1], &args[2], Loads::gravity(gravity), out),
+            Func::FdLdlt => forward_dynamics::forward_dynamics_ldlt(
+                model,
+                ws,
+                &args[0],
+                &args[1],
+                &args[2],
+                Loads::gravity(gravity),
+                out,
+            ),
         }
     }
 }

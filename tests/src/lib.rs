@@ -135,13 +135,13 @@ pub fn bundled_module(name: &str) -> Result<String, dynagen::codegen::BuildError
 /// Forward dynamics by the articulated-body algorithm in double-double
 /// (the reference), under the model's gravity, from `f64` inputs.
 pub fn reference_forward_dynamics(model: &Model, q: &[f64], qd: &[f64], tau: &[f64]) -> Vec<f64> {
-    use dynagen::algorithms::{aba, Workspace};
+    use dynagen::algorithms::{aba, Loads, Workspace};
     use dynagen::DoubleDouble;
     let c = |x: &[f64]| x.iter().map(|&v| DoubleDouble::from(v)).collect::<Vec<_>>();
     let mut ws = Workspace::<DoubleDouble>::new(model);
     let g = dynagen::spatial::Vec3::<DoubleDouble>::from_f64(&model.gravity);
     let mut out = vec![DoubleDouble::ZERO; model.dof()];
-    aba::aba(model, &mut ws, &c(q), &c(qd), &c(tau), Some(&g), &[], &mut out);
+    aba::aba(model, &mut ws, &c(q), &c(qd), &c(tau), Loads::gravity(&g), &mut out);
     out.iter().map(|x| x.to_f64()).collect()
 }
 
@@ -156,7 +156,7 @@ pub fn cancelling_state(
     qd_scale: f64,
     qdd_scale: f64,
 ) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
-    use dynagen::algorithms::{rnea, Workspace};
+    use dynagen::algorithms::{rnea, Loads, Workspace};
     use dynagen::DoubleDouble;
     let n = model.dof();
     let (q, qd, qdd) = (rng.vec(n, q_scale), rng.vec(n, qd_scale), rng.vec(n, qdd_scale));
@@ -164,7 +164,7 @@ pub fn cancelling_state(
     let mut ws = Workspace::<DoubleDouble>::new(model);
     let g = dynagen::spatial::Vec3::<DoubleDouble>::from_f64(&model.gravity);
     let mut tau = vec![DoubleDouble::ZERO; n];
-    rnea::rnea(model, &mut ws, &c(&q), Some(&c(&qd)), Some(&c(&qdd)), Some(&g), &[], &mut tau);
+    rnea::rnea(model, &mut ws, &c(&q), Some(&c(&qd)), Some(&c(&qdd)), Loads::gravity(&g), &mut tau);
     let tau = tau.iter().map(|x| x.to_f64()).collect();
     (q, qd, tau)
 }

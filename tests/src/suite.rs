@@ -4,7 +4,7 @@
 //! the condition number of M, and the suite's error bounds.
 
 use super::{Rng, StiffCase};
-use dynagen::algorithms::{aba, bias, crba, forward_dynamics, rnea, Workspace};
+use dynagen::algorithms::{aba, bias, crba, forward_dynamics, rnea, Loads, Workspace};
 use dynagen::spatial::Vec3;
 use dynagen::{Model, Scalar};
 use nalgebra::DMatrix;
@@ -38,17 +38,17 @@ pub fn eval<S: Scalar>(model: &Model, q: &[f64], qd: &[f64], qdd: &[f64], tau: &
     let grav = Vec3::<S>::from_f64(&model.gravity);
     let mut ws = Workspace::<S>::new(model);
     let mut out = vec![S::zero(); n];
-    rnea::rnea(model, &mut ws, &q, Some(&qd), Some(&qdd), Some(&grav), &[], &mut out);
+    rnea::rnea(model, &mut ws, &q, Some(&qd), Some(&qdd), Loads::gravity(&grav), &mut out);
     let tau_out = back(&out);
     let mut m = vec![S::zero(); n * n];
-    crba::crba(model, &mut ws, &q, &mut m);
+    crba::crba(model, &mut ws, &q, Loads::none(), &mut m);
     bias::bias_forces(model, &mut ws, &q, &qd, Some(&grav), &mut out);
     let h = back(&out);
     bias::gravity_torques(model, &mut ws, &q, &grav, &mut out);
     let g = back(&out);
-    aba::aba(model, &mut ws, &q, &qd, &tau, Some(&grav), &[], &mut out);
+    aba::aba(model, &mut ws, &q, &qd, &tau, Loads::gravity(&grav), &mut out);
     let qdd_aba = back(&out);
-    forward_dynamics::forward_dynamics_ldlt(model, &mut ws, &q, &qd, &tau, Some(&grav), &[], &mut out);
+    forward_dynamics::forward_dynamics_ldlt(model, &mut ws, &q, &qd, &tau, Loads::gravity(&grav), &mut out);
     let qdd_ldlt = back(&out);
     Outputs { tau: tau_out, m: back(&m), h, g, qdd_aba, qdd_ldlt }
 }

@@ -8,7 +8,7 @@ use super::joint::{
     with_rotation, Rotation,
 };
 use super::rnea::{gyroscopic, products, velocity_product_matrix};
-use super::{TipWrench, Workspace};
+use super::{Loads, Workspace};
 use crate::model::{AxisAlignment, Joint, JointKind, Model};
 use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
 use crate::Scalar;
@@ -179,69 +179,77 @@ fn axis_index(joint: &Joint) -> Option<usize> {
 
 /// Forward dynamics by the articulated-body algorithm.
 ///
-/// `tau` are the joint torques/forces, `gravity` is in the base frame
-/// (`None`: no gravity), `tips` are wrenches the robot applies to its
-/// environment; the joint accelerations are written to `qdd`.
+/// `tau` are the joint torques/forces; `loads` are gravity in the base
+/// frame, the wrenches the robot applies to its environment, the payloads
+/// (added to their bodies' inertias) and the armature; the joint
+/// accelerations are written to `qdd`.
+///
+/// A per-joint armature `a` (reflected rotor inertia, kg·m² or kg) gives
+/// q̈ = (M(q) + diag(a))⁻¹(τ − h(q, q̇) − J(q)ᵀF_tip). Armature is an inertia
+/// felt by the joint coordinate alone, so it enters the recursion exactly
+/// where the joint's own inertia does: in `D_i = S_iᵀU_i + a_i` (and so in
+/// the articulated inertia passed to the parent, `I_iᴬ − U_i D_i⁻¹ U_iᵀ`).
+/// Nothing else changes, so the algorithm keeps its O(n) cost and its
+/// accuracy. A joint with `a_i = 0` costs nothing more.
 ///
 /// # Panics
-/// If a slice's length is not the model's number of joints.
-#[allow(clippy::too_many_arguments)]
+/// If a slice's length is not the model's number of joints, or a payload's
+/// body is not a body of the model.
 pub fn aba<S: Scalar>(
     model: &Model,
     ws: &mut Workspace<S>,
     q: &[S],
     qd: &[S],
     tau: &[S],
-    gravity: Option<&Vec3<S>>,
-    tips: &[TipWrench<S>],
+    loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
-    aba_with_armature(model, ws, q, qd, tau, gravity, tips, None, qdd)
-}
-
-/// [`aba`] with a per-joint armature `a` (reflected rotor inertia, kg·m² or
-/// kg): q̈ = (M(q) + diag(a))⁻¹(τ − h(q, q̇) − J(q)ᵀF_tip).
-///
-/// Armature is an inertia felt by the joint coordinate alone, so it enters
-/// the recursion exactly where the joint's own inertia does: in
-/// `D_i = S_iᵀU_i + a_i` (and so in the articulated inertia passed to the
-/// parent, `I_iᴬ − U_i D_i⁻¹ U_iᵀ`). Nothing else changes, so the
-/// algorithm keeps its O(n) cost and its accuracy. A joint with `a_i = 0`
-/// costs nothing more; `None` is no armature at all.
-///
-/// # Panics
-/// If a slice's length is not the model's number of joints.
-#[allow(clippy::too_many_arguments)]
-pub fn aba_with_armature<S: Scalar>(
-    model: &Model,
-    ws: &mut Workspace<S>,
-    q: &[S],
-    qd: &[S],
-    tau: &[S],
-    gravity: Option<&Vec3<S>>,
-    tips: &[TipWrench<S>],
-    armature: Option<&[f64]>,
-    qdd: &mut [S],
-) {
-    aba_impl(model, ws, q, Some(qd), tau, gravity, tips, armature, qdd, S::TRACED)
+    aba_traced_or_compact(model, ws, q, Some(qd), tau, loads, qdd)
 }
 
 /// M(q)⁻¹τ: the articulated-body algorithm at rest (q̇ = 0) and without
 /// gravity or tip wrenches, which skips every velocity term (the forward
-/// pass only places the bodies, and the bias forces are zero). This is the
-/// solve of the compensated forward dynamics
+/// pass only places the bodies, and the bias forces are zero). Of `loads`
+/// only the inertias (payloads, armature) are read. This is the solve of
+/// the compensated forward dynamics
 /// ([`forward_dynamics_compensated`](super::compensated::forward_dynamics_compensated)),
 /// which has the bias forces already.
 ///
 /// # Panics
-/// If a slice's length is not the model's number of joints.
-pub fn aba_at_rest<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], tau: &[S], qdd: &mut [S]) {
-    aba_impl(model, ws, q, None, tau, None, &[], None, qdd, S::TRACED)
+/// As [`aba`].
+pub fn aba_at_rest<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    tau: &[S],
+    loads: Loads<'_, S>,
+    qdd: &mut [S],
+) {
+    aba_traced_or_compact(model, ws, q, None, tau, loads.inertias(), qdd)
+}
+
+/// [`aba_impl`] in the arm for the scalar: distributed for traced code
+/// ([`Scalar::TRACED`]), compact on numbers.
+#[inline(always)]
+fn aba_traced_or_compact<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    qd: Option<&[S]>,
+    tau: &[S],
+    loads: Loads<'_, S>,
+    qdd: &mut [S],
+) {
+    if S::TRACED {
+        aba_impl::<S, true>(model, ws, q, qd, tau, loads, qdd)
+    } else {
+        aba_impl::<S, false>(model, ws, q, qd, tau, loads, qdd)
+    }
 }
 
 /// The articulated-body algorithm; `qd: None` is at rest (see [`aba_at_rest`]).
 ///
-/// `distributed` (what traced code uses, [`Scalar::TRACED`]) shortens the
+/// `DISTRIBUTED` (what traced code uses, [`Scalar::TRACED`]) shortens the
 /// dependency chain across the joints without changing the result in exact
 /// arithmetic. The inward pass passes to the parent
 /// `X(Iᴬ − U Uᵀ/D)Xᵀ = X Iᴬ Xᵀ − (XU)(XU)ᵀ/D` and
@@ -259,26 +267,23 @@ pub fn aba_at_rest<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], tau
 /// (1639 to 1661 operations), from 310 to 202 on the UR5 (610 to 644). On
 /// `f64` the compact arm is kept: there the operation count, not the chain,
 /// sets the speed.
-#[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn aba_impl<S: Scalar>(
+fn aba_impl<S: Scalar, const DISTRIBUTED: bool>(
     model: &Model,
     ws: &mut Workspace<S>,
     q: &[S],
     qd: Option<&[S]>,
     tau: &[S],
-    gravity: Option<&Vec3<S>>,
-    tips: &[TipWrench<S>],
-    armature: Option<&[f64]>,
+    loads: Loads<'_, S>,
     qdd: &mut [S],
-    distributed: bool,
 ) {
+    let Loads { gravity, tips, payloads, armature } = loads;
     let n = model.dof();
     assert!(
         q.len() == n && qd.is_none_or(|qd| qd.len() == n) && tau.len() == n && qdd.len() == n && ws.dof() == n,
         "aba: slices must have the model's {n} joints"
     );
-    assert!(armature.is_none_or(|a| a.len() == n), "aba: the armature must have the model's {n} joints");
+    loads.check(n, "aba");
     // Forward: angular velocities ω, velocity-product accelerations c, bias
     // forces pA. The accelerations of this algorithm are "classic": (ω̇; the
     // ordinary acceleration of the frame's origin), as in the RNEA, so the
@@ -292,7 +297,10 @@ fn aba_impl<S: Scalar>(
         let joint = &body.joint;
         let x = joint_transform(joint, q[i]);
         ws.x[i] = x;
-        let inertia = Inertia::<S>::from_f64(&body.inertia);
+        let mut inertia = Inertia::<S>::from_f64(&body.inertia);
+        for p in payloads.iter().filter(|p| p.body == i) {
+            inertia = inertia.add(&p.inertia);
+        }
         ws.art[i] = ArticulatedInertia::from_rigid(&inertia);
         let Some(qd) = qd else {
             // At rest: no velocity, no velocity-product acceleration, no bias force.
@@ -340,7 +348,7 @@ fn aba_impl<S: Scalar>(
         let d_inv = S::one() / d;
         let ui = tau[i] - project(&body.joint, &ws.f[i]);
         ws.s1[i] = d_inv;
-        if distributed {
+        if DISTRIBUTED {
             // The transform distributed over the rank-one update (exact
             // algebra, see the function's documentation): what does not
             // wait for 1/d (X Iᴬ Xᵀ, X U, X(pᴬ + Iᴬc), u − Uᵀc) runs
@@ -448,7 +456,7 @@ fn aba_impl<S: Scalar>(
             None => a0,
         };
         let a = motion_to_child(&body.joint, &ws.x[i], &a_parent) + ws.a[i];
-        let qddi = if distributed {
+        let qddi = if DISTRIBUTED {
             // Uᵀ(X a_p + c) = (XᵀU)ᵀ a_p + Uᵀc, with u − Uᵀc from the
             // inward pass: q̈ no longer waits for the transform of a_p.
             (ws.s2[i] - a_parent.dot(&ws.u6[i])) * ws.s1[i]
@@ -464,6 +472,7 @@ fn aba_impl<S: Scalar>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::algorithms::TipWrench;
     use crate::model::{Inertial, JointDescription, RobotBuilder};
 
     /// A tree with every case of the distributed arm: general and
@@ -531,12 +540,10 @@ mod tests {
                 (None, None, None, &[]),
             ];
             for (case, (qd, arm, g, tips)) in cases.into_iter().enumerate() {
-                let mut run = |distributed: bool| {
-                    let mut qdd = vec![0.0; n];
-                    aba_impl(&model, &mut ws, &q, qd, &tau, g, tips, arm, &mut qdd, distributed);
-                    qdd
-                };
-                let (compact, distributed) = (run(false), run(true));
+                let loads = Loads::new(g, tips, &[]).with_armature(arm);
+                let (mut compact, mut distributed) = (vec![0.0; n], vec![0.0; n]);
+                aba_impl::<f64, false>(&model, &mut ws, &q, qd, &tau, loads, &mut compact);
+                aba_impl::<f64, true>(&model, &mut ws, &q, qd, &tau, loads, &mut distributed);
                 let scale = compact.iter().fold(0.0f64, |m, x| m.max(x.abs()));
                 assert!(scale > 1e-3, "{} case {case}: q̈ is not trivial", model.name);
                 for k in 0..n {

@@ -3,7 +3,7 @@
 //! h(q, q̇) = C(q, q̇)q̇ + g(q), g(q), C(q, q̇)q̇ alone, and J(q)ᵀF_tip.
 
 use super::rnea::rnea;
-use super::{TipWrench, Workspace};
+use super::{Loads, TipWrench, Workspace};
 use crate::model::Model;
 use crate::spatial::Vec3;
 use crate::Scalar;
@@ -17,18 +17,18 @@ pub fn bias_forces<S: Scalar>(
     gravity: Option<&Vec3<S>>,
     h: &mut [S],
 ) {
-    rnea(model, ws, q, Some(qd), None, gravity, &[], h);
+    rnea(model, ws, q, Some(qd), None, Loads::new(gravity, &[], &[]), h);
 }
 
 /// The gravity torques g(q).
 pub fn gravity_torques<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], gravity: &Vec3<S>, g: &mut [S]) {
-    rnea(model, ws, q, None, None, Some(gravity), &[], g);
+    rnea(model, ws, q, None, None, Loads::gravity(gravity), g);
 }
 
 /// The Coriolis and centripetal torques C(q, q̇)q̇ (the Modern Robotics
 /// library's `VelQuadraticForces`).
 pub fn coriolis_torques<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], qd: &[S], c: &mut [S]) {
-    rnea(model, ws, q, Some(qd), None, None, &[], c);
+    rnea(model, ws, q, Some(qd), None, Loads::none(), c);
 }
 
 /// The joint torques J(q)ᵀF_tip that hold the tip wrenches at rest (the
@@ -40,5 +40,5 @@ pub fn tip_wrench_torques<S: Scalar>(
     tips: &[TipWrench<S>],
     tau: &mut [S],
 ) {
-    rnea(model, ws, q, None, None, None, tips, tau);
+    rnea(model, ws, q, None, None, Loads::none().with_tips(tips), tau);
 }

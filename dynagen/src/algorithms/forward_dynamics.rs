@@ -8,33 +8,31 @@
 use super::crba::crba;
 use super::ldlt;
 use super::rnea::rnea;
-use super::{TipWrench, Workspace};
+use super::{Loads, Workspace};
 use crate::model::Model;
-use crate::spatial::Vec3;
 use crate::Scalar;
 
 /// Forward dynamics through the factorised mass matrix; see the module
-/// documentation. Arguments as [`aba`](super::aba::aba).
-#[allow(clippy::too_many_arguments)]
+/// documentation. Arguments as [`aba`](super::aba::aba): the payloads
+/// enter M and h, the armature M's diagonal.
 pub fn forward_dynamics_ldlt<S: Scalar>(
     model: &Model,
     ws: &mut Workspace<S>,
     q: &[S],
     qd: &[S],
     tau: &[S],
-    gravity: Option<&Vec3<S>>,
-    tips: &[TipWrench<S>],
+    loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
     let n = model.dof();
     assert!(tau.len() == n && qdd.len() == n, "forward_dynamics_ldlt: slices must have the model's {n} joints");
     // h + JᵀF_tip into qdd, then the right-hand side τ − that.
-    rnea(model, ws, q, Some(qd), None, gravity, tips, qdd);
+    rnea(model, ws, q, Some(qd), None, loads, qdd);
     for i in 0..n {
         qdd[i] = tau[i] - qdd[i];
     }
     let mut m = std::mem::take(&mut ws.mat);
-    crba(model, ws, q, &mut m);
+    crba(model, ws, q, loads, &mut m);
     ldlt::factorise(model, &mut m);
     ldlt::solve(model, &m, qdd);
     ws.mat = m;

@@ -29,9 +29,9 @@
 //! N·m or N; gravity (m/s²) in the base frame; tip wrenches in their frames.
 
 use super::aba::aba;
-use super::{TipWrench, Workspace};
+use super::lu::{self, magnitude};
+use super::{Loads, Workspace};
 use crate::model::Model;
-use crate::spatial::Vec3;
 use crate::Scalar;
 
 /// Which scheme advances the state by one step.
@@ -49,15 +49,16 @@ pub enum Integrator {
     ImplicitEuler,
 }
 
-/// What acts on the robot during a step, held constant over it.
+/// A step: its length, and what acts on the robot during it, held
+/// constant over it.
 #[derive(Clone, Copy, Debug)]
 pub struct StepInputs<'a, S> {
+    /// The step's length (s).
+    pub dt: S,
     /// Joint torques (N·m) or forces (N), in joint order.
     pub tau: &'a [S],
-    /// Gravity in the base frame (m/s²); `None` for none.
-    pub gravity: Option<&'a Vec3<S>>,
-    /// Wrenches the robot applies to its environment, each in its frame.
-    pub tips: &'a [TipWrench<S>],
+    /// Gravity, tip wrenches, payloads and armature (see [`Loads`]).
+    pub loads: Loads<'a, S>,
 }
 
 /// Scratch for the integrators: the accelerations and the intermediate
@@ -114,12 +115,26 @@ pub fn euler_step<S: Scalar>(q: &mut [S], qd: &mut [S], qdd: &[S], dt: S) {
     }
 }
 
-fn check<S: Scalar>(model: &Model, ws: &Workspace<S>, scratch: &IntegratorScratch<S>, q: &[S], qd: &[S], tau: &[S]) {
+/// One step of `integrator` with the accelerations of the articulated-body
+/// algorithm under `inputs`, after checking the lengths: what [`euler`],
+/// [`semi_implicit_euler`], [`rk4`], [`implicit_euler`] and [`step`] do.
+/// Returns the implicit scheme's Newton outcome, when it ran.
+fn step_by_aba<S: Scalar>(
+    integrator: Integrator,
+    model: &Model,
+    ws: &mut Workspace<S>,
+    scratch: &mut IntegratorScratch<S>,
+    inputs: &StepInputs<'_, S>,
+    q: &mut [S],
+    qd: &mut [S],
+) -> Option<NewtonOutcome> {
     let n = model.dof();
     assert!(
-        q.len() == n && qd.len() == n && tau.len() == n && ws.dof() == n && scratch.dof() == n,
+        q.len() == n && qd.len() == n && inputs.tau.len() == n && ws.dof() == n && scratch.dof() == n,
         "integrators: slices and scratch must have the model's {n} joints"
     );
+    let accel = |q: &[S], qd: &[S], qdd: &mut [S]| aba(model, ws, q, qd, inputs.tau, inputs.loads, qdd);
+    step_with_outcome(integrator, scratch, inputs.dt, q, qd, accel)
 }
 
 /// One explicit Euler step of the forward dynamics (the Modern Robotics
@@ -133,12 +148,10 @@ pub fn euler<S: Scalar>(
     ws: &mut Workspace<S>,
     scratch: &mut IntegratorScratch<S>,
     inputs: &StepInputs<'_, S>,
-    dt: S,
     q: &mut [S],
     qd: &mut [S],
 ) {
-    check(model, ws, scratch, q, qd, inputs.tau);
-    euler_with(scratch, dt, q, qd, |q, qd, qdd| aba(model, ws, q, qd, inputs.tau, inputs.gravity, inputs.tips, qdd));
+    step_by_aba(Integrator::Euler, model, ws, scratch, inputs, q, qd);
 }
 
 /// [`euler`] with the accelerations from `accel(q, q̇, q̈_out)`.
@@ -167,14 +180,10 @@ pub fn semi_implicit_euler<S: Scalar>(
     ws: &mut Workspace<S>,
     scratch: &mut IntegratorScratch<S>,
     inputs: &StepInputs<'_, S>,
-    dt: S,
     q: &mut [S],
     qd: &mut [S],
 ) {
-    check(model, ws, scratch, q, qd, inputs.tau);
-    semi_implicit_euler_with(scratch, dt, q, qd, |q, qd, qdd| {
-        aba(model, ws, q, qd, inputs.tau, inputs.gravity, inputs.tips, qdd)
-    });
+    step_by_aba(Integrator::SemiImplicitEuler, model, ws, scratch, inputs, q, qd);
 }
 
 /// [`semi_implicit_euler`] with the accelerations from `accel(q, q̇, q̈_out)`.
@@ -207,12 +216,10 @@ pub fn rk4<S: Scalar>(
     ws: &mut Workspace<S>,
     scratch: &mut IntegratorScratch<S>,
     inputs: &StepInputs<'_, S>,
-    dt: S,
     q: &mut [S],
     qd: &mut [S],
 ) {
-    check(model, ws, scratch, q, qd, inputs.tau);
-    rk4_with(scratch, dt, q, qd, |q, qd, qdd| aba(model, ws, q, qd, inputs.tau, inputs.gravity, inputs.tips, qdd));
+    step_by_aba(Integrator::Rk4, model, ws, scratch, inputs, q, qd);
 }
 
 /// [`rk4`] with the accelerations from `accel(q, q̇, q̈_out)`.
@@ -304,58 +311,6 @@ impl<S: Scalar> ImplicitScratch<S> {
     }
 }
 
-/// |x| of a numeric scalar as `f64` (∞ for one without a value).
-fn magnitude<S: Scalar>(x: S) -> f64 {
-    x.to_f64().map_or(f64::INFINITY, f64::abs)
-}
-
-/// LU factorisation with partial pivoting, in place (pivots chosen on the
-/// values' magnitudes: a numeric routine, never traced).
-fn lu_factorise<S: Scalar>(a: &mut [S], perm: &mut [usize], n: usize) {
-    for (i, p) in perm.iter_mut().enumerate() {
-        *p = i;
-    }
-    for k in 0..n {
-        let p = (k..n).max_by(|&i, &j| magnitude(a[i * n + k]).total_cmp(&magnitude(a[j * n + k]))).unwrap_or(k);
-        if p != k {
-            for c in 0..n {
-                a.swap(k * n + c, p * n + c);
-            }
-            perm.swap(k, p);
-        }
-        let inv = S::one() / a[k * n + k];
-        for i in k + 1..n {
-            let l = a[i * n + k] * inv;
-            a[i * n + k] = l;
-            for c in k + 1..n {
-                let u = a[k * n + c];
-                a[i * n + c] -= l * u;
-            }
-        }
-    }
-}
-
-/// Solves LU·x = P·b in place of `b` (with `tmp` as scratch).
-fn lu_solve<S: Scalar>(a: &[S], perm: &[usize], n: usize, b: &mut [S], tmp: &mut [S]) {
-    for i in 0..n {
-        tmp[i] = b[perm[i]];
-    }
-    for i in 0..n {
-        for k in 0..i {
-            let l = a[i * n + k];
-            tmp[i] -= l * tmp[k];
-        }
-    }
-    for i in (0..n).rev() {
-        for k in i + 1..n {
-            let u = a[i * n + k];
-            tmp[i] -= u * tmp[k];
-        }
-        tmp[i] = tmp[i] / a[i * n + i];
-    }
-    b.copy_from_slice(&tmp[..n]);
-}
-
 /// What a Newton solve of [`implicit_euler_with`] did.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct NewtonOutcome {
@@ -381,14 +336,11 @@ pub fn implicit_euler<S: Scalar>(
     ws: &mut Workspace<S>,
     scratch: &mut IntegratorScratch<S>,
     inputs: &StepInputs<'_, S>,
-    dt: S,
     q: &mut [S],
     qd: &mut [S],
 ) -> NewtonOutcome {
-    check(model, ws, scratch, q, qd, inputs.tau);
-    implicit_euler_with(scratch, dt, q, qd, |q, qd, qdd| {
-        aba(model, ws, q, qd, inputs.tau, inputs.gravity, inputs.tips, qdd)
-    })
+    step_by_aba(Integrator::ImplicitEuler, model, ws, scratch, inputs, q, qd)
+        .expect("the implicit scheme has an outcome")
 }
 
 /// One implicit Euler step with the accelerations from `accel(q, q̇, q̈_out)`.
@@ -447,12 +399,12 @@ pub fn implicit_euler_with<S: Scalar>(
                 v[j] = vj;
                 q1[j] = q[j] + dt * vj;
             }
-            lu_factorise(jac, perm, n);
+            lu::factorise(jac, perm, n);
         }
         for i in 0..n {
             r[i] = v[i] - qd[i] - dt * a0[i];
         }
-        lu_solve(jac, perm, n, r, tmp);
+        lu::solve(jac, perm, n, r, tmp);
         let (mut dmax, mut vmax) = (0.0f64, 1.0f64);
         for i in 0..n {
             v[i] -= r[i];
@@ -485,21 +437,16 @@ pub fn implicit_euler_with<S: Scalar>(
 ///
 /// # Panics
 /// If a slice or the scratch does not have the model's number of joints.
-#[allow(clippy::too_many_arguments)]
 pub fn step<S: Scalar>(
     integrator: Integrator,
     model: &Model,
     ws: &mut Workspace<S>,
     scratch: &mut IntegratorScratch<S>,
     inputs: &StepInputs<'_, S>,
-    dt: S,
     q: &mut [S],
     qd: &mut [S],
 ) {
-    check(model, ws, scratch, q, qd, inputs.tau);
-    step_with(integrator, scratch, dt, q, qd, |q, qd, qdd| {
-        aba(model, ws, q, qd, inputs.tau, inputs.gravity, inputs.tips, qdd)
-    });
+    step_by_aba(integrator, model, ws, scratch, inputs, q, qd);
 }
 
 /// [`step`] with the accelerations from `accel(q, q̇, q̈_out)` (for dynamics
@@ -515,20 +462,32 @@ pub fn step_with<S: Scalar>(
     qd: &mut [S],
     accel: impl FnMut(&[S], &[S], &mut [S]),
 ) {
+    step_with_outcome(integrator, scratch, dt, q, qd, accel);
+}
+
+/// [`step_with`], returning the implicit scheme's Newton outcome when it ran.
+fn step_with_outcome<S: Scalar>(
+    integrator: Integrator,
+    scratch: &mut IntegratorScratch<S>,
+    dt: S,
+    q: &mut [S],
+    qd: &mut [S],
+    accel: impl FnMut(&[S], &[S], &mut [S]),
+) -> Option<NewtonOutcome> {
     match integrator {
         Integrator::Euler => euler_with(scratch, dt, q, qd, accel),
         Integrator::SemiImplicitEuler => semi_implicit_euler_with(scratch, dt, q, qd, accel),
         Integrator::Rk4 => rk4_with(scratch, dt, q, qd, accel),
-        Integrator::ImplicitEuler => {
-            implicit_euler_with(scratch, dt, q, qd, accel);
-        }
+        Integrator::ImplicitEuler => return Some(implicit_euler_with(scratch, dt, q, qd, accel)),
     }
+    None
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::model::{Inertial, JointDescription, RobotBuilder};
+    use crate::spatial::Vec3;
 
     // A point mass m on a massless prismatic joint along x with a constant
     // force f: q̈ = f/m exactly, so every scheme's error is known in closed form.
@@ -546,9 +505,9 @@ mod tests {
         let mut ws = Workspace::new(&model);
         let mut scratch = IntegratorScratch::new(&model);
         let tau = [3.0]; // q̈ = 1.5
-        let inputs = StepInputs { tau: &tau, gravity: None, tips: &[] };
+        let inputs = StepInputs { dt, tau: &tau, loads: Loads::none() };
         let (mut q, mut qd) = ([0.25], [-0.5]);
-        step(integrator, &model, &mut ws, &mut scratch, &inputs, dt, &mut q, &mut qd);
+        step(integrator, &model, &mut ws, &mut scratch, &inputs, &mut q, &mut qd);
         (q[0], qd[0])
     }
 
@@ -580,10 +539,10 @@ mod tests {
             let mut scratch = IntegratorScratch::<S>::new(model);
             let g = Vec3([S::zero(), S::zero(), S::from_f64(-9.81)]);
             let tau = [S::from_f64(0.5)];
-            let inputs = StepInputs { tau: &tau, gravity: Some(&g), tips: &[] };
+            let inputs = StepInputs { dt: S::from_f64(0.01), tau: &tau, loads: Loads::gravity(&g) };
             let (mut q, mut qd) = ([S::from_f64(0.7)], [S::from_f64(-0.2)]);
             for _ in 0..20 {
-                rk4(model, &mut ws, &mut scratch, &inputs, S::from_f64(0.01), &mut q, &mut qd);
+                rk4(model, &mut ws, &mut scratch, &inputs, &mut q, &mut qd);
             }
             (q[0].to_f64().unwrap(), qd[0].to_f64().unwrap())
         }
@@ -613,7 +572,7 @@ mod tests {
         for _ in 0..steps {
             step_with(integrator, &mut scratch, dt, &mut q, &mut qd, |q, qd, qdd| {
                 let tau = [-k * q[0] - d * qd[0]];
-                aba(&model, &mut ws, q, qd, &tau, None, &[], qdd);
+                aba(&model, &mut ws, q, qd, &tau, Loads::none(), qdd);
             });
         }
         (q[0], qd[0])
@@ -652,15 +611,15 @@ mod tests {
         let run = |integrator: Integrator, steps: usize| {
             let mut ws = Workspace::<f64>::new(&model);
             let mut scratch = IntegratorScratch::new(&model);
-            let inputs = StepInputs { tau: &tau, gravity: Some(&g), tips: &[] };
-            let (mut q, mut qd) = ([0.8, -0.4], [0.0, 0.5]);
             let dt = 0.5 / steps as f64;
+            let inputs = StepInputs { dt, tau: &tau, loads: Loads::gravity(&g) };
+            let (mut q, mut qd) = ([0.8, -0.4], [0.0, 0.5]);
             for _ in 0..steps {
                 if integrator == Integrator::ImplicitEuler {
-                    let out = implicit_euler(&model, &mut ws, &mut scratch, &inputs, dt, &mut q, &mut qd);
+                    let out = implicit_euler(&model, &mut ws, &mut scratch, &inputs, &mut q, &mut qd);
                     assert!(out.converged, "Newton did not converge: {out:?}");
                 } else {
-                    step(integrator, &model, &mut ws, &mut scratch, &inputs, dt, &mut q, &mut qd);
+                    step(integrator, &model, &mut ws, &mut scratch, &inputs, &mut q, &mut qd);
                 }
             }
             [q[0], q[1], qd[0], qd[1]]
@@ -677,17 +636,7 @@ mod tests {
     }
 
     #[test]
-    fn lu_solves_with_pivoting() {
-        // A zero leading entry needs the row exchange.
-        let mut a = vec![0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0];
-        let x = [1.0, -2.0, 0.5];
-        let mut b: Vec<f64> = (0..3).map(|i| a[i * 3] * x[0] + a[i * 3 + 1] * x[1] + a[i * 3 + 2] * x[2]).collect();
-        let (mut perm, mut tmp) = (vec![0; 3], vec![0.0; 3]);
-        lu_factorise(&mut a, &mut perm, 3);
-        lu_solve(&a, &perm, 3, &mut b, &mut tmp);
-        for i in 0..3 {
-            assert!((b[i] - x[i]).abs() < 1e-15, "{b:?}");
-        }
+    fn machine_epsilon_is_the_scalars() {
         assert_eq!(machine_epsilon::<f64>(), f64::EPSILON);
         assert_eq!(machine_epsilon::<f32>(), f32::EPSILON as f64);
     }

@@ -18,7 +18,10 @@ pub mod integrators;
 pub mod joint;
 pub mod kinematics;
 pub mod ldlt;
+mod loads;
+mod lu;
 pub mod rnea;
 mod workspace;
 
-pub use workspace::{BodyInertia, TipWrench, Workspace};
+pub use loads::{BodyInertia, Loads, TipWrench};
+pub use workspace::Workspace;

@@ -18,7 +18,7 @@
 //! fewer operations (and fewer in the generated code).
 
 use super::joint::{add_axis, cross_axis, force_to_parent, joint_transform, project, with_rotation, Rotation};
-use super::{BodyInertia, TipWrench, Workspace};
+use super::{Loads, Workspace};
 use crate::model::Model;
 use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
 use crate::Scalar;
@@ -131,53 +131,32 @@ pub(crate) fn update_joint_transforms<S: Scalar>(model: &Model, ws: &mut Workspa
 /// - `q`, `qd`, `qdd`: joint positions, velocities and accelerations in joint
 ///   order (rad, m; per second; per second²). `None` for `qd` or `qdd` means
 ///   zero, and the terms that would multiply it are not computed.
-/// - `gravity`: in the base frame (m/s²); `None` for no gravity.
-/// - `tips`: wrenches the robot applies to its environment at named frames
-///   (the Modern Robotics `Ftip`).
+/// - `loads`: gravity in the base frame (m/s²), wrenches the robot applies
+///   to its environment at named frames (the Modern Robotics `Ftip`), extra
+///   inertias carried by bodies (payloads: each adds the wrench that
+///   produces its motion, m·a + U·h and Ī·ω̇ + ω × (Ī·ω) + h × a, to its
+///   body's, exactly as if the body's own inertia were the sum) and the
+///   armature (armature∘q̈ added last).
 /// - `tau`: the joint torques (N·m) or forces (N) are written here.
 ///
 /// # Panics
-/// If a slice's length is not the model's number of joints.
+/// If a slice's length is not the model's number of joints, or a payload's
+/// body is not a body of the model.
 // Inlined into its callers so that a caller compiled with extra CPU features
 // (the FMA form of the compensated forward dynamics) compiles it with them.
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
 pub fn rnea<S: Scalar>(
     model: &Model,
     ws: &mut Workspace<S>,
     q: &[S],
     qd: Option<&[S]>,
     qdd: Option<&[S]>,
-    gravity: Option<&Vec3<S>>,
-    tips: &[TipWrench<S>],
+    loads: Loads<'_, S>,
     tau: &mut [S],
 ) {
-    rnea_with_payloads(model, ws, q, qd, qdd, gravity, tips, &[], tau);
-}
-
-/// [`rnea`] with extra inertias carried by bodies (`payloads`, each in its
-/// body's frame; any number per body): each adds the wrench that produces
-/// its motion, m·a + U·h and Ī·ω̇ + ω × (Ī·ω) + h × a, to its body's, exactly
-/// as if the body's own inertia were the sum. Code generation uses it for
-/// payloads given at run time; with `&[]` it is [`rnea`].
-///
-/// # Panics
-/// As [`rnea`], and if a payload's body is not a body of the model.
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-pub fn rnea_with_payloads<S: Scalar>(
-    model: &Model,
-    ws: &mut Workspace<S>,
-    q: &[S],
-    qd: Option<&[S]>,
-    qdd: Option<&[S]>,
-    gravity: Option<&Vec3<S>>,
-    tips: &[TipWrench<S>],
-    payloads: &[BodyInertia<S>],
-    tau: &mut [S],
-) {
+    let Loads { gravity, tips, payloads, armature } = loads;
     let n = model.dof();
-    assert!(payloads.iter().all(|p| p.body < n), "rnea: a payload's body is not one of the model's {n}");
+    loads.check(n, "rnea");
     assert!(q.len() == n && tau.len() == n && ws.dof() == n, "rnea: slices must have the model's {n} joints");
     assert!(
         qd.is_none_or(|x| x.len() == n) && qdd.is_none_or(|x| x.len() == n),
@@ -286,6 +265,13 @@ pub fn rnea_with_payloads<S: Scalar>(
         if let Some(p) = body.parent {
             let fp = force_to_parent(&body.joint, &xs[i], &fs[i]);
             fs[p] += fp;
+        }
+    }
+    if let (Some(armature), Some(qdd)) = (armature, qdd) {
+        for (i, &a) in armature.iter().enumerate() {
+            if a != 0.0 {
+                tau[i] += S::from_f64(a) * qdd[i];
+            }
         }
     }
 }

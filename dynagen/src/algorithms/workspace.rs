@@ -4,29 +4,6 @@ use crate::model::Model;
 use crate::spatial::{Force, Inertia, Mat3, Motion, Transform};
 use crate::Scalar;
 
-/// A wrench that a frame of the robot applies to its environment, in that
-/// frame's coordinates: the Modern Robotics library's `Ftip` (m; f).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TipWrench<S> {
-    /// The frame's index in [`Model::frames`].
-    pub frame: usize,
-    /// The wrench (N·m; N).
-    pub wrench: Force<S>,
-}
-
-/// An inertia carried by a body in addition to the model's own, in the
-/// body's frame: a payload known only at run time (its parameters are
-/// inputs of the generated code), added where the body's inertia enters the
-/// recursion, as [`rnea_with_payloads`](super::rnea::rnea_with_payloads) and
-/// [`crba_with_payloads`](super::crba::crba_with_payloads) do.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BodyInertia<S> {
-    /// The body's index (its joint's index).
-    pub body: usize,
-    /// The inertia, in the body's frame.
-    pub inertia: crate::spatial::Inertia<S>,
-}
-
 /// Preallocated scratch for every algorithm on one model. Create it once
 /// (outside a control loop) and pass it to each call.
 #[derive(Clone, Debug)]
@@ -58,6 +35,8 @@ pub struct Workspace<S> {
     pub(crate) s2: Vec<S>,
     /// An n×n matrix, row-major.
     pub(crate) mat: Vec<S>,
+    /// A joint-space right-hand side (a scene's τ − friction).
+    pub(crate) rhs: Vec<S>,
     /// Pose of each body in the base frame.
     pub(crate) world: Vec<Transform<S>>,
 }
@@ -83,6 +62,7 @@ impl<S: Scalar> Workspace<S> {
             s1: vec![S::zero(); n],
             s2: vec![S::zero(); n],
             mat: vec![S::zero(); n * n],
+            rhs: vec![S::zero(); n],
             world: vec![Transform::identity(); n],
         }
     }

@@ -8,7 +8,7 @@
 //! state.
 
 use super::SceneModel;
-use crate::algorithms::{aba, bias, crba, ldlt, rnea, BodyInertia, TipWrench, Workspace};
+use crate::algorithms::{aba, bias, crba, forward_dynamics, rnea, Loads, Workspace};
 use crate::spatial::Vec3;
 use crate::Scalar;
 
@@ -55,53 +55,30 @@ pub fn add_armature_diagonal<S: Scalar>(scene: &SceneModel, m: &mut [S]) {
     }
 }
 
-/// τ = M(q)q̈ + h(q, q̇) + J(q)ᵀF_tip + armature∘q̈ + friction.
-#[allow(clippy::too_many_arguments)]
+/// The scene's armature (`None` when it has none) added to `loads`.
+fn with_armature<'a, S>(scene: &'a SceneModel, loads: Loads<'a, S>) -> Loads<'a, S> {
+    loads.with_armature(scene.has_armature().then_some(scene.armature.as_slice()))
+}
+
+/// τ = M(q)q̈ + h(q, q̇) + J(q)ᵀF_tip + armature∘q̈ + friction, under `loads`
+/// (gravity, tip wrenches, payloads given at run time; the scene's armature
+/// is added to them).
 pub fn inverse_dynamics<S: Scalar>(
     scene: &SceneModel,
     ws: &mut Workspace<S>,
     q: &[S],
     qd: &[S],
     qdd: &[S],
-    gravity: Option<&Vec3<S>>,
-    tips: &[TipWrench<S>],
+    loads: Loads<'_, S>,
     tau: &mut [S],
 ) {
-    inverse_dynamics_with_payloads(scene, ws, q, qd, qdd, gravity, tips, &[], tau);
-}
-
-/// [`inverse_dynamics`] with extra body inertias (payloads given at run
-/// time, see [`rnea::rnea_with_payloads`]).
-#[allow(clippy::too_many_arguments)]
-pub fn inverse_dynamics_with_payloads<S: Scalar>(
-    scene: &SceneModel,
-    ws: &mut Workspace<S>,
-    q: &[S],
-    qd: &[S],
-    qdd: &[S],
-    gravity: Option<&Vec3<S>>,
-    tips: &[TipWrench<S>],
-    payloads: &[BodyInertia<S>],
-    tau: &mut [S],
-) {
-    rnea::rnea_with_payloads(&scene.model, ws, q, Some(qd), Some(qdd), gravity, tips, payloads, tau);
-    add_armature_times(scene, qdd, tau);
+    rnea::rnea(&scene.model, ws, q, Some(qd), Some(qdd), with_armature(scene, loads), tau);
     add_friction(scene, qd, tau);
-}
-
-/// Adds armature∘q̈ to `tau`.
-pub fn add_armature_times<S: Scalar>(scene: &SceneModel, qdd: &[S], tau: &mut [S]) {
-    for (i, &a) in scene.armature.iter().enumerate() {
-        if a != 0.0 {
-            tau[i] += S::from_f64(a) * qdd[i];
-        }
-    }
 }
 
 /// M(q) + diag(armature), row-major n×n.
 pub fn mass_matrix<S: Scalar>(scene: &SceneModel, ws: &mut Workspace<S>, q: &[S], m: &mut [S]) {
-    crba::crba(&scene.model, ws, q, m);
-    add_armature_diagonal(scene, m);
+    crba::crba(&scene.model, ws, q, with_armature(scene, Loads::none()), m);
 }
 
 /// h(q, q̇) = C(q, q̇)q̇ + g(q) + friction.
@@ -138,77 +115,49 @@ pub fn coriolis<S: Scalar>(scene: &SceneModel, ws: &mut Workspace<S>, q: &[S], q
 
 /// q̈ = (M(q) + diag(armature))⁻¹(τ − friction − h(q, q̇) − J(q)ᵀF_tip), by
 /// the articulated-body algorithm on τ − friction with the armature in its
-/// joint inertias ([`aba::aba_with_armature`]): exact, O(n), and the most
-/// accurate method (`docs/performance.md`). `scratch` (n entries) holds τ − friction.
-#[allow(clippy::too_many_arguments)]
+/// joint inertias ([`aba::aba`]): exact, O(n), and the most accurate method
+/// (`docs/performance.md`). `loads` as [`inverse_dynamics`].
 pub fn forward_dynamics<S: Scalar>(
     scene: &SceneModel,
     ws: &mut Workspace<S>,
     q: &[S],
     qd: &[S],
     tau: &[S],
-    gravity: Option<&Vec3<S>>,
-    tips: &[TipWrench<S>],
-    scratch: &mut [S],
+    loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
-    let n = scene.dof();
-    assert!(scratch.len() == n && tau.len() == n, "forward_dynamics: slices must have the model's {n} joints");
-    scratch.copy_from_slice(tau);
-    sub_friction(scene, qd, scratch);
-    let armature = if scene.has_armature() { Some(scene.armature.as_slice()) } else { None };
-    aba::aba_with_armature(&scene.model, ws, q, qd, scratch, gravity, tips, armature, qdd);
+    let rhs = tau_minus_friction(scene, ws, qd, tau);
+    aba::aba(&scene.model, ws, q, qd, &rhs, with_armature(scene, loads), qdd);
+    ws.rhs = rhs;
 }
 
-/// The same q̈ as [`forward_dynamics`] through the mass matrix: M by the
+/// The same q̈ as [`forward_dynamics`](fn@forward_dynamics) through the mass matrix: M by the
 /// composite-rigid-body algorithm with the armature on its diagonal, h and
 /// J(q)ᵀF_tip by the recursive Newton-Euler algorithm, and the sparse LᵀDL
-/// solve of [`ldlt`]. Fewer operations on short chains, fewer digits on
-/// long ones. `scratch` (n entries) holds τ − friction.
-#[allow(clippy::too_many_arguments)]
+/// solve of [`ldlt`](crate::algorithms::ldlt)
+/// ([`forward_dynamics_ldlt`](forward_dynamics::forward_dynamics_ldlt)).
+/// Fewer operations on short chains, fewer digits on long ones.
 pub fn forward_dynamics_ldlt<S: Scalar>(
     scene: &SceneModel,
     ws: &mut Workspace<S>,
     q: &[S],
     qd: &[S],
     tau: &[S],
-    gravity: Option<&Vec3<S>>,
-    tips: &[TipWrench<S>],
-    scratch: &mut [S],
+    loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
-    forward_dynamics_ldlt_with_payloads(scene, ws, q, qd, tau, gravity, tips, &[], scratch, qdd);
+    let rhs = tau_minus_friction(scene, ws, qd, tau);
+    forward_dynamics::forward_dynamics_ldlt(&scene.model, ws, q, qd, &rhs, with_armature(scene, loads), qdd);
+    ws.rhs = rhs;
 }
 
-/// [`forward_dynamics_ldlt`] with extra body inertias (payloads given at run
-/// time) in M and h ([`crba::crba_with_payloads`],
-/// [`rnea::rnea_with_payloads`]).
-#[allow(clippy::too_many_arguments)]
-pub fn forward_dynamics_ldlt_with_payloads<S: Scalar>(
-    scene: &SceneModel,
-    ws: &mut Workspace<S>,
-    q: &[S],
-    qd: &[S],
-    tau: &[S],
-    gravity: Option<&Vec3<S>>,
-    tips: &[TipWrench<S>],
-    payloads: &[BodyInertia<S>],
-    scratch: &mut [S],
-    qdd: &mut [S],
-) {
+/// τ − friction, in the workspace's right-hand side (taken out of it; the
+/// caller puts it back).
+fn tau_minus_friction<S: Scalar>(scene: &SceneModel, ws: &mut Workspace<S>, qd: &[S], tau: &[S]) -> Vec<S> {
     let n = scene.dof();
-    assert!(scratch.len() == n && tau.len() == n, "forward_dynamics_ldlt: slices must have the model's {n} joints");
-    scratch.copy_from_slice(tau);
-    sub_friction(scene, qd, scratch);
-    // h + JᵀF_tip into qdd, then the right-hand side.
-    rnea::rnea_with_payloads(&scene.model, ws, q, Some(qd), None, gravity, tips, payloads, qdd);
-    for i in 0..n {
-        qdd[i] = scratch[i] - qdd[i];
-    }
-    let mut m = std::mem::take(&mut ws.mat);
-    crba::crba_with_payloads(&scene.model, ws, q, payloads, &mut m);
-    add_armature_diagonal(scene, &mut m);
-    ldlt::factorise(&scene.model, &mut m);
-    ldlt::solve(&scene.model, &m, qdd);
-    ws.mat = m;
+    assert!(tau.len() == n && ws.dof() == n, "forward_dynamics: slices must have the model's {n} joints");
+    let mut rhs = std::mem::take(&mut ws.rhs);
+    rhs.copy_from_slice(tau);
+    sub_friction(scene, qd, &mut rhs);
+    rhs
 }

@@ -152,12 +152,11 @@
 pub mod dynamics;
 mod error;
 mod reduce;
-mod robot;
 mod toml;
 
+pub use crate::robot::scene::{SceneInputError, SceneInputs, SceneRobot};
 pub use error::{SceneError, SceneWarning};
 pub use reduce::{InputPayload, ResolvedGravity, SceneModel};
-pub use robot::{SceneInputError, SceneInputs, SceneRobot};
 pub use toml::{CodeKeys, SceneFile};
 
 use crate::model::Model;

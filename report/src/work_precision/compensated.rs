@@ -4,7 +4,7 @@
 
 use crate::report::Report;
 use dynagen::algorithms::compensated::CompensatedSolver;
-use dynagen::algorithms::{aba, Workspace};
+use dynagen::algorithms::{aba, Loads, Workspace};
 use dynagen::Model;
 use dynagen_tests::{cancelling_state, reference_forward_dynamics, rel_err, Rng};
 use std::fmt::Write as _;
@@ -37,21 +37,21 @@ fn time_all(model: &Model, states: &[(Vec<f64>, Vec<f64>, Vec<f64>)], rounds: us
         let t = Instant::now();
         for k in 0..calls {
             let (q, qd, tau) = &states[k % states.len()];
-            aba::aba(model, &mut ws, q, qd, tau, Some(&g), &[], &mut out);
+            aba::aba(model, &mut ws, q, qd, tau, Loads::gravity(&g), &mut out);
             black_box(&out);
         }
         ta.push(t.elapsed().as_secs_f64() / calls as f64);
         let t = Instant::now();
         for k in 0..calls {
             let (q, qd, tau) = &states[k % states.len()];
-            solver.solve(model, &mut ws, q, qd, tau, Some(&g), &[], &mut out);
+            solver.solve(model, q, qd, tau, Loads::gravity(&g), &mut out);
             black_box(&out);
         }
         tc.push(t.elapsed().as_secs_f64() / calls as f64);
         let t = Instant::now();
         for k in 0..calls {
             let (q, qd, tau) = &states[k % states.len()];
-            portable.solve(model, &mut ws, q, qd, tau, Some(&g), &[], &mut out);
+            portable.solve(model, q, qd, tau, Loads::gravity(&g), &mut out);
             black_box(&out);
         }
         tp.push(t.elapsed().as_secs_f64() / calls as f64);
@@ -90,9 +90,9 @@ pub(super) fn measure(model: &Model, quick: bool) -> Row {
         let mut out = vec![0.0; n];
         for (q, qd, tau) in cases {
             let reference = reference_forward_dynamics(model, q, qd, tau);
-            aba::aba(model, &mut ws, q, qd, tau, Some(&g), &[], &mut out);
+            aba::aba(model, &mut ws, q, qd, tau, Loads::gravity(&g), &mut out);
             ea.push(rel_err(&out, &reference, 0.0));
-            solver.solve(model, &mut ws, q, qd, tau, Some(&g), &[], &mut out);
+            solver.solve(model, q, qd, tau, Loads::gravity(&g), &mut out);
             ec.push(rel_err(&out, &reference, 0.0));
         }
         let max = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);

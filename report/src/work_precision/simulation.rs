@@ -5,7 +5,7 @@
 use crate::plot::{loglog, Series};
 use crate::report::Report;
 use dynagen::algorithms::integrators::{step_with, Integrator, IntegratorScratch};
-use dynagen::algorithms::{aba, Workspace};
+use dynagen::algorithms::{aba, Loads, Workspace};
 use dynagen::Model;
 use std::fmt::Write as _;
 use std::time::Instant;
@@ -52,7 +52,7 @@ fn simulate(scene: &Scene, integrator: Integrator, steps: usize) -> Vec<f64> {
             for i in 0..n {
                 tau[i] = -scene.k * (q[i] - scene.q_rest[i]) - scene.d * qd[i];
             }
-            aba::aba(model, &mut ws, q, qd, &tau, Some(&g), &[], qdd);
+            aba::aba(model, &mut ws, q, qd, &tau, Loads::gravity(&g), qdd);
         });
     }
     q.extend_from_slice(&qd);

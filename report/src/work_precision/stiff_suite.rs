@@ -4,7 +4,7 @@
 
 use crate::report::Report;
 use dynagen::algorithms::compensated::{forward_dynamics_compensated, CompensatedScratch};
-use dynagen::algorithms::Workspace;
+use dynagen::algorithms::Loads;
 use dynagen::{DoubleDouble, Robot};
 use dynagen_tests::suite::{eval, fd_bound, id_bound, spd_condition, states};
 use dynagen_tests::{rel_err, stiff_case, STIFF_CASES};
@@ -58,7 +58,7 @@ pub fn run(report: &mut Report) {
         let n = model.dof();
         let mut robot = Robot::new(model.clone());
         let mut w = Worst::default();
-        let (mut scratch, mut ws) = (CompensatedScratch::<f64>::new(model), Workspace::<f64>::new(model));
+        let mut scratch = CompensatedScratch::<f64>::new(model);
         let mut split = vec![0.0; n];
         let count = if n > 20 { count.min(4) } else { count };
         for (q, qd, qdd, tau) in states(&case, count) {
@@ -67,7 +67,7 @@ pub fn run(report: &mut Report) {
             let v = |x: &[f64]| DVector::from_column_slice(x);
             let comp = robot.forward_dynamics_compensated(&v(&q), &v(&qd), &v(&tau)).expect("finite input");
             let g = model.gravity;
-            forward_dynamics_compensated(model, &mut scratch, &mut ws, &q, &qd, &tau, Some(&g), &[], &mut split);
+            forward_dynamics_compensated(model, &mut scratch, &q, &qd, &tau, Loads::gravity(&g), &mut split);
             w.split = w.split.max(rel_err(&split, &r.qdd_aba, 0.0));
             let (cond, _) = spd_condition(n, &f.m);
             w.cond = w.cond.max(cond);

@@ -208,7 +208,7 @@ fn equal_magnitudes(mut v: Vec3<f64>) -> Vec3<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::algorithms::{crba, rnea, Workspace};
+    use crate::algorithms::{crba, rnea, Loads, Workspace};
     use crate::model::AxisAlignment;
 
     fn ur5() -> Model {
@@ -291,15 +291,15 @@ mod tests {
             }
         };
         let (mut ta, mut tb) = (vec![0.0; n], vec![0.0; n]);
-        rnea::rnea(&model, &mut wa, &q, Some(&qd), Some(&qdd), Some(&g), &[], &mut ta);
-        rnea::rnea(&centred, &mut wb, &q, Some(&qd), Some(&qdd), Some(&g), &[], &mut tb);
+        rnea::rnea(&model, &mut wa, &q, Some(&qd), Some(&qdd), Loads::gravity(&g), &mut ta);
+        rnea::rnea(&centred, &mut wb, &q, Some(&qd), Some(&qdd), Loads::gravity(&g), &mut tb);
         close(&ta, &tb, "τ");
         let (mut ma, mut mb) = (vec![0.0; n * n], vec![0.0; n * n]);
-        crba::crba(&model, &mut wa, &q, &mut ma);
-        crba::crba(&centred, &mut wb, &q, &mut mb);
+        crba::crba(&model, &mut wa, &q, Loads::none(), &mut ma);
+        crba::crba(&centred, &mut wb, &q, Loads::none(), &mut mb);
         close(&ma, &mb, "M");
-        aba(&model, &mut wa, &q, &qd, &ta, Some(&g), &[], &mut ma[..n]);
-        aba(&centred, &mut wb, &q, &qd, &ta, Some(&g), &[], &mut mb[..n]);
+        aba(&model, &mut wa, &q, &qd, &ta, Loads::gravity(&g), &mut ma[..n]);
+        aba(&centred, &mut wb, &q, &qd, &ta, Loads::gravity(&g), &mut mb[..n]);
         close(&ma[..n], &mb[..n], "q̈");
         close(&ma[..n], &qdd, "q̈ = the q̈ τ was made of");
     }
@@ -317,15 +317,15 @@ mod tests {
             let qdd: Vec<f64> = (0..n).map(|i| 0.5 + 0.9 * (i % 3) as f64).collect();
             let g = model.gravity;
             let (mut ta, mut tb) = (vec![0.0; n], vec![0.0; n]);
-            rnea::rnea(&model, &mut wa, &q, Some(&qd), Some(&qdd), Some(&g), &[], &mut ta);
-            rnea::rnea(&grouped, &mut wb, &q, Some(&qd), Some(&qdd), Some(&g), &[], &mut tb);
+            rnea::rnea(&model, &mut wa, &q, Some(&qd), Some(&qdd), Loads::gravity(&g), &mut ta);
+            rnea::rnea(&grouped, &mut wb, &q, Some(&qd), Some(&qdd), Loads::gravity(&g), &mut tb);
             let norm = ta.iter().map(|x| x * x).sum::<f64>().sqrt();
             for (a, b) in ta.iter().zip(&tb) {
                 assert!((a - b).abs() <= 1e-13 * norm, "{name} τ: {a} vs {b}");
             }
             let (mut ma, mut mb) = (vec![0.0; n * n], vec![0.0; n * n]);
-            crba::crba(&model, &mut wa, &q, &mut ma);
-            crba::crba(&grouped, &mut wb, &q, &mut mb);
+            crba::crba(&model, &mut wa, &q, Loads::none(), &mut ma);
+            crba::crba(&grouped, &mut wb, &q, Loads::none(), &mut mb);
             let norm = ma.iter().map(|x| x * x).sum::<f64>().sqrt();
             for (a, b) in ma.iter().zip(&mb) {
                 assert!((a - b).abs() <= 1e-13 * norm, "{name} M: {a} vs {b}");

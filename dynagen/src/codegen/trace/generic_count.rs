@@ -1,7 +1,7 @@
 //! The operation count of the generic recursion, for comparison with the
 //! generated code's: the generic algorithm run on the [`Counting`] scalar.
 
-use crate::algorithms::{aba, bias, crba, forward_dynamics, kinematics, rnea, Workspace};
+use crate::algorithms::{aba, bias, crba, forward_dynamics, kinematics, rnea, Loads, Workspace};
 use crate::codegen::{ForwardDynamicsMethod, Function};
 use crate::model::Model;
 use crate::scalar::{Counting, Scalar};
@@ -28,16 +28,17 @@ pub fn generic_op_count(model: &Model, f: &Function, method: ForwardDynamicsMeth
         _ => None,
     };
     let (ws, out, a, g) = (&mut ws, &mut out, &args, Some(&g));
+    let loads = Loads::new(g, &[], &[]);
     let ((), ops) = Counting::count(|| match f {
-        Function::InverseDynamics => rnea::rnea(model, ws, &a[0], Some(&a[1]), Some(&a[2]), g, &[], out),
-        Function::MassMatrix => crba::crba(model, ws, &a[0], out),
+        Function::InverseDynamics => rnea::rnea(model, ws, &a[0], Some(&a[1]), Some(&a[2]), loads, out),
+        Function::MassMatrix => crba::crba(model, ws, &a[0], Loads::none(), out),
         Function::BiasForces => bias::bias_forces(model, ws, &a[0], &a[1], g, out),
         Function::GravityTorques => bias::gravity_torques(model, ws, &a[0], g.expect("given"), out),
         Function::Coriolis => bias::coriolis_torques(model, ws, &a[0], &a[1], out),
         Function::ForwardDynamics if method == ForwardDynamicsMethod::Ldlt => {
-            forward_dynamics::forward_dynamics_ldlt(model, ws, &a[0], &a[1], &a[2], g, &[], out)
+            forward_dynamics::forward_dynamics_ldlt(model, ws, &a[0], &a[1], &a[2], loads, out)
         }
-        Function::ForwardDynamics => aba::aba(model, ws, &a[0], &a[1], &a[2], g, &[], out),
+        Function::ForwardDynamics => aba::aba(model, ws, &a[0], &a[1], &a[2], loads, out),
         Function::FramePose(_) | Function::FrameJacobian(_) => {
             let frame = frame.expect("looked up above");
             kinematics::forward_kinematics(model, ws, &a[0]);

@@ -13,7 +13,7 @@
 //! plus a mass-free first moment `m d q` on the parent, whose weight is the
 //! moment `m q d × a` alone. [`fold_for_gravity`] makes that model and
 //! [`gravity_torques`] runs the generic recursion on it with the first
-//! moments as payloads ([`rnea_with_payloads`]), then sets each folded
+//! moments as payloads ([`rnea`]), then sets each folded
 //! joint's torque to `m d·a`. (The leaves are point masses at their origins
 //! only in a model prepared with the regrouping, or in a model written so;
 //! the fold regroups what it moved, also in the latter.) The other
@@ -21,8 +21,8 @@
 //! there the fold does not pay (their finger terms are near the minimum
 //! already); they keep the model as it is.
 
-use crate::algorithms::rnea::rnea_with_payloads;
-use crate::algorithms::{BodyInertia, Workspace};
+use crate::algorithms::rnea::rnea;
+use crate::algorithms::{BodyInertia, Loads, Workspace};
 use crate::codegen::regroup_inertia;
 use crate::model::{JointKind, Model};
 use crate::spatial::{Inertia, Sym3, Vec3};
@@ -102,7 +102,7 @@ pub(crate) fn gravity_torques<S: Scalar>(
                 .push(BodyInertia { body: l.parent, inertia: Inertia { mass: S::zero(), h, ibar: Sym3::zero() } }),
         }
     }
-    rnea_with_payloads(model, ws, q, None, None, Some(gravity), &[], &payloads, g);
+    rnea(model, ws, q, None, None, Loads::new(Some(gravity), &[], &payloads), g);
     for l in leaves {
         g[l.leaf] = ws.a[l.parent].lin.dot(&Vec3::from_f64(&l.moment_per_q));
     }

@@ -215,7 +215,7 @@ fn mirrored_column(model: &Model, payloads: &[BodyInertia<impl Scalar>], j: usiz
 
 /// M(q), row-major into `m` (n×n, both triangles), each entry computed as
 /// `plan` says, with extra body inertias `payloads` added to their bodies'
-/// as [`crba_with_payloads`](crate::algorithms::crba::crba_with_payloads)
+/// as [`crba`](crate::algorithms::crba::crba)
 /// does (every plan is exact whatever the inertias).
 ///
 /// # Panics
@@ -374,6 +374,7 @@ pub(crate) fn plan(model: &Model, rewrites: Rewrites) -> Result<Plan, TraceActiv
 mod tests {
     use super::*;
     use crate::algorithms::crba::crba;
+    use crate::algorithms::Loads;
     use crate::codegen::{prepare::prepare_model, CodegenOptions};
 
     fn bundled(name: &str) -> Model {
@@ -391,7 +392,7 @@ mod tests {
                 let n = model.dof();
                 let q: Vec<f64> = (0..n).map(|i| 0.3 + 0.7 * i as f64 - 0.11 * (i * i) as f64).collect();
                 let mut want = vec![0.0; n * n];
-                crba(&model, &mut Workspace::new(&model), &q, &mut want);
+                crba(&model, &mut Workspace::new(&model), &q, Loads::none(), &mut want);
                 let all = candidates(&model, &mut Workspace::new(&model), &q, &[], n);
                 let scale = want.iter().fold(0.0f64, |a, x| a.max(x.abs()));
                 let mut checked = 0;
@@ -437,11 +438,11 @@ mod tests {
                         ),
                     })
                     .collect();
-                crate::algorithms::crba::crba_with_payloads(
+                crate::algorithms::crba::crba(
                     &model,
                     &mut Workspace::new(&model),
                     &q,
-                    &payloads,
+                    Loads::none().with_payloads(&payloads),
                     &mut want,
                 );
                 mass_matrix(&model, &mut Workspace::new(&model), &q, &payloads, &p, &mut got);

@@ -22,7 +22,7 @@ pub use sin_cos::{sin_cos_from_q, sin_cos_inputs, SinCosTrace};
 
 use super::emit::payload_argument;
 use super::{counted, CodegenError, CodegenOptions, ForwardDynamicsMethod, Function, GeneratedFunction};
-use crate::algorithms::{kinematics, ldlt, rnea, BodyInertia, TipWrench, Workspace};
+use crate::algorithms::{kinematics, ldlt, rnea, BodyInertia, Loads, TipWrench, Workspace};
 use crate::scene::{dynamics, ResolvedGravity, SceneModel};
 use crate::spatial::{Force, Inertia, Sym3, Transform, Vec3};
 use crate::symbolic::{factor, Expr, Function as Traced, Rewrites, Tracer};
@@ -108,16 +108,16 @@ pub(crate) fn trace_module(
 
 /// The run-time loads a function of a scene reads, as symbolic inputs (or
 /// folded constants): gravity, the tip wrench, the payloads.
-struct Loads {
+struct SceneLoads {
     gravity: Option<Vec3<Expr>>,
     tips: Vec<TipWrench<Expr>>,
     payloads: Vec<BodyInertia<Expr>>,
 }
 
-impl Loads {
+impl SceneLoads {
     /// The loads of `f` in `scene`, the inputs declared on `tracer` in
     /// argument order (after the state vectors).
-    fn of(scene: &SceneModel, f: &Function, tracer: &Tracer) -> Loads {
+    fn of(scene: &SceneModel, f: &Function, tracer: &Tracer) -> SceneLoads {
         let model = &scene.model;
         let (gravity, tip, payloads) = f.loads();
         let gravity = match scene.gravity {
@@ -152,7 +152,7 @@ impl Loads {
             let place = Transform::<Expr>::from_f64(&model.frames[p.frame].placement);
             list.push(BodyInertia { body, inertia: place.inertia_to_parent(&inertia) });
         }
-        Loads { gravity, tips, payloads: list }
+        SceneLoads { gravity, tips, payloads: list }
     }
 }
 
@@ -177,30 +177,22 @@ pub(crate) fn trace_unfactored(
     };
     let tracer = Tracer::start_with(rewrites)?;
     let args: Vec<Vec<Expr>> = f.vectors().iter().map(|name| tracer.inputs(name, n)).collect();
-    let loads = Loads::of(scene, f, &tracer);
+    let loads = SceneLoads::of(scene, f, &tracer);
     let mut ws = Workspace::<Expr>::new(model);
     let zero = tracer.constant(0.0);
     let mut out = vec![zero; f.output_len(n)];
-    let (q, g, pl) = (&args[0], loads.gravity.as_ref(), &loads.payloads[..]);
+    let (q, g, pl, tips) = (&args[0], loads.gravity.as_ref(), &loads.payloads[..], &loads.tips[..]);
     match f {
-        Function::InverseDynamics => dynamics::inverse_dynamics_with_payloads(
-            scene,
-            &mut ws,
-            q,
-            &args[1],
-            &args[2],
-            g,
-            &loads.tips,
-            pl,
-            &mut out,
-        ),
+        Function::InverseDynamics => {
+            dynamics::inverse_dynamics(scene, &mut ws, q, &args[1], &args[2], Loads::new(g, tips, pl), &mut out)
+        }
         Function::MassMatrix => {
             mass_matrix::mass_matrix(model, &mut ws, q, pl, plan.as_ref().expect("planned above"), &mut out);
             dynamics::add_armature_diagonal(scene, &mut out);
         }
         Function::BiasForces if pl.is_empty() => dynamics::bias_forces(scene, &mut ws, q, &args[1], g, &mut out),
         Function::BiasForces => {
-            rnea::rnea_with_payloads(model, &mut ws, q, Some(&args[1]), None, g, &[], pl, &mut out);
+            rnea::rnea(model, &mut ws, q, Some(&args[1]), None, Loads::new(g, &[], pl), &mut out);
             dynamics::add_friction(scene, &args[1], &mut out);
         }
         Function::GravityTorques => match (g, gravity_fold::fold_for_gravity(model)) {
@@ -211,21 +203,19 @@ pub(crate) fn trace_unfactored(
                 gravity_fold::gravity_torques(&folded, &leaves, &mut ws, q, g, &mut out);
             }
             (Some(_), _) if !pl.is_empty() => {
-                rnea::rnea_with_payloads(model, &mut ws, q, None, None, g, &[], pl, &mut out)
+                rnea::rnea(model, &mut ws, q, None, None, Loads::new(g, &[], pl), &mut out)
             }
             _ => dynamics::gravity_torques(scene, &mut ws, q, g, &mut out),
         },
         Function::Coriolis if pl.is_empty() => dynamics::coriolis(scene, &mut ws, q, &args[1], &mut out),
-        Function::Coriolis => {
-            rnea::rnea_with_payloads(model, &mut ws, q, Some(&args[1]), None, None, &[], pl, &mut out)
-        }
+        Function::Coriolis => rnea::rnea(model, &mut ws, q, Some(&args[1]), None, Loads::new(None, &[], pl), &mut out),
         Function::ForwardDynamics if use_ldlt => {
             // M by the planned CRBA with the armature on its diagonal, h by
             // RNEA, on τ − friction, then the sparse LᵀDL solve.
             let plan = plan.as_ref().expect("planned above");
             let mut rhs = args[2].clone();
             dynamics::sub_friction(scene, &args[1], &mut rhs);
-            rnea::rnea_with_payloads(model, &mut ws, q, Some(&args[1]), None, g, &loads.tips, pl, &mut out);
+            rnea::rnea(model, &mut ws, q, Some(&args[1]), None, Loads::new(g, tips, pl), &mut out);
             for i in 0..n {
                 out[i] = rhs[i] - out[i];
             }
@@ -236,8 +226,7 @@ pub(crate) fn trace_unfactored(
             ldlt::solve(model, &m, &mut out);
         }
         Function::ForwardDynamics => {
-            let mut scratch = vec![zero; n];
-            dynamics::forward_dynamics(scene, &mut ws, q, &args[1], &args[2], g, &loads.tips, &mut scratch, &mut out)
+            dynamics::forward_dynamics(scene, &mut ws, q, &args[1], &args[2], Loads::new(g, tips, &[]), &mut out)
         }
         Function::FramePose(_) | Function::FrameJacobian(_) => {
             let frame = frame.expect("looked up above");
@@ -284,15 +273,14 @@ mod tests {
                 let mut out = vec![Expr::zero(); f.output_len(n)];
                 let g = Vec3::from_f64(&model.gravity);
                 match f {
-                    Function::MassMatrix => crba::crba(model, &mut ws, &args[0], &mut out),
+                    Function::MassMatrix => crba::crba(model, &mut ws, &args[0], Loads::none(), &mut out),
                     _ => forward_dynamics::forward_dynamics_ldlt(
                         model,
                         &mut ws,
                         &args[0],
                         &args[1],
                         &args[2],
-                        Some(&g),
-                        &[],
+                        Loads::gravity(&g),
                         &mut out,
                     ),
                 }

@@ -11,7 +11,7 @@
 //!
 //! ```
 //! use dynagen::model::{Inertial, JointDescription};
-//! use dynagen::{Integrator, Robot, RobotBuilder};
+//! use dynagen::{Integrator, Robot, RobotBuilder, Stepping};
 //! use nalgebra::{dvector, DMatrix};
 //!
 //! // A 1 kg bob on a massless 1 m rod, swinging about y from 0.5 rad.
@@ -24,7 +24,7 @@
 //! let mut robot = Robot::new(model);
 //! let tau = DMatrix::zeros(21, 1); // no torque, 20 intervals of 0.05 s
 //! let (q, qd) = robot
-//!     .forward_dynamics_trajectory(&dvector![0.5], &dvector![0.0], &tau, None, 0.05, 4, Integrator::Rk4)
+//!     .forward_dynamics_trajectory(&dvector![0.5], &dvector![0.0], &tau, None, Stepping::new(0.05, 4, Integrator::Rk4))
 //!     .unwrap();
 //! // Energy ½q̇² − 9.81·cos q (J) is conserved, to the integrator's error.
 //! let energy = |k: usize| 0.5 * qd[(k, 0)].powi(2) - 9.81 * q[(k, 0)].cos();
@@ -32,9 +32,10 @@
 //! assert!(q[(20, 0)] < 0.0); // it has swung past the bottom
 //! ```
 
+use super::check::{self, Check, InputError};
+use super::Robot;
 use crate::algorithms::integrators::{self, Integrator, StepInputs};
-use crate::algorithms::{rnea, TipWrench};
-use crate::robot::{InputError, Robot};
+use crate::algorithms::{rnea, Loads, TipWrench};
 use crate::spatial::Force;
 use nalgebra::{DMatrix, DVector};
 
@@ -51,54 +52,65 @@ pub struct TipWrenchHistory<'a> {
     pub wrenches: &'a DMatrix<f64>,
 }
 
-impl Robot {
-    fn check_shape(&self, what: &'static str, m: &DMatrix<f64>, rows: usize, cols: usize) -> Result<(), InputError> {
-        if m.nrows() != rows || m.ncols() != cols {
-            return Err(InputError::WrongShape {
-                what,
-                rows: m.nrows(),
-                cols: m.ncols(),
-                expected_rows: rows,
-                expected_cols: cols,
-            });
-        }
-        Ok(())
-    }
+/// How [`Robot::forward_dynamics_trajectory`] integrates: each interval of
+/// `dt` seconds in `int_res` equal sub-steps of `integrator` (the Modern
+/// Robotics library's `dt` and `intRes`, with [`Integrator::Euler`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Stepping {
+    /// The interval between two rows of the trajectory (s): finite and
+    /// positive.
+    pub dt: f64,
+    /// The number of sub-steps per interval: at least 1.
+    pub int_res: usize,
+    /// The scheme of each sub-step.
+    pub integrator: Integrator,
+}
 
-    /// Copies row `r` of `m` into `out` and checks it as [`Robot::check`] does.
-    fn load_row(&self, what: &'static str, m: &DMatrix<f64>, r: usize, out: &mut [f64]) -> Result<(), InputError> {
+impl Stepping {
+    /// `int_res` sub-steps of `integrator` per interval of `dt` seconds.
+    pub fn new(dt: f64, int_res: usize, integrator: Integrator) -> Self {
+        Stepping { dt, int_res, integrator }
+    }
+}
+
+/// A trajectory's rows as the algorithms read them: row `r` of a joint-space
+/// matrix into a slice, and the tip wrench history's row into the last tip
+/// wrench, each checked (an error names the row).
+struct Rows<'a> {
+    check: Check<'a>,
+    tip: Option<&'a TipWrenchHistory<'a>>,
+}
+
+impl Rows<'_> {
+    /// Copies row `r` of `m` into `out` and checks it as a joint-space argument.
+    fn load(&self, what: &'static str, m: &DMatrix<f64>, r: usize, out: &mut [f64]) -> Result<(), InputError> {
         for (o, x) in out.iter_mut().zip(m.row(r).iter()) {
             *o = *x;
         }
-        self.check(what, out).map_err(|e| InputError::Row { row: r, error: Box::new(e) })
+        self.check.joint_slice(what, out).map(|_| ()).map_err(|e| InputError::Row { row: r, error: Box::new(e) })
     }
+    /// Sets the last tip wrench to row `r` of the history, if there is one.
+    fn load_tip(&self, r: usize, tips: &mut [TipWrench<f64>]) -> Result<(), InputError> {
+        if let (Some(t), Some(last)) = (self.tip, tips.last_mut()) {
+            let w = t.wrenches.row(r);
+            let w = [w[0], w[1], w[2], w[3], w[4], w[5]];
+            last.wrench = check::wrench(&w).map_err(|e| InputError::Row { row: r, error: Box::new(e) })?;
+        }
+        Ok(())
+    }
+}
 
+impl Robot {
     /// The tip wrenches of the robot, plus a slot for the history's wrench
     /// (its index in `Model::frames`, zero for now) when there is one.
     fn tips_with(&self, tip: Option<&TipWrenchHistory<'_>>, rows: usize) -> Result<Vec<TipWrench<f64>>, InputError> {
         let mut tips = self.tips.clone();
         if let Some(t) = tip {
-            let frame = self.frame(t.frame)?;
-            self.check_shape("the tip wrench history", t.wrenches, rows, 6)?;
+            let frame = self.check().frame(t.frame)?;
+            check::shape("the tip wrench history", t.wrenches, rows, 6)?;
             tips.push(TipWrench { frame, wrench: Force::zero() });
         }
         Ok(tips)
-    }
-
-    /// Sets the last tip wrench to row `r` of the history.
-    fn load_tip_row(
-        tip: Option<&TipWrenchHistory<'_>>,
-        r: usize,
-        tips: &mut [TipWrench<f64>],
-    ) -> Result<(), InputError> {
-        if let (Some(t), Some(last)) = (tip, tips.last_mut()) {
-            let w = t.wrenches.row(r);
-            if !w.iter().all(|x| x.is_finite()) {
-                return Err(InputError::Row { row: r, error: Box::new(InputError::NonFiniteLoad("tip wrench")) });
-            }
-            last.wrench = Force::from_array([w[0], w[1], w[2], w[3], w[4], w[5]]);
-        }
-        Ok(())
     }
 
     /// Advances the state (`q`, `qd`) by one step of `dt` seconds of the
@@ -114,22 +126,12 @@ impl Robot {
         tau: &DVector<f64>,
         dt: f64,
     ) -> Result<(), InputError> {
-        self.check("q", q.as_slice())?;
-        self.check("qd", qd.as_slice())?;
-        self.check("tau", tau.as_slice())?;
-        check_dt(dt)?;
+        self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?;
+        check::dt(dt)?;
         let g = self.model.gravity;
-        let inputs = StepInputs { tau: tau.as_slice(), gravity: Some(&g), tips: &self.tips };
-        integrators::step(
-            integrator,
-            &self.model,
-            &mut self.ws,
-            &mut self.integ,
-            &inputs,
-            dt,
-            q.as_mut_slice(),
-            qd.as_mut_slice(),
-        );
+        let inputs = StepInputs { dt, tau: tau.as_slice(), loads: Loads::gravity(&g).with_tips(&self.tips) };
+        let (q, qd) = (q.as_mut_slice(), qd.as_mut_slice());
+        integrators::step(integrator, &self.model, &mut self.ws, &mut self.integ, &inputs, q, qd);
         Ok(())
     }
 
@@ -146,19 +148,21 @@ impl Robot {
         tip: Option<TipWrenchHistory<'_>>,
     ) -> Result<DMatrix<f64>, InputError> {
         let (rows, n) = (q.nrows(), self.dof());
-        self.check_shape("q", q, rows, n)?;
-        self.check_shape("qd", qd, rows, n)?;
-        self.check_shape("qdd", qdd, rows, n)?;
+        for (what, m) in [("q", q), ("qd", qd), ("qdd", qdd)] {
+            check::shape(what, m, rows, n)?;
+        }
         let mut tips = self.tips_with(tip.as_ref(), rows)?;
         let (mut qr, mut qdr, mut qddr, mut taur) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         let mut out = DMatrix::zeros(rows, n);
         let g = self.model.gravity;
         for r in 0..rows {
-            self.load_row("q", q, r, &mut qr)?;
-            self.load_row("qd", qd, r, &mut qdr)?;
-            self.load_row("qdd", qdd, r, &mut qddr)?;
-            Self::load_tip_row(tip.as_ref(), r, &mut tips)?;
-            rnea::rnea(&self.model, &mut self.ws, &qr, Some(&qdr), Some(&qddr), Some(&g), &tips, &mut taur);
+            let load = Rows { check: self.check(), tip: tip.as_ref() };
+            load.load("q", q, r, &mut qr)?;
+            load.load("qd", qd, r, &mut qdr)?;
+            load.load("qdd", qdd, r, &mut qddr)?;
+            load.load_tip(r, &mut tips)?;
+            let loads = Loads::gravity(&g).with_tips(&tips);
+            rnea::rnea(&self.model, &mut self.ws, &qr, Some(&qdr), Some(&qddr), loads, &mut taur);
             for (j, t) in taur.iter().enumerate() {
                 out[(r, j)] = *t;
             }
@@ -172,26 +176,24 @@ impl Robot {
     /// `tau` is N×n: row k acts, constant, from time k·dt to (k+1)·dt (s),
     /// together with the robot's gravity and tip wrenches and, when `tip` is
     /// given, its row k. Each interval is integrated in `int_res` equal
-    /// sub-steps of `integrator` (the library uses [`Integrator::Euler`]).
-    /// Returns (q, q̇), each N×n: row 0 is the initial state (`q0`, `qd0`)
-    /// and row k+1 the state at time (k+1)·dt, so the last row of `tau` (and
-    /// of the tip wrench history) is not used, as in the library.
-    #[allow(clippy::too_many_arguments)]
+    /// sub-steps of `integrator` (see [`Stepping`]; the library uses
+    /// [`Integrator::Euler`]). Returns (q, q̇), each N×n: row 0 is the
+    /// initial state (`q0`, `qd0`) and row k+1 the state at time (k+1)·dt,
+    /// so the last row of `tau` (and of the tip wrench history) is not used,
+    /// as in the library.
     pub fn forward_dynamics_trajectory(
         &mut self,
         q0: &DVector<f64>,
         qd0: &DVector<f64>,
         tau: &DMatrix<f64>,
         tip: Option<TipWrenchHistory<'_>>,
-        dt: f64,
-        int_res: usize,
-        integrator: Integrator,
+        stepping: Stepping,
     ) -> Result<(DMatrix<f64>, DMatrix<f64>), InputError> {
+        let Stepping { dt, int_res, integrator } = stepping;
         let (rows, n) = (tau.nrows(), self.dof());
-        self.check("q0", q0.as_slice())?;
-        self.check("qd0", qd0.as_slice())?;
-        self.check_shape("tau", tau, rows, n)?;
-        check_dt(dt)?;
+        self.check().joints(&[("q0", q0), ("qd0", qd0)])?;
+        check::shape("tau", tau, rows, n)?;
+        check::dt(dt)?;
         if int_res == 0 {
             return Err(InputError::BadParameter { what: "int_res", value: 0.0, must: "at least 1" });
         }
@@ -210,20 +212,14 @@ impl Robot {
             if r + 1 == rows {
                 break;
             }
-            self.load_row("tau", tau, r, &mut taur)?;
-            Self::load_tip_row(tip.as_ref(), r, &mut tips)?;
-            let inputs = StepInputs { tau: &taur, gravity: Some(&g), tips: &tips };
+            let load = Rows { check: self.check(), tip: tip.as_ref() };
+            load.load("tau", tau, r, &mut taur)?;
+            load.load_tip(r, &mut tips)?;
+            let inputs = StepInputs { dt: h, tau: &taur, loads: Loads::gravity(&g).with_tips(&tips) };
             for _ in 0..int_res {
-                integrators::step(integrator, &self.model, &mut self.ws, &mut self.integ, &inputs, h, &mut q, &mut qd);
+                integrators::step(integrator, &self.model, &mut self.ws, &mut self.integ, &inputs, &mut q, &mut qd);
             }
         }
         Ok((qs, qds))
     }
-}
-
-fn check_dt(dt: f64) -> Result<(), InputError> {
-    if !(dt.is_finite() && dt > 0.0) {
-        return Err(InputError::BadParameter { what: "dt", value: dt, must: "a finite number of seconds above zero" });
-    }
-    Ok(())
 }

@@ -1,26 +1,21 @@
-//! The numeric API of a scene: the generic solver on `f64` and nalgebra
-//! types, with the scene's armature, friction, gravity and inputs.
-//!
-//! The run-time inputs (gravity, tip wrench, payloads) are passed as a
-//! [`SceneInputs`] to the `*_with` calls, and only when the scene makes them
-//! inputs: an input the scene does not declare is an error, and so is a
-//! declared input missing from a call that uses it. The plain calls are the
-//! `*_with` calls with no inputs, for scenes that have none. Units, joint
-//! order and input checks are those of [`Robot`](crate::Robot); calls
-//! allocate only their result.
+//! The numeric API of a scene, [`SceneRobot`]: the generic solver on `f64`
+//! and nalgebra types, with the scene's armature, friction, gravity and
+//! run-time inputs ([`SceneInputs`]). Its arguments are checked as a
+//! [`Robot`](crate::Robot)'s are, in `robot/check.rs`.
 
-use super::dynamics;
-use super::{PayloadInertia, ResolvedGravity, SceneError, SceneModel};
-use crate::algorithms::{kinematics, TipWrench, Workspace};
-use crate::robot::InputError;
-use crate::spatial::{Force, Inertia, Vec3};
+use super::check::{self, Check};
+use super::{frame_jacobian, frame_pose, matrix, vector, InputError, Jacobian};
+use crate::algorithms::{Loads, TipWrench, Workspace};
+use crate::scene::dynamics;
+use crate::scene::{PayloadInertia, ResolvedGravity, SceneError, SceneModel};
+use crate::spatial::{Inertia, Vec3};
 use nalgebra::{DMatrix, DVector, Matrix4, Matrix6xX, Vector3, Vector6};
 
 /// The run-time inputs of a scene, for the `*_with` calls of [`SceneRobot`].
 #[derive(Clone, Copy, Debug, Default)]
 pub struct SceneInputs<'a> {
     /// Gravity in the reduced model's base frame (m/s²), when the scene's
-    /// gravity is [`Gravity::Input`](super::Gravity::Input).
+    /// gravity is [`Gravity::Input`](crate::scene::Gravity::Input).
     pub gravity: Option<Vector3<f64>>,
     /// The wrench (m; f) the tip frame applies to its environment, in that
     /// frame, when the scene has a tip wrench.
@@ -79,7 +74,6 @@ pub struct SceneRobot {
     base_inertia: Vec<Inertia<f64>>,
     ws: Workspace<f64>,
     tips: Vec<TipWrench<f64>>,
-    scratch: Vec<f64>,
     jac: Vec<f64>,
 }
 
@@ -96,14 +90,7 @@ impl SceneRobot {
         let n = scene.dof();
         let ws = Workspace::new(&scene.model);
         let base_inertia = scene.model.bodies.iter().map(|b| b.inertia).collect();
-        SceneRobot {
-            scene,
-            base_inertia,
-            ws,
-            tips: Vec::with_capacity(1),
-            scratch: vec![0.0; n],
-            jac: vec![0.0; 6 * n],
-        }
+        SceneRobot { scene, base_inertia, ws, tips: Vec::with_capacity(1), jac: vec![0.0; 6 * n] }
     }
     /// The applied scene (its model's inertias include the input payloads of
     /// the last call).
@@ -119,12 +106,9 @@ impl SceneRobot {
         self.scene.joint_names()
     }
 
-    fn check(&self, what: &'static str, x: &[f64]) -> Result<(), InputError> {
-        crate::robot::check_joint_vector(&self.scene.model, what, x)
-    }
-
-    fn check_out(&self, what: &'static str, len: usize) -> Result<(), InputError> {
-        crate::robot::check_output_length(&self.scene.model, what, len, self.dof())
+    /// The checks of this robot's arguments.
+    fn check(&self) -> Check<'_> {
+        Check(&self.scene.model)
     }
 
     /// Checks the inputs against the scene, sets the tip wrench and the
@@ -141,12 +125,7 @@ impl SceneRobot {
             return Err(SceneInputError::UnexpectedInput("a payload"));
         }
         let gravity = match (&self.scene.gravity, inputs.gravity) {
-            (ResolvedGravity::Input, Some(g)) => {
-                if !g.iter().all(|x| x.is_finite()) {
-                    return Err(InputError::NonFiniteLoad("gravity").into());
-                }
-                Some(Vec3([g.x, g.y, g.z]))
-            }
+            (ResolvedGravity::Input, Some(g)) => Some(check::gravity(&g)?),
             (ResolvedGravity::Input, None) if uses.gravity => return Err(SceneInputError::MissingInput("gravity")),
             (g, _) => match g {
                 ResolvedGravity::Constant(v) => Some(Vec3(*v)),
@@ -156,10 +135,7 @@ impl SceneRobot {
         self.tips.clear();
         if let (Some(frame), true) = (self.scene.tip_wrench_frame, uses.tip) {
             let w = inputs.tip_wrench.ok_or(SceneInputError::MissingInput("a tip wrench"))?;
-            if !w.iter().all(|x| x.is_finite()) {
-                return Err(InputError::NonFiniteLoad("tip wrench").into());
-            }
-            self.tips.push(TipWrench { frame, wrench: Force::from_array([w[0], w[1], w[2], w[3], w[4], w[5]]) });
+            self.tips.push(TipWrench { frame, wrench: check::wrench(w.as_slice())? });
         }
         if !self.scene.input_payloads.is_empty() {
             if inputs.payloads.is_empty() {
@@ -209,9 +185,7 @@ impl SceneRobot {
         qdd: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DVector<f64>, SceneInputError> {
-        let mut tau = DVector::zeros(self.dof());
-        self.inverse_dynamics_into(q, qd, qdd, inputs, &mut tau)?;
-        Ok(tau)
+        vector(self.dof(), |tau| self.inverse_dynamics_into(q, qd, qdd, inputs, tau))
     }
     /// [`inverse_dynamics_with`](Self::inverse_dynamics_with) into `tau`,
     /// allocating nothing.
@@ -223,21 +197,11 @@ impl SceneRobot {
         inputs: &SceneInputs<'_>,
         tau: &mut DVector<f64>,
     ) -> Result<(), SceneInputError> {
-        self.check("q", q.as_slice())?;
-        self.check("qd", qd.as_slice())?;
-        self.check("qdd", qdd.as_slice())?;
-        self.check_out("tau", tau.len())?;
+        self.check().joints(&[("q", q), ("qd", qd), ("qdd", qdd)])?.output("tau", tau)?;
         let g = self.prepare(inputs, Uses { gravity: true, tip: true })?;
-        dynamics::inverse_dynamics(
-            &self.scene,
-            &mut self.ws,
-            q.as_slice(),
-            qd.as_slice(),
-            qdd.as_slice(),
-            g.as_ref(),
-            &self.tips,
-            tau.as_mut_slice(),
-        );
+        let loads = Loads::new(g.as_ref(), &self.tips, &[]);
+        let (q, qd, qdd) = (q.as_slice(), qd.as_slice(), qdd.as_slice());
+        dynamics::inverse_dynamics(&self.scene, &mut self.ws, q, qd, qdd, loads, tau.as_mut_slice());
         Ok(())
     }
 
@@ -253,10 +217,7 @@ impl SceneRobot {
         q: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DMatrix<f64>, SceneInputError> {
-        let n = self.dof();
-        let mut m = DMatrix::zeros(n, n);
-        self.mass_matrix_into(q, inputs, &mut m)?;
-        Ok(m)
+        matrix(self.dof(), |m| self.mass_matrix_into(q, inputs, m))
     }
     /// [`mass_matrix_with`](Self::mass_matrix_with) into `m` (n×n),
     /// allocating nothing.
@@ -266,11 +227,7 @@ impl SceneRobot {
         inputs: &SceneInputs<'_>,
         m: &mut DMatrix<f64>,
     ) -> Result<(), SceneInputError> {
-        self.check("q", q.as_slice())?;
-        let n = self.dof();
-        if m.nrows() != n || m.ncols() != n {
-            return Err(InputError::WrongLength { what: "M", got: m.len(), expected: n }.into());
-        }
+        self.check().joints(&[("q", q)])?.square("M", m)?;
         self.prepare(inputs, Uses { gravity: false, tip: false })?;
         // M is symmetric, so row-major and nalgebra's column-major agree.
         dynamics::mass_matrix(&self.scene, &mut self.ws, q.as_slice(), m.as_mut_slice());
@@ -290,9 +247,7 @@ impl SceneRobot {
         qd: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DVector<f64>, SceneInputError> {
-        let mut h = DVector::zeros(self.dof());
-        self.bias_forces_into(q, qd, inputs, &mut h)?;
-        Ok(h)
+        vector(self.dof(), |h| self.bias_forces_into(q, qd, inputs, h))
     }
     /// [`bias_forces_with`](Self::bias_forces_with) into `h`, allocating
     /// nothing.
@@ -303,9 +258,7 @@ impl SceneRobot {
         inputs: &SceneInputs<'_>,
         h: &mut DVector<f64>,
     ) -> Result<(), SceneInputError> {
-        self.check("q", q.as_slice())?;
-        self.check("qd", qd.as_slice())?;
-        self.check_out("h", h.len())?;
+        self.check().joints(&[("q", q), ("qd", qd)])?.output("h", h)?;
         let g = self.prepare(inputs, Uses { gravity: true, tip: false })?;
         dynamics::bias_forces(&self.scene, &mut self.ws, q.as_slice(), qd.as_slice(), g.as_ref(), h.as_mut_slice());
         Ok(())
@@ -323,9 +276,7 @@ impl SceneRobot {
         q: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DVector<f64>, SceneInputError> {
-        let mut out = DVector::zeros(self.dof());
-        self.gravity_torques_into(q, inputs, &mut out)?;
-        Ok(out)
+        vector(self.dof(), |g| self.gravity_torques_into(q, inputs, g))
     }
     /// [`gravity_torques_with`](Self::gravity_torques_with) into `out`,
     /// allocating nothing.
@@ -335,8 +286,7 @@ impl SceneRobot {
         inputs: &SceneInputs<'_>,
         out: &mut DVector<f64>,
     ) -> Result<(), SceneInputError> {
-        self.check("q", q.as_slice())?;
-        self.check_out("g", out.len())?;
+        self.check().joints(&[("q", q)])?.output("g", out)?;
         let g = self.prepare(inputs, Uses { gravity: true, tip: false })?;
         dynamics::gravity_torques(&self.scene, &mut self.ws, q.as_slice(), g.as_ref(), out.as_mut_slice());
         Ok(())
@@ -355,9 +305,7 @@ impl SceneRobot {
         qd: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DVector<f64>, SceneInputError> {
-        let mut c = DVector::zeros(self.dof());
-        self.coriolis_into(q, qd, inputs, &mut c)?;
-        Ok(c)
+        vector(self.dof(), |c| self.coriolis_into(q, qd, inputs, c))
     }
     /// [`coriolis_with`](Self::coriolis_with) into `c`, allocating nothing.
     pub fn coriolis_into(
@@ -367,18 +315,15 @@ impl SceneRobot {
         inputs: &SceneInputs<'_>,
         c: &mut DVector<f64>,
     ) -> Result<(), SceneInputError> {
-        self.check("q", q.as_slice())?;
-        self.check("qd", qd.as_slice())?;
-        self.check_out("C qd", c.len())?;
+        self.check().joints(&[("q", q), ("qd", qd)])?.output("C qd", c)?;
         self.prepare(inputs, Uses { gravity: false, tip: false })?;
         dynamics::coriolis(&self.scene, &mut self.ws, q.as_slice(), qd.as_slice(), c.as_mut_slice());
         Ok(())
     }
 
     /// Forward dynamics q̈ = M_s(q)⁻¹(τ − h(q, q̇) − J(q)ᵀF_tip), for a scene
-    /// without inputs: by the articulated-body algorithm, or through the mass
-    /// matrix when the scene has armature (see
-    /// [`dynamics::forward_dynamics`]).
+    /// without inputs: by the articulated-body algorithm, with the armature
+    /// in its joint inertias (see [`dynamics::forward_dynamics`]).
     pub fn forward_dynamics(
         &mut self,
         q: &DVector<f64>,
@@ -395,9 +340,7 @@ impl SceneRobot {
         tau: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DVector<f64>, SceneInputError> {
-        let mut qdd = DVector::zeros(self.dof());
-        self.forward_dynamics_into(q, qd, tau, inputs, &mut qdd)?;
-        Ok(qdd)
+        vector(self.dof(), |qdd| self.forward_dynamics_into(q, qd, tau, inputs, qdd))
     }
     /// [`forward_dynamics_with`](Self::forward_dynamics_with) into `qdd`,
     /// allocating nothing.
@@ -409,44 +352,26 @@ impl SceneRobot {
         inputs: &SceneInputs<'_>,
         qdd: &mut DVector<f64>,
     ) -> Result<(), SceneInputError> {
-        self.check("q", q.as_slice())?;
-        self.check("qd", qd.as_slice())?;
-        self.check("tau", tau.as_slice())?;
-        self.check_out("qdd", qdd.len())?;
+        self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?.output("qdd", qdd)?;
         let g = self.prepare(inputs, Uses { gravity: true, tip: true })?;
-        dynamics::forward_dynamics(
-            &self.scene,
-            &mut self.ws,
-            q.as_slice(),
-            qd.as_slice(),
-            tau.as_slice(),
-            g.as_ref(),
-            &self.tips,
-            &mut self.scratch,
-            qdd.as_mut_slice(),
-        );
+        let loads = Loads::new(g.as_ref(), &self.tips, &[]);
+        let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());
+        dynamics::forward_dynamics(&self.scene, &mut self.ws, q, qd, tau, loads, qdd.as_mut_slice());
         Ok(())
     }
 
-    fn frame(&self, frame: &str) -> Result<usize, InputError> {
-        self.scene.model.frame_index(frame).ok_or_else(|| InputError::UnknownFrame(frame.to_string()))
-    }
     /// The pose of a frame in the reduced model's base frame (the sub-tree
     /// root), 4×4 homogeneous.
     pub fn frame_pose(&mut self, frame: &str, q: &DVector<f64>) -> Result<Matrix4<f64>, SceneInputError> {
-        let f = self.frame(frame)?;
-        self.check("q", q.as_slice())?;
-        kinematics::forward_kinematics(&self.scene.model, &mut self.ws, q.as_slice());
-        let t = kinematics::frame_pose(&self.scene.model, &self.ws, f).to_homogeneous();
-        Ok(Matrix4::from_fn(|r, c| t[r][c]))
+        let f = self.check().frame(frame)?;
+        self.check().joints(&[("q", q)])?;
+        Ok(frame_pose(&self.scene.model, &mut self.ws, f, q))
     }
     /// The body Jacobian of a frame (6×n, rows (ω; v), in the frame):
     /// `J_bᵀF` is the joint torque of a wrench `F` given in the frame.
     pub fn frame_jacobian(&mut self, frame: &str, q: &DVector<f64>) -> Result<Matrix6xX<f64>, SceneInputError> {
-        let f = self.frame(frame)?;
-        self.check("q", q.as_slice())?;
-        kinematics::forward_kinematics(&self.scene.model, &mut self.ws, q.as_slice());
-        kinematics::body_jacobian(&self.scene.model, &self.ws, f, &mut self.jac);
-        Ok(Matrix6xX::from_row_slice(&self.jac))
+        let f = self.check().frame(frame)?;
+        self.check().joints(&[("q", q)])?;
+        Ok(frame_jacobian(&self.scene.model, &mut self.ws, (f, Jacobian::Body), q, &mut self.jac))
     }
 }

@@ -2,7 +2,8 @@
 //! torques nearly balance the bias forces at high speed (see
 //! [`algorithms::compensated`](crate::algorithms::compensated)).
 
-use crate::robot::{InputError, Robot};
+use super::{vector, InputError, Robot};
+use crate::algorithms::Loads;
 use nalgebra::DVector;
 
 impl Robot {
@@ -34,9 +35,7 @@ impl Robot {
         qd: &DVector<f64>,
         tau: &DVector<f64>,
     ) -> Result<DVector<f64>, InputError> {
-        let mut qdd = DVector::zeros(self.dof());
-        self.forward_dynamics_compensated_into(q, qd, tau, &mut qdd)?;
-        Ok(qdd)
+        vector(self.dof(), |qdd| self.forward_dynamics_compensated_into(q, qd, tau, qdd))
     }
     /// [`forward_dynamics_compensated`](Self::forward_dynamics_compensated)
     /// into `qdd`, allocating nothing.
@@ -47,21 +46,11 @@ impl Robot {
         tau: &DVector<f64>,
         qdd: &mut DVector<f64>,
     ) -> Result<(), InputError> {
-        self.check("q", q.as_slice())?;
-        self.check("qd", qd.as_slice())?;
-        self.check("tau", tau.as_slice())?;
-        self.check_out("qdd", qdd.len(), self.dof())?;
+        self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?.output("qdd", qdd)?;
         let g = self.model.gravity;
-        self.comp.solve(
-            &self.model,
-            &mut self.ws,
-            q.as_slice(),
-            qd.as_slice(),
-            tau.as_slice(),
-            Some(&g),
-            &self.tips,
-            qdd.as_mut_slice(),
-        );
+        let loads = Loads::gravity(&g).with_tips(&self.tips);
+        let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());
+        self.comp.solve(&self.model, q, qd, tau, loads, qdd.as_mut_slice());
         Ok(())
     }
 }

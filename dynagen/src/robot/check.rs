@@ -1,0 +1,167 @@
+//! The one place the numeric API checks its arguments: every call of
+//! [`Robot`](super::Robot) and [`SceneRobot`](crate::SceneRobot) checks
+//! lengths, shapes, finiteness and names here, so that a bad argument is an
+//! [`InputError`] naming it (and the joint), never a panic or a NaN result.
+
+use crate::model::Model;
+use crate::spatial::{Force, Vec3};
+use nalgebra::{DMatrix, DVector, Vector3};
+
+/// A bad argument to a numeric call.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum InputError {
+    /// A vector or matrix of the wrong size.
+    #[error("{what} has {got} entries, but the robot has {expected} joints")]
+    WrongLength {
+        /// The argument (`q`, `qd`, …).
+        what: &'static str,
+        /// Its length.
+        got: usize,
+        /// The robot's number of joints.
+        expected: usize,
+    },
+    /// A NaN or infinite entry.
+    #[error("{what}[{index}] (joint \"{joint}\") is {value}, not a finite number")]
+    NonFinite {
+        /// The argument.
+        what: &'static str,
+        /// The entry.
+        index: usize,
+        /// The joint it belongs to.
+        joint: String,
+        /// The value.
+        value: f64,
+    },
+    /// A non-finite gravity or tip wrench.
+    #[error("{0} is not finite")]
+    NonFiniteLoad(&'static str),
+    /// An unknown frame name.
+    #[error("no frame named \"{0}\"")]
+    UnknownFrame(String),
+    /// A matrix of the wrong shape (a trajectory's, or a tip wrench history).
+    #[error("{what} is {rows}×{cols}, but it must be {expected_rows}×{expected_cols}")]
+    WrongShape {
+        /// The argument.
+        what: &'static str,
+        /// Its number of rows.
+        rows: usize,
+        /// Its number of columns.
+        cols: usize,
+        /// The rows it must have.
+        expected_rows: usize,
+        /// The columns it must have.
+        expected_cols: usize,
+    },
+    /// A bad entry in one row of a trajectory.
+    #[error("row {row}: {error}")]
+    Row {
+        /// The row (time step), from 0.
+        row: usize,
+        /// What is wrong in it.
+        error: Box<InputError>,
+    },
+    /// A bad integration parameter (time step, number of sub-steps).
+    #[error("{what} is {value}, but it must be {must}")]
+    BadParameter {
+        /// The parameter.
+        what: &'static str,
+        /// Its value.
+        value: f64,
+        /// What it must be.
+        must: &'static str,
+    },
+}
+
+/// The arguments of one call, checked against the model of the robot
+/// called.
+#[derive(Clone, Copy)]
+pub(crate) struct Check<'a>(pub(crate) &'a Model);
+
+impl Check<'_> {
+    /// Each joint-space argument `(name, value)` has one finite entry per
+    /// joint; the first that does not is the error.
+    pub(crate) fn joints(self, args: &[(&'static str, &DVector<f64>)]) -> Result<Self, InputError> {
+        for (what, x) in args {
+            self.joint_slice(what, x.as_slice())?;
+        }
+        Ok(self)
+    }
+    /// A joint-space argument as a slice (a trajectory's row).
+    pub(crate) fn joint_slice(self, what: &'static str, x: &[f64]) -> Result<Self, InputError> {
+        let n = self.0.dof();
+        if x.len() != n {
+            return Err(InputError::WrongLength { what, got: x.len(), expected: n });
+        }
+        match x.iter().position(|v| !v.is_finite()) {
+            Some(index) => Err(InputError::NonFinite {
+                what,
+                index,
+                joint: self.0.bodies[index].joint.name.clone(),
+                value: x[index],
+            }),
+            None => Ok(self),
+        }
+    }
+    /// An output vector has one entry per joint.
+    pub(crate) fn output(self, what: &'static str, out: &DVector<f64>) -> Result<Self, InputError> {
+        let n = self.0.dof();
+        if out.len() != n {
+            return Err(InputError::WrongLength { what, got: out.len(), expected: n });
+        }
+        Ok(self)
+    }
+    /// An output matrix is n×n.
+    pub(crate) fn square(self, what: &'static str, m: &DMatrix<f64>) -> Result<Self, InputError> {
+        let n = self.0.dof();
+        if m.nrows() != n || m.ncols() != n {
+            return Err(InputError::WrongLength { what, got: m.len(), expected: n });
+        }
+        Ok(self)
+    }
+    /// The index of the frame named `frame`.
+    pub(crate) fn frame(self, frame: &str) -> Result<usize, InputError> {
+        self.0.frame_index(frame).ok_or_else(|| InputError::UnknownFrame(frame.to_string()))
+    }
+}
+
+/// Gravity (m/s²), if finite.
+pub(crate) fn gravity(g: &Vector3<f64>) -> Result<Vec3<f64>, InputError> {
+    finite("gravity", g.as_slice())?;
+    Ok(Vec3([g.x, g.y, g.z]))
+}
+
+/// A wrench (m; f), six entries, if finite.
+pub(crate) fn wrench(w: &[f64]) -> Result<Force<f64>, InputError> {
+    finite("tip wrench", w)?;
+    Ok(Force::from_array([w[0], w[1], w[2], w[3], w[4], w[5]]))
+}
+
+fn finite(what: &'static str, x: &[f64]) -> Result<(), InputError> {
+    match x.iter().all(|v| v.is_finite()) {
+        true => Ok(()),
+        false => Err(InputError::NonFiniteLoad(what)),
+    }
+}
+
+/// `m` is `rows`×`cols`.
+pub(crate) fn shape(what: &'static str, m: &DMatrix<f64>, rows: usize, cols: usize) -> Result<(), InputError> {
+    if m.nrows() != rows || m.ncols() != cols {
+        return Err(InputError::WrongShape {
+            what,
+            rows: m.nrows(),
+            cols: m.ncols(),
+            expected_rows: rows,
+            expected_cols: cols,
+        });
+    }
+    Ok(())
+}
+
+/// A time step: finite and positive.
+pub(crate) fn dt(dt: f64) -> Result<(), InputError> {
+    if !(dt.is_finite() && dt > 0.0) {
+        return Err(InputError::BadParameter { what: "dt", value: dt, must: "a finite number of seconds above zero" });
+    }
+    Ok(())
+}
