@@ -571,6 +571,21 @@ fn toml_round_trip_and_the_example_scene() {
     assert_eq!(trig("std"), None);
     assert_eq!(trig("no_std_sincos"), Some(Trig::Inputs));
     assert_eq!(trig("no_std_libm"), Some(Trig::Libm));
+    // `trig` in the options' own spelling; not beside `target`.
+    let by_trig = |t: &str| SceneFile::from_toml_str(&format!("trig = \"{t}\"")).unwrap().code.trig;
+    for t in [Trig::Batched, Trig::Std, Trig::Libm, Trig::Inputs] {
+        assert_eq!(by_trig(t.name()), Some(t));
+    }
+    assert!(SceneFile::from_toml_str("trig = \"libm\"\ntarget = \"std\"").is_err());
+    assert!(SceneFile::from_toml_str("trig = \"fast\"").unwrap_err().to_string().contains("fast"));
+    assert!(SceneFile::from_toml_str("scalar = \"f16\"").unwrap_err().to_string().contains("f16"));
+    // A whole scene file, code keys included, reads back as it was written.
+    let back = SceneFile::from_toml_str(&file.to_toml_string().unwrap()).unwrap();
+    let mut want = file.clone();
+    want.scene = sorted.clone();
+    assert_eq!(back, want);
+    let example_file = SceneFile::from_toml_file(support::scene_path("ur5_controller")).unwrap();
+    assert_eq!(SceneFile::from_toml_str(&example_file.to_toml_string().unwrap()).unwrap(), example_file);
     // A vector alone means a constant.
     let s = Scene::from_toml_str("[gravity]\nvector = [0.0, 0.0, -1.62]").unwrap();
     assert_eq!(s.gravity, Gravity::Constant([0.0, 0.0, -1.62]));

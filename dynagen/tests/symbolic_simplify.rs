@@ -1,7 +1,7 @@
 //! The symbolic expression graph (`dynagen::symbolic`): its simplification
 //! rules, one by one, and the trace session's guarantees.
 
-use dynagen::symbolic::{Expr, Function, Graph, Node, Rewrites, TraceActive, Tracer};
+use dynagen::symbolic::{Expr, Graph, Node, Rewrites, TraceActive, Traced, Tracer};
 use dynagen::Scalar;
 
 fn xy(g: &mut Graph) -> (u32, u32) {
@@ -176,7 +176,7 @@ fn dead_code_is_eliminated_and_counted() {
     let (s, c) = g.sin_cos(x);
     let sc = g.mul(s, c);
     let out = g.add(sc, y);
-    let f = Function::from_ids("f", &g, &[out, s]);
+    let f = Traced::from_ids("f", &g, &[out, s]);
     let count = f.op_count();
     assert_eq!((count.add, count.mul, count.sqrt, count.sin_cos, count.total()), (1, 1, 0, 1, 3));
     // q0, q1, sin_cos, sin, cos, s·c, s·c + q1
@@ -193,7 +193,7 @@ fn tracer_sessions_are_per_thread_and_do_not_leak() {
     let x = t.input("q", 0);
     let y = (x * Expr::from_f64(2.0)).sin() + Expr::one();
     let g = t.finish();
-    let f = Function::new("f", &g, &[y]);
+    let f = Traced::new("f", &g, &[y]);
     assert_eq!(f.eval(&[("q", &[0.5])]).unwrap(), vec![1.0f64.sin() + 1.0]);
     // A new session starts empty.
     let t2 = Tracer::start().unwrap();
@@ -209,7 +209,7 @@ fn tracer_sessions_are_per_thread_and_do_not_leak() {
                     acc = acc * x + Expr::from_f64((i + k) as f64);
                 }
                 let g = t.finish();
-                Function::new("f", &g, &[acc]).eval(&[("q", &[0.5])]).unwrap()[0]
+                Traced::new("f", &g, &[acc]).eval(&[("q", &[0.5])]).unwrap()[0]
             })
         })
         .collect();
@@ -239,19 +239,19 @@ fn factoring_after_the_trace_uses_use_counts() {
     let (kx, ky) = (g.mul(k, x), g.mul(k, y));
     let s = g.add(kx, ky);
     // k·x + k·y, each product used once: k·(x + y), one multiplication fewer
-    let f = Function::from_ids("f", &g, &[s]);
+    let f = Traced::from_ids("f", &g, &[s]);
     let ff = factor(&f, Rewrites::default());
     assert_eq!((f.op_count().mul, ff.op_count().mul), (2, 1));
     let args: [(&str, &[f64]); 2] = [("q", &[0.25, 0.5]), ("k", &[3.0])];
     assert_eq!(ff.eval(&args).unwrap(), vec![3.0 * (0.25 + 0.5)]);
     // k·x is also an output: sharing would cost one more, nothing changes
-    let f2 = Function::from_ids("f", &g, &[s, kx]);
+    let f2 = Traced::from_ids("f", &g, &[s, kx]);
     assert_eq!(factor(&f2, Rewrites::default()).op_count(), f2.op_count());
     // (−x) − y → −(x + y), whose negation the next subtraction absorbs
     let nx = g.neg(x);
     let d = g.sub(nx, y);
     let e = g.sub(k, d);
-    let f3 = Function::from_ids("f", &g, &[e]);
+    let f3 = Traced::from_ids("f", &g, &[e]);
     let f3f = factor(&f3, Rewrites::default());
     assert_eq!((f3.op_count().total(), f3f.op_count().total()), (3, 2));
     assert_eq!(f3f.eval(&args).unwrap(), vec![3.0 + (0.25 + 0.5)]);

@@ -25,7 +25,7 @@
 //!   print the same bits as the `+fma,+avx2` build, every line.
 
 use dynagen::codegen::{generate, CodegenOptions, Function as Kind, GeneratedFunction, ScalarType};
-use dynagen::symbolic::Function;
+use dynagen::symbolic::Traced;
 use dynagen::{DoubleDouble, Robot, Scalar};
 use dynagen_tests::{bundled_model, bundled_robot, rel_err, Rng};
 use nalgebra::DVector;
@@ -400,7 +400,7 @@ fn the_fused_path_compiled_with_the_fma_feature_rounds_once_and_stays_accurate()
         let (module, fn_name) = name.split_at(3);
         let fns = if module == "m64" { &f64_fns } else { &f32_fns };
         let f = fns.iter().find(|f| f.name == fn_name[1..]).unwrap();
-        let body: &Function = &f.sin_cos_inputs.function;
+        let body: &Traced = &f.sin_cos_inputs.function;
         let (x, fusion) = (&xs[k], body.fusion());
         let want = generic(&mut robot, &f.function, x);
         if module == "m64" {

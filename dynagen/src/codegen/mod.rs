@@ -58,7 +58,7 @@ pub use trace::{fd_choice, generic_op_count, sin_cos_from_q, sin_cos_inputs, tra
 
 use crate::model::Model;
 use crate::scene::{Scene, SceneError, SceneModel};
-use crate::symbolic::{Function as Traced, OpCount};
+use crate::symbolic::{OpCount, Traced};
 
 /// The generator's version, written into every header.
 pub const GENERATOR_VERSION: &str = env!("CARGO_PKG_VERSION");

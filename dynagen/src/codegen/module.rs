@@ -1,7 +1,7 @@
 //! What generation gives: the module's source and its traced functions.
 
 use super::{ForwardDynamicsMethod, Function, SinCosTrace, SnappedConstant};
-use crate::symbolic::{Function as Traced, OpCount};
+use crate::symbolic::{OpCount, Traced};
 
 /// One traced function of a module.
 #[derive(Clone, Debug, PartialEq)]

@@ -323,8 +323,20 @@ impl FromStr for ForwardDynamicsMethod {
     }
 }
 
+impl Trig {
+    /// Its spelling ([`FromStr`] reads it back).
+    pub fn name(self) -> &'static str {
+        match self {
+            Trig::Batched => "batched",
+            Trig::Std => "std",
+            Trig::Libm => "libm",
+            Trig::Inputs => "inputs",
+        }
+    }
+}
+
 impl ScalarType {
-    /// The Rust type's name.
+    /// The Rust type's name (its spelling; [`FromStr`] reads it back).
     pub fn name(self) -> &'static str {
         match self {
             ScalarType::F64 => "f64",

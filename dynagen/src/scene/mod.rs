@@ -92,7 +92,8 @@
 //! or on the command line win over them).
 //!
 //! ```toml
-//! # Code-generation keys (CodegenOptions' name, functions, scalar, trig):
+//! # Code-generation keys (CodegenOptions' name, functions, scalar, trig;
+//! # SceneFile::to_toml_string writes them back):
 //! name = "ur5_controller"      # the generated module's name
 //! # Any of inverse_dynamics, mass_matrix, bias_forces, gravity_torques,
 //! # coriolis, forward_dynamics (default: all but coriolis), plus the pose
@@ -101,7 +102,8 @@
 //! frame_pose = ["ee_link"]
 //! frame_jacobian = ["ee_link"]
 //! scalar = "f64"               # or "f32"
-//! target = "std"               # std allowed (the trigonometry stays the options'); or
+//! trig = "batched"            # or "std", "libm", "inputs"; or instead, as before,
+//! # target = "std"             # std allowed (the trigonometry stays the options'), or
 //!                              # "no_std_libm" (trig libm), "no_std_sincos" (trig inputs)
 //!
 //! # The physics:

@@ -22,6 +22,8 @@ struct FileText {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     target: Option<TargetName>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    trig: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     tip_wrench: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     coulomb_velocity: Option<f64>,
@@ -106,8 +108,10 @@ pub struct CodeKeys {
     pub functions: Option<Vec<Function>>,
     /// `scalar`.
     pub scalar: Option<ScalarType>,
-    /// `target`: `no_std_libm` is [`Trig::Libm`], `no_std_sincos`
-    /// [`Trig::Inputs`]; `std` leaves the trigonometry to the options.
+    /// `trig` (`batched`, `std`, `libm`, `inputs`), or `target`:
+    /// `no_std_libm` is [`Trig::Libm`], `no_std_sincos` [`Trig::Inputs`],
+    /// `std` leaves the trigonometry to the options. Both keys at once are
+    /// an error.
     pub trig: Option<Trig>,
 }
 
@@ -176,10 +180,16 @@ fn scene_from_file(f: FileText) -> Result<SceneFile, SceneError> {
         Some(s) => Some(s.parse::<ScalarType>().map_err(SceneError::Toml)?),
         None => None,
     };
-    code.trig = match f.target {
-        Some(TargetName::NoStdLibm) => Some(Trig::Libm),
-        Some(TargetName::NoStdSincos) => Some(Trig::Inputs),
-        _ => None,
+    code.trig = match (f.target, f.trig) {
+        (Some(_), Some(_)) => {
+            return Err(SceneError::Toml(
+                "`target` and `trig` both say where the sines and cosines come from: give one".into(),
+            ))
+        }
+        (None, Some(t)) => Some(t.parse::<Trig>().map_err(SceneError::Toml)?),
+        (Some(TargetName::NoStdLibm), None) => Some(Trig::Libm),
+        (Some(TargetName::NoStdSincos), None) => Some(Trig::Inputs),
+        (Some(TargetName::Std) | None, None) => None,
     };
     if let Some(v) = f.coulomb_velocity {
         scene.coulomb_velocity = v;
@@ -303,6 +313,31 @@ impl SceneFile {
             SceneError::Toml(m) => SceneError::Toml(format!("{}: {m}", path.display())),
             e => e,
         })
+    }
+}
+
+impl SceneFile {
+    /// The scene file as TOML: reading it back gives the same [`SceneFile`]
+    /// (the per-joint options grouped by joint, in name order; functions,
+    /// then frame poses, then frame Jacobians; the trigonometry as `trig`).
+    pub fn to_toml_string(&self) -> Result<String, SceneError> {
+        let mut f = file_from_scene(&self.scene);
+        let c = &self.code;
+        f.name = c.name.clone();
+        if let Some(list) = &c.functions {
+            let mut names = Vec::new();
+            for x in list {
+                match x {
+                    Function::FramePose(frame) => f.frame_pose.push(frame.clone()),
+                    Function::FrameJacobian(frame) => f.frame_jacobian.push(frame.clone()),
+                    other => names.push(other.name().to_string()),
+                }
+            }
+            f.functions = Some(names);
+        }
+        f.scalar = c.scalar.map(|s| s.name().to_string());
+        f.trig = c.trig.map(|t| t.name().to_string());
+        ::toml::to_string(&f).map_err(|e| SceneError::Toml(e.to_string()))
     }
 }
 

@@ -33,9 +33,9 @@
 //! `tests/tests/generated_*.rs` check it with reassociation on).
 
 use super::count::Latency;
-use super::function::Function;
 use super::graph::{Graph, Rewrites};
 use super::node::{Node, NodeId};
+use super::traced::Traced;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
@@ -68,7 +68,7 @@ impl Ready {
 /// `f` with every sum tree rebuilt as the earliest-ready tree of the same
 /// leaves (the comments of `symbolic/balance.rs` say how). The rebuilt graph makes
 /// the given `rewrites`.
-pub fn balance(f: &Function, latency: &Latency, rewrites: Rewrites) -> Function {
+pub fn balance(f: &Traced, latency: &Latency, rewrites: Rewrites) -> Traced {
     let nodes = f.nodes();
     let uses = f.use_counts();
     let is_sum = |id: NodeId| matches!(nodes[id as usize], Node::Add(..) | Node::Sub(..) | Node::Neg(_));
@@ -150,7 +150,7 @@ pub fn balance(f: &Function, latency: &Latency, rewrites: Rewrites) -> Function 
         new.push(mapped);
     }
     let outputs: Vec<NodeId> = f.outputs().iter().map(|&o| new[o as usize]).collect();
-    let mut out = Function::from_ids(f.name(), &g, &outputs);
+    let mut out = Traced::from_ids(f.name(), &g, &outputs);
     out.set_input_names(f.input_names());
     out
 }
@@ -182,7 +182,7 @@ fn collect(nodes: &[Node], inner: &[bool], id: NodeId, positive: bool, out: &mut
 mod tests {
     use super::*;
 
-    fn eval(f: &Function, x: &[f64]) -> Vec<f64> {
+    fn eval(f: &Traced, x: &[f64]) -> Vec<f64> {
         f.eval(&[("x", x)]).unwrap()
     }
 
@@ -196,7 +196,7 @@ mod tests {
             s = if i % 3 == 2 || i == 7 { g.sub(s, x) } else { g.add(s, x) };
         }
         let n = g.neg(s);
-        let f = Function::from_ids("sum", &g, &[n]);
+        let f = Traced::from_ids("sum", &g, &[n]);
         let b = balance(&f, &Latency::default(), Rewrites::default());
         assert_eq!(f.critical_path().cycles, 7 * 4);
         // three levels of additions (the negation is absorbed in both)
@@ -219,7 +219,7 @@ mod tests {
         let s = g.add(s, x[5]);
         // x4 + x5 on its own is a second output: a shared node is a leaf.
         let shared = g.add(x[4], x[5]);
-        let f = Function::from_ids("late", &g, &[s, shared]);
+        let f = Traced::from_ids("late", &g, &[s, shared]);
         let b = balance(&f, &Latency::default(), Rewrites::default());
         assert_eq!(f.critical_path().cycles, 3 * 4 + 2 * 4);
         // the product as traced, then one addition of the shared x4 + x5

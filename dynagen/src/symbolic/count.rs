@@ -120,7 +120,7 @@ impl fmt::Display for OpCount {
 }
 
 /// Latencies, in cycles, of each kind of operation, for
-/// [`Function::critical_path`](super::Function::critical_path): how long a result takes to be ready once its
+/// [`Traced::critical_path`](super::Traced::critical_path): how long a result takes to be ready once its
 /// operands are, on the machine the generated code runs on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Latency {

@@ -2,12 +2,12 @@
 //! so that a trace and its simplifications can be checked against the
 //! generic solver without compiling the generated code.
 
-use super::function::Function;
 use super::fuse::Fusion;
 use super::node::Node;
+use super::traced::Traced;
 use crate::Scalar;
 
-/// An input vector that [`Function::eval`] was not given, or given too short.
+/// An input vector that [`Traced::eval`] was not given, or given too short.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("function {function} reads {input}[{index}], which was not given")]
 pub struct MissingInput {
@@ -22,7 +22,7 @@ pub struct MissingInput {
 /// A fused multiply-add `a·b + c` in the scalar `S`.
 type MulAdd<S> = fn(S, S, S) -> S;
 
-impl Function {
+impl Traced {
     /// Evaluates the outputs on `f64` inputs given as `(name, values)`.
     pub fn eval(&self, inputs: &[(&str, &[f64])]) -> Result<Vec<f64>, MissingInput> {
         self.eval_as::<f64>(inputs)
@@ -35,11 +35,11 @@ impl Function {
     /// Evaluates the outputs as the code emitted with `fusion` computes them
     /// on a target with fused multiply-adds: each fused sum by one
     /// [`f64::mul_add`] (a single rounding), everything else as
-    /// [`Function::eval`].
+    /// [`Traced::eval`].
     pub fn eval_fused(&self, fusion: &Fusion, inputs: &[(&str, &[f64])]) -> Result<Vec<f64>, MissingInput> {
         self.eval_fused_as(fusion, inputs, f64::mul_add)
     }
-    /// As [`Function::eval_fused`], in the scalar `S` with its fused
+    /// As [`Traced::eval_fused`], in the scalar `S` with its fused
     /// multiply-add `mul_add` (e.g. [`f32::mul_add`]).
     pub fn eval_fused_as<S: Scalar>(
         &self,

@@ -15,12 +15,12 @@
 //! [`Rewrites`](super::Rewrites) do), so [`factor`] runs only when
 //! `like_terms` is on. It repeats until nothing changes.
 
-use super::function::Function;
 use super::graph::{Graph, Rewrites};
 use super::node::{Node, NodeId};
+use super::traced::Traced;
 
 /// One factoring pass.
-fn pass(f: &Function, rewrites: Rewrites) -> Function {
+fn pass(f: &Traced, rewrites: Rewrites) -> Traced {
     let nodes = f.nodes();
     let uses = f.use_counts();
     let mut g = Graph::with_rewrites(rewrites);
@@ -90,7 +90,7 @@ fn pass(f: &Function, rewrites: Rewrites) -> Function {
         new.push(id);
     }
     let outputs: Vec<NodeId> = f.outputs().iter().map(|&o| new[o as usize]).collect();
-    let mut out = Function::from_ids(f.name(), &g, &outputs);
+    let mut out = Traced::from_ids(f.name(), &g, &outputs);
     // Input vectors keep their names even if no longer read.
     out.set_input_names(f.input_names());
     out
@@ -99,7 +99,7 @@ fn pass(f: &Function, rewrites: Rewrites) -> Function {
 /// Factors `f` until its operation count stops falling; see the [symbolic
 /// module](super#after-the-trace). With `rewrites.like_terms` off, `f` is returned
 /// unchanged.
-pub fn factor(f: &Function, rewrites: Rewrites) -> Function {
+pub fn factor(f: &Traced, rewrites: Rewrites) -> Traced {
     if !rewrites.like_terms {
         return f.clone();
     }

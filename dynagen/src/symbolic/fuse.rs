@@ -26,8 +26,8 @@
 //!   anyway, and its other sums stay unfused too.
 //!
 //! The graph itself is not changed: [`Fusion`] is a plan beside the
-//! [`Function`], read by the emitter, by the operation count
-//! ([`Fusion::op_count`]) and by [`Function::eval_fused`] (the interpreter
+//! [`Traced`], read by the emitter, by the operation count
+//! ([`Fusion::op_count`]) and by [`Traced::eval_fused`] (the interpreter
 //! with a fused multiply-add, [`f64::mul_add`], for every fused sum).
 //!
 //! On a target without fused multiply-adds the emitted `fma(a, b, c)` is
@@ -36,8 +36,8 @@
 //! exactly as `x − y`, `c − a·b` do (negation is exact).
 
 use super::count::{CriticalPath, Latency, OpCount};
-use super::function::Function;
 use super::node::{Node, NodeId};
+use super::traced::Traced;
 
 /// One sum computed as a fused multiply-add: `(±a)·b + (±c)`, rounded once.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -69,7 +69,7 @@ pub struct Fusion {
 
 impl Fusion {
     /// The fused multiply-adds of `f`, chosen with the latencies `latency`.
-    pub fn of(f: &Function, latency: &Latency) -> Fusion {
+    pub fn of(f: &Traced, latency: &Latency) -> Fusion {
         let nodes = f.nodes();
         let uses = f.use_counts();
         // How many uses of each node are as an operand of a sum (of two
@@ -146,7 +146,7 @@ impl Fusion {
         Fusion { sums, folded, path }
     }
     /// No fusion at all in `f`.
-    pub fn none(f: &Function) -> Fusion {
+    pub fn none(f: &Traced) -> Fusion {
         let len = f.nodes().len();
         Fusion { sums: vec![None; len], folded: vec![false; len], path: f.critical_path() }
     }
@@ -159,10 +159,10 @@ impl Fusion {
     pub fn is_folded(&self, id: NodeId) -> bool {
         self.folded.get(id as usize).copied().unwrap_or(false)
     }
-    /// `f`'s operation count ([`Function::op_count`]) with the fused sums
+    /// `f`'s operation count ([`Traced::op_count`]) with the fused sums
     /// and folded products counted ([`OpCount::fused`],
     /// [`OpCount::mul_folded`]).
-    pub fn op_count(&self, f: &Function) -> OpCount {
+    pub fn op_count(&self, f: &Traced) -> OpCount {
         OpCount {
             fused: self.sums.iter().flatten().count(),
             mul_folded: self.folded.iter().filter(|&&x| x).count(),
@@ -176,7 +176,7 @@ impl Fusion {
     }
 }
 
-impl Function {
+impl Traced {
     /// Its fused multiply-adds with the default [`Latency`].
     pub fn fusion(&self) -> Fusion {
         Fusion::of(self, &Latency::default())
@@ -192,7 +192,7 @@ mod tests {
     /// folded), x3·x4 − x5 with x3·x4 also an output (not fused: it is
     /// computed anyway), and (x0·x1 + x2)·x2 + x3·x4: both products, the
     /// one that can be folded is fused.
-    fn example() -> Function {
+    fn example() -> Traced {
         let mut g = Graph::new();
         let x: Vec<NodeId> = (0..6).map(|i| g.input("x", i)).collect();
         let p = g.mul(x[0], x[1]);
@@ -202,7 +202,7 @@ mod tests {
         let s3 = g.sub(r, x[5]);
         let late = g.mul(s1, x[2]);
         let s4 = g.add(late, r);
-        Function::from_ids("example", &g, &[s1, s2, s3, r, s4])
+        Traced::from_ids("example", &g, &[s1, s2, s3, r, s4])
     }
 
     #[test]

@@ -6,9 +6,9 @@
 //! CRBA, ABA, …) on `Expr` inputs records every operation it performs on
 //! the state; everything that depends only on the model folds into
 //! constants on the way. [`Tracer::finish`] hands the [`Graph`] over;
-//! [`Function::new`] keeps what chosen outputs reach; code generation
+//! [`Traced::new`] keeps what chosen outputs reach; code generation
 //! ([`crate::codegen`]) prints the kept nodes as Rust, and
-//! [`Function::eval`] interprets them (the check that simplification kept
+//! [`Traced::eval`] interprets them (the check that simplification kept
 //! the algorithm's values).
 //!
 //! # Simplification as the graph is built
@@ -49,7 +49,7 @@
 //!
 //! # After the trace
 //!
-//! [`Function::new`] keeps only what the outputs reach (dead code
+//! [`Traced::new`] keeps only what the outputs reach (dead code
 //! elimination) and renumbers the nodes densely; [`factor`] then uses the
 //! now-known use counts to share common factors (`k·u ± k·v → k·(u ± v)`
 //! when both products have no other use) and to move negations out;
@@ -70,10 +70,10 @@ mod count;
 mod eval;
 mod expr;
 mod factor;
-mod function;
 mod fuse;
 mod graph;
 mod node;
+mod traced;
 mod tracer;
 
 pub use balance::balance;
@@ -81,8 +81,8 @@ pub use count::{CriticalPath, Latency, OpCount};
 pub use eval::MissingInput;
 pub use expr::Expr;
 pub use factor::factor;
-pub use function::Function;
 pub use fuse::{Fused, Fusion};
 pub use graph::{Graph, Rewrites};
 pub use node::{Node, NodeId};
+pub use traced::Traced;
 pub use tracer::{TraceActive, Tracer};

@@ -8,7 +8,7 @@
 use super::split::{self, Body, Line, PartParam};
 use super::syntax::{array, binary, call, float, ident, index, let_stmt, method, pat, path, unary};
 use crate::codegen::{CodegenError, CodegenOptions, ScalarType, Trig};
-use crate::symbolic::{Function, Fusion, Node};
+use crate::symbolic::{Fusion, Node, Traced};
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 use syn::{BinOp, Expr, Pat, Stmt, UnOp};
@@ -218,7 +218,7 @@ fn negated(x: &Expr) -> Expr {
 /// text, `sin_cos_kernel.rs`). A split body is dispatched part by part
 /// ([`split::assemble`]).
 pub(crate) fn emit_function(
-    f: &Function,
+    f: &Traced,
     signature: &Signature,
     scalar: ScalarType,
     trig: Trig,
@@ -287,7 +287,7 @@ fn signature_of(
 }
 
 /// `let _ = p;` for each parameter `f` does not read.
-fn unused_params(f: &Function, signature: &Signature) -> Result<Vec<Stmt>, CodegenError> {
+fn unused_params(f: &Traced, signature: &Signature) -> Result<Vec<Stmt>, CodegenError> {
     signature
         .params
         .iter()
@@ -304,7 +304,7 @@ fn unused_params(f: &Function, signature: &Signature) -> Result<Vec<Stmt>, Codeg
 /// and else runs `NAME_on::<Baseline>`; `NAME_avx2_fma`; and the generic
 /// body `NAME_on`.
 fn dispatched(
-    f: &Function,
+    f: &Traced,
     signature: &Signature,
     scalar: ScalarType,
     n: usize,
@@ -353,7 +353,7 @@ fn dispatched(
 }
 
 /// The statements of `f`'s body, its sums fused as `fma_path(a, b, c)`.
-fn body_of(f: &Function, scalar: ScalarType, trig: Trig, style: BodyStyle, fma: &[&str]) -> Result<Body, CodegenError> {
+fn body_of(f: &Traced, scalar: ScalarType, trig: Trig, style: BodyStyle, fma: &[&str]) -> Result<Body, CodegenError> {
     // libm's and the module's own (the kernel text's) square root have the same names.
     let sqrt = match scalar {
         ScalarType::F64 => "sqrt",

@@ -24,7 +24,7 @@
 //! both figures.
 
 use crate::codegen::ForwardDynamicsMethod;
-use crate::symbolic::Function;
+use crate::symbolic::Traced;
 use crate::DoubleDouble;
 
 /// How many states the accuracy comparison uses.
@@ -40,7 +40,7 @@ pub(crate) struct FdChoice {
 }
 
 /// Estimated cycles of a body: see the [module documentation](self).
-pub(crate) fn estimated_cycles(body: &Function) -> usize {
+pub(crate) fn estimated_cycles(body: &Traced) -> usize {
     (body.critical_path().cycles as usize).max(body.op_count().total().div_ceil(2))
 }
 
@@ -59,7 +59,7 @@ fn scale_of(name: &str) -> f64 {
 /// The worst relative errors (ABA, LᵀDL) against the double-double ABA,
 /// both functions taking `inputs` (names and lengths, in the order their
 /// values are drawn).
-fn errors(aba: &Function, ldlt: &Function, inputs: &[(String, usize)]) -> (f64, f64) {
+fn errors(aba: &Traced, ldlt: &Traced, inputs: &[(String, usize)]) -> (f64, f64) {
     let mut state = 0x9e37_79b9_7f4a_7c15u64;
     let mut next = move |scale: f64| {
         state ^= state >> 12;
@@ -93,7 +93,7 @@ fn errors(aba: &Function, ldlt: &Function, inputs: &[(String, usize)]) -> (f64, 
 /// `q`, its body with the sines and cosines as inputs), both taking
 /// `inputs` (a scene's forward dynamics may take a gravity vector and a tip
 /// wrench after q, q̇ and τ).
-pub(crate) fn choose_between(aba: [&Function; 2], ldlt: [&Function; 2], inputs: &[(String, usize)]) -> FdChoice {
+pub(crate) fn choose_between(aba: [&Traced; 2], ldlt: [&Traced; 2], inputs: &[(String, usize)]) -> FdChoice {
     let (ca, cl) = (estimated_cycles(aba[1]), estimated_cycles(ldlt[1]));
     let (ea, el) = errors(aba[0], ldlt[0], inputs);
     let accurate = el <= 2.0 * ea + 2.0 * f64::EPSILON;

@@ -33,7 +33,7 @@ use crate::algorithms::rnea::update_joint_transforms;
 use crate::algorithms::{BodyInertia, Workspace};
 use crate::model::Model;
 use crate::spatial::{Force, Inertia, Motion, Transform, Vec3};
-use crate::symbolic::{Expr, Function, Node, Rewrites, TraceActive, Tracer};
+use crate::symbolic::{Expr, Node, Rewrites, TraceActive, Traced, Tracer};
 use crate::Scalar;
 
 /// Above this many joints [`plan`] keeps the generic algorithm's choices:
@@ -260,7 +260,7 @@ pub(crate) fn plan(model: &Model, rewrites: Rewrites) -> Result<Plan, TraceActiv
     drop(ws);
     let graph = tracer.finish();
     let flat: Vec<Expr> = all.iter().flatten().copied().collect();
-    let f = Function::new("mass_matrix", &graph, &flat);
+    let f = Traced::new("mass_matrix", &graph, &flat);
     let nodes = f.nodes();
     let is_op = |node: &Node| !matches!(node, Node::Const(_) | Node::Input { .. } | Node::Sin(_) | Node::Cos(_));
     // The operations each candidate reaches.

@@ -25,7 +25,7 @@ use super::{counted, CodegenError, CodegenOptions, ForwardDynamicsMethod, Functi
 use crate::algorithms::{kinematics, ldlt, rnea, BodyInertia, Loads, TipWrench, Workspace};
 use crate::scene::{dynamics, ResolvedGravity, SceneModel};
 use crate::spatial::{Force, Inertia, Sym3, Transform, Vec3};
-use crate::symbolic::{factor, Expr, Function as Traced, Rewrites, Tracer};
+use crate::symbolic::{factor, Expr, Rewrites, Traced, Tracer};
 
 /// Traces `f` of `scene` as the generated module computes it, factored (on
 /// `scene.model` as it is: [`generate`](super::generate) prepares the model

@@ -1,7 +1,7 @@
 //! Sines and cosines as inputs: the body of `NAME_sc` from a traced
 //! function of `q`, and back.
 
-use crate::symbolic::{balance, factor, Function, Graph, Latency, Node, NodeId, Rewrites};
+use crate::symbolic::{balance, factor, Graph, Latency, Node, NodeId, Rewrites, Traced};
 
 /// A function traced with the sines and cosines of the joint angles as
 /// inputs: `s[i]` and `c[i]` are the sine and cosine of joint `i`'s angle
@@ -11,7 +11,7 @@ use crate::symbolic::{balance, factor, Function, Graph, Latency, Node, NodeId, R
 pub struct SinCosTrace {
     /// The function, reading `s` and `c` instead of computing sines and
     /// cosines (and `q` only where a prismatic joint needs it).
-    pub function: Function,
+    pub function: Traced,
     /// For each joint, the factor of `q[i]` in its angle, if it is read.
     pub angle_scale: Vec<Option<f64>>,
 }
@@ -19,7 +19,7 @@ pub struct SinCosTrace {
 /// A traced (unfactored) function of `q` with the sines and cosines of the
 /// `n` joint angles made inputs (see [`SinCosTrace`]), then factored; `Err` names
 /// a sine of anything other than a joint angle (which the algorithms never take).
-pub fn sin_cos_inputs(f: &Function, n: usize, rewrites: Rewrites) -> Result<SinCosTrace, String> {
+pub fn sin_cos_inputs(f: &Traced, n: usize, rewrites: Rewrites) -> Result<SinCosTrace, String> {
     let nodes = f.nodes();
     let q = f.input_names().iter().position(|s| s == "q").map(|k| k as u32);
     let joint_of = |id: NodeId| match nodes[id as usize] {
@@ -76,7 +76,7 @@ pub fn sin_cos_inputs(f: &Function, n: usize, rewrites: Rewrites) -> Result<SinC
             names.push(extra.to_string());
         }
     }
-    let mut function = Function::from_ids(f.name(), &g, &outputs);
+    let mut function = Traced::from_ids(f.name(), &g, &outputs);
     function.set_input_names(&names);
     let mut function = factor(&function, rewrites);
     if rewrites.reassociate {
@@ -88,7 +88,7 @@ pub fn sin_cos_inputs(f: &Function, n: usize, rewrites: Rewrites) -> Result<SinC
 /// The inverse of [`sin_cos_inputs`]: `s[i]` and `c[i]` replaced by the
 /// sine and cosine of `angle_scale[i]·q[i]`, giving a function of `q` again
 /// (for evaluation and operation counts of the `q` variant).
-pub fn sin_cos_from_q(sc: &SinCosTrace, rewrites: Rewrites) -> Function {
+pub fn sin_cos_from_q(sc: &SinCosTrace, rewrites: Rewrites) -> Traced {
     let f = &sc.function;
     let mut g = Graph::with_rewrites(rewrites);
     for name in f.input_names() {
@@ -132,7 +132,7 @@ pub fn sin_cos_from_q(sc: &SinCosTrace, rewrites: Rewrites) -> Function {
         new.push(mapped);
     }
     let outputs: Vec<NodeId> = f.outputs().iter().map(|&o| new[o as usize]).collect();
-    let mut out = Function::from_ids(f.name(), &g, &outputs);
+    let mut out = Traced::from_ids(f.name(), &g, &outputs);
     let names: Vec<String> = f.input_names().iter().filter(|n| *n != "s" && *n != "c").cloned().collect();
     out.set_input_names(&names);
     out

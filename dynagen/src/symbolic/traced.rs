@@ -10,24 +10,24 @@ use super::node::{Node, NodeId};
 /// output nodes in output order. It owns its nodes, so it outlives the
 /// trace that built it.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Function {
+pub struct Traced {
     name: String,
     nodes: Vec<Node>,
     input_names: Vec<String>,
     outputs: Vec<NodeId>,
 }
 
-impl Function {
+impl Traced {
     /// Keeps what `outputs` reach in `graph` (dead code elimination).
     ///
     /// # Panics
     /// If an output is not a node of `graph`.
-    pub fn new(name: &str, graph: &Graph, outputs: &[Expr]) -> Function {
+    pub fn new(name: &str, graph: &Graph, outputs: &[Expr]) -> Traced {
         let ids: Vec<NodeId> = outputs.iter().map(|e| e.id()).collect();
         Self::from_ids(name, graph, &ids)
     }
-    /// As [`Function::new`], with outputs given by node index.
-    pub fn from_ids(name: &str, graph: &Graph, outputs: &[NodeId]) -> Function {
+    /// As [`Traced::new`], with outputs given by node index.
+    pub fn from_ids(name: &str, graph: &Graph, outputs: &[NodeId]) -> Traced {
         let nodes = graph.nodes();
         let mut live = vec![false; nodes.len()];
         for &o in outputs {
@@ -50,7 +50,7 @@ impl Function {
                 kept.push(node.map_operands(|x| new_id[x as usize]));
             }
         }
-        Function {
+        Traced {
             name: name.to_string(),
             nodes: kept,
             input_names: graph.input_names().to_vec(),
