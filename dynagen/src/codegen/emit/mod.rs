@@ -9,20 +9,31 @@ mod literal;
 mod split;
 mod statements;
 mod syntax;
+mod text;
 mod wrapper;
 
 pub use literal::float_literal_text;
 pub(crate) use statements::{tidy_dispatch, BodyStyle, Dim, Param, Shape, Signature};
+pub(crate) use text::{doc_code, identifier};
 
 use super::trace::fd_choice::FdChoice;
-use super::{module_name, sin_cos, CodegenError, CodegenOptions, GeneratedFunction, SnappedConstant, Trig};
+use super::{sin_cos, CodegenError, CodegenOptions, GeneratedFunction, SnappedConstant, Trig};
 use crate::model::JointKind;
 use crate::scene::SceneModel;
 use quote::quote;
 
-/// The name of a run-time payload's argument.
+/// The name of a run-time payload's argument: `payload_` and the link's
+/// name in snake case (ASCII letters and digits, other characters `_`).
 pub fn payload_argument(link: &str) -> String {
-    format!("payload_{}", module_name(link).trim_start_matches('_'))
+    identifier_name("payload", link)
+}
+
+/// `{prefix}_{name}`, the name made an identifier's part ([`text::identifier_part`]).
+pub(crate) fn identifier_name(prefix: &str, name: &str) -> String {
+    match text::identifier_part(name) {
+        part if part.is_empty() => prefix.to_string(),
+        part => format!("{prefix}_{part}"),
+    }
 }
 
 /// What the emitted module is made of.
@@ -96,5 +107,7 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
     let header =
         header::header(&facts) + &split::header_note(options.split_lets, &split_functions) + parts.dispatch_note;
     let kernel = sin_cos::kernel_source(options.scalar, options.runtime_dispatch);
-    Ok(format!("{header}\n{body}\n{kernel}"))
+    let source = format!("{header}\n{body}\n{kernel}");
+    text::check_source(&header, &source)?;
+    Ok(source)
 }
