@@ -36,6 +36,26 @@ pub(crate) fn identifier_name(prefix: &str, name: &str) -> String {
     }
 }
 
+/// Marks every item `#[allow(dead_code)]`: a crate that includes the module
+/// and calls one of its functions must compile without a warning about the
+/// others (an `include!`d file cannot carry the inner attribute that would
+/// say it once). Items reached from an allowed item count as used, so the
+/// private helpers need nothing.
+fn allow_unused(items: &mut [syn::Item]) {
+    let allow: syn::Attribute = syn::parse_quote!(#[allow(dead_code)]);
+    for item in items {
+        let attrs = match item {
+            syn::Item::Fn(f) => &mut f.attrs,
+            syn::Item::Const(c) => &mut c.attrs,
+            syn::Item::Static(s) => &mut s.attrs,
+            syn::Item::Trait(t) => &mut t.attrs,
+            syn::Item::Struct(s) => &mut s.attrs,
+            _ => continue,
+        };
+        attrs.push(allow.clone());
+    }
+}
+
 /// What the emitted module is made of.
 pub(crate) struct ModuleParts<'a> {
     /// The scene (its original reduced model: the header's hash and names).
@@ -100,6 +120,7 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
             items.extend(wrapper::parse_items(wrapper::wrapper(name, &ps, ret, body, options, &doc))?);
         }
     }
+    allow_unused(&mut items);
     let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
     let body = tidy_dispatch(&prettyplease::unparse(&file));
     let facts =
