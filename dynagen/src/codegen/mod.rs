@@ -64,7 +64,7 @@ use crate::symbolic::{OpCount, Traced};
 pub const GENERATOR_VERSION: &str = env!("CARGO_PKG_VERSION");
 
 /// Why a module could not be generated.
-#[derive(Debug, thiserror::Error)]
+#[derive(thiserror::Error)]
 #[non_exhaustive]
 pub enum CodegenError {
     /// A constant folded to NaN or an infinity, which has no literal.
@@ -103,6 +103,8 @@ pub enum CodegenError {
     #[error("internal error: generated code does not parse: {0}")]
     Internal(String),
 }
+
+debug_as_display!(CodegenError);
 
 /// The operation count of `f`, with its fused multiply-adds if `fma`.
 pub(crate) fn counted(f: &Traced, fma: bool) -> OpCount {
