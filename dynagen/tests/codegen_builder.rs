@@ -86,6 +86,8 @@ fn errors_name_the_file_and_the_item() {
 
     let e = msg(Builder::new().urdf(&ur5).file_name("sub/ur5.rs"));
     assert!(e.contains("bad output file name \"sub/ur5.rs\""), "{e}");
+    let e = msg(Builder::new().urdf(&ur5).file_name("ur5\n.rs"));
+    assert!(e.contains("bad output file name \"ur5\\n.rs\""), "{e}");
 
     // Scenes: a scene that does not fit the robot names the scene, the
     // robot and the item.

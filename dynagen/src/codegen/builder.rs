@@ -197,8 +197,9 @@ pub enum BuildError {
         /// The name given.
         name: String,
     },
-    /// A file name that is not a plain `name.rs`.
-    #[error("dynagen: bad output file name \"{0}\" (give a plain file name such as \"ur5.rs\"; use `.out_dir` for the folder)")]
+    /// A file name that is not a plain `name.rs` (a folder, a control
+    /// character).
+    #[error("dynagen: bad output file name {0:?} (give a plain file name such as \"ur5.rs\"; use `.out_dir` for the folder)")]
     BadFileName(String),
     /// `OUT_DIR` is not set and [`Builder::out_dir`] was not called.
     #[error("dynagen: OUT_DIR is not set (run from a build script, or call `.out_dir(..)`)")]
@@ -509,7 +510,7 @@ impl Builder {
             }
             (None, None, _) => format!("{}.rs", module_name(&scene.model.name)),
         };
-        if file.contains(['/', '\\']) || !file.ends_with(".rs") || file == ".rs" {
+        if file.contains(['/', '\\']) || !file.ends_with(".rs") || file == ".rs" || file.contains(char::is_control) {
             return Err(BuildError::BadFileName(file));
         }
         let module = generate_scene(&scene, &options)
