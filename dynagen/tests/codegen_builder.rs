@@ -19,7 +19,7 @@ fn scratch(test: &str) -> PathBuf {
 }
 
 #[test]
-fn writes_the_generators_source_named_after_the_robot() {
+fn writes_the_generators_source_named_after_the_file() {
     let dir = scratch("writes");
     let urdf = format!("{ROBOTS}/planar_2link.urdf");
     let written = Builder::new()
