@@ -336,3 +336,72 @@ fn expand_urdf(input: UrdfInput) -> syn::Result<TokenStream> {
         #body
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A URDF and scene whose every name tries to break out of its place
+    /// (`dynagen/tests/data/hostile_names.*`: newlines, CR, `*/`, quotes,
+    /// U+2028, bidirectional controls): `urdf!` expands to the contract's
+    /// items only, and `JOINT_NAMES` holds the names as they are.
+    #[test]
+    fn hostile_names_expand_to_no_item_of_their_own() {
+        let input: UrdfInput = syn::parse_str(
+            r#""../dynagen/tests/data/hostile_names.urdf", scene = "../dynagen/tests/data/hostile_names.toml""#,
+        )
+        .unwrap();
+        let file: syn::File = syn::parse2(expand_urdf(input).unwrap()).unwrap();
+        let mut public = Vec::new();
+        let mut joint_names = Vec::new();
+        for item in &file.items {
+            let (name, is_pub) = match item {
+                syn::Item::Fn(f) => (f.sig.ident.to_string(), matches!(f.vis, syn::Visibility::Public(_))),
+                syn::Item::Const(c) => {
+                    if c.ident == "JOINT_NAMES" {
+                        let syn::Expr::Array(a) = &*c.expr else { panic!("JOINT_NAMES is not an array") };
+                        for e in &a.elems {
+                            let syn::Expr::Lit(syn::ExprLit { lit: syn::Lit::Str(s), .. }) = e else {
+                                panic!("JOINT_NAMES holds a non-literal")
+                            };
+                            joint_names.push(s.value());
+                        }
+                    }
+                    (c.ident.to_string(), matches!(c.vis, syn::Visibility::Public(_)))
+                }
+                _ => continue,
+            };
+            if is_pub {
+                public.push(name);
+            }
+        }
+        public.sort();
+        let frame = "h_fn_injected"; // frame "h\n}\nfn injected() {\n", in snake case
+        let mut expected: Vec<String> = ["DOF", "JOINT_NAMES", "sin_cos_all", "sin_cos_array", "sin_cos_kernel"]
+            .iter()
+            .map(|s| s.to_string())
+            .chain(
+                ["inverse_dynamics", "gravity_torques", "inverse_dynamics_sc", "gravity_torques_sc"]
+                    .iter()
+                    .map(|s| s.to_string()),
+            )
+            .chain([format!("frame_pose_{frame}"), format!("frame_pose_{frame}_sc")])
+            .chain(["frame_jacobian_c_pub_fn_injected_u32_42_code_script".to_string()])
+            .chain(["frame_jacobian_c_pub_fn_injected_u32_42_code_script_sc".to_string()])
+            .collect();
+        expected.sort();
+        assert_eq!(public, expected);
+        let inj = "pub fn injected() -> u32 { 42 }";
+        assert_eq!(
+            joint_names,
+            [
+                format!("J\n{inj}\n//"),
+                format!("J\r\n{inj}\r//"),
+                format!("J */ {inj} /* `</code><script>`"),
+                format!("J\u{2028}{inj}\u{2029}//"),
+                format!("J\"); {inj} //\\"),
+                "J\u{85}\u{7f}\t\\u{a}".to_string(),
+            ]
+        );
+    }
+}

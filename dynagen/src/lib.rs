@@ -93,6 +93,24 @@
 //! to (0, 0, −9.81) m/s² in the base frame; a tip wrench is the wrench the
 //! robot applies to its environment, in the tip frame.
 
+/// `impl Debug` for error types that writes their `Display` message. A
+/// build script's `.expect(..)` and `.unwrap()` print an error's Debug form;
+/// for these errors it is then the message a user acts on (the file, the
+/// link or joint, what to change) instead of the enum's fields
+/// (`Robot { path: .., source: Io { .. } }`). The fields stay readable by
+/// matching on the variants.
+macro_rules! debug_as_display {
+    ($($t:ty),* $(,)?) => {
+        $(
+            impl core::fmt::Debug for $t {
+                fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+                    core::fmt::Display::fmt(self, f)
+                }
+            }
+        )*
+    };
+}
+
 pub mod algorithms;
 pub mod codegen;
 pub mod model;

@@ -826,8 +826,19 @@ fn an_actuated_joint_that_moves_nothing() {
         <joint name="fixed_nail" type="fixed"><parent link="finger"/><child link="nail"/></joint>"#
     ));
     let e = err(&xml);
-    assert!(matches!(&e, ModelError::MasslessSubtree(j) if j == "jf"), "{e:?}");
+    assert!(
+        matches!(&e, ModelError::MasslessSubtree { joint, link, .. } if joint == "jf" && link == "finger"),
+        "{e:?}"
+    );
     names(&e, &["jf"]);
+    assert!(
+        e.to_string().ends_with(
+            "its child link \"finger\" has no mass, nor has anything fixed to it or below it: give link \"finger\" a \
+             mass and an inertia (URDF: an <inertial> element), or fix a link with mass to it; if the joint moves \
+             nothing, make it fixed"
+        ),
+        "{e}"
+    );
     // a point mass on a revolute joint's axis has no inertia about it
     let xml = robot(
         r#"<link name="base"/><link name="bead"><inertial><origin xyz="0 0 0.7"/><mass value="1"/>
@@ -835,7 +846,17 @@ fn an_actuated_joint_that_moves_nothing() {
         <joint name="spin" type="continuous"><parent link="base"/><child link="bead"/><axis xyz="0 0 1"/></joint>"#,
     );
     let e = err(&xml);
-    assert!(matches!(&e, ModelError::MasslessSubtree(j) if j == "spin"), "{e:?}");
+    assert!(
+        matches!(&e, ModelError::MasslessSubtree { joint, link, .. } if joint == "spin" && link == "bead"),
+        "{e:?}"
+    );
+    assert!(
+        e.to_string().ends_with(
+            "the 1 kg it moves lie on its axis, without inertia about it: give link \"bead\" a moment of inertia \
+             about the joint's axis (URDF: the <inertia> of its <inertial>)"
+        ),
+        "{e}"
+    );
     // a massless link whose child carries mass is fine: its subtree moves it
     let xml = robot(&format!(
         r#"<link name="base"/><link name="hub"/><link name="arm">{INERTIAL}</link>

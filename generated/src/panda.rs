@@ -28,8 +28,10 @@
 //   forward_dynamics (CRBA + LTDL) [not emitted]: 1508 ops: 327 add, 382 sub, 777 mul, 15 div, 1 neg, 0 sqrt, 6 sin_cos; 522 fused multiply-adds, 1035 FP ops with each fused = 1; body NAME_sc critical path 192 cycles (33 ops)
 
 /// The number of degrees of freedom (joints).
+#[allow(dead_code)]
 pub const DOF: usize = 9;
 /// The joint names, in the order of every index of the functions below.
+#[allow(dead_code)]
 pub const JOINT_NAMES: [&str; DOF] = [
     "panda_joint1",
     "panda_joint2",
@@ -43,6 +45,7 @@ pub const JOINT_NAMES: [&str; DOF] = [
 ];
 /// The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target, or with run-time dispatch the processor, has AVX2).
 #[inline]
+#[allow(dead_code)]
 pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
     sin_cos_array(q)
 }
@@ -52,6 +55,7 @@ pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
 /// 686 ops: 171 add, 167 sub, 347 mul, 0 div, 1 neg, 0 sqrt, 0 sin_cos; 224 fused multiply-adds, 479 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read. `q` is read for the prismatic joints only.
+#[allow(dead_code)]
 pub fn inverse_dynamics_sc(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -69,6 +73,7 @@ pub fn inverse_dynamics_sc(
 /// [`inverse_dynamics_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn inverse_dynamics_sc_avx2_fma(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -86,6 +91,7 @@ unsafe fn inverse_dynamics_sc_avx2_fma(
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn inverse_dynamics_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -582,6 +588,7 @@ fn inverse_dynamics_sc_on<I: Isa>(
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`inverse_dynamics_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn inverse_dynamics(
     q: &[f64; DOF],
     qd: &[f64; DOF],
@@ -604,6 +611,7 @@ pub fn inverse_dynamics(
 /// [`inverse_dynamics`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn inverse_dynamics_avx2_fma(
     q: &[f64; DOF],
     qd: &[f64; DOF],
@@ -626,6 +634,7 @@ unsafe fn inverse_dynamics_avx2_fma(
 /// 509 ops: 129 add, 104 sub, 268 mul, 0 div, 8 neg, 0 sqrt, 0 sin_cos; 169 fused multiply-adds, 354 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read. `q` is read for the prismatic joints only.
+#[allow(dead_code)]
 pub fn mass_matrix_sc(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -641,6 +650,7 @@ pub fn mass_matrix_sc(
 /// [`mass_matrix_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn mass_matrix_sc_avx2_fma(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -656,6 +666,7 @@ unsafe fn mass_matrix_sc_avx2_fma(
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn mass_matrix_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -1042,6 +1053,7 @@ fn mass_matrix_sc_on<I: Isa>(
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`mass_matrix_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -1058,6 +1070,7 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// [`mass_matrix`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn mass_matrix_avx2_fma(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     mass_matrix_sc_on::<
@@ -1074,6 +1087,7 @@ unsafe fn mass_matrix_avx2_fma(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// 655 ops: 164 add, 152 sub, 337 mul, 0 div, 2 neg, 0 sqrt, 0 sin_cos; 208 fused multiply-adds, 458 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read. `q` is read for the prismatic joints only.
+#[allow(dead_code)]
 pub fn bias_forces_sc(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -1090,6 +1104,7 @@ pub fn bias_forces_sc(
 /// [`bias_forces_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn bias_forces_sc_avx2_fma(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -1106,6 +1121,7 @@ unsafe fn bias_forces_sc_avx2_fma(
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn bias_forces_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -1581,6 +1597,7 @@ fn bias_forces_sc_on<I: Isa>(
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`bias_forces_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -1598,6 +1615,7 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 /// [`bias_forces`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn bias_forces_avx2_fma(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     bias_forces_sc_on::<
@@ -1615,6 +1633,7 @@ unsafe fn bias_forces_avx2_fma(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 /// 116 ops: 25 add, 21 sub, 68 mul, 0 div, 2 neg, 0 sqrt, 0 sin_cos; 42 fused multiply-adds, 75 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read. `q` is read for the prismatic joints only.
+#[allow(dead_code)]
 pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF], q: &[f64; DOF]) -> [f64; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -1626,6 +1645,7 @@ pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF], q: &[f64; DOF]) -> [f6
 /// [`gravity_torques_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn gravity_torques_sc_avx2_fma(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -1641,6 +1661,7 @@ unsafe fn gravity_torques_sc_avx2_fma(
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn gravity_torques_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -1732,6 +1753,7 @@ fn gravity_torques_sc_on<I: Isa>(
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`gravity_torques_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -1748,6 +1770,7 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
 /// [`gravity_torques`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn gravity_torques_avx2_fma(q: &[f64; DOF]) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     gravity_torques_sc_on::<
@@ -1764,6 +1787,7 @@ unsafe fn gravity_torques_avx2_fma(q: &[f64; DOF]) -> [f64; DOF] {
 /// 1655 ops: 397 add, 355 sub, 896 mul, 7 div, 0 neg, 0 sqrt, 0 sin_cos; 581 fused multiply-adds, 1101 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read. `q` is read for the prismatic joints only.
+#[allow(dead_code)]
 pub fn forward_dynamics_sc(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -1781,6 +1805,7 @@ pub fn forward_dynamics_sc(
 /// [`forward_dynamics_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn forward_dynamics_sc_avx2_fma(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -1798,6 +1823,7 @@ unsafe fn forward_dynamics_sc_avx2_fma(
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn forward_dynamics_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -2915,6 +2941,7 @@ fn forward_dynamics_sc_on<I: Isa>(
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`forward_dynamics_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn forward_dynamics(
     q: &[f64; DOF],
     qd: &[f64; DOF],
@@ -2937,6 +2964,7 @@ pub fn forward_dynamics(
 /// [`forward_dynamics`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn forward_dynamics_avx2_fma(
     q: &[f64; DOF],
     qd: &[f64; DOF],
@@ -3299,6 +3327,7 @@ fn ask_cpu_for_avx2_and_fma() -> bool {
 /// values for every finite angle (NaN and ±∞ give NaN); two or four angles
 /// at a time in vector instructions.
 #[inline]
+#[allow(dead_code)]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if RUNTIME_DISPATCH && has_avx2_and_fma() {
@@ -3311,6 +3340,7 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
 /// `sin_cos_array` compiled for AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn sin_cos_array_avx2_fma<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     sin_cos_array_on::<Avx2Fma, N>(x)
 }
@@ -3695,6 +3725,7 @@ fn sin_cos_again<I: Isa>(x: &[f64], s: &mut [f64], c: &mut [f64]) {
 /// The sine and cosine of one angle `x`: within 1 ulp of the exact values
 /// for every finite `x` (NaN and ±∞ give NaN).
 #[inline]
+#[allow(dead_code)]
 pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if RUNTIME_DISPATCH && has_avx2_and_fma() {
@@ -3707,6 +3738,7 @@ pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
 /// `sin_cos_kernel` compiled for AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn sin_cos_kernel_avx2_fma(x: f64) -> (f64, f64) {
     sin_cos_kernel_on::<Avx2Fma>(x)
 }

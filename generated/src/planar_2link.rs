@@ -28,11 +28,14 @@
 //   forward_dynamics (CRBA + LTDL) [not emitted]: 32 ops: 8 add, 4 sub, 16 mul, 2 div, 0 neg, 0 sqrt, 2 sin_cos; 11 fused multiply-adds, 22 FP ops with each fused = 1; body NAME_sc critical path 42 cycles (8 ops)
 
 /// The number of degrees of freedom (joints).
+#[allow(dead_code)]
 pub const DOF: usize = 2;
 /// The joint names, in the order of every index of the functions below.
+#[allow(dead_code)]
 pub const JOINT_NAMES: [&str; DOF] = ["joint1", "joint2"];
 /// The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target, or with run-time dispatch the processor, has AVX2).
 #[inline]
+#[allow(dead_code)]
 pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
     sin_cos_array(q)
 }
@@ -42,6 +45,7 @@ pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
 /// 24 ops: 5 add, 5 sub, 14 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 7 fused multiply-adds, 17 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+#[allow(dead_code)]
 pub fn inverse_dynamics_sc(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -58,6 +62,7 @@ pub fn inverse_dynamics_sc(
 /// [`inverse_dynamics_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn inverse_dynamics_sc_avx2_fma(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -74,6 +79,7 @@ unsafe fn inverse_dynamics_sc_avx2_fma(
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn inverse_dynamics_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -106,6 +112,7 @@ fn inverse_dynamics_sc_on<I: Isa>(
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`inverse_dynamics_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn inverse_dynamics(
     q: &[f64; DOF],
     qd: &[f64; DOF],
@@ -122,6 +129,7 @@ pub fn inverse_dynamics(
 /// [`inverse_dynamics`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn inverse_dynamics_avx2_fma(
     q: &[f64; DOF],
     qd: &[f64; DOF],
@@ -136,6 +144,7 @@ unsafe fn inverse_dynamics_avx2_fma(
 /// 4 ops: 2 add, 0 sub, 2 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 2 fused multiply-adds, 2 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+#[allow(dead_code)]
 pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -147,6 +156,7 @@ pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// [`mass_matrix_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn mass_matrix_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     mass_matrix_sc_on::<Avx2Fma>(s, c)
 }
@@ -158,6 +168,7 @@ unsafe fn mass_matrix_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn mass_matrix_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let _ = s;
     let t0 = I::fma(1.2000000000000002, c[1], 2.4866666666666664);
@@ -171,6 +182,7 @@ fn mass_matrix_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`mass_matrix_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -183,6 +195,7 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// [`mass_matrix`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn mass_matrix_avx2_fma(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 1>(&[q[1]]);
     mass_matrix_sc_on::<Avx2Fma>(&[0.0, s[0]], &[1.0, c[0]])
@@ -193,6 +206,7 @@ unsafe fn mass_matrix_avx2_fma(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// 16 ops: 3 add, 2 sub, 10 mul, 0 div, 1 neg, 0 sqrt, 0 sin_cos; 3 fused multiply-adds, 12 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+#[allow(dead_code)]
 pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -204,6 +218,7 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
 /// [`bias_forces_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn bias_forces_sc_avx2_fma(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -219,6 +234,7 @@ unsafe fn bias_forces_sc_avx2_fma(
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn bias_forces_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -246,6 +262,7 @@ fn bias_forces_sc_on<I: Isa>(
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`bias_forces_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -258,6 +275,7 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 /// [`bias_forces`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn bias_forces_avx2_fma(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, DOF>(q);
     bias_forces_sc_on::<Avx2Fma>(&s, &c, qd)
@@ -268,6 +286,7 @@ unsafe fn bias_forces_avx2_fma(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 /// 10 ops: 0 add, 2 sub, 6 mul, 0 div, 2 neg, 0 sqrt, 0 sin_cos; 1 fused multiply-adds, 7 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+#[allow(dead_code)]
 pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -279,6 +298,7 @@ pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
 /// [`gravity_torques_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn gravity_torques_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
     gravity_torques_sc_on::<Avx2Fma>(s, c)
 }
@@ -290,6 +310,7 @@ unsafe fn gravity_torques_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; D
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn gravity_torques_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
     let t0 = 9.81 * c[0];
     let t1 = 9.81 * s[0];
@@ -309,6 +330,7 @@ fn gravity_torques_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`gravity_torques_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -321,6 +343,7 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
 /// [`gravity_torques`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn gravity_torques_avx2_fma(q: &[f64; DOF]) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, DOF>(q);
     gravity_torques_sc_on::<Avx2Fma>(&s, &c)
@@ -331,6 +354,7 @@ unsafe fn gravity_torques_avx2_fma(q: &[f64; DOF]) -> [f64; DOF] {
 /// 39 ops: 4 add, 9 sub, 25 mul, 1 div, 0 neg, 0 sqrt, 0 sin_cos; 9 fused multiply-adds, 30 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+#[allow(dead_code)]
 pub fn forward_dynamics_sc(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -347,6 +371,7 @@ pub fn forward_dynamics_sc(
 /// [`forward_dynamics_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn forward_dynamics_sc_avx2_fma(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -363,6 +388,7 @@ unsafe fn forward_dynamics_sc_avx2_fma(
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn forward_dynamics_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -408,6 +434,7 @@ fn forward_dynamics_sc_on<I: Isa>(
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`forward_dynamics_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn forward_dynamics(
     q: &[f64; DOF],
     qd: &[f64; DOF],
@@ -424,6 +451,7 @@ pub fn forward_dynamics(
 /// [`forward_dynamics`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn forward_dynamics_avx2_fma(
     q: &[f64; DOF],
     qd: &[f64; DOF],
@@ -778,6 +806,7 @@ fn ask_cpu_for_avx2_and_fma() -> bool {
 /// values for every finite angle (NaN and ±∞ give NaN); two or four angles
 /// at a time in vector instructions.
 #[inline]
+#[allow(dead_code)]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if RUNTIME_DISPATCH && has_avx2_and_fma() {
@@ -790,6 +819,7 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
 /// `sin_cos_array` compiled for AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn sin_cos_array_avx2_fma<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     sin_cos_array_on::<Avx2Fma, N>(x)
 }
@@ -1174,6 +1204,7 @@ fn sin_cos_again<I: Isa>(x: &[f64], s: &mut [f64], c: &mut [f64]) {
 /// The sine and cosine of one angle `x`: within 1 ulp of the exact values
 /// for every finite `x` (NaN and ±∞ give NaN).
 #[inline]
+#[allow(dead_code)]
 pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if RUNTIME_DISPATCH && has_avx2_and_fma() {
@@ -1186,6 +1217,7 @@ pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
 /// `sin_cos_kernel` compiled for AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn sin_cos_kernel_avx2_fma(x: f64) -> (f64, f64) {
     sin_cos_kernel_on::<Avx2Fma>(x)
 }

@@ -28,8 +28,10 @@
 //   forward_dynamics (CRBA + LTDL): 1383 ops: 344 add, 257 sub, 765 mul, 11 div, 0 neg, 0 sqrt, 6 sin_cos; 477 fused multiply-adds, 925 FP ops with each fused = 1; body NAME_sc critical path 126 cycles (29 ops)
 
 /// The number of degrees of freedom (joints).
+#[allow(dead_code)]
 pub const DOF: usize = 7;
 /// The joint names, in the order of every index of the functions below.
+#[allow(dead_code)]
 pub const JOINT_NAMES: [&str; DOF] = [
     "torso_yaw_joint",
     "left_shoulder_joint",
@@ -41,6 +43,7 @@ pub const JOINT_NAMES: [&str; DOF] = [
 ];
 /// The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target, or with run-time dispatch the processor, has AVX2).
 #[inline]
+#[allow(dead_code)]
 pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
     sin_cos_array(q)
 }
@@ -50,6 +53,7 @@ pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
 /// 754 ops: 204 add, 137 sub, 413 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 248 fused multiply-adds, 522 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+#[allow(dead_code)]
 pub fn inverse_dynamics_sc(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -66,6 +70,7 @@ pub fn inverse_dynamics_sc(
 /// [`inverse_dynamics_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn inverse_dynamics_sc_avx2_fma(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -82,6 +87,7 @@ unsafe fn inverse_dynamics_sc_avx2_fma(
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn inverse_dynamics_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -619,6 +625,7 @@ fn inverse_dynamics_sc_on<I: Isa>(
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`inverse_dynamics_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn inverse_dynamics(
     q: &[f64; DOF],
     qd: &[f64; DOF],
@@ -640,6 +647,7 @@ pub fn inverse_dynamics(
 /// [`inverse_dynamics`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn inverse_dynamics_avx2_fma(
     q: &[f64; DOF],
     qd: &[f64; DOF],
@@ -661,6 +669,7 @@ unsafe fn inverse_dynamics_avx2_fma(
 /// 600 ops: 166 add, 87 sub, 347 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 215 fused multiply-adds, 390 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+#[allow(dead_code)]
 pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -672,6 +681,7 @@ pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// [`mass_matrix_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn mass_matrix_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     mass_matrix_sc_on::<Avx2Fma>(s, c)
 }
@@ -683,6 +693,7 @@ unsafe fn mass_matrix_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn mass_matrix_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let t0 = 0.9800665778412416 * c[1];
     let t1 = 0.9800665778412416 * s[1];
@@ -1091,6 +1102,7 @@ fn mass_matrix_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`mass_matrix_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -1106,6 +1118,7 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// [`mass_matrix`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn mass_matrix_avx2_fma(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     mass_matrix_sc_on::<
@@ -1121,6 +1134,7 @@ unsafe fn mass_matrix_avx2_fma(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// 701 ops: 183 add, 128 sub, 390 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 229 fused multiply-adds, 486 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+#[allow(dead_code)]
 pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -1132,6 +1146,7 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
 /// [`bias_forces_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn bias_forces_sc_avx2_fma(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -1147,6 +1162,7 @@ unsafe fn bias_forces_sc_avx2_fma(
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn bias_forces_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -1647,6 +1663,7 @@ fn bias_forces_sc_on<I: Isa>(
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`bias_forces_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -1663,6 +1680,7 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 /// [`bias_forces`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn bias_forces_avx2_fma(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     bias_forces_sc_on::<
@@ -1679,6 +1697,7 @@ unsafe fn bias_forces_avx2_fma(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 /// 225 ops: 50 add, 37 sub, 138 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 74 fused multiply-adds, 152 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+#[allow(dead_code)]
 pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -1690,6 +1709,7 @@ pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
 /// [`gravity_torques_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn gravity_torques_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
     gravity_torques_sc_on::<Avx2Fma>(s, c)
 }
@@ -1701,6 +1721,7 @@ unsafe fn gravity_torques_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; D
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn gravity_torques_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
     let t0 = 0.9800665778412416 * c[1];
     let t1 = 0.9800665778412416 * s[1];
@@ -1863,6 +1884,7 @@ fn gravity_torques_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`gravity_torques_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -1878,6 +1900,7 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
 /// [`gravity_torques`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn gravity_torques_avx2_fma(q: &[f64; DOF]) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     gravity_torques_sc_on::<
@@ -1893,6 +1916,7 @@ unsafe fn gravity_torques_avx2_fma(q: &[f64; DOF]) -> [f64; DOF] {
 /// 1377 ops: 344 add, 257 sub, 765 mul, 11 div, 0 neg, 0 sqrt, 0 sin_cos; 477 fused multiply-adds, 919 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+#[allow(dead_code)]
 pub fn forward_dynamics_sc(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -1909,6 +1933,7 @@ pub fn forward_dynamics_sc(
 /// [`forward_dynamics_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn forward_dynamics_sc_avx2_fma(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -1925,6 +1950,7 @@ unsafe fn forward_dynamics_sc_avx2_fma(
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn forward_dynamics_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -2859,6 +2885,7 @@ fn forward_dynamics_sc_on<I: Isa>(
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`forward_dynamics_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn forward_dynamics(
     q: &[f64; DOF],
     qd: &[f64; DOF],
@@ -2880,6 +2907,7 @@ pub fn forward_dynamics(
 /// [`forward_dynamics`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn forward_dynamics_avx2_fma(
     q: &[f64; DOF],
     qd: &[f64; DOF],
@@ -3241,6 +3269,7 @@ fn ask_cpu_for_avx2_and_fma() -> bool {
 /// values for every finite angle (NaN and ±∞ give NaN); two or four angles
 /// at a time in vector instructions.
 #[inline]
+#[allow(dead_code)]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if RUNTIME_DISPATCH && has_avx2_and_fma() {
@@ -3253,6 +3282,7 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
 /// `sin_cos_array` compiled for AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn sin_cos_array_avx2_fma<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     sin_cos_array_on::<Avx2Fma, N>(x)
 }
@@ -3637,6 +3667,7 @@ fn sin_cos_again<I: Isa>(x: &[f64], s: &mut [f64], c: &mut [f64]) {
 /// The sine and cosine of one angle `x`: within 1 ulp of the exact values
 /// for every finite `x` (NaN and ±∞ give NaN).
 #[inline]
+#[allow(dead_code)]
 pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if RUNTIME_DISPATCH && has_avx2_and_fma() {
@@ -3649,6 +3680,7 @@ pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
 /// `sin_cos_kernel` compiled for AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn sin_cos_kernel_avx2_fma(x: f64) -> (f64, f64) {
     sin_cos_kernel_on::<Avx2Fma>(x)
 }

@@ -28,8 +28,10 @@
 //   forward_dynamics (CRBA + LTDL): 498 ops: 91 add, 115 sub, 277 mul, 10 div, 0 neg, 0 sqrt, 5 sin_cos; 178 fused multiply-adds, 339 FP ops with each fused = 1; body NAME_sc critical path 126 cycles (19 ops)
 
 /// The number of degrees of freedom (joints).
+#[allow(dead_code)]
 pub const DOF: usize = 6;
 /// The joint names, in the order of every index of the functions below.
+#[allow(dead_code)]
 pub const JOINT_NAMES: [&str; DOF] = [
     "shoulder_pan_joint",
     "shoulder_lift_joint",
@@ -40,6 +42,7 @@ pub const JOINT_NAMES: [&str; DOF] = [
 ];
 /// The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target, or with run-time dispatch the processor, has AVX2).
 #[inline]
+#[allow(dead_code)]
 pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
     sin_cos_array(q)
 }
@@ -49,6 +52,7 @@ pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
 /// 277 ops: 65 add, 50 sub, 162 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 96 fused multiply-adds, 182 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+#[allow(dead_code)]
 pub fn inverse_dynamics_sc(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -65,6 +69,7 @@ pub fn inverse_dynamics_sc(
 /// [`inverse_dynamics_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn inverse_dynamics_sc_avx2_fma(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -81,6 +86,7 @@ unsafe fn inverse_dynamics_sc_avx2_fma(
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn inverse_dynamics_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -278,6 +284,7 @@ fn inverse_dynamics_sc_on<I: Isa>(
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`inverse_dynamics_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn inverse_dynamics(
     q: &[f64; DOF],
     qd: &[f64; DOF],
@@ -299,6 +306,7 @@ pub fn inverse_dynamics(
 /// [`inverse_dynamics`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn inverse_dynamics_avx2_fma(
     q: &[f64; DOF],
     qd: &[f64; DOF],
@@ -320,6 +328,7 @@ unsafe fn inverse_dynamics_avx2_fma(
 /// 126 ops: 27 add, 20 sub, 78 mul, 0 div, 1 neg, 0 sqrt, 0 sin_cos; 37 fused multiply-adds, 89 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+#[allow(dead_code)]
 pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -331,6 +340,7 @@ pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// [`mass_matrix_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn mass_matrix_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     mass_matrix_sc_on::<Avx2Fma>(s, c)
 }
@@ -342,6 +352,7 @@ unsafe fn mass_matrix_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn mass_matrix_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let t0 = c[5] * c[5];
     let t1 = s[5] * s[5];
@@ -449,6 +460,7 @@ fn mass_matrix_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`mass_matrix_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -464,6 +476,7 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// [`mass_matrix`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn mass_matrix_avx2_fma(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 5>(&[q[1], q[2], q[3], q[4], q[5]]);
     mass_matrix_sc_on::<
@@ -476,6 +489,7 @@ unsafe fn mass_matrix_avx2_fma(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 /// 248 ops: 56 add, 39 sub, 150 mul, 0 div, 3 neg, 0 sqrt, 0 sin_cos; 84 fused multiply-adds, 161 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+#[allow(dead_code)]
 pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -487,6 +501,7 @@ pub fn bias_forces_sc(s: &[f64; DOF], c: &[f64; DOF], qd: &[f64; DOF]) -> [f64; 
 /// [`bias_forces_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn bias_forces_sc_avx2_fma(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -502,6 +517,7 @@ unsafe fn bias_forces_sc_avx2_fma(
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn bias_forces_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -680,6 +696,7 @@ fn bias_forces_sc_on<I: Isa>(
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`bias_forces_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -696,6 +713,7 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 /// [`bias_forces`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn bias_forces_avx2_fma(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 5>(&[q[1], q[2], q[3], q[4], q[5]]);
     bias_forces_sc_on::<
@@ -708,6 +726,7 @@ unsafe fn bias_forces_avx2_fma(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 /// 16 ops: 2 add, 3 sub, 11 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 5 fused multiply-adds, 11 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+#[allow(dead_code)]
 pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -719,6 +738,7 @@ pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
 /// [`gravity_torques_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn gravity_torques_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
     gravity_torques_sc_on::<Avx2Fma>(s, c)
 }
@@ -730,6 +750,7 @@ unsafe fn gravity_torques_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; D
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn gravity_torques_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
     let t0 = 9.81 * c[1];
     let t1 = 9.81 * s[1];
@@ -751,6 +772,7 @@ fn gravity_torques_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`gravity_torques_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
@@ -766,6 +788,7 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
 /// [`gravity_torques`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn gravity_torques_avx2_fma(q: &[f64; DOF]) -> [f64; DOF] {
     let (s, c) = sin_cos_array_on::<Avx2Fma, 3>(&[q[1], q[2], q[3]]);
     gravity_torques_sc_on::<
@@ -778,6 +801,7 @@ unsafe fn gravity_torques_avx2_fma(q: &[f64; DOF]) -> [f64; DOF] {
 /// 493 ops: 91 add, 115 sub, 277 mul, 10 div, 0 neg, 0 sqrt, 0 sin_cos; 178 fused multiply-adds, 334 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
+#[allow(dead_code)]
 pub fn forward_dynamics_sc(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -794,6 +818,7 @@ pub fn forward_dynamics_sc(
 /// [`forward_dynamics_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn forward_dynamics_sc_avx2_fma(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -810,6 +835,7 @@ unsafe fn forward_dynamics_sc_avx2_fma(
     clippy::unreadable_literal,
     clippy::too_many_lines
 )]
+#[allow(dead_code)]
 fn forward_dynamics_sc_on<I: Isa>(
     s: &[f64; DOF],
     c: &[f64; DOF],
@@ -1159,6 +1185,7 @@ fn forward_dynamics_sc_on<I: Isa>(
 ///
 /// The sines and cosines of the joint angles by `sin_cos_array` (only the angles the body reads), then [`forward_dynamics_sc`].
 #[inline]
+#[allow(dead_code)]
 pub fn forward_dynamics(
     q: &[f64; DOF],
     qd: &[f64; DOF],
@@ -1180,6 +1207,7 @@ pub fn forward_dynamics(
 /// [`forward_dynamics`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn forward_dynamics_avx2_fma(
     q: &[f64; DOF],
     qd: &[f64; DOF],
@@ -1541,6 +1569,7 @@ fn ask_cpu_for_avx2_and_fma() -> bool {
 /// values for every finite angle (NaN and ±∞ give NaN); two or four angles
 /// at a time in vector instructions.
 #[inline]
+#[allow(dead_code)]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if RUNTIME_DISPATCH && has_avx2_and_fma() {
@@ -1553,6 +1582,7 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
 /// `sin_cos_array` compiled for AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn sin_cos_array_avx2_fma<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     sin_cos_array_on::<Avx2Fma, N>(x)
 }
@@ -1937,6 +1967,7 @@ fn sin_cos_again<I: Isa>(x: &[f64], s: &mut [f64], c: &mut [f64]) {
 /// The sine and cosine of one angle `x`: within 1 ulp of the exact values
 /// for every finite `x` (NaN and ±∞ give NaN).
 #[inline]
+#[allow(dead_code)]
 pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if RUNTIME_DISPATCH && has_avx2_and_fma() {
@@ -1949,6 +1980,7 @@ pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
 /// `sin_cos_kernel` compiled for AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn sin_cos_kernel_avx2_fma(x: f64) -> (f64, f64) {
     sin_cos_kernel_on::<Avx2Fma>(x)
 }

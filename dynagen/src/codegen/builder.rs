@@ -13,9 +13,12 @@
 //! ```
 //!
 //! The written file holds items only (no inner attributes such as
-//! `#![...]`), so it can be `include!`d inside a `mod` block. With the
-//! default options it uses neither std nor any crate, so it also compiles
-//! in a `#![no_std]` crate.
+//! `#![...]`), so it can be `include!`d inside a `mod` block, and every item
+//! is `#[allow(dead_code)]`, so a crate that calls one of its functions
+//! compiles without a warning about the others. With the default options it
+//! uses neither std nor any crate, so it also compiles in a `#![no_std]`
+//! crate. [`Builder`] says how the file is named and how a renamed output
+//! never leaves a stale file behind.
 
 use super::{
     generate_scene, CodegenError, CodegenOptions, ForwardDynamicsMethod, Function, GeneratedModule, ScalarType, Trig,
@@ -95,6 +98,22 @@ impl Setting {
 /// that writes `<name>.rs` into `OUT_DIR` and tells cargo to rerun the build
 /// script when an input file changes.
 ///
+/// # The output's name, and no stale file
+///
+/// The file is named, in this order, by [`Builder::file_name`] or
+/// [`Builder::module_name`], by the module's name ([`Builder::name`] or a
+/// scene file's `name`), by the URDF file's name (`robots/ur5.urdf` →
+/// `ur5.rs`), or for a [model](Builder::model) by its name: never by the
+/// `<robot name>` inside a file, which a new version of the file may change.
+///
+/// In cargo's `OUT_DIR`, the Builder records what it writes
+/// (`OUT_DIR/dynagen-outputs.txt`) and moves what an earlier run of the
+/// build script wrote out of the way (into `OUT_DIR/dynagen-previous/`; a
+/// file written again with the same content comes back unchanged): after a
+/// rename, an `include!` of the old name is a compile error ("couldn't read
+/// …/ur5.rs"), never the old dynamics. In a folder given by
+/// [`Builder::out_dir`] other than `OUT_DIR`, only the file written changes.
+///
 /// ```
 /// # let dir = std::env::temp_dir().join("dynagen-builder-doc");
 /// let urdf = concat!(env!("CARGO_MANIFEST_DIR"), "/robots/ur5.urdf");
@@ -135,7 +154,7 @@ pub struct GeneratedFile {
 /// Why [`Builder`] could not generate. The message names the file and the
 /// item (link, joint, option) it is about, so `build.rs` can simply
 /// `.unwrap()` or `.expect(..)`.
-#[derive(Debug, thiserror::Error)]
+#[derive(thiserror::Error)]
 #[non_exhaustive]
 pub enum BuildError {
     /// Neither [`Builder::urdf`] nor [`Builder::model`] was called.
@@ -178,8 +197,9 @@ pub enum BuildError {
         /// The name given.
         name: String,
     },
-    /// A file name that is not a plain `name.rs`.
-    #[error("dynagen: bad output file name \"{0}\" (give a plain file name such as \"ur5.rs\"; use `.out_dir` for the folder)")]
+    /// A file name that is not a plain `name.rs` (a folder, a control
+    /// character).
+    #[error("dynagen: bad output file name {0:?} (give a plain file name such as \"ur5.rs\"; use `.out_dir` for the folder)")]
     BadFileName(String),
     /// `OUT_DIR` is not set and [`Builder::out_dir`] was not called.
     #[error("dynagen: OUT_DIR is not set (run from a build script, or call `.out_dir(..)`)")]
@@ -202,6 +222,67 @@ pub enum BuildError {
         #[source]
         source: std::io::Error,
     },
+}
+
+debug_as_display!(BuildError);
+
+/// The file, in the output folder, in which the Builders of a build script
+/// record what they wrote (in cargo's `OUT_DIR` only).
+pub(crate) const OUTPUTS_FILE: &str = "dynagen-outputs.txt";
+
+/// This process's run: what tells the files one run of a build script wrote
+/// from those of its earlier runs (each run is a new process).
+fn this_run() -> &'static str {
+    static RUN: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    RUN.get_or_init(|| {
+        let nanos = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos());
+        format!("{}-{nanos}", std::process::id())
+    })
+}
+
+/// Where the files of earlier runs go (out of the way of `include!`): a
+/// file this run writes with the same content comes back from there with
+/// its modification time, so cargo sees it unchanged.
+const PREVIOUS_DIR: &str = "dynagen-previous";
+
+/// The plain `.rs` file names an earlier run recorded in `dir`, moved to
+/// [`PREVIOUS_DIR`]; this run's records kept.
+fn retire_earlier_runs(dir: &Path) -> Result<(), BuildError> {
+    let manifest = dir.join(OUTPUTS_FILE);
+    let Ok(old) = std::fs::read_to_string(&manifest) else { return Ok(()) };
+    let run = this_run();
+    let mut kept = String::new();
+    for (r, f) in old.lines().filter_map(|l| l.split_once('\t')) {
+        if r == run {
+            kept.push_str(&format!("{r}\t{f}\n"));
+            continue;
+        }
+        // Only plain `.rs` names, as `record_output` writes them.
+        let path = dir.join(f);
+        if f.contains(['/', '\\']) || !f.ends_with(".rs") || !path.is_file() {
+            continue;
+        }
+        let previous = dir.join(PREVIOUS_DIR);
+        std::fs::create_dir_all(&previous)
+            .and_then(|()| std::fs::rename(&path, previous.join(f)))
+            .map_err(|source| BuildError::Write { path, source })?;
+    }
+    if kept != old {
+        std::fs::write(&manifest, kept).map_err(|source| BuildError::Write { path: manifest, source })?;
+    }
+    Ok(())
+}
+
+/// Records `file` as written in `dir` by this run.
+fn record_output(dir: &Path, file: &str) -> Result<(), BuildError> {
+    let manifest = dir.join(OUTPUTS_FILE);
+    let mut text = std::fs::read_to_string(&manifest).unwrap_or_default();
+    let line = format!("{}\t{file}\n", this_run());
+    if !text.contains(&line) {
+        text.push_str(&line);
+        std::fs::write(&manifest, text).map_err(|source| BuildError::Write { path: manifest, source })?;
+    }
+    Ok(())
 }
 
 /// A module name from a robot name: lower case, `_` for anything that is
@@ -320,8 +401,8 @@ impl Builder {
     pub fn source(self, source: &str) -> Self {
         self.set(Setting::Source(source.to_string()))
     }
-    /// The output file's name, `<name>.rs` (default: from the robot's name,
-    /// see [`module_name`]).
+    /// The output file's name, `<name>.rs` (default: the module's name, else
+    /// the URDF file's, see [`Builder`]).
     pub fn module_name(mut self, name: &str) -> Self {
         self.file_name = Some(format!("{name}.rs"));
         self
@@ -400,7 +481,8 @@ impl Builder {
     /// Generates the module and writes it into the output folder as
     /// `<name>.rs`; in a build script, prints `cargo:rerun-if-changed=` for
     /// the URDF and the scene file. The file is rewritten only when its
-    /// content changes.
+    /// content changes. In cargo's `OUT_DIR`, moves away the files earlier
+    /// runs of the build script wrote (see [`Builder`]).
     pub fn generate(&self) -> Result<GeneratedFile, BuildError> {
         let (scene, options, inputs) = self.prepare()?;
         let out_env = std::env::var_os("OUT_DIR");
@@ -409,27 +491,46 @@ impl Builder {
                 println!("cargo:rerun-if-changed={}", p.display());
             }
         }
+        let cargo_out_dir = match (&self.out_dir, &out_env) {
+            (Some(d), Some(o)) => d == Path::new(o),
+            (None, Some(_)) => true,
+            (_, None) => false,
+        };
         let dir = match (&self.out_dir, out_env) {
             (Some(d), _) => d.clone(),
             (None, Some(d)) => PathBuf::from(d),
             (None, None) => return Err(BuildError::NoOutDir),
         };
-        let file = match (&self.file_name, &options.name) {
-            (Some(f), _) => f.clone(),
-            (None, Some(n)) => format!("{}.rs", module_name(n)),
-            (None, None) => format!("{}.rs", module_name(&scene.model.name)),
+        let file = match (&self.file_name, &options.name, &self.robot) {
+            (Some(f), _, _) => f.clone(),
+            (None, Some(n), _) => format!("{}.rs", module_name(n)),
+            (None, None, Some(RobotInput::Urdf(p))) => {
+                let stem = p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+                format!("{}.rs", module_name(&stem))
+            }
+            (None, None, _) => format!("{}.rs", module_name(&scene.model.name)),
         };
-        if file.contains(['/', '\\']) || !file.ends_with(".rs") || file == ".rs" {
+        if file.contains(['/', '\\']) || !file.ends_with(".rs") || file == ".rs" || file.contains(char::is_control) {
             return Err(BuildError::BadFileName(file));
         }
         let module = generate_scene(&scene, &options)
             .map_err(|source| BuildError::Codegen { robot: self.robot_label(), source })?;
         let path = dir.join(&file);
+        if cargo_out_dir {
+            retire_earlier_runs(&dir)?;
+            let previous = dir.join(PREVIOUS_DIR).join(&file);
+            if std::fs::read(&previous).is_ok_and(|old| old == module.source.as_bytes()) {
+                std::fs::rename(&previous, &path).map_err(|source| BuildError::Write { path: path.clone(), source })?;
+            }
+        }
         let unchanged = std::fs::read(&path).is_ok_and(|old| old == module.source.as_bytes());
         if !unchanged {
             std::fs::create_dir_all(&dir)
                 .and_then(|()| std::fs::write(&path, &module.source))
                 .map_err(|source| BuildError::Write { path: path.clone(), source })?;
+        }
+        if cargo_out_dir {
+            record_output(&dir, &file)?;
         }
         Ok(GeneratedFile { path, module, inputs })
     }

@@ -1,7 +1,7 @@
 //! The functions a module can have: one enum, and the one table of each
 //! function's arguments, output shape and documentation.
 
-use super::emit::{payload_argument, Dim, Param, Shape};
+use super::emit::{doc_code, identifier_name, payload_argument, Dim, Param, Shape};
 use crate::scene::{ResolvedGravity, SceneModel};
 use crate::symbolic::OpCount;
 use std::fmt::Write;
@@ -76,12 +76,12 @@ impl Function {
         }
     }
     /// The function's name in generated code (`frame_pose_ee_link` for a
-    /// frame function).
+    /// frame function: the frame's name in snake case, ASCII letters and
+    /// digits, every other run of characters one `_`).
     pub fn rust_name(&self) -> String {
-        let frame = |f: &str| super::module_name(f).trim_start_matches('_').to_string();
         match self {
-            Function::FramePose(f) => format!("frame_pose_{}", frame(f)),
-            Function::FrameJacobian(f) => format!("frame_jacobian_{}", frame(f)),
+            Function::FramePose(f) => identifier_name("frame_pose", f),
+            Function::FrameJacobian(f) => identifier_name("frame_jacobian", f),
             f => f.name().to_string(),
         }
     }
@@ -164,10 +164,11 @@ impl Function {
                 "Forward dynamics q̈ = (M(q) + diag(armature))⁻¹(τ − h(q, q̇) − J(q)ᵀF_tip).".to_string()
             }
             Function::FramePose(frame) => {
-                format!("The pose of frame `{frame}` in the base frame, as a homogeneous matrix `[row][col]`.")
+                format!("The pose of frame {} in the base frame, as a homogeneous matrix `[row][col]`.", doc_code(frame))
             }
             Function::FrameJacobian(frame) => format!(
-                "The body Jacobian of frame `{frame}` (6 × DOF, rows (ω; v), in the frame): its twist is `J q̇`, and `Jᵀ F` is the joint torque of a wrench `F` given in the frame."
+                "The body Jacobian of frame {} (6 × DOF, rows (ω; v), in the frame): its twist is `J q̇`, and `Jᵀ F` is the joint torque of a wrench `F` given in the frame.",
+                doc_code(frame)
             ),
         };
         if plain {
@@ -183,7 +184,8 @@ impl Function {
                 "f_tip" => {
                     let frame = scene.tip_wrench_frame.map(|i| scene.model.frames[i].name.as_str()).unwrap_or("");
                     format!(
-                        "`f_tip`: the wrench (m; f) frame `{frame}` applies to its environment, in that frame (N·m; N)."
+                        "`f_tip`: the wrench (m; f) frame {} applies to its environment, in that frame (N·m; N).",
+                        doc_code(frame)
                     )
                 }
                 name if name.starts_with("payload_") => format!(

@@ -64,7 +64,7 @@ use crate::symbolic::{OpCount, Traced};
 pub const GENERATOR_VERSION: &str = env!("CARGO_PKG_VERSION");
 
 /// Why a module could not be generated.
-#[derive(Debug, thiserror::Error)]
+#[derive(thiserror::Error)]
 #[non_exhaustive]
 pub enum CodegenError {
     /// A constant folded to NaN or an infinity, which has no literal.
@@ -78,10 +78,20 @@ pub enum CodegenError {
     /// A symbolic trace was already running on this thread.
     #[error(transparent)]
     TraceActive(#[from] crate::symbolic::TraceActive),
-    /// Two functions get the same Rust name (two frames whose names differ
-    /// only in characters a Rust name cannot hold).
-    #[error("two functions would be named `{0}` (frame names that differ only in characters Rust names cannot hold)")]
+    /// Two functions (or two payload arguments) get the same Rust name (two
+    /// frames or links whose names differ only in characters a Rust name
+    /// cannot hold).
+    #[error("two functions or arguments would be named `{0}` (frame or link names that differ only in characters Rust names cannot hold)")]
     DuplicateName(String),
+    /// A name that becomes part of an identifier (a frame function's, a
+    /// payload argument's) did not give a Rust identifier.
+    #[error("{item} gives the Rust name `{name}`, which is not an identifier (or is a keyword): rename it")]
+    BadIdentifier {
+        /// The identifier made.
+        name: String,
+        /// What it was made from, as `frame "name"` or `link "name"`.
+        item: String,
+    },
     /// No function was asked for.
     #[error("no function to generate: ask for at least one")]
     NoFunctions,
@@ -93,6 +103,8 @@ pub enum CodegenError {
     #[error("internal error: generated code does not parse: {0}")]
     Internal(String),
 }
+
+debug_as_display!(CodegenError);
 
 /// The operation count of `f`, with its fused multiply-adds if `fma`.
 pub(crate) fn counted(f: &Traced, fma: bool) -> OpCount {
@@ -135,8 +147,19 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
         if let Function::FramePose(frame) | Function::FrameJacobian(frame) = f {
             scene.frame(f.name(), frame).map_err(|e| CodegenError::Scene(Box::new(e)))?;
         }
+        if let Function::FramePose(frame) | Function::FrameJacobian(frame) = f {
+            emit::identifier(&f.rust_name(), &format!("frame \"{frame}\""))?;
+        }
         if !names.insert(f.rust_name()) {
             return Err(CodegenError::DuplicateName(f.rust_name()));
+        }
+    }
+    let mut arguments = std::collections::HashSet::new();
+    for p in &scene.input_payloads {
+        let argument = payload_argument(&p.link);
+        emit::identifier(&argument, &format!("link \"{}\" (its payload input)", p.link))?;
+        if !arguments.insert(argument.clone()) {
+            return Err(CodegenError::DuplicateName(argument));
         }
     }
     let (prepared, snapped) = prepare::prepare(scene, options);

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 /// Why a robot description was refused.
-#[derive(Debug, thiserror::Error)]
+#[derive(thiserror::Error)]
 #[non_exhaustive]
 pub enum ModelError {
     /// The file could not be read.
@@ -110,9 +110,16 @@ pub enum ModelError {
     /// A joint moves nothing with mass or inertia along its motion (at
     /// q = 0), so M(q) would be singular.
     #[error(
-        "joint \"{0}\" moves no mass or inertia along its motion (at q = 0), so the mass matrix would be singular"
+        "joint \"{joint}\" moves no mass or inertia along its motion (at q = 0), so the mass matrix would be singular: {fix}"
     )]
-    MasslessSubtree(String),
+    MasslessSubtree {
+        /// The joint.
+        joint: String,
+        /// Its child link.
+        link: String,
+        /// What to change, naming the link.
+        fix: String,
+    },
     /// A joint's lower position limit is above its upper one.
     #[error("joint \"{joint}\": the lower limit {lower} is above the upper limit {upper}")]
     LimitsReversed {
@@ -138,6 +145,8 @@ pub enum ModelError {
     #[error("no link, joint or frame named \"{0}\"")]
     UnknownName(String),
 }
+
+debug_as_display!(ModelError);
 
 /// Something accepted, but worth a look: the model is built all the same.
 #[derive(Clone, Debug, PartialEq)]

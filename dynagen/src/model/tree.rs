@@ -197,6 +197,25 @@ fn joint_from(desc: &JointDescription, placement: Transform<f64>) -> Joint {
 /// about any axis at all). Otherwise (point masses and rods moved by later
 /// joints) the entry could vanish in another configuration: a warning names
 /// the joint.
+/// The error of a joint that moves no inertia, saying what to add to which
+/// link: a mass where there is none, else inertia about the axis.
+fn massless(b: &Body, mass: f64) -> ModelError {
+    let link = &b.name;
+    let fix = if mass > 0.0 {
+        format!(
+            "the {mass} kg it moves lie on its axis, without inertia about it: give link \"{link}\" a moment of \
+             inertia about the joint's axis (URDF: the <inertia> of its <inertial>)"
+        )
+    } else {
+        format!(
+            "its child link \"{link}\" has no mass, nor has anything fixed to it or below it: give link \"{link}\" \
+             a mass and an inertia (URDF: an <inertial> element), or fix a link with mass to it; if the joint moves \
+             nothing, make it fixed"
+        )
+    };
+    ModelError::MasslessSubtree { joint: b.joint.name.clone(), link: link.clone(), fix }
+}
+
 fn check_every_joint_moves_mass(model: &Model) -> Result<Vec<ModelWarning>, ModelError> {
     let along = |ic: &Inertia<f64>, s: &[f64; 6]| {
         let a = Vec3([s[0], s[1], s[2]]);
@@ -228,7 +247,7 @@ fn check_every_joint_moves_mass(model: &Model) -> Result<Vec<ModelWarning>, Mode
             });
         }
         if diag.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
-            return Err(ModelError::MasslessSubtree(b.joint.name.clone()));
+            return Err(massless(b, ic.mass));
         }
         let revolute = b.joint.kind != JointKind::Prismatic;
         let provably_positive = !revolute || along(&b.inertia, &s) > 0.0 || solid[i];

@@ -5,7 +5,7 @@ use crate::model::ModelError;
 use std::path::PathBuf;
 
 /// Why a scene was refused.
-#[derive(Debug, thiserror::Error)]
+#[derive(thiserror::Error)]
 #[non_exhaustive]
 pub enum SceneError {
     /// The scene file could not be read.
@@ -149,6 +149,8 @@ pub enum SceneError {
     #[error("the reduced robot: {0}")]
     Model(#[from] ModelError),
 }
+
+debug_as_display!(SceneError);
 
 /// Something a scene does that is worth a look: the scene is applied all
 /// the same.

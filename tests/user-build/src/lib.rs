@@ -7,6 +7,19 @@ pub mod ur5 {
     include!(concat!(env!("OUT_DIR"), "/ur5.rs"));
 }
 
+/// The planar arm's five functions, in a private module of which the crate
+/// calls only `gravity_torques`: the workspace's clippy (`-D warnings`)
+/// sees no dead code in it.
+mod planar {
+    include!(concat!(env!("OUT_DIR"), "/planar_2link.rs"));
+}
+
+/// The planar arm's gravity torques g(q), the only function of its module
+/// this crate uses.
+pub fn planar_gravity(q: &[f64; 2]) -> [f64; 2] {
+    planar::gravity_torques(q)
+}
+
 use ur5::DOF;
 
 /// The computed-torque law τ = M(q)(q̈_des + Kp e + Kd ė) + h(q, q̇), with
@@ -62,6 +75,21 @@ pub fn rk4_step(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The planar arm's g(q) against its closed form (written in
+    /// `dynagen/robots/planar_2link.urdf`): g1 = -24.525 c1 - 5.886 c12,
+    /// g2 = -5.886 c12.
+    #[test]
+    fn the_planar_gravity_is_the_closed_form() {
+        for q in [[0.0, 0.0], [0.3, -1.2], [2.0, 0.7f64]] {
+            let (c1, c12) = (q[0].cos(), (q[0] + q[1]).cos());
+            let want = [-24.525 * c1 - 5.886 * c12, -5.886 * c12];
+            let got = planar_gravity(&q);
+            for i in 0..2 {
+                assert!((got[i] - want[i]).abs() <= 1e-13 * 30.0, "{q:?}: {got:?} against {want:?}");
+            }
+        }
+    }
 
     /// A smooth trajectory through the workspace.
     fn desired(t: f64) -> Desired {

@@ -50,6 +50,9 @@ pub mod panda_no_dispatch {
     dynagen_macros::urdf!("../../dynagen/robots/panda.urdf", functions = [mass_matrix], dispatch = false);
 }
 
+/// A robot whose names try to inject code: they stay names.
+pub mod hostile;
+
 use panda::DOF;
 
 /// τ = M(q)(q̈_des + Kp e + Kd ė) + h(q, q̇), e = q_des − q.

@@ -9,20 +9,51 @@ mod literal;
 mod split;
 mod statements;
 mod syntax;
+mod text;
 mod wrapper;
 
 pub use literal::float_literal_text;
 pub(crate) use statements::{tidy_dispatch, BodyStyle, Dim, Param, Shape, Signature};
+pub(crate) use text::{doc_code, identifier};
 
 use super::trace::fd_choice::FdChoice;
-use super::{module_name, sin_cos, CodegenError, CodegenOptions, GeneratedFunction, SnappedConstant, Trig};
+use super::{sin_cos, CodegenError, CodegenOptions, GeneratedFunction, SnappedConstant, Trig};
 use crate::model::JointKind;
 use crate::scene::SceneModel;
 use quote::quote;
 
-/// The name of a run-time payload's argument.
+/// The name of a run-time payload's argument: `payload_` and the link's
+/// name in snake case (ASCII letters and digits, other characters `_`).
 pub fn payload_argument(link: &str) -> String {
-    format!("payload_{}", module_name(link).trim_start_matches('_'))
+    identifier_name("payload", link)
+}
+
+/// `{prefix}_{name}`, the name made an identifier's part ([`text::identifier_part`]).
+pub(crate) fn identifier_name(prefix: &str, name: &str) -> String {
+    match text::identifier_part(name) {
+        part if part.is_empty() => prefix.to_string(),
+        part => format!("{prefix}_{part}"),
+    }
+}
+
+/// Marks every item `#[allow(dead_code)]`: a crate that includes the module
+/// and calls one of its functions must compile without a warning about the
+/// others (an `include!`d file cannot carry the inner attribute that would
+/// say it once). Items reached from an allowed item count as used, so the
+/// private helpers need nothing.
+fn allow_unused(items: &mut [syn::Item]) {
+    let allow: syn::Attribute = syn::parse_quote!(#[allow(dead_code)]);
+    for item in items {
+        let attrs = match item {
+            syn::Item::Fn(f) => &mut f.attrs,
+            syn::Item::Const(c) => &mut c.attrs,
+            syn::Item::Static(s) => &mut s.attrs,
+            syn::Item::Trait(t) => &mut t.attrs,
+            syn::Item::Struct(s) => &mut s.attrs,
+            _ => continue,
+        };
+        attrs.push(allow.clone());
+    }
 }
 
 /// What the emitted module is made of.
@@ -89,6 +120,7 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
             items.extend(wrapper::parse_items(wrapper::wrapper(name, &ps, ret, body, options, &doc))?);
         }
     }
+    allow_unused(&mut items);
     let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };
     let body = tidy_dispatch(&prettyplease::unparse(&file));
     let facts =
@@ -96,5 +128,7 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
     let header =
         header::header(&facts) + &split::header_note(options.split_lets, &split_functions) + parts.dispatch_note;
     let kernel = sin_cos::kernel_source(options.scalar, options.runtime_dispatch);
-    Ok(format!("{header}\n{body}\n{kernel}"))
+    let source = format!("{header}\n{body}\n{kernel}");
+    text::check_source(&header, &source)?;
+    Ok(source)
 }

@@ -337,6 +337,7 @@ fn ask_cpu_for_avx2_and_fma() -> bool {
 /// values for every finite angle (NaN and ±∞ give NaN); two or four angles
 /// at a time in vector instructions.
 #[inline]
+#[allow(dead_code)]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if RUNTIME_DISPATCH && has_avx2_and_fma() {
@@ -349,6 +350,7 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
 /// `sin_cos_array` compiled for AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn sin_cos_array_avx2_fma<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     sin_cos_array_on::<Avx2Fma, N>(x)
 }
@@ -733,6 +735,7 @@ fn sin_cos_again<I: Isa>(x: &[f64], s: &mut [f64], c: &mut [f64]) {
 /// The sine and cosine of one angle `x`: within 1 ulp of the exact values
 /// for every finite `x` (NaN and ±∞ give NaN).
 #[inline]
+#[allow(dead_code)]
 pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if RUNTIME_DISPATCH && has_avx2_and_fma() {
@@ -745,6 +748,7 @@ pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
 /// `sin_cos_kernel` compiled for AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn sin_cos_kernel_avx2_fma(x: f64) -> (f64, f64) {
     sin_cos_kernel_on::<Avx2Fma>(x)
 }

@@ -13,6 +13,7 @@
 /// `f32` for every finite angle (NaN and ±∞ give NaN); two or four angles
 /// at a time in vector instructions, like `sin_cos_array`.
 #[inline]
+#[allow(dead_code)]
 pub fn sin_cos_array_f32<const N: usize>(x: &[f32; N]) -> ([f32; N], [f32; N]) {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if RUNTIME_DISPATCH && has_avx2_and_fma() {
@@ -25,6 +26,7 @@ pub fn sin_cos_array_f32<const N: usize>(x: &[f32; N]) -> ([f32; N], [f32; N]) {
 /// `sin_cos_array_f32` compiled for AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn sin_cos_array_f32_avx2_fma<const N: usize>(x: &[f32; N]) -> ([f32; N], [f32; N]) {
     sin_cos_array_f32_on::<Avx2Fma, N>(x)
 }
@@ -62,6 +64,7 @@ fn each_of<T: Copy, U: Copy + Default, const N: usize>(x: &[T; N], f: impl Fn(T)
 /// The sine and cosine of one `f32` angle: within 1 ulp of `f32` for every
 /// finite angle (NaN and ±∞ give NaN).
 #[inline]
+#[allow(dead_code)]
 pub fn sin_cos_kernel_f32(x: f32) -> (f32, f32) {
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if RUNTIME_DISPATCH && has_avx2_and_fma() {
@@ -74,6 +77,7 @@ pub fn sin_cos_kernel_f32(x: f32) -> (f32, f32) {
 /// `sin_cos_kernel_f32` compiled for AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
 #[target_feature(enable = "avx2,fma")]
+#[allow(dead_code)]
 unsafe fn sin_cos_kernel_f32_avx2_fma(x: f32) -> (f32, f32) {
     sin_cos_kernel_f32_on::<Avx2Fma>(x)
 }
