@@ -13,6 +13,7 @@ pub mod bias;
 pub mod compensated;
 pub mod crba;
 pub mod energy;
+pub mod floating;
 pub mod forward_dynamics;
 pub mod integrators;
 pub mod joint;
