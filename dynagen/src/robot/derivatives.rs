@@ -13,10 +13,10 @@ use nalgebra::{DMatrix, DVector};
 /// A [`Robot`]'s scratch for its derivatives, allocated with it.
 #[derive(Clone, Debug)]
 pub(crate) struct DerivativeScratch {
-    dw: DerivativeWorkspace<f64>,
-    loads: DualLoads<f64>,
+    pub(super) dw: DerivativeWorkspace<f64>,
+    pub(super) loads: DualLoads<f64>,
     /// Three row-major n×n results.
-    rows: [Vec<f64>; 3],
+    pub(super) rows: [Vec<f64>; 3],
 }
 
 impl DerivativeScratch {
@@ -31,7 +31,7 @@ impl DerivativeScratch {
 }
 
 /// Copies the row-major `rows` into `m`.
-fn copy_rows(rows: &[f64], m: &mut DMatrix<f64>) {
+pub(super) fn copy_rows(rows: &[f64], m: &mut DMatrix<f64>) {
     let n = m.nrows();
     for i in 0..n {
         for j in 0..n {
