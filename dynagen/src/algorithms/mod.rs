@@ -12,6 +12,7 @@ pub mod aba;
 pub mod bias;
 pub mod compensated;
 pub mod crba;
+pub mod derivatives;
 pub mod energy;
 pub mod floating;
 pub mod forward_dynamics;

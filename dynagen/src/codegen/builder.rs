@@ -270,7 +270,9 @@ impl Builder {
     }
     /// Only these functions, by name (`inverse_dynamics`, `mass_matrix`,
     /// `bias_forces`, `gravity_torques`, `coriolis`, `forward_dynamics`,
-    /// `frame_pose:FRAME`, `frame_jacobian:FRAME`); default the five of the
+    /// `inverse_dynamics_derivatives`, `forward_dynamics_derivatives`,
+    /// `mass_matrix_inverse`, `frame_pose:FRAME`, `frame_jacobian:FRAME`);
+    /// default the five of the
     /// contract. A scene file's frame functions stay.
     pub fn functions<S: AsRef<str>>(self, names: &[S]) -> Self {
         self.set(Setting::Functions(names.iter().map(|s| s.as_ref().to_string()).collect()))

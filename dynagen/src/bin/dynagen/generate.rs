@@ -19,7 +19,8 @@ pub struct Args {
     pub output: Option<PathBuf>,
     /// Only these functions (comma-separated): inverse_dynamics, mass_matrix,
     /// bias_forces, gravity_torques, coriolis, forward_dynamics,
-    /// frame_pose:FRAME, frame_jacobian:FRAME.
+    /// inverse_dynamics_derivatives, forward_dynamics_derivatives,
+    /// mass_matrix_inverse, frame_pose:FRAME, frame_jacobian:FRAME.
     #[arg(long, value_name = "a,b,...", value_delimiter = ',')]
     pub functions: Option<Vec<String>>,
     /// Generate f32 code (constants rounded to f32).

@@ -54,6 +54,13 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
         pub const JOINT_NAMES: [&str; DOF] = [#(#joint_names),*];
     };
     let mut items = wrapper::parse_items(consts)?;
+    if functions.iter().any(|f| f.emitted && matches!(f.function.shape(), Shape::Matrices(..))) {
+        let ty = statements::scalar_type(options.scalar);
+        items.extend(wrapper::parse_items(quote! {
+            #[doc = " A DOF × DOF matrix `[row][col]`, as the derivatives return them (`[output][input]`)."]
+            pub type DofMatrix = [[#ty; DOF]; DOF];
+        })?);
+    }
     items.push(wrapper::parse_item(sin_cos::sin_cos_all_item(options.scalar))?);
     let has_prismatic = model.bodies.iter().any(|b| b.joint.kind == JointKind::Prismatic);
     let mut split_functions = Vec::new();

@@ -57,6 +57,9 @@ pub(crate) enum Shape {
     Vector(Dim),
     /// A matrix, rows then columns.
     Matrix(Dim, Dim),
+    /// A tuple of this many matrices of the same shape (the traced outputs
+    /// one matrix after the other).
+    Matrices(usize, Dim, Dim),
 }
 
 impl Shape {
@@ -71,6 +74,17 @@ impl Shape {
             Shape::Matrix(r, c) => {
                 let (r, c) = (r.tokens(), c.tokens());
                 quote!([[#ty; #c]; #r])
+            }
+            // The module's alias `DofMatrix` = `[[T; DOF]; DOF]` (a tuple of
+            // the full types is too complex a type for clippy's taste).
+            Shape::Matrices(k, Dim::Dof, Dim::Dof) => {
+                let each = (0..k).map(|_| quote!(DofMatrix));
+                quote!((#(#each),*))
+            }
+            Shape::Matrices(k, r, c) => {
+                let (r, c) = (r.tokens(), c.tokens());
+                let each = (0..k).map(|_| quote!([[#ty; #c]; #r]));
+                quote!((#(#each),*))
             }
         }
     }
@@ -259,10 +273,14 @@ pub(crate) fn emit_function(
 
 /// How the outputs are arranged into the returned array.
 fn result_of(output: Shape, n: usize) -> impl Fn(Vec<Expr>) -> Expr {
+    let matrix =
+        |out: &[Expr], r: usize, c: usize| array(out.chunks(c.max(1)).take(r).map(|row| array(row.iter().cloned())));
     move |out: Vec<Expr>| match output {
-        Shape::Matrix(r, c) => {
+        Shape::Matrix(r, c) => matrix(&out, r.value(n), c.value(n)),
+        Shape::Matrices(k, r, c) => {
             let (r, c) = (r.value(n), c.value(n));
-            array(out.chunks(c.max(1)).take(r).map(|row| array(row.iter().cloned())))
+            let elems = (0..k).map(|m| matrix(&out[m * r * c..(m + 1) * r * c], r, c)).collect();
+            Expr::Tuple(syn::ExprTuple { attrs: vec![], paren_token: Default::default(), elems })
         }
         Shape::Vector(_) => array(out),
     }

@@ -22,6 +22,7 @@ pub use sin_cos::{sin_cos_from_q, sin_cos_inputs, SinCosTrace};
 
 use super::emit::payload_argument;
 use super::{counted, CodegenError, CodegenOptions, ForwardDynamicsMethod, Function, GeneratedFunction};
+use crate::algorithms::derivatives::{self, DerivativeWorkspace, DualLoads};
 use crate::algorithms::{kinematics, ldlt, rnea, BodyInertia, Loads, TipWrench, Workspace};
 use crate::scene::{dynamics, ResolvedGravity, SceneModel};
 use crate::spatial::{Force, Inertia, Sym3, Transform, Vec3};
@@ -168,7 +169,10 @@ pub(crate) fn trace_unfactored(
     let use_ldlt =
         *f == Function::ForwardDynamics && (method == ForwardDynamicsMethod::Ldlt || !scene.input_payloads.is_empty());
     // The mass-matrix plan is made (traced) before this trace starts.
-    let plan = if *f == Function::MassMatrix || use_ldlt { Some(mass_matrix::plan(model, rewrites)?) } else { None };
+    let needs_plan =
+        matches!(f, Function::MassMatrix | Function::ForwardDynamicsDerivatives | Function::MassMatrixInverse)
+            || use_ldlt;
+    let plan = if needs_plan { Some(mass_matrix::plan(model, rewrites)?) } else { None };
     let frame = match f {
         Function::FramePose(name) | Function::FrameJacobian(name) => {
             Some(scene.frame(f.name(), name).map_err(|e| CodegenError::Scene(Box::new(e)))?)
@@ -227,6 +231,38 @@ pub(crate) fn trace_unfactored(
         }
         Function::ForwardDynamics => {
             dynamics::forward_dynamics(scene, &mut ws, q, &args[1], &args[2], Loads::new(g, tips, &[]), &mut out)
+        }
+        Function::InverseDynamicsDerivatives | Function::ForwardDynamicsDerivatives | Function::MassMatrixInverse => {
+            // The scene's inverse dynamics (armature, friction) run on dual
+            // numbers, its run-time loads held constant; M by the planned
+            // CRBA with the armature on its diagonal.
+            let plan = plan.as_ref();
+            let mut dw = DerivativeWorkspace::<Expr>::new(model);
+            let mut dl = DualLoads::with_capacity(tips.len() + pl.len(), n);
+            dl.set(&Loads::new(g, tips, pl));
+            let tau = |ws: &mut _, q: &[_], qd: &[_], qdd: &[_], o: &mut [_]| {
+                dynamics::inverse_dynamics(scene, ws, q, qd, qdd, dl.loads(), o)
+            };
+            let mass = |ws: &mut Workspace<Expr>, q: &[Expr], m: &mut [Expr]| {
+                mass_matrix::mass_matrix(model, ws, q, pl, plan.expect("planned above"), m);
+                dynamics::add_armature_diagonal(scene, m);
+            };
+            let (a, rest) = out.split_at_mut(n * n);
+            match f {
+                Function::InverseDynamicsDerivatives => {
+                    derivatives::inverse_dynamics_derivatives(&mut dw, q, &args[1], &args[2], tau, a, rest)
+                }
+                Function::ForwardDynamicsDerivatives => {
+                    let (b, c) = rest.split_at_mut(n * n);
+                    derivatives::forward_dynamics_derivatives(model, &mut dw, q, &args[1], &args[2], tau, mass, a, b, c)
+                }
+                _ => {
+                    let mut m = vec![zero; n * n];
+                    let mut linv = vec![zero; n * n];
+                    mass(&mut dw.ws, q, &mut m);
+                    derivatives::mass_matrix_inverse(model, &mut m, &mut linv, a);
+                }
+            }
         }
         Function::FramePose(_) | Function::FrameJacobian(_) => {
             let frame = frame.expect("looked up above");
