@@ -76,6 +76,13 @@ fn main() {
         .functions(&derivatives)
         .generate()
         .expect("generating the ur5_controller scene's derivatives");
+    // A floating-base quadruped, for tests/generated_floating.rs.
+    dynagen::Builder::new()
+        .urdf("../dynagen/robots/quadruped12.urdf")
+        .floating_base(true)
+        .file_name("quadruped12_floating.rs")
+        .generate()
+        .expect("generating the floating quadruped");
     build_stiff::generate();
     build_split::generate();
 }

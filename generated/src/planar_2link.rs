@@ -29,6 +29,10 @@
 
 /// The number of degrees of freedom (joints).
 pub const DOF: usize = 2;
+/// The length of `q` (a fixed base: `DOF`).
+pub const NQ: usize = DOF;
+/// The length of the velocity-side vectors (a fixed base: `DOF`).
+pub const NV: usize = DOF;
 /// The joint names, in the order of every index of the functions below.
 pub const JOINT_NAMES: [&str; DOF] = ["joint1", "joint2"];
 /// The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target, or with run-time dispatch the processor, has AVX2).

@@ -29,6 +29,10 @@
 
 /// The number of degrees of freedom (joints).
 pub const DOF: usize = 6;
+/// The length of `q` (a fixed base: `DOF`).
+pub const NQ: usize = DOF;
+/// The length of the velocity-side vectors (a fixed base: `DOF`).
+pub const NV: usize = DOF;
 /// The joint names, in the order of every index of the functions below.
 pub const JOINT_NAMES: [&str; DOF] = [
     "shoulder_pan_joint",

@@ -116,6 +116,7 @@ pub struct Builder {
     scene: Option<SceneInput>,
     options: CodegenOptions,
     settings: Vec<Setting>,
+    floating_base: bool,
     file_name: Option<String>,
     out_dir: Option<PathBuf>,
     cargo_output: Option<bool>,
@@ -234,6 +235,14 @@ impl Builder {
     /// [`RobotBuilder`](crate::RobotBuilder)).
     pub fn model(mut self, model: Model) -> Self {
         self.robot = Some(RobotInput::Model(Box::new(model)));
+        self
+    }
+    /// Give the robot a floating root (`Model::with_floating_base`): its
+    /// root link moves freely; the module then has `NQ = DOF + 7`,
+    /// `NV = DOF + 6` and takes `q: &[f64; NQ]` (see the crate's
+    /// conventions). A URDF whose root joint is `floating` has one anyway.
+    pub fn floating_base(mut self, on: bool) -> Self {
+        self.floating_base = on;
         self
     }
     /// A scene: the physics to model (see [`generate_scene`]); a plain
@@ -362,6 +371,7 @@ impl Builder {
                 Model::from_urdf_file(path).map_err(|source| BuildError::Robot { path: path.clone(), source })?
             }
         };
+        let model = if self.floating_base { model.with_floating_base() } else { model };
         let (scene, label) = match &self.scene {
             None => (Scene::default(), "(default)".to_string()),
             Some(SceneInput::Scene(s)) => ((**s).clone(), "(given in Rust)".to_string()),

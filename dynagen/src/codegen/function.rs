@@ -1,7 +1,7 @@
 //! The functions a module can have: one enum, and the one table of each
 //! function's arguments, output shape and documentation.
 
-use super::emit::{payload_argument, Dim, Param, Shape};
+use super::emit::{payload_argument, Dim, Param, Shape, Sizes};
 use crate::scene::{ResolvedGravity, SceneModel};
 use crate::symbolic::OpCount;
 use std::fmt::Write;
@@ -135,7 +135,14 @@ impl Function {
     /// Its arguments in `scene`: the state vectors, then the scene's
     /// run-time inputs it reads (gravity, tip wrench, payloads).
     pub(crate) fn params(&self, scene: &SceneModel) -> Vec<Param> {
-        let mut p: Vec<Param> = self.vectors().iter().map(|v| Param::dof(v)).collect();
+        // With a floating base, q has NQ entries and the velocity-side vectors NV.
+        let floating = scene.model.is_floating();
+        let dim = |v: &str| match (floating, v) {
+            (false, _) => Dim::Dof,
+            (true, "q") => Dim::Nq,
+            (true, _) => Dim::Nv,
+        };
+        let mut p: Vec<Param> = self.vectors().iter().map(|v| Param::sized(v, dim(v))).collect();
         let (gravity, tip, payloads) = self.loads();
         if gravity && scene.gravity == ResolvedGravity::Input {
             p.push(Param::fixed("gravity", 3));
@@ -156,20 +163,21 @@ impl Function {
             Function::InverseDynamicsDerivatives | Function::ForwardDynamicsDerivatives | Function::MassMatrixInverse
         )
     }
-    /// Its output's shape.
-    pub(crate) fn shape(&self) -> Shape {
+    /// Its output's shape (velocity-side lengths NV with a floating base).
+    pub(crate) fn shape(&self, floating: bool) -> Shape {
+        let v = if floating { Dim::Nv } else { Dim::Dof };
         match self {
-            Function::MassMatrix | Function::MassMatrixInverse => Shape::Matrix(Dim::Dof, Dim::Dof),
-            Function::InverseDynamicsDerivatives => Shape::Matrices(2, Dim::Dof, Dim::Dof),
-            Function::ForwardDynamicsDerivatives => Shape::Matrices(3, Dim::Dof, Dim::Dof),
+            Function::MassMatrix | Function::MassMatrixInverse => Shape::Matrix(v, v),
+            Function::InverseDynamicsDerivatives => Shape::Matrices(2, v, v),
+            Function::ForwardDynamicsDerivatives => Shape::Matrices(3, v, v),
             Function::FramePose(_) => Shape::Matrix(Dim::Fixed(4), Dim::Fixed(4)),
-            Function::FrameJacobian(_) => Shape::Matrix(Dim::Fixed(6), Dim::Dof),
-            _ => Shape::Vector(Dim::Dof),
+            Function::FrameJacobian(_) => Shape::Matrix(Dim::Fixed(6), v),
+            _ => Shape::Vector(v),
         }
     }
-    /// The number of outputs for `n` joints.
-    pub(crate) fn output_len(&self, n: usize) -> usize {
-        match self.shape() {
+    /// The number of outputs of a module of these sizes.
+    pub(crate) fn output_len(&self, n: Sizes) -> usize {
+        match self.shape(n.floating()) {
             Shape::Vector(d) => d.value(n),
             Shape::Matrix(r, c) => r.value(n) * c.value(n),
             Shape::Matrices(k, r, c) => k * r.value(n) * c.value(n),
@@ -221,6 +229,15 @@ impl Function {
                 "The body Jacobian of frame `{frame}` (6 × DOF, rows (ω; v), in the frame): its twist is `J q̇`, and `Jᵀ F` is the joint torque of a wrench `F` given in the frame."
             ),
         };
+        if plain && scene.model.is_floating() {
+            return format!(
+                " {what}\n\n Floating base: `q` = [p (world), quaternion (x, y, z, w) world ← base, joints] (`NQ`), \
+                 the velocity-side vectors [ω_b, v_b (the base's body twist, base frame), joints] (`NV`), τ's first six \
+                 the wrench on the base (m; f) in the base frame; joints in [`JOINT_NAMES`] order; rad, m, s, N·m, N; \
+                 gravity {:?} m/s² in the world frame. The quaternion is used as given (the caller keeps it unit).\n {count}.",
+                scene.model.gravity.0
+            );
+        }
         if plain {
             return format!(
                 " {what}\n\n Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity {:?} m/s² in the base frame.\n {count}.",

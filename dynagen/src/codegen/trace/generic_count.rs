@@ -17,13 +17,17 @@ use crate::symbolic::OpCount;
 /// the algorithms never branch on the state. `None` for a frame the model
 /// does not have.
 pub fn generic_op_count(model: &Model, f: &Function, method: ForwardDynamicsMethod) -> Option<OpCount> {
+    if model.is_floating() {
+        // The floating-base algorithms are not counted yet.
+        return None;
+    }
     let n = model.dof();
     let args: Vec<Vec<Counting>> = (0..f.vectors().len())
         .map(|k| (0..n).map(|i| Counting(0.3 + (0.1 + 0.3 * k as f64) * (i as f64 + 1.0))).collect())
         .collect();
     let mut ws = Workspace::<Counting>::new(model);
     let g = Vec3::<Counting>::from_f64(&model.gravity);
-    let mut out = vec![Counting::zero(); f.output_len(n)];
+    let mut out = vec![Counting::zero(); f.output_len(crate::codegen::emit::Sizes::of(model))];
     let frame = match f {
         Function::FramePose(name) | Function::FrameJacobian(name) => Some(model.frame_index(name)?),
         _ => None,
