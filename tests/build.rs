@@ -3,7 +3,9 @@
 //! in `generated/`), and in f64 (with and without run-time dispatch) for `tests/generated_fma.rs` (and, the default options' module, `tests/generated_bundled.rs`), and three scene modules for `tests/generated_scene.rs`:
 //! the bundled `ur5_controller` scene (from its TOML file), a UR5 with every
 //! run-time input (gravity, tip wrench, a payload) and a lock, and an f32
-//! UR5 with only τ and no gravity; the stiff robots (`build_stiff.rs`) and
+//! UR5 with only τ and no gravity; the derivatives of the UR5, the Panda,
+//! the two-armed torso, an f32 UR5 and the `ur5_controller` scene
+//! (`tests/generated_derivatives.rs`); the stiff robots (`build_stiff.rs`) and
 //! the split long-chain modules (`build_split.rs`).
 
 use dynagen::codegen::ScalarType;
@@ -51,6 +53,36 @@ fn main() {
         .scalar(ScalarType::F32)
         .generate()
         .expect("generating the ur5_tau_f32 scene");
+    // The derivatives, generated only on request (tests/generated_derivatives.rs).
+    let derivatives = ["inverse_dynamics_derivatives", "forward_dynamics_derivatives", "mass_matrix_inverse"];
+    for (robot, name, scalar) in [
+        (ur5, "ur5_derivatives", ScalarType::F64),
+        ("../dynagen/robots/panda.urdf", "panda_derivatives", ScalarType::F64),
+        ("../dynagen/robots/torso_two_arms.urdf", "torso_two_arms_derivatives", ScalarType::F64),
+        (ur5, "ur5_derivatives_f32", ScalarType::F32),
+    ] {
+        dynagen::Builder::new()
+            .urdf(robot)
+            .name(name)
+            .functions(&derivatives)
+            .scalar(scalar)
+            .generate()
+            .expect("generating a derivatives module");
+    }
+    dynagen::Builder::new()
+        .urdf(ur5)
+        .scene_file("../dynagen/scenes/ur5_controller.toml")
+        .name("ur5_controller_derivatives")
+        .functions(&derivatives)
+        .generate()
+        .expect("generating the ur5_controller scene's derivatives");
+    // A floating-base quadruped, for tests/generated_floating.rs.
+    dynagen::Builder::new()
+        .urdf("../dynagen/robots/quadruped12.urdf")
+        .floating_base(true)
+        .file_name("quadruped12_floating.rs")
+        .generate()
+        .expect("generating the floating quadruped");
     build_stiff::generate();
     build_split::generate();
 }

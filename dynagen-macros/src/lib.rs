@@ -45,6 +45,7 @@
 //! | `split_lets` | a number of `let`s, or `none` | 2500 (longer bodies become `#[inline(never)]` parts) |
 //! | `fma` | `true`, `false`: `a*b + c` as `fma(a, b, c)`, one rounding where the target has a fused multiply-add | `true` |
 //! | `dispatch` | `true`, `false`: on x86-64 builds without the `avx2` and `fma` target features, also compile each function for AVX2 and FMA and run that copy where the processor has both (results differ in the last bits between machines) | `true` |
+//! | `floating_base` | `true`, `false`: the robot's root link moves freely (`NQ = DOF + 7`, `NV = DOF + 6`; the five functions of the contract) | `false` (a URDF `floating` root joint: `true`) |
 //!
 //! # Scenes (both macros)
 //!
@@ -159,6 +160,7 @@ pub(crate) struct MacroOptions {
     trig: Option<Trig>,
     split_lets: Option<Option<usize>>,
     fma: Option<bool>,
+    floating_base: Option<bool>,
     dispatch: Option<bool>,
     scene: scene::SceneOptions,
 }
@@ -211,6 +213,7 @@ impl MacroOptions {
                 });
             }
             "fma" => self.fma = Some(input.parse::<LitBool>()?.value),
+            "floating_base" => self.floating_base = Some(input.parse::<LitBool>()?.value),
             "dispatch" => self.dispatch = Some(input.parse::<LitBool>()?.value),
             _ => return self.scene.parse_value(key, input),
         }
@@ -241,6 +244,9 @@ impl MacroOptions {
         }
         if let Some(d) = self.dispatch {
             b = b.runtime_dispatch(d);
+        }
+        if let Some(f) = self.floating_base {
+            b = b.floating_base(f);
         }
         if let Some(f) = &self.functions {
             b = b.functions(&f.iter().map(Ident::to_string).collect::<Vec<_>>());
@@ -273,7 +279,7 @@ fn parse_ident<T: std::str::FromStr<Err = String>>(input: ParseStream) -> syn::R
 }
 
 /// The options every macro accepts, for error messages.
-pub(crate) const OPTION_NAMES: &str = "functions, scalar, forward_dynamics, snap_rounding, trig, split_lets, fma, \
+pub(crate) const OPTION_NAMES: &str = "functions, scalar, forward_dynamics, snap_rounding, trig, split_lets, fma, floating_base, \
                                        dispatch, scene, gravity, tip_wrench, subtree, lock, armature, viscous, coulomb, \
                                        coulomb_velocity, payload, payload_input, frame_pose, frame_jacobian, target";
 

@@ -125,6 +125,6 @@ pub use codegen::Builder;
 pub use model::{Model, ModelError, ModelWarning, RobotBuilder};
 pub use robot::{InputError, Robot, Stepping, TipWrenchHistory};
 pub use scalar::{
-    Compensated, CompensatedFma, CompensatedWith, Counting, Dekker, DoubleDouble, ExactProduct, Fused, Scalar,
+    Compensated, CompensatedFma, CompensatedWith, Counting, Dekker, DoubleDouble, Dual, ExactProduct, Fused, Scalar,
 };
 pub use scene::{Scene, SceneError, SceneModel, SceneRobot};

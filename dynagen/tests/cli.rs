@@ -731,3 +731,61 @@ fn ops_with_a_scene_lists_the_scene_module_beside_the_full_one() {
     let e = fails(dynagen().args(["ops", "--scene", "no/such/scene.toml"]), 1);
     assert!(e.contains("no/such/scene.toml"), "{e}");
 }
+
+/// `eval --derivatives`: the derivatives each state has the inputs for,
+/// `[output][input]` one row per line, bit for bit the library's; M·M⁻¹ = 1
+/// from the printed matrices; without the flag, none of them.
+#[test]
+fn eval_derivatives_agree_bit_for_bit_with_the_library() {
+    let dir = scratch("eval_derivatives");
+    let states = some_states(9, 16);
+    let file = write(&dir, "states.json", &states_file(&states));
+    let path = support::robot_path("panda").display().to_string();
+    let plain = succeeds(dynagen().args(["eval", &path, "--input"]).arg(&file));
+    assert!(!plain.contains("dtau_dq") && !plain.contains("minv"));
+    let out = succeeds(dynagen().args(["eval", &path, "--derivatives", "--input"]).arg(&file));
+    let doc: Value = serde_json::from_str(&out).unwrap();
+    let mut robot = support::robot("panda");
+    let n = robot.dof();
+    let v = |x: &Vec<f64>| DVector::from_column_slice(x);
+    let rows_eq = |what: &str, got: &Value, want: &nalgebra::DMatrix<f64>| {
+        let rows = got.as_array().unwrap_or_else(|| panic!("{what} missing"));
+        assert_eq!(rows.len(), n, "{what}");
+        for (r, row) in rows.iter().enumerate() {
+            bits_eq(&format!("{what}[{r}]"), row, &want.row(r).iter().copied().collect::<Vec<_>>());
+        }
+    };
+    let matrix = |x: &Value| {
+        let rows: Vec<Vec<f64>> = x
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|r| r.as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect())
+            .collect();
+        nalgebra::DMatrix::from_fn(n, n, |i, j| rows[i][j])
+    };
+    let mut counted = [0; 2];
+    for (i, (r, (q, qd, qdd, tau))) in doc["results"].as_array().unwrap().iter().zip(&states).enumerate() {
+        let obj = r.as_object().unwrap();
+        assert_eq!(obj.contains_key("dtau_dq"), qd.is_some() && qdd.is_some(), "state {i}");
+        assert_eq!(obj.contains_key("minv"), qd.is_some() && tau.is_some(), "state {i}");
+        if let (Some(qd), Some(qdd)) = (qd, qdd) {
+            let (a, b) = robot.inverse_dynamics_derivatives(&v(q), &v(qd), &v(qdd)).unwrap();
+            rows_eq(&format!("state {i} dtau_dq"), &obj["dtau_dq"], &a);
+            rows_eq(&format!("state {i} dtau_dqd"), &obj["dtau_dqd"], &b);
+            counted[0] += 1;
+        }
+        if let (Some(qd), Some(tau)) = (qd, tau) {
+            let (a, b, c) = robot.forward_dynamics_derivatives(&v(q), &v(qd), &v(tau)).unwrap();
+            rows_eq(&format!("state {i} dqdd_dq"), &obj["dqdd_dq"], &a);
+            rows_eq(&format!("state {i} dqdd_dqd"), &obj["dqdd_dqd"], &b);
+            rows_eq(&format!("state {i} minv"), &obj["minv"], &c);
+            let eye = matrix(&obj["M"]) * matrix(&obj["minv"]);
+            let e = (eye - nalgebra::DMatrix::identity(n, n)).norm();
+            assert!(e < 1e-9, "state {i}: M·M⁻¹ − 1 = {e:e}");
+            counted[1] += 1;
+        }
+    }
+    assert!(counted[0] > 0 && counted[1] > 0, "{counted:?}");
+    assert!(out.contains("      \"dtau_dq\": [\n        ["), "{out}");
+}

@@ -100,6 +100,15 @@ fn check_with(
                 Function::ForwardDynamics => {
                     robot.forward_dynamics_with(&dv(&q), &dv(&qd), &dv(&tau), i).unwrap().as_slice().to_vec()
                 }
+                Function::InverseDynamicsDerivatives => {
+                    let (a, b) = robot.inverse_dynamics_derivatives_with(&dv(&q), &dv(&qd), &dv(&qdd), i).unwrap();
+                    [rows(&a), rows(&b)].concat()
+                }
+                Function::ForwardDynamicsDerivatives => {
+                    let (a, b, c) = robot.forward_dynamics_derivatives_with(&dv(&q), &dv(&qd), &dv(&tau), i).unwrap();
+                    [rows(&a), rows(&b), rows(&c)].concat()
+                }
+                Function::MassMatrixInverse => rows(&robot.mass_matrix_inverse_with(&dv(&q), i).unwrap()),
                 Function::FramePose(frame) => rows(&robot.frame_pose(frame, &dv(&q)).unwrap()),
                 Function::FrameJacobian(frame) => rows(&robot.frame_jacobian(frame, &dv(&q)).unwrap()),
             };

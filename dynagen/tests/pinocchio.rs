@@ -147,3 +147,50 @@ fn ur5_from_modern_robotics_lists_agrees_with_pinocchio_on_the_urdf() {
         assert!(e < 1e-12, "state {k}: end-effector pose differs by {e:e}");
     }
 }
+
+/// The derivatives against Pinocchio's analytical ones (`computeRNEADerivatives`,
+/// `computeABADerivatives`, `computeMinverse`; `tests/data/pinocchio_derivatives.json`,
+/// made by `scripts/reference/make_pinocchio_derivatives.py`, origin in its
+/// "source" field), on every bundled robot: ≤ 1e-10 of each matrix's norm.
+#[test]
+fn derivatives_match_pinocchio() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let data: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("tests/data/pinocchio_derivatives.json")).unwrap())
+            .unwrap();
+    assert_eq!(data["source"]["generator"], "pinocchio");
+    let robots = data["robots"].as_object().unwrap();
+    assert_eq!(robots.len(), 4);
+    for (name, doc) in robots {
+        let mut robot = support::robot(name);
+        let names: Vec<String> =
+            doc["joint_names"].as_array().unwrap().iter().map(|x| x.as_str().unwrap().to_string()).collect();
+        assert_eq!(robot.joint_names(), names, "{name}: joint order differs from Pinocchio's");
+        let rows = |m: &nalgebra::DMatrix<f64>| m.transpose().as_slice().to_vec();
+        let flat = |v: &Value| matrix(v).concat();
+        let mut worst = 0.0_f64;
+        for (k, s) in doc["states"].as_array().unwrap().iter().enumerate() {
+            let v = |key: &str| DVector::from_vec(vector(&s[key]));
+            let (q, qd, qdd, tau) = (v("q"), v("qd"), v("qdd"), v("tau_in"));
+            let (a, b) = robot.inverse_dynamics_derivatives(&q, &qd, &qdd).unwrap();
+            let (c, d, e) = robot.forward_dynamics_derivatives(&q, &qd, &tau).unwrap();
+            let m = robot.mass_matrix(&q).unwrap();
+            let alone = robot.mass_matrix_inverse(&q).unwrap();
+            for (what, got, key) in [
+                ("dtau_dq", rows(&a), "dtau_dq"),
+                ("dtau_dqd", rows(&b), "dtau_dqd"),
+                ("dtau_dqdd = M", rows(&m), "dtau_dqdd"),
+                ("dqdd_dq", rows(&c), "dqdd_dq"),
+                ("dqdd_dqd", rows(&d), "dqdd_dqd"),
+                ("minv", rows(&e), "minv"),
+                ("mass_matrix_inverse", rows(&alone), "minv_alone"),
+            ] {
+                let want = flat(&s[key]);
+                let err = support::norm_rel_err(&got, &want, 1e-300);
+                assert!(err <= 1e-10, "{name} state {k} {what}: {err:e}\n got {got:?}\nwant {want:?}");
+                worst = worst.max(err);
+            }
+        }
+        println!("{name}: worst relative error against Pinocchio's derivatives {worst:.1e}");
+    }
+}

@@ -911,7 +911,15 @@ fn a_diagonal_of_m_that_may_vanish_away_from_q_zero_is_a_warning() {
 
 #[test]
 fn unsupported_joints() {
-    for (ty, what) in [("floating", "floating"), ("planar", "planar"), ("spherical", "spherical")] {
+    // A floating joint at the root floats the robot (issue 17; tests/floating_base.rs
+    // has the floating joints that are still refused).
+    let xml = robot(&format!(
+        r#"<link name="base"/><link name="arm">{INERTIAL}</link>
+        <joint name="free" type="floating"><parent link="base"/><child link="arm"/></joint>"#
+    ));
+    let m = Model::from_urdf_str(&xml).unwrap();
+    assert!(m.is_floating() && m.root == "arm" && m.dof() == 0 && m.base_inertia.mass == 1.0);
+    for (ty, what) in [("planar", "planar"), ("spherical", "spherical")] {
         let xml = robot(&format!(
             r#"<link name="base"/><link name="arm">{INERTIAL}</link>
             <joint name="free" type="{ty}"><parent link="base"/><child link="arm"/></joint>"#

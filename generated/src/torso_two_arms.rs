@@ -30,6 +30,12 @@
 /// The number of degrees of freedom (joints).
 #[allow(dead_code)]
 pub const DOF: usize = 7;
+/// The length of `q` (a fixed base: `DOF`).
+#[allow(dead_code)]
+pub const NQ: usize = DOF;
+/// The length of the velocity-side vectors (a fixed base: `DOF`).
+#[allow(dead_code)]
+pub const NV: usize = DOF;
 /// The joint names, in the order of every index of the functions below.
 #[allow(dead_code)]
 pub const JOINT_NAMES: [&str; DOF] = [

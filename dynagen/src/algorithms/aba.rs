@@ -42,10 +42,24 @@ impl<S: Scalar> ArticulatedInertia<S> {
             lin: self.b.tr_mul_vec(&m.ang) + self.c.mul_vec(&m.lin),
         }
     }
+    /// As a 6×6 matrix in (angular; linear) order.
+    pub(crate) fn to_matrix(self) -> [[S; 6]; 6] {
+        let (a, b, c) = (self.a.to_mat().0, self.b.0, self.c.to_mat().0);
+        let mut m = [[S::zero(); 6]; 6];
+        for i in 0..3 {
+            for j in 0..3 {
+                m[i][j] = a[i][j];
+                m[i][3 + j] = b[i][j];
+                m[3 + j][i] = b[i][j];
+                m[3 + i][3 + j] = c[i][j];
+            }
+        }
+        m
+    }
     /// `self · S` for the joint's motion subspace `S` (one column of the
     /// matrix, times the axis component, for an axis-aligned joint).
     #[inline(always)]
-    fn mul_subspace(&self, joint: &Joint) -> Force<S> {
+    pub(crate) fn mul_subspace(&self, joint: &Joint) -> Force<S> {
         let k = match joint.alignment {
             AxisAlignment::X => 0,
             AxisAlignment::Y => 1,
@@ -68,7 +82,7 @@ impl<S: Scalar> ArticulatedInertia<S> {
     }
     /// `self − u uᵀ / d`.
     #[inline(always)]
-    fn sub_outer(&self, u: &Force<S>, d_inv: S) -> Self {
+    pub(crate) fn sub_outer(&self, u: &Force<S>, d_inv: S) -> Self {
         let (ua, ul) = (u.ang.scale(d_inv), u.lin);
         let sym = |s: &Sym3<S>, x: &Vec3<S>, y: &Vec3<S>| {
             let (x, y) = (x.0, y.0);
@@ -125,7 +139,7 @@ impl<S: Scalar> ArticulatedInertia<S> {
     /// maps parent motion to this frame and `x` is this frame's pose in
     /// the parent.
     #[inline(always)]
-    fn expressed_in_parent<R: Rotation<S>>(&self, r: &R, trans: &Vec3<S>) -> Self {
+    pub(crate) fn expressed_in_parent<R: Rotation<S>>(&self, r: &R, trans: &Vec3<S>) -> Self {
         // Rotate the blocks into the parent's axes, then shift the origin
         // by r: A' = A₁ − B₁[r] + [r]B₁ᵀ − [r]C₁[r], B' = B₁ + [r]C₁, C' = C₁.
         let a1 = r.rotate_sym(&self.a);
@@ -155,7 +169,7 @@ impl<S: Scalar> ArticulatedInertia<S> {
     }
     /// `self + o`.
     #[inline(always)]
-    fn add(&self, o: &Self) -> Self {
+    pub(crate) fn add(&self, o: &Self) -> Self {
         let mut b = self.b;
         for i in 0..3 {
             for j in 0..3 {

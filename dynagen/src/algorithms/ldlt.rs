@@ -10,35 +10,45 @@ use crate::Scalar;
 /// D and the strictly lower triangle holds L (entries of joints on other
 /// branches are left untouched). Only the lower triangle is read.
 pub fn factorise<S: Scalar>(model: &Model, m: &mut [S]) {
-    let n = model.dof();
+    factorise_tree(model.dof(), |k| model.bodies[k].parent, m)
+}
+
+/// [`factorise`] for any tree of `n` coordinates given by the parent of
+/// each (`parent(k) < k`): a floating base's six coordinates as a chain
+/// ahead of the joints ([`velocity_parent`](super::floating::velocity_parent)).
+pub fn factorise_tree<S: Scalar>(n: usize, parent: impl Fn(usize) -> Option<usize>, m: &mut [S]) {
     assert!(m.len() == n * n, "ldlt: m must be {n}×{n}");
     for k in (0..n).rev() {
         let inv = S::one() / m[k * n + k];
-        let mut i = model.bodies[k].parent;
+        let mut i = parent(k);
         while let Some(ii) = i {
             let a = m[k * n + ii] * inv;
             let mut j = Some(ii);
             while let Some(jj) = j {
                 m[ii * n + jj] -= a * m[k * n + jj];
-                j = model.bodies[jj].parent;
+                j = parent(jj);
             }
             m[k * n + ii] = a;
-            i = model.bodies[ii].parent;
+            i = parent(ii);
         }
     }
 }
 
 /// Solves M x = b in place (`b` becomes x) with a factor from [`factorise`].
 pub fn solve<S: Scalar>(model: &Model, factor: &[S], b: &mut [S]) {
-    let n = model.dof();
+    solve_tree(model.dof(), |k| model.bodies[k].parent, factor, b)
+}
+
+/// [`solve`] for a factor from [`factorise_tree`] with the same `parent`.
+pub fn solve_tree<S: Scalar>(n: usize, parent: impl Fn(usize) -> Option<usize>, factor: &[S], b: &mut [S]) {
     assert!(factor.len() == n * n && b.len() == n, "ldlt: sizes must fit the model's {n} joints");
     // Lᵀ z = b, from the tips up.
     for i in (0..n).rev() {
         let bi = b[i];
-        let mut j = model.bodies[i].parent;
+        let mut j = parent(i);
         while let Some(jj) = j {
             b[jj] -= factor[i * n + jj] * bi;
-            j = model.bodies[jj].parent;
+            j = parent(jj);
         }
     }
     // D w = z
@@ -48,10 +58,10 @@ pub fn solve<S: Scalar>(model: &Model, factor: &[S], b: &mut [S]) {
     // L x = w, from the base down.
     for i in 0..n {
         let mut acc = b[i];
-        let mut j = model.bodies[i].parent;
+        let mut j = parent(i);
         while let Some(jj) = j {
             acc -= factor[i * n + jj] * b[jj];
-            j = model.bodies[jj].parent;
+            j = parent(jj);
         }
         b[i] = acc;
     }

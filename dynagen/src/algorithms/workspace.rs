@@ -33,7 +33,7 @@ pub struct Workspace<S> {
     /// Per-joint scalars.
     pub(crate) s1: Vec<S>,
     pub(crate) s2: Vec<S>,
-    /// An n×n matrix, row-major.
+    /// An NV×NV matrix, row-major (n×n for a fixed base).
     pub(crate) mat: Vec<S>,
     /// A joint-space right-hand side (a scene's τ − friction).
     pub(crate) rhs: Vec<S>,
@@ -61,8 +61,8 @@ impl<S: Scalar> Workspace<S> {
             u6: vec![Force::zero(); n],
             s1: vec![S::zero(); n],
             s2: vec![S::zero(); n],
-            mat: vec![S::zero(); n * n],
-            rhs: vec![S::zero(); n],
+            mat: vec![S::zero(); model.nv() * model.nv()],
+            rhs: vec![S::zero(); model.nv()],
             world: vec![Transform::identity(); n],
         }
     }

@@ -135,6 +135,7 @@ pub struct Builder {
     scene: Option<SceneInput>,
     options: CodegenOptions,
     settings: Vec<Setting>,
+    floating_base: bool,
     file_name: Option<String>,
     out_dir: Option<PathBuf>,
     cargo_output: Option<bool>,
@@ -317,6 +318,14 @@ impl Builder {
         self.robot = Some(RobotInput::Model(Box::new(model)));
         self
     }
+    /// Give the robot a floating root (`Model::with_floating_base`): its
+    /// root link moves freely; the module then has `NQ = DOF + 7`,
+    /// `NV = DOF + 6` and takes `q: &[f64; NQ]` (see the crate's
+    /// conventions). A URDF whose root joint is `floating` has one anyway.
+    pub fn floating_base(mut self, on: bool) -> Self {
+        self.floating_base = on;
+        self
+    }
     /// A scene: the physics to model (see [`generate_scene`]); a plain
     /// module is the default scene's.
     pub fn scene(mut self, scene: Scene) -> Self {
@@ -351,7 +360,9 @@ impl Builder {
     }
     /// Only these functions, by name (`inverse_dynamics`, `mass_matrix`,
     /// `bias_forces`, `gravity_torques`, `coriolis`, `forward_dynamics`,
-    /// `frame_pose:FRAME`, `frame_jacobian:FRAME`); default the five of the
+    /// `inverse_dynamics_derivatives`, `forward_dynamics_derivatives`,
+    /// `mass_matrix_inverse`, `frame_pose:FRAME`, `frame_jacobian:FRAME`);
+    /// default the five of the
     /// contract. A scene file's frame functions stay.
     pub fn functions<S: AsRef<str>>(self, names: &[S]) -> Self {
         self.set(Setting::Functions(names.iter().map(|s| s.as_ref().to_string()).collect()))
@@ -441,6 +452,7 @@ impl Builder {
                 Model::from_urdf_file(path).map_err(|source| BuildError::Robot { path: path.clone(), source })?
             }
         };
+        let model = if self.floating_base { model.with_floating_base() } else { model };
         let (scene, label) = match &self.scene {
             None => (Scene::default(), "(default)".to_string()),
             Some(SceneInput::Scene(s)) => ((**s).clone(), "(given in Rust)".to_string()),

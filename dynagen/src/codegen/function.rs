@@ -1,7 +1,7 @@
 //! The functions a module can have: one enum, and the one table of each
 //! function's arguments, output shape and documentation.
 
-use super::emit::{doc_code, identifier_name, payload_argument, Dim, Param, Shape};
+use super::emit::{doc_code, identifier_name, payload_argument, Dim, Param, Shape, Sizes};
 use crate::scene::{ResolvedGravity, SceneModel};
 use crate::symbolic::OpCount;
 use std::fmt::Write;
@@ -27,6 +27,16 @@ pub enum Function {
     /// `forward_dynamics(q, qd, tau) -> q̈`, by the articulated-body
     /// algorithm or CRBA + LᵀDL (see [`ForwardDynamicsMethod`](super::ForwardDynamicsMethod)).
     ForwardDynamics,
+    /// `inverse_dynamics_derivatives(q, qd, qdd) -> (∂τ/∂q, ∂τ/∂q̇)`, each
+    /// `[output][input]` (∂τ/∂q̈ is the mass matrix); generated only on
+    /// request.
+    InverseDynamicsDerivatives,
+    /// `forward_dynamics_derivatives(q, qd, tau) -> (∂q̈/∂q, ∂q̈/∂q̇, M⁻¹)`,
+    /// each `[output][input]` (M⁻¹ = ∂q̈/∂τ); generated only on request.
+    ForwardDynamicsDerivatives,
+    /// `mass_matrix_inverse(q) -> M⁻¹`, from the sparse LᵀDL factors;
+    /// generated only on request.
+    MassMatrixInverse,
     /// `frame_pose_FRAME(q)`: the pose of a frame in the base frame.
     FramePose(String),
     /// `frame_jacobian_FRAME(q)`: the body Jacobian of a frame (in the
@@ -46,8 +56,17 @@ impl Function {
     ];
     /// The names of the functions without a frame, in the order a module
     /// lists them.
-    pub const NAMES: [&'static str; 6] =
-        ["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "coriolis", "forward_dynamics"];
+    pub const NAMES: [&'static str; 9] = [
+        "inverse_dynamics",
+        "mass_matrix",
+        "bias_forces",
+        "gravity_torques",
+        "coriolis",
+        "forward_dynamics",
+        "inverse_dynamics_derivatives",
+        "forward_dynamics_derivatives",
+        "mass_matrix_inverse",
+    ];
 
     /// The function without a frame named `name`, if it is one.
     pub fn from_name(name: &str) -> Option<Function> {
@@ -58,6 +77,9 @@ impl Function {
             "gravity_torques" => Function::GravityTorques,
             "coriolis" => Function::Coriolis,
             "forward_dynamics" => Function::ForwardDynamics,
+            "inverse_dynamics_derivatives" => Function::InverseDynamicsDerivatives,
+            "forward_dynamics_derivatives" => Function::ForwardDynamicsDerivatives,
+            "mass_matrix_inverse" => Function::MassMatrixInverse,
             _ => return None,
         })
     }
@@ -71,6 +93,9 @@ impl Function {
             Function::GravityTorques => "gravity_torques",
             Function::Coriolis => "coriolis",
             Function::ForwardDynamics => "forward_dynamics",
+            Function::InverseDynamicsDerivatives => "inverse_dynamics_derivatives",
+            Function::ForwardDynamicsDerivatives => "forward_dynamics_derivatives",
+            Function::MassMatrixInverse => "mass_matrix_inverse",
             Function::FramePose(_) => "frame_pose",
             Function::FrameJacobian(_) => "frame_jacobian",
         }
@@ -88,9 +113,9 @@ impl Function {
     /// The state vectors it takes, in argument order.
     pub fn vectors(&self) -> &'static [&'static str] {
         match self {
-            Function::InverseDynamics => &["q", "qd", "qdd"],
+            Function::InverseDynamics | Function::InverseDynamicsDerivatives => &["q", "qd", "qdd"],
             Function::BiasForces | Function::Coriolis => &["q", "qd"],
-            Function::ForwardDynamics => &["q", "qd", "tau"],
+            Function::ForwardDynamics | Function::ForwardDynamicsDerivatives => &["q", "qd", "tau"],
             _ => &["q"],
         }
     }
@@ -98,16 +123,26 @@ impl Function {
     /// payloads).
     pub(crate) fn loads(&self) -> (bool, bool, bool) {
         match self {
-            Function::InverseDynamics | Function::ForwardDynamics => (true, true, true),
+            Function::InverseDynamics
+            | Function::ForwardDynamics
+            | Function::InverseDynamicsDerivatives
+            | Function::ForwardDynamicsDerivatives => (true, true, true),
             Function::BiasForces | Function::GravityTorques => (true, false, true),
-            Function::MassMatrix | Function::Coriolis => (false, false, true),
+            Function::MassMatrix | Function::Coriolis | Function::MassMatrixInverse => (false, false, true),
             Function::FramePose(_) | Function::FrameJacobian(_) => (false, false, false),
         }
     }
     /// Its arguments in `scene`: the state vectors, then the scene's
     /// run-time inputs it reads (gravity, tip wrench, payloads).
     pub(crate) fn params(&self, scene: &SceneModel) -> Vec<Param> {
-        let mut p: Vec<Param> = self.vectors().iter().map(|v| Param::dof(v)).collect();
+        // With a floating base, q has NQ entries and the velocity-side vectors NV.
+        let floating = scene.model.is_floating();
+        let dim = |v: &str| match (floating, v) {
+            (false, _) => Dim::Dof,
+            (true, "q") => Dim::Nq,
+            (true, _) => Dim::Nv,
+        };
+        let mut p: Vec<Param> = self.vectors().iter().map(|v| Param::sized(v, dim(v))).collect();
         let (gravity, tip, payloads) = self.loads();
         if gravity && scene.gravity == ResolvedGravity::Input {
             p.push(Param::fixed("gravity", 3));
@@ -120,20 +155,32 @@ impl Function {
         }
         p
     }
-    /// Its output's shape.
-    pub(crate) fn shape(&self) -> Shape {
+    /// Whether it is a derivative of the dynamics (or M⁻¹): generated only
+    /// on request, never listed as left out of a module.
+    pub fn is_derivative(&self) -> bool {
+        matches!(
+            self,
+            Function::InverseDynamicsDerivatives | Function::ForwardDynamicsDerivatives | Function::MassMatrixInverse
+        )
+    }
+    /// Its output's shape (velocity-side lengths NV with a floating base).
+    pub(crate) fn shape(&self, floating: bool) -> Shape {
+        let v = if floating { Dim::Nv } else { Dim::Dof };
         match self {
-            Function::MassMatrix => Shape::Matrix(Dim::Dof, Dim::Dof),
+            Function::MassMatrix | Function::MassMatrixInverse => Shape::Matrix(v, v),
+            Function::InverseDynamicsDerivatives => Shape::Matrices(2, v, v),
+            Function::ForwardDynamicsDerivatives => Shape::Matrices(3, v, v),
             Function::FramePose(_) => Shape::Matrix(Dim::Fixed(4), Dim::Fixed(4)),
-            Function::FrameJacobian(_) => Shape::Matrix(Dim::Fixed(6), Dim::Dof),
-            _ => Shape::Vector(Dim::Dof),
+            Function::FrameJacobian(_) => Shape::Matrix(Dim::Fixed(6), v),
+            _ => Shape::Vector(v),
         }
     }
-    /// The number of outputs for `n` joints.
-    pub(crate) fn output_len(&self, n: usize) -> usize {
-        match self.shape() {
+    /// The number of outputs of a module of these sizes.
+    pub(crate) fn output_len(&self, n: Sizes) -> usize {
+        match self.shape(n.floating()) {
             Shape::Vector(d) => d.value(n),
             Shape::Matrix(r, c) => r.value(n) * c.value(n),
+            Shape::Matrices(k, r, c) => k * r.value(n) * c.value(n),
         }
     }
     /// The doc comment of `NAME` in `scene`'s module (`count`: its
@@ -163,6 +210,18 @@ impl Function {
             Function::ForwardDynamics => {
                 "Forward dynamics q̈ = (M(q) + diag(armature))⁻¹(τ − h(q, q̇) − J(q)ᵀF_tip).".to_string()
             }
+            Function::InverseDynamicsDerivatives => format!(
+                "The derivatives (∂τ/∂q, ∂τ/∂q̇) of the inverse dynamics{}, each `[output][input]`: `[i][j] = ∂τᵢ/∂xⱼ`; ∂τ/∂q̈ is the mass matrix. Forward-mode (dual-number) derivatives of the recursive Newton-Euler algorithm{}.",
+                if plain { "" } else { " (armature, friction and tip wrench included)" },
+                if plain { "" } else { "; the run-time inputs are held constant" }
+            ),
+            Function::ForwardDynamicsDerivatives => format!(
+                "The derivatives (∂q̈/∂q, ∂q̈/∂q̇, M⁻¹) of the forward dynamics{}, each `[output][input]`: `[i][j] = ∂q̈ᵢ/∂xⱼ`; M⁻¹ = ∂q̈/∂τ. −M⁻¹ ∂τ/∂x at q̈ = M⁻¹(τ − h), M⁻¹ from the sparse LᵀDL factors{}.",
+                if plain { "" } else { " (armature, friction and tip wrench included)" },
+                if plain { "" } else { "; the run-time inputs are held constant" }
+            ),
+            Function::MassMatrixInverse if plain => "The inverse of the mass matrix M(q)⁻¹ from its sparse LᵀDL factors (symmetric, `[row][col]`).".to_string(),
+            Function::MassMatrixInverse => "The inverse (M(q) + diag(armature))⁻¹ from its sparse LᵀDL factors (symmetric, `[row][col]`).".to_string(),
             Function::FramePose(frame) => {
                 format!("The pose of frame {} in the base frame, as a homogeneous matrix `[row][col]`.", doc_code(frame))
             }
@@ -171,6 +230,15 @@ impl Function {
                 doc_code(frame)
             ),
         };
+        if plain && scene.model.is_floating() {
+            return format!(
+                " {what}\n\n Floating base: `q` = [p (world), quaternion (x, y, z, w) world ← base, joints] (`NQ`), \
+                 the velocity-side vectors [ω_b, v_b (the base's body twist, base frame), joints] (`NV`), τ's first six \
+                 the wrench on the base (m; f) in the base frame; joints in [`JOINT_NAMES`] order; rad, m, s, N·m, N; \
+                 gravity {:?} m/s² in the world frame. The quaternion is used as given (the caller keeps it unit).\n {count}.",
+                scene.model.gravity.0
+            );
+        }
         if plain {
             return format!(
                 " {what}\n\n Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity {:?} m/s² in the base frame.\n {count}.",

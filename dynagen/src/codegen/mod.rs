@@ -99,6 +99,10 @@ pub enum CodegenError {
     /// the (reduced) model does not have.
     #[error(transparent)]
     Scene(Box<SceneError>),
+    /// A function or scene that code generation does not support for this
+    /// model yet (it names them).
+    #[error("{0}")]
+    Unsupported(String),
     /// The generated tokens did not parse as a Rust file (a bug of dynagen).
     #[error("internal error: generated code does not parse: {0}")]
     Internal(String),

@@ -61,6 +61,15 @@ pub enum ModelError {
     /// More than one link has no parent.
     #[error("the robot has several root links ({}): a robot must be one tree", .0.join(", "))]
     MultipleRoots(Vec<String>),
+    /// A `floating` joint where dynagen cannot take it: anywhere but
+    /// between the root link (the world) and the floating body.
+    #[error("joint \"{joint}\": {why}")]
+    Floating {
+        /// The floating joint.
+        joint: String,
+        /// What is wrong with it.
+        why: String,
+    },
     /// The joints form a cycle.
     #[error("the joints form a cycle through link(s) {}", .0.join(", "))]
     Cycle(Vec<String>),

@@ -124,6 +124,19 @@ impl Joint {
     }
 }
 
+/// How the root link is attached to the world.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum RootJoint {
+    /// The root link is the world: it never moves (a manipulator on a table).
+    #[default]
+    Fixed,
+    /// The root link moves freely in space (a quadruped's or humanoid's
+    /// trunk): six unactuated degrees of freedom ahead of the joints, with
+    /// `q = [p, quaternion (x, y, z, w), joints]` (NQ = n + 7) and
+    /// `q̇ = [ω_b, v_b, joint rates]` (NV = n + 6, the base's body twist).
+    Floating,
+}
+
 /// A rigid body with the joint that connects it to its parent.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Body {
@@ -162,22 +175,51 @@ pub struct Model {
     pub bodies: Vec<Body>,
     /// Every named frame.
     pub frames: Vec<Frame>,
-    /// Gravity in the base frame (m/s²); (0, 0, −9.81) unless set otherwise.
+    /// Gravity in the base frame (m/s²), in the world frame for a floating
+    /// base; (0, 0, −9.81) unless set otherwise.
     pub gravity: Vec3<f64>,
     /// What was accepted with a warning.
     pub warnings: Vec<ModelWarning>,
     /// Mass of everything fixed to the base (it never moves, and does not
     /// enter the dynamics).
     pub base_mass: f64,
+    /// Fixed to the world, or floating.
+    pub root_joint: RootJoint,
+    /// The spatial inertia of the root link and every link fixed to it, in
+    /// the root's frame: the floating base's own inertia (unused when the
+    /// root is fixed).
+    pub base_inertia: Inertia<f64>,
 }
 
 /// The default gravity: (0, 0, −9.81) m/s² in the base frame.
 pub const DEFAULT_GRAVITY: [f64; 3] = [0.0, 0.0, -9.81];
 
 impl Model {
-    /// The number of degrees of freedom (one per body).
+    /// The number of actuated joints (one per body); a floating base's six
+    /// degrees of freedom are not counted (see [`Model::nv`]).
     pub fn dof(&self) -> usize {
         self.bodies.len()
+    }
+    /// Whether the root moves freely ([`RootJoint::Floating`]).
+    pub fn is_floating(&self) -> bool {
+        self.root_joint == RootJoint::Floating
+    }
+    /// The length of a configuration `q`: `dof()`, plus 7 (position and
+    /// quaternion) with a floating base.
+    pub fn nq(&self) -> usize {
+        self.dof() + if self.is_floating() { 7 } else { 0 }
+    }
+    /// The length of a velocity, acceleration or force vector: `dof()`,
+    /// plus 6 (the base's body twist or wrench) with a floating base.
+    pub fn nv(&self) -> usize {
+        self.dof() + if self.is_floating() { 6 } else { 0 }
+    }
+    /// This model with a floating root: the root link (with everything
+    /// fixed to it) becomes a free body, and gravity is read in the world
+    /// frame. A model that already floats is returned unchanged.
+    pub fn with_floating_base(mut self) -> Self {
+        self.root_joint = RootJoint::Floating;
+        self
     }
     /// The joint names, in joint order.
     pub fn joint_names(&self) -> Vec<&str> {

@@ -3,7 +3,7 @@
 
 use super::description::{JointDescription, JointType, RobotDescription};
 use super::{
-    validate, AxisAlignment, Body, BuildOptions, Frame, Joint, JointKind, Model, ModelError, ModelWarning,
+    validate, AxisAlignment, Body, BuildOptions, Frame, Joint, JointKind, Model, ModelError, ModelWarning, RootJoint,
     DEFAULT_GRAVITY,
 };
 use crate::spatial::{Inertia, Mat3, Transform, Vec3};
@@ -49,6 +49,7 @@ impl Model {
             [] => return Err(ModelError::Cycle(cycle_above(0, &parent_link, desc))),
             _ => return Err(ModelError::MultipleRoots(roots.iter().map(|&r| desc.links[r].name.clone()).collect())),
         };
+        let (root, world) = floating_root(desc, root, &child_joints, &link_index)?;
 
         // Depth-first walk from the root with an explicit stack (a long chain
         // must not overflow the call stack), children in file order. An entry
@@ -57,7 +58,11 @@ impl Model {
         let mut bodies: Vec<Body> = Vec::new();
         let mut frames: Vec<Frame> = Vec::new();
         let mut base_mass = 0.0;
+        let mut base_inertia = Inertia::zero();
         let mut visited = vec![false; desc.links.len()];
+        if let Some(w) = world {
+            visited[w] = true;
+        }
         let mut stack: Vec<WalkEntry> = vec![(root, None, Transform::identity(), None)];
         while let Some((link, parent_body, pose, moving)) = stack.pop() {
             visited[link] = true;
@@ -80,7 +85,10 @@ impl Model {
                 let local = Inertia::from_mass_com_inertia(inertial.mass, inertial.origin.trans, at_com);
                 match body {
                     Some(b) => bodies[b].inertia = bodies[b].inertia.add(&pose.inertia_to_parent(&local)),
-                    None => base_mass += inertial.mass,
+                    None => {
+                        base_mass += inertial.mass;
+                        base_inertia = base_inertia.add(&pose.inertia_to_parent(&local));
+                    }
                 }
             }
             for &ji in child_joints[link].iter().rev() {
@@ -105,12 +113,61 @@ impl Model {
             gravity: Vec3(desc.gravity.unwrap_or(DEFAULT_GRAVITY)),
             warnings,
             base_mass,
+            root_joint: if world.is_some() { RootJoint::Floating } else { RootJoint::Fixed },
+            base_inertia,
         };
         let mut model = model;
         let more = check_every_joint_moves_mass(&model)?;
         model.warnings.extend(more);
         Ok(model)
     }
+}
+
+/// The root link and, when the root's joint is `floating`, the world link
+/// above it: a URDF floats its robot by a `floating` joint from an empty
+/// world link to the floating body, which then becomes the root. A
+/// `floating` joint anywhere else, a world link with mass or other children,
+/// or a floating joint with an origin (q holds the base's pose in the world
+/// directly) is an error naming the joint.
+fn floating_root(
+    desc: &RobotDescription,
+    root: usize,
+    child_joints: &[Vec<usize>],
+    link_index: &HashMap<&str, usize>,
+) -> Result<(usize, Option<usize>), ModelError> {
+    let mut floating = None;
+    for (ji, j) in desc.joints.iter().enumerate() {
+        if j.joint_type != JointType::Floating {
+            continue;
+        }
+        let err = |why: String| Err(ModelError::Floating { joint: j.name.clone(), why });
+        if link_index[j.parent.as_str()] != root {
+            return err(format!(
+                "a floating joint must connect the root link (\"{}\") to the floating body; this one is below it, under link \"{}\"",
+                desc.links[root].name, j.parent
+            ));
+        }
+        if child_joints[root].len() != 1 {
+            return err(format!(
+                "the root link \"{}\" of a floating joint is the world: it must carry nothing but this joint",
+                desc.links[root].name
+            ));
+        }
+        if desc.links[root].inertial.as_ref().is_some_and(|i| i.mass != 0.0) {
+            return err(format!(
+                "the root link \"{}\" of a floating joint is the world: it must have no mass",
+                j.parent
+            ));
+        }
+        if j.origin != Transform::identity() {
+            return err("a floating joint's origin must be the identity (q holds the base's pose in the world)".into());
+        }
+        floating = Some(ji);
+    }
+    Ok(match floating {
+        Some(ji) => (link_index[desc.joints[ji].child.as_str()], Some(root)),
+        None => (root, None),
+    })
 }
 
 /// The cycle met going up from link `start` through parents, each link of

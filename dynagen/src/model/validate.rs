@@ -37,7 +37,6 @@ pub(super) fn check(
         }
         let item = format!("joint \"{}\"", j.name);
         let unsupported = match j.joint_type {
-            JointType::Floating => Some("floating joints are"),
             JointType::Planar => Some("planar joints are"),
             JointType::Spherical => Some("spherical joints are"),
             _ if j.mimic => Some("mimic joints are"),
@@ -50,7 +49,8 @@ pub(super) fn check(
             return Err(ModelError::NonFinite { item, what: "origin xyz" });
         }
         check_rotation(&j.origin.rot, &item, "origin")?;
-        if j.joint_type != JointType::Fixed {
+        // a floating joint's axis means nothing (urdf-rs fills in a default)
+        if !matches!(j.joint_type, JointType::Fixed | JointType::Floating) {
             if !j.axis.is_finite() {
                 return Err(ModelError::NonFinite { item, what: "axis" });
             }

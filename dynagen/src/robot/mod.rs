@@ -15,6 +15,7 @@
 
 mod check;
 mod compensated;
+mod derivatives;
 pub(crate) mod scene;
 mod simulate;
 
@@ -89,6 +90,8 @@ pub struct Robot {
     pub(crate) integ: IntegratorScratch<f64>,
     /// Scratch of [`Robot::forward_dynamics_compensated`].
     pub(crate) comp: CompensatedSolver,
+    /// Scratch of the derivatives.
+    pub(crate) deriv: derivatives::DerivativeScratch,
 }
 
 impl Robot {
@@ -98,7 +101,8 @@ impl Robot {
         let jac = vec![0.0; 6 * model.dof()];
         let integ = IntegratorScratch::new(&model);
         let comp = CompensatedSolver::new(&model);
-        Robot { model, ws, tips: Vec::new(), jac, integ, comp }
+        let deriv = derivatives::DerivativeScratch::new(&model);
+        Robot { model, ws, tips: Vec::new(), jac, integ, comp, deriv }
     }
     /// Reads a URDF file.
     pub fn from_urdf_file(path: impl AsRef<Path>) -> Result<Self, ModelError> {

@@ -3,6 +3,8 @@
 //! run-time inputs ([`SceneInputs`]). Its arguments are checked as a
 //! [`Robot`](crate::Robot)'s are, in `robot/check.rs`.
 
+mod derivatives;
+
 use super::check::{self, Check};
 use super::{frame_jacobian, frame_pose, matrix, vector, InputError, Jacobian};
 use crate::algorithms::{Loads, TipWrench, Workspace};
@@ -75,6 +77,8 @@ pub struct SceneRobot {
     ws: Workspace<f64>,
     tips: Vec<TipWrench<f64>>,
     jac: Vec<f64>,
+    /// Scratch of the derivatives.
+    deriv: super::derivatives::DerivativeScratch,
 }
 
 /// What a call reads.
@@ -90,7 +94,8 @@ impl SceneRobot {
         let n = scene.dof();
         let ws = Workspace::new(&scene.model);
         let base_inertia = scene.model.bodies.iter().map(|b| b.inertia).collect();
-        SceneRobot { scene, base_inertia, ws, tips: Vec::with_capacity(1), jac: vec![0.0; 6 * n] }
+        let deriv = super::derivatives::DerivativeScratch::new(&scene.model);
+        SceneRobot { scene, base_inertia, ws, tips: Vec::with_capacity(1), jac: vec![0.0; 6 * n], deriv }
     }
     /// The applied scene (its model's inertias include the input payloads of
     /// the last call).

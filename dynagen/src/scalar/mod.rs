@@ -137,7 +137,9 @@ impl Scalar for f32 {
 mod compensated;
 mod counting;
 mod double_double;
+mod dual;
 mod error_free;
 pub use compensated::{Compensated, CompensatedFma, CompensatedWith, Dekker, ExactProduct, Fused};
 pub use counting::Counting;
 pub use double_double::DoubleDouble;
+pub use dual::Dual;

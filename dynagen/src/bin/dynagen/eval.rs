@@ -13,6 +13,13 @@
 //! | `h` | q, qd | [`Robot::bias_forces`] |
 //! | `g` | q | [`Robot::gravity_torques`] |
 //! | `qdd` | q, qd, tau | [`Robot::forward_dynamics`] (ABA) |
+//!
+//! With `--derivatives`, also (matrices `[output][input]`, one row per line):
+//!
+//! | output | needs | computed by |
+//! | --- | --- | --- |
+//! | `dtau_dq`, `dtau_dqd` | q, qd, qdd | [`Robot::inverse_dynamics_derivatives`] |
+//! | `dqdd_dq`, `dqdd_dqd`, `minv` | q, qd, tau | [`Robot::forward_dynamics_derivatives`] |
 
 use crate::error::{CliError, Output};
 use crate::json::Json;
@@ -37,6 +44,11 @@ pub struct Args {
     /// Gravity in the base frame, m/s² (default: 0,0,-9.81).
     #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
     pub gravity: Option<String>,
+    /// Add the derivatives of the dynamics: dtau_dq, dtau_dqd (when the
+    /// state has q, qd, qdd), dqdd_dq, dqdd_dqd and minv (when it has q, qd,
+    /// tau), `[output][input]`.
+    #[arg(long)]
+    pub derivatives: bool,
 }
 
 const EVAL_HELP: &str = "\
@@ -53,6 +65,10 @@ Output (stdout):
     h    bias forces C(q,qd)qd + g(q)     needs q, qd
     g    gravity torques                  needs q
     qdd  forward dynamics (ABA)           needs q, qd, tau
+  With --derivatives, also (matrices [output][input]: row i is output i):
+    dtau_dq, dtau_dqd          d tau / d q, d tau / d qd   needs q, qd, qdd
+    dqdd_dq, dqdd_dqd, minv    d qdd / d q, d qdd / d qd,
+                               M^-1 = d qdd / d tau        needs q, qd, tau
   Numbers are printed with full round-trip precision.
 
 Example:
@@ -89,8 +105,8 @@ pub fn run(args: &Args) -> Result<Output, CliError> {
 
     let mut results = Vec::with_capacity(states.len());
     for (i, state) in states.iter().enumerate() {
-        let result =
-            evaluate(&mut robot, state, &joint_names).map_err(|e| CliError::input(&name, format!("state {i}: {e}")))?;
+        let result = evaluate(&mut robot, state, &joint_names, args.derivatives)
+            .map_err(|e| CliError::input(&name, format!("state {i}: {e}")))?;
         results.push(result);
     }
     let out = Json::Obj(vec![
@@ -133,19 +149,14 @@ fn parse_gravity(text: &str) -> Result<[f64; 3], CliError> {
 }
 
 /// Every output the state has the inputs for, in the order tau, M, h, g, qdd.
-fn evaluate(robot: &mut Robot, s: &State, joint_names: &[String]) -> Result<Json, String> {
+fn evaluate(robot: &mut Robot, s: &State, joint_names: &[String], derivatives: bool) -> Result<Json, String> {
     let err = |e: dynagen::InputError| e.to_string();
     let mut out = Vec::new();
     if let (Some(qd), Some(qdd)) = (&s.qd, &s.qdd) {
         let tau = robot.inverse_dynamics(&s.q, qd, qdd).map_err(err)?;
         out.push(("tau".to_string(), finite("tau", tau.as_slice(), joint_names)?));
     }
-    let m = robot.mass_matrix(&s.q).map_err(err)?;
-    let rows: Vec<Vec<f64>> = m.row_iter().map(|r| r.iter().copied().collect()).collect();
-    for (r, row) in rows.iter().enumerate() {
-        finite_row(row, r, joint_names)?;
-    }
-    out.push(("M".to_string(), Json::Arr(rows.iter().map(|r| Json::nums(r)).collect())));
+    out.push(("M".to_string(), matrix("M", &robot.mass_matrix(&s.q).map_err(err)?, joint_names)?));
     if let Some(qd) = &s.qd {
         let h = robot.bias_forces(&s.q, qd).map_err(err)?;
         out.push(("h".to_string(), finite("h", h.as_slice(), joint_names)?));
@@ -156,7 +167,29 @@ fn evaluate(robot: &mut Robot, s: &State, joint_names: &[String]) -> Result<Json
         let qdd = robot.forward_dynamics(&s.q, qd, tau).map_err(err)?;
         out.push(("qdd".to_string(), finite("qdd", qdd.as_slice(), joint_names)?));
     }
+    if derivatives {
+        if let (Some(qd), Some(qdd)) = (&s.qd, &s.qdd) {
+            let (dq, dqd) = robot.inverse_dynamics_derivatives(&s.q, qd, qdd).map_err(err)?;
+            out.push(("dtau_dq".to_string(), matrix("dtau_dq", &dq, joint_names)?));
+            out.push(("dtau_dqd".to_string(), matrix("dtau_dqd", &dqd, joint_names)?));
+        }
+        if let (Some(qd), Some(tau)) = (&s.qd, &s.tau) {
+            let (dq, dqd, minv) = robot.forward_dynamics_derivatives(&s.q, qd, tau).map_err(err)?;
+            out.push(("dqdd_dq".to_string(), matrix("dqdd_dq", &dq, joint_names)?));
+            out.push(("dqdd_dqd".to_string(), matrix("dqdd_dqd", &dqd, joint_names)?));
+            out.push(("minv".to_string(), matrix("minv", &minv, joint_names)?));
+        }
+    }
     Ok(Json::Obj(out))
+}
+
+/// A matrix as rows, each checked finite.
+fn matrix(name: &str, m: &nalgebra::DMatrix<f64>, joint_names: &[String]) -> Result<Json, String> {
+    let rows: Vec<Vec<f64>> = m.row_iter().map(|r| r.iter().copied().collect()).collect();
+    for (r, row) in rows.iter().enumerate() {
+        finite_row(name, row, r, joint_names)?;
+    }
+    Ok(Json::Arr(rows.iter().map(|r| Json::nums(r)).collect()))
 }
 
 /// JSON has no NaN or infinity: an output that overflowed is an error.
@@ -170,11 +203,11 @@ fn finite(name: &str, x: &[f64], joint_names: &[String]) -> Result<Json, String>
     }
 }
 
-fn finite_row(row: &[f64], r: usize, joint_names: &[String]) -> Result<(), String> {
+fn finite_row(name: &str, row: &[f64], r: usize, joint_names: &[String]) -> Result<(), String> {
     match row.iter().position(|v| !v.is_finite()) {
         None => Ok(()),
         Some(c) => Err(format!(
-            "output \"M\"[{r}][{c}] (joints \"{}\", \"{}\") is {}: the inputs are too large for f64",
+            "output \"{name}\"[{r}][{c}] (joints \"{}\", \"{}\") is {}: the inputs are too large for f64",
             joint_names[r], joint_names[c], row[c]
         )),
     }

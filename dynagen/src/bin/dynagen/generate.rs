@@ -19,7 +19,8 @@ pub struct Args {
     pub output: Option<PathBuf>,
     /// Only these functions (comma-separated): inverse_dynamics, mass_matrix,
     /// bias_forces, gravity_torques, coriolis, forward_dynamics,
-    /// frame_pose:FRAME, frame_jacobian:FRAME.
+    /// inverse_dynamics_derivatives, forward_dynamics_derivatives,
+    /// mass_matrix_inverse, frame_pose:FRAME, frame_jacobian:FRAME.
     #[arg(long, value_name = "a,b,...", value_delimiter = ',')]
     pub functions: Option<Vec<String>>,
     /// Generate f32 code (constants rounded to f32).
@@ -65,6 +66,12 @@ pub struct Args {
     /// stack in debug builds and compile slowly in release builds.
     #[arg(long, value_name = "N")]
     pub split_lets: Option<usize>,
+    /// Give the robot a floating root: its root link moves freely, q has
+    /// NQ = DOF + 7 entries (base position, quaternion x, y, z, w, joints),
+    /// the velocity-side vectors NV = DOF + 6 (the base's body twist, then
+    /// the joints).
+    #[arg(long)]
+    pub floating_base: bool,
     /// A scene (TOML; see the documentation of `dynagen::scene`): its
     /// constants folded in, its run-time inputs (gravity, tip wrench,
     /// payloads) as extra arguments, its code keys (functions, scalar, …)
@@ -113,6 +120,9 @@ fn builder(args: &Args, source: &RobotSource) -> Result<(Builder, dynagen::Model
     let mut b = Builder::new().model(model.clone()).source(&source.to_string());
     if args.f32 {
         b = b.scalar(ScalarType::F32);
+    }
+    if args.floating_base {
+        b = b.floating_base(true);
     }
     match (args.ldlt, args.aba) {
         (true, _) => b = b.forward_dynamics(ForwardDynamicsMethod::Ldlt),

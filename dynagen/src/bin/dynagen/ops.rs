@@ -23,20 +23,28 @@ pub struct Args {
     /// generate --scene`) beside those of the full module.
     #[arg(long, value_name = "SCENE.toml")]
     pub scene: Option<PathBuf>,
+    /// Count these functions (comma-separated, as `dynagen generate
+    /// --functions`) instead of the default five, e.g. the derivatives.
+    #[arg(long, value_name = "a,b,...", value_delimiter = ',')]
+    pub functions: Option<Vec<String>>,
 }
 
 /// Runs `dynagen ops`.
 pub fn run(args: &Args) -> Result<Output, CliError> {
     let source = RobotSource::from_arg(args.robot.as_deref());
     let model = source.load()?;
-    let module = Builder::new().model(model.clone()).generate_module().map_err(|e| cli_error(e, &source))?;
+    let with_functions = |b: Builder| match &args.functions {
+        Some(f) => b.functions(f),
+        None => b,
+    };
+    let module =
+        with_functions(Builder::new().model(model.clone())).generate_module().map_err(|e| cli_error(e, &source))?;
     let mut o = String::new();
     let _ = writeln!(o, "robot \"{}\" from {source}: {} joints", model.name, model.dof());
     match &args.scene {
         None => full_table(&mut o, &model, &module),
         Some(path) => {
-            let scene = Builder::new()
-                .model(model.clone())
+            let scene = with_functions(Builder::new().model(model.clone()))
                 .scene_file(path)
                 .generate_module()
                 .map_err(|e| cli_error(e, &source))?;

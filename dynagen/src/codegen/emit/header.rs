@@ -74,7 +74,8 @@ pub(crate) fn header(facts: &HeaderFacts) -> String {
     let _ = writeln!(h, "// {reduced} content hash (FNV-1a 64 of its canonical text): {hash:016x}");
     let _ = match scene.gravity {
         ResolvedGravity::Constant(_) => {
-            writeln!(h, "// Gravity: {:?} m/s^2 in the base frame, folded in.", model.gravity.0)
+            let frame = if model.is_floating() { "world" } else { "base" };
+            writeln!(h, "// Gravity: {:?} m/s^2 in the {frame} frame, folded in.", model.gravity.0)
         }
         ResolvedGravity::None => writeln!(h, "// Gravity: none (every gravity term is gone; g(q) = 0)."),
         ResolvedGravity::Input => writeln!(h, "// Gravity: a run-time input, m/s^2 in the base frame."),
@@ -91,7 +92,8 @@ pub(crate) fn header(facts: &HeaderFacts) -> String {
         options.scalar.name(),
         on_off(options.snap_rounding),
         snapped.len(),
-        on_off(options.regroup_inertia),
+        // (a floating base keeps its model as it is: see prepare/)
+        on_off(options.regroup_inertia && !model.is_floating()),
         on_off(r.like_terms),
         on_off(r.constant_products),
         on_off(r.constant_sums),
@@ -120,9 +122,18 @@ pub(crate) fn header(facts: &HeaderFacts) -> String {
     }
     let _ = writeln!(
         h,
-        "// Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]\n\
-         //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.\n\
+        "{}// Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[{}i]\n\
+         //   (times |axis| for a non-unit axis; prismatic entries unused), and q {}.\n\
          // sin_cos_all(q): the batched sine and cosine, within 1 ulp for every finite angle, no std{}.",
+        if model.is_floating() {
+            "// Floating base: q = [p (3, world), quaternion (x, y, z, w; world <- base), joints] (NQ = DOF + 7);\n\
+             //   qd, qdd, tau and the outputs = [w_b, v_b (the base's body twist, base frame), joints] (NV = DOF + 6);\n\
+             //   gravity in the world frame. The quaternion is used as given: the caller keeps it of unit norm.\n"
+        } else {
+            ""
+        },
+        if model.is_floating() { "7 + " } else { "" },
+        if model.is_floating() { "always (the base's position and quaternion)" } else { "only if a joint is prismatic" },
         if options.scalar == crate::codegen::ScalarType::F32 { " (computed in f64, rounded to f32)" } else { "" }
     );
     let mut left_out: Vec<&str> =
@@ -162,7 +173,7 @@ fn scene_section(h: &mut String, scene: &SceneModel, functions: &[GeneratedFunct
     let model = &scene.model;
     let _ = writeln!(h, "//");
     let _ = writeln!(h, "// Left out by the scene:");
-    let all = Function::NAMES.iter().filter_map(|n| Function::from_name(n));
+    let all = Function::NAMES.iter().filter_map(|n| Function::from_name(n)).filter(|f| !f.is_derivative());
     let not_emitted: Vec<String> =
         all.filter(|f| !functions.iter().any(|g| g.function == *f)).map(|f| f.name().to_string()).collect();
     let _ = writeln!(h, "//   functions not generated: {}", list(&not_emitted));

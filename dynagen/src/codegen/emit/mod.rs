@@ -13,7 +13,7 @@ mod text;
 mod wrapper;
 
 pub use literal::float_literal_text;
-pub(crate) use statements::{tidy_dispatch, BodyStyle, Dim, Param, Shape, Signature};
+pub(crate) use statements::{tidy_dispatch, BodyStyle, Dim, Param, Shape, Signature, Sizes};
 pub(crate) use text::{doc_code, identifier};
 
 use super::trace::fd_choice::FdChoice;
@@ -78,15 +78,49 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
     let n = model.dof();
     let joint_names = model.joint_names();
     let n_lit = proc_macro2::Literal::usize_unsuffixed(n);
+    let sizes = Sizes::of(model);
+    let floating = sizes.floating();
+    let lengths = if floating {
+        let (nq, nv) = (sizes.nq, sizes.nv);
+        let (nq, nv) = (proc_macro2::Literal::usize_unsuffixed(nq), proc_macro2::Literal::usize_unsuffixed(nv));
+        quote! {
+            #[doc = " The length of `q`: the base's position (3, world frame) and quaternion (x, y, z, w; world ← base), then the joints."]
+            pub const NQ: usize = #nq;
+            #[doc = " The length of the velocity-side vectors (`qd`, `qdd`, `tau`, the outputs): the base's body twist (ω, v; base frame), then the joints."]
+            pub const NV: usize = #nv;
+        }
+    } else {
+        quote! {
+            #[doc = " The length of `q` (a fixed base: `DOF`)."]
+            pub const NQ: usize = DOF;
+            #[doc = " The length of the velocity-side vectors (a fixed base: `DOF`)."]
+            pub const NV: usize = DOF;
+        }
+    };
+    let joints_doc = if floating {
+        " The joint names, in the order of `q[7..]`, of the velocity-side vectors' `[6..]` and of `s` and `c`."
+    } else {
+        " The joint names, in the order of every index of the functions below."
+    };
     let consts = quote! {
         #[doc = " The number of degrees of freedom (joints)."]
         pub const DOF: usize = #n_lit;
-        #[doc = " The joint names, in the order of every index of the functions below."]
+        #lengths
+        #[doc = #joints_doc]
         pub const JOINT_NAMES: [&str; DOF] = [#(#joint_names),*];
     };
     let mut items = wrapper::parse_items(consts)?;
+    if functions.iter().any(|f| f.emitted && matches!(f.function.shape(floating), Shape::Matrices(..))) {
+        let ty = statements::scalar_type(options.scalar);
+        items.extend(wrapper::parse_items(quote! {
+            #[doc = " A DOF × DOF matrix `[row][col]`, as the derivatives return them (`[output][input]`)."]
+            pub type DofMatrix = [[#ty; DOF]; DOF];
+        })?);
+    }
     items.push(wrapper::parse_item(sin_cos::sin_cos_all_item(options.scalar))?);
-    let has_prismatic = model.bodies.iter().any(|b| b.joint.kind == JointKind::Prismatic);
+    // NAME_sc reads q for its prismatic joints, and a floating base's position and quaternion.
+    let has_prismatic = floating || model.bodies.iter().any(|b| b.joint.kind == JointKind::Prismatic);
+    let q_param = Param::sized("q", if floating { Dim::Nq } else { Dim::Dof });
     let mut split_functions = Vec::new();
     for f in functions.iter().filter(|f| f.emitted) {
         let (sc, name) = (&f.sin_cos_inputs, &f.name);
@@ -94,16 +128,17 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
         let ps = f.function.params(prepared);
         let mut sc_params = vec![Param::dof("s"), Param::dof("c")];
         if has_prismatic {
-            sc_params.push(Param::dof("q"));
+            sc_params.push(q_param.clone());
         }
         sc_params.extend(ps[1..].iter().cloned());
         let sc_name = format!("{name}_sc");
-        let signature = Signature { name: sc_name.clone(), params: sc_params, output: f.function.shape() };
+        let signature = Signature { name: sc_name.clone(), params: sc_params, output: f.function.shape(floating) };
         let sc_count = super::counted(&sc.function, options.fma);
-        let doc = format!("{}\n\n{}", f.function.doc(prepared, ldlt, &sc_count), wrapper::sc_doc(has_prismatic));
+        let doc =
+            format!("{}\n\n{}", f.function.doc(prepared, ldlt, &sc_count), wrapper::sc_doc(has_prismatic, floating));
         let style = BodyStyle::of(options);
         let emitted =
-            statements::emit_function(&sc.function, &signature, options.scalar, options.trig, n, &doc, style)?;
+            statements::emit_function(&sc.function, &signature, options.scalar, options.trig, sizes, &doc, style)?;
         let sc_split = split::parts_of(&emitted);
         if let Some(parts) = sc_split {
             split_functions.push((sc_name.clone(), parts));
@@ -115,7 +150,7 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
                 f.function.doc(prepared, ldlt, &f.op_count),
                 wrapper::trig_source(options.trig, options.scalar)
             );
-            let ret = f.function.shape().tokens(options.scalar);
+            let ret = f.function.shape(floating).tokens(options.scalar);
             let body = wrapper::ScBody { trace: sc, has_prismatic, split: sc_split.is_some() };
             items.extend(wrapper::parse_items(wrapper::wrapper(name, &ps, ret, body, options, &doc))?);
         }

@@ -27,6 +27,10 @@ pub(crate) fn scalar_type(scalar: ScalarType) -> TokenStream {
 pub(crate) enum Dim {
     /// `DOF`.
     Dof,
+    /// `NQ`: a floating-base module's configuration length (DOF + 7).
+    Nq,
+    /// `NV`: a floating-base module's velocity length (DOF + 6).
+    Nv,
     /// A literal length.
     Fixed(usize),
 }
@@ -35,17 +39,43 @@ impl Dim {
     fn tokens(self) -> TokenStream {
         match self {
             Dim::Dof => quote!(DOF),
+            Dim::Nq => quote!(NQ),
+            Dim::Nv => quote!(NV),
             Dim::Fixed(k) => {
                 let k = proc_macro2::Literal::usize_unsuffixed(k);
                 quote!(#k)
             }
         }
     }
-    pub(crate) fn value(self, n: usize) -> usize {
+    pub(crate) fn value(self, s: Sizes) -> usize {
         match self {
-            Dim::Dof => n,
+            Dim::Dof => s.dof,
+            Dim::Nq => s.nq,
+            Dim::Nv => s.nv,
             Dim::Fixed(k) => k,
         }
+    }
+}
+
+/// The lengths a module's [`Dim`]s stand for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Sizes {
+    /// Joints.
+    pub dof: usize,
+    /// Configuration entries (`dof`, or `dof + 7` with a floating base).
+    pub nq: usize,
+    /// Velocity entries (`dof`, or `dof + 6` with a floating base).
+    pub nv: usize,
+}
+
+impl Sizes {
+    /// The sizes of `model`.
+    pub(crate) fn of(model: &crate::model::Model) -> Sizes {
+        Sizes { dof: model.dof(), nq: model.nq(), nv: model.nv() }
+    }
+    /// Whether these are a floating-base module's.
+    pub(crate) fn floating(self) -> bool {
+        self.nq != self.dof
     }
 }
 
@@ -57,6 +87,9 @@ pub(crate) enum Shape {
     Vector(Dim),
     /// A matrix, rows then columns.
     Matrix(Dim, Dim),
+    /// A tuple of this many matrices of the same shape (the traced outputs
+    /// one matrix after the other).
+    Matrices(usize, Dim, Dim),
 }
 
 impl Shape {
@@ -71,6 +104,17 @@ impl Shape {
             Shape::Matrix(r, c) => {
                 let (r, c) = (r.tokens(), c.tokens());
                 quote!([[#ty; #c]; #r])
+            }
+            // The module's alias `DofMatrix` = `[[T; DOF]; DOF]` (a tuple of
+            // the full types is too complex a type for clippy's taste).
+            Shape::Matrices(k, Dim::Dof, Dim::Dof) => {
+                let each = (0..k).map(|_| quote!(DofMatrix));
+                quote!((#(#each),*))
+            }
+            Shape::Matrices(k, r, c) => {
+                let (r, c) = (r.tokens(), c.tokens());
+                let each = (0..k).map(|_| quote!([[#ty; #c]; #r]));
+                quote!((#(#each),*))
             }
         }
     }
@@ -91,12 +135,16 @@ impl Param {
         Param { name: name.to_string(), len: Dim::Dof }
     }
     /// `name: &[T; len]`.
+    pub(crate) fn sized(name: &str, len: Dim) -> Param {
+        Param { name: name.to_string(), len }
+    }
+    /// `name: &[T; len]`.
     pub(crate) fn fixed(name: &str, len: usize) -> Param {
         Param { name: name.to_string(), len: Dim::Fixed(len) }
     }
-    /// Its length for `n` joints.
-    pub(crate) fn len_value(&self, n: usize) -> usize {
-        self.len.value(n)
+    /// Its length.
+    pub(crate) fn len_value(&self, s: Sizes) -> usize {
+        self.len.value(s)
     }
     /// The tokens `name: &[T; len]`.
     pub(crate) fn tokens(&self, scalar: ScalarType) -> TokenStream {
@@ -222,7 +270,7 @@ pub(crate) fn emit_function(
     signature: &Signature,
     scalar: ScalarType,
     trig: Trig,
-    n: usize,
+    n: Sizes,
     doc: &str,
     style: BodyStyle,
 ) -> Result<Vec<syn::Item>, CodegenError> {
@@ -258,11 +306,15 @@ pub(crate) fn emit_function(
 }
 
 /// How the outputs are arranged into the returned array.
-fn result_of(output: Shape, n: usize) -> impl Fn(Vec<Expr>) -> Expr {
+fn result_of(output: Shape, n: Sizes) -> impl Fn(Vec<Expr>) -> Expr {
+    let matrix =
+        |out: &[Expr], r: usize, c: usize| array(out.chunks(c.max(1)).take(r).map(|row| array(row.iter().cloned())));
     move |out: Vec<Expr>| match output {
-        Shape::Matrix(r, c) => {
+        Shape::Matrix(r, c) => matrix(&out, r.value(n), c.value(n)),
+        Shape::Matrices(k, r, c) => {
             let (r, c) = (r.value(n), c.value(n));
-            array(out.chunks(c.max(1)).take(r).map(|row| array(row.iter().cloned())))
+            let elems = (0..k).map(|m| matrix(&out[m * r * c..(m + 1) * r * c], r, c)).collect();
+            Expr::Tuple(syn::ExprTuple { attrs: vec![], paren_token: Default::default(), elems })
         }
         Shape::Vector(_) => array(out),
     }
@@ -307,7 +359,7 @@ fn dispatched(
     f: &Traced,
     signature: &Signature,
     scalar: ScalarType,
-    n: usize,
+    n: Sizes,
     doc: &str,
     body: Body,
 ) -> Result<Vec<syn::Item>, CodegenError> {

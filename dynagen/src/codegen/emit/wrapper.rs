@@ -12,7 +12,13 @@ pub(super) fn parse_item(tokens: proc_macro2::TokenStream) -> Result<syn::Item, 
     syn::parse2(tokens).map_err(|e| CodegenError::Internal(e.to_string()))
 }
 
-pub(super) fn sc_doc(has_prismatic: bool) -> String {
+pub(super) fn sc_doc(has_prismatic: bool, floating: bool) -> String {
+    if floating {
+        return " Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[7 + i]`; the \
+                entries of prismatic joints are not read. `q` is read for the base's position and quaternion and \
+                the prismatic joints."
+            .to_string();
+    }
     let q = if has_prismatic { " `q` is read for the prismatic joints only." } else { "" };
     format!(
         " Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a \
@@ -57,8 +63,9 @@ pub(super) fn wrapper(
     let typed: Vec<proc_macro2::TokenStream> = params.iter().map(|p| p.tokens(options.scalar)).collect();
     let rest: Vec<proc_macro2::Ident> = params[1..].iter().map(|p| quote::format_ident!("{}", p.name)).collect();
     let q_arg = if has_prismatic { quote!(q,) } else { quote!() };
+    // Joint i's angle is q[i], or q[7 + i] after a floating base's position and quaternion.
     let angle = |i: usize, k: f64| {
-        let i = proc_macro2::Literal::usize_unsuffixed(i);
+        let i = proc_macro2::Literal::usize_unsuffixed(sc.q_offset + i);
         if k == 1.0 {
             quote!(q[#i])
         } else {
@@ -75,7 +82,7 @@ pub(super) fn wrapper(
         // Only the angles NAME_sc reads (the UR5's g reads 3 of 6, the Panda's functions 7 of 9).
         let read: Vec<(usize, f64)> =
             sc.angle_scale.iter().enumerate().filter_map(|(i, k)| k.map(|k| (i, k))).collect();
-        if read.len() == sc.angle_scale.len() && read.iter().all(|&(_, k)| k == 1.0) {
+        if sc.q_offset == 0 && read.len() == sc.angle_scale.len() && read.iter().all(|&(_, k)| k == 1.0) {
             let call = sc_call(quote!(&s, &c, #q_arg #(#rest),*));
             quote! {
                 let (s, c) = #all;

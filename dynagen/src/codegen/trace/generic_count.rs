@@ -1,6 +1,7 @@
 //! The operation count of the generic recursion, for comparison with the
 //! generated code's: the generic algorithm run on the [`Counting`] scalar.
 
+use crate::algorithms::derivatives::{self as d, DerivativeWorkspace, DualLoads};
 use crate::algorithms::{aba, bias, crba, forward_dynamics, kinematics, rnea, Loads, Workspace};
 use crate::codegen::{ForwardDynamicsMethod, Function};
 use crate::model::Model;
@@ -16,19 +17,31 @@ use crate::symbolic::OpCount;
 /// the algorithms never branch on the state. `None` for a frame the model
 /// does not have.
 pub fn generic_op_count(model: &Model, f: &Function, method: ForwardDynamicsMethod) -> Option<OpCount> {
+    if model.is_floating() {
+        // The floating-base algorithms are not counted yet.
+        return None;
+    }
     let n = model.dof();
     let args: Vec<Vec<Counting>> = (0..f.vectors().len())
         .map(|k| (0..n).map(|i| Counting(0.3 + (0.1 + 0.3 * k as f64) * (i as f64 + 1.0))).collect())
         .collect();
     let mut ws = Workspace::<Counting>::new(model);
     let g = Vec3::<Counting>::from_f64(&model.gravity);
-    let mut out = vec![Counting::zero(); f.output_len(n)];
+    let mut out = vec![Counting::zero(); f.output_len(crate::codegen::emit::Sizes::of(model))];
     let frame = match f {
         Function::FramePose(name) | Function::FrameJacobian(name) => Some(model.frame_index(name)?),
         _ => None,
     };
+    let mut dw = DerivativeWorkspace::<Counting>::new(model);
+    let mut dl = DualLoads::with_capacity(0, n);
+    dl.set(&Loads::gravity(&g));
+    let mut linv = vec![Counting::zero(); n * n];
     let (ws, out, a, g) = (&mut ws, &mut out, &args, Some(&g));
     let loads = Loads::new(g, &[], &[]);
+    let tau = |ws: &mut _, q: &[_], qd: &[_], qdd: &[_], o: &mut [_]| {
+        rnea::rnea(model, ws, q, Some(qd), Some(qdd), dl.loads(), o)
+    };
+    let mass = |ws: &mut _, q: &[Counting], m: &mut [Counting]| crba::crba(model, ws, q, Loads::none(), m);
     let ((), ops) = Counting::count(|| match f {
         Function::InverseDynamics => rnea::rnea(model, ws, &a[0], Some(&a[1]), Some(&a[2]), loads, out),
         Function::MassMatrix => crba::crba(model, ws, &a[0], Loads::none(), out),
@@ -39,6 +52,21 @@ pub fn generic_op_count(model: &Model, f: &Function, method: ForwardDynamicsMeth
             forward_dynamics::forward_dynamics_ldlt(model, ws, &a[0], &a[1], &a[2], loads, out)
         }
         Function::ForwardDynamics => aba::aba(model, ws, &a[0], &a[1], &a[2], loads, out),
+        Function::InverseDynamicsDerivatives => {
+            let (x, y) = out.split_at_mut(n * n);
+            d::inverse_dynamics_derivatives(&mut dw, &a[0], &a[1], &a[2], tau, x, y)
+        }
+        Function::ForwardDynamicsDerivatives => {
+            let (x, rest) = out.split_at_mut(n * n);
+            let (y, z) = rest.split_at_mut(n * n);
+            d::forward_dynamics_derivatives(model, &mut dw, &a[0], &a[1], &a[2], tau, mass, x, y, z)
+        }
+        Function::MassMatrixInverse => {
+            let mut m = std::mem::take(&mut ws.mat);
+            crba::crba(model, ws, &a[0], Loads::none(), &mut m);
+            d::mass_matrix_inverse(model, &mut m, &mut linv, out);
+            ws.mat = m;
+        }
         Function::FramePose(_) | Function::FrameJacobian(_) => {
             let frame = frame.expect("looked up above");
             kinematics::forward_kinematics(model, ws, &a[0]);

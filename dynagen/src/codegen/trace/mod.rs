@@ -12,6 +12,7 @@
 //! the joint angles into inputs: the body every emitted function has.
 
 pub mod fd_choice;
+mod floating;
 mod generic_count;
 mod gravity_fold;
 mod mass_matrix;
@@ -20,8 +21,9 @@ mod sin_cos;
 pub use generic_count::generic_op_count;
 pub use sin_cos::{sin_cos_from_q, sin_cos_inputs, SinCosTrace};
 
-use super::emit::payload_argument;
+use super::emit::{payload_argument, Sizes};
 use super::{counted, CodegenError, CodegenOptions, ForwardDynamicsMethod, Function, GeneratedFunction};
+use crate::algorithms::derivatives::{self, DerivativeWorkspace, DualLoads};
 use crate::algorithms::{kinematics, ldlt, rnea, BodyInertia, Loads, TipWrench, Workspace};
 use crate::scene::{dynamics, ResolvedGravity, SceneModel};
 use crate::spatial::{Force, Inertia, Sym3, Transform, Vec3};
@@ -51,6 +53,9 @@ pub(crate) fn trace_module(
     options: &CodegenOptions,
 ) -> Result<(Vec<GeneratedFunction>, fd_choice::FdChoice), CodegenError> {
     let n = scene.dof();
+    let sizes = Sizes::of(&scene.model);
+    // Where joint i's angle is in q: q[i], or q[7 + i] after a floating base's position and quaternion.
+    let offset = if scene.model.is_floating() { floating::JOINTS_IN_Q } else { 0 };
     let payloads = !scene.input_payloads.is_empty();
     // Both forward dynamics are traced and counted, whichever is emitted.
     let methods: &[ForwardDynamicsMethod] = match options.forward_dynamics {
@@ -59,12 +64,13 @@ pub(crate) fn trace_module(
     };
     let mut functions = Vec::new();
     for f in &options.functions {
-        let inputs: Vec<(String, usize)> = f.params(scene).iter().map(|p| (p.name.clone(), p.len_value(n))).collect();
+        let inputs: Vec<(String, usize)> =
+            f.params(scene).iter().map(|p| (p.name.clone(), p.len_value(sizes))).collect();
         let variants: Vec<Option<ForwardDynamicsMethod>> =
             if *f == Function::ForwardDynamics { methods.iter().map(|&m| Some(m)).collect() } else { vec![None] };
         for method in variants {
             let traced = trace_unfactored(scene, f, method.unwrap_or(ForwardDynamicsMethod::Aba), options.rewrites)?;
-            let sc = sin_cos_inputs(&traced, n, options.rewrites).map_err(CodegenError::Internal)?;
+            let sc = sin_cos_inputs(&traced, n, offset, options.rewrites).map_err(CodegenError::Internal)?;
             let traced = sin_cos_from_q(&sc, options.rewrites);
             let op_count = counted(&traced, options.fma);
             functions.push(GeneratedFunction {
@@ -163,12 +169,19 @@ pub(crate) fn trace_unfactored(
     method: ForwardDynamicsMethod,
     rewrites: Rewrites,
 ) -> Result<Traced, CodegenError> {
+    if scene.model.is_floating() {
+        return floating::trace_unfactored(scene, f, method, rewrites);
+    }
     let model = &scene.model;
     let n = model.dof();
+    let sizes = Sizes::of(model);
     let use_ldlt =
         *f == Function::ForwardDynamics && (method == ForwardDynamicsMethod::Ldlt || !scene.input_payloads.is_empty());
     // The mass-matrix plan is made (traced) before this trace starts.
-    let plan = if *f == Function::MassMatrix || use_ldlt { Some(mass_matrix::plan(model, rewrites)?) } else { None };
+    let needs_plan =
+        matches!(f, Function::MassMatrix | Function::ForwardDynamicsDerivatives | Function::MassMatrixInverse)
+            || use_ldlt;
+    let plan = if needs_plan { Some(mass_matrix::plan(model, rewrites)?) } else { None };
     let frame = match f {
         Function::FramePose(name) | Function::FrameJacobian(name) => {
             Some(scene.frame(f.name(), name).map_err(|e| CodegenError::Scene(Box::new(e)))?)
@@ -180,7 +193,7 @@ pub(crate) fn trace_unfactored(
     let loads = SceneLoads::of(scene, f, &tracer);
     let mut ws = Workspace::<Expr>::new(model);
     let zero = tracer.constant(0.0);
-    let mut out = vec![zero; f.output_len(n)];
+    let mut out = vec![zero; f.output_len(sizes)];
     let (q, g, pl, tips) = (&args[0], loads.gravity.as_ref(), &loads.payloads[..], &loads.tips[..]);
     match f {
         Function::InverseDynamics => {
@@ -228,6 +241,38 @@ pub(crate) fn trace_unfactored(
         Function::ForwardDynamics => {
             dynamics::forward_dynamics(scene, &mut ws, q, &args[1], &args[2], Loads::new(g, tips, &[]), &mut out)
         }
+        Function::InverseDynamicsDerivatives | Function::ForwardDynamicsDerivatives | Function::MassMatrixInverse => {
+            // The scene's inverse dynamics (armature, friction) run on dual
+            // numbers, its run-time loads held constant; M by the planned
+            // CRBA with the armature on its diagonal.
+            let plan = plan.as_ref();
+            let mut dw = DerivativeWorkspace::<Expr>::new(model);
+            let mut dl = DualLoads::with_capacity(tips.len() + pl.len(), n);
+            dl.set(&Loads::new(g, tips, pl));
+            let tau = |ws: &mut _, q: &[_], qd: &[_], qdd: &[_], o: &mut [_]| {
+                dynamics::inverse_dynamics(scene, ws, q, qd, qdd, dl.loads(), o)
+            };
+            let mass = |ws: &mut Workspace<Expr>, q: &[Expr], m: &mut [Expr]| {
+                mass_matrix::mass_matrix(model, ws, q, pl, plan.expect("planned above"), m);
+                dynamics::add_armature_diagonal(scene, m);
+            };
+            let (a, rest) = out.split_at_mut(n * n);
+            match f {
+                Function::InverseDynamicsDerivatives => {
+                    derivatives::inverse_dynamics_derivatives(&mut dw, q, &args[1], &args[2], tau, a, rest)
+                }
+                Function::ForwardDynamicsDerivatives => {
+                    let (b, c) = rest.split_at_mut(n * n);
+                    derivatives::forward_dynamics_derivatives(model, &mut dw, q, &args[1], &args[2], tau, mass, a, b, c)
+                }
+                _ => {
+                    let mut m = vec![zero; n * n];
+                    let mut linv = vec![zero; n * n];
+                    mass(&mut dw.ws, q, &mut m);
+                    derivatives::mass_matrix_inverse(model, &mut m, &mut linv, a);
+                }
+            }
+        }
         Function::FramePose(_) | Function::FrameJacobian(_) => {
             let frame = frame.expect("looked up above");
             kinematics::forward_kinematics(model, &mut ws, q);
@@ -264,13 +309,13 @@ mod tests {
             let model = crate::Model::from_urdf_file(path).unwrap();
             let (scene, _) = prepare::prepare(&Scene::default().apply(&model).unwrap(), &opts);
             let (model, n) = (&scene.model, scene.dof());
-            let count = |f: Traced| sin_cos_inputs(&f, n, opts.rewrites).unwrap().function.op_count();
+            let count = |f: Traced| sin_cos_inputs(&f, n, 0, opts.rewrites).unwrap().function.op_count();
             // The same two functions with the generic CRBA: M, and the LᵀDL forward dynamics.
             let generic = |f: &Function| {
                 let tracer = Tracer::start_with(opts.rewrites).unwrap();
                 let args: Vec<Vec<Expr>> = f.vectors().iter().map(|v| tracer.inputs(v, n)).collect();
                 let mut ws = Workspace::<Expr>::new(model);
-                let mut out = vec![Expr::zero(); f.output_len(n)];
+                let mut out = vec![Expr::zero(); f.output_len(Sizes::of(model))];
                 let g = Vec3::from_f64(&model.gravity);
                 match f {
                     Function::MassMatrix => crba::crba(model, &mut ws, &args[0], Loads::none(), &mut out),

@@ -5,8 +5,9 @@ use crate::symbolic::{balance, factor, Graph, Latency, Node, NodeId, Rewrites, T
 
 /// A function traced with the sines and cosines of the joint angles as
 /// inputs: `s[i]` and `c[i]` are the sine and cosine of joint `i`'s angle
-/// θᵢ = `angle_scale[i]`·`q[i]` (the scale is `|axis|`, 1 for a unit axis;
-/// `None` for a joint whose angle the function does not read).
+/// θᵢ = `angle_scale[i]`·`q[q_offset + i]` (the scale is `|axis|`, 1 for a
+/// unit axis; `None` for a joint whose angle the function does not read;
+/// the offset 7 past a floating base's position and quaternion, else 0).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SinCosTrace {
     /// The function, reading `s` and `c` instead of computing sines and
@@ -14,16 +15,19 @@ pub struct SinCosTrace {
     pub function: Traced,
     /// For each joint, the factor of `q[i]` in its angle, if it is read.
     pub angle_scale: Vec<Option<f64>>,
+    /// Where joint 0's angle is in `q`.
+    pub q_offset: usize,
 }
 
 /// A traced (unfactored) function of `q` with the sines and cosines of the
-/// `n` joint angles made inputs (see [`SinCosTrace`]), then factored; `Err` names
-/// a sine of anything other than a joint angle (which the algorithms never take).
-pub fn sin_cos_inputs(f: &Traced, n: usize, rewrites: Rewrites) -> Result<SinCosTrace, String> {
+/// `n` joint angles `q[q_offset + i]` made inputs (see [`SinCosTrace`]), then
+/// factored; `Err` names a sine of anything other than a joint angle (which
+/// the algorithms never take).
+pub fn sin_cos_inputs(f: &Traced, n: usize, q_offset: usize, rewrites: Rewrites) -> Result<SinCosTrace, String> {
     let nodes = f.nodes();
     let q = f.input_names().iter().position(|s| s == "q").map(|k| k as u32);
     let joint_of = |id: NodeId| match nodes[id as usize] {
-        Node::Input { name, index } if Some(name) == q => Some(index as usize),
+        Node::Input { name, index } if Some(name) == q && index as usize >= q_offset => Some(index as usize - q_offset),
         _ => None,
     };
     let mut g = Graph::with_rewrites(rewrites);
@@ -82,11 +86,11 @@ pub fn sin_cos_inputs(f: &Traced, n: usize, rewrites: Rewrites) -> Result<SinCos
     if rewrites.reassociate {
         function = balance(&function, &Latency::default(), rewrites);
     }
-    Ok(SinCosTrace { function, angle_scale })
+    Ok(SinCosTrace { function, angle_scale, q_offset })
 }
 
 /// The inverse of [`sin_cos_inputs`]: `s[i]` and `c[i]` replaced by the
-/// sine and cosine of `angle_scale[i]·q[i]`, giving a function of `q` again
+/// sine and cosine of `angle_scale[i]·q[q_offset + i]`, giving a function of `q` again
 /// (for evaluation and operation counts of the `q` variant).
 pub fn sin_cos_from_q(sc: &SinCosTrace, rewrites: Rewrites) -> Traced {
     let f = &sc.function;
@@ -108,7 +112,7 @@ pub fn sin_cos_from_q(sc: &SinCosTrace, rewrites: Rewrites) -> Traced {
                 let name = &f.input_names()[name as usize];
                 if name == "s" || name == "c" {
                     let i = index as usize;
-                    let q = g.input("q", i);
+                    let q = g.input("q", sc.q_offset + i);
                     let scale = sc.angle_scale[i].unwrap_or(1.0);
                     let angle = if scale == 1.0 {
                         q

@@ -1,0 +1,148 @@
+//! The derivatives of the dynamics on [`Robot`]: ∂τ/∂(q, q̇), ∂q̈/∂(q, q̇)
+//! and M⁻¹, by [`algorithms::derivatives`](crate::algorithms::derivatives),
+//! checked and allocation-free in their `_into` forms. Matrices are
+//! `[output][input]`: entry (i, j) is ∂yᵢ/∂xⱼ.
+
+use super::{matrix, Robot};
+use crate::algorithms::derivatives::{self as d, DerivativeWorkspace, DualLoads};
+use crate::algorithms::{crba, rnea, Loads};
+use crate::model::Model;
+use crate::InputError;
+use nalgebra::{DMatrix, DVector};
+
+/// A [`Robot`]'s scratch for its derivatives, allocated with it.
+#[derive(Clone, Debug)]
+pub(crate) struct DerivativeScratch {
+    pub(super) dw: DerivativeWorkspace<f64>,
+    pub(super) loads: DualLoads<f64>,
+    /// Three row-major n×n results.
+    pub(super) rows: [Vec<f64>; 3],
+}
+
+impl DerivativeScratch {
+    pub(crate) fn new(model: &Model) -> Self {
+        let n = model.dof();
+        DerivativeScratch {
+            dw: DerivativeWorkspace::new(model),
+            loads: DualLoads::with_capacity(model.frames.len(), n),
+            rows: [vec![0.0; n * n], vec![0.0; n * n], vec![0.0; n * n]],
+        }
+    }
+}
+
+/// Copies the row-major `rows` into `m`.
+pub(super) fn copy_rows(rows: &[f64], m: &mut DMatrix<f64>) {
+    let n = m.nrows();
+    for i in 0..n {
+        for j in 0..n {
+            m[(i, j)] = rows[i * n + j];
+        }
+    }
+}
+
+impl Robot {
+    /// (∂τ/∂q, ∂τ/∂q̇) of the inverse dynamics
+    /// ([`inverse_dynamics`](Self::inverse_dynamics), tip wrenches held
+    /// constant) at (q, q̇, q̈); ∂τ/∂q̈ is the [`mass_matrix`](Self::mass_matrix).
+    pub fn inverse_dynamics_derivatives(
+        &mut self,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+        qdd: &DVector<f64>,
+    ) -> Result<(DMatrix<f64>, DMatrix<f64>), InputError> {
+        let mut dqd = DMatrix::zeros(self.dof(), self.dof());
+        let dq = matrix(self.dof(), |dq| self.inverse_dynamics_derivatives_into(q, qd, qdd, dq, &mut dqd))?;
+        Ok((dq, dqd))
+    }
+    /// [`inverse_dynamics_derivatives`](Self::inverse_dynamics_derivatives)
+    /// into `dtau_dq` and `dtau_dqd` (n×n), allocating nothing.
+    pub fn inverse_dynamics_derivatives_into(
+        &mut self,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+        qdd: &DVector<f64>,
+        dtau_dq: &mut DMatrix<f64>,
+        dtau_dqd: &mut DMatrix<f64>,
+    ) -> Result<(), InputError> {
+        self.check()
+            .joints(&[("q", q), ("qd", qd), ("qdd", qdd)])?
+            .square("dtau_dq", dtau_dq)?
+            .square("dtau_dqd", dtau_dqd)?;
+        let g = self.model.gravity;
+        let DerivativeScratch { dw, loads, rows } = &mut self.deriv;
+        loads.set(&Loads::gravity(&g).with_tips(&self.tips));
+        let model = &self.model;
+        let [a, b, _] = rows;
+        let tau = |ws: &mut _, q: &[_], qd: &[_], qdd: &[_], out: &mut [_]| {
+            rnea::rnea(model, ws, q, Some(qd), Some(qdd), loads.loads(), out)
+        };
+        d::inverse_dynamics_derivatives(dw, q.as_slice(), qd.as_slice(), qdd.as_slice(), tau, a, b);
+        copy_rows(a, dtau_dq);
+        copy_rows(b, dtau_dqd);
+        Ok(())
+    }
+
+    /// (∂q̈/∂q, ∂q̈/∂q̇, M⁻¹) of the forward dynamics
+    /// ([`forward_dynamics`](Self::forward_dynamics), tip wrenches held
+    /// constant) at (q, q̇, τ); M⁻¹ = ∂q̈/∂τ.
+    #[allow(clippy::type_complexity)]
+    pub fn forward_dynamics_derivatives(
+        &mut self,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+        tau: &DVector<f64>,
+    ) -> Result<(DMatrix<f64>, DMatrix<f64>, DMatrix<f64>), InputError> {
+        let n = self.dof();
+        let (mut dqd, mut minv) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n));
+        let dq = matrix(n, |dq| self.forward_dynamics_derivatives_into(q, qd, tau, dq, &mut dqd, &mut minv))?;
+        Ok((dq, dqd, minv))
+    }
+    /// [`forward_dynamics_derivatives`](Self::forward_dynamics_derivatives)
+    /// into `dqdd_dq`, `dqdd_dqd` and `minv` (n×n), allocating nothing.
+    pub fn forward_dynamics_derivatives_into(
+        &mut self,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+        tau: &DVector<f64>,
+        dqdd_dq: &mut DMatrix<f64>,
+        dqdd_dqd: &mut DMatrix<f64>,
+        minv: &mut DMatrix<f64>,
+    ) -> Result<(), InputError> {
+        self.check()
+            .joints(&[("q", q), ("qd", qd), ("tau", tau)])?
+            .square("dqdd_dq", dqdd_dq)?
+            .square("dqdd_dqd", dqdd_dqd)?
+            .square("minv", minv)?;
+        let g = self.model.gravity;
+        let DerivativeScratch { dw, loads, rows } = &mut self.deriv;
+        loads.set(&Loads::gravity(&g).with_tips(&self.tips));
+        let model = &self.model;
+        let [a, b, c] = rows;
+        let tau_fn = |ws: &mut _, q: &[_], qd: &[_], qdd: &[_], out: &mut [_]| {
+            rnea::rnea(model, ws, q, Some(qd), Some(qdd), loads.loads(), out)
+        };
+        let mass = |ws: &mut _, q: &[f64], m: &mut [f64]| crba::crba(model, ws, q, Loads::none(), m);
+        let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());
+        d::forward_dynamics_derivatives(model, dw, q, qd, tau, tau_fn, mass, a, b, c);
+        copy_rows(a, dqdd_dq);
+        copy_rows(b, dqdd_dqd);
+        copy_rows(c, minv);
+        Ok(())
+    }
+
+    /// M(q)⁻¹, from the sparse LᵀDL factors of the mass matrix (no dense
+    /// inversion).
+    pub fn mass_matrix_inverse(&mut self, q: &DVector<f64>) -> Result<DMatrix<f64>, InputError> {
+        matrix(self.dof(), |m| self.mass_matrix_inverse_into(q, m))
+    }
+    /// [`mass_matrix_inverse`](Self::mass_matrix_inverse) into `minv` (n×n),
+    /// allocating nothing.
+    pub fn mass_matrix_inverse_into(&mut self, q: &DVector<f64>, minv: &mut DMatrix<f64>) -> Result<(), InputError> {
+        self.check().joints(&[("q", q)])?.square("minv", minv)?;
+        let [m, linv, _] = &mut self.deriv.rows;
+        crba::crba(&self.model, &mut self.ws, q.as_slice(), Loads::none(), m);
+        // M⁻¹ is symmetric: row-major and column-major agree.
+        d::mass_matrix_inverse(&self.model, m, linv, minv.as_mut_slice());
+        Ok(())
+    }
+}

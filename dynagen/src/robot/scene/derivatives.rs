@@ -1,0 +1,87 @@
+//! The derivatives of a scene's dynamics on [`SceneRobot`]: its armature,
+//! friction, constant payloads and gravity enter them; its run-time inputs
+//! (gravity, tip wrench, payloads) are held constant. The same algorithm
+//! ([`algorithms::derivatives`](crate::algorithms::derivatives)) on the
+//! scene's dynamics as the generated functions are traced from.
+
+use super::{SceneInputError, SceneInputs, SceneRobot, Uses};
+use crate::algorithms::derivatives as d;
+use crate::algorithms::Loads;
+use crate::robot::derivatives::{copy_rows, DerivativeScratch};
+use crate::scene::dynamics;
+use nalgebra::{DMatrix, DVector};
+
+impl SceneRobot {
+    /// (∂τ/∂q, ∂τ/∂q̇) of [`inverse_dynamics_with`](Self::inverse_dynamics_with)
+    /// at (q, q̇, q̈), the inputs held constant; `[output][input]`.
+    pub fn inverse_dynamics_derivatives_with(
+        &mut self,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+        qdd: &DVector<f64>,
+        inputs: &SceneInputs<'_>,
+    ) -> Result<(DMatrix<f64>, DMatrix<f64>), SceneInputError> {
+        self.check().joints(&[("q", q), ("qd", qd), ("qdd", qdd)])?;
+        let n = self.dof();
+        let g = self.prepare(inputs, Uses { gravity: true, tip: true })?;
+        let DerivativeScratch { dw, loads, rows } = &mut self.deriv;
+        loads.set(&Loads::new(g.as_ref(), &self.tips, &[]));
+        let scene = &self.scene;
+        let [a, b, _] = rows;
+        let tau = |ws: &mut _, q: &[_], qd: &[_], qdd: &[_], out: &mut [_]| {
+            dynamics::inverse_dynamics(scene, ws, q, qd, qdd, loads.loads(), out)
+        };
+        d::inverse_dynamics_derivatives(dw, q.as_slice(), qd.as_slice(), qdd.as_slice(), tau, a, b);
+        let (mut x, mut y) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n));
+        copy_rows(a, &mut x);
+        copy_rows(b, &mut y);
+        Ok((x, y))
+    }
+
+    /// (∂q̈/∂q, ∂q̈/∂q̇, M⁻¹) of [`forward_dynamics_with`](Self::forward_dynamics_with)
+    /// at (q, q̇, τ), the inputs held constant; `[output][input]`.
+    #[allow(clippy::type_complexity)]
+    pub fn forward_dynamics_derivatives_with(
+        &mut self,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+        tau: &DVector<f64>,
+        inputs: &SceneInputs<'_>,
+    ) -> Result<(DMatrix<f64>, DMatrix<f64>, DMatrix<f64>), SceneInputError> {
+        self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?;
+        let n = self.dof();
+        let g = self.prepare(inputs, Uses { gravity: true, tip: true })?;
+        let DerivativeScratch { dw, loads, rows } = &mut self.deriv;
+        loads.set(&Loads::new(g.as_ref(), &self.tips, &[]));
+        let scene = &self.scene;
+        let [a, b, c] = rows;
+        let tau_fn = |ws: &mut _, q: &[_], qd: &[_], qdd: &[_], out: &mut [_]| {
+            dynamics::inverse_dynamics(scene, ws, q, qd, qdd, loads.loads(), out)
+        };
+        let mass = |ws: &mut _, q: &[f64], m: &mut [f64]| dynamics::mass_matrix(scene, ws, q, m);
+        let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());
+        d::forward_dynamics_derivatives(&scene.model, dw, q, qd, tau, tau_fn, mass, a, b, c);
+        let (mut x, mut y, mut z) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n), DMatrix::zeros(n, n));
+        copy_rows(a, &mut x);
+        copy_rows(b, &mut y);
+        copy_rows(c, &mut z);
+        Ok((x, y, z))
+    }
+
+    /// (M(q) + diag(armature))⁻¹ with the input payloads of `inputs`, from
+    /// the sparse LᵀDL factors.
+    pub fn mass_matrix_inverse_with(
+        &mut self,
+        q: &DVector<f64>,
+        inputs: &SceneInputs<'_>,
+    ) -> Result<DMatrix<f64>, SceneInputError> {
+        self.check().joints(&[("q", q)])?;
+        let n = self.dof();
+        self.prepare(inputs, Uses { gravity: false, tip: false })?;
+        let [m, linv, _] = &mut self.deriv.rows;
+        dynamics::mass_matrix(&self.scene, &mut self.ws, q.as_slice(), m);
+        let mut minv = DMatrix::zeros(n, n);
+        d::mass_matrix_inverse(&self.scene.model, m, linv, minv.as_mut_slice());
+        Ok(minv)
+    }
+}

@@ -1,0 +1,465 @@
+//! The floating base (issue 17): random floating trees (revolute,
+//! prismatic and fixed joints, non-aligned axes, rotated placements) with
+//! random unit quaternions and |q̇| up to 50, checked against identities
+//! that do not share our code: ID(FD(τ)) = τ, two forward dynamics,
+//! M by unit accelerations, the whole robot's momentum balance, Newton–
+//! Euler of a single rigid body in closed form, Jacobians against finite
+//! differences on SE(3), the fixed-base model with the base held, energy
+//! and momentum conservation; and the URDF `floating` root and its errors.
+
+mod support;
+
+use dynagen::algorithms::floating::{
+    self, aba::aba, centroidal, crba::crba, forward_dynamics, kinematics as fk, rnea::rnea,
+};
+use dynagen::algorithms::{crba as fixed_crba, rnea as fixed_rnea, Loads, Workspace};
+use dynagen::spatial::{Force, Motion, Transform, Vec3};
+use dynagen::{Model, ModelError};
+use nalgebra::{DMatrix, DVector};
+use std::fmt::Write;
+use support::{norm_rel_err, rel_err, Rng};
+
+const G: [f64; 3] = [0.0, 0.0, -9.81];
+
+/// A random tree of `n` moving joints (and a few fixed ones) below a base
+/// with a random inertia, as URDF text; `floating_joint` adds a world link
+/// and a `floating` joint above the base.
+fn random_urdf(rng: &mut Rng, n: usize, floating_joint: bool) -> String {
+    let inertial = |rng: &mut Rng| {
+        let m = 0.5 + 3.0 * rng.unit();
+        // principal moments that satisfy the triangle inequality, rotated
+        let (a, b) = (0.02 + 0.1 * rng.unit(), 0.02 + 0.1 * rng.unit());
+        let c = (a - b).abs() + 0.01 + 0.05 * rng.unit();
+        format!(
+            "<inertial><origin xyz=\"{} {} {}\" rpy=\"{} {} {}\"/><mass value=\"{m}\"/>\
+             <inertia ixx=\"{a}\" iyy=\"{b}\" izz=\"{c}\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial>",
+            0.1 * rng.signed(),
+            0.1 * rng.signed(),
+            0.1 * rng.signed(),
+            rng.signed() * 3.0,
+            rng.signed() * 1.5,
+            rng.signed() * 3.0
+        )
+    };
+    let mut x = String::from("<robot name=\"random_floating\">");
+    if floating_joint {
+        x.push_str(
+            "<link name=\"world\"/><joint name=\"root\" type=\"floating\"><parent link=\"world\"/>\
+             <child link=\"base\"/></joint>",
+        );
+    }
+    let _ = write!(x, "<link name=\"base\">{}</link>", inertial(rng));
+    let mut links = vec!["base".to_string()];
+    for k in 0..n + n / 3 {
+        let parent = links[(rng.bits() as usize) % links.len()].clone();
+        let kind = match rng.bits() % 5 {
+            _ if k >= n => "fixed",
+            0..=2 => "revolute",
+            3 => "continuous",
+            _ => "prismatic",
+        };
+        let axis = match rng.bits() % 3 {
+            0 => "0 0 1".to_string(),
+            1 => "1 0 0".to_string(),
+            _ => format!("{} {} {}", rng.signed(), rng.signed(), rng.signed() + 1.5),
+        };
+        let name = format!("l{k}");
+        let _ = write!(
+            x,
+            "<link name=\"{name}\">{}</link><joint name=\"j{k}\" type=\"{kind}\"><parent link=\"{parent}\"/>\
+             <child link=\"{name}\"/><origin xyz=\"{} {} {}\" rpy=\"{} {} {}\"/><axis xyz=\"{axis}\"/>\
+             <limit lower=\"-10\" upper=\"10\" effort=\"100\" velocity=\"100\"/></joint>",
+            inertial(rng),
+            0.3 * rng.signed(),
+            0.3 * rng.signed(),
+            0.3 * rng.signed(),
+            rng.signed(),
+            rng.signed(),
+            rng.signed()
+        );
+        links.push(name);
+    }
+    x.push_str("</robot>");
+    x
+}
+
+fn random_model(seed: u64, n: usize) -> Model {
+    let mut rng = Rng::new(seed);
+    Model::from_urdf_str(&random_urdf(&mut rng, n, false)).unwrap().with_floating_base()
+}
+
+/// A random configuration with a random unit quaternion, and a velocity of
+/// norm up to `speed`.
+fn random_state(model: &Model, rng: &mut Rng, speed: f64) -> (Vec<f64>, Vec<f64>) {
+    let mut q = rng.vec(model.nq(), 2.0);
+    let quat = rng.vec(4, 1.0);
+    let norm = quat.iter().map(|x| x * x).sum::<f64>().sqrt();
+    for k in 0..4 {
+        q[3 + k] = quat[k] / norm;
+    }
+    let qd = rng.vec(model.nv(), 1.0);
+    let s = speed * rng.unit() / qd.iter().map(|x| x * x).sum::<f64>().sqrt();
+    (q, qd.iter().map(|x| x * s).collect())
+}
+
+fn mass_matrix(model: &Model, ws: &mut Workspace<f64>, q: &[f64]) -> DMatrix<f64> {
+    let nv = model.nv();
+    let mut m = vec![0.0; nv * nv];
+    crba(model, ws, q, Loads::none(), &mut m);
+    DMatrix::from_row_slice(nv, nv, &m)
+}
+
+fn tau_of(model: &Model, ws: &mut Workspace<f64>, q: &[f64], qd: &[f64], qdd: &[f64], g: &Vec3<f64>) -> Vec<f64> {
+    let mut tau = vec![0.0; model.nv()];
+    rnea(model, ws, q, Some(qd), Some(qdd), Loads::gravity(g), &mut tau);
+    tau
+}
+
+fn fd_aba(model: &Model, ws: &mut Workspace<f64>, q: &[f64], qd: &[f64], tau: &[f64], g: &Vec3<f64>) -> Vec<f64> {
+    let mut qdd = vec![0.0; model.nv()];
+    aba(model, ws, q, qd, tau, Loads::gravity(g), &mut qdd);
+    qdd
+}
+
+const SEEDS: [u64; 6] = [3, 17, 99, 1234, 777, 4242];
+
+#[test]
+fn inverse_of_forward_dynamics_and_two_forward_dynamics_agree() {
+    let g = Vec3(G);
+    let mut worst = [0.0f64; 2];
+    for (s, seed) in SEEDS.into_iter().enumerate() {
+        let model = random_model(seed, 3 + 2 * s);
+        let mut ws = Workspace::new(&model);
+        let mut rng = Rng::new(seed + 1);
+        for _ in 0..10 {
+            let (q, qd) = random_state(&model, &mut rng, 50.0);
+            let tau = rng.vec(model.nv(), 20.0);
+            let qdd = fd_aba(&model, &mut ws, &q, &qd, &tau, &g);
+            let back = tau_of(&model, &mut ws, &q, &qd, &qdd, &g);
+            // τ is compared with the size of the terms that make it
+            let h = tau_of(&model, &mut ws, &q, &qd, &vec![0.0; model.nv()], &g);
+            let scale = h.iter().chain(&tau).fold(1.0f64, |m, x| m.max(x.abs()));
+            let e = rel_err(&back, &tau, scale);
+            worst[0] = worst[0].max(e);
+            assert!(e < 1e-10, "seed {seed}: ID(FD(τ)) − τ = {e:e}");
+            let mut ldlt = vec![0.0; model.nv()];
+            forward_dynamics::forward_dynamics_ldlt(&model, &mut ws, &q, &qd, &tau, Loads::gravity(&g), &mut ldlt);
+            let e = norm_rel_err(&ldlt, &qdd, 1.0);
+            worst[1] = worst[1].max(e);
+            assert!(e < 1e-9, "seed {seed}: ABA vs LᵀDL {e:e}");
+        }
+    }
+    println!("worst ID(FD) {:e}, ABA vs LDLT {:e}", worst[0], worst[1]);
+}
+
+#[test]
+fn mass_matrix_is_symmetric_positive_definite_and_equals_unit_accelerations() {
+    for (s, seed) in SEEDS.into_iter().enumerate() {
+        let model = random_model(seed, 4 + 2 * s);
+        let nv = model.nv();
+        let mut ws = Workspace::new(&model);
+        let mut rng = Rng::new(seed * 7 + 1);
+        let (q, _) = random_state(&model, &mut rng, 0.0);
+        let m = mass_matrix(&model, &mut ws, &q);
+        assert_eq!(m, m.transpose(), "M is symmetric exactly");
+        assert!(m.clone().cholesky().is_some(), "M is positive definite");
+        // column j: the inverse dynamics of q̈ = e_j, at rest, no gravity
+        let zero = vec![0.0; nv];
+        for j in 0..nv {
+            let mut e = zero.clone();
+            e[j] = 1.0;
+            let mut col = vec![0.0; nv];
+            rnea(&model, &mut ws, &q, Some(&zero), Some(&e), Loads::none(), &mut col);
+            let err = rel_err(&col, m.column(j).as_slice(), m.amax());
+            assert!(err < 1e-13, "seed {seed}: column {j} {err:e}");
+        }
+        // the base block is the whole robot's composite inertia: its mass
+        for k in 3..6 {
+            let mass = centroidal::total_mass(&model);
+            assert!((m[(k, k)] - mass).abs() < 1e-12 * mass, "M[{k}][{k}] = {} ≠ m = {mass}", m[(k, k)]);
+        }
+    }
+}
+
+/// The world pose of a configuration.
+fn pose(q: &[f64]) -> Transform<f64> {
+    floating::base_pose(q)
+}
+
+/// The configuration after the velocity-side step `dv`.
+fn step(model: &Model, q: &[f64], dv: &[f64]) -> Vec<f64> {
+    let mut out = vec![0.0; q.len()];
+    floating::integrate(model, q, dv, &mut out);
+    out
+}
+
+/// The whole robot's spatial momentum about the world origin, world axes.
+fn world_momentum(model: &Model, ws: &mut Workspace<f64>, q: &[f64], qd: &[f64]) -> Force<f64> {
+    let m = mass_matrix(model, ws, q);
+    let hb = &m * DVector::from_column_slice(qd);
+    let hb = Force::from_array([hb[0], hb[1], hb[2], hb[3], hb[4], hb[5]]);
+    pose(q).force_to_parent(&hb)
+}
+
+#[test]
+fn base_rows_are_the_rate_of_change_of_momentum_minus_the_weight() {
+    let g = Vec3(G);
+    for (s, seed) in SEEDS.into_iter().enumerate() {
+        let model = random_model(seed, 3 + s);
+        let nv = model.nv();
+        let mut ws = Workspace::new(&model);
+        let mut rng = Rng::new(seed + 5);
+        let (q, qd) = random_state(&model, &mut rng, 5.0);
+        let qdd = rng.vec(nv, 5.0);
+        let tau = tau_of(&model, &mut ws, &q, &qd, &qdd, &g);
+        // d/dt of the world momentum by central differences along the
+        // motion: q(t ± δ) by the exponential map of ±δ q̇ + δ²/2 q̈
+        let d = 1e-4;
+        let at = |sign: f64, ws: &mut Workspace<f64>| {
+            let dv: Vec<f64> = (0..nv).map(|k| sign * d * qd[k] + 0.5 * d * d * qdd[k]).collect();
+            let qs = step(&model, &q, &dv);
+            let qds: Vec<f64> = (0..nv).map(|k| qd[k] + sign * d * qdd[k]).collect();
+            world_momentum(&model, ws, &qs, &qds)
+        };
+        let rate = (at(1.0, &mut ws) - at(-1.0, &mut ws)).scale(0.5 / d);
+        let rate_base = pose(&q).force_to_child(&rate);
+        // the weight's wrench on the base: m g at the centre of mass
+        let c = centroidal::center_of_mass(&model, &mut ws, &q);
+        let mass = centroidal::total_mass(&model);
+        let weight_world = Force::new(c.cross(&g.scale(mass)), g.scale(mass));
+        let want = rate_base - pose(&q).force_to_child(&weight_world);
+        let scale = want.to_array().iter().fold(1.0f64, |m, x| m.max(x.abs()));
+        let e = rel_err(&tau[..6], &want.to_array(), scale);
+        assert!(e < 1e-6, "seed {seed}: base rows vs momentum balance {e:e}");
+        // g's base rows hold the weight: minus its wrench
+        let mut gv = vec![0.0; nv];
+        forward_dynamics::gravity_forces(&model, &mut ws, &q, &g, &mut gv);
+        let hold = -pose(&q).force_to_child(&weight_world);
+        let e = rel_err(&gv[..6], &hold.to_array(), mass * 9.81);
+        assert!(e < 1e-13, "seed {seed}: g's base rows vs the weight {e:e}");
+    }
+}
+
+#[test]
+fn locked_joints_make_one_rigid_body() {
+    let g = Vec3(G);
+    for seed in SEEDS {
+        let model = random_model(seed, 6);
+        let nv = model.nv();
+        let mut ws = Workspace::new(&model);
+        let mut rng = Rng::new(seed + 11);
+        let (q, mut qd) = random_state(&model, &mut rng, 20.0);
+        let mut qdd = rng.vec(nv, 10.0);
+        for k in 6..nv {
+            qd[k] = 0.0;
+            qdd[k] = 0.0;
+        }
+        // Newton–Euler of one body with the composite inertia I:
+        // w = I(a − (0; Rᵀg)) + v ×* I v
+        let m = mass_matrix(&model, &mut ws, &q);
+        let inertia = m.view((0, 0), (6, 6)).clone_owned();
+        let v = Motion::from_array(core::array::from_fn(|k| qd[k]));
+        let r = pose(&q).rot;
+        let gb = r.tr_mul_vec(&g);
+        let a = DVector::from_fn(6, |k, _| qdd[k] - if k >= 3 { gb.0[k - 3] } else { 0.0 });
+        let iv = &inertia * DVector::from_column_slice(&qd[..6]);
+        let iv = Force::from_array(core::array::from_fn(|k| iv[k]));
+        let want = &inertia * a + DVector::from_column_slice(&v.cross_force(&iv).to_array());
+        let tau = tau_of(&model, &mut ws, &q, &qd, &qdd, &g);
+        let e = rel_err(&tau[..6], want.as_slice(), 1.0);
+        assert!(e < 1e-12, "seed {seed}: locked robot vs rigid body {e:e}");
+        // and the robot with every joint fixed in the file, at q = 0
+        let mut rng = Rng::new(seed);
+        let text = random_urdf(&mut rng, 6, false)
+            .replace("type=\"revolute\"", "type=\"fixed\"")
+            .replace("type=\"continuous\"", "type=\"fixed\"")
+            .replace("type=\"prismatic\"", "type=\"fixed\"");
+        let rigid = Model::from_urdf_str(&text).unwrap().with_floating_base();
+        assert_eq!(rigid.dof(), 0);
+        let mut q0 = q.clone();
+        q0[7..].fill(0.0);
+        let mut ws_r = Workspace::new(&rigid);
+        let t_full = tau_of(&model, &mut ws, &q0, &qd, &qdd, &g);
+        let t_rigid = tau_of(&rigid, &mut ws_r, &q0[..7], &qd[..6], &qdd[..6], &g);
+        let e = rel_err(&t_rigid, &t_full[..6], 1.0);
+        assert!(e < 1e-12, "seed {seed}: all joints fixed in the file {e:e}");
+    }
+}
+
+#[test]
+fn zero_gravity_motion_conserves_momentum_and_energy() {
+    let none = Vec3([0.0; 3]);
+    let mut report = String::new();
+    for seed in [3u64, 17, 99] {
+        let model = random_model(seed, 5);
+        let nv = model.nv();
+        let mut ws = Workspace::new(&model);
+        let mut rng = Rng::new(seed + 3);
+        let (mut q, mut qd) = random_state(&model, &mut rng, 5.0);
+        let tau = vec![0.0; nv];
+        let energy = |ws: &mut Workspace<f64>, q: &[f64], qd: &[f64]| {
+            let v = DVector::from_column_slice(qd);
+            0.5 * v.dot(&(mass_matrix(&model, ws, q) * &v))
+        };
+        let (e0, p0) = (energy(&mut ws, &q, &qd), world_momentum(&model, &mut ws, &q, &qd));
+        // RK4 on (q on SE(3) × Rⁿ, q̇): each stage's configuration by the
+        // exponential map from q
+        let dt = 1e-3;
+        for _ in 0..1000 {
+            let f = |ws: &mut Workspace<f64>, qs: &[f64], qds: &[f64]| fd_aba(&model, ws, qs, qds, &tau, &none);
+            let k1v = qd.clone();
+            let k1a = f(&mut ws, &q, &qd);
+            let mid = |kv: &[f64], h: f64| step(&model, &q, &kv.iter().map(|x| x * h).collect::<Vec<_>>());
+            let add = |ka: &[f64], h: f64| qd.iter().zip(ka).map(|(a, b)| a + h * b).collect::<Vec<_>>();
+            let (q2, qd2) = (mid(&k1v, dt / 2.0), add(&k1a, dt / 2.0));
+            let k2a = f(&mut ws, &q2, &qd2);
+            let k2v = qd2;
+            let (q3, qd3) = (mid(&k2v, dt / 2.0), add(&k2a, dt / 2.0));
+            let k3a = f(&mut ws, &q3, &qd3);
+            let k3v = qd3;
+            let (q4, qd4) = (mid(&k3v, dt), add(&k3a, dt));
+            let k4a = f(&mut ws, &q4, &qd4);
+            let k4v = qd4;
+            let comb = |a: &[f64], b: &[f64], c: &[f64], d: &[f64]| {
+                (0..nv).map(|k| dt / 6.0 * (a[k] + 2.0 * b[k] + 2.0 * c[k] + d[k])).collect::<Vec<_>>()
+            };
+            q = step(&model, &q, &comb(&k1v, &k2v, &k3v, &k4v));
+            let dqd = comb(&k1a, &k2a, &k3a, &k4a);
+            for k in 0..nv {
+                qd[k] += dqd[k];
+            }
+        }
+        let (e1, p1) = (energy(&mut ws, &q, &qd), world_momentum(&model, &mut ws, &q, &qd));
+        let de = (e1 - e0).abs() / e0;
+        let dp = norm_rel_err(&p1.to_array(), &p0.to_array(), 1e-12);
+        let _ =
+            writeln!(report, "seed {seed}: energy drift {de:.1e}, momentum drift {dp:.1e} over 1 s (RK4, dt = 1 ms)");
+        assert!(de < 1e-6 && dp < 1e-6, "seed {seed}: energy drift {de:e}, momentum drift {dp:e}");
+    }
+    println!("{report}");
+}
+
+#[test]
+fn jacobians_against_finite_differences_on_se3() {
+    for seed in SEEDS {
+        let model = random_model(seed, 7);
+        let (nv, nf) = (model.nv(), model.frames.len());
+        let mut ws = Workspace::new(&model);
+        let mut rng = Rng::new(seed + 21);
+        let (q, _) = random_state(&model, &mut rng, 0.0);
+        fk::forward_kinematics(&model, &mut ws, &q);
+        let frame = (rng.bits() as usize) % nf;
+        let t = fk::frame_pose_world(&model, &ws, &q, frame);
+        let (mut jb, mut js, mut jbase) = (vec![0.0; 6 * nv], vec![0.0; 6 * nv], vec![0.0; 6 * nv]);
+        fk::body_jacobian(&model, &ws, frame, &mut jb);
+        fk::space_jacobian_world(&model, &ws, &q, frame, &mut js);
+        fk::space_jacobian_base(&model, &ws, frame, &mut jbase);
+        let d = 1e-6;
+        for k in 0..nv {
+            let mut dv = vec![0.0; nv];
+            let mut pose_at = |h: f64, ws: &mut Workspace<f64>| {
+                dv.iter_mut().enumerate().for_each(|(i, x)| *x = if i == k { h } else { 0.0 });
+                let qs = step(&model, &q, &dv);
+                fk::forward_kinematics(&model, ws, &qs);
+                fk::frame_pose_world(&model, ws, &qs, frame).to_homogeneous()
+            };
+            let (p, m) = (pose_at(d, &mut ws), pose_at(-d, &mut ws));
+            let dt: [[f64; 4]; 4] = core::array::from_fn(|r| core::array::from_fn(|c| (p[r][c] - m[r][c]) / (2.0 * d)));
+            let th = nalgebra::Matrix4::from_fn(|r, c| t.to_homogeneous()[r][c]);
+            let dt = nalgebra::Matrix4::from_fn(|r, c| dt[r][c]);
+            let twist = |x: nalgebra::Matrix4<f64>| [x[(2, 1)], x[(0, 2)], x[(1, 0)], x[(0, 3)], x[(1, 3)], x[(2, 3)]];
+            let body = twist(th.try_inverse().unwrap() * dt);
+            let space = twist(dt * th.try_inverse().unwrap());
+            let col = |j: &[f64]| (0..6).map(|r| j[r * nv + k]).collect::<Vec<_>>();
+            for (name, got, want) in [("body", col(&jb), body), ("space", col(&js), space)] {
+                let e = rel_err(&got, &want, 1.0);
+                assert!(e < 1e-8, "seed {seed}, frame {frame}, column {k}: {name} Jacobian {e:e}");
+            }
+            // the base-frame Jacobian is the world one seen from the base
+            let world = Motion::from_array(core::array::from_fn(|r| js[r * nv + k]));
+            let in_base = pose(&q).motion_to_child(&world).to_array();
+            assert!(rel_err(&col(&jbase), &in_base, 1.0) < 1e-13);
+        }
+    }
+}
+
+#[test]
+fn fixed_base_model_is_the_floating_one_with_the_base_held() {
+    let g = Vec3(G);
+    for seed in SEEDS {
+        let floating = random_model(seed, 7);
+        let mut fixed = floating.clone();
+        fixed.root_joint = dynagen::model::RootJoint::Fixed;
+        let (n, nv) = (fixed.dof(), floating.nv());
+        let (mut wf, mut wx) = (Workspace::new(&floating), Workspace::new(&fixed));
+        let mut rng = Rng::new(seed + 31);
+        let (q, mut qd) = random_state(&floating, &mut rng, 30.0);
+        let mut qdd = rng.vec(nv, 10.0);
+        qd[..6].fill(0.0);
+        qdd[..6].fill(0.0);
+        // gravity in the base frame for the fixed model
+        let gb = pose(&q).rot.tr_mul_vec(&g);
+        let tf = tau_of(&floating, &mut wf, &q, &qd, &qdd, &g);
+        let mut tx = vec![0.0; n];
+        fixed_rnea::rnea(&fixed, &mut wx, &q[7..], Some(&qd[6..]), Some(&qdd[6..]), Loads::gravity(&gb), &mut tx);
+        let e = rel_err(&tf[6..], &tx, 1.0);
+        assert!(e < 1e-12, "seed {seed}: joint rows of τ {e:e}");
+        let mf = mass_matrix(&floating, &mut wf, &q);
+        let mut mx = vec![0.0; n * n];
+        fixed_crba::crba(&fixed, &mut wx, &q[7..], Loads::none(), &mut mx);
+        let joints: Vec<f64> =
+            (0..n).flat_map(|i| (0..n).map(move |j| (i, j))).map(|(i, j)| mf[(6 + i, 6 + j)]).collect();
+        let e = rel_err(&joints, &mx, 1.0);
+        assert!(e < 1e-13, "seed {seed}: joint block of M {e:e}");
+    }
+}
+
+#[test]
+fn urdf_floating_root_joint() {
+    let mut rng = Rng::new(5);
+    let text = random_urdf(&mut rng, 5, true);
+    let model = Model::from_urdf_str(&text).unwrap();
+    assert!(model.is_floating());
+    assert_eq!(model.root, "base");
+    assert_eq!((model.nq(), model.nv()), (model.dof() + 7, model.dof() + 6));
+    assert!(model.frame_index("world").is_none());
+    let mut rng = Rng::new(5);
+    let same = Model::from_urdf_str(&random_urdf(&mut rng, 5, false)).unwrap().with_floating_base();
+    assert_eq!(model.bodies, same.bodies);
+    assert_eq!(model.base_inertia, same.base_inertia);
+    // a fixed-base model keeps NQ = NV = n
+    let fixed = support::model("ur5");
+    assert_eq!((fixed.nq(), fixed.nv(), fixed.is_floating()), (6, 6, false));
+}
+
+#[test]
+fn urdf_errors_name_the_item() {
+    let link = |n: &str| {
+        format!("<link name=\"{n}\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" iyy=\"1\" izz=\"1\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>")
+    };
+    let joint = |name: &str, kind: &str, p: &str, c: &str| {
+        format!("<joint name=\"{name}\" type=\"{kind}\"><parent link=\"{p}\"/><child link=\"{c}\"/><axis xyz=\"0 0 1\"/></joint>")
+    };
+    let robot = |body: String| format!("<robot name=\"r\">{body}</robot>");
+    let err = |x: String| Model::from_urdf_str(&x).unwrap_err();
+    // a floating joint below the root
+    let e = err(robot(format!(
+        "<link name=\"world\"/>{}{}{}{}{}",
+        link("base"),
+        link("leg"),
+        joint("root", "floating", "world", "base"),
+        joint("hip", "floating", "base", "leg"),
+        ""
+    )));
+    assert!(matches!(&e, ModelError::Floating { joint, .. } if joint == "hip"), "{e}");
+    assert!(e.to_string().contains("hip"), "{e}");
+    // a world with mass
+    let e = err(robot(format!("{}{}{}", link("world"), link("base"), joint("root", "floating", "world", "base"))));
+    assert!(e.to_string().contains("root") && e.to_string().contains("mass"), "{e}");
+    // a planar joint
+    let e = err(robot(format!("{}{}{}", link("base"), link("slider"), joint("slide", "planar", "base", "slider"))));
+    assert!(e.to_string().contains("slide") && e.to_string().contains("planar"), "{e}");
+    // two roots
+    let e = err(robot(format!("{}{}", link("a"), link("b"))));
+    assert!(matches!(&e, ModelError::MultipleRoots(r) if r == &["a", "b"]), "{e}");
+}

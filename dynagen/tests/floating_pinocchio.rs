@@ -1,0 +1,103 @@
+//! The floating base against Pinocchio with a `JointModelFreeFlyer` root,
+//! on a 12-joint quadruped (Unitree A1 parameters), the 7-joint
+//! torso_two_arms and a random 20-joint tree (prismatic and fixed joints,
+//! non-aligned axes, rotated origins), 10 states each with random unit
+//! quaternions and |q̇| of 2 and 50.
+//!
+//! The values in `tests/data/pinocchio_floating_<robot>.json` were computed
+//! by Pinocchio with `scripts/reference/make_pinocchio_floating.py`
+//! (version, seed in each file's "source"), converted there to dynagen's
+//! conventions ((angular; linear) base velocity and wrench, our joint order).
+
+mod support;
+
+use dynagen::algorithms::floating::{aba, centroidal, crba, forward_dynamics, kinematics, rnea};
+use dynagen::algorithms::{Loads, Workspace};
+use dynagen::spatial::Vec3;
+use dynagen::Model;
+use serde_json::Value;
+use std::path::Path;
+use support::rel_err;
+
+fn vector(v: &Value) -> Vec<f64> {
+    v.as_array().expect("array").iter().map(|x| x.as_f64().expect("number")).collect()
+}
+
+fn flat(v: &Value) -> Vec<f64> {
+    v.as_array().expect("rows").iter().flat_map(vector).collect()
+}
+
+/// Pinocchio's values; the largest relative error seen, per quantity.
+fn check(name: &str) -> Vec<(&'static str, f64)> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let data: Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.join(format!("tests/data/pinocchio_floating_{name}.json"))).unwrap(),
+    )
+    .unwrap();
+    let model =
+        Model::from_urdf_file(Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(data["robot"].as_str().unwrap()))
+            .unwrap()
+            .with_floating_base();
+    let names: Vec<&str> = data["joint_names"].as_array().unwrap().iter().map(|x| x.as_str().unwrap()).collect();
+    assert_eq!(model.joint_names(), names, "{name}: joint order");
+    let frame = model.frame_index(data["frame"].as_str().unwrap()).unwrap();
+    let mass = data["total_mass"].as_f64().unwrap();
+    assert!((centroidal::total_mass(&model) - mass).abs() < 1e-13 * mass, "{name}: total mass");
+    let (nv, g) = (model.nv(), Vec3([0.0, 0.0, -9.81]));
+    let mut ws = Workspace::new(&model);
+    let mut worst: Vec<(&'static str, f64)> = Vec::new();
+    let mut record = |what: &'static str, got: &[f64], want: &[f64], k: usize| {
+        let e = rel_err(got, want, 1.0);
+        assert!(e < 1e-12, "{name}, state {k}: {what} differs from Pinocchio by {e:e}");
+        match worst.iter_mut().find(|(w, _)| *w == what) {
+            Some((_, x)) => *x = x.max(e),
+            None => worst.push((what, e)),
+        }
+    };
+    for (k, s) in data["states"].as_array().unwrap().iter().enumerate() {
+        let (q, qd, qdd, tau) = (vector(&s["q"]), vector(&s["qd"]), vector(&s["qdd"]), vector(&s["tau"]));
+        let mut out = vec![0.0; nv];
+        rnea::rnea(&model, &mut ws, &q, Some(&qd), Some(&qdd), Loads::gravity(&g), &mut out);
+        record("tau", &out, &vector(&s["tau_id"]), k);
+        let mut m = vec![0.0; nv * nv];
+        crba::crba(&model, &mut ws, &q, Loads::none(), &mut m);
+        record("M", &m, &flat(&s["M"]), k);
+        forward_dynamics::bias_forces(&model, &mut ws, &q, &qd, Some(&g), &mut out);
+        record("h", &out, &vector(&s["h"]), k);
+        forward_dynamics::gravity_forces(&model, &mut ws, &q, &g, &mut out);
+        record("g", &out, &vector(&s["g"]), k);
+        aba::aba(&model, &mut ws, &q, &qd, &tau, Loads::gravity(&g), &mut out);
+        record("qdd (ABA)", &out, &vector(&s["qdd_fd"]), k);
+        forward_dynamics::forward_dynamics_ldlt(&model, &mut ws, &q, &qd, &tau, Loads::gravity(&g), &mut out);
+        record("qdd (CRBA + LTDL)", &out, &vector(&s["qdd_fd"]), k);
+        kinematics::forward_kinematics(&model, &mut ws, &q);
+        let pose = kinematics::frame_pose_world(&model, &ws, &q, frame).to_homogeneous();
+        record("frame pose", &pose.concat(), &flat(&s["frame_pose"]), k);
+        let mut j = vec![0.0; 6 * nv];
+        kinematics::space_jacobian_world(&model, &ws, &q, frame, &mut j);
+        record("Jacobian (world)", &j, &flat(&s["jacobian_world"]), k);
+        kinematics::body_jacobian(&model, &ws, frame, &mut j);
+        record("Jacobian (local)", &j, &flat(&s["jacobian_local"]), k);
+        let c = centroidal::center_of_mass(&model, &mut ws, &q);
+        record("centre of mass", &c.0, &vector(&s["com"]), k);
+        centroidal::centroidal_momentum_matrix(&model, &mut ws, &q, &mut j);
+        record("centroidal momentum matrix", &j, &flat(&s["centroidal_momentum_matrix"]), k);
+    }
+    println!("{name}: {worst:?}");
+    worst
+}
+
+#[test]
+fn quadruped12_agrees_with_pinocchio() {
+    check("quadruped12");
+}
+
+#[test]
+fn torso_two_arms_floating_agrees_with_pinocchio() {
+    check("torso_two_arms");
+}
+
+#[test]
+fn random_tree20_agrees_with_pinocchio() {
+    check("random_tree20");
+}

@@ -1,0 +1,138 @@
+//! The generated derivatives, compiled: the modules `build.rs` writes with
+//! `functions = [inverse_dynamics_derivatives, forward_dynamics_derivatives,
+//! mass_matrix_inverse]` (UR5, Panda, the two-armed torso, an f32 UR5, the
+//! `ur5_controller` scene) against the generic derivatives (`Robot`,
+//! `SceneRobot`, themselves checked against double-double finite
+//! differences in `dynagen/tests/derivatives.rs`): ≤ 1e-12 of each matrix's
+//! norm in f64, ≤ 1e-4 in f32.
+
+use dynagen::scene::{SceneFile, SceneInputs, SceneRobot};
+use dynagen_tests::{bundled_model, bundled_robot, bundled_scene, norm_rel_err, Rng};
+use nalgebra::{DMatrix, DVector, Vector6};
+
+macro_rules! module {
+    ($name:ident) => {
+        #[allow(dead_code)]
+        mod $name {
+            include!(concat!(env!("OUT_DIR"), "/", stringify!($name), ".rs"));
+        }
+    };
+}
+module!(ur5_derivatives);
+module!(panda_derivatives);
+module!(torso_two_arms_derivatives);
+module!(ur5_derivatives_f32);
+module!(ur5_controller_derivatives);
+
+/// Row-major entries.
+fn rows(m: &DMatrix<f64>) -> Vec<f64> {
+    m.transpose().as_slice().to_vec()
+}
+
+/// Checks a derivatives module against `Robot` on `cases` random states.
+macro_rules! check {
+    ($m:ident, $robot:expr, $cases:expr) => {{
+        const N: usize = $m::DOF;
+        let mut robot = bundled_robot($robot);
+        assert_eq!($m::JOINT_NAMES.to_vec(), robot.joint_names());
+        let mut rng = Rng::new(0xde71);
+        let mut worst = 0.0_f64;
+        for _ in 0..$cases {
+            let mut arr = |a: f64| -> [f64; N] { core::array::from_fn(|_| rng.range(-a, a)) };
+            let (q, qd, x) = (arr(3.0), arr(2.0), arr(10.0));
+            let v = |a: &[f64; N]| DVector::from_column_slice(a);
+            let (a, b) = $m::inverse_dynamics_derivatives(&q, &qd, &x);
+            let (wa, wb) = robot.inverse_dynamics_derivatives(&v(&q), &v(&qd), &v(&x)).unwrap();
+            let (c, d, e) = $m::forward_dynamics_derivatives(&q, &qd, &x);
+            let (wc, wd, we) = robot.forward_dynamics_derivatives(&v(&q), &v(&qd), &v(&x)).unwrap();
+            let minv = $m::mass_matrix_inverse(&q);
+            for (what, got, want) in [
+                ("dtau/dq", a.concat(), rows(&wa)),
+                ("dtau/dqd", b.concat(), rows(&wb)),
+                ("dqdd/dq", c.concat(), rows(&wc)),
+                ("dqdd/dqd", d.concat(), rows(&wd)),
+                ("Minv (forward_dynamics_derivatives)", e.concat(), rows(&we)),
+                ("mass_matrix_inverse", minv.concat(), rows(&we)),
+            ] {
+                let err = norm_rel_err(&got, &want, 1e-300);
+                assert!(err <= 1e-12, "{}::{what} at q = {q:?}: {err:e}", stringify!($m));
+                worst = worst.max(err);
+            }
+        }
+        println!("{}: worst relative error {worst:.1e}", stringify!($m));
+    }};
+}
+
+#[test]
+fn ur5_derivatives_match_the_generic_ones() {
+    check!(ur5_derivatives, "ur5", 200);
+}
+
+#[test]
+fn panda_derivatives_match_the_generic_ones() {
+    check!(panda_derivatives, "panda", 200);
+}
+
+#[test]
+fn torso_two_arms_derivatives_match_the_generic_ones() {
+    check!(torso_two_arms_derivatives, "torso_two_arms", 100);
+}
+
+#[test]
+fn ur5_f32_derivatives_are_close() {
+    let mut robot = bundled_robot("ur5");
+    let mut rng = Rng::new(0xf32);
+    for _ in 0..100 {
+        let mut arr = |a: f64| -> [f64; 6] { core::array::from_fn(|_| rng.range(-a, a)) };
+        let (q, qd, x) = (arr(3.0), arr(2.0), arr(10.0));
+        let f = |a: &[f64; 6]| a.map(|x| x as f32);
+        let v = |a: &[f64; 6]| DVector::from_column_slice(a);
+        let wide = |m: [[f32; 6]; 6]| m.concat().into_iter().map(f64::from).collect::<Vec<_>>();
+        let (a, b) = ur5_derivatives_f32::inverse_dynamics_derivatives(&f(&q), &f(&qd), &f(&x));
+        let (wa, wb) = robot.inverse_dynamics_derivatives(&v(&q), &v(&qd), &v(&x)).unwrap();
+        let (c, d, e) = ur5_derivatives_f32::forward_dynamics_derivatives(&f(&q), &f(&qd), &f(&x));
+        let (wc, wd, we) = robot.forward_dynamics_derivatives(&v(&q), &v(&qd), &v(&x)).unwrap();
+        for (what, got, want) in [
+            ("dtau/dq", wide(a), rows(&wa)),
+            ("dtau/dqd", wide(b), rows(&wb)),
+            ("dqdd/dq", wide(c), rows(&wc)),
+            ("dqdd/dqd", wide(d), rows(&wd)),
+            ("Minv", wide(e), rows(&we)),
+        ] {
+            let err = norm_rel_err(&got, &want, 1e-300);
+            assert!(err <= 1e-4, "f32 {what}: {err:e}");
+        }
+    }
+}
+
+/// The scene's armature, friction and constant payload enter; its tip
+/// wrench input is held constant.
+#[test]
+fn ur5_controller_scene_derivatives_match_the_generic_ones() {
+    use ur5_controller_derivatives as m;
+    let file = SceneFile::from_toml_file(bundled_scene("ur5_controller")).unwrap();
+    let mut robot = SceneRobot::new(file.scene.apply(&bundled_model("ur5")).unwrap());
+    let mut rng = Rng::new(0x5ce);
+    for _ in 0..100 {
+        let mut arr = |a: f64| -> [f64; 6] { core::array::from_fn(|_| rng.range(-a, a)) };
+        let (q, qd, x, f_tip) = (arr(3.0), arr(2.0), arr(10.0), arr(20.0));
+        let v = |a: &[f64; 6]| DVector::from_column_slice(a);
+        let inputs = SceneInputs { tip_wrench: Some(Vector6::from_column_slice(&f_tip)), ..Default::default() };
+        let (a, b) = m::inverse_dynamics_derivatives(&q, &qd, &x, &f_tip);
+        let (wa, wb) = robot.inverse_dynamics_derivatives_with(&v(&q), &v(&qd), &v(&x), &inputs).unwrap();
+        let (c, d, e) = m::forward_dynamics_derivatives(&q, &qd, &x, &f_tip);
+        let (wc, wd, we) = robot.forward_dynamics_derivatives_with(&v(&q), &v(&qd), &v(&x), &inputs).unwrap();
+        let minv = m::mass_matrix_inverse(&q);
+        for (what, got, want) in [
+            ("dtau/dq", a.concat(), rows(&wa)),
+            ("dtau/dqd", b.concat(), rows(&wb)),
+            ("dqdd/dq", c.concat(), rows(&wc)),
+            ("dqdd/dqd", d.concat(), rows(&wd)),
+            ("Minv", e.concat(), rows(&we)),
+            ("mass_matrix_inverse", minv.concat(), rows(&we)),
+        ] {
+            let err = norm_rel_err(&got, &want, 1e-300);
+            assert!(err <= 1e-12, "ur5_controller {what}: {err:e}");
+        }
+    }
+}
