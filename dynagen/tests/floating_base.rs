@@ -463,3 +463,87 @@ fn urdf_errors_name_the_item() {
     let e = err(robot(format!("{}{}", link("a"), link("b"))));
     assert!(matches!(&e, ModelError::MultipleRoots(r) if r == &["a", "b"]), "{e}");
 }
+
+#[test]
+fn robot_checks_floating_inputs_and_names_them() {
+    use dynagen::InputError;
+    let mut robot = dynagen::Robot::new(support::model("quadruped12").with_floating_base());
+    let (nq, nv) = (robot.nq(), robot.nv());
+    assert_eq!((nq, nv), (19, 18));
+    let mut q = DVector::zeros(nq);
+    q[6] = 1.0;
+    let v = DVector::zeros(nv);
+    assert!(robot.inverse_dynamics(&q, &v, &v).is_ok());
+    // a fixed-base length is refused, naming NQ / NV
+    let short = DVector::zeros(12);
+    let e = robot.inverse_dynamics(&short, &v, &v).unwrap_err();
+    assert!(matches!(e, InputError::WrongLengthFloating { what: "q", got: 12, expected: 19, .. }), "{e}");
+    assert!(e.to_string().contains("NQ = n + 7"), "{e}");
+    let e = robot.inverse_dynamics(&q, &short, &v).unwrap_err();
+    assert!(e.to_string().contains("qd") && e.to_string().contains("NV = n + 6"), "{e}");
+    // a zero quaternion, and one far from unit norm
+    let mut bad = q.clone();
+    bad[6] = 0.0;
+    let e = robot.mass_matrix(&bad).unwrap_err();
+    assert!(matches!(e, InputError::Quaternion { what: "q", norm } if norm == 0.0), "{e}");
+    assert!(e.to_string().contains("quaternion"), "{e}");
+    bad[6] = 1.001;
+    assert!(matches!(robot.forward_dynamics(&bad, &v, &v), Err(InputError::Quaternion { .. })));
+    // 1e-9 off unit norm is fine (used as given)
+    bad[6] = 1.0 + 1e-9;
+    assert!(robot.forward_dynamics(&bad, &v, &v).is_ok());
+    // NaN in the base names the base, in a joint the joint
+    let mut nan = q.clone();
+    nan[4] = f64::NAN;
+    let e = robot.gravity_torques(&nan).unwrap_err();
+    assert!(matches!(&e, InputError::NonFinite { joint, index: 4, .. } if joint == "base quaternion"), "{e}");
+    let mut nan_v = v.clone();
+    nan_v[8] = f64::INFINITY;
+    let e = robot.bias_forces(&q, &nan_v).unwrap_err();
+    assert!(matches!(&e, InputError::NonFinite { joint, .. } if joint == "FR_calf_joint"), "{e}");
+    // what a floating base cannot do yet is an error, not a panic
+    assert!(matches!(robot.forward_dynamics_compensated(&q, &v, &v), Err(InputError::Unsupported(_))));
+    let (mut q1, mut v1) = (q.clone(), v.clone());
+    let e = robot.step(dynagen::Integrator::ImplicitEuler, &mut q1, &mut v1, &v, 1e-3).unwrap_err();
+    assert!(e.to_string().contains("floating base"), "{e}");
+    // the centroidal quantities need a floating base
+    let mut fixed = support::robot("quadruped12");
+    assert!(matches!(fixed.center_of_mass(&DVector::zeros(12)), Err(InputError::Unsupported(_))));
+}
+
+#[test]
+fn robot_steps_the_base_on_se3() {
+    use dynagen::{Integrator, Robot, Stepping};
+    let mut robot = Robot::new(support::model("quadruped12").with_floating_base());
+    robot.set_gravity(nalgebra::Vector3::zeros()).unwrap();
+    let (nq, nv) = (robot.nq(), robot.nv());
+    let mut rng = Rng::new(8);
+    let (q0, qd0) = random_state(robot.model(), &mut rng, 10.0);
+    let (q0, qd0) = (DVector::from_vec(q0), DVector::from_vec(qd0));
+    let energy =
+        |robot: &mut Robot, q: &DVector<f64>, qd: &DVector<f64>| 0.5 * qd.dot(&(robot.mass_matrix(q).unwrap() * qd));
+    let e0 = energy(&mut robot, &q0, &qd0);
+    let mut report = String::new();
+    for (integrator, tol) in [(Integrator::Rk4, 1e-6), (Integrator::SemiImplicitEuler, 0.05), (Integrator::Euler, 0.5)]
+    {
+        let (mut q, mut qd) = (q0.clone(), qd0.clone());
+        let tau = DVector::zeros(nv);
+        for _ in 0..1000 {
+            robot.step(integrator, &mut q, &mut qd, &tau, 1e-3).unwrap();
+        }
+        let norm = q.rows(3, 4).norm();
+        assert!((norm - 1.0).abs() < 1e-14, "{integrator:?}: quaternion norm {norm}");
+        let drift = (energy(&mut robot, &q, &qd) - e0).abs() / e0;
+        let _ = writeln!(report, "{integrator:?}: energy drift {drift:.1e} over 1 s at dt = 1 ms");
+        assert!(drift < tol, "{integrator:?}: energy drift {drift:e}");
+    }
+    println!("{report}");
+    // a trajectory: NQ-wide positions, NV-wide velocities
+    let tau = DMatrix::zeros(11, nv);
+    let (qs, qds) =
+        robot.forward_dynamics_trajectory(&q0, &qd0, &tau, None, Stepping::new(0.01, 10, Integrator::Rk4)).unwrap();
+    assert_eq!((qs.ncols(), qds.ncols(), qs.nrows()), (nq, nv, 11));
+    let qdd = DMatrix::zeros(11, nv);
+    let taus = robot.inverse_dynamics_trajectory(&qs, &qds, &qdd, None).unwrap();
+    assert_eq!(taus.ncols(), nv);
+}

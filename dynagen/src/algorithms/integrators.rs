@@ -27,6 +27,9 @@
 //!
 //! Units: `dt` in s; q in rad (revolute) or m (prismatic), q̇ per s; τ in
 //! N·m or N; gravity (m/s²) in the base frame; tip wrenches in their frames.
+//!
+//! A floating-base model is stepped by [`floating::step`](super::floating::step)
+//! (the base on SE(3), never q += dt·q̇; no implicit scheme there).
 
 use super::aba::aba;
 use super::lu::{self, magnitude};
@@ -67,13 +70,15 @@ pub struct StepInputs<'a, S> {
 pub struct IntegratorScratch<S> {
     /// The last accelerations computed (for Euler and semi-implicit Euler:
     /// q̈ at the start of the step).
-    qdd: Vec<S>,
+    pub(crate) qdd: Vec<S>,
     /// Runge-Kutta stage position and velocity.
-    q_stage: Vec<S>,
-    qd_stage: Vec<S>,
+    pub(crate) q_stage: Vec<S>,
+    pub(crate) qd_stage: Vec<S>,
     /// Runge-Kutta weighted sums of the stage slopes.
-    q_sum: Vec<S>,
-    qd_sum: Vec<S>,
+    pub(crate) q_sum: Vec<S>,
+    pub(crate) qd_sum: Vec<S>,
+    /// A floating base's configuration step (velocity-side), see `floating::step`.
+    pub(crate) delta: Vec<S>,
     /// The implicit scheme's Newton scratch.
     implicit: ImplicitScratch<S>,
 }
@@ -81,13 +86,15 @@ pub struct IntegratorScratch<S> {
 impl<S: Scalar> IntegratorScratch<S> {
     /// Scratch for `model`.
     pub fn new(model: &Model) -> Self {
-        let n = model.dof();
+        // NQ and NV entries (both n for a fixed base)
+        let (n, nq, nv) = (model.dof(), model.nq(), model.nv());
         IntegratorScratch {
-            qdd: vec![S::zero(); n],
-            q_stage: vec![S::zero(); n],
-            qd_stage: vec![S::zero(); n],
-            q_sum: vec![S::zero(); n],
-            qd_sum: vec![S::zero(); n],
+            qdd: vec![S::zero(); nv],
+            q_stage: vec![S::zero(); nq],
+            qd_stage: vec![S::zero(); nv],
+            q_sum: vec![S::zero(); nv],
+            qd_sum: vec![S::zero(); nv],
+            delta: vec![S::zero(); if model.is_floating() { nv } else { 0 }],
             implicit: ImplicitScratch::new(n),
         }
     }
@@ -128,6 +135,10 @@ fn step_by_aba<S: Scalar>(
     q: &mut [S],
     qd: &mut [S],
 ) -> Option<NewtonOutcome> {
+    if model.is_floating() {
+        super::floating::step::step(integrator, model, ws, scratch, inputs, q, qd);
+        return None;
+    }
     let n = model.dof();
     assert!(
         q.len() == n && qd.len() == n && inputs.tau.len() == n && ws.dof() == n && scratch.dof() == n,

@@ -35,7 +35,7 @@ impl Robot {
         qd: &DVector<f64>,
         tau: &DVector<f64>,
     ) -> Result<DVector<f64>, InputError> {
-        vector(self.dof(), |qdd| self.forward_dynamics_compensated_into(q, qd, tau, qdd))
+        vector(self.model.nv(), |qdd| self.forward_dynamics_compensated_into(q, qd, tau, qdd))
     }
     /// [`forward_dynamics_compensated`](Self::forward_dynamics_compensated)
     /// into `qdd`, allocating nothing.
@@ -47,6 +47,11 @@ impl Robot {
         qdd: &mut DVector<f64>,
     ) -> Result<(), InputError> {
         self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?.output("qdd", qdd)?;
+        if self.model.is_floating() {
+            return Err(InputError::Unsupported(
+                "the compensated forward dynamics is not available for a floating base yet: use forward_dynamics",
+            ));
+        }
         let g = self.model.gravity;
         let loads = Loads::gravity(&g).with_tips(&self.tips);
         let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());

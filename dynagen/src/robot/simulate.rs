@@ -101,6 +101,15 @@ impl Rows<'_> {
 }
 
 impl Robot {
+    /// The implicit scheme is not available for a floating base.
+    fn floating_scheme(&self, integrator: Integrator) -> Result<(), InputError> {
+        match (self.model.is_floating(), integrator) {
+            (true, Integrator::ImplicitEuler) => {
+                Err(InputError::Unsupported("the implicit Euler scheme is not available for a floating base"))
+            }
+            _ => Ok(()),
+        }
+    }
     /// The tip wrenches of the robot, plus a slot for the history's wrench
     /// (its index in `Model::frames`, zero for now) when there is one.
     fn tips_with(&self, tip: Option<&TipWrenchHistory<'_>>, rows: usize) -> Result<Vec<TipWrench<f64>>, InputError> {
@@ -128,6 +137,7 @@ impl Robot {
     ) -> Result<(), InputError> {
         self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?;
         check::dt(dt)?;
+        self.floating_scheme(integrator)?;
         let g = self.model.gravity;
         let inputs = StepInputs { dt, tau: tau.as_slice(), loads: Loads::gravity(&g).with_tips(&self.tips) };
         let (q, qd) = (q.as_mut_slice(), qd.as_mut_slice());
@@ -147,12 +157,12 @@ impl Robot {
         qdd: &DMatrix<f64>,
         tip: Option<TipWrenchHistory<'_>>,
     ) -> Result<DMatrix<f64>, InputError> {
-        let (rows, n) = (q.nrows(), self.dof());
-        for (what, m) in [("q", q), ("qd", qd), ("qdd", qdd)] {
-            check::shape(what, m, rows, n)?;
+        let (rows, nq, n) = (q.nrows(), self.model.nq(), self.model.nv());
+        for (what, m, cols) in [("q", q, nq), ("qd", qd, n), ("qdd", qdd, n)] {
+            check::shape(what, m, rows, cols)?;
         }
         let mut tips = self.tips_with(tip.as_ref(), rows)?;
-        let (mut qr, mut qdr, mut qddr, mut taur) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let (mut qr, mut qdr, mut qddr, mut taur) = (vec![0.0; nq], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         let mut out = DMatrix::zeros(rows, n);
         let g = self.model.gravity;
         for r in 0..rows {
@@ -190,24 +200,27 @@ impl Robot {
         stepping: Stepping,
     ) -> Result<(DMatrix<f64>, DMatrix<f64>), InputError> {
         let Stepping { dt, int_res, integrator } = stepping;
-        let (rows, n) = (tau.nrows(), self.dof());
+        let (rows, nq, n) = (tau.nrows(), self.model.nq(), self.model.nv());
         self.check().joints(&[("q0", q0), ("qd0", qd0)])?;
         check::shape("tau", tau, rows, n)?;
         check::dt(dt)?;
+        self.floating_scheme(integrator)?;
         if int_res == 0 {
             return Err(InputError::BadParameter { what: "int_res", value: 0.0, must: "at least 1" });
         }
         let mut tips = self.tips_with(tip.as_ref(), rows)?;
         let (mut q, mut qd) = (q0.as_slice().to_vec(), qd0.as_slice().to_vec());
         let mut taur = vec![0.0; n];
-        let mut qs = DMatrix::zeros(rows, n);
+        let mut qs = DMatrix::zeros(rows, nq);
         let mut qds = DMatrix::zeros(rows, n);
         let h = dt / int_res as f64;
         let g = self.model.gravity;
         for r in 0..rows {
-            for j in 0..n {
-                qs[(r, j)] = q[j];
-                qds[(r, j)] = qd[j];
+            for (j, x) in q.iter().enumerate() {
+                qs[(r, j)] = *x;
+            }
+            for (j, x) in qd.iter().enumerate() {
+                qds[(r, j)] = *x;
             }
             if r + 1 == rows {
                 break;

@@ -25,6 +25,7 @@ pub mod crba;
 pub mod forward_dynamics;
 pub mod kinematics;
 pub mod rnea;
+pub mod step;
 
 use crate::model::Model;
 use crate::spatial::{Force, Mat3, Motion, Transform, Vec3};

@@ -1,0 +1,91 @@
+//! Time integration of a floating-base robot: the explicit schemes of
+//! [`integrators`](crate::algorithms::integrators) with every position
+//! update `q ← q ⊕ δ` made on the configuration manifold by
+//! [`super::integrate`] (the base by the exponential map of its
+//! body twist, its quaternion renormalised; the joints by addition), never
+//! `q += dt·q̇` for the base. Runge-Kutta's stages are taken from the
+//! step's start, `q ⊕ c·k`, as Runge-Kutta-Munthe-Kaas does to first order
+//! in the commutators (fourth order for the joints, and for the base when
+//! its rotation rate is steady).
+
+use super::{aba::aba, integrate};
+use crate::algorithms::integrators::{Integrator, IntegratorScratch, StepInputs};
+use crate::algorithms::Workspace;
+use crate::model::Model;
+use crate::Scalar;
+
+/// One step of `integrator` for a floating model: `q` (NQ) and `qd` (NV)
+/// updated in place, under q̈ from the articulated-body algorithm.
+///
+/// # Panics
+/// If the slices do not have NQ/NV entries, the scratch is not the model's,
+/// or `integrator` is [`Integrator::ImplicitEuler`] (not available for a
+/// floating base; the checked [`Robot`](crate::Robot) API says so as an error).
+pub fn step<S: Scalar>(
+    integrator: Integrator,
+    model: &Model,
+    ws: &mut Workspace<S>,
+    scratch: &mut IntegratorScratch<S>,
+    inputs: &StepInputs<'_, S>,
+    q: &mut [S],
+    qd: &mut [S],
+) {
+    let (nq, nv) = (model.nq(), model.nv());
+    assert!(
+        q.len() == nq && qd.len() == nv && inputs.tau.len() == nv && scratch.q_stage.len() == nq,
+        "floating step: q must have NQ = {nq} entries, qd and tau NV = {nv}, and the scratch be the model's"
+    );
+    let dt = inputs.dt;
+    let IntegratorScratch { qdd, q_stage, qd_stage, q_sum, qd_sum, delta, .. } = scratch;
+    let mut accel = |q: &[S], qd: &[S], qdd: &mut [S]| aba(model, ws, q, qd, inputs.tau, inputs.loads, qdd);
+    match integrator {
+        Integrator::Euler | Integrator::SemiImplicitEuler => {
+            accel(q, qd, qdd);
+            let semi = integrator == Integrator::SemiImplicitEuler;
+            for k in 0..nv {
+                let new = qd[k] + dt * qdd[k];
+                // the step of the configuration: dt·q̇, old or new
+                q_sum[k] = dt * if semi { new } else { qd[k] };
+                qd[k] = new;
+            }
+            q_stage.copy_from_slice(q);
+            integrate(model, q_stage, q_sum, q);
+        }
+        Integrator::Rk4 => {
+            let half = dt * S::from_f64(0.5);
+            let stages = [
+                (S::one(), Some(half)),
+                (S::from_f64(2.0), Some(half)),
+                (S::from_f64(2.0), Some(dt)),
+                (S::one(), None),
+            ];
+            q_stage.copy_from_slice(q);
+            qd_stage.copy_from_slice(qd);
+            q_sum.fill(S::zero());
+            qd_sum.fill(S::zero());
+            // delta: the offset of the next stage's configuration, velocity-side
+            for (weight, next) in stages {
+                accel(q_stage, qd_stage, qdd);
+                for k in 0..nv {
+                    q_sum[k] += weight * qd_stage[k];
+                    qd_sum[k] += weight * qdd[k];
+                    if let Some(c) = next {
+                        delta[k] = c * qd_stage[k];
+                        qd_stage[k] = qd[k] + c * qdd[k];
+                    }
+                }
+                if next.is_some() {
+                    integrate(model, q, delta, q_stage);
+                }
+            }
+            let sixth = dt / S::from_f64(6.0);
+            for k in 0..nv {
+                delta[k] = sixth * q_sum[k];
+                qd[k] += sixth * qd_sum[k];
+            }
+            q_stage.copy_from_slice(q);
+            integrate(model, q_stage, delta, q);
+        }
+        Integrator::ImplicitEuler => panic!("the implicit Euler scheme is not available for a floating base"),
+    }
+}
