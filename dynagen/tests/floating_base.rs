@@ -547,3 +547,53 @@ fn robot_steps_the_base_on_se3() {
     let taus = robot.inverse_dynamics_trajectory(&qs, &qds, &qdd, None).unwrap();
     assert_eq!(taus.ncols(), nv);
 }
+
+/// The floating algorithms trace on the symbolic scalar unchanged (no
+/// branch on the state; the base's rotation a polynomial in the
+/// quaternion), and the traces evaluate to the `f64` solver's numbers.
+#[test]
+fn floating_algorithms_trace_on_the_symbolic_scalar() {
+    use dynagen::symbolic::{Expr, Traced, Tracer};
+    use dynagen::Scalar;
+    for model in [support::model("quadruped12").with_floating_base(), random_model(99, 8)] {
+        let (nq, nv) = (model.nq(), model.nv());
+        let t = Tracer::start().unwrap();
+        let (q, qd, qdd, tau) = (t.inputs("q", nq), t.inputs("qd", nv), t.inputs("qdd", nv), t.inputs("tau", nv));
+        let g = Vec3(G.map(Expr::from_f64));
+        let mut ws = Workspace::<Expr>::new(&model);
+        let mut id = vec![Expr::zero(); nv];
+        rnea(&model, &mut ws, &q, Some(&qd), Some(&qdd), Loads::gravity(&g), &mut id);
+        let mut m = vec![Expr::zero(); nv * nv];
+        crba(&model, &mut ws, &q, Loads::none(), &mut m);
+        let mut fd = vec![Expr::zero(); nv];
+        aba(&model, &mut ws, &q, &qd, &tau, Loads::gravity(&g), &mut fd);
+        let mut fd2 = vec![Expr::zero(); nv];
+        forward_dynamics::forward_dynamics_ldlt(&model, &mut ws, &q, &qd, &tau, Loads::gravity(&g), &mut fd2);
+        let graph = t.finish();
+        let traced: Vec<Traced> = [("rnea", &id), ("crba", &m), ("aba", &fd), ("ldlt", &fd2)]
+            .into_iter()
+            .map(|(name, out)| Traced::new(name, &graph, out))
+            .collect();
+        let mut rng = Rng::new(2);
+        let mut ws = Workspace::new(&model);
+        for _ in 0..3 {
+            let (qv, qdv) = random_state(&model, &mut rng, 50.0);
+            let (qddv, tauv) = (rng.vec(nv, 5.0), rng.vec(nv, 10.0));
+            let inputs: [(&str, &[f64]); 4] = [("q", &qv), ("qd", &qdv), ("qdd", &qddv), ("tau", &tauv)];
+            let want_id = tau_of(&model, &mut ws, &qv, &qdv, &qddv, &Vec3(G));
+            let want_m = mass_matrix(&model, &mut ws, &qv);
+            let want_fd = fd_aba(&model, &mut ws, &qv, &qdv, &tauv, &Vec3(G));
+            let checks: [(&Traced, &[f64]); 4] = [
+                (&traced[0], &want_id),
+                (&traced[1], want_m.as_slice()),
+                (&traced[2], &want_fd),
+                (&traced[3], &want_fd),
+            ];
+            for (f, want) in checks {
+                let got = f.eval(&inputs).unwrap();
+                let e = rel_err(&got, want, 1.0);
+                assert!(e < 1e-11, "{}: {} traced vs f64 {e:e}", model.name, f.name());
+            }
+        }
+    }
+}
