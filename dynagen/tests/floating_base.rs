@@ -501,8 +501,10 @@ fn robot_checks_floating_inputs_and_names_them() {
     nan_v[8] = f64::INFINITY;
     let e = robot.bias_forces(&q, &nan_v).unwrap_err();
     assert!(matches!(&e, InputError::NonFinite { joint, .. } if joint == "FR_calf_joint"), "{e}");
+    // the compensated forward dynamics checks the same way
+    let e = robot.forward_dynamics_compensated(&q.rows(0, 7).into_owned(), &v, &v).unwrap_err();
+    assert!(matches!(e, InputError::WrongLengthFloating { what: "q", got: 7, .. }), "{e}");
     // what a floating base cannot do yet is an error, not a panic
-    assert!(matches!(robot.forward_dynamics_compensated(&q, &v, &v), Err(InputError::Unsupported(_))));
     let (mut q1, mut v1) = (q.clone(), v.clone());
     let e = robot.step(dynagen::Integrator::ImplicitEuler, &mut q1, &mut v1, &v, 1e-3).unwrap_err();
     assert!(e.to_string().contains("floating base"), "{e}");
@@ -596,4 +598,41 @@ fn floating_algorithms_trace_on_the_symbolic_scalar() {
             }
         }
     }
+}
+
+/// τ ≈ h at |q̇| = 50: the compensated forward dynamics keeps the digits
+/// that τ − h cancels, against the articulated-body algorithm run in
+/// double-double arithmetic (the reference).
+#[test]
+fn compensated_forward_dynamics_on_a_floating_base() {
+    use dynagen::{DoubleDouble, Robot, Scalar};
+    let model = support::model("quadruped12").with_floating_base();
+    let nv = model.nv();
+    let mut robot = Robot::new(model.clone());
+    let mut ws = Workspace::new(&model);
+    let mut wd = Workspace::<DoubleDouble>::new(&model);
+    let mut rng = Rng::new(41);
+    let (mut plain_worst, mut comp_worst) = (0.0f64, 0.0f64);
+    for _ in 0..5 {
+        let (q, qd) = random_state(&model, &mut rng, 50.0);
+        let qd: Vec<f64> = {
+            let s = 50.0 / qd.iter().map(|x| x * x).sum::<f64>().sqrt();
+            qd.iter().map(|x| x * s).collect()
+        };
+        let mut h = vec![0.0; nv];
+        forward_dynamics::bias_forces(&model, &mut ws, &q, &qd, Some(&Vec3(G)), &mut h);
+        let tau: Vec<f64> = h.iter().map(|x| x + 1e-3 * rng.signed()).collect();
+        let dd = |x: &[f64]| x.iter().map(|v| DoubleDouble::from_f64(*v)).collect::<Vec<_>>();
+        let mut want = vec![DoubleDouble::zero(); nv];
+        let g = Vec3(G.map(DoubleDouble::from_f64));
+        aba(&model, &mut wd, &dd(&q), &dd(&qd), &dd(&tau), Loads::gravity(&g), &mut want);
+        let want: Vec<f64> = want.iter().map(|x| Scalar::to_f64(*x).unwrap()).collect();
+        let (qv, qdv, tv) = (DVector::from_vec(q), DVector::from_vec(qd), DVector::from_vec(tau));
+        let plain = robot.forward_dynamics(&qv, &qdv, &tv).unwrap();
+        let comp = robot.forward_dynamics_compensated(&qv, &qdv, &tv).unwrap();
+        plain_worst = plain_worst.max(norm_rel_err(plain.as_slice(), &want, 1e-300));
+        comp_worst = comp_worst.max(norm_rel_err(comp.as_slice(), &want, 1e-300));
+    }
+    println!("τ ≈ h at |q̇| = 50: ABA {plain_worst:.1e}, compensated {comp_worst:.1e} relative to double-double");
+    assert!(comp_worst < 1e-9 && comp_worst < plain_worst, "compensated {comp_worst:e}, plain {plain_worst:e}");
 }

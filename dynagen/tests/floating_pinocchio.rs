@@ -111,6 +111,8 @@ fn check_robot_api(data: &Value, model: Model) {
         ok("h", robot.bias_forces(&q, &qd).unwrap().as_slice(), &vector(&s["h"]));
         ok("g", robot.gravity_torques(&q).unwrap().as_slice(), &vector(&s["g"]));
         ok("qdd", robot.forward_dynamics(&q, &qd, &tau).unwrap().as_slice(), &vector(&s["qdd_fd"]));
+        let comp = robot.forward_dynamics_compensated(&q, &qd, &tau).unwrap();
+        ok("qdd (compensated)", comp.as_slice(), &vector(&s["qdd_fd"]));
         ok("qdd (LTDL)", robot.forward_dynamics_ldlt(&q, &qd, &tau).unwrap().as_slice(), &vector(&s["qdd_fd"]));
         let c = robot.coriolis_torques(&q, &qd).unwrap() + robot.gravity_torques(&q).unwrap();
         ok("C q̇ + g", c.as_slice(), &vector(&s["h"]));

@@ -243,6 +243,9 @@ pub fn aba_at_rest<S: Scalar>(
     loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
+    if model.is_floating() {
+        return super::floating::aba::aba_at_rest(model, ws, q, tau, loads, qdd);
+    }
     aba_traced_or_compact(model, ws, q, None, tau, loads.inertias(), qdd)
 }
 

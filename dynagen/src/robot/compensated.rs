@@ -47,11 +47,6 @@ impl Robot {
         qdd: &mut DVector<f64>,
     ) -> Result<(), InputError> {
         self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?.output("qdd", qdd)?;
-        if self.model.is_floating() {
-            return Err(InputError::Unsupported(
-                "the compensated forward dynamics is not available for a floating base yet: use forward_dynamics",
-            ));
-        }
         let g = self.model.gravity;
         let loads = Loads::gravity(&g).with_tips(&self.tips);
         let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());
