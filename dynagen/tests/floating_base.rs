@@ -636,3 +636,16 @@ fn compensated_forward_dynamics_on_a_floating_base() {
     println!("τ ≈ h at |q̇| = 50: ABA {plain_worst:.1e}, compensated {comp_worst:.1e} relative to double-double");
     assert!(comp_worst < 1e-9 && comp_worst < plain_worst, "compensated {comp_worst:e}, plain {plain_worst:e}");
 }
+
+/// Code generation of a floating base is not there yet: a clear error
+/// naming the root, never a panic in the trace (a URDF's floating root
+/// joint used to be refused on import).
+#[test]
+fn code_generation_refuses_a_floating_base_by_name() {
+    use dynagen::codegen::{generate, CodegenOptions};
+    let model = support::model("quadruped12").with_floating_base();
+    let e = generate(&model, &CodegenOptions::default()).unwrap_err();
+    assert!(e.to_string().contains("\"trunk\" floats"), "{e}");
+    let e = dynagen::scene::Scene::default().apply(&model).unwrap_err();
+    assert!(matches!(e, dynagen::SceneError::FloatingBase { ref root } if root == "trunk"), "{e}");
+}

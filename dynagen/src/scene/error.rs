@@ -88,6 +88,16 @@ pub enum SceneError {
     /// Gravity options that contradict each other.
     #[error("gravity: {0}")]
     Gravity(String),
+    /// A floating-base model: scenes, and so code generation, do not take
+    /// one yet (the generic solver, [`Robot`](crate::Robot), does).
+    #[error(
+        "the root link \"{root}\" floats: scenes and code generation of floating-base robots are not supported yet \
+         (the generic solver, dynagen::Robot, is)"
+    )]
+    FloatingBase {
+        /// The floating root link.
+        root: String,
+    },
     /// A sub-tree without tips.
     #[error("sub-tree rooted at \"{root}\" has no tip links")]
     NoTips {

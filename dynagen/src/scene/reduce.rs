@@ -196,6 +196,9 @@ impl Fate {
 }
 
 pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneError> {
+    if model.is_floating() {
+        return Err(SceneError::FloatingBase { root: model.root.clone() });
+    }
     scene.check()?;
     let n = model.dof();
     let joint_index = |what: &'static str, name: &str| {
