@@ -87,7 +87,7 @@ impl<S: Scalar> IntegratorScratch<S> {
     /// Scratch for `model`.
     pub fn new(model: &Model) -> Self {
         // NQ and NV entries (both n for a fixed base)
-        let (n, nq, nv) = (model.dof(), model.nq(), model.nv());
+        let (nq, nv) = (model.nq(), model.nv());
         IntegratorScratch {
             qdd: vec![S::zero(); nv],
             q_stage: vec![S::zero(); nq],
@@ -95,7 +95,7 @@ impl<S: Scalar> IntegratorScratch<S> {
             q_sum: vec![S::zero(); nv],
             qd_sum: vec![S::zero(); nv],
             delta: vec![S::zero(); if model.is_floating() { nv } else { 0 }],
-            implicit: ImplicitScratch::new(n),
+            implicit: ImplicitScratch::new(nv, nq),
         }
     }
     /// The number of joints this scratch is for.
@@ -308,12 +308,12 @@ fn machine_epsilon<S: Scalar>() -> f64 {
 }
 
 impl<S: Scalar> ImplicitScratch<S> {
-    fn new(n: usize) -> Self {
+    fn new(n: usize, nq: usize) -> Self {
         ImplicitScratch {
             jac: vec![S::zero(); n * n],
             perm: (0..n).collect(),
             v: vec![S::zero(); n],
-            q1: vec![S::zero(); n],
+            q1: vec![S::zero(); nq],
             a0: vec![S::zero(); n],
             a1: vec![S::zero(); n],
             r: vec![S::zero(); n],
@@ -377,10 +377,30 @@ pub fn implicit_euler_with<S: Scalar>(
     dt: S,
     q: &mut [S],
     qd: &mut [S],
+    accel: impl FnMut(&[S], &[S], &mut [S]),
+) -> NewtonOutcome {
+    assert!(q.len() == qd.len(), "implicit_euler: q, qd and the scratch must have the same length");
+    let add = |q: &[S], dt: S, v: &[S], q1: &mut [S]| {
+        for i in 0..q.len() {
+            q1[i] = q[i] + dt * v[i];
+        }
+    };
+    implicit_euler_on(scratch, dt, q, qd, add, accel)
+}
+
+/// [`implicit_euler_with`] on a configuration space whose step
+/// q₁ = q₀ ⊕ dt·v is `retract(q₀, dt, v, q₁)`: addition for joints, the
+/// exponential map for a floating base (`floating::step`).
+pub(crate) fn implicit_euler_on<S: Scalar>(
+    scratch: &mut IntegratorScratch<S>,
+    dt: S,
+    q: &mut [S],
+    qd: &mut [S],
+    retract: impl Fn(&[S], S, &[S], &mut [S]),
     mut accel: impl FnMut(&[S], &[S], &mut [S]),
 ) -> NewtonOutcome {
-    let n = q.len();
-    assert!(qd.len() == n && scratch.dof() == n, "implicit_euler: q, qd and the scratch must have the same length");
+    let n = qd.len();
+    assert!(scratch.dof() == n, "implicit_euler: q, qd and the scratch must have the same length");
     let tmp = &mut scratch.qdd;
     let ImplicitScratch { jac, perm, v, q1, a0, a1, r, eps } = &mut scratch.implicit;
     let h_rel = eps.sqrt();
@@ -389,9 +409,7 @@ pub fn implicit_euler_with<S: Scalar>(
     let mut outcome = NewtonOutcome { iterations: 0, converged: false };
     let (mut refresh, mut last) = (true, f64::INFINITY);
     for it in 0..IMPLICIT_MAX_ITERATIONS {
-        for i in 0..n {
-            q1[i] = q[i] + dt * v[i];
-        }
+        retract(q, dt, v, q1);
         accel(q1, v, a0);
         if refresh {
             // Column j of ∂r/∂v by a forward difference.
@@ -399,7 +417,7 @@ pub fn implicit_euler_with<S: Scalar>(
                 let vj = v[j];
                 let step = S::from_f64(h_rel * magnitude(vj).max(1.0));
                 v[j] = vj + step;
-                q1[j] = q[j] + dt * v[j];
+                retract(q, dt, v, q1);
                 accel(q1, v, a1);
                 // The step actually taken (v_j + step − v_j may round).
                 let taken = v[j] - vj;
@@ -408,7 +426,7 @@ pub fn implicit_euler_with<S: Scalar>(
                     jac[i * n + j] = if i == j { S::one() } else { S::zero() } - dt * d;
                 }
                 v[j] = vj;
-                q1[j] = q[j] + dt * vj;
+                retract(q, dt, v, q1);
             }
             lu::factorise(jac, perm, n);
         }
@@ -436,9 +454,8 @@ pub fn implicit_euler_with<S: Scalar>(
         refresh = dmax > 0.25 * last;
         last = dmax;
     }
-    for i in 0..n {
-        q[i] += dt * v[i];
-    }
+    retract(q, dt, v, q1);
+    q.copy_from_slice(q1);
     qd.copy_from_slice(v);
     outcome
 }

@@ -101,15 +101,6 @@ impl Rows<'_> {
 }
 
 impl Robot {
-    /// The implicit scheme is not available for a floating base.
-    fn floating_scheme(&self, integrator: Integrator) -> Result<(), InputError> {
-        match (self.model.is_floating(), integrator) {
-            (true, Integrator::ImplicitEuler) => {
-                Err(InputError::Unsupported("the implicit Euler scheme is not available for a floating base"))
-            }
-            _ => Ok(()),
-        }
-    }
     /// The tip wrenches of the robot, plus a slot for the history's wrench
     /// (its index in `Model::frames`, zero for now) when there is one.
     fn tips_with(&self, tip: Option<&TipWrenchHistory<'_>>, rows: usize) -> Result<Vec<TipWrench<f64>>, InputError> {
@@ -137,7 +128,6 @@ impl Robot {
     ) -> Result<(), InputError> {
         self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?;
         check::dt(dt)?;
-        self.floating_scheme(integrator)?;
         let g = self.model.gravity;
         let inputs = StepInputs { dt, tau: tau.as_slice(), loads: Loads::gravity(&g).with_tips(&self.tips) };
         let (q, qd) = (q.as_mut_slice(), qd.as_mut_slice());
@@ -204,7 +194,6 @@ impl Robot {
         self.check().joints(&[("q0", q0), ("qd0", qd0)])?;
         check::shape("tau", tau, rows, n)?;
         check::dt(dt)?;
-        self.floating_scheme(integrator)?;
         if int_res == 0 {
             return Err(InputError::BadParameter { what: "int_res", value: 0.0, must: "at least 1" });
         }

@@ -8,8 +8,8 @@
 //! in the commutators (fourth order for the joints, and for the base when
 //! its rotation rate is steady).
 
-use super::{aba::aba, integrate};
-use crate::algorithms::integrators::{Integrator, IntegratorScratch, StepInputs};
+use super::{aba::aba, integrate, integrate_scaled};
+use crate::algorithms::integrators::{implicit_euler_on, Integrator, IntegratorScratch, StepInputs};
 use crate::algorithms::Workspace;
 use crate::model::Model;
 use crate::Scalar;
@@ -18,9 +18,10 @@ use crate::Scalar;
 /// updated in place, under q̈ from the articulated-body algorithm.
 ///
 /// # Panics
-/// If the slices do not have NQ/NV entries, the scratch is not the model's,
-/// or `integrator` is [`Integrator::ImplicitEuler`] (not available for a
-/// floating base; the checked [`Robot`](crate::Robot) API says so as an error).
+/// If the slices do not have NQ/NV entries, or the scratch is not the
+/// model's. The implicit scheme solves for the new velocity v by Newton's
+/// method as [`implicit_euler_with`](crate::algorithms::integrators::implicit_euler_with)
+/// does, with the configuration q ⊕ dt·v.
 pub fn step<S: Scalar>(
     integrator: Integrator,
     model: &Model,
@@ -36,6 +37,12 @@ pub fn step<S: Scalar>(
         "floating step: q must have NQ = {nq} entries, qd and tau NV = {nv}, and the scratch be the model's"
     );
     let dt = inputs.dt;
+    let accel = |q: &[S], qd: &[S], qdd: &mut [S]| aba(model, ws, q, qd, inputs.tau, inputs.loads, qdd);
+    if integrator == Integrator::ImplicitEuler {
+        let retract = |q0: &[S], dt: S, v: &[S], q1: &mut [S]| integrate_scaled(model, q0, v, dt, q1);
+        implicit_euler_on(scratch, dt, q, qd, retract, accel);
+        return;
+    }
     let IntegratorScratch { qdd, q_stage, qd_stage, q_sum, qd_sum, delta, .. } = scratch;
     let mut accel = |q: &[S], qd: &[S], qdd: &mut [S]| aba(model, ws, q, qd, inputs.tau, inputs.loads, qdd);
     match integrator {
@@ -86,6 +93,6 @@ pub fn step<S: Scalar>(
             q_stage.copy_from_slice(q);
             integrate(model, q_stage, delta, q);
         }
-        Integrator::ImplicitEuler => panic!("the implicit Euler scheme is not available for a floating base"),
+        Integrator::ImplicitEuler => unreachable!("stepped above"),
     }
 }
