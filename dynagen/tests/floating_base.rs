@@ -655,3 +655,21 @@ fn code_generation_refuses_a_floating_base_by_name() {
     let e = dynagen::scene::Scene::default().apply(&model).unwrap_err();
     assert!(matches!(e, dynagen::SceneError::FloatingBase { ref root } if root == "trunk"), "{e}");
 }
+
+/// A floating robot that cannot be accelerated in every direction (a point
+/// mass) gets a warning naming its root; a real one does not.
+#[test]
+fn a_singular_floating_base_is_warned_about() {
+    use dynagen::ModelWarning;
+    let quadruped = support::model("quadruped12").with_floating_base();
+    assert!(!quadruped.warnings.iter().any(|w| matches!(w, ModelWarning::FloatingBaseSingular { .. })));
+    let point = Model::from_urdf_str(
+        "<robot name=\"p\"><link name=\"world\"/><link name=\"ball\"><inertial><mass value=\"1\"/>\
+         <inertia ixx=\"0\" iyy=\"0\" izz=\"0\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>\
+         <joint name=\"free\" type=\"floating\"><parent link=\"world\"/><child link=\"ball\"/></joint></robot>",
+    )
+    .unwrap();
+    assert!(point.is_floating());
+    let w = point.warnings.iter().find(|w| matches!(w, ModelWarning::FloatingBaseSingular { .. })).expect("a warning");
+    assert!(w.to_string().contains("\"ball\" floats"), "{w}");
+}
