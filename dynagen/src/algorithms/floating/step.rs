@@ -3,16 +3,26 @@
 //! update `q ← q ⊕ δ` made on the configuration manifold by
 //! [`super::integrate`] (the base by the exponential map of its
 //! body twist, its quaternion renormalised; the joints by addition), never
-//! `q += dt·q̇` for the base. Runge-Kutta's stages are taken from the
-//! step's start, `q ⊕ c·k`, as Runge-Kutta-Munthe-Kaas does to first order
-//! in the commutators (fourth order for the joints, and for the base when
-//! its rotation rate is steady).
+//! `q += dt·q̇` for the base. Runge-Kutta is Runge-Kutta-Munthe-Kaas: the
+//! stages are `q ⊕ θ` from the step's start, θ's slope the stage velocity
+//! through `dexp⁻¹_θ` (the base's part; to the commutators fourth order
+//! needs), so the base keeps fourth order too (the drift of a free-floating
+//! tree's momentum with and without the correction: `docs/performance.md`).
 
 use super::{aba::aba, integrate, integrate_scaled};
 use crate::algorithms::integrators::{implicit_euler_on, Integrator, IntegratorScratch, StepInputs};
 use crate::algorithms::Workspace;
 use crate::model::Model;
+use crate::spatial::Motion;
 use crate::Scalar;
+
+/// `dexp⁻¹_θ(V)` to the terms RK4 needs, `V + ½[θ, V] + [θ, [θ, V]]/12`, with
+/// the bracket `[θ, V] = θ ×ₘ V`: the rate of θ for which `q ⊕ θ` moves
+/// with body twist V (the right-trivialised form; Munthe-Kaas).
+fn dexp_inv<S: Scalar>(theta: &Motion<S>, v: &Motion<S>) -> Motion<S> {
+    let b = theta.cross_motion(v);
+    *v + b.scale(S::from_f64(0.5)) + theta.cross_motion(&b).scale(S::from_f64(1.0 / 12.0))
+}
 
 /// One step of `integrator` for a floating model: `q` (NQ) and `qd` (NV)
 /// updated in place, under q̈ from the articulated-body algorithm.
@@ -70,14 +80,18 @@ pub fn step<S: Scalar>(
             qd_stage.copy_from_slice(qd);
             q_sum.fill(S::zero());
             qd_sum.fill(S::zero());
-            // delta: the offset of the next stage's configuration, velocity-side
+            // delta: the stage's configuration offset θ (q_stage = q ⊕ θ), velocity-side
+            delta.fill(S::zero());
             for (weight, next) in stages {
                 accel(q_stage, qd_stage, qdd);
+                // the slope of θ: the base's part through dexp⁻¹ at θ
+                let base = dexp_inv(&super::base_motion(delta), &super::base_motion(qd_stage)).to_array();
                 for k in 0..nv {
-                    q_sum[k] += weight * qd_stage[k];
+                    let slope = if k < 6 { base[k] } else { qd_stage[k] };
+                    q_sum[k] += weight * slope;
                     qd_sum[k] += weight * qdd[k];
                     if let Some(c) = next {
-                        delta[k] = c * qd_stage[k];
+                        delta[k] = c * slope;
                         qd_stage[k] = qd[k] + c * qdd[k];
                     }
                 }
