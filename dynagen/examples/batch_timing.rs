@@ -14,7 +14,9 @@
 //! ```
 //!
 //! `ALGORITHM` filters by name (`rnea`, `bias`, `crba`, `aba`, `ldlt`), the
-//! environment variable `ROBOT` (`ur5`, `panda`) selects one robot, and
+//! environment variable `ROBOT` (`ur5`, `panda`, `quadruped12` on a fixed
+//! base, `quadruped12-floating` with its trunk floating: NQ = 19, NV = 18,
+//! random unit quaternions) selects one robot, and
 //! `CALLS=n` makes n calls of each algorithm without timing (for counting
 //! instructions under `valgrind --tool=callgrind`).
 
@@ -57,16 +59,26 @@ fn main() {
     let calls: Option<usize> = std::env::var("CALLS").ok().map(|c| c.parse().expect("CALLS must be a number"));
     let only = std::env::var("ROBOT").ok();
     println!("dynagen generic f64 solver, ns per call: min/median over {BATCHES} batches of {BATCH} calls");
-    for robot in ["ur5", "panda"] {
+    for robot in ["ur5", "panda", "quadruped12", "quadruped12-floating"] {
         if only.as_ref().is_some_and(|r| r != robot) {
             continue;
         }
-        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("robots").join(format!("{robot}.urdf"));
+        let file = robot.trim_end_matches("-floating");
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("robots").join(format!("{file}.urdf"));
         let model = Model::from_urdf_file(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-        let n = model.dof();
+        let model = if robot.ends_with("-floating") { model.with_floating_base() } else { model };
+        let (nq, n) = (model.nq(), model.nv());
         let mut rng = Rng::new(0x9e37_79b9_7f4a_7c15);
-        let states: Vec<[Vec<f64>; 3]> =
-            (0..STATES).map(|_| [rng.vec(n, 3.0), rng.vec(n, 2.0), rng.vec(n, 5.0)]).collect();
+        let states: Vec<[Vec<f64>; 3]> = (0..STATES)
+            .map(|_| {
+                let mut q = rng.vec(nq, 3.0);
+                if model.is_floating() {
+                    let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+                    q[3..7].iter_mut().for_each(|x| *x /= norm);
+                }
+                [q, rng.vec(n, 2.0), rng.vec(n, 5.0)]
+            })
+            .collect();
         let g = Vec3(model.gravity.0);
         let mut ws = Workspace::<f64>::new(&model);
         let (mut out, mut m) = (vec![0.0; n], vec![0.0; n * n]);

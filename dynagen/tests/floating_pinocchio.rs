@@ -14,7 +14,8 @@ mod support;
 use dynagen::algorithms::floating::{aba, centroidal, crba, forward_dynamics, kinematics, rnea};
 use dynagen::algorithms::{Loads, Workspace};
 use dynagen::spatial::Vec3;
-use dynagen::Model;
+use dynagen::{Model, Robot};
+use nalgebra::{DMatrix, DVector};
 use serde_json::Value;
 use std::path::Path;
 use support::rel_err;
@@ -84,7 +85,57 @@ fn check(name: &str) -> Vec<(&'static str, f64)> {
         record("centroidal momentum matrix", &j, &flat(&s["centroidal_momentum_matrix"]), k);
     }
     println!("{name}: {worst:?}");
+    check_robot_api(&data, model);
     worst
+}
+
+/// The same values through the checked numeric API ([`Robot`]), on nalgebra
+/// types: every method takes NQ/NV-long vectors on a floating model.
+fn check_robot_api(data: &Value, model: Model) {
+    let frame = data["frame"].as_str().unwrap().to_string();
+    let mut robot = Robot::new(model);
+    let nv = robot.nv();
+    assert_eq!((robot.nq(), nv), (robot.dof() + 7, robot.dof() + 6));
+    let dv = |v: &Value| DVector::from_vec(vector(v));
+    let mat = |m: &DMatrix<f64>| {
+        (0..m.nrows()).flat_map(|r| m.row(r).iter().copied().collect::<Vec<_>>()).collect::<Vec<f64>>()
+    };
+    for (k, s) in data["states"].as_array().unwrap().iter().enumerate() {
+        let (q, qd, qdd, tau) = (dv(&s["q"]), dv(&s["qd"]), dv(&s["qdd"]), dv(&s["tau"]));
+        let ok = |what: &str, got: &[f64], want: &[f64]| {
+            let e = rel_err(got, want, 1.0);
+            assert!(e < 1e-12, "Robot, state {k}: {what} differs from Pinocchio by {e:e}");
+        };
+        ok("tau", robot.inverse_dynamics(&q, &qd, &qdd).unwrap().as_slice(), &vector(&s["tau_id"]));
+        ok("M", robot.mass_matrix(&q).unwrap().as_slice(), &flat(&s["M"]));
+        ok("h", robot.bias_forces(&q, &qd).unwrap().as_slice(), &vector(&s["h"]));
+        ok("g", robot.gravity_torques(&q).unwrap().as_slice(), &vector(&s["g"]));
+        ok("qdd", robot.forward_dynamics(&q, &qd, &tau).unwrap().as_slice(), &vector(&s["qdd_fd"]));
+        let comp = robot.forward_dynamics_compensated(&q, &qd, &tau).unwrap();
+        ok("qdd (compensated)", comp.as_slice(), &vector(&s["qdd_fd"]));
+        ok("qdd (LTDL)", robot.forward_dynamics_ldlt(&q, &qd, &tau).unwrap().as_slice(), &vector(&s["qdd_fd"]));
+        let c = robot.coriolis_torques(&q, &qd).unwrap() + robot.gravity_torques(&q).unwrap();
+        ok("C q̇ + g", c.as_slice(), &vector(&s["h"]));
+        let pose = robot.frame_pose(&frame, &q).unwrap();
+        ok(
+            "pose",
+            &(0..4).flat_map(|r| (0..4).map(move |c| (r, c))).map(|(r, c)| pose[(r, c)]).collect::<Vec<_>>(),
+            &flat(&s["frame_pose"]),
+        );
+        ok(
+            "J world",
+            &mat(&DMatrix::from_iterator(6, nv, robot.space_jacobian(&frame, &q).unwrap().iter().copied())),
+            &flat(&s["jacobian_world"]),
+        );
+        ok(
+            "J local",
+            &mat(&DMatrix::from_iterator(6, nv, robot.body_jacobian(&frame, &q).unwrap().iter().copied())),
+            &flat(&s["jacobian_local"]),
+        );
+        ok("com", robot.center_of_mass(&q).unwrap().as_slice(), &vector(&s["com"]));
+        let ag = robot.centroidal_momentum_matrix(&q).unwrap();
+        ok("A_G", &mat(&DMatrix::from_iterator(6, nv, ag.iter().copied())), &flat(&s["centroidal_momentum_matrix"]));
+    }
 }
 
 #[test]

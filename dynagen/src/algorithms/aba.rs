@@ -191,7 +191,8 @@ fn axis_index(joint: &Joint) -> Option<usize> {
     }
 }
 
-/// Forward dynamics by the articulated-body algorithm.
+/// Forward dynamics by the articulated-body algorithm (a floating model:
+/// [`floating::aba`](super::floating::aba::aba), NQ/NV-long slices).
 ///
 /// `tau` are the joint torques/forces; `loads` are gravity in the base
 /// frame, the wrenches the robot applies to its environment, the payloads
@@ -218,6 +219,9 @@ pub fn aba<S: Scalar>(
     loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
+    if model.is_floating() {
+        return super::floating::aba::aba(model, ws, q, qd, tau, loads, qdd);
+    }
     aba_traced_or_compact(model, ws, q, Some(qd), tau, loads, qdd)
 }
 
@@ -239,6 +243,9 @@ pub fn aba_at_rest<S: Scalar>(
     loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
+    if model.is_floating() {
+        return super::floating::aba::aba_at_rest(model, ws, q, tau, loads, qdd);
+    }
     aba_traced_or_compact(model, ws, q, None, tau, loads.inertias(), qdd)
 }
 

@@ -43,11 +43,12 @@ pub struct CompensatedScratch<P> {
 impl<P: Scalar> CompensatedScratch<P> {
     /// Scratch for `model`.
     pub fn new(model: &Model) -> Self {
-        let n = model.dof();
+        // NQ and NV entries (both n for a fixed base)
+        let (nq, n) = (model.nq(), model.nv());
         CompensatedScratch {
             ws: Workspace::new(model),
             ws_f64: Workspace::new(model),
-            q: vec![P::zero(); n],
+            q: vec![P::zero(); nq],
             qd: vec![P::zero(); n],
             h: vec![P::zero(); n],
             tips: Vec::new(),
@@ -55,9 +56,9 @@ impl<P: Scalar> CompensatedScratch<P> {
             rhs: vec![0.0; n],
         }
     }
-    /// The number of joints this scratch is for.
+    /// The number of joints this scratch is for (NV for a floating base).
     pub fn dof(&self) -> usize {
-        self.q.len()
+        self.qd.len()
     }
     /// The right-hand side τ − h(q, q̇) − J(q)ᵀF_tip of the last call,
     /// rounded to `f64` once.
@@ -86,15 +87,18 @@ pub fn forward_dynamics_compensated<P: Scalar>(
     loads: Loads<'_, f64>,
     qdd: &mut [f64],
 ) {
-    let n = model.dof();
+    // NQ and NV (n and n for a fixed base)
+    let (nq, n) = (model.nq(), model.nv());
     assert!(
-        q.len() == n && qd.len() == n && tau.len() == n && qdd.len() == n && scratch.dof() == n,
-        "forward_dynamics_compensated: slices and scratch must have the model's {n} joints"
+        q.len() == nq && qd.len() == n && tau.len() == n && qdd.len() == n && scratch.dof() == n,
+        "forward_dynamics_compensated: slices and scratch must have the model's {n} joints (NQ/NV with a floating base)"
     );
     let CompensatedScratch { ws: ws_p, ws_f64: ws, q: qp, qd: qdp, h, tips: tips_p, payloads: payloads_p, rhs } =
         scratch;
-    for i in 0..n {
+    for i in 0..nq {
         qp[i] = P::from_f64(q[i]);
+    }
+    for i in 0..n {
         qdp[i] = P::from_f64(qd[i]);
     }
     tips_p.clear();

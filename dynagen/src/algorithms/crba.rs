@@ -11,7 +11,8 @@ use crate::spatial::Inertia;
 use crate::Scalar;
 
 /// M(q) by the composite-rigid-body algorithm, written row-major into `m`
-/// (n×n). Both triangles are written, each entry computed once. Of `loads`
+/// (n×n; a floating model: NV×NV by
+/// [`floating::crba`](super::floating::crba::crba)). Both triangles are written, each entry computed once. Of `loads`
 /// only the inertias matter: each payload is added to its body's inertia
 /// before the composite inertias are summed up the tree (exactly as if the
 /// body's own inertia were the sum), and the armature to the diagonal.
@@ -20,6 +21,9 @@ use crate::Scalar;
 /// If `q` does not have the model's number of joints, `m` is not n×n, or a
 /// payload's body is not a body of the model.
 pub fn crba<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], loads: Loads<'_, S>, m: &mut [S]) {
+    if model.is_floating() {
+        return super::floating::crba::crba(model, ws, q, loads, m);
+    }
     let n = model.dof();
     assert!(q.len() == n && m.len() == n * n && ws.dof() == n, "crba: slices must fit the model's {n} joints");
     loads.check(n, "crba");

@@ -24,6 +24,9 @@ pub fn forward_dynamics_ldlt<S: Scalar>(
     loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
+    if model.is_floating() {
+        return super::floating::forward_dynamics::forward_dynamics_ldlt(model, ws, q, qd, tau, loads, qdd);
+    }
     let n = model.dof();
     assert!(tau.len() == n && qdd.len() == n, "forward_dynamics_ldlt: slices must have the model's {n} joints");
     // h + JᵀF_tip into qdd, then the right-hand side τ − that.

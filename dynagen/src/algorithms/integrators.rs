@@ -27,6 +27,9 @@
 //!
 //! Units: `dt` in s; q in rad (revolute) or m (prismatic), q̇ per s; τ in
 //! N·m or N; gravity (m/s²) in the base frame; tip wrenches in their frames.
+//!
+//! A floating-base model is stepped by [`floating::step`](super::floating::step)
+//! (the base on SE(3), never q += dt·q̇; no implicit scheme there).
 
 use super::aba::aba;
 use super::lu::{self, magnitude};
@@ -67,13 +70,15 @@ pub struct StepInputs<'a, S> {
 pub struct IntegratorScratch<S> {
     /// The last accelerations computed (for Euler and semi-implicit Euler:
     /// q̈ at the start of the step).
-    qdd: Vec<S>,
+    pub(crate) qdd: Vec<S>,
     /// Runge-Kutta stage position and velocity.
-    q_stage: Vec<S>,
-    qd_stage: Vec<S>,
+    pub(crate) q_stage: Vec<S>,
+    pub(crate) qd_stage: Vec<S>,
     /// Runge-Kutta weighted sums of the stage slopes.
-    q_sum: Vec<S>,
-    qd_sum: Vec<S>,
+    pub(crate) q_sum: Vec<S>,
+    pub(crate) qd_sum: Vec<S>,
+    /// A floating base's configuration step (velocity-side), see `floating::step`.
+    pub(crate) delta: Vec<S>,
     /// The implicit scheme's Newton scratch.
     implicit: ImplicitScratch<S>,
 }
@@ -81,14 +86,16 @@ pub struct IntegratorScratch<S> {
 impl<S: Scalar> IntegratorScratch<S> {
     /// Scratch for `model`.
     pub fn new(model: &Model) -> Self {
-        let n = model.dof();
+        // NQ and NV entries (both n for a fixed base)
+        let (nq, nv) = (model.nq(), model.nv());
         IntegratorScratch {
-            qdd: vec![S::zero(); n],
-            q_stage: vec![S::zero(); n],
-            qd_stage: vec![S::zero(); n],
-            q_sum: vec![S::zero(); n],
-            qd_sum: vec![S::zero(); n],
-            implicit: ImplicitScratch::new(n),
+            qdd: vec![S::zero(); nv],
+            q_stage: vec![S::zero(); nq],
+            qd_stage: vec![S::zero(); nv],
+            q_sum: vec![S::zero(); nv],
+            qd_sum: vec![S::zero(); nv],
+            delta: vec![S::zero(); if model.is_floating() { nv } else { 0 }],
+            implicit: ImplicitScratch::new(nv, nq),
         }
     }
     /// The number of joints this scratch is for.
@@ -128,6 +135,10 @@ fn step_by_aba<S: Scalar>(
     q: &mut [S],
     qd: &mut [S],
 ) -> Option<NewtonOutcome> {
+    if model.is_floating() {
+        super::floating::step::step(integrator, model, ws, scratch, inputs, q, qd);
+        return None;
+    }
     let n = model.dof();
     assert!(
         q.len() == n && qd.len() == n && inputs.tau.len() == n && ws.dof() == n && scratch.dof() == n,
@@ -297,12 +308,12 @@ fn machine_epsilon<S: Scalar>() -> f64 {
 }
 
 impl<S: Scalar> ImplicitScratch<S> {
-    fn new(n: usize) -> Self {
+    fn new(n: usize, nq: usize) -> Self {
         ImplicitScratch {
             jac: vec![S::zero(); n * n],
             perm: (0..n).collect(),
             v: vec![S::zero(); n],
-            q1: vec![S::zero(); n],
+            q1: vec![S::zero(); nq],
             a0: vec![S::zero(); n],
             a1: vec![S::zero(); n],
             r: vec![S::zero(); n],
@@ -366,10 +377,30 @@ pub fn implicit_euler_with<S: Scalar>(
     dt: S,
     q: &mut [S],
     qd: &mut [S],
+    accel: impl FnMut(&[S], &[S], &mut [S]),
+) -> NewtonOutcome {
+    assert!(q.len() == qd.len(), "implicit_euler: q, qd and the scratch must have the same length");
+    let add = |q: &[S], dt: S, v: &[S], q1: &mut [S]| {
+        for i in 0..q.len() {
+            q1[i] = q[i] + dt * v[i];
+        }
+    };
+    implicit_euler_on(scratch, dt, q, qd, add, accel)
+}
+
+/// [`implicit_euler_with`] on a configuration space whose step
+/// q₁ = q₀ ⊕ dt·v is `retract(q₀, dt, v, q₁)`: addition for joints, the
+/// exponential map for a floating base (`floating::step`).
+pub(crate) fn implicit_euler_on<S: Scalar>(
+    scratch: &mut IntegratorScratch<S>,
+    dt: S,
+    q: &mut [S],
+    qd: &mut [S],
+    retract: impl Fn(&[S], S, &[S], &mut [S]),
     mut accel: impl FnMut(&[S], &[S], &mut [S]),
 ) -> NewtonOutcome {
-    let n = q.len();
-    assert!(qd.len() == n && scratch.dof() == n, "implicit_euler: q, qd and the scratch must have the same length");
+    let n = qd.len();
+    assert!(scratch.dof() == n, "implicit_euler: q, qd and the scratch must have the same length");
     let tmp = &mut scratch.qdd;
     let ImplicitScratch { jac, perm, v, q1, a0, a1, r, eps } = &mut scratch.implicit;
     let h_rel = eps.sqrt();
@@ -378,9 +409,7 @@ pub fn implicit_euler_with<S: Scalar>(
     let mut outcome = NewtonOutcome { iterations: 0, converged: false };
     let (mut refresh, mut last) = (true, f64::INFINITY);
     for it in 0..IMPLICIT_MAX_ITERATIONS {
-        for i in 0..n {
-            q1[i] = q[i] + dt * v[i];
-        }
+        retract(q, dt, v, q1);
         accel(q1, v, a0);
         if refresh {
             // Column j of ∂r/∂v by a forward difference.
@@ -388,7 +417,7 @@ pub fn implicit_euler_with<S: Scalar>(
                 let vj = v[j];
                 let step = S::from_f64(h_rel * magnitude(vj).max(1.0));
                 v[j] = vj + step;
-                q1[j] = q[j] + dt * v[j];
+                retract(q, dt, v, q1);
                 accel(q1, v, a1);
                 // The step actually taken (v_j + step − v_j may round).
                 let taken = v[j] - vj;
@@ -397,7 +426,7 @@ pub fn implicit_euler_with<S: Scalar>(
                     jac[i * n + j] = if i == j { S::one() } else { S::zero() } - dt * d;
                 }
                 v[j] = vj;
-                q1[j] = q[j] + dt * vj;
+                retract(q, dt, v, q1);
             }
             lu::factorise(jac, perm, n);
         }
@@ -425,9 +454,8 @@ pub fn implicit_euler_with<S: Scalar>(
         refresh = dmax > 0.25 * last;
         last = dmax;
     }
-    for i in 0..n {
-        q[i] += dt * v[i];
-    }
+    retract(q, dt, v, q1);
+    q.copy_from_slice(q1);
     qd.copy_from_slice(v);
     outcome
 }

@@ -126,7 +126,9 @@ pub(crate) fn update_joint_transforms<S: Scalar>(model: &Model, ws: &mut Workspa
     }
 }
 
-/// Inverse dynamics by the recursive Newton-Euler algorithm.
+/// Inverse dynamics by the recursive Newton-Euler algorithm. A floating
+/// model goes to [`floating::rnea`](super::floating::rnea::rnea) (NQ/NV-long
+/// slices, gravity in the world frame).
 ///
 /// - `q`, `qd`, `qdd`: joint positions, velocities and accelerations in joint
 ///   order (rad, m; per second; per second²). `None` for `qd` or `qdd` means
@@ -154,6 +156,9 @@ pub fn rnea<S: Scalar>(
     loads: Loads<'_, S>,
     tau: &mut [S],
 ) {
+    if model.is_floating() {
+        return super::floating::rnea::rnea(model, ws, q, qd, qdd, loads, tau);
+    }
     let Loads { gravity, tips, payloads, armature } = loads;
     let n = model.dof();
     loads.check(n, "rnea");

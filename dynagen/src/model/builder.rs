@@ -20,6 +20,7 @@ use super::{BuildOptions, Model, ModelError};
 pub struct RobotBuilder {
     desc: RobotDescription,
     opts: BuildOptions,
+    floating: bool,
 }
 
 impl RobotBuilder {
@@ -28,6 +29,7 @@ impl RobotBuilder {
         RobotBuilder {
             desc: RobotDescription { name: name.to_string(), ..Default::default() },
             opts: BuildOptions::default(),
+            floating: false,
         }
     }
     /// Adds a link; `None` is massless.
@@ -56,6 +58,26 @@ impl RobotBuilder {
     }
     /// Validates and builds the model.
     pub fn build(&self) -> Result<Model, ModelError> {
-        Model::from_description_with(&self.desc, &self.opts)
+        let model = Model::from_description_with(&self.desc, &self.opts)?;
+        Ok(if self.floating { model.with_floating_base() } else { model })
+    }
+    /// Whether the root link floats (a quadruped's trunk): see
+    /// [`Model::with_floating_base`].
+    ///
+    /// ```
+    /// use dynagen::model::{Inertial, JointDescription, RobotBuilder};
+    /// let body = Inertial::new(2.0, [0.0; 3], [0.1, 0.1, 0.1, 0.0, 0.0, 0.0]);
+    /// let model = RobotBuilder::new("hopper")
+    ///     .link("trunk", Some(body))
+    ///     .link("leg", Some(Inertial::point_mass(0.5, [0.0, 0.0, -0.3])))
+    ///     .joint(JointDescription::prismatic("knee", "trunk", "leg", [0.0, 0.0, 1.0]))
+    ///     .floating_base(true)
+    ///     .build()
+    ///     .unwrap();
+    /// assert_eq!((model.dof(), model.nq(), model.nv()), (1, 8, 7));
+    /// ```
+    pub fn floating_base(mut self, floating: bool) -> Self {
+        self.floating = floating;
+        self
     }
 }

@@ -191,6 +191,13 @@ pub enum ModelWarning {
         /// The joint.
         joint: String,
     },
+    /// A floating base whose whole robot, at q = 0, has no mass or no
+    /// moment of inertia about some axis through its centre of mass: the
+    /// base block of M(q) is singular there, and forward dynamics fails.
+    FloatingBaseSingular {
+        /// The floating root link.
+        root: String,
+    },
 }
 
 impl std::fmt::Display for ModelWarning {
@@ -209,6 +216,10 @@ impl std::fmt::Display for ModelWarning {
             ModelWarning::MassMatrixMayBeSingular { joint } => write!(
                 f,
                 "joint \"{joint}\": it moves only point masses and rods held by later joints (nothing with a moment of inertia about every axis, and its own body nothing about its axis), so its diagonal entry of M(q), positive at q = 0, may vanish in another configuration, where forward dynamics fails"
+            ),
+            ModelWarning::FloatingBaseSingular { root } => write!(
+                f,
+                "link \"{root}\" floats, but the whole robot at q = 0 has no mass or no moment of inertia about some axis through its centre of mass: the base block of M(q) is singular, and forward dynamics fails"
             ),
         }
     }

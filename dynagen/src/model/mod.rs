@@ -217,8 +217,28 @@ impl Model {
     /// This model with a floating root: the root link (with everything
     /// fixed to it) becomes a free body, and gravity is read in the world
     /// frame. A model that already floats is returned unchanged.
+    /// A whole robot that cannot be accelerated in every direction at q = 0
+    /// (no mass, or all of it on a line) gets a
+    /// [`ModelWarning::FloatingBaseSingular`].
     pub fn with_floating_base(mut self) -> Self {
+        if self.root_joint == RootJoint::Floating {
+            return self;
+        }
         self.root_joint = RootJoint::Floating;
+        // the whole robot's inertia at q = 0, about the base origin
+        let mut composite: Vec<Inertia<f64>> = self.bodies.iter().map(|b| b.inertia).collect();
+        let mut whole = self.base_inertia;
+        for (i, b) in self.bodies.iter().enumerate().rev() {
+            let moved = b.joint.placement.inertia_to_parent(&composite[i]);
+            match b.parent {
+                Some(p) => composite[p] = composite[p].add(&moved),
+                None => whole = whole.add(&moved),
+            }
+        }
+        let [lo, _, hi] = whole.inertia_at_com().eigenvalues();
+        if !(whole.mass > 0.0 && hi > 0.0 && lo > 1e-12 * hi) {
+            self.warnings.push(ModelWarning::FloatingBaseSingular { root: self.root.clone() });
+        }
         self
     }
     /// The joint names, in joint order.

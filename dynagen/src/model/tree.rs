@@ -113,13 +113,14 @@ impl Model {
             gravity: Vec3(desc.gravity.unwrap_or(DEFAULT_GRAVITY)),
             warnings,
             base_mass,
-            root_joint: if world.is_some() { RootJoint::Floating } else { RootJoint::Fixed },
+            root_joint: RootJoint::Fixed,
             base_inertia,
         };
         let mut model = model;
         let more = check_every_joint_moves_mass(&model)?;
         model.warnings.extend(more);
-        Ok(model)
+        // a floating joint at the root floats the model (and checks its inertia)
+        Ok(if world.is_some() { model.with_floating_base() } else { model })
     }
 }
 

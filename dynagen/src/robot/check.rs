@@ -21,6 +21,28 @@ pub enum InputError {
         /// The robot's number of joints.
         expected: usize,
     },
+    /// A vector of the wrong size for a floating-base robot.
+    #[error("{what} has {got} entries, but the floating-base robot's {kind} has {expected} (n = {n} joints)")]
+    WrongLengthFloating {
+        /// The argument.
+        what: &'static str,
+        /// Its length.
+        got: usize,
+        /// NQ (a configuration) or NV (velocity side).
+        expected: usize,
+        /// "configuration (NQ = n + 7)" or "velocity side (NV = n + 6)".
+        kind: &'static str,
+        /// The number of joints.
+        n: usize,
+    },
+    /// A floating base's quaternion far from unit norm (or zero).
+    #[error("{what}[3..7], the base's quaternion (x, y, z, w), has norm {norm}, but it must be 1 (within 1e-6)")]
+    Quaternion {
+        /// The argument (`q`, `q0`).
+        what: &'static str,
+        /// Its norm.
+        norm: f64,
+    },
     /// A NaN or infinite entry.
     #[error("{what}[{index}] (joint \"{joint}\") is {value}, not a finite number")]
     NonFinite {
@@ -61,6 +83,9 @@ pub enum InputError {
         /// What is wrong in it.
         error: Box<InputError>,
     },
+    /// What a floating-base robot cannot do yet (or a fixed-base one).
+    #[error("{0}")]
+    Unsupported(&'static str),
     /// A bad integration parameter (time step, number of sub-steps).
     #[error("{what} is {value}, but it must be {must}")]
     BadParameter {
@@ -88,32 +113,59 @@ impl Check<'_> {
         Ok(self)
     }
     /// A joint-space argument as a slice (a trajectory's row).
+    ///
+    /// On a floating-base robot a configuration (`q`, `q0`) has NQ = n + 7
+    /// entries and a quaternion of unit norm (within 1e-6), the other
+    /// arguments NV = n + 6.
     pub(crate) fn joint_slice(self, what: &'static str, x: &[f64]) -> Result<Self, InputError> {
-        let n = self.0.dof();
-        if x.len() != n {
-            return Err(InputError::WrongLength { what, got: x.len(), expected: n });
+        let model = self.0;
+        let n = model.dof();
+        let config = matches!(what, "q" | "q0");
+        // the base's leading entries, and their names
+        let (base, names): (usize, &[&str]) = match (model.is_floating(), config) {
+            (false, _) => (0, &[]),
+            (true, true) => (7, &["base position"; 3]),
+            (true, false) => (6, &["base (angular)", "base (angular)", "base (angular)", "base (linear)"]),
+        };
+        if x.len() != n + base {
+            return Err(match base {
+                0 => InputError::WrongLength { what, got: x.len(), expected: n },
+                _ => InputError::WrongLengthFloating {
+                    what,
+                    got: x.len(),
+                    expected: n + base,
+                    kind: if config { "configuration (NQ = n + 7)" } else { "velocity side (NV = n + 6)" },
+                    n,
+                },
+            });
         }
-        match x.iter().position(|v| !v.is_finite()) {
-            Some(index) => Err(InputError::NonFinite {
-                what,
-                index,
-                joint: self.0.bodies[index].joint.name.clone(),
-                value: x[index],
-            }),
-            None => Ok(self),
+        if let Some(index) = x.iter().position(|v| !v.is_finite()) {
+            let joint = match index.checked_sub(base) {
+                Some(i) => model.bodies[i].joint.name.clone(),
+                None if config && index >= 3 => "base quaternion".to_string(),
+                None => names[index.min(names.len() - 1)].to_string(),
+            };
+            return Err(InputError::NonFinite { what, index, joint, value: x[index] });
         }
+        if base == 7 {
+            let norm = x[3..7].iter().map(|v| v * v).sum::<f64>().sqrt();
+            if (norm - 1.0).abs() > 1e-6 || norm.is_nan() {
+                return Err(InputError::Quaternion { what, norm });
+            }
+        }
+        Ok(self)
     }
-    /// An output vector has one entry per joint.
+    /// An output vector has one entry per joint (NV on a floating base).
     pub(crate) fn output(self, what: &'static str, out: &DVector<f64>) -> Result<Self, InputError> {
-        let n = self.0.dof();
+        let n = self.0.nv();
         if out.len() != n {
             return Err(InputError::WrongLength { what, got: out.len(), expected: n });
         }
         Ok(self)
     }
-    /// An output matrix is n×n.
+    /// An output matrix is n×n (NV×NV on a floating base).
     pub(crate) fn square(self, what: &'static str, m: &DMatrix<f64>) -> Result<Self, InputError> {
-        let n = self.0.dof();
+        let n = self.0.nv();
         if m.nrows() != n || m.ncols() != n {
             return Err(InputError::WrongLength { what, got: m.len(), expected: n });
         }

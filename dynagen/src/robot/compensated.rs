@@ -35,7 +35,7 @@ impl Robot {
         qd: &DVector<f64>,
         tau: &DVector<f64>,
     ) -> Result<DVector<f64>, InputError> {
-        vector(self.dof(), |qdd| self.forward_dynamics_compensated_into(q, qd, tau, qdd))
+        vector(self.model.nv(), |qdd| self.forward_dynamics_compensated_into(q, qd, tau, qdd))
     }
     /// [`forward_dynamics_compensated`](Self::forward_dynamics_compensated)
     /// into `qdd`, allocating nothing.

@@ -12,10 +12,18 @@
 //! Units: rad, rad/s, rad/s² for revolute joints, m, m/s, m/s² for
 //! prismatic ones; torques in N·m, forces in N. Joint order is
 //! [`Robot::joint_names`]. Spatial vectors are (angular; linear).
+//!
+//! A floating-base robot ([`Model::with_floating_base`]) takes NQ = n + 7
+//! long configurations `[p, quaternion (x, y, z, w), joints]` (the
+//! quaternion of unit norm within 1e-6) and NV = n + 6 long velocities,
+//! accelerations and forces `[ω_b, v_b, joints]` (the base's body twist or
+//! wrench, base frame); M is NV×NV; gravity is in the world frame, and so
+//! are frame poses and space Jacobians.
 
 mod check;
 mod compensated;
 mod derivatives;
+mod floating_base;
 pub(crate) mod scene;
 mod simulate;
 
@@ -24,7 +32,7 @@ pub use simulate::{Stepping, TipWrenchHistory};
 
 use crate::algorithms::compensated::CompensatedSolver;
 use crate::algorithms::integrators::IntegratorScratch;
-use crate::algorithms::{aba, bias, crba, forward_dynamics, kinematics, rnea, Loads, TipWrench, Workspace};
+use crate::algorithms::{aba, bias, crba, floating, forward_dynamics, kinematics, rnea, Loads, TipWrench, Workspace};
 use crate::model::{BuildOptions, Model, ModelError};
 use check::Check;
 use nalgebra::{DMatrix, DVector, Matrix4, Matrix6xX, Vector3, Vector6};
@@ -46,10 +54,17 @@ fn matrix<E>(n: usize, into: impl FnOnce(&mut DMatrix<f64>) -> Result<(), E>) ->
 }
 
 /// The pose of frame `frame` of `model` at `q`, 4×4 homogeneous in the base
-/// frame.
+/// frame (in the world for a floating base).
 fn frame_pose(model: &Model, ws: &mut Workspace<f64>, frame: usize, q: &DVector<f64>) -> Matrix4<f64> {
-    kinematics::forward_kinematics(model, ws, q.as_slice());
-    let t = kinematics::frame_pose(model, ws, frame).to_homogeneous();
+    let q = q.as_slice();
+    let t = if model.is_floating() {
+        floating::kinematics::forward_kinematics(model, ws, q);
+        floating::kinematics::frame_pose_world(model, ws, q, frame)
+    } else {
+        kinematics::forward_kinematics(model, ws, q);
+        kinematics::frame_pose(model, ws, frame)
+    }
+    .to_homogeneous();
     Matrix4::from_fn(|r, c| t[r][c])
 }
 
@@ -71,7 +86,16 @@ fn frame_jacobian(
     q: &DVector<f64>,
     jac: &mut [f64],
 ) -> Matrix6xX<f64> {
-    kinematics::forward_kinematics(model, ws, q.as_slice());
+    let q = q.as_slice();
+    if model.is_floating() {
+        floating::kinematics::forward_kinematics(model, ws, q);
+        match which {
+            Jacobian::Space => floating::kinematics::space_jacobian_world(model, ws, q, frame, jac),
+            Jacobian::Body => floating::kinematics::body_jacobian(model, ws, frame, jac),
+        }
+        return Matrix6xX::from_row_slice(jac);
+    }
+    kinematics::forward_kinematics(model, ws, q);
     match which {
         Jacobian::Space => kinematics::space_jacobian(model, ws, frame, jac),
         Jacobian::Body => kinematics::body_jacobian(model, ws, frame, jac),
@@ -98,7 +122,7 @@ impl Robot {
     /// Wraps a model.
     pub fn new(model: Model) -> Self {
         let ws = Workspace::new(&model);
-        let jac = vec![0.0; 6 * model.dof()];
+        let jac = vec![0.0; 6 * model.nv()];
         let integ = IntegratorScratch::new(&model);
         let comp = CompensatedSolver::new(&model);
         let deriv = derivatives::DerivativeScratch::new(&model);
@@ -120,9 +144,18 @@ impl Robot {
     pub fn model(&self) -> &Model {
         &self.model
     }
-    /// The number of joints.
+    /// The number of joints (n, without a floating base's six).
     pub fn dof(&self) -> usize {
         self.model.dof()
+    }
+    /// The length of a configuration q: n, or n + 7 with a floating base.
+    pub fn nq(&self) -> usize {
+        self.model.nq()
+    }
+    /// The length of q̇, q̈, τ and the side of M: n, or n + 6 with a
+    /// floating base.
+    pub fn nv(&self) -> usize {
+        self.model.nv()
     }
     /// The joint names, in the order of every vector and matrix index.
     pub fn joint_names(&self) -> Vec<&str> {
@@ -168,7 +201,7 @@ impl Robot {
         qd: &DVector<f64>,
         qdd: &DVector<f64>,
     ) -> Result<DVector<f64>, InputError> {
-        vector(self.dof(), |tau| self.inverse_dynamics_into(q, qd, qdd, tau))
+        vector(self.model.nv(), |tau| self.inverse_dynamics_into(q, qd, qdd, tau))
     }
     /// [`inverse_dynamics`](Self::inverse_dynamics) into `tau`, allocating nothing.
     pub fn inverse_dynamics_into(
@@ -189,7 +222,7 @@ impl Robot {
     /// The mass matrix M(q) (symmetric positive definite) by the
     /// composite-rigid-body algorithm.
     pub fn mass_matrix(&mut self, q: &DVector<f64>) -> Result<DMatrix<f64>, InputError> {
-        matrix(self.dof(), |m| self.mass_matrix_into(q, m))
+        matrix(self.model.nv(), |m| self.mass_matrix_into(q, m))
     }
     /// [`mass_matrix`](Self::mass_matrix) into `m` (n×n), allocating nothing.
     pub fn mass_matrix_into(&mut self, q: &DVector<f64>, m: &mut DMatrix<f64>) -> Result<(), InputError> {
@@ -201,7 +234,7 @@ impl Robot {
 
     /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
     pub fn bias_forces(&mut self, q: &DVector<f64>, qd: &DVector<f64>) -> Result<DVector<f64>, InputError> {
-        vector(self.dof(), |h| self.bias_forces_into(q, qd, h))
+        vector(self.model.nv(), |h| self.bias_forces_into(q, qd, h))
     }
     /// [`bias_forces`](Self::bias_forces) into `h`, allocating nothing.
     pub fn bias_forces_into(
@@ -218,7 +251,7 @@ impl Robot {
 
     /// The gravity torques g(q).
     pub fn gravity_torques(&mut self, q: &DVector<f64>) -> Result<DVector<f64>, InputError> {
-        vector(self.dof(), |g| self.gravity_torques_into(q, g))
+        vector(self.model.nv(), |g| self.gravity_torques_into(q, g))
     }
     /// [`gravity_torques`](Self::gravity_torques) into `out`, allocating nothing.
     pub fn gravity_torques_into(&mut self, q: &DVector<f64>, out: &mut DVector<f64>) -> Result<(), InputError> {
@@ -232,7 +265,7 @@ impl Robot {
     /// `VelQuadraticForces`).
     pub fn coriolis_torques(&mut self, q: &DVector<f64>, qd: &DVector<f64>) -> Result<DVector<f64>, InputError> {
         self.check().joints(&[("q", q), ("qd", qd)])?;
-        vector(self.dof(), |c| {
+        vector(self.model.nv(), |c| {
             bias::coriolis_torques(&self.model, &mut self.ws, q.as_slice(), qd.as_slice(), c.as_mut_slice());
             Ok(())
         })
@@ -243,7 +276,7 @@ impl Robot {
     /// `EndEffectorForces`).
     pub fn tip_wrench_torques(&mut self, q: &DVector<f64>) -> Result<DVector<f64>, InputError> {
         self.check().joints(&[("q", q)])?;
-        vector(self.dof(), |t| {
+        vector(self.model.nv(), |t| {
             bias::tip_wrench_torques(&self.model, &mut self.ws, q.as_slice(), &self.tips, t.as_mut_slice());
             Ok(())
         })
@@ -257,7 +290,7 @@ impl Robot {
         qd: &DVector<f64>,
         tau: &DVector<f64>,
     ) -> Result<DVector<f64>, InputError> {
-        vector(self.dof(), |qdd| self.forward_dynamics_into(q, qd, tau, qdd))
+        vector(self.model.nv(), |qdd| self.forward_dynamics_into(q, qd, tau, qdd))
     }
     /// [`forward_dynamics`](Self::forward_dynamics) into `qdd`, allocating nothing.
     pub fn forward_dynamics_into(
@@ -286,7 +319,7 @@ impl Robot {
         let g = self.model.gravity;
         let loads = Loads::gravity(&g).with_tips(&self.tips);
         let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());
-        vector(self.dof(), |qdd| {
+        vector(self.model.nv(), |qdd| {
             forward_dynamics::forward_dynamics_ldlt(&self.model, &mut self.ws, q, qd, tau, loads, qdd.as_mut_slice());
             Ok(())
         })

@@ -147,12 +147,12 @@ impl Robot {
         qdd: &DMatrix<f64>,
         tip: Option<TipWrenchHistory<'_>>,
     ) -> Result<DMatrix<f64>, InputError> {
-        let (rows, n) = (q.nrows(), self.dof());
-        for (what, m) in [("q", q), ("qd", qd), ("qdd", qdd)] {
-            check::shape(what, m, rows, n)?;
+        let (rows, nq, n) = (q.nrows(), self.model.nq(), self.model.nv());
+        for (what, m, cols) in [("q", q, nq), ("qd", qd, n), ("qdd", qdd, n)] {
+            check::shape(what, m, rows, cols)?;
         }
         let mut tips = self.tips_with(tip.as_ref(), rows)?;
-        let (mut qr, mut qdr, mut qddr, mut taur) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let (mut qr, mut qdr, mut qddr, mut taur) = (vec![0.0; nq], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         let mut out = DMatrix::zeros(rows, n);
         let g = self.model.gravity;
         for r in 0..rows {
@@ -190,7 +190,7 @@ impl Robot {
         stepping: Stepping,
     ) -> Result<(DMatrix<f64>, DMatrix<f64>), InputError> {
         let Stepping { dt, int_res, integrator } = stepping;
-        let (rows, n) = (tau.nrows(), self.dof());
+        let (rows, nq, n) = (tau.nrows(), self.model.nq(), self.model.nv());
         self.check().joints(&[("q0", q0), ("qd0", qd0)])?;
         check::shape("tau", tau, rows, n)?;
         check::dt(dt)?;
@@ -200,14 +200,16 @@ impl Robot {
         let mut tips = self.tips_with(tip.as_ref(), rows)?;
         let (mut q, mut qd) = (q0.as_slice().to_vec(), qd0.as_slice().to_vec());
         let mut taur = vec![0.0; n];
-        let mut qs = DMatrix::zeros(rows, n);
+        let mut qs = DMatrix::zeros(rows, nq);
         let mut qds = DMatrix::zeros(rows, n);
         let h = dt / int_res as f64;
         let g = self.model.gravity;
         for r in 0..rows {
-            for j in 0..n {
-                qs[(r, j)] = q[j];
-                qds[(r, j)] = qd[j];
+            for (j, x) in q.iter().enumerate() {
+                qs[(r, j)] = *x;
+            }
+            for (j, x) in qd.iter().enumerate() {
+                qds[(r, j)] = *x;
             }
             if r + 1 == rows {
                 break;

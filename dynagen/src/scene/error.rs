@@ -88,6 +88,17 @@ pub enum SceneError {
     /// Gravity options that contradict each other.
     #[error("gravity: {0}")]
     Gravity(String),
+    /// A scene other than the default one on a floating-base model: its
+    /// reductions, armature, friction and inputs are not made for a floating
+    /// base yet (the default scene, and so a plain module, is).
+    #[error(
+        "the root link \"{root}\" floats: scenes of floating-base robots other than the default one (sub-trees, \
+         locks, payloads, armature, friction, inputs) are not supported yet"
+    )]
+    FloatingBase {
+        /// The floating root link.
+        root: String,
+    },
     /// A sub-tree without tips.
     #[error("sub-tree rooted at \"{root}\" has no tip links")]
     NoTips {

@@ -196,6 +196,11 @@ impl Fate {
 }
 
 pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneError> {
+    // The default scene of a floating-base model is the model (what code
+    // generation of a floating base takes); reductions of one are not made yet.
+    if model.is_floating() && *scene != Scene::default() {
+        return Err(SceneError::FloatingBase { root: model.root.clone() });
+    }
     scene.check()?;
     let n = model.dof();
     let joint_index = |what: &'static str, name: &str| {

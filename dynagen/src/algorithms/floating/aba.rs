@@ -11,7 +11,7 @@ use crate::algorithms::joint::{
 };
 use crate::algorithms::{Loads, Workspace};
 use crate::model::Model;
-use crate::spatial::{Inertia, Motion, Transform};
+use crate::spatial::{Force, Inertia, Motion, Transform};
 use crate::Scalar;
 
 /// q̈ = M(q)⁻¹(τ − h(q, q̇) − Jᵀ F_tip) of a floating-base model: `q` NQ
@@ -30,28 +30,69 @@ pub fn aba<S: Scalar>(
     loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
+    aba_impl(model, ws, q, Some(qd), tau, loads, qdd)
+}
+
+/// M(q)⁻¹τ of a floating-base model: [`aba`] at rest (q̇ = 0) and of
+/// `loads` only the inertias (payloads, armature), the solve of the
+/// compensated forward dynamics.
+///
+/// # Panics
+/// As [`aba`].
+pub fn aba_at_rest<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    tau: &[S],
+    loads: Loads<'_, S>,
+    qdd: &mut [S],
+) {
+    aba_impl(model, ws, q, None, tau, loads.inertias(), qdd)
+}
+
+/// [`aba`], or at rest for `qd: None` (every velocity term left out).
+#[inline(always)]
+fn aba_impl<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    qd: Option<&[S]>,
+    tau: &[S],
+    loads: Loads<'_, S>,
+    qdd: &mut [S],
+) {
     let n = model.dof();
-    check_sizes(model, "floating aba", q.len(), &[qd.len(), tau.len(), qdd.len()]);
+    let nv = model.nv();
+    check_sizes(model, "floating aba", q.len(), &[qd.map_or(nv, <[S]>::len), tau.len(), qdd.len()]);
     loads.check(n, "floating aba");
     let Loads { gravity, tips, payloads, armature } = loads;
     // Forward: spatial velocities v, velocity-product accelerations c (in
     // ws.a), bias forces pᴬ = v ×* I v (in ws.f).
-    let v0 = base_motion(qd);
+    let v0 = qd.map_or(Motion::zero(), base_motion);
     let i0 = Inertia::<S>::from_f64(&model.base_inertia);
     let mut art0 = ArticulatedInertia::from_rigid(&i0);
-    let mut p0 = v0.cross_force(&i0.mul_motion(&v0));
+    let mut p0 = match qd {
+        Some(_) => v0.cross_force(&i0.mul_motion(&v0)),
+        None => Force::zero(),
+    };
     for (i, body) in model.bodies.iter().enumerate() {
         let joint = &body.joint;
         let x = joint_transform(joint, q[7 + i]);
         ws.x[i] = x;
-        let vp = body.parent.map_or(v0, |p| ws.v[p]);
-        let mut v = motion_to_child(joint, &x, &vp);
-        add_motion(joint, &mut v, qd[6 + i]);
         let mut inertia = Inertia::<S>::from_f64(&body.inertia);
         for p in payloads.iter().filter(|p| p.body == i) {
             inertia = inertia.add(&p.inertia);
         }
         ws.art[i] = ArticulatedInertia::from_rigid(&inertia);
+        let Some(qd) = qd else {
+            // at rest: no velocity, no velocity-product acceleration, no bias force
+            ws.a[i] = Motion::zero();
+            ws.f[i] = Force::zero();
+            continue;
+        };
+        let vp = body.parent.map_or(v0, |p| ws.v[p]);
+        let mut v = motion_to_child(joint, &x, &vp);
+        add_motion(joint, &mut v, qd[6 + i]);
         ws.a[i] = cross_motion(joint, &v, qd[6 + i]);
         ws.f[i] = v.cross_force(&inertia.mul_motion(&v));
         ws.v[i] = v;

@@ -25,6 +25,7 @@ pub mod crba;
 pub mod forward_dynamics;
 pub mod kinematics;
 pub mod rnea;
+pub mod step;
 
 use crate::model::Model;
 use crate::spatial::{Force, Mat3, Motion, Transform, Vec3};
@@ -96,9 +97,15 @@ pub(crate) fn check_sizes(model: &Model, what: &str, q: usize, nv_slices: &[usiz
 /// `(ω_b, v_b)·dt` (pose ← pose · exp(dv)), its quaternion renormalised, and
 /// the joints by addition. Never `q += q̇·dt` for the base.
 pub fn integrate<S: Scalar>(model: &Model, q: &[S], dv: &[S], out: &mut [S]) {
-    check_sizes(model, "integrate", q.len(), &[dv.len()]);
+    integrate_scaled(model, q, dv, S::one(), out)
+}
+
+/// [`integrate`] by `dt·v`.
+pub fn integrate_scaled<S: Scalar>(model: &Model, q: &[S], v: &[S], dt: S, out: &mut [S]) {
+    check_sizes(model, "integrate", q.len(), &[v.len()]);
     assert!(out.len() == q.len(), "integrate: out must have NQ entries");
-    let (w, v) = (Vec3([dv[0], dv[1], dv[2]]), Vec3([dv[3], dv[4], dv[5]]));
+    let dv = |k: usize| dt * v[k];
+    let (w, v6) = (Vec3([dv(0), dv(1), dv(2)]), Vec3([dv(3), dv(4), dv(5)]));
     // exp of the twist (ω, v): rotation by |ω| about ω, and the translation
     // V(ω)·v with V = I + (1 − cos θ)/θ² [ω] + (θ − sin θ)/θ³ [ω]²; near θ = 0
     // by the series (a branch on the step's size, which is not traced).
@@ -116,8 +123,8 @@ pub fn integrate<S: Scalar>(model: &Model, q: &[S], dv: &[S], out: &mut [S]) {
         let (s, co) = theta.sin_cos();
         ((S::one() - co) / theta2, (theta - s) / (theta2 * theta))
     };
-    let wv = w.cross(&v);
-    let step = v + wv.scale(b) + w.cross(&wv).scale(c);
+    let wv = w.cross(&v6);
+    let step = v6 + wv.scale(b) + w.cross(&wv).scale(c);
     let pose = base_pose(q);
     let p = pose.trans + pose.rot.mul_vec(&step);
     // The quaternion of the step: (sin(θ/2)/θ · ω, cos(θ/2)).
@@ -140,7 +147,7 @@ pub fn integrate<S: Scalar>(model: &Model, q: &[S], dv: &[S], out: &mut [S]) {
     out[..3].copy_from_slice(&p.0);
     out[3..7].copy_from_slice(&nq);
     for i in 0..model.dof() {
-        out[7 + i] = q[7 + i] + dv[6 + i];
+        out[7 + i] = q[7 + i] + dv(6 + i);
     }
 }
 
