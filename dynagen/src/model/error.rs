@@ -75,6 +75,17 @@ pub enum ModelError {
     /// A joint axis is zero.
     #[error("joint \"{0}\": the axis is zero")]
     ZeroAxis(String),
+    /// A screw axis (whose length scales the joint's motion) too long or
+    /// too short for the dynamics to be computed in `f64`.
+    #[error(
+        "joint \"{joint}\": the axis has length {norm:e}, which scales the joint's motion (a screw axis): lengths outside 1e-100..1e100 overflow the dynamics; give a unit axis, or mark it a direction (URDF axes are)"
+    )]
+    AxisOutOfRange {
+        /// The joint.
+        joint: String,
+        /// The axis' length.
+        norm: f64,
+    },
     /// A rotation matrix is not a rotation.
     #[error("{item}: the {what} rotation is not orthonormal with determinant 1")]
     NotARotation {

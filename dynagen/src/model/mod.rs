@@ -55,15 +55,19 @@ pub struct Joint {
     pub kind: JointKind,
     /// The joint's frame in the parent body's frame, at q = 0.
     pub placement: Transform<f64>,
-    /// The axis in the joint's frame, as given (a revolute joint rotates by
-    /// `|axis|·q` radians about `axis/|axis|`, as the Modern Robotics library
-    /// does with a non-unit screw axis; URDF axes are normalised on import).
+    /// The axis in the joint's frame. A revolute joint rotates by
+    /// `axis_norm·q` radians about `axis/|axis|`: a screw axis (Modern
+    /// Robotics lists, the Rust constructors) is kept as given, with
+    /// `axis_norm = |axis|`, as the Modern Robotics library does; a
+    /// direction (every URDF axis, [`JointDescription::axis_is_direction`])
+    /// is normalised, with `axis_norm` exactly 1, so that its angle is q.
     pub axis: Vec3<f64>,
     /// Position, velocity and effort limits, when known.
     pub limits: Option<JointLimits>,
     /// `axis / |axis|`.
     pub unit_axis: Vec3<f64>,
-    /// `|axis|`.
+    /// The factor between the joint's position and its angle (or
+    /// displacement): `|axis|` for a screw axis, exactly 1 for a direction.
     pub axis_norm: f64,
     /// Derived from `axis`: the coordinate axis it lies along, if any, so
     /// that the algorithms can skip the products with its zero components.

@@ -174,14 +174,18 @@ fn joint_from(desc: &JointDescription, placement: Transform<f64>) -> Joint {
         _ => JointKind::Prismatic,
     };
     let n = desc.axis.norm();
+    let unit_axis = desc.axis.scale(1.0 / n);
+    // A direction (URDF) turns by exactly q: its axis is the unit one and
+    // its scale exactly 1, whatever ulp its length was off by.
+    let (axis, axis_norm) = if desc.axis_is_direction { (unit_axis, 1.0) } else { (desc.axis, n) };
     Joint {
         name: desc.name.clone(),
         kind,
         placement,
-        axis: desc.axis,
+        axis,
         limits: desc.limits,
-        unit_axis: desc.axis.scale(1.0 / n),
-        axis_norm: n,
+        unit_axis,
+        axis_norm,
         alignment: AxisAlignment::of(&desc.axis),
         placement_rotation_is_identity: placement.rot == Mat3::identity(),
     }

@@ -503,6 +503,7 @@ fn description_from_urdf(
                 child: j.child.link.clone(),
                 origin: pose(&j.origin),
                 axis,
+                axis_is_direction: true,
                 limits,
                 mimic: j.mimic.is_some(),
             }

@@ -11,6 +11,9 @@ use std::collections::HashSet;
 /// digits), and no further.
 const INERTIA_RTOL: f64 = 1e-9;
 
+/// The lengths a screw axis (one that is not a mere direction) may have.
+const SCREW_AXIS_RANGE: (f64, f64) = (1e-100, 1e100);
+
 pub(super) fn check(
     desc: &RobotDescription,
     opts: &BuildOptions,
@@ -54,8 +57,15 @@ pub(super) fn check(
             if !j.axis.is_finite() {
                 return Err(ModelError::NonFinite { item, what: "axis" });
             }
-            if j.axis.norm() == 0.0 {
+            let norm = j.axis.norm();
+            if norm == 0.0 {
                 return Err(ModelError::ZeroAxis(j.name.clone()));
+            }
+            // A screw axis's length scales the joint's motion, and every
+            // entry of M(q) by its square: refuse lengths that overflow it
+            // rather than report the overflowed inertia.
+            if !j.axis_is_direction && !(SCREW_AXIS_RANGE.0..=SCREW_AXIS_RANGE.1).contains(&norm) {
+                return Err(ModelError::AxisOutOfRange { joint: j.name.clone(), norm });
             }
         }
         if let Some(l) = &j.limits {

@@ -376,6 +376,8 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
             child: body.name.clone(),
             origin: if on_root { from_root.compose(&x) } else { x },
             axis: body.joint.axis,
+            // a joint whose angle is q (a URDF joint's) stays one
+            axis_is_direction: body.joint.axis_norm == 1.0,
             limits: body.joint.limits,
             mimic: false,
         });
