@@ -89,6 +89,12 @@ pub enum CodegenError {
     /// the (reduced) model does not have.
     #[error(transparent)]
     Scene(Box<SceneError>),
+    /// Forward dynamics asked for a model whose joints are dependent.
+    #[error(
+        "forward_dynamics cannot be generated: joints {} are dependent (together they move without moving any mass, so the mass matrix is singular at every configuration); leave forward_dynamics out of the functions, or make the joints independent",
+        crate::model::quoted_names(.0)
+    )]
+    DependentJoints(Vec<String>),
     /// The generated tokens did not parse as a Rust file (a bug of dynagen).
     #[error("internal error: generated code does not parse: {0}")]
     Internal(String),
@@ -137,6 +143,11 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
         }
         if !names.insert(f.rust_name()) {
             return Err(CodegenError::DuplicateName(f.rust_name()));
+        }
+    }
+    if options.functions.contains(&Function::ForwardDynamics) {
+        if let Some(joints) = scene.model.dependent_joints().first() {
+            return Err(CodegenError::DependentJoints(joints.to_vec()));
         }
     }
     let (prepared, snapped) = prepare::prepare(scene, options);

@@ -13,6 +13,7 @@
 //! their joints (file order for URDF). A body's frame is its joint's frame.
 
 mod builder;
+mod dependent;
 mod description;
 mod error;
 mod modern_robotics;
@@ -22,6 +23,7 @@ mod validate;
 
 pub use builder::RobotBuilder;
 pub use description::{Inertial, JointDescription, JointLimits, JointType, LinkDescription, RobotDescription};
+pub(crate) use error::quoted as quoted_names;
 pub use error::{ModelError, ModelWarning};
 pub use modern_robotics::ModernRoboticsLists;
 
@@ -33,6 +35,21 @@ pub struct BuildOptions {
     /// Refuse inertias that break the triangle inequality instead of
     /// warning about them.
     pub strict: bool,
+    /// Accept links whose rotational inertia is not positive semi-definite
+    /// (refused by default, as MuJoCo does), each with a warning
+    /// ([`ModelWarning::NonPhysicalInertia`]): the dynamics are then those
+    /// of a body no matter has, M(q) may be indefinite and forward
+    /// dynamics may fail. Some published files (GRiD's Atlas) have such
+    /// links, and Pinocchio loads them.
+    pub allow_nonphysical_inertia: bool,
+}
+
+impl BuildOptions {
+    /// These options with [`allow_nonphysical_inertia`](Self::allow_nonphysical_inertia) set.
+    pub fn allow_nonphysical_inertia(mut self, allow: bool) -> Self {
+        self.allow_nonphysical_inertia = allow;
+        self
+    }
 }
 
 /// The kind of a moving joint.

@@ -107,8 +107,11 @@ impl Model {
             base_mass,
         };
         let mut model = model;
-        let more = check_every_joint_moves_mass(&model)?;
+        let nonphysical = model.warnings.iter().any(|w| matches!(w, ModelWarning::NonPhysicalInertia { .. }));
+        let more = check_every_joint_moves_mass(&model, nonphysical)?;
         model.warnings.extend(more);
+        let dependent = super::dependent::dependent_joints(&model);
+        model.warnings.extend(dependent.into_iter().map(|joints| ModelWarning::DependentJoints { joints }));
         Ok(model)
     }
 }
@@ -201,7 +204,11 @@ fn joint_from(desc: &JointDescription, placement: Transform<f64>) -> Joint {
 /// about any axis at all). Otherwise (point masses and rods moved by later
 /// joints) the entry could vanish in another configuration: a warning names
 /// the joint.
-fn check_every_joint_moves_mass(model: &Model) -> Result<Vec<ModelWarning>, ModelError> {
+///
+/// With non-physical inertias accepted (`nonphysical`), a diagonal entry
+/// may be negative or zero: that is what the warning about them says, not
+/// an error.
+fn check_every_joint_moves_mass(model: &Model, nonphysical: bool) -> Result<Vec<ModelWarning>, ModelError> {
     let along = |ic: &Inertia<f64>, s: &[f64; 6]| {
         let a = Vec3([s[0], s[1], s[2]]);
         let l = Vec3([s[3], s[4], s[5]]);
@@ -231,7 +238,7 @@ fn check_every_joint_moves_mass(model: &Model) -> Result<Vec<ModelWarning>, Mode
                 what: "inertia moved by the joint (its subtree's)",
             });
         }
-        if diag.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
+        if diag.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) && !nonphysical {
             return Err(ModelError::MasslessSubtree(b.joint.name.clone()));
         }
         let revolute = b.joint.kind != JointKind::Prismatic;

@@ -137,8 +137,15 @@ fn check_inertial(
     let unit = if largest > 0.0 { Sym3(i.inertia.0.map(|x| x / largest)).eigenvalues() } else { [0.0; 3] };
     let moments = unit.map(|x| x * largest);
     let scale = unit[2].abs().max(f64::MIN_POSITIVE);
-    if unit.iter().any(|x| x.is_nan()) || unit[0] < -INERTIA_RTOL * scale {
+    if unit.iter().any(|x| x.is_nan()) {
         return Err(ModelError::InertiaNotPositive { link: link.to_string(), moments });
+    }
+    if unit[0] < -INERTIA_RTOL * scale {
+        if !opts.allow_nonphysical_inertia {
+            return Err(ModelError::InertiaNotPositive { link: link.to_string(), moments });
+        }
+        warnings.push(ModelWarning::NonPhysicalInertia { link: link.to_string(), moments });
+        return Ok(());
     }
     if i.mass == 0.0 && unit[2] > 0.0 {
         warnings.push(ModelWarning::InertiaWithoutMass { link: link.to_string() });

@@ -61,6 +61,16 @@ pub enum InputError {
         /// What is wrong in it.
         error: Box<InputError>,
     },
+    /// Forward dynamics of a model whose joints are dependent (its mass
+    /// matrix is singular at every configuration): undefined.
+    #[error(
+        "forward dynamics is undefined for this robot: joints {} are dependent (together they move without moving any mass, so the mass matrix is singular at every configuration); inverse dynamics, M, h and g are still computed",
+        crate::model::quoted_names(joints)
+    )]
+    DependentJoints {
+        /// The dependent joints.
+        joints: Vec<String>,
+    },
     /// A bad integration parameter (time step, number of sub-steps).
     #[error("{what} is {value}, but it must be {must}")]
     BadParameter {
@@ -100,6 +110,13 @@ impl Check<'_> {
                 joint: self.0.bodies[index].joint.name.clone(),
                 value: x[index],
             }),
+            None => Ok(self),
+        }
+    }
+    /// The model has a forward dynamics: no dependent joints.
+    pub(crate) fn forward_dynamics(self) -> Result<Self, InputError> {
+        match self.0.dependent_joints().first() {
+            Some(joints) => Err(InputError::DependentJoints { joints: joints.to_vec() }),
             None => Ok(self),
         }
     }
