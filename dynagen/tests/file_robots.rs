@@ -234,3 +234,53 @@ fn axes_of_1e200_and_1e_200_are_directions_not_overflows() {
         assert_eq!(m.bodies[0].joint.axis.0, [0.0, 0.0, 1.0]);
     }
 }
+
+const RACECAR_LIKE: &str = r#"<?xml version="1.0"?>
+<robot name="racecar">
+  <material name="black"><color rgba="0 0 0"/></material>
+  <link name="base"/>
+  <link name="wheel">
+    <visual>
+      <geometry>
+        <mesh filename="package://racecar/meshes/wheel.STL" scale="1 1"/>
+        <material name="black"/>
+      </geometry>
+    </visual>
+    <collision><geometry><cylinder length="0.045"/></geometry></collision>
+    <inertial><origin xyz="0 0 0.01"/><mass value="0.34"/><inertia ixx="0.0003" iyy="0.0004" izz="0.0003" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <joint name="wheel_joint" type="continuous">
+    <parent link="base"/><child link="wheel"/><origin xyz="0.1 0.2 0"/><axis xyz="0 1 0"/>
+  </joint>
+  <transmission name="t"><type>transmission_interface/SimpleTransmission</type><oops/></transmission>
+</robot>
+"#;
+
+#[test]
+fn what_urdfdom_loads_and_dynagen_does_not_read_is_accepted() {
+    // A <material> inside <geometry>, a mesh scale of two numbers, a
+    // cylinder without radius, a colour of three numbers: urdf-rs refused
+    // the file with no place named; the dynamics do not depend on them.
+    let m = Model::from_urdf_str(RACECAR_LIKE).unwrap();
+    let bare = RACECAR_LIKE
+        .lines()
+        .filter(|l| {
+            !["visual", "geometry", "mesh", "material", "collision", "transmission"].iter().any(|t| l.contains(t))
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert!(!bare.contains("<visual"), "{bare}");
+    let b = Model::from_urdf_str(&bare).unwrap();
+    assert_eq!(m.bodies, b.bodies);
+    // a byte-order mark before the declaration too
+    let with_bom = format!("\u{feff}{RACECAR_LIKE}");
+    assert_eq!(Model::from_urdf_str(&with_bom).unwrap().bodies, m.bodies);
+}
+
+#[test]
+fn what_urdf_rs_still_refuses_is_placed_by_line_column_and_joint() {
+    let xml = RACECAR_LIKE.replace(r#"<axis xyz="0 1 0"/>"#, r#"<axis xyz="0 1 0"/><dynamics damping="abc"/>"#);
+    let e = Model::from_urdf_str(&xml).unwrap_err();
+    let text = e.to_string();
+    assert_eq!(text, "malformed URDF: line 15 column 3: joint \"wheel_joint\": invalid float literal");
+}
