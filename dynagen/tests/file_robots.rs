@@ -197,20 +197,22 @@ fn axes_of_1e200_and_1e_200_are_directions_not_overflows() {
         )
     };
     let unit = Model::from_urdf_str(&xml("0 0.6 0.8")).unwrap();
-    for (axis, norm) in [("0 6e199 8e199", 1e200), ("0 6e-201 8e-201", 1e-200)] {
+    for (axis, norm) in [("0 6e199 8e199", 1e200), ("0 6e-201 8e-201", 1e-200), ("0 6e-311 8e-311", 1e-310)] {
+        // a subnormal length (1e-310) holds its components to about 1e-13
+        let tol = if norm < 1e-300 { 1e-12 } else { 1e-15 };
         let m = Model::from_urdf_str(&xml(axis)).unwrap_or_else(|e| panic!("axis {axis}: {e}"));
         match &m.warnings[..] {
             [ModelWarning::AxisNormalised { joint, norm: n }] => {
                 assert_eq!(joint, "j");
-                assert!((n / norm - 1.0).abs() < 1e-15, "{n:e}");
+                assert!((n / norm - 1.0).abs() < tol, "{n:e}");
             }
             w => panic!("axis {axis}: {w:?}"),
         }
         assert!(m.warnings[0].to_string().contains("normalised to unit length"));
         let a = m.bodies[0].joint.axis.0;
-        assert!((a[1] - 0.6).abs() < 1e-15 && (a[2] - 0.8).abs() < 1e-15, "{a:?}");
+        assert!((a[1] - 0.6).abs() < tol && (a[2] - 0.8).abs() < tol, "{a:?}");
         let (t, u) = (tau_m::<f64>(&m, &[0.4], &[1.0], &[2.0]), tau_m::<f64>(&unit, &[0.4], &[1.0], &[2.0]));
-        assert!(rel_err(&t.0, &u.0, 0.0) < 1e-15);
+        assert!(rel_err(&t.0, &u.0, 0.0) < tol);
     }
     // A screw axis (Rust, Modern Robotics) of such a length scales the
     // motion: refused naming the joint and the length, not as an inertia.
@@ -283,4 +285,22 @@ fn what_urdf_rs_still_refuses_is_placed_by_line_column_and_joint() {
     let e = Model::from_urdf_str(&xml).unwrap_err();
     let text = e.to_string();
     assert_eq!(text, "malformed URDF: line 15 column 3: joint \"wheel_joint\": invalid float literal");
+}
+
+#[test]
+fn a_build_script_warning_stays_on_one_line_whatever_the_link_is_called() {
+    // The Builder prints these as `cargo:warning=…`: a newline in a name
+    // would start a cargo directive of the file's choosing.
+    let name = "evil\ncargo:rustc-link-lib=evil\u{2028}";
+    let m = RobotBuilder::new("r")
+        .link("base", None)
+        .link(name, Some(Inertial::new(1.0, [0.1, 0.0, 0.0], [-0.1, 0.2, 0.2, 0.0, 0.0, 0.0])))
+        .joint(JointDescription::revolute("j", "base", name, [0.0, 0.0, 1.0]))
+        .allow_nonphysical_inertia(true)
+        .build()
+        .unwrap();
+    let w = m.warnings.iter().find(|w| w.is_about_the_dynamics()).unwrap();
+    let line = w.one_line();
+    assert!(!line.contains('\n') && !line.contains('\u{2028}'), "{line}");
+    assert!(line.contains("evil\\u{a}cargo:rustc-link-lib=evil\\u{2028}"), "{line}");
 }

@@ -177,7 +177,8 @@ fn joint_from(desc: &JointDescription, placement: Transform<f64>) -> Joint {
         _ => JointKind::Prismatic,
     };
     let n = desc.axis.norm();
-    let unit_axis = desc.axis.scale(1.0 / n);
+    // (x/n for a subnormal length, whose inverse overflows)
+    let unit_axis = if (1.0 / n).is_finite() { desc.axis.scale(1.0 / n) } else { Vec3(desc.axis.0.map(|x| x / n)) };
     // A direction (URDF) turns by exactly q: its axis is the unit one and
     // its scale exactly 1, whatever ulp its length was off by.
     let (axis, axis_norm) = if desc.axis_is_direction { (unit_axis, 1.0) } else { (desc.axis, n) };
@@ -206,8 +207,8 @@ fn joint_from(desc: &JointDescription, placement: Transform<f64>) -> Joint {
 /// the joint.
 ///
 /// With non-physical inertias accepted (`nonphysical`), a diagonal entry
-/// may be negative or zero: that is what the warning about them says, not
-/// an error.
+/// may be negative: that is what the warning about them says, not an
+/// error (a zero one still is).
 fn check_every_joint_moves_mass(model: &Model, nonphysical: bool) -> Result<Vec<ModelWarning>, ModelError> {
     let along = |ic: &Inertia<f64>, s: &[f64; 6]| {
         let a = Vec3([s[0], s[1], s[2]]);
@@ -238,7 +239,8 @@ fn check_every_joint_moves_mass(model: &Model, nonphysical: bool) -> Result<Vec<
                 what: "inertia moved by the joint (its subtree's)",
             });
         }
-        if diag.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) && !nonphysical {
+        let negative_by_nonphysical_inertia = nonphysical && diag < 0.0;
+        if diag.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) && !negative_by_nonphysical_inertia {
             return Err(ModelError::MasslessSubtree(b.joint.name.clone()));
         }
         let revolute = b.joint.kind != JointKind::Prismatic;

@@ -595,7 +595,7 @@ fn description_from_urdf(
             let norm = axis.norm();
             if joint_type != JointType::Fixed && norm.is_finite() && norm > 0.0 && (norm - 1.0).abs() > 1e-9 {
                 warnings.push(ModelWarning::AxisNormalised { joint: j.name.clone(), norm });
-                axis = axis.scale(1.0 / norm);
+                axis = if (1.0 / norm).is_finite() { axis.scale(1.0 / norm) } else { Vec3(axis.0.map(|x| x / norm)) };
             }
             let limits = (raw.has_limit && matches!(joint_type, JointType::Revolute | JointType::Prismatic)).then_some(
                 JointLimits {
