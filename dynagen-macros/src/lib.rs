@@ -44,6 +44,7 @@
 //! | `trig` | `batched` (the module's own `sin_cos_array`: no_std, no dependency, faster than std's), `std` (`f64::sin_cos`), `libm`, `inputs` (only the `NAME_sc` functions) | `batched` |
 //! | `split_lets` | a number of `let`s, or `none` | 2500 (longer bodies become `#[inline(never)]` parts) |
 //! | `fma` | `true`, `false`: `a*b + c` as `fma(a, b, c)`, one rounding where the target has a fused multiply-add | `true` |
+//! | `allow_nonphysical_inertia` | `true`, `false`: accept links whose rotational inertia is not positive semi-definite, with a warning (the mass matrix may be indefinite) | `false` (refused) |
 //! | `dispatch` | `true`, `false`: on x86-64 builds without the `avx2` and `fma` target features, also compile each function for AVX2 and FMA and run that copy where the processor has both (results differ in the last bits between machines) | `true` |
 //! | `floating_base` | `true`, `false`: the robot's root link moves freely (`NQ = DOF + 7`, `NV = DOF + 6`; the five functions of the contract) | `false` (a URDF `floating` root joint: `true`) |
 //!
@@ -162,6 +163,7 @@ pub(crate) struct MacroOptions {
     fma: Option<bool>,
     floating_base: Option<bool>,
     dispatch: Option<bool>,
+    allow_nonphysical_inertia: Option<bool>,
     scene: scene::SceneOptions,
 }
 
@@ -215,6 +217,7 @@ impl MacroOptions {
             "fma" => self.fma = Some(input.parse::<LitBool>()?.value),
             "floating_base" => self.floating_base = Some(input.parse::<LitBool>()?.value),
             "dispatch" => self.dispatch = Some(input.parse::<LitBool>()?.value),
+            "allow_nonphysical_inertia" => self.allow_nonphysical_inertia = Some(input.parse::<LitBool>()?.value),
             _ => return self.scene.parse_value(key, input),
         }
         Ok(true)
@@ -248,6 +251,9 @@ impl MacroOptions {
         if let Some(f) = self.floating_base {
             b = b.floating_base(f);
         }
+        if let Some(a) = self.allow_nonphysical_inertia {
+            b = b.allow_nonphysical_inertia(a);
+        }
         if let Some(f) = &self.functions {
             b = b.functions(&f.iter().map(Ident::to_string).collect::<Vec<_>>());
         }
@@ -280,7 +286,7 @@ fn parse_ident<T: std::str::FromStr<Err = String>>(input: ParseStream) -> syn::R
 
 /// The options every macro accepts, for error messages.
 pub(crate) const OPTION_NAMES: &str = "functions, scalar, forward_dynamics, snap_rounding, trig, split_lets, fma, floating_base, \
-                                       dispatch, scene, gravity, tip_wrench, subtree, lock, armature, viscous, coulomb, \
+                                       dispatch, allow_nonphysical_inertia, scene, gravity, tip_wrench, subtree, lock, armature, viscous, coulomb, \
                                        coulomb_velocity, payload, payload_input, frame_pose, frame_jacobian, target";
 
 struct UrdfInput {

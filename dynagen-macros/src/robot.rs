@@ -226,7 +226,8 @@ fn error_span(robot: &RobotInput, message: &str) -> Span {
 }
 
 pub(crate) fn expand(robot: RobotInput) -> syn::Result<TokenStream> {
-    let mut b = RobotBuilder::new(&robot.name.to_string());
+    let mut b = RobotBuilder::new(&robot.name.to_string())
+        .allow_nonphysical_inertia(robot.options.allow_nonphysical_inertia.unwrap_or(false));
     if let Some(g) = robot.gravity {
         b = b.gravity(g);
     }

@@ -7,5 +7,6 @@ fn ui() {
     let t = trybuild::TestCases::new();
     t.pass("tests/ui/pass_inline_robot.rs");
     t.pass("tests/ui/pass_scene.rs");
+    t.pass("tests/ui/pass_nonphysical_inertia.rs");
     t.compile_fail("tests/ui/fail_*.rs");
 }

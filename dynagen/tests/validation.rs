@@ -782,7 +782,7 @@ fn triangle_inequality_warns_by_default_and_is_refused_in_strict_mode() {
         w => panic!("{w:?}"),
     }
     assert!(m.warnings[0].to_string().contains("\"arm\""));
-    let e = Model::from_urdf_str_with(&xml, &BuildOptions { strict: true }).unwrap_err();
+    let e = Model::from_urdf_str_with(&xml, &BuildOptions { strict: true, ..Default::default() }).unwrap_err();
     assert!(matches!(&e, ModelError::TriangleInequality { link, .. } if link == "arm"), "{e:?}");
     names(&e, &["arm"]);
     // the same through the builder
@@ -795,7 +795,10 @@ fn triangle_inequality_warns_by_default_and_is_refused_in_strict_mode() {
     assert!(matches!(build_err(&b.strict(true)), ModelError::TriangleInequality { .. }));
     // the equality case (a flat plate: 1 + 2 = 3) is physical
     let plate = one_link(&inertial("1", ["1", "0", "0", "2", "0", "3"]));
-    assert!(Model::from_urdf_str_with(&plate, &BuildOptions { strict: true }).unwrap().warnings.is_empty());
+    assert!(Model::from_urdf_str_with(&plate, &BuildOptions { strict: true, ..Default::default() })
+        .unwrap()
+        .warnings
+        .is_empty());
 }
 
 #[test]
@@ -1164,7 +1167,7 @@ fn bundled_robots_load_in_strict_mode() {
     for entry in std::fs::read_dir(support::ROBOTS).unwrap() {
         let path = entry.unwrap().path();
         if path.extension().is_some_and(|e| e == "urdf") {
-            let m = Model::from_urdf_file_with(&path, &BuildOptions { strict: true })
+            let m = Model::from_urdf_file_with(&path, &BuildOptions { strict: true, ..Default::default() })
                 .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
             assert!(m.dof() > 0);
             seen += 1;

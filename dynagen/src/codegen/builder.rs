@@ -139,6 +139,7 @@ pub struct Builder {
     file_name: Option<String>,
     out_dir: Option<PathBuf>,
     cargo_output: Option<bool>,
+    model_options: crate::model::BuildOptions,
 }
 
 /// What [`Builder::generate`] wrote.
@@ -379,6 +380,13 @@ impl Builder {
     pub fn trig(self, trig: Trig) -> Self {
         self.set(Setting::Trig(trig))
     }
+    /// Accept URDF links whose rotational inertia is not positive
+    /// semi-definite, each with a warning (off: they are refused; see
+    /// [`BuildOptions::allow_nonphysical_inertia`](crate::model::BuildOptions::allow_nonphysical_inertia)).
+    pub fn allow_nonphysical_inertia(mut self, allow: bool) -> Self {
+        self.model_options.allow_nonphysical_inertia = allow;
+        self
+    }
     /// Replace model constants that are 0 or ±1 up to rounding
     /// ([`CodegenOptions::snap_rounding`], on).
     pub fn snap_rounding(self, on: bool) -> Self {
@@ -449,7 +457,8 @@ impl Builder {
                 if options.source.is_none() {
                     options.source = Some(path.display().to_string());
                 }
-                Model::from_urdf_file(path).map_err(|source| BuildError::Robot { path: path.clone(), source })?
+                Model::from_urdf_file_with(path, &self.model_options)
+                    .map_err(|source| BuildError::Robot { path: path.clone(), source })?
             }
         };
         let model = if self.floating_base { model.with_floating_base() } else { model };
@@ -501,6 +510,9 @@ impl Builder {
         if self.cargo_output.unwrap_or(out_env.is_some()) {
             for p in &inputs {
                 println!("cargo:rerun-if-changed={}", p.display());
+            }
+            for w in scene.model.warnings.iter().filter(|w| w.is_about_the_dynamics()) {
+                println!("cargo:warning={}", w.one_line());
             }
         }
         let cargo_out_dir = match (&self.out_dir, &out_env) {

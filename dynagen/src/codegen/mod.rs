@@ -103,6 +103,12 @@ pub enum CodegenError {
     /// model yet (it names them).
     #[error("{0}")]
     Unsupported(String),
+    /// Forward dynamics asked for a model whose joints are dependent.
+    #[error(
+        "forward_dynamics cannot be generated: joints {} are dependent (together they move without moving any mass, so the mass matrix is singular at every configuration); leave forward_dynamics out of the functions, or make the joints independent",
+        crate::model::quoted_names(.0)
+    )]
+    DependentJoints(Vec<String>),
     /// The generated tokens did not parse as a Rust file (a bug of dynagen).
     #[error("internal error: generated code does not parse: {0}")]
     Internal(String),
@@ -164,6 +170,11 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
         emit::identifier(&argument, &format!("link \"{}\" (its payload input)", p.link))?;
         if !arguments.insert(argument.clone()) {
             return Err(CodegenError::DuplicateName(argument));
+        }
+    }
+    if options.functions.contains(&Function::ForwardDynamics) {
+        if let Some(joints) = scene.model.dependent_joints().first() {
+            return Err(CodegenError::DependentJoints(joints.to_vec()));
         }
     }
     let (prepared, snapped) = prepare::prepare(scene, options);

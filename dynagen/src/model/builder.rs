@@ -52,6 +52,12 @@ impl RobotBuilder {
         self.opts.strict = strict;
         self
     }
+    /// Accept links whose rotational inertia is not positive semi-definite,
+    /// each with a warning ([`BuildOptions::allow_nonphysical_inertia`]).
+    pub fn allow_nonphysical_inertia(mut self, allow: bool) -> Self {
+        self.opts.allow_nonphysical_inertia = allow;
+        self
+    }
     /// The description built so far.
     pub fn description(&self) -> &RobotDescription {
         &self.desc

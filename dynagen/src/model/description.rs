@@ -85,6 +85,14 @@ pub struct JointDescription {
     pub origin: Transform<f64>,
     /// The axis, in the joint frame (ignored for fixed joints).
     pub axis: Vec3<f64>,
+    /// Whether `axis` is only a direction, as in URDF: the joint turns by
+    /// exactly `q` radians about (or slides `q` metres along)
+    /// `axis/|axis|`. Otherwise it is a screw axis, as in the Modern
+    /// Robotics lists and the constructors below: the joint turns by
+    /// `|axis|·q` (slides by `axis·q`). A direction written with all its
+    /// decimals has `|axis| = 1 ± 1 ulp`, and only this flag keeps that
+    /// ulp from scaling every angle.
+    pub axis_is_direction: bool,
     /// Limits, when known.
     pub limits: Option<JointLimits>,
     /// Whether the joint mimics another (not supported yet).
@@ -100,6 +108,7 @@ impl JointDescription {
             child: child.to_string(),
             origin: Transform::identity(),
             axis: Vec3(axis),
+            axis_is_direction: false,
             limits: None,
             mimic: false,
         }
@@ -124,6 +133,12 @@ impl JointDescription {
     /// parent link's frame.
     pub fn origin(mut self, xyz: [f64; 3], rpy: [f64; 3]) -> Self {
         self.origin = Transform::new(Mat3::from_rpy(rpy[0], rpy[1], rpy[2]), Vec3(xyz));
+        self
+    }
+    /// Makes the axis a direction (as URDF's): the joint turns by exactly
+    /// `q` about `axis/|axis|` (see [`axis_is_direction`](Self::axis_is_direction)).
+    pub fn unit_axis(mut self) -> Self {
+        self.axis_is_direction = true;
         self
     }
     /// Sets the limits.

@@ -84,6 +84,17 @@ pub enum ModelError {
     /// A joint axis is zero.
     #[error("joint \"{0}\": the axis is zero")]
     ZeroAxis(String),
+    /// A screw axis (whose length scales the joint's motion) too long or
+    /// too short for the dynamics to be computed in `f64`.
+    #[error(
+        "joint \"{joint}\": the axis has length {norm:e}, which scales the joint's motion (a screw axis): lengths outside 1e-100..1e100 overflow the dynamics; give a unit axis, or mark it a direction (URDF axes are)"
+    )]
+    AxisOutOfRange {
+        /// The joint.
+        joint: String,
+        /// The axis' length.
+        norm: f64,
+    },
     /// A rotation matrix is not a rotation.
     #[error("{item}: the {what} rotation is not orthonormal with determinant 1")]
     NotARotation {
@@ -101,7 +112,9 @@ pub enum ModelError {
         mass: f64,
     },
     /// A link's rotational inertia is not positive semi-definite.
-    #[error("link \"{link}\": the inertia is not positive semi-definite (principal moments {moments:?} kg·m²)")]
+    #[error(
+        "link \"{link}\": the inertia is not positive semi-definite (principal moments {moments:?} kg·m²): no body has it; to load the file all the same, as Pinocchio does, use the option allow_nonphysical_inertia (--allow-nonphysical-inertia, Builder::allow_nonphysical_inertia, the macro key allow_nonphysical_inertia = true, BuildOptions::allow_nonphysical_inertia)"
+    )]
     InertiaNotPositive {
         /// The link.
         link: String,
@@ -175,6 +188,22 @@ pub enum ModelWarning {
         /// The link.
         link: String,
     },
+    /// Accepted by [`BuildOptions::allow_nonphysical_inertia`](super::BuildOptions::allow_nonphysical_inertia):
+    /// a rotational inertia that is not positive semi-definite.
+    NonPhysicalInertia {
+        /// The link.
+        link: String,
+        /// The principal moments (the smallest negative).
+        moments: [f64; 3],
+    },
+    /// Joints that together can move without moving any mass: the mass
+    /// matrix is singular at every configuration tried (coincident joints
+    /// with one axis, say). Inverse dynamics, M, h and g are computed;
+    /// forward dynamics is refused.
+    DependentJoints {
+        /// The joints of one dependent motion, in joint order.
+        joints: Vec<String>,
+    },
     /// A URDF joint axis that was not of unit length was normalised.
     AxisNormalised {
         /// The joint.
@@ -200,12 +229,41 @@ pub enum ModelWarning {
     },
 }
 
+impl ModelWarning {
+    /// Whether the warning says the dynamics themselves may fail (a
+    /// non-physical inertia accepted, dependent joints), rather than that a
+    /// file's numbers look odd: a build script shows these.
+    pub fn is_about_the_dynamics(&self) -> bool {
+        matches!(self, ModelWarning::NonPhysicalInertia { .. } | ModelWarning::DependentJoints { .. })
+    }
+    /// The message on one line, control characters and line separators in
+    /// names escaped (`\u{a}`), for a `cargo:warning=` line or a log.
+    pub fn one_line(&self) -> String {
+        self.to_string()
+            .chars()
+            .map(|c| match c {
+                c if c.is_control() || matches!(c, '\u{2028}' | '\u{2029}') => c.escape_unicode().to_string(),
+                c => c.to_string(),
+            })
+            .collect()
+    }
+}
+
 impl std::fmt::Display for ModelWarning {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             ModelWarning::TriangleInequality { link, moments } => write!(
                 f,
                 "link \"{link}\": principal moments {moments:?} kg·m² break the triangle inequality (no physical body has them; accepted, refused in strict mode)"
+            ),
+            ModelWarning::NonPhysicalInertia { link, moments } => write!(
+                f,
+                "link \"{link}\": the inertia is not positive semi-definite (principal moments {moments:?} kg·m²), accepted as asked (allow_nonphysical_inertia): no body has it, so the mass matrix M(q) may be indefinite or singular, its kinetic energy negative, and forward dynamics may fail or give accelerations no robot has; inverse dynamics computes what the numbers say"
+            ),
+            ModelWarning::DependentJoints { joints } => write!(
+                f,
+                "joints {} are dependent: together they can move without moving any mass, so the mass matrix M(q) is singular at every configuration; inverse dynamics, M, h and g are computed, but forward dynamics is undefined and refused (make the joints independent: remove or fix one, or give them different axes or places)",
+                quoted(joints)
             ),
             ModelWarning::InertiaWithoutMass { link } => {
                 write!(f, "link \"{link}\": zero mass but a non-zero rotational inertia")
@@ -222,5 +280,15 @@ impl std::fmt::Display for ModelWarning {
                 "link \"{root}\" floats, but the whole robot at q = 0 has no mass or no moment of inertia about some axis through its centre of mass: the base block of M(q) is singular, and forward dynamics fails"
             ),
         }
+    }
+}
+
+/// `"a", "b" and "c"`.
+pub(crate) fn quoted(names: &[String]) -> String {
+    let q: Vec<String> = names.iter().map(|n| format!("\"{n}\"")).collect();
+    match q.split_last() {
+        None => String::new(),
+        Some((last, [])) => last.clone(),
+        Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
     }
 }

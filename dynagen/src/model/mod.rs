@@ -13,6 +13,7 @@
 //! their joints (file order for URDF). A body's frame is its joint's frame.
 
 mod builder;
+mod dependent;
 mod description;
 mod error;
 mod modern_robotics;
@@ -22,6 +23,7 @@ mod validate;
 
 pub use builder::RobotBuilder;
 pub use description::{Inertial, JointDescription, JointLimits, JointType, LinkDescription, RobotDescription};
+pub(crate) use error::quoted as quoted_names;
 pub use error::{ModelError, ModelWarning};
 pub use modern_robotics::ModernRoboticsLists;
 
@@ -33,6 +35,21 @@ pub struct BuildOptions {
     /// Refuse inertias that break the triangle inequality instead of
     /// warning about them.
     pub strict: bool,
+    /// Accept links whose rotational inertia is not positive semi-definite
+    /// (refused by default, as MuJoCo does), each with a warning
+    /// ([`ModelWarning::NonPhysicalInertia`]): the dynamics are then those
+    /// of a body no matter has, M(q) may be indefinite and forward
+    /// dynamics may fail. Some published files (GRiD's Atlas) have such
+    /// links, and Pinocchio loads them.
+    pub allow_nonphysical_inertia: bool,
+}
+
+impl BuildOptions {
+    /// These options with [`allow_nonphysical_inertia`](Self::allow_nonphysical_inertia) set.
+    pub fn allow_nonphysical_inertia(mut self, allow: bool) -> Self {
+        self.allow_nonphysical_inertia = allow;
+        self
+    }
 }
 
 /// The kind of a moving joint.
@@ -55,15 +72,19 @@ pub struct Joint {
     pub kind: JointKind,
     /// The joint's frame in the parent body's frame, at q = 0.
     pub placement: Transform<f64>,
-    /// The axis in the joint's frame, as given (a revolute joint rotates by
-    /// `|axis|·q` radians about `axis/|axis|`, as the Modern Robotics library
-    /// does with a non-unit screw axis; URDF axes are normalised on import).
+    /// The axis in the joint's frame. A revolute joint rotates by
+    /// `axis_norm·q` radians about `axis/|axis|`: a screw axis (Modern
+    /// Robotics lists, the Rust constructors) is kept as given, with
+    /// `axis_norm = |axis|`, as the Modern Robotics library does; a
+    /// direction (every URDF axis, [`JointDescription::axis_is_direction`])
+    /// is normalised, with `axis_norm` exactly 1, so that its angle is q.
     pub axis: Vec3<f64>,
     /// Position, velocity and effort limits, when known.
     pub limits: Option<JointLimits>,
     /// `axis / |axis|`.
     pub unit_axis: Vec3<f64>,
-    /// `|axis|`.
+    /// The factor between the joint's position and its angle (or
+    /// displacement): `|axis|` for a screw axis, exactly 1 for a direction.
     pub axis_norm: f64,
     /// Derived from `axis`: the coordinate axis it lies along, if any, so
     /// that the algorithms can skip the products with its zero components.

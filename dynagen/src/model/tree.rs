@@ -117,8 +117,11 @@ impl Model {
             base_inertia,
         };
         let mut model = model;
-        let more = check_every_joint_moves_mass(&model)?;
+        let nonphysical = model.warnings.iter().any(|w| matches!(w, ModelWarning::NonPhysicalInertia { .. }));
+        let more = check_every_joint_moves_mass(&model, nonphysical)?;
         model.warnings.extend(more);
+        let dependent = super::dependent::dependent_joints(&model);
+        model.warnings.extend(dependent.into_iter().map(|joints| ModelWarning::DependentJoints { joints }));
         // a floating joint at the root floats the model (and checks its inertia)
         Ok(if world.is_some() { model.with_floating_base() } else { model })
     }
@@ -232,29 +235,24 @@ fn joint_from(desc: &JointDescription, placement: Transform<f64>) -> Joint {
         _ => JointKind::Prismatic,
     };
     let n = desc.axis.norm();
+    // (x/n for a subnormal length, whose inverse overflows)
+    let unit_axis = if (1.0 / n).is_finite() { desc.axis.scale(1.0 / n) } else { Vec3(desc.axis.0.map(|x| x / n)) };
+    // A direction (URDF) turns by exactly q: its axis is the unit one and
+    // its scale exactly 1, whatever ulp its length was off by.
+    let (axis, axis_norm) = if desc.axis_is_direction { (unit_axis, 1.0) } else { (desc.axis, n) };
     Joint {
         name: desc.name.clone(),
         kind,
         placement,
-        axis: desc.axis,
+        axis,
         limits: desc.limits,
-        unit_axis: desc.axis.scale(1.0 / n),
-        axis_norm: n,
+        unit_axis,
+        axis_norm,
         alignment: AxisAlignment::of(&desc.axis),
         placement_rotation_is_identity: placement.rot == Mat3::identity(),
     }
 }
 
-/// A joint whose subtree has no inertia along its motion gives a zero
-/// diagonal in M(q): refuse it. Checked at q = 0 with the composite
-/// inertia of each subtree, which is exact for a prismatic joint (its entry
-/// is the subtree's mass, whatever q) and for a revolute joint whose own
-/// body has inertia about the axis (that part turns with the axis, so it
-/// does not depend on q) or whose subtree holds a body with a positive-
-/// definite rotational inertia about its centre of mass (a moment of inertia
-/// about any axis at all). Otherwise (point masses and rods moved by later
-/// joints) the entry could vanish in another configuration: a warning names
-/// the joint.
 /// The error of a joint that moves no inertia, saying what to add to which
 /// link: a mass where there is none, else inertia about the axis.
 fn massless(b: &Body, mass: f64) -> ModelError {
@@ -274,7 +272,21 @@ fn massless(b: &Body, mass: f64) -> ModelError {
     ModelError::MasslessSubtree { joint: b.joint.name.clone(), link: link.clone(), fix }
 }
 
-fn check_every_joint_moves_mass(model: &Model) -> Result<Vec<ModelWarning>, ModelError> {
+/// A joint whose subtree has no inertia along its motion gives a zero
+/// diagonal in M(q): refuse it. Checked at q = 0 with the composite
+/// inertia of each subtree, which is exact for a prismatic joint (its entry
+/// is the subtree's mass, whatever q) and for a revolute joint whose own
+/// body has inertia about the axis (that part turns with the axis, so it
+/// does not depend on q) or whose subtree holds a body with a positive-
+/// definite rotational inertia about its centre of mass (a moment of inertia
+/// about any axis at all). Otherwise (point masses and rods moved by later
+/// joints) the entry could vanish in another configuration: a warning names
+/// the joint.
+///
+/// With non-physical inertias accepted (`nonphysical`), a diagonal entry
+/// may be negative: that is what the warning about them says, not an
+/// error (a zero one still is).
+fn check_every_joint_moves_mass(model: &Model, nonphysical: bool) -> Result<Vec<ModelWarning>, ModelError> {
     let along = |ic: &Inertia<f64>, s: &[f64; 6]| {
         let a = Vec3([s[0], s[1], s[2]]);
         let l = Vec3([s[3], s[4], s[5]]);
@@ -304,7 +316,8 @@ fn check_every_joint_moves_mass(model: &Model) -> Result<Vec<ModelWarning>, Mode
                 what: "inertia moved by the joint (its subtree's)",
             });
         }
-        if diag.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
+        let negative_by_nonphysical_inertia = nonphysical && diag < 0.0;
+        if diag.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) && !negative_by_nonphysical_inertia {
             return Err(massless(b, ic.mass));
         }
         let revolute = b.joint.kind != JointKind::Prismatic;

@@ -22,6 +22,14 @@
 //! The pre-check refuses each of these with an error that names the link or
 //! joint, the attribute and the text; what urdf-rs then reads is only used
 //! for what the pre-check has vouched for.
+//!
+//! urdf-rs is given only what dynagen reads: the links without their
+//! visuals and collisions, and the joints. So what urdfdom and Pinocchio
+//! load and dynagen has no use for cannot stop it (a `<material>` inside a
+//! `<geometry>`, as in PyBullet's racecar; a visual's mesh scale that does
+//! not parse; a transmission). Where urdf-rs still refuses something (a
+//! joint's `<dynamics damping="abc">`), the error gives the line, the
+//! column and the link or joint, found by giving urdf-rs each alone.
 
 use super::description::{Inertial, JointDescription, JointLimits, JointType, LinkDescription, RobotDescription};
 use super::{BuildOptions, Model, ModelError, ModelWarning};
@@ -41,6 +49,82 @@ struct RawFacts {
     links: Vec<RawLink>,
     /// The `<joint>` children of `<robot>`, in file order.
     joints: Vec<RawJoint>,
+    /// Every child element of `<robot>`: its byte range, what it is, and
+    /// whether urdf-rs is given it (links and joints only).
+    children: Vec<Child>,
+    /// Byte ranges urdf-rs is not given inside links: `<visual>` and
+    /// `<collision>`, which dynagen does not read.
+    skipped: Vec<(usize, usize)>,
+}
+
+/// A child element of `<robot>` as the pre-check found it.
+#[derive(Debug)]
+struct Child {
+    start: usize,
+    end: usize,
+    /// `link "name"`, `joint "name"` or `<element>`.
+    item: String,
+    /// A link or a joint (given to urdf-rs); anything else (materials,
+    /// transmissions, gazebo extensions) dynagen does not read.
+    read: bool,
+}
+
+impl RawFacts {
+    /// The document urdf-rs reads: the links (without visuals and
+    /// collisions) and joints, in the `<robot>` element as written. What
+    /// dynagen does not use cannot then stop it: a `<material>` inside a
+    /// `<geometry>` (PyBullet's racecar), a visual's unreadable mesh scale,
+    /// a transmission's unknown element; urdfdom and Pinocchio load those.
+    fn filtered(&self, xml: &str) -> String {
+        let mut cut: Vec<(usize, usize)> = self
+            .children
+            .iter()
+            .filter(|c| !c.read)
+            .map(|c| (c.start, c.end))
+            .chain(self.skipped.iter().copied())
+            .collect();
+        cut.sort_unstable();
+        let mut out = String::with_capacity(xml.len());
+        let mut at = 0;
+        for (start, end) in cut {
+            if start >= at {
+                out.push_str(&xml[at..start]);
+                at = end;
+            }
+        }
+        out.push_str(&xml[at..]);
+        out
+    }
+
+    /// An error of urdf-rs with its place: the first child of `<robot>`
+    /// that urdf-rs refuses on its own, by line, column and name.
+    fn locate(&self, xml: &str, error: &urdf_rs::UrdfError) -> ModelError {
+        let why = error.to_string();
+        let why = why.strip_prefix("custom: ").unwrap_or(&why);
+        for c in self.children.iter().filter(|c| c.read) {
+            let inside: Vec<(usize, usize)> = self
+                .skipped
+                .iter()
+                .filter(|&&(s, e)| s >= c.start && e <= c.end)
+                .map(|&(s, e)| (s - c.start, e - c.start))
+                .collect();
+            let text = RawFacts { skipped: inside, ..Default::default() }.filtered(&xml[c.start..c.end]);
+            if let Err(e) = urdf_rs::read_from_string(&format!("<robot name=\"r\">{text}</robot>")) {
+                let why = e.to_string();
+                let why = why.strip_prefix("custom: ").unwrap_or(&why).to_string();
+                let (line, column) = line_column(xml, c.start);
+                return ModelError::Urdf(format!("line {line} column {column}: {}: {why}", c.item));
+            }
+        }
+        ModelError::Urdf(why.to_string())
+    }
+}
+
+/// The line and column (both from 1, the column in characters) of a byte offset.
+fn line_column(xml: &str, pos: usize) -> (usize, usize) {
+    let before = &xml[..pos.min(xml.len())];
+    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+    (before.matches('\n').count() + 1, before[line_start..].chars().count() + 1)
 }
 
 /// A `<link>` as the pre-check read it.
@@ -214,7 +298,10 @@ fn precheck(xml: &str) -> Result<RawFacts, ModelError> {
     let mut version = (1, 0);
     let mut link = LinkState::default();
     let mut joint = JointState::default();
+    // where the element being read started, for each open element
+    let mut starts: Vec<usize> = Vec::new();
     loop {
+        let before = usize::try_from(reader.buffer_position()).unwrap_or(usize::MAX);
         let event = reader.read_event().map_err(|e| malformed(xml, &reader, &e.to_string()))?;
         // RustyXML (which urdf-rs reads with) ends a processing instruction
         // at the first '>' after any '?', and a DOCTYPE at its first '>':
@@ -233,6 +320,8 @@ fn precheck(xml: &str) -> Result<RawFacts, ModelError> {
             Event::Empty(e) => (e, true),
             Event::End(_) => {
                 names.pop();
+                let end = usize::try_from(reader.buffer_position()).unwrap_or(usize::MAX).min(xml.len());
+                span(&mut facts, &stack, starts.pop().unwrap_or(0), end, &link, &joint);
                 close(stack.pop(), &mut facts, &link, &joint)?;
                 continue;
             }
@@ -363,8 +452,11 @@ fn precheck(xml: &str) -> Result<RawFacts, ModelError> {
         };
         stack.push(ctx);
         names.push(name);
+        starts.push(before);
         if empty {
             names.pop();
+            let end = usize::try_from(reader.buffer_position()).unwrap_or(usize::MAX).min(xml.len());
+            span(&mut facts, &stack, starts.pop().unwrap_or(0), end, &link, &joint);
             close(stack.pop(), &mut facts, &link, &joint)?;
         }
     }
@@ -375,6 +467,23 @@ fn precheck(xml: &str) -> Result<RawFacts, ModelError> {
         return Err(ModelError::Urdf(format!("the document ends inside <{open}>")));
     }
     Ok(facts)
+}
+
+/// Records the byte range of an element that ends, while `stack` still holds
+/// it: a child of `<robot>`, or a visual or collision of a link.
+fn span(facts: &mut RawFacts, stack: &[Ctx], start: usize, end: usize, link: &LinkState, joint: &JointState) {
+    match stack {
+        [Ctx::Robot, top] => {
+            let (item, read) = match top {
+                Ctx::Link => (link.item.clone(), true),
+                Ctx::Joint => (joint.item.clone(), true),
+                _ => (String::new(), false),
+            };
+            facts.children.push(Child { start, end, item, read });
+        }
+        [Ctx::Robot, Ctx::Link, Ctx::Other] => facts.skipped.push((start, end)),
+        _ => {}
+    }
 }
 
 /// Marks an element seen, refusing a second one.
@@ -486,7 +595,7 @@ fn description_from_urdf(
             let norm = axis.norm();
             if joint_type != JointType::Fixed && norm.is_finite() && norm > 0.0 && (norm - 1.0).abs() > 1e-9 {
                 warnings.push(ModelWarning::AxisNormalised { joint: j.name.clone(), norm });
-                axis = axis.scale(1.0 / norm);
+                axis = if (1.0 / norm).is_finite() { axis.scale(1.0 / norm) } else { Vec3(axis.0.map(|x| x / norm)) };
             }
             let limits = (raw.has_limit && matches!(joint_type, JointType::Revolute | JointType::Prismatic)).then_some(
                 JointLimits {
@@ -503,6 +612,7 @@ fn description_from_urdf(
                 child: j.child.link.clone(),
                 origin: pose(&j.origin),
                 axis,
+                axis_is_direction: true,
                 limits,
                 mimic: j.mimic.is_some(),
             }
@@ -518,7 +628,7 @@ impl RobotDescription {
     /// joint without `<limit>` has `limits: None`.
     pub fn from_urdf_str(xml: &str) -> Result<(RobotDescription, Vec<ModelWarning>), ModelError> {
         let facts = precheck(xml)?;
-        let robot = urdf_rs::read_from_string(xml).map_err(|e| ModelError::Urdf(e.to_string()))?;
+        let robot = urdf_rs::read_from_string(&facts.filtered(xml)).map_err(|e| facts.locate(xml, &e))?;
         description_from_urdf(&robot, &facts)
     }
 }

@@ -11,6 +11,9 @@ use std::collections::HashSet;
 /// digits), and no further.
 const INERTIA_RTOL: f64 = 1e-9;
 
+/// The lengths a screw axis (one that is not a mere direction) may have.
+const SCREW_AXIS_RANGE: (f64, f64) = (1e-100, 1e100);
+
 pub(super) fn check(
     desc: &RobotDescription,
     opts: &BuildOptions,
@@ -54,8 +57,15 @@ pub(super) fn check(
             if !j.axis.is_finite() {
                 return Err(ModelError::NonFinite { item, what: "axis" });
             }
-            if j.axis.norm() == 0.0 {
+            let norm = j.axis.norm();
+            if norm == 0.0 {
                 return Err(ModelError::ZeroAxis(j.name.clone()));
+            }
+            // A screw axis's length scales the joint's motion, and every
+            // entry of M(q) by its square: refuse lengths that overflow it
+            // rather than report the overflowed inertia.
+            if !j.axis_is_direction && !(SCREW_AXIS_RANGE.0..=SCREW_AXIS_RANGE.1).contains(&norm) {
+                return Err(ModelError::AxisOutOfRange { joint: j.name.clone(), norm });
             }
         }
         if let Some(l) = &j.limits {
@@ -127,8 +137,15 @@ fn check_inertial(
     let unit = if largest > 0.0 { Sym3(i.inertia.0.map(|x| x / largest)).eigenvalues() } else { [0.0; 3] };
     let moments = unit.map(|x| x * largest);
     let scale = unit[2].abs().max(f64::MIN_POSITIVE);
-    if unit.iter().any(|x| x.is_nan()) || unit[0] < -INERTIA_RTOL * scale {
+    if unit.iter().any(|x| x.is_nan()) {
         return Err(ModelError::InertiaNotPositive { link: link.to_string(), moments });
+    }
+    if unit[0] < -INERTIA_RTOL * scale {
+        if !opts.allow_nonphysical_inertia {
+            return Err(ModelError::InertiaNotPositive { link: link.to_string(), moments });
+        }
+        warnings.push(ModelWarning::NonPhysicalInertia { link: link.to_string(), moments });
+        return Ok(());
     }
     if i.mass == 0.0 && unit[2] > 0.0 {
         warnings.push(ModelWarning::InertiaWithoutMass { link: link.to_string() });

@@ -86,6 +86,16 @@ pub enum InputError {
     /// What a floating-base robot cannot do yet (or a fixed-base one).
     #[error("{0}")]
     Unsupported(&'static str),
+    /// Forward dynamics of a model whose joints are dependent (its mass
+    /// matrix is singular at every configuration): undefined.
+    #[error(
+        "forward dynamics is undefined for this robot: joints {} are dependent (together they move without moving any mass, so the mass matrix is singular at every configuration); inverse dynamics, M, h and g are still computed",
+        crate::model::quoted_names(joints)
+    )]
+    DependentJoints {
+        /// The dependent joints.
+        joints: Vec<String>,
+    },
     /// A bad integration parameter (time step, number of sub-steps).
     #[error("{what} is {value}, but it must be {must}")]
     BadParameter {
@@ -154,6 +164,13 @@ impl Check<'_> {
             }
         }
         Ok(self)
+    }
+    /// The model has a forward dynamics: no dependent joints.
+    pub(crate) fn forward_dynamics(self) -> Result<Self, InputError> {
+        match self.0.dependent_joints().first() {
+            Some(joints) => Err(InputError::DependentJoints { joints: joints.to_vec() }),
+            None => Ok(self),
+        }
     }
     /// An output vector has one entry per joint (NV on a floating base).
     pub(crate) fn output(self, what: &'static str, out: &DVector<f64>) -> Result<Self, InputError> {

@@ -46,7 +46,7 @@ impl Robot {
         tau: &DVector<f64>,
         qdd: &mut DVector<f64>,
     ) -> Result<(), InputError> {
-        self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?.output("qdd", qdd)?;
+        self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?.forward_dynamics()?.output("qdd", qdd)?;
         let g = self.model.gravity;
         let loads = Loads::gravity(&g).with_tips(&self.tips);
         let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());

@@ -357,7 +357,7 @@ impl SceneRobot {
         inputs: &SceneInputs<'_>,
         qdd: &mut DVector<f64>,
     ) -> Result<(), SceneInputError> {
-        self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?.output("qdd", qdd)?;
+        self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?.forward_dynamics()?.output("qdd", qdd)?;
         let g = self.prepare(inputs, Uses { gravity: true, tip: true })?;
         let loads = Loads::new(g.as_ref(), &self.tips, &[]);
         let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());

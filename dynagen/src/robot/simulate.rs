@@ -126,7 +126,7 @@ impl Robot {
         tau: &DVector<f64>,
         dt: f64,
     ) -> Result<(), InputError> {
-        self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?;
+        self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?.forward_dynamics()?;
         check::dt(dt)?;
         let g = self.model.gravity;
         let inputs = StepInputs { dt, tau: tau.as_slice(), loads: Loads::gravity(&g).with_tips(&self.tips) };
@@ -191,7 +191,7 @@ impl Robot {
     ) -> Result<(DMatrix<f64>, DMatrix<f64>), InputError> {
         let Stepping { dt, int_res, integrator } = stepping;
         let (rows, nq, n) = (tau.nrows(), self.model.nq(), self.model.nv());
-        self.check().joints(&[("q0", q0), ("qd0", qd0)])?;
+        self.check().joints(&[("q0", q0), ("qd0", qd0)])?.forward_dynamics()?;
         check::shape("tau", tau, rows, n)?;
         check::dt(dt)?;
         if int_res == 0 {

@@ -10,7 +10,10 @@
 use super::{Gravity, PayloadInertia, PayloadValue, Scene, SceneError, SceneWarning};
 use crate::algorithms::joint::joint_transform;
 use crate::algorithms::{kinematics, Workspace};
-use crate::model::{Inertial, JointDescription, JointKind, JointType, LinkDescription, Model, RobotDescription};
+use crate::model::{
+    BuildOptions, Inertial, JointDescription, JointKind, JointType, LinkDescription, Model, ModelWarning,
+    RobotDescription,
+};
 use crate::spatial::{Inertia, Sym3, Transform, Vec3};
 use std::collections::{HashMap, HashSet};
 
@@ -381,6 +384,8 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
             child: body.name.clone(),
             origin: if on_root { from_root.compose(&x) } else { x },
             axis: body.joint.axis,
+            // a joint whose angle is q (a URDF joint's) stays one
+            axis_is_direction: body.joint.axis_norm == 1.0,
             limits: body.joint.limits,
             mimic: false,
         });
@@ -427,7 +432,9 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
         || !scene.locks.is_empty()
         || scene.payloads.iter().any(|p| matches!(p.value, PayloadValue::Constant(_)));
     let reduced = if reduces {
-        Model::from_description(&desc)?
+        // a non-physical inertia the model was loaded with stays accepted
+        let nonphysical = model.warnings.iter().any(|w| matches!(w, ModelWarning::NonPhysicalInertia { .. }));
+        Model::from_description_with(&desc, &BuildOptions::default().allow_nonphysical_inertia(nonphysical))?
     } else {
         let mut m = model.clone();
         m.gravity = Vec3(desc.gravity.unwrap_or([0.0; 3]));

@@ -56,9 +56,21 @@ impl<S: Scalar> Vec3<S> {
 }
 
 impl Vec3<f64> {
-    /// Euclidean norm.
+    /// Euclidean norm. Where the sum of squares would overflow or lose
+    /// its digits to underflow (components beyond about 1e150 or below
+    /// 1e-150), the vector is scaled by its largest component first, so
+    /// that the norm of (1e200, 0, 0) is 1e200 and that of (1e-200, 0, 0)
+    /// is 1e-200 rather than infinity and zero.
     pub fn norm(&self) -> f64 {
-        self.norm_squared().sqrt()
+        let n2 = self.norm_squared();
+        if n2.is_finite() && n2 >= 1e-290 || n2 == 0.0 && self.0.iter().all(|&x| x == 0.0) {
+            return n2.sqrt();
+        }
+        let m = self.0.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        if !m.is_finite() || m == 0.0 {
+            return n2.sqrt();
+        }
+        m * Vec3(self.0.map(|x| x / m)).norm_squared().sqrt()
     }
     /// Whether every component is finite.
     pub fn is_finite(&self) -> bool {

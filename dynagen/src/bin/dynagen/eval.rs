@@ -38,6 +38,8 @@ pub struct Args {
     /// The robot's URDF file (default: the bundled UR5).
     #[arg(value_name = "ROBOT.urdf")]
     pub robot: Option<PathBuf>,
+    #[command(flatten)]
+    pub load: crate::robot_source::LoadArgs,
     /// The states, as JSON (`-` reads stdin).
     #[arg(long, short, value_name = "STATES.json")]
     pub input: PathBuf,
@@ -90,7 +92,7 @@ impl fmt::Display for InputName<'_> {
 /// Runs `dynagen eval`.
 pub fn run(args: &Args) -> Result<Output, CliError> {
     let source = RobotSource::from_arg(args.robot.as_deref());
-    let model = source.load()?;
+    let model = source.load(&args.load)?;
     let warnings = source.warnings(&model);
     let mut robot = Robot::new(model);
     if let Some(text) = &args.gravity {
@@ -165,6 +167,18 @@ fn evaluate(robot: &mut Robot, s: &State, joint_names: &[String], derivatives: b
     out.push(("g".to_string(), finite("g", g.as_slice(), joint_names)?));
     if let (Some(qd), Some(tau)) = (&s.qd, &s.tau) {
         let qdd = robot.forward_dynamics(&s.q, qd, tau).map_err(err)?;
+        if let Some(k) = qdd.iter().position(|v| !v.is_finite()) {
+            // singular here (not at every q: dependent joints are refused above)
+            if let Some(set) = robot.model().singular_joints_at(s.q.as_slice()).first() {
+                let names: Vec<String> = set.iter().map(|n| format!("\"{n}\"")).collect();
+                return Err(format!(
+                    "output \"qdd\"[{k}] (joint \"{}\") is {}: the mass matrix is singular at this q (joints {} move without moving any mass in this configuration)",
+                    joint_names[k],
+                    qdd[k],
+                    names.join(", ")
+                ));
+            }
+        }
         out.push(("qdd".to_string(), finite("qdd", qdd.as_slice(), joint_names)?));
     }
     if derivatives {

@@ -14,6 +14,8 @@ pub struct Args {
     /// The robot's URDF file (default: the bundled UR5).
     #[arg(value_name = "ROBOT.urdf")]
     pub robot: Option<PathBuf>,
+    #[command(flatten)]
+    pub load: crate::robot_source::LoadArgs,
     /// Write the module to this file instead of stdout.
     #[arg(long, short, value_name = "FILE")]
     pub output: Option<PathBuf>,
@@ -116,7 +118,7 @@ fn builder(args: &Args, source: &RobotSource) -> Result<(Builder, dynagen::Model
             t.parse::<Trig>().map_err(|e| CliError { message: format!("--trig: {e}"), status: STATUS_BAD_INPUT })?,
         ),
     };
-    let model = source.load()?;
+    let model = source.load(&args.load)?;
     let mut b = Builder::new().model(model.clone()).source(&source.to_string());
     if args.f32 {
         b = b.scalar(ScalarType::F32);

@@ -18,12 +18,14 @@ pub struct Args {
     /// The robot's URDF file (default: the bundled UR5).
     #[arg(value_name = "ROBOT.urdf")]
     pub robot: Option<PathBuf>,
+    #[command(flatten)]
+    pub load: crate::robot_source::LoadArgs,
 }
 
 /// Runs `dynagen inspect`.
 pub fn run(args: &Args) -> Result<Output, CliError> {
     let source = RobotSource::from_arg(args.robot.as_deref());
-    let model = source.load()?;
+    let model = source.load(&args.load)?;
     Ok(Output::text(report(&model, &source.to_string())))
 }
 

@@ -19,6 +19,8 @@ pub struct Args {
     /// The robot's URDF file (default: the bundled UR5).
     #[arg(value_name = "ROBOT.urdf")]
     pub robot: Option<PathBuf>,
+    #[command(flatten)]
+    pub load: crate::robot_source::LoadArgs,
     /// Count the functions of this scene's module (TOML; see `dynagen
     /// generate --scene`) beside those of the full module.
     #[arg(long, value_name = "SCENE.toml")]
@@ -32,7 +34,7 @@ pub struct Args {
 /// Runs `dynagen ops`.
 pub fn run(args: &Args) -> Result<Output, CliError> {
     let source = RobotSource::from_arg(args.robot.as_deref());
-    let model = source.load()?;
+    let model = source.load(&args.load)?;
     let with_functions = |b: Builder| match &args.functions {
         Some(f) => b.functions(f),
         None => b,

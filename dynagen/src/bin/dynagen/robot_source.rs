@@ -2,6 +2,7 @@
 //! bundled UR5, compiled into the binary so that it works from any directory.
 
 use crate::error::CliError;
+use dynagen::model::BuildOptions;
 use dynagen::Model;
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -10,6 +11,23 @@ use std::path::{Path, PathBuf};
 const BUNDLED_UR5: &str = include_str!("../../../robots/ur5.urdf");
 /// Its name in messages.
 const BUNDLED_UR5_NAME: &str = "ur5.urdf (bundled)";
+
+/// How a robot file is loaded: the options of every command that reads one.
+#[derive(clap::Args, Clone, Debug, Default)]
+pub struct LoadArgs {
+    /// Accept links whose rotational inertia is not positive semi-definite
+    /// (as Pinocchio does), with a warning for each: M(q) may then be
+    /// indefinite and forward dynamics may fail.
+    #[arg(long)]
+    pub allow_nonphysical_inertia: bool,
+}
+
+impl LoadArgs {
+    /// The model options these arguments ask for.
+    pub fn options(&self) -> BuildOptions {
+        BuildOptions::default().allow_nonphysical_inertia(self.allow_nonphysical_inertia)
+    }
+}
 
 /// A robot's source.
 #[derive(Clone, Debug)]
@@ -31,14 +49,14 @@ impl RobotSource {
 
     /// Reads and validates the robot. Errors name the file, then the link or
     /// joint (dynagen's model errors name it).
-    pub fn load(&self) -> Result<Model, CliError> {
+    pub fn load(&self, args: &LoadArgs) -> Result<Model, CliError> {
         let xml = match self {
             RobotSource::BundledUr5 => std::borrow::Cow::Borrowed(BUNDLED_UR5),
             RobotSource::File(p) => std::fs::read_to_string(p)
                 .map(std::borrow::Cow::Owned)
                 .map_err(|e| CliError::input(self, format!("cannot read the file: {e}")))?,
         };
-        Model::from_urdf_str(&xml).map_err(|e| CliError::input(self, e))
+        Model::from_urdf_str_with(&xml, &args.options()).map_err(|e| CliError::input(self, e))
     }
 
     /// Each warning of the model, as `{file}: {warning}`.

@@ -41,9 +41,68 @@ fn truncate(s: &str) -> String {
     }
 }
 
+/// A JSON value read with every object's keys checked to be distinct:
+/// serde_json's `Value` keeps the last of two equal keys without a word, so
+/// `{"states": [...], "states": []}` would evaluate nothing.
+struct Distinct(Value);
+
+impl<'de> serde::Deserialize<'de> for Distinct {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        d.deserialize_any(DistinctVisitor)
+    }
+}
+
+struct DistinctVisitor;
+
+impl<'de> serde::de::Visitor<'de> for DistinctVisitor {
+    type Value = Distinct;
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a JSON value")
+    }
+    fn visit_bool<E>(self, v: bool) -> Result<Distinct, E> {
+        Ok(Distinct(Value::Bool(v)))
+    }
+    fn visit_i64<E>(self, v: i64) -> Result<Distinct, E> {
+        Ok(Distinct(Value::from(v)))
+    }
+    fn visit_u64<E>(self, v: u64) -> Result<Distinct, E> {
+        Ok(Distinct(Value::from(v)))
+    }
+    fn visit_f64<E>(self, v: f64) -> Result<Distinct, E> {
+        Ok(Distinct(Value::from(v)))
+    }
+    fn visit_str<E>(self, v: &str) -> Result<Distinct, E> {
+        Ok(Distinct(Value::String(v.to_string())))
+    }
+    fn visit_unit<E>(self) -> Result<Distinct, E> {
+        Ok(Distinct(Value::Null))
+    }
+    fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Distinct, A::Error> {
+        let mut out = Vec::new();
+        while let Some(Distinct(v)) = seq.next_element()? {
+            out.push(v);
+        }
+        Ok(Distinct(Value::Array(out)))
+    }
+    fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<Distinct, A::Error> {
+        let mut out = serde_json::Map::new();
+        while let Some(key) = map.next_key::<String>()? {
+            if out.contains_key(&key) {
+                return Err(serde::de::Error::custom(format!("duplicate key \"{key}\"")));
+            }
+            let Distinct(v) = map.next_value()?;
+            out.insert(key, v);
+        }
+        Ok(Distinct(Value::Object(out)))
+    }
+}
+
 /// Parses and checks the whole input; errors name the state and the field.
+/// A UTF-8 byte-order mark at the start is skipped (editors on Windows
+/// write one; the URDF reader skips it too).
 pub fn parse_states(text: &str, joint_names: &[String]) -> Result<Vec<State>, String> {
-    let doc: Value = serde_json::from_str(text).map_err(|e| parse_error(text, &e, joint_names))?;
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let Distinct(doc) = serde_json::from_str(text).map_err(|e| parse_error(text, &e, joint_names))?;
     let Value::Object(top) = doc else {
         return Err(format!("expected an object {{\"states\": [...]}} at the top level, found {}", kind(&doc)));
     };
@@ -146,6 +205,12 @@ fn parse_vector(name: &str, v: &Value, joint_names: &[String]) -> Result<DVector
 fn parse_error(text: &str, e: &serde_json::Error, joint_names: &[String]) -> String {
     let what = if e.to_string().starts_with("number out of range") {
         format!("a number too large for f64 (line {} column {})", e.line(), e.column())
+    } else if let Some(key) = e.to_string().strip_prefix("duplicate key ").and_then(|k| k.split(" at line").next()) {
+        format!(
+            "the key {key} appears twice in one object (line {} column {}): JSON readers differ on which one counts, so give it once",
+            e.line(),
+            e.column()
+        )
     } else {
         format!("malformed JSON: {e}")
     };
@@ -255,5 +320,23 @@ mod tests {
         let text = "{\"states\": [{\"q\": ]}";
         let e = parse_states(text, &names()).unwrap_err();
         assert!(e.starts_with("state 0: \"q\": malformed JSON"), "{e}");
+    }
+
+    #[test]
+    fn a_duplicate_key_is_refused_naming_it() {
+        // serde_json's Value would keep the last "states" and evaluate nothing
+        let e = parse_states("{\"states\": [{\"q\": [0, 0, 0]}], \"states\": []}", &names()).unwrap_err();
+        assert!(e.contains("the key \"states\" appears twice in one object (line 1 column"), "{e}");
+        let e = parse_states("{\"states\": [{\"q\": [0, 0, 0], \"qd\": [1, 2, 3], \"qd\": [0, 0, 0]}]}", &names())
+            .unwrap_err();
+        assert!(e.starts_with("state 0: ") && e.contains("the key \"qd\" appears twice"), "{e}");
+        // equal keys in different objects are fine
+        assert_eq!(parse_states("{\"states\": [{\"q\": [0, 0, 0]}, {\"q\": [1, 2, 3]}]}", &names()).unwrap().len(), 2);
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_skipped() {
+        let states = parse_states("\u{feff}{\"states\": [{\"q\": [0, 1, 2]}]}", &names()).unwrap();
+        assert_eq!(states[0].q.as_slice(), [0.0, 1.0, 2.0]);
     }
 }

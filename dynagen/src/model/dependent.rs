@@ -1,0 +1,149 @@
+//! Joints that move together without moving any mass: structurally
+//! dependent joints, whose mass matrix is singular at every configuration
+//! (two coincident joints with one axis moving one body give
+//! M = [[a, a], [a, a]]). Inverse dynamics is still defined; forward
+//! dynamics is not.
+//!
+//! Found by factorising M(q) = LᵀDL ([`crate::algorithms::ldlt`]'s order,
+//! from the tips up) at a few pseudo-random configurations: a pivot at or
+//! below [`PIVOT_RTOL`] times its joint's diagonal entry vanishes, and the
+//! joints that then move without moving mass are the non-zero entries of
+//! the null vector x with L·x = e_k. A joint whose pivot vanishes at every
+//! configuration tried is dependent.
+
+use super::{JointKind, Model};
+use crate::algorithms::{crba, Loads, Workspace};
+
+/// A pivot this small relative to its joint's diagonal entry of M vanishes
+/// (rounding leaves about 1e-16 of it when joints coincide).
+const PIVOT_RTOL: f64 = 1e-10;
+
+/// The configurations tried at load time.
+const CONFIGURATIONS: usize = 3;
+
+/// The check runs on models up to this many joints (M is n×n).
+const MAX_DOF: usize = 1000;
+
+/// Each set of joints (indices, ascending) that moves without moving any
+/// mass at configuration `q`: one per vanishing pivot of M(q).
+pub(crate) fn singular_sets_at(model: &Model, q: &[f64]) -> Vec<Vec<usize>> {
+    let n = model.dof();
+    let mut m = vec![0.0; n * n];
+    let mut ws = Workspace::<f64>::new(model);
+    crba::crba(model, &mut ws, q, Loads::none(), &mut m);
+    let diag: Vec<f64> = (0..n).map(|i| m[i * n + i].abs()).collect();
+    // LᵀDL from the tips up, as ldlt::factorise, but a vanishing pivot's
+    // row is left out of the elimination (its L entries set to zero).
+    let mut vanished = Vec::new();
+    for k in (0..n).rev() {
+        let d = m[k * n + k];
+        if !d.is_finite() || d.abs() <= PIVOT_RTOL * diag[k] {
+            vanished.push(k);
+            let mut i = model.bodies[k].parent;
+            while let Some(ii) = i {
+                m[k * n + ii] = 0.0;
+                i = model.bodies[ii].parent;
+            }
+            continue;
+        }
+        let mut i = model.bodies[k].parent;
+        while let Some(ii) = i {
+            let a = m[k * n + ii] / d;
+            let mut j = Some(ii);
+            while let Some(jj) = j {
+                m[ii * n + jj] -= a * m[k * n + jj];
+                j = model.bodies[jj].parent;
+            }
+            m[k * n + ii] = a;
+            i = model.bodies[ii].parent;
+        }
+    }
+    // For each vanishing pivot k, x with L·x = e_k (from the base down:
+    // x_i = [i = k] − Σ over ancestors j of L[i][j]·x_j) is a motion of
+    // the joints that moves no mass.
+    vanished
+        .into_iter()
+        .rev()
+        .map(|k| {
+            let mut x = vec![0.0; n];
+            for i in k..n {
+                let mut acc = if i == k { 1.0 } else { 0.0 };
+                let mut j = model.bodies[i].parent;
+                while let Some(jj) = j {
+                    if jj < k {
+                        break;
+                    }
+                    acc -= m[i * n + jj] * x[jj];
+                    j = model.bodies[jj].parent;
+                }
+                x[i] = acc;
+            }
+            let big = x.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            (0..n).filter(|&i| x[i].abs() > 1e-8 * big).collect()
+        })
+        .collect()
+}
+
+/// The sets of structurally dependent joints: those whose pivot vanishes
+/// at every one of a few pseudo-random configurations (joint names).
+pub(super) fn dependent_joints(model: &Model) -> Vec<Vec<String>> {
+    let n = model.dof();
+    if n == 0 || n > MAX_DOF {
+        return Vec::new();
+    }
+    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    let mut next = || {
+        // xorshift64*: deterministic, so a model loads the same every time
+        state ^= state >> 12;
+        state ^= state << 25;
+        state ^= state >> 27;
+        (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    let mut common: Option<Vec<Vec<usize>>> = None;
+    for _ in 0..CONFIGURATIONS {
+        let q: Vec<f64> = model
+            .bodies
+            .iter()
+            .map(|b| match (b.joint.kind, &b.joint.limits) {
+                (JointKind::Prismatic, Some(l)) if l.lower.is_finite() && l.upper.is_finite() => {
+                    0.5 * (l.lower + l.upper) + 0.5 * (l.upper - l.lower) * next()
+                }
+                (JointKind::Prismatic, _) => 0.3 * next(),
+                _ => std::f64::consts::PI * next(),
+            })
+            .collect();
+        let sets = singular_sets_at(model, &q);
+        common = Some(match common {
+            None => sets,
+            Some(c) => c.into_iter().filter(|s| sets.contains(s)).collect(),
+        });
+    }
+    let names = |s: &Vec<usize>| s.iter().map(|&i| model.bodies[i].joint.name.clone()).collect();
+    common.unwrap_or_default().iter().map(names).collect()
+}
+
+impl Model {
+    /// The joints whose motion together moves no mass at configuration `q`
+    /// (M(q) singular there), one list of names per vanishing pivot of
+    /// M(q); empty where M(q) is regular. Forward dynamics is undefined at
+    /// such a q.
+    pub fn singular_joints_at(&self, q: &[f64]) -> Vec<Vec<String>> {
+        assert_eq!(q.len(), self.dof(), "singular_joints_at: q must have one entry per joint");
+        singular_sets_at(self, q)
+            .iter()
+            .map(|s| s.iter().map(|&i| self.bodies[i].joint.name.clone()).collect())
+            .collect()
+    }
+    /// The sets of joints found dependent at load time (a
+    /// [`ModelWarning::DependentJoints`](super::ModelWarning::DependentJoints)
+    /// each): forward dynamics is undefined for this model.
+    pub fn dependent_joints(&self) -> Vec<&[String]> {
+        self.warnings
+            .iter()
+            .filter_map(|w| match w {
+                super::ModelWarning::DependentJoints { joints } => Some(joints.as_slice()),
+                _ => None,
+            })
+            .collect()
+    }
+}
