@@ -1,9 +1,10 @@
 //! Generates the benchmarked modules into OUT_DIR: the UR5 and the Panda,
 //! each with std's sin_cos and with the batched `sin_cos_all` (both have the
 //! `NAME_sc` bodies, which take the sines and cosines as inputs), and each
-//! with the same bodies without fused multiply-adds and run-time dispatch (`*_base`).
+//! with the same bodies without fused multiply-adds and run-time dispatch (`*_base`),
+//! and each with the derivatives of the dynamics (`*_derivatives`).
 
-use dynagen::codegen::{generate, CodegenOptions, Trig};
+use dynagen::codegen::{generate, CodegenOptions, Function, Trig};
 use dynagen::Model;
 use std::path::Path;
 
@@ -25,6 +26,16 @@ fn main() {
         // the bodies ran before either (SSE2, unfused); on a build with the
         // `fma` and `avx2` target features (RUSTFLAGS="-C target-cpu=native"),
         // where dispatch compiles out, the unfused body alone.
+        // The derivatives (examples/derivatives.rs), default options.
+        let derivatives = CodegenOptions::default()
+            .functions([
+                Function::InverseDynamicsDerivatives,
+                Function::ForwardDynamicsDerivatives,
+                Function::MassMatrixInverse,
+            ])
+            .source(format!("dynagen/robots/{robot}.urdf"));
+        let module = generate(&model, &derivatives).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
+        std::fs::write(Path::new(&out).join(format!("{robot}_derivatives.rs")), module.source).expect("writing");
         let base = CodegenOptions::default().trig(Trig::Inputs).fma(false).runtime_dispatch(false);
         let module = generate(&model, &base).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
         std::fs::write(Path::new(&out).join(format!("{robot}_base.rs")), module.source).expect("writing");

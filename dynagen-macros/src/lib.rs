@@ -37,7 +37,7 @@
 //!
 //! | option | values | default |
 //! | --- | --- | --- |
-//! | `functions` | `[inverse_dynamics, mass_matrix, bias_forces, gravity_torques, coriolis, forward_dynamics]` (`coriolis` makes it a scene module) | all five |
+//! | `functions` | `[inverse_dynamics, mass_matrix, bias_forces, gravity_torques, coriolis, forward_dynamics]` (`coriolis` makes it a scene module), and on request `inverse_dynamics_derivatives`, `forward_dynamics_derivatives`, `mass_matrix_inverse` | all five |
 //! | `scalar` | `f64`, `f32` | `f64` |
 //! | `forward_dynamics` | `auto`, `aba`, `ldlt` | `auto` (the faster of the two unless it is less accurate; the header says which) |
 //! | `snap_rounding` | `true`, `false` | `true` |

@@ -1,0 +1,157 @@
+//! The generated derivatives of the dynamics of the UR5 and the Panda
+//! (`inverse_dynamics_derivatives`, `forward_dynamics_derivatives`,
+//! `mass_matrix_inverse`, and `inverse_dynamics` for scale), and the generic
+//! solver's (`Robot`), with the statistic of
+//! `scripts/reference/pinocchio_derivatives_bench.cpp`: 1000 random states,
+//! batches of 1000 calls cycling through them after a warm-up, the median
+//! over 300 batches of the batch time / 1000, in ns per call (and the
+//! minimum). `scripts/reference/derivatives_bench.sh` runs it and the
+//! Pinocchio program in alternation.
+//!
+//! `cargo run --release -p dynagen-bench --example derivatives`
+
+use dynagen::Robot;
+use dynagen_bench::urdf;
+use nalgebra::{DMatrix, DVector};
+use std::hint::black_box;
+use std::time::Instant;
+
+#[allow(dead_code)]
+mod ur5 {
+    include!(concat!(env!("OUT_DIR"), "/ur5_derivatives.rs"));
+}
+#[allow(dead_code)]
+mod panda {
+    include!(concat!(env!("OUT_DIR"), "/panda_derivatives.rs"));
+}
+#[allow(dead_code)]
+mod ur5_tau {
+    include!(concat!(env!("OUT_DIR"), "/ur5_batched.rs"));
+}
+#[allow(dead_code)]
+mod panda_tau {
+    include!(concat!(env!("OUT_DIR"), "/panda_batched.rs"));
+}
+
+const STATES: usize = 1000;
+const BATCH: usize = 1000;
+const BATCHES: usize = 300;
+const WARMUP: usize = 20;
+
+/// (median, minimum) ns per call of `call(state index)`.
+fn time(mut call: impl FnMut(usize)) -> (f64, f64) {
+    for _ in 0..WARMUP {
+        for i in 0..BATCH {
+            call(i % STATES);
+        }
+    }
+    let mut per = Vec::with_capacity(BATCHES);
+    for _ in 0..BATCHES {
+        let t = Instant::now();
+        for i in 0..BATCH {
+            call(i % STATES);
+        }
+        per.push(t.elapsed().as_nanos() as f64 / BATCH as f64);
+    }
+    per.sort_by(f64::total_cmp);
+    (per[BATCHES / 2], per[0])
+}
+
+/// Random states as the Pinocchio program draws them (its distribution, not
+/// its generator): q in [-π, π] (prismatic joints within 0..0.04 m), q̇ in
+/// [-2, 2], q̈ in [-5, 5], τ in [-10, 10].
+fn states<const N: usize>(prismatic: &[bool]) -> Vec<[[f64; N]; 4]> {
+    let mut x = 0x2024_0611_u64;
+    let mut unit = move || {
+        x ^= x >> 12;
+        x ^= x << 25;
+        x ^= x >> 27;
+        (x.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    };
+    (0..STATES)
+        .map(|_| {
+            let q =
+                core::array::from_fn(
+                    |j| if prismatic[j] { 0.02 * (unit() + 1.0) } else { std::f64::consts::PI * unit() },
+                );
+            [
+                q,
+                core::array::from_fn(|_| 2.0 * unit()),
+                core::array::from_fn(|_| 5.0 * unit()),
+                core::array::from_fn(|_| 10.0 * unit()),
+            ]
+        })
+        .collect()
+}
+
+macro_rules! bench {
+    ($m:ident, $tau:ident, $robot:expr) => {{
+        const N: usize = $m::DOF;
+        let mut robot = Robot::from_urdf_file(urdf($robot)).unwrap();
+        let prismatic: Vec<bool> = robot.model().bodies.iter().map(|b| !b.joint.is_revolute()).collect();
+        let st = states::<N>(&prismatic);
+        let rows = [
+            (
+                "inverse_dynamics (τ)",
+                time(|i| {
+                    let s = black_box(&st[i]);
+                    let out = $tau::inverse_dynamics(&s[0], &s[1], &s[2]);
+                    black_box(&out);
+                }),
+            ),
+            (
+                "inverse_dynamics_derivatives",
+                time(|i| {
+                    let s = black_box(&st[i]);
+                    let out = $m::inverse_dynamics_derivatives(&s[0], &s[1], &s[2]);
+                    black_box(&out);
+                }),
+            ),
+            (
+                "forward_dynamics_derivatives",
+                time(|i| {
+                    let s = black_box(&st[i]);
+                    let out = $m::forward_dynamics_derivatives(&s[0], &s[1], &s[3]);
+                    black_box(&out);
+                }),
+            ),
+            (
+                "mass_matrix_inverse",
+                time(|i| {
+                    let s = black_box(&st[i]);
+                    let out = $m::mass_matrix_inverse(&s[0]);
+                    black_box(&out);
+                }),
+            ),
+        ];
+        let v: Vec<[DVector<f64>; 4]> = st.iter().map(|s| s.map(|x| DVector::from_column_slice(&x))).collect();
+        let (mut a, mut b, mut c) = (DMatrix::zeros(N, N), DMatrix::zeros(N, N), DMatrix::zeros(N, N));
+        let generic = [
+            (
+                "generic inverse_dynamics_derivatives_into",
+                time(|i| {
+                    let s = black_box(&v[i]);
+                    robot.inverse_dynamics_derivatives_into(&s[0], &s[1], &s[2], &mut a, &mut b).unwrap();
+                    black_box(&a);
+                }),
+            ),
+            (
+                "generic forward_dynamics_derivatives_into",
+                time(|i| {
+                    let s = black_box(&v[i]);
+                    robot.forward_dynamics_derivatives_into(&s[0], &s[1], &s[3], &mut a, &mut b, &mut c).unwrap();
+                    black_box(&a);
+                }),
+            ),
+        ];
+        for (name, (median, min)) in rows.iter().chain(&generic) {
+            println!("{:<8} {name:<44} median {median:9.1} ns  min {min:9.1} ns", $robot);
+        }
+    }};
+}
+
+fn main() {
+    println!("dynagen generated (default options) and generic, ns per call (median and minimum of {BATCHES} batches of {BATCH} calls)");
+    bench!(ur5, ur5_tau, "ur5");
+    bench!(panda, panda_tau, "panda");
+}

@@ -1,0 +1,118 @@
+// Times Pinocchio's C++ analytical derivatives (Carpentier & Mansard 2018)
+// on a URDF robot (fixed base): computeRNEADerivatives (dtau/dq, dtau/dqd),
+// computeABADerivatives (dqdd/dq, dqdd/dqd, Minv), computeMinverse, and rnea
+// for scale.
+//
+// Usage: pinocchio_derivatives_bench ROBOT.urdf [ROBOT.urdf ...]
+//
+// States and statistic as pinocchio_bench.cpp: 1000 random states (q in
+// [-pi, pi], prismatic joints within their limits, qd in [-2, 2], qdd in
+// [-5, 5], tau in [-10, 10]); batches of 1000 calls cycling through them
+// after a warm-up; the median over 300 batches of the batch time / 1000, in
+// ns per call.  The algorithm templates are compiled into this file.  Not
+// run in CI; see README.md in this folder and derivatives_bench.sh.
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "pinocchio/parsers/urdf.hpp"
+#include "pinocchio/algorithm/aba.hpp"
+#include "pinocchio/algorithm/aba-derivatives.hpp"
+#include "pinocchio/algorithm/rnea.hpp"
+#include "pinocchio/algorithm/rnea-derivatives.hpp"
+
+namespace {
+
+constexpr int kStates = 1000;
+constexpr int kBatch = 1000;
+constexpr int kBatches = 300;
+constexpr int kWarmupBatches = 20;
+
+using Clock = std::chrono::steady_clock;
+
+double g_sink = 0.0;
+
+template <class F>
+double median_ns_per_call(F&& call) {
+  for (int b = 0; b < kWarmupBatches; ++b)
+    for (int i = 0; i < kBatch; ++i) call(i % kStates);
+  std::vector<double> per_call(kBatches);
+  for (int b = 0; b < kBatches; ++b) {
+    const auto t0 = Clock::now();
+    for (int i = 0; i < kBatch; ++i) call(i % kStates);
+    const auto t1 = Clock::now();
+    per_call[b] =
+        std::chrono::duration<double, std::nano>(t1 - t0).count() / kBatch;
+  }
+  std::nth_element(per_call.begin(), per_call.begin() + kBatches / 2,
+                   per_call.end());
+  return per_call[kBatches / 2];
+}
+
+void bench(const std::string& path) {
+  pinocchio::Model model;
+  pinocchio::urdf::buildModel(path, model);
+  pinocchio::Data data(model);
+  const int nv = model.nv;
+
+  std::mt19937_64 rng(20240611);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::vector<Eigen::VectorXd> q(kStates), v(kStates), a(kStates),
+      tau(kStates);
+  for (int s = 0; s < kStates; ++s) {
+    q[s].resize(model.nq);
+    for (int j = 0; j < model.nq; ++j) {
+      const double lo = model.lowerPositionLimit[j];
+      const double hi = model.upperPositionLimit[j];
+      const bool prismatic = hi - lo < 1.0;  // the finger joints (0..0.04 m)
+      q[s][j] = prismatic ? lo + (hi - lo) * 0.5 * (unit(rng) + 1.0)
+                          : 3.141592653589793 * unit(rng);
+    }
+    v[s] = 2.0 * Eigen::VectorXd::NullaryExpr(nv, [&] { return unit(rng); });
+    a[s] = 5.0 * Eigen::VectorXd::NullaryExpr(nv, [&] { return unit(rng); });
+    tau[s] = 10.0 * Eigen::VectorXd::NullaryExpr(nv, [&] { return unit(rng); });
+  }
+  Eigen::MatrixXd dq = Eigen::MatrixXd::Zero(nv, nv),
+                  dv = Eigen::MatrixXd::Zero(nv, nv),
+                  da = Eigen::MatrixXd::Zero(nv, nv);
+
+  const double t_rnea = median_ns_per_call([&](int s) {
+    g_sink += pinocchio::rnea(model, data, q[s], v[s], a[s])[0];
+  });
+  const double t_drnea = median_ns_per_call([&](int s) {
+    pinocchio::computeRNEADerivatives(model, data, q[s], v[s], a[s], dq, dv,
+                                      da);
+    g_sink += dq(nv - 1, 0) + dv(nv - 1, 0);
+  });
+  const double t_daba = median_ns_per_call([&](int s) {
+    pinocchio::computeABADerivatives(model, data, q[s], v[s], tau[s], dq, dv,
+                                     da);
+    g_sink += dq(nv - 1, 0) + dv(nv - 1, 0) + da(0, nv - 1);
+  });
+  const double t_minv = median_ns_per_call([&](int s) {
+    g_sink += pinocchio::computeMinverse(model, data, q[s])(0, nv - 1);
+  });
+  std::printf(
+      "%-16s nv=%d  rnea %8.1f ns  computeRNEADerivatives %8.1f ns  "
+      "computeABADerivatives %8.1f ns  computeMinverse %8.1f ns\n",
+      path.substr(path.find_last_of('/') + 1).c_str(), nv, t_rnea, t_drnea,
+      t_daba, t_minv);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s ROBOT.urdf [ROBOT.urdf ...]\n", argv[0]);
+    return 2;
+  }
+  std::printf("Pinocchio %s, median ns per call (batches of %d calls)\n",
+              PINOCCHIO_VERSION, kBatch);
+  for (int i = 1; i < argc; ++i) bench(argv[i]);
+  if (g_sink == 12345.678) std::printf("%f\n", g_sink);
+  return 0;
+}
