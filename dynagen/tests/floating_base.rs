@@ -651,3 +651,20 @@ fn a_singular_floating_base_is_warned_about() {
     let w = point.warnings.iter().find(|w| matches!(w, ModelWarning::FloatingBaseSingular { .. })).expect("a warning");
     assert!(w.to_string().contains("\"ball\" floats"), "{w}");
 }
+
+/// The derivatives are not computed for a floating base yet: an error,
+/// not a panic.
+#[test]
+fn derivatives_of_a_floating_base_are_an_error_not_a_panic() {
+    use nalgebra::DVector;
+    let model = support::model("quadruped12").with_floating_base();
+    let (nq, nv) = (model.nq(), model.nv());
+    let mut robot = dynagen::Robot::new(model);
+    let mut q = DVector::zeros(nq);
+    q[6] = 1.0;
+    let v = DVector::zeros(nv);
+    let e = robot.inverse_dynamics_derivatives(&q, &v, &v).unwrap_err();
+    assert!(e.to_string().contains("fixed-base"), "{e}");
+    assert!(robot.forward_dynamics_derivatives(&q, &v, &v).is_err());
+    assert!(robot.mass_matrix_inverse(&q).is_err());
+}

@@ -31,6 +31,9 @@ impl DerivativeScratch {
 }
 
 /// Copies the row-major `rows` into `m`.
+/// The error of a derivative asked of a floating-base robot.
+const FIXED_BASE_ONLY: &str = "the derivatives are computed for fixed-base robots only (yet)";
+
 pub(super) fn copy_rows(rows: &[f64], m: &mut DMatrix<f64>) {
     let n = m.nrows();
     for i in 0..n {
@@ -65,6 +68,7 @@ impl Robot {
         dtau_dqd: &mut DMatrix<f64>,
     ) -> Result<(), InputError> {
         self.check()
+            .fixed_base(FIXED_BASE_ONLY)?
             .joints(&[("q", q), ("qd", qd), ("qdd", qdd)])?
             .square("dtau_dq", dtau_dq)?
             .square("dtau_dqd", dtau_dqd)?;
@@ -109,6 +113,7 @@ impl Robot {
         minv: &mut DMatrix<f64>,
     ) -> Result<(), InputError> {
         self.check()
+            .fixed_base(FIXED_BASE_ONLY)?
             .joints(&[("q", q), ("qd", qd), ("tau", tau)])?
             .square("dqdd_dq", dqdd_dq)?
             .square("dqdd_dqd", dqdd_dqd)?
@@ -138,7 +143,7 @@ impl Robot {
     /// [`mass_matrix_inverse`](Self::mass_matrix_inverse) into `minv` (n×n),
     /// allocating nothing.
     pub fn mass_matrix_inverse_into(&mut self, q: &DVector<f64>, minv: &mut DMatrix<f64>) -> Result<(), InputError> {
-        self.check().joints(&[("q", q)])?.square("minv", minv)?;
+        self.check().fixed_base(FIXED_BASE_ONLY)?.joints(&[("q", q)])?.square("minv", minv)?;
         let [m, linv, _] = &mut self.deriv.rows;
         crba::crba(&self.model, &mut self.ws, q.as_slice(), Loads::none(), m);
         // M⁻¹ is symmetric: row-major and column-major agree.
