@@ -389,18 +389,19 @@ mod tests {
         }
         public.sort();
         let frame = "h_fn_injected"; // frame "h\n}\nfn injected() {\n", in snake case
-        let mut expected: Vec<String> = ["DOF", "JOINT_NAMES", "sin_cos_all", "sin_cos_array", "sin_cos_kernel"]
-            .iter()
-            .map(|s| s.to_string())
-            .chain(
-                ["inverse_dynamics", "gravity_torques", "inverse_dynamics_sc", "gravity_torques_sc"]
-                    .iter()
-                    .map(|s| s.to_string()),
-            )
-            .chain([format!("frame_pose_{frame}"), format!("frame_pose_{frame}_sc")])
-            .chain(["frame_jacobian_c_pub_fn_injected_u32_42_code_script".to_string()])
-            .chain(["frame_jacobian_c_pub_fn_injected_u32_42_code_script_sc".to_string()])
-            .collect();
+        let mut expected: Vec<String> =
+            ["DOF", "NQ", "NV", "JOINT_NAMES", "sin_cos_all", "sin_cos_array", "sin_cos_kernel"]
+                .iter()
+                .map(|s| s.to_string())
+                .chain(
+                    ["inverse_dynamics", "gravity_torques", "inverse_dynamics_sc", "gravity_torques_sc"]
+                        .iter()
+                        .map(|s| s.to_string()),
+                )
+                .chain([format!("frame_pose_{frame}"), format!("frame_pose_{frame}_sc")])
+                .chain(["frame_jacobian_c_pub_fn_injected_u32_42_code_script".to_string()])
+                .chain(["frame_jacobian_c_pub_fn_injected_u32_42_code_script_sc".to_string()])
+                .collect();
         expected.sort();
         assert_eq!(public, expected);
         let inj = "pub fn injected() -> u32 { 42 }";
