@@ -233,7 +233,7 @@ fn base_rows_are_the_rate_of_change_of_momentum_minus_the_weight() {
         assert!(e < 1e-6, "seed {seed}: base rows vs momentum balance {e:e}");
         // g's base rows hold the weight: minus its wrench
         let mut gv = vec![0.0; nv];
-        forward_dynamics::gravity_forces(&model, &mut ws, &q, &g, &mut gv);
+        dynagen::algorithms::bias::gravity_torques(&model, &mut ws, &q, &g, &mut gv);
         let hold = -pose(&q).force_to_child(&weight_world);
         let e = rel_err(&gv[..6], &hold.to_array(), mass * 9.81);
         assert!(e < 1e-13, "seed {seed}: g's base rows vs the weight {e:e}");
@@ -605,7 +605,7 @@ fn compensated_forward_dynamics_on_a_floating_base() {
             qd.iter().map(|x| x * s).collect()
         };
         let mut h = vec![0.0; nv];
-        forward_dynamics::bias_forces(&model, &mut ws, &q, &qd, Some(&Vec3(G)), &mut h);
+        dynagen::algorithms::bias::bias_forces(&model, &mut ws, &q, &qd, Some(&Vec3(G)), &mut h);
         let tau: Vec<f64> = h.iter().map(|x| x + 1e-3 * rng.signed()).collect();
         let dd = |x: &[f64]| x.iter().map(|v| DoubleDouble::from_f64(*v)).collect::<Vec<_>>();
         let mut want = vec![DoubleDouble::zero(); nv];
