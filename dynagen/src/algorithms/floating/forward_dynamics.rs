@@ -1,6 +1,6 @@
 //! Forward dynamics through the mass matrix for a floating-base robot (h
 //! and g are [`bias`](crate::algorithms::bias)'s functions, whose inverse
-//! dynamics goes to [`rnea`](super::rnea::rnea) for a floating model): q̈
+//! dynamics goes to [`super::rnea::rnea`] for a floating model): q̈
 //! solves M q̈ = τ − h by the sparse LᵀDL factorisation, the base's six
 //! coordinates a chain ahead of the joints (a dense 6×6 block at the top,
 //! no fill-in between branches).
