@@ -652,3 +652,37 @@ fn a_singular_floating_base_is_warned_about() {
     let w = point.warnings.iter().find(|w| matches!(w, ModelWarning::FloatingBaseSingular { .. })).expect("a warning");
     assert!(w.to_string().contains("\"ball\" floats"), "{w}");
 }
+
+/// The energies of a floating model: kinetic ½ q̇ᵀ M q̇, and the potential's
+/// derivative along each velocity coordinate (a step q ⊕ ε e_k on SE(3)) is
+/// g's entry: the base rows included.
+#[test]
+fn energies_agree_with_m_and_g() {
+    use dynagen::algorithms::{bias, energy};
+    let g = Vec3(G);
+    for seed in SEEDS {
+        let model = random_model(seed, 6);
+        let nv = model.nv();
+        let mut ws = Workspace::new(&model);
+        let mut rng = Rng::new(seed + 77);
+        let (q, qd) = random_state(&model, &mut rng, 20.0);
+        let m = mass_matrix(&model, &mut ws, &q);
+        let v = DVector::from_column_slice(&qd);
+        let want = 0.5 * v.dot(&(&m * &v));
+        let got = energy::kinetic_energy(&model, &mut ws, &q, &qd);
+        assert!((got - want).abs() <= 1e-13 * want, "seed {seed}: kinetic energy {got} vs {want}");
+        let mut gv = vec![0.0; nv];
+        bias::gravity_torques(&model, &mut ws, &q, &g, &mut gv);
+        let d = 1e-5;
+        for k in 0..nv {
+            let mut e = vec![0.0; nv];
+            let mut at = |h: f64, ws: &mut Workspace<f64>| {
+                e[k] = h;
+                energy::potential_energy(&model, ws, &step(&model, &q, &e), &g)
+            };
+            let slope = (at(d, &mut ws) - at(-d, &mut ws)) / (2.0 * d);
+            let scale = gv.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            assert!((slope - gv[k]).abs() < 1e-7 * scale, "seed {seed}: dV/dq[{k}] = {slope} vs g = {}", gv[k]);
+        }
+    }
+}
