@@ -233,7 +233,7 @@ fn base_rows_are_the_rate_of_change_of_momentum_minus_the_weight() {
         assert!(e < 1e-6, "seed {seed}: base rows vs momentum balance {e:e}");
         // g's base rows hold the weight: minus its wrench
         let mut gv = vec![0.0; nv];
-        forward_dynamics::gravity_forces(&model, &mut ws, &q, &g, &mut gv);
+        dynagen::algorithms::bias::gravity_torques(&model, &mut ws, &q, &g, &mut gv);
         let hold = -pose(&q).force_to_child(&weight_world);
         let e = rel_err(&gv[..6], &hold.to_array(), mass * 9.81);
         assert!(e < 1e-13, "seed {seed}: g's base rows vs the weight {e:e}");
@@ -605,7 +605,7 @@ fn compensated_forward_dynamics_on_a_floating_base() {
             qd.iter().map(|x| x * s).collect()
         };
         let mut h = vec![0.0; nv];
-        forward_dynamics::bias_forces(&model, &mut ws, &q, &qd, Some(&Vec3(G)), &mut h);
+        dynagen::algorithms::bias::bias_forces(&model, &mut ws, &q, &qd, Some(&Vec3(G)), &mut h);
         let tau: Vec<f64> = h.iter().map(|x| x + 1e-3 * rng.signed()).collect();
         let dd = |x: &[f64]| x.iter().map(|v| DoubleDouble::from_f64(*v)).collect::<Vec<_>>();
         let mut want = vec![DoubleDouble::zero(); nv];
@@ -667,4 +667,38 @@ fn derivatives_of_a_floating_base_are_an_error_not_a_panic() {
     assert!(e.to_string().contains("fixed-base"), "{e}");
     assert!(robot.forward_dynamics_derivatives(&q, &v, &v).is_err());
     assert!(robot.mass_matrix_inverse(&q).is_err());
+}
+
+/// The energies of a floating model: kinetic ½ q̇ᵀ M q̇, and the potential's
+/// derivative along each velocity coordinate (a step q ⊕ ε e_k on SE(3)) is
+/// g's entry: the base rows included.
+#[test]
+fn energies_agree_with_m_and_g() {
+    use dynagen::algorithms::{bias, energy};
+    let g = Vec3(G);
+    for seed in SEEDS {
+        let model = random_model(seed, 6);
+        let nv = model.nv();
+        let mut ws = Workspace::new(&model);
+        let mut rng = Rng::new(seed + 77);
+        let (q, qd) = random_state(&model, &mut rng, 20.0);
+        let m = mass_matrix(&model, &mut ws, &q);
+        let v = DVector::from_column_slice(&qd);
+        let want = 0.5 * v.dot(&(&m * &v));
+        let got = energy::kinetic_energy(&model, &mut ws, &q, &qd);
+        assert!((got - want).abs() <= 1e-13 * want, "seed {seed}: kinetic energy {got} vs {want}");
+        let mut gv = vec![0.0; nv];
+        bias::gravity_torques(&model, &mut ws, &q, &g, &mut gv);
+        let d = 1e-5;
+        for k in 0..nv {
+            let mut e = vec![0.0; nv];
+            let mut at = |h: f64, ws: &mut Workspace<f64>| {
+                e[k] = h;
+                energy::potential_energy(&model, ws, &step(&model, &q, &e), &g)
+            };
+            let slope = (at(d, &mut ws) - at(-d, &mut ws)) / (2.0 * d);
+            let scale = gv.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            assert!((slope - gv[k]).abs() < 1e-7 * scale, "seed {seed}: dV/dq[{k}] = {slope} vs g = {}", gv[k]);
+        }
+    }
 }

@@ -63,9 +63,9 @@ fn check(name: &str) -> Vec<(&'static str, f64)> {
         let mut m = vec![0.0; nv * nv];
         crba::crba(&model, &mut ws, &q, Loads::none(), &mut m);
         record("M", &m, &flat(&s["M"]), k);
-        forward_dynamics::bias_forces(&model, &mut ws, &q, &qd, Some(&g), &mut out);
+        dynagen::algorithms::bias::bias_forces(&model, &mut ws, &q, &qd, Some(&g), &mut out);
         record("h", &out, &vector(&s["h"]), k);
-        forward_dynamics::gravity_forces(&model, &mut ws, &q, &g, &mut out);
+        dynagen::algorithms::bias::gravity_torques(&model, &mut ws, &q, &g, &mut out);
         record("g", &out, &vector(&s["g"]), k);
         aba::aba(&model, &mut ws, &q, &qd, &tau, Loads::gravity(&g), &mut out);
         record("qdd (ABA)", &out, &vector(&s["qdd_fd"]), k);

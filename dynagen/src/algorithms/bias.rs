@@ -1,6 +1,9 @@
 //! The terms of the equations of motion that do not depend on q̈, each one
 //! call of [`rnea`](super::rnea::rnea()) with the other terms left out:
 //! h(q, q̇) = C(q, q̇)q̇ + g(q), g(q), C(q, q̇)q̇ alone, and J(q)ᵀF_tip.
+//! On a floating model (NQ/NV-long slices, gravity in the world frame) the
+//! base's six rows come first: g's are the wrench that holds the robot's
+//! weight, in the base frame.
 
 use super::rnea::rnea;
 use super::{Loads, TipWrench, Workspace};

@@ -1,19 +1,30 @@
 //! Kinetic and potential energy, for physical checks of the dynamics.
 
 use super::joint::{joint_transform, motion};
-use super::Workspace;
+use super::{floating, Workspace};
 use crate::model::Model;
-use crate::spatial::{Inertia, Vec3};
+use crate::spatial::{Inertia, Motion, Vec3};
 use crate::Scalar;
 
-/// Kinetic energy ½ Σ Vᵢᵀ Gᵢ Vᵢ = ½ q̇ᵀ M(q) q̇ (J).
+/// Kinetic energy ½ Σ Vᵢᵀ Gᵢ Vᵢ = ½ q̇ᵀ M(q) q̇ (J). A floating model
+/// takes NQ/NV-long `q`, `qd` and counts its base too.
 pub fn kinetic_energy<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], qd: &[S]) -> S {
     let mut e = S::zero();
+    // the base's twist and the offsets of the joints in q and q̇
+    let (v0, oq, ov) = if model.is_floating() {
+        floating::check_sizes(model, "kinetic_energy", q.len(), &[qd.len()]);
+        let v0 = floating::base_motion(qd);
+        e += v0.dot(&Inertia::<S>::from_f64(&model.base_inertia).mul_motion(&v0));
+        (v0, 7, 6)
+    } else {
+        (Motion::zero(), 0, 0)
+    };
     for (i, b) in model.bodies.iter().enumerate() {
-        let x = joint_transform(&b.joint, q[i]);
-        let s = motion(&b.joint, qd[i]);
+        let x = joint_transform(&b.joint, q[oq + i]);
+        let s = motion(&b.joint, qd[ov + i]);
         let v = match b.parent {
             Some(p) => x.motion_to_child(&ws.v[p]) + s,
+            None if model.is_floating() => x.motion_to_child(&v0) + s,
             None => s,
         };
         ws.v[i] = v;
@@ -23,8 +34,14 @@ pub fn kinetic_energy<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], 
 }
 
 /// Potential energy −Σ mᵢ g·cᵢ of the moving bodies in the gravity field
-/// `gravity` (base frame), zero at the base origin (J).
+/// `gravity` (base frame), zero at the base origin (J). A floating model:
+/// of the whole robot, base included, with `q` NQ long and gravity in the
+/// world frame, zero at the world origin.
 pub fn potential_energy<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], gravity: &Vec3<S>) -> S {
+    if model.is_floating() {
+        let c = floating::centroidal::center_of_mass(model, ws, q);
+        return -(gravity.dot(&c) * S::from_f64(floating::centroidal::total_mass(model)));
+    }
     super::kinematics::forward_kinematics(model, ws, q);
     let mut e = S::zero();
     for (i, b) in model.bodies.iter().enumerate() {

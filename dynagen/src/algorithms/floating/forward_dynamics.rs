@@ -1,6 +1,7 @@
-//! h, g and forward dynamics through the mass matrix for a floating-base
-//! robot: h and g are one inverse dynamics call each, and q̈ solves
-//! M q̈ = τ − h by the sparse LᵀDL factorisation, the base's six
+//! Forward dynamics through the mass matrix for a floating-base robot (h
+//! and g are [`bias`](crate::algorithms::bias)'s functions, whose inverse
+//! dynamics goes to [`super::rnea::rnea`] for a floating model): q̈
+//! solves M q̈ = τ − h by the sparse LᵀDL factorisation, the base's six
 //! coordinates a chain ahead of the joints (a dense 6×6 block at the top,
 //! no fill-in between branches).
 
@@ -9,27 +10,7 @@ use super::rnea::rnea;
 use super::{check_sizes, velocity_parent};
 use crate::algorithms::{ldlt, Loads, Workspace};
 use crate::model::Model;
-use crate::spatial::Vec3;
 use crate::Scalar;
-
-/// h(q, q̇) = C(q, q̇)q̇ + g(q), NV entries (base rows first), without tip
-/// wrenches; `gravity` in the world frame.
-pub fn bias_forces<S: Scalar>(
-    model: &Model,
-    ws: &mut Workspace<S>,
-    q: &[S],
-    qd: &[S],
-    gravity: Option<&Vec3<S>>,
-    h: &mut [S],
-) {
-    rnea(model, ws, q, Some(qd), None, Loads::new(gravity, &[], &[]), h);
-}
-
-/// g(q), NV entries: its base rows are the wrench that holds the robot's
-/// weight (minus the weight's wrench on the base, base frame).
-pub fn gravity_forces<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], gravity: &Vec3<S>, g: &mut [S]) {
-    rnea(model, ws, q, None, None, Loads::gravity(gravity), g);
-}
 
 /// q̈ = M⁻¹(τ − h − Jᵀ F_tip) with M from [`crba`] and its sparse LᵀDL
 /// factorisation; arguments as [`aba`](super::aba::aba), which computes the

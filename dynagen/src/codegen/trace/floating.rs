@@ -57,10 +57,10 @@ pub(crate) fn trace_unfactored(
             rnea::rnea(model, &mut ws, q, Some(&args[1]), Some(&args[2]), Loads::new(g, &[], &[]), &mut out)
         }
         Function::MassMatrix => crba::crba(model, &mut ws, q, Loads::none(), &mut out),
-        Function::BiasForces => forward_dynamics::bias_forces(model, &mut ws, q, &args[1], g, &mut out),
+        Function::BiasForces => rnea::rnea(model, &mut ws, q, Some(&args[1]), None, Loads::new(g, &[], &[]), &mut out),
         Function::GravityTorques => {
-            if let Some(g) = g {
-                forward_dynamics::gravity_forces(model, &mut ws, q, g, &mut out)
+            if g.is_some() {
+                rnea::rnea(model, &mut ws, q, None, None, Loads::new(g, &[], &[]), &mut out)
             }
         }
         _ if method == ForwardDynamicsMethod::Ldlt => forward_dynamics::forward_dynamics_ldlt(
