@@ -789,3 +789,27 @@ fn eval_derivatives_agree_bit_for_bit_with_the_library() {
     assert!(counted[0] > 0 && counted[1] > 0, "{counted:?}");
     assert!(out.contains("      \"dtau_dq\": [\n        ["), "{out}");
 }
+
+/// `--floating-base` on the commands that load a robot: `generate` writes
+/// the NQ/NV module, `ops` counts it against the floating-base recursion,
+/// `eval` says it does not take one yet.
+#[test]
+fn floating_base_on_the_command_line() {
+    let quad = support::robot_path("quadruped12");
+    let out = succeeds(dynagen().args(["generate", quad.to_str().unwrap(), "--floating-base"]));
+    assert!(out.contains("pub const NQ: usize = 19;") && out.contains("pub const NV: usize = 18;"));
+    assert!(out.contains("pub fn inverse_dynamics(q: &[f64; NQ], qd: &[f64; NV], qdd: &[f64; NV]) -> [f64; NV]"));
+    let fixed = succeeds(dynagen().args(["generate", quad.to_str().unwrap()]));
+    assert!(fixed.contains("pub const NQ: usize = DOF;"));
+    let ops = succeeds(dynagen().args(["ops", quad.to_str().unwrap(), "--floating-base"]));
+    let row = ops.lines().find(|l| l.starts_with("mass_matrix")).expect("a mass_matrix row");
+    let counts: Vec<usize> = row.split_whitespace().skip(1).take(2).map(|x| x.parse().unwrap()).collect();
+    assert!(counts[0] > 0 && counts[1] > counts[0], "generated and generic counts: {row}");
+    let e = fails(
+        dynagen()
+            .args(["eval", quad.to_str().unwrap(), "--floating-base", "--input", "-"])
+            .write_stdin("{\"states\": []}"),
+        1,
+    );
+    assert!(e.contains("fixed-base robots only"), "{e}");
+}

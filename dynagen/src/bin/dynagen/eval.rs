@@ -93,6 +93,14 @@ impl fmt::Display for InputName<'_> {
 pub fn run(args: &Args) -> Result<Output, CliError> {
     let source = RobotSource::from_arg(args.robot.as_deref());
     let model = source.load(&args.load)?;
+    if model.is_floating() {
+        // Its states would be NQ/NV long with named base entries: not read yet.
+        return Err(CliError::input(
+            &source,
+            "eval takes fixed-base robots only so far; a floating base (NQ/NV-long states) is evaluated by the \
+             library's dynagen::Robot or a generated module",
+        ));
+    }
     let warnings = source.warnings(&model);
     let mut robot = Robot::new(model);
     if let Some(text) = &args.gravity {

@@ -68,12 +68,6 @@ pub struct Args {
     /// stack in debug builds and compile slowly in release builds.
     #[arg(long, value_name = "N")]
     pub split_lets: Option<usize>,
-    /// Give the robot a floating root: its root link moves freely, q has
-    /// NQ = DOF + 7 entries (base position, quaternion x, y, z, w, joints),
-    /// the velocity-side vectors NV = DOF + 6 (the base's body twist, then
-    /// the joints).
-    #[arg(long)]
-    pub floating_base: bool,
     /// A scene (TOML; see the documentation of `dynagen::scene`): its
     /// constants folded in, its run-time inputs (gravity, tip wrench,
     /// payloads) as extra arguments, its code keys (functions, scalar, …)
@@ -122,9 +116,6 @@ fn builder(args: &Args, source: &RobotSource) -> Result<(Builder, dynagen::Model
     let mut b = Builder::new().model(model.clone()).source(&source.to_string());
     if args.f32 {
         b = b.scalar(ScalarType::F32);
-    }
-    if args.floating_base {
-        b = b.floating_base(true);
     }
     match (args.ldlt, args.aba) {
         (true, _) => b = b.forward_dynamics(ForwardDynamicsMethod::Ldlt),

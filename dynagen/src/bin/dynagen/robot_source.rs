@@ -20,6 +20,13 @@ pub struct LoadArgs {
     /// indefinite and forward dynamics may fail.
     #[arg(long)]
     pub allow_nonphysical_inertia: bool,
+    /// Give the robot a floating root: its root link moves freely; q has
+    /// NQ = DOF + 7 entries (base position, quaternion x, y, z, w, joints),
+    /// the velocity-side vectors NV = DOF + 6 (the base's body twist, angular
+    /// first, then the joints). A URDF whose root joint is `floating` has one
+    /// anyway.
+    #[arg(long)]
+    pub floating_base: bool,
 }
 
 impl LoadArgs {
@@ -56,7 +63,8 @@ impl RobotSource {
                 .map(std::borrow::Cow::Owned)
                 .map_err(|e| CliError::input(self, format!("cannot read the file: {e}")))?,
         };
-        Model::from_urdf_str_with(&xml, &args.options()).map_err(|e| CliError::input(self, e))
+        let model = Model::from_urdf_str_with(&xml, &args.options()).map_err(|e| CliError::input(self, e))?;
+        Ok(if args.floating_base { model.with_floating_base() } else { model })
     }
 
     /// Each warning of the model, as `{file}: {warning}`.

@@ -15,15 +15,32 @@ use crate::symbolic::OpCount;
 /// beforehand and not counted; `method` picks the forward dynamics'). The
 /// state is a fixed non-trivial one; the count does not depend on it, as
 /// the algorithms never branch on the state. `None` for a frame the model
-/// does not have.
+/// does not have, and for what a floating-base module does not have.
 pub fn generic_op_count(model: &Model, f: &Function, method: ForwardDynamicsMethod) -> Option<OpCount> {
-    if model.is_floating() {
-        // The floating-base algorithms are not counted yet.
+    let n = model.dof();
+    let contract = matches!(
+        f,
+        Function::InverseDynamics
+            | Function::MassMatrix
+            | Function::BiasForces
+            | Function::GravityTorques
+            | Function::ForwardDynamics
+    );
+    if model.is_floating() && !contract {
+        // A floating base's other functions are not generated (nor counted) yet.
         return None;
     }
-    let n = model.dof();
-    let args: Vec<Vec<Counting>> = (0..f.vectors().len())
-        .map(|k| (0..n).map(|i| Counting(0.3 + (0.1 + 0.3 * k as f64) * (i as f64 + 1.0))).collect())
+    // q has NQ entries, the velocity-side vectors NV (both n on a fixed base);
+    // rnea, crba, aba and the LᵀDL forward dynamics take a floating model to
+    // its own algorithms.
+    let args: Vec<Vec<Counting>> = f
+        .vectors()
+        .iter()
+        .enumerate()
+        .map(|(k, v)| {
+            let len = if *v == "q" { model.nq() } else { model.nv() };
+            (0..len).map(|i| Counting(0.3 + (0.1 + 0.3 * k as f64) * (i as f64 + 1.0))).collect()
+        })
         .collect();
     let mut ws = Workspace::<Counting>::new(model);
     let g = Vec3::<Counting>::from_f64(&model.gravity);
