@@ -2,10 +2,12 @@
 //! each with std's sin_cos and with the batched `sin_cos_all` (both have the
 //! `NAME_sc` bodies, which take the sines and cosines as inputs), and each
 //! with the same bodies without fused multiply-adds and run-time dispatch (`*_base`),
-//! and each with the derivatives of the dynamics (`*_derivatives`).
+//! and each with the derivatives of the dynamics (`*_derivatives`); and the
+//! quadruped12 with a floating base, default options (`quadruped12_floating`,
+//! as `dynagen generate dynagen/robots/quadruped12.urdf --floating-base`).
 
 use dynagen::codegen::{generate, CodegenOptions, Function, Trig};
-use dynagen::Model;
+use dynagen::{Builder, Model};
 use std::path::Path;
 
 fn main() {
@@ -40,4 +42,15 @@ fn main() {
         let module = generate(&model, &base).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
         std::fs::write(Path::new(&out).join(format!("{robot}_base.rs")), module.source).expect("writing");
     }
+    // The floating-base quadruped (examples/floating.rs).
+    let urdf = robots.join("quadruped12.urdf");
+    println!("cargo:rerun-if-changed={}", urdf.display());
+    let model = Model::from_urdf_file(&urdf).unwrap_or_else(|e| panic!("{}: {e}", urdf.display()));
+    let module = Builder::new()
+        .model(model)
+        .floating_base(true)
+        .source("dynagen/robots/quadruped12.urdf")
+        .generate_module()
+        .unwrap_or_else(|e| panic!("generating quadruped12 (floating): {e}"));
+    std::fs::write(Path::new(&out).join("quadruped12_floating.rs"), module.source).expect("writing");
 }

@@ -22,6 +22,11 @@ generated!(
     "The Panda's `NAME_sc` bodies without fused multiply-adds and run-time dispatch."
 );
 generated!(panda_batched, "panda_batched.rs", "The Panda, `NAME(q, …)` by `sin_cos_all`.");
+generated!(
+    quadruped12_floating,
+    "quadruped12_floating.rs",
+    "The quadruped12 with a floating base (`--floating-base`), default options."
+);
 
 /// The URDF of a bundled robot.
 pub fn urdf(robot: &str) -> String {

@@ -1,0 +1,124 @@
+//! The generated floating-base functions of the quadruped12 (the module of
+//! `dynagen generate dynagen/robots/quadruped12.urdf --floating-base`,
+//! written by build.rs): `inverse_dynamics`, `mass_matrix`, `bias_forces`
+//! and `forward_dynamics`, each from q (its sines and cosines computed
+//! inside), timed as `examples/interleaved.rs` times the fixed-base ones
+//! and as `scripts/reference/pinocchio_floating_bench.cpp` times Pinocchio:
+//! 8 states, alternating rounds of 2,000 calls (each call's output left
+//! where it was written, behind a `black_box` of its address), the minimum
+//! over rounds per call (and the median). Run alternately with Pinocchio by
+//! `scripts/reference/floating_bench.sh`.
+//!
+//! `cargo run --release -p dynagen-bench --example floating [ROUNDS]`
+
+use dynagen_bench::quadruped12_floating as m;
+use std::hint::black_box;
+use std::time::Instant;
+
+const CALLS: usize = 2000;
+
+/// A timed function on a state (the first entry of its output).
+type Timed = fn(&State) -> f64;
+
+/// One state: q, q̇, q̈, τ.
+struct State {
+    q: [f64; m::NQ],
+    qd: [f64; m::NV],
+    qdd: [f64; m::NV],
+    tau: [f64; m::NV],
+}
+
+/// 8 states: base position in [-1, 1]³, a uniformly random unit quaternion,
+/// joints in [-π, π], q̇ in [-2, 2], q̈ in [-5, 5], τ in [-20, 20].
+fn states(seed: u64) -> Vec<State> {
+    let mut x = seed;
+    let mut next = move || {
+        x ^= x >> 12;
+        x ^= x << 25;
+        x ^= x >> 27;
+        (x.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    };
+    (0..8)
+        .map(|_| {
+            let mut q = [0.0; m::NQ];
+            for p in &mut q[..3] {
+                *p = next();
+            }
+            // Uniform on the unit sphere of R⁴: rejection from the unit ball.
+            let quat = loop {
+                let v: [f64; 4] = core::array::from_fn(|_| next());
+                let n = v.iter().map(|a| a * a).sum::<f64>().sqrt();
+                if n > 0.1 && n <= 1.0 {
+                    break v.map(|a| a / n);
+                }
+            };
+            q[3..7].copy_from_slice(&quat);
+            for j in &mut q[7..] {
+                *j = std::f64::consts::PI * next();
+            }
+            State {
+                q,
+                qd: core::array::from_fn(|_| 2.0 * next()),
+                qdd: core::array::from_fn(|_| 5.0 * next()),
+                tau: core::array::from_fn(|_| 20.0 * next()),
+            }
+        })
+        .collect()
+}
+
+/// The first entry of a function's output, the whole output left where the
+/// function wrote it behind a `black_box` of its address (as in
+/// `examples/interleaved.rs`).
+#[inline(always)]
+fn first<T: Copy, const K: usize>(out: &[T; K]) -> T {
+    black_box(out);
+    out[0]
+}
+
+fn tau(s: &State) -> f64 {
+    first(&m::inverse_dynamics(&s.q, &s.qd, &s.qdd))
+}
+fn mass(s: &State) -> f64 {
+    first(&m::mass_matrix(&s.q))[0]
+}
+fn h(s: &State) -> f64 {
+    first(&m::bias_forces(&s.q, &s.qd))
+}
+fn fd(s: &State) -> f64 {
+    first(&m::forward_dynamics(&s.q, &s.qd, &s.tau))
+}
+
+fn main() {
+    let rounds: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(200);
+    let st = states(0x5eed);
+    let fs: [(&str, Timed); 4] =
+        [("inverse_dynamics", tau), ("mass_matrix", mass), ("bias_forces", h), ("forward_dynamics", fd)];
+    let n = fs.len();
+    let mut times = vec![Vec::with_capacity(rounds); n];
+    for (_, f) in fs {
+        for i in 0..20 * CALLS {
+            black_box(f(black_box(&st[i & 7])));
+        }
+    }
+    for r in 0..rounds {
+        // Alternate the order too, so that no function always follows another.
+        for j in 0..n {
+            let k = if r % 2 == 0 { j } else { n - 1 - j };
+            let f = fs[k].1;
+            let t = Instant::now();
+            for i in 0..CALLS {
+                black_box(f(black_box(&st[i & 7])));
+            }
+            times[k].push(t.elapsed().as_nanos() as f64 / CALLS as f64);
+        }
+    }
+    println!(
+        "dynagen generated, quadruped12 floating (NQ = {}, NV = {}), {rounds} rounds of {CALLS} calls",
+        m::NQ,
+        m::NV
+    );
+    for ((name, _), t) in fs.iter().zip(&mut times) {
+        t.sort_by(f64::total_cmp);
+        println!("dynagen   {name:<18} min {:8.1} ns  median {:8.1} ns", t[0], t[t.len() / 2]);
+    }
+}
