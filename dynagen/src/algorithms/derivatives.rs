@@ -136,13 +136,10 @@ impl<S: Scalar> DualLoads<S> {
 
 /// ∂τ/∂q and ∂τ/∂q̇ (row-major n×n each) of the inverse dynamics `tau`
 /// (`tau(ws, q, q̇, q̈, τ)`, any generic inverse dynamics run on dual numbers,
-/// with its loads held constant) at (q, q̇, q̈): one dual run per column.
-#[allow(clippy::too_many_arguments)]
+/// with its loads held constant) at `[q, q̇, q̈]`: one dual run per column.
 pub fn inverse_dynamics_derivatives<S: Scalar>(
     dw: &mut DerivativeWorkspace<S>,
-    q: &[S],
-    qd: &[S],
-    qdd: &[S],
+    [q, qd, qdd]: [&[S]; 3],
     mut tau: impl FnMut(&mut Workspace<Dual<S>>, &[Dual<S>], &[Dual<S>], &[Dual<S>], &mut [Dual<S>]),
     dtau_dq: &mut [S],
     dtau_dqd: &mut [S],
@@ -220,22 +217,17 @@ pub fn mass_matrix_inverse<S: Scalar>(model: &Model, factor: &mut [S], linv: &mu
 }
 
 /// ∂q̈/∂q, ∂q̈/∂q̇ and M⁻¹ (row-major n×n each) of the forward dynamics at
-/// (q, q̇, τ): q̈ = M⁻¹(τ − h) with h = `tau`(q, q̇, 0) and M from `mass`
+/// `[q, q̇, τ]`: q̈ = M⁻¹(τ − h) with h = `tau`(q, q̇, 0) and M from `mass`
 /// (`mass(ws, q, m)`, the mass matrix `tau` implies: armature and payloads
 /// included), then −M⁻¹ ∂τ/∂x at that q̈. `tau` as in
-/// [`inverse_dynamics_derivatives`].
-#[allow(clippy::too_many_arguments)]
+/// [`inverse_dynamics_derivatives`]; the outputs `[∂q̈/∂q, ∂q̈/∂q̇, M⁻¹]`.
 pub fn forward_dynamics_derivatives<S: Scalar>(
     model: &Model,
     dw: &mut DerivativeWorkspace<S>,
-    q: &[S],
-    qd: &[S],
-    tau_in: &[S],
+    [q, qd, tau_in]: [&[S]; 3],
     mut tau: impl FnMut(&mut Workspace<Dual<S>>, &[Dual<S>], &[Dual<S>], &[Dual<S>], &mut [Dual<S>]),
     mass: impl FnOnce(&mut Workspace<S>, &[S], &mut [S]),
-    dqdd_dq: &mut [S],
-    dqdd_dqd: &mut [S],
-    minv: &mut [S],
+    [dqdd_dq, dqdd_dqd, minv]: [&mut [S]; 3],
 ) {
     let n = model.dof();
     assert!(
@@ -259,7 +251,7 @@ pub fn forward_dynamics_derivatives<S: Scalar>(
     }
     let (mut dq, mut dqd) = (std::mem::take(&mut dw.dtau_dq), std::mem::take(&mut dw.dtau_dqd));
     let qdd = std::mem::take(&mut dw.qdd_value);
-    inverse_dynamics_derivatives(dw, q, qd, &qdd, tau, &mut dq, &mut dqd);
+    inverse_dynamics_derivatives(dw, [q, qd, &qdd], tau, &mut dq, &mut dqd);
     for (dtau, out) in [(&dq, &mut *dqdd_dq), (&dqd, &mut *dqdd_dqd)] {
         for i in 0..n {
             for j in 0..n {

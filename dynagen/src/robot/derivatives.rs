@@ -80,7 +80,7 @@ impl Robot {
         let tau = |ws: &mut _, q: &[_], qd: &[_], qdd: &[_], out: &mut [_]| {
             rnea::rnea(model, ws, q, Some(qd), Some(qdd), loads.loads(), out)
         };
-        d::inverse_dynamics_derivatives(dw, q.as_slice(), qd.as_slice(), qdd.as_slice(), tau, a, b);
+        d::inverse_dynamics_derivatives(dw, [q.as_slice(), qd.as_slice(), qdd.as_slice()], tau, a, b);
         copy_rows(a, dtau_dq);
         copy_rows(b, dtau_dqd);
         Ok(())
@@ -128,7 +128,7 @@ impl Robot {
         };
         let mass = |ws: &mut _, q: &[f64], m: &mut [f64]| crba::crba(model, ws, q, Loads::none(), m);
         let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());
-        d::forward_dynamics_derivatives(model, dw, q, qd, tau, tau_fn, mass, a, b, c);
+        d::forward_dynamics_derivatives(model, dw, [q, qd, tau], tau_fn, mass, [a, b, c]);
         copy_rows(a, dqdd_dq);
         copy_rows(b, dqdd_dqd);
         copy_rows(c, minv);

@@ -71,12 +71,12 @@ pub fn generic_op_count(model: &Model, f: &Function, method: ForwardDynamicsMeth
         Function::ForwardDynamics => aba::aba(model, ws, &a[0], &a[1], &a[2], loads, out),
         Function::InverseDynamicsDerivatives => {
             let (x, y) = out.split_at_mut(n * n);
-            d::inverse_dynamics_derivatives(&mut dw, &a[0], &a[1], &a[2], tau, x, y)
+            d::inverse_dynamics_derivatives(&mut dw, [&a[0], &a[1], &a[2]], tau, x, y)
         }
         Function::ForwardDynamicsDerivatives => {
             let (x, rest) = out.split_at_mut(n * n);
             let (y, z) = rest.split_at_mut(n * n);
-            d::forward_dynamics_derivatives(model, &mut dw, &a[0], &a[1], &a[2], tau, mass, x, y, z)
+            d::forward_dynamics_derivatives(model, &mut dw, [&a[0], &a[1], &a[2]], tau, mass, [x, y, z])
         }
         Function::MassMatrixInverse => {
             let mut m = std::mem::take(&mut ws.mat);

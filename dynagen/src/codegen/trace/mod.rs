@@ -259,11 +259,18 @@ pub(crate) fn trace_unfactored(
             let (a, rest) = out.split_at_mut(n * n);
             match f {
                 Function::InverseDynamicsDerivatives => {
-                    derivatives::inverse_dynamics_derivatives(&mut dw, q, &args[1], &args[2], tau, a, rest)
+                    derivatives::inverse_dynamics_derivatives(&mut dw, [q, &args[1], &args[2]], tau, a, rest)
                 }
                 Function::ForwardDynamicsDerivatives => {
                     let (b, c) = rest.split_at_mut(n * n);
-                    derivatives::forward_dynamics_derivatives(model, &mut dw, q, &args[1], &args[2], tau, mass, a, b, c)
+                    derivatives::forward_dynamics_derivatives(
+                        model,
+                        &mut dw,
+                        [q, &args[1], &args[2]],
+                        tau,
+                        mass,
+                        [a, b, c],
+                    )
                 }
                 _ => {
                     let mut m = vec![zero; n * n];

@@ -31,7 +31,7 @@ impl SceneRobot {
         let tau = |ws: &mut _, q: &[_], qd: &[_], qdd: &[_], out: &mut [_]| {
             dynamics::inverse_dynamics(scene, ws, q, qd, qdd, loads.loads(), out)
         };
-        d::inverse_dynamics_derivatives(dw, q.as_slice(), qd.as_slice(), qdd.as_slice(), tau, a, b);
+        d::inverse_dynamics_derivatives(dw, [q.as_slice(), qd.as_slice(), qdd.as_slice()], tau, a, b);
         let (mut x, mut y) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n));
         copy_rows(a, &mut x);
         copy_rows(b, &mut y);
@@ -60,7 +60,7 @@ impl SceneRobot {
         };
         let mass = |ws: &mut _, q: &[f64], m: &mut [f64]| dynamics::mass_matrix(scene, ws, q, m);
         let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());
-        d::forward_dynamics_derivatives(&scene.model, dw, q, qd, tau, tau_fn, mass, a, b, c);
+        d::forward_dynamics_derivatives(&scene.model, dw, [q, qd, tau], tau_fn, mass, [a, b, c]);
         let (mut x, mut y, mut z) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n), DMatrix::zeros(n, n));
         copy_rows(a, &mut x);
         copy_rows(b, &mut y);
