@@ -21,26 +21,10 @@ set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 repo="$(cd "$here/../.." && pwd)"
 rounds="${1:-2}"
-prefix="$(python3 -c 'import cmeel, sys; print(cmeel.__path__[0] + ".prefix")' 2>/dev/null \
-  || python3 -c 'import site; print(site.getsitepackages()[0] + "/cmeel.prefix")')"
 out="${TMPDIR:-/tmp}/pinocchio_floating_bench"
-CXXFLAGS=${CXXFLAGS:-"-O3 -DNDEBUG"}
-
-if [ ! -x "$out" ] || [ "$here/pinocchio_floating_bench.cpp" -nt "$out" ]; then
-  # shellcheck disable=SC2086
-  g++ -std=c++17 -w $CXXFLAGS \
-    -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30 \
-    -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS -DBOOST_FUSION_INVOKE_MAX_ARITY=12 \
-    -DPINOCCHIO_WITH_URDFDOM \
-    -DPINOCCHIO_URDFDOM_HEADERS_MAJOR_VERSION=3 \
-    -DPINOCCHIO_URDFDOM_HEADERS_MINOR_VERSION=0 \
-    -DPINOCCHIO_URDFDOM_HEADERS_PATCH_VERSION=0 \
-    -I"$prefix/include" -I"$prefix/include/eigen3" \
-    -I"$prefix/include/urdfdom_headers" \
-    "$here/pinocchio_floating_bench.cpp" -o "$out" \
-    -L"$prefix/lib" -Wl,-rpath,"$prefix/lib" \
-    -lpinocchio_parsers -lpinocchio_default -lurdfdom_model
-fi
+# shellcheck source=pinocchio_build.sh
+. "$here/pinocchio_build.sh"
+pinocchio_build "$here/pinocchio_floating_bench.cpp" "$out"
 (cd "$repo" && cargo build --release -q -p dynagen-bench --example floating)
 target="${CARGO_TARGET_DIR:-$repo/target}"
 urdf="$repo/dynagen/robots/quadruped12.urdf"
