@@ -19,38 +19,14 @@
 #include <vector>
 
 #include "pinocchio/parsers/urdf.hpp"
+#include "bench_common.hpp"
 #include "pinocchio/algorithm/aba.hpp"
 #include "pinocchio/algorithm/crba.hpp"
 #include "pinocchio/algorithm/rnea.hpp"
 
 namespace {
 
-constexpr int kStates = 1000;
-constexpr int kBatch = 1000;
-constexpr int kBatches = 300;
-constexpr int kWarmupBatches = 20;
-
-using Clock = std::chrono::steady_clock;
-
-// Keeps the optimiser from dropping a result.
-double g_sink = 0.0;
-
-template <class F>
-double median_ns_per_call(F&& call) {
-  for (int b = 0; b < kWarmupBatches; ++b)
-    for (int i = 0; i < kBatch; ++i) call(i % kStates);
-  std::vector<double> per_call(kBatches);
-  for (int b = 0; b < kBatches; ++b) {
-    const auto t0 = Clock::now();
-    for (int i = 0; i < kBatch; ++i) call(i % kStates);
-    const auto t1 = Clock::now();
-    per_call[b] =
-        std::chrono::duration<double, std::nano>(t1 - t0).count() / kBatch;
-  }
-  std::nth_element(per_call.begin(), per_call.begin() + kBatches / 2,
-                   per_call.end());
-  return per_call[kBatches / 2];
-}
+using namespace bench_common;
 
 void bench(const std::string& path) {
   pinocchio::Model model;
@@ -58,23 +34,9 @@ void bench(const std::string& path) {
   pinocchio::Data data(model);
   const int nv = model.nv;
 
-  std::mt19937_64 rng(20240611);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  std::vector<Eigen::VectorXd> q(kStates), v(kStates), a(kStates),
-      tau(kStates);
-  for (int s = 0; s < kStates; ++s) {
-    q[s].resize(model.nq);
-    for (int j = 0; j < model.nq; ++j) {
-      const double lo = model.lowerPositionLimit[j];
-      const double hi = model.upperPositionLimit[j];
-      const bool prismatic = hi - lo < 1.0;  // the finger joints (0..0.04 m)
-      q[s][j] = prismatic ? lo + (hi - lo) * 0.5 * (unit(rng) + 1.0)
-                          : 3.141592653589793 * unit(rng);
-    }
-    v[s] = 2.0 * Eigen::VectorXd::NullaryExpr(nv, [&] { return unit(rng); });
-    a[s] = 5.0 * Eigen::VectorXd::NullaryExpr(nv, [&] { return unit(rng); });
-    tau[s] = 10.0 * Eigen::VectorXd::NullaryExpr(nv, [&] { return unit(rng); });
-  }
+  // (named references: a C++17 lambda cannot capture structured bindings)
+  const States states = random_states(model);
+  const auto &q = states.q, &v = states.v, &a = states.a, &tau = states.tau;
 
   const double t_rnea = median_ns_per_call([&](int s) {
     g_sink += pinocchio::rnea(model, data, q[s], v[s], a[s])[0];
