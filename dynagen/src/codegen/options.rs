@@ -131,7 +131,7 @@ pub struct CodegenOptions {
     /// On by default: it costs nothing where the target has no fused
     /// multiply-add (the same bits, the same instructions), and where it
     /// has, the bodies, bound by the floating-point ports, run fewer
-    /// operations (`benches/README.md`, "Run 7"); with
+    /// operations (`docs/performance.md`); with
     /// [`runtime_dispatch`](Self::runtime_dispatch) a default x86-64 build
     /// has a copy with FMA too. Off, the bodies give the
     /// same bits on every target. (The module's `sin_cos_array` fuses its

@@ -2,7 +2,7 @@
 //! root body moves freely, with six unactuated degrees of freedom ahead of
 //! the joints.
 //!
-//! Conventions (`/shared/DESIGN.md`): `q = [p, (x, y, z, w), joints]` with
+//! Conventions (those of the crate documentation): `q = [p, (x, y, z, w), joints]` with
 //! `p` the base origin in the world and the quaternion the base's
 //! orientation (world ← base), NQ = n + 7; `q̇`, `q̈`, `τ` = `[ω_b, v_b,
 //! joints]` with the base's body twist, its derivative and the wrench on
