@@ -8,9 +8,9 @@ use super::joint::{
     with_rotation, Rotation,
 };
 use super::rnea::{gyroscopic, products, velocity_product_matrix};
-use super::{Loads, Workspace};
+use super::{add_tip_wrenches, Loads, Workspace};
 use crate::model::{AxisAlignment, Joint, JointKind, Model};
-use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Vec3};
 use crate::Scalar;
 
 /// A symmetric 6×6 articulated-body inertia `[[A, B], [Bᵀ, C]]` in
@@ -353,12 +353,7 @@ fn aba_impl<S: Scalar, const DISTRIBUTED: bool>(
         let gyro = if ws.gyro_products[i] { gyroscopic(&inertia.ibar, &p) } else { w.cross(&inertia.ibar.mul_vec(&w)) };
         ws.f[i] = Force::new(gyro, wwh);
     }
-    for tip in tips {
-        let frame = &model.frames[tip.frame];
-        if let Some(b) = frame.body {
-            ws.f[b] += Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
-        }
-    }
+    add_tip_wrenches(model, tips, &mut ws.f, None);
     // Backward: articulated inertias and bias forces.
     for (i, body) in model.bodies.iter().enumerate().rev() {
         let u = ws.art[i].mul_subspace(&body.joint);

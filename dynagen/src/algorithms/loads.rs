@@ -2,7 +2,9 @@
 //! every algorithm: gravity, wrenches at its frames, and the inertias it
 //! carries beyond the model's (payloads on bodies, armature on joints).
 
-use crate::spatial::{Force, Inertia, Vec3};
+use crate::model::Model;
+use crate::spatial::{Force, Inertia, Transform, Vec3};
+use crate::Scalar;
 
 /// A wrench that a frame of the robot applies to its environment, in that
 /// frame's coordinates: the Modern Robotics library's `Ftip` (m; f).
@@ -106,5 +108,29 @@ impl<'a, S> Loads<'a, S> {
 impl<S> Default for Loads<'_, S> {
     fn default() -> Self {
         Self::none()
+    }
+}
+
+/// Adds each tip wrench, moved from its frame to its body's, to that body's
+/// wrench in `f` (what rnea and aba do with [`Loads::tips`]). A tip on a
+/// frame fixed to the root goes to `base`, a floating base's wrench (base
+/// frame), and without one is carried by the fixed base.
+pub(crate) fn add_tip_wrenches<S: Scalar>(
+    model: &Model,
+    tips: &[TipWrench<S>],
+    f: &mut [Force<S>],
+    mut base: Option<&mut Force<S>>,
+) {
+    for tip in tips {
+        let frame = &model.frames[tip.frame];
+        if frame.body.is_none() && base.is_none() {
+            continue;
+        }
+        let w = Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
+        match (frame.body, base.as_deref_mut()) {
+            (Some(b), _) => f[b] += w,
+            (None, Some(f0)) => *f0 += w,
+            (None, None) => {}
+        }
     }
 }

@@ -25,5 +25,6 @@ mod lu;
 pub mod rnea;
 mod workspace;
 
+pub(crate) use loads::add_tip_wrenches;
 pub use loads::{BodyInertia, Loads, TipWrench};
 pub use workspace::Workspace;

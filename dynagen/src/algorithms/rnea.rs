@@ -18,9 +18,9 @@
 //! fewer operations (and fewer in the generated code).
 
 use super::joint::{add_axis, cross_axis, force_to_parent, joint_transform, project, with_rotation, Rotation};
-use super::{Loads, Workspace};
+use super::{add_tip_wrenches, Loads, Workspace};
 use crate::model::Model;
-use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Vec3};
 use crate::Scalar;
 
 /// The products `ω ωᵀ` as `[xx, yy, zz, xy, xz, yz]`, shared by
@@ -258,13 +258,7 @@ pub fn rnea<S: Scalar>(
         accs[i] = Motion::new(wd, a);
         fs[i] = Force::new(m, f);
     }
-    for tip in tips {
-        let frame = &model.frames[tip.frame];
-        if let Some(b) = frame.body {
-            let place = Transform::<S>::from_f64(&frame.placement);
-            fs[b] += place.force_to_parent(&tip.wrench);
-        }
-    }
+    add_tip_wrenches(model, tips, fs, None);
     for (i, body) in bodies.iter().enumerate().rev() {
         tau[i] = project(&body.joint, &fs[i]);
         if let Some(p) = body.parent {

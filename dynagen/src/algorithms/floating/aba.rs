@@ -9,9 +9,9 @@ use crate::algorithms::aba::ArticulatedInertia;
 use crate::algorithms::joint::{
     add_motion, cross_motion, force_to_parent, joint_transform, motion_to_child, project, with_rotation,
 };
-use crate::algorithms::{Loads, Workspace};
+use crate::algorithms::{add_tip_wrenches, Loads, Workspace};
 use crate::model::Model;
-use crate::spatial::{Force, Inertia, Motion, Transform};
+use crate::spatial::{Force, Inertia, Motion};
 use crate::Scalar;
 
 /// q̈ = M(q)⁻¹(τ − h(q, q̇) − Jᵀ F_tip) of a floating-base model: `q` NQ
@@ -97,14 +97,7 @@ fn aba_impl<S: Scalar>(
         ws.f[i] = v.cross_force(&inertia.mul_motion(&v));
         ws.v[i] = v;
     }
-    for tip in tips {
-        let frame = &model.frames[tip.frame];
-        let w = Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
-        match frame.body {
-            Some(b) => ws.f[b] += w,
-            None => p0 += w,
-        }
-    }
+    add_tip_wrenches(model, tips, &mut ws.f, Some(&mut p0));
     // Backward: articulated inertias and bias forces, down to the base.
     for (i, body) in model.bodies.iter().enumerate().rev() {
         let joint = &body.joint;

@@ -7,9 +7,9 @@
 
 use super::{base_motion, check_sizes, quaternion_rotation, write_force};
 use crate::algorithms::joint::{add_motion, cross_motion, force_to_parent, joint_transform, motion_to_child, project};
-use crate::algorithms::{Loads, Workspace};
+use crate::algorithms::{add_tip_wrenches, Loads, Workspace};
 use crate::model::Model;
-use crate::spatial::{Force, Inertia, Motion, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Motion, Vec3};
 use crate::Scalar;
 
 /// τ = M(q)q̈ + h(q, q̇) (+ Jᵀ F_tip) of a floating-base model.
@@ -77,14 +77,7 @@ pub fn rnea<S: Scalar>(
         ws.a[i] = a;
         ws.f[i] = f;
     }
-    for tip in tips {
-        let frame = &model.frames[tip.frame];
-        let w = Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
-        match frame.body {
-            Some(b) => ws.f[b] += w,
-            None => f0 += w,
-        }
-    }
+    add_tip_wrenches(model, tips, &mut ws.f, Some(&mut f0));
     for (i, body) in model.bodies.iter().enumerate().rev() {
         let f = ws.f[i];
         tau[6 + i] = project(&body.joint, &f);
