@@ -3,7 +3,10 @@
 //! right-hand side by one inverse dynamics call with q̈ = 0, and a sparse
 //! LᵀDL solve. The articulated-body algorithm ([`aba`](super::aba::aba))
 //! computes the same thing and is the default elsewhere, being more accurate
-//! on long chains; this path is kept as its check and for comparison.
+//! on long chains; this path is kept as its check and for comparison. A
+//! floating model takes the same steps: its rnea and crba are the floating
+//! ones, and the factorisation treats the base's six coordinates as a chain
+//! ahead of the joints (a dense 6×6 block, no fill-in between branches).
 
 use super::crba::crba;
 use super::ldlt;
@@ -14,7 +17,8 @@ use crate::Scalar;
 
 /// Forward dynamics through the factorised mass matrix; see the module
 /// documentation. Arguments as [`aba`](super::aba::aba): the payloads
-/// enter M and h, the armature M's diagonal.
+/// enter M and h, the armature M's diagonal; for a floating model `q` is NQ
+/// long and the other slices NV.
 pub fn forward_dynamics_ldlt<S: Scalar>(
     model: &Model,
     ws: &mut Workspace<S>,
@@ -24,11 +28,8 @@ pub fn forward_dynamics_ldlt<S: Scalar>(
     loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
-    if model.is_floating() {
-        return super::floating::forward_dynamics::forward_dynamics_ldlt(model, ws, q, qd, tau, loads, qdd);
-    }
-    let n = model.dof();
-    assert!(tau.len() == n && qdd.len() == n, "forward_dynamics_ldlt: slices must have the model's {n} joints");
+    let n = model.nv();
+    assert!(tau.len() == n && qdd.len() == n, "forward_dynamics_ldlt: tau and qdd must have the model's NV = {n} entries");
     // h + JᵀF_tip into qdd, then the right-hand side τ − that.
     rnea(model, ws, q, Some(qd), None, loads, qdd);
     for i in 0..n {

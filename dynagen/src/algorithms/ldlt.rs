@@ -3,14 +3,21 @@
 //! non-zero only where M is (a joint and its ancestors), so a tree's
 //! branches cause no fill-in. No square roots, so it traces well.
 
+use super::floating::velocity_parent;
 use crate::model::Model;
 use crate::Scalar;
 
 /// Factorises the n×n row-major `m` in place: on return the diagonal holds
 /// D and the strictly lower triangle holds L (entries of joints on other
-/// branches are left untouched). Only the lower triangle is read.
+/// branches are left untouched). Only the lower triangle is read. A
+/// floating model's M is NV×NV, its base's six coordinates a chain ahead of
+/// the joints ([`velocity_parent`](super::floating::velocity_parent)).
 pub fn factorise<S: Scalar>(model: &Model, m: &mut [S]) {
-    factorise_tree(model.dof(), |k| model.bodies[k].parent, m)
+    if model.is_floating() {
+        factorise_tree(model.nv(), |k| velocity_parent(model, k), m)
+    } else {
+        factorise_tree(model.dof(), |k| model.bodies[k].parent, m)
+    }
 }
 
 /// [`factorise`] for any tree of `n` coordinates given by the parent of
@@ -36,7 +43,11 @@ pub fn factorise_tree<S: Scalar>(n: usize, parent: impl Fn(usize) -> Option<usiz
 
 /// Solves M x = b in place (`b` becomes x) with a factor from [`factorise`].
 pub fn solve<S: Scalar>(model: &Model, factor: &[S], b: &mut [S]) {
-    solve_tree(model.dof(), |k| model.bodies[k].parent, factor, b)
+    if model.is_floating() {
+        solve_tree(model.nv(), |k| velocity_parent(model, k), factor, b)
+    } else {
+        solve_tree(model.dof(), |k| model.bodies[k].parent, factor, b)
+    }
 }
 
 /// [`solve`] for a factor from [`factorise_tree`] with the same `parent`.

@@ -22,7 +22,8 @@
 pub mod aba;
 pub mod centroidal;
 pub mod crba;
-pub mod forward_dynamics;
+/// Forward dynamics through M: the fixed-base function serves both.
+pub use super::forward_dynamics;
 pub mod kinematics;
 pub mod rnea;
 pub mod step;
