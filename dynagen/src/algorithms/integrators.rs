@@ -246,16 +246,12 @@ pub fn rk4_with<S: Scalar>(
 ) {
     let n = q.len();
     assert!(qd.len() == n && scratch.dof() == n, "rk4: q, qd and the scratch must have the same length");
-    let half = dt * S::from_f64(0.5);
     let IntegratorScratch { qdd, q_stage, qd_stage, q_sum, qd_sum, .. } = scratch;
     q_stage.copy_from_slice(q);
     qd_stage.copy_from_slice(qd);
-    // (weight of the stage's slope in the sum, offset of the next stage)
-    let stages =
-        [(S::one(), Some(half)), (S::from_f64(2.0), Some(half)), (S::from_f64(2.0), Some(dt)), (S::one(), None)];
     q_sum.fill(S::zero());
     qd_sum.fill(S::zero());
-    for (weight, next) in stages {
+    for (weight, next) in rk4_stages(dt) {
         accel(q_stage, qd_stage, qdd);
         // The stage's slope is (qd_stage, qdd).
         for i in 0..n {
@@ -272,6 +268,15 @@ pub fn rk4_with<S: Scalar>(
         q[i] += sixth * q_sum[i];
         qd[i] += sixth * qd_sum[i];
     }
+}
+
+/// The classical Runge-Kutta tableau as [`rk4_with`] and the floating
+/// base's Runge-Kutta-Munthe-Kaas step walk it: for each stage, the weight
+/// of its slope in the sum (1, 2, 2, 1, then times dt/6) and the step from
+/// the start to the next stage (dt/2, dt/2, dt, none).
+pub(crate) fn rk4_stages<S: Scalar>(dt: S) -> [(S, Option<S>); 4] {
+    let half = dt * S::from_f64(0.5);
+    [(S::one(), Some(half)), (S::from_f64(2.0), Some(half)), (S::from_f64(2.0), Some(dt)), (S::one(), None)]
 }
 
 /// Scratch of [`implicit_euler`]: the Newton iteration's Jacobian, its LU

@@ -10,7 +10,7 @@
 //! tree's momentum with and without the correction: `docs/performance.md`).
 
 use super::{aba::aba, integrate, integrate_scaled};
-use crate::algorithms::integrators::{implicit_euler_on, Integrator, IntegratorScratch, StepInputs};
+use crate::algorithms::integrators::{implicit_euler_on, rk4_stages, Integrator, IntegratorScratch, StepInputs};
 use crate::algorithms::Workspace;
 use crate::model::Model;
 use crate::spatial::Motion;
@@ -69,20 +69,13 @@ pub fn step<S: Scalar>(
             integrate(model, q_stage, q_sum, q);
         }
         Integrator::Rk4 => {
-            let half = dt * S::from_f64(0.5);
-            let stages = [
-                (S::one(), Some(half)),
-                (S::from_f64(2.0), Some(half)),
-                (S::from_f64(2.0), Some(dt)),
-                (S::one(), None),
-            ];
             q_stage.copy_from_slice(q);
             qd_stage.copy_from_slice(qd);
             q_sum.fill(S::zero());
             qd_sum.fill(S::zero());
             // delta: the stage's configuration offset θ (q_stage = q ⊕ θ), velocity-side
             delta.fill(S::zero());
-            for (weight, next) in stages {
+            for (weight, next) in rk4_stages(dt) {
                 accel(q_stage, qd_stage, qdd);
                 // the slope of θ: the base's part through dexp⁻¹ at θ
                 let base = dexp_inv(&super::base_motion(delta), &super::base_motion(qd_stage)).to_array();
