@@ -102,6 +102,17 @@ impl Graph {
             _ => None,
         }
     }
+    /// `op(a, b)` (a product or a quotient) with the negations of `a` and
+    /// `b` moved outwards: `op(x, y)` for `op(−x, −y)`, `−op(x, y)` for
+    /// `op(−x, y)` and `op(x, −y)`; `None` when neither is a negation.
+    fn signs_out(&mut self, a: NodeId, b: NodeId, op: fn(&mut Self, NodeId, NodeId) -> NodeId) -> Option<NodeId> {
+        let (x, y) = (self.negated(a), self.negated(b));
+        if x.is_none() && y.is_none() {
+            return None;
+        }
+        let r = op(self, x.unwrap_or(a), y.unwrap_or(b));
+        Some(if x.is_some() == y.is_some() { r } else { self.neg(r) })
+    }
     /// `(c, x)` when `id` is `c·x` with `c` a constant.
     fn scaled(&self, id: NodeId) -> Option<(f64, NodeId)> {
         match self.node(id) {
@@ -295,17 +306,8 @@ impl Graph {
             _ => {}
         }
         // Negations move outwards, where an addition absorbs them.
-        match (self.negated(a), self.negated(b)) {
-            (Some(x), Some(y)) => return self.mul(x, y),
-            (Some(x), None) => {
-                let p = self.mul(x, b);
-                return self.neg(p);
-            }
-            (None, Some(y)) => {
-                let p = self.mul(a, y);
-                return self.neg(p);
-            }
-            (None, None) => {}
+        if let Some(p) = self.signs_out(a, b, Self::mul) {
+            return p;
         }
         if let (Some(x), Some((y, z))) = (self.constant_value(a), self.scaled(b)) {
             if self.rewrites.constant_products {
@@ -339,17 +341,8 @@ impl Graph {
         if a == b {
             return self.constant(1.0);
         }
-        match (self.negated(a), self.negated(b)) {
-            (Some(x), Some(y)) => return self.div(x, y),
-            (Some(x), None) => {
-                let q = self.div(x, b);
-                return self.neg(q);
-            }
-            (None, Some(y)) => {
-                let q = self.div(a, y);
-                return self.neg(q);
-            }
-            (None, None) => {}
+        if let Some(q) = self.signs_out(a, b, Self::div) {
+            return q;
         }
         self.intern(Node::Div(a, b))
     }
