@@ -23,7 +23,6 @@
 
 use crate::error::{CliError, Output};
 use crate::json::Json;
-use crate::robot_source::RobotSource;
 use crate::states::{parse_states, State};
 use dynagen::Robot;
 use nalgebra::Vector3;
@@ -35,11 +34,8 @@ use std::path::PathBuf;
 #[derive(clap::Args, Debug)]
 #[command(after_long_help = EVAL_HELP)]
 pub struct Args {
-    /// The robot's URDF file (default: the bundled UR5).
-    #[arg(value_name = "ROBOT.urdf")]
-    pub robot: Option<PathBuf>,
     #[command(flatten)]
-    pub load: crate::robot_source::LoadArgs,
+    pub robot: crate::robot_source::RobotArgs,
     /// The states, as JSON (`-` reads stdin).
     #[arg(long, short, value_name = "STATES.json")]
     pub input: PathBuf,
@@ -91,8 +87,7 @@ impl fmt::Display for InputName<'_> {
 
 /// Runs `dynagen eval`.
 pub fn run(args: &Args) -> Result<Output, CliError> {
-    let source = RobotSource::from_arg(args.robot.as_deref());
-    let model = source.load(&args.load)?;
+    let (source, model) = args.robot.load()?;
     if model.is_floating() {
         // Its states would be NQ/NV long with named base entries: not read yet.
         return Err(CliError::input(

@@ -11,11 +11,8 @@ use std::path::PathBuf;
 #[derive(clap::Args, Debug)]
 #[command(after_long_help = GENERATE_HELP)]
 pub struct Args {
-    /// The robot's URDF file (default: the bundled UR5).
-    #[arg(value_name = "ROBOT.urdf")]
-    pub robot: Option<PathBuf>,
     #[command(flatten)]
-    pub load: crate::robot_source::LoadArgs,
+    pub robot: crate::robot_source::RobotArgs,
     /// Write the module to this file instead of stdout.
     #[arg(long, short, value_name = "FILE")]
     pub output: Option<PathBuf>,
@@ -112,7 +109,7 @@ fn builder(args: &Args, source: &RobotSource) -> Result<(Builder, dynagen::Model
             t.parse::<Trig>().map_err(|e| CliError { message: format!("--trig: {e}"), status: STATUS_BAD_INPUT })?,
         ),
     };
-    let model = source.load(&args.load)?;
+    let model = source.load(&args.robot.load)?;
     let mut b = Builder::new().model(model.clone()).source(&source.to_string());
     if args.f32 {
         b = b.scalar(ScalarType::F32);
@@ -162,7 +159,7 @@ pub fn cli_error(e: BuildError, source: &RobotSource) -> CliError {
 /// Generates the module `args` ask for; also gives the robot's source and
 /// its model.
 fn module(args: &Args) -> Result<(RobotSource, dynagen::Model, GeneratedModule), CliError> {
-    let source = RobotSource::from_arg(args.robot.as_deref());
+    let source = args.robot.source();
     let (builder, model) = builder(args, &source)?;
     let module = builder.generate_module().map_err(|e| cli_error(e, &source))?;
     Ok((source, model, module))

@@ -6,26 +6,20 @@
 //! validation warnings.
 
 use crate::error::{CliError, Output};
-use crate::robot_source::RobotSource;
 use dynagen::model::{JointKind, Model};
 use dynagen::spatial::{Mat3, Vec3};
 use std::fmt::Write;
-use std::path::PathBuf;
 
 /// Arguments of `dynagen inspect`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// The robot's URDF file (default: the bundled UR5).
-    #[arg(value_name = "ROBOT.urdf")]
-    pub robot: Option<PathBuf>,
     #[command(flatten)]
-    pub load: crate::robot_source::LoadArgs,
+    pub robot: crate::robot_source::RobotArgs,
 }
 
 /// Runs `dynagen inspect`.
 pub fn run(args: &Args) -> Result<Output, CliError> {
-    let source = RobotSource::from_arg(args.robot.as_deref());
-    let model = source.load(&args.load)?;
+    let (source, model) = args.robot.load()?;
     Ok(Output::text(report(&model, &source.to_string())))
 }
 

@@ -7,7 +7,6 @@
 
 use crate::error::{CliError, Output};
 use crate::generate::cli_error;
-use crate::robot_source::RobotSource;
 use dynagen::codegen::{generic_op_count, Builder, ForwardDynamicsMethod, GeneratedFunction, GeneratedModule};
 use dynagen::symbolic::OpCount;
 use std::fmt::Write;
@@ -16,11 +15,8 @@ use std::path::PathBuf;
 /// Arguments of `dynagen ops`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// The robot's URDF file (default: the bundled UR5).
-    #[arg(value_name = "ROBOT.urdf")]
-    pub robot: Option<PathBuf>,
     #[command(flatten)]
-    pub load: crate::robot_source::LoadArgs,
+    pub robot: crate::robot_source::RobotArgs,
     /// Count the functions of this scene's module (TOML; see `dynagen
     /// generate --scene`) beside those of the full module.
     #[arg(long, value_name = "SCENE.toml")]
@@ -33,8 +29,7 @@ pub struct Args {
 
 /// Runs `dynagen ops`.
 pub fn run(args: &Args) -> Result<Output, CliError> {
-    let source = RobotSource::from_arg(args.robot.as_deref());
-    let model = source.load(&args.load)?;
+    let (source, model) = args.robot.load()?;
     let with_functions = |b: Builder| match &args.functions {
         Some(f) => b.functions(f),
         None => b,

@@ -12,6 +12,30 @@ const BUNDLED_UR5: &str = include_str!("../../../robots/ur5.urdf");
 /// Its name in messages.
 const BUNDLED_UR5_NAME: &str = "ur5.urdf (bundled)";
 
+/// The robot a command reads: its URDF file (or the bundled UR5) and how it
+/// is loaded; every command that reads a robot takes these arguments.
+#[derive(clap::Args, Clone, Debug, Default)]
+pub struct RobotArgs {
+    /// The robot's URDF file (default: the bundled UR5).
+    #[arg(value_name = "ROBOT.urdf")]
+    pub robot: Option<PathBuf>,
+    #[command(flatten)]
+    pub load: LoadArgs,
+}
+
+impl RobotArgs {
+    /// Where the robot comes from.
+    pub fn source(&self) -> RobotSource {
+        RobotSource::from_arg(self.robot.as_deref())
+    }
+    /// The robot's source and its validated model.
+    pub fn load(&self) -> Result<(RobotSource, Model), CliError> {
+        let source = self.source();
+        let model = source.load(&self.load)?;
+        Ok((source, model))
+    }
+}
+
 /// How a robot file is loaded: the options of every command that reads one.
 #[derive(clap::Args, Clone, Debug, Default)]
 pub struct LoadArgs {
