@@ -2,8 +2,7 @@
 //! torques nearly balance the bias forces at high speed (see
 //! [`algorithms::compensated`](crate::algorithms::compensated)).
 
-use super::{vector, InputError, Robot};
-use crate::algorithms::Loads;
+use super::{vector, ForwardDynamics, InputError, Robot};
 use nalgebra::DVector;
 
 impl Robot {
@@ -46,11 +45,6 @@ impl Robot {
         tau: &DVector<f64>,
         qdd: &mut DVector<f64>,
     ) -> Result<(), InputError> {
-        self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?.forward_dynamics()?.output("qdd", qdd)?;
-        let g = self.model.gravity;
-        let loads = Loads::gravity(&g).with_tips(&self.tips);
-        let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());
-        self.comp.solve(&self.model, q, qd, tau, loads, qdd.as_mut_slice());
-        Ok(())
+        self.forward_dynamics_by(ForwardDynamics::Compensated, [q, qd, tau], qdd)
     }
 }

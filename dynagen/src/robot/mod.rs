@@ -68,6 +68,17 @@ fn frame_pose(model: &Model, ws: &mut Workspace<f64>, frame: usize, q: &DVector<
     Matrix4::from_fn(|r, c| t[r][c])
 }
 
+/// How a [`Robot`] computes q̈.
+#[derive(Clone, Copy)]
+enum ForwardDynamics {
+    /// The articulated-body algorithm.
+    Aba,
+    /// CRBA, RNEA and a sparse LᵀDL solve.
+    Ldlt,
+    /// τ − h in compensated arithmetic, then the articulated-body algorithm.
+    Compensated,
+}
+
 /// Which Jacobian of a frame.
 #[derive(Clone, Copy)]
 enum Jacobian {
@@ -300,11 +311,27 @@ impl Robot {
         tau: &DVector<f64>,
         qdd: &mut DVector<f64>,
     ) -> Result<(), InputError> {
+        self.forward_dynamics_by(ForwardDynamics::Aba, [q, qd, tau], qdd)
+    }
+    /// q̈ at `[q, q̇, τ]` by `method` into `qdd`, under the robot's gravity
+    /// and tip wrenches, after checking the arguments: what every forward
+    /// dynamics call of [`Robot`] does.
+    fn forward_dynamics_by(
+        &mut self,
+        method: ForwardDynamics,
+        [q, qd, tau]: [&DVector<f64>; 3],
+        qdd: &mut DVector<f64>,
+    ) -> Result<(), InputError> {
         self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?.forward_dynamics()?.output("qdd", qdd)?;
         let g = self.model.gravity;
         let loads = Loads::gravity(&g).with_tips(&self.tips);
-        let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());
-        aba::aba(&self.model, &mut self.ws, q, qd, tau, loads, qdd.as_mut_slice());
+        let (model, ws) = (&self.model, &mut self.ws);
+        let (q, qd, tau, qdd) = (q.as_slice(), qd.as_slice(), tau.as_slice(), qdd.as_mut_slice());
+        match method {
+            ForwardDynamics::Aba => aba::aba(model, ws, q, qd, tau, loads, qdd),
+            ForwardDynamics::Ldlt => forward_dynamics::forward_dynamics_ldlt(model, ws, q, qd, tau, loads, qdd),
+            ForwardDynamics::Compensated => self.comp.solve(model, q, qd, tau, loads, qdd),
+        }
         Ok(())
     }
     /// Forward dynamics through the mass matrix: M by the composite-rigid-
@@ -315,14 +342,7 @@ impl Robot {
         qd: &DVector<f64>,
         tau: &DVector<f64>,
     ) -> Result<DVector<f64>, InputError> {
-        self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?.forward_dynamics()?;
-        let g = self.model.gravity;
-        let loads = Loads::gravity(&g).with_tips(&self.tips);
-        let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());
-        vector(self.model.nv(), |qdd| {
-            forward_dynamics::forward_dynamics_ldlt(&self.model, &mut self.ws, q, qd, tau, loads, qdd.as_mut_slice());
-            Ok(())
-        })
+        vector(self.model.nv(), |qdd| self.forward_dynamics_by(ForwardDynamics::Ldlt, [q, qd, tau], qdd))
     }
 
     /// The pose T_sb of a frame (a link name for URDF) in the base frame.
