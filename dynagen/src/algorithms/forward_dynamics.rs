@@ -29,7 +29,10 @@ pub fn forward_dynamics_ldlt<S: Scalar>(
     qdd: &mut [S],
 ) {
     let n = model.nv();
-    assert!(tau.len() == n && qdd.len() == n, "forward_dynamics_ldlt: tau and qdd must have the model's NV = {n} entries");
+    assert!(
+        tau.len() == n && qdd.len() == n,
+        "forward_dynamics_ldlt: tau and qdd must have the model's NV = {n} entries"
+    );
     // h + JᵀF_tip into qdd, then the right-hand side τ − that.
     rnea(model, ws, q, Some(qd), None, loads, qdd);
     for i in 0..n {
