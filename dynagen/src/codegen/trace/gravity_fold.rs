@@ -55,8 +55,12 @@ fn is_point_mass_leaf(model: &Model, i: usize) -> bool {
 /// `model` (prepared for code generation) with every point-mass prismatic
 /// leaf's mass moved to its parent at the leaf's place at `q = 0`, then
 /// regrouped again (what was regrouped already moves nothing more), and
-/// the leaves folded; `None` if there are none.
+/// the leaves folded; `None` if there are none, or the model's base floats
+/// (its gravity torques are those of the floating recursion).
 pub(crate) fn fold_for_gravity(model: &Model) -> Option<(Model, Vec<FoldedLeaf>)> {
+    if model.is_floating() {
+        return None;
+    }
     let leaves: Vec<FoldedLeaf> = (0..model.dof())
         .filter(|&i| is_point_mass_leaf(model, i))
         .map(|i| {
