@@ -279,20 +279,53 @@ pub(super) fn within_dispatch_limit(options: &CodegenOptions, ops: usize) -> (Co
     (CodegenOptions { runtime_dispatch: false, ..options.clone() }, note)
 }
 
-/// The text after `what` in an error of [`FromStr`]: the spellings accepted.
-fn expected(what: &str, given: &str, names: &[&str]) -> String {
-    format!("unknown {what} \"{given}\" (expected {})", names.join(", "))
+/// An option enum's spellings, one table per enum: what [`FromStr`] reads
+/// (the command line, the macros, scene files) and `name` writes back.
+trait Spelled: Copy + PartialEq + 'static {
+    /// What the option is, for an error.
+    const WHAT: &'static str;
+    /// Each spelling and its value.
+    const SPELLINGS: &'static [(&'static str, Self)];
+    /// The value spelled `s` (surrounding white space ignored); the error
+    /// lists the spellings.
+    fn parse(s: &str) -> Result<Self, String> {
+        let s = s.trim();
+        Self::SPELLINGS.iter().find(|(name, _)| *name == s).map(|&(_, v)| v).ok_or_else(|| {
+            let names: Vec<&str> = Self::SPELLINGS.iter().map(|(name, _)| *name).collect();
+            format!("unknown {} \"{s}\" (expected {})", Self::WHAT, names.join(", "))
+        })
+    }
+    /// Its spelling.
+    fn spelling(self) -> &'static str {
+        Self::SPELLINGS.iter().find(|(_, v)| *v == self).map_or("", |(name, _)| name)
+    }
+}
+
+impl Spelled for ScalarType {
+    const WHAT: &'static str = "scalar";
+    const SPELLINGS: &'static [(&'static str, Self)] = &[("f64", ScalarType::F64), ("f32", ScalarType::F32)];
+}
+
+impl Spelled for Trig {
+    const WHAT: &'static str = "trigonometry";
+    const SPELLINGS: &'static [(&'static str, Self)] =
+        &[("batched", Trig::Batched), ("std", Trig::Std), ("libm", Trig::Libm), ("inputs", Trig::Inputs)];
+}
+
+impl Spelled for ForwardDynamicsMethod {
+    const WHAT: &'static str = "forward-dynamics method";
+    const SPELLINGS: &'static [(&'static str, Self)] = &[
+        ("auto", ForwardDynamicsMethod::Auto),
+        ("aba", ForwardDynamicsMethod::Aba),
+        ("ldlt", ForwardDynamicsMethod::Ldlt),
+    ];
 }
 
 impl FromStr for ScalarType {
     type Err = String;
     /// `f64` or `f32`.
     fn from_str(s: &str) -> Result<Self, String> {
-        match s.trim() {
-            "f64" => Ok(ScalarType::F64),
-            "f32" => Ok(ScalarType::F32),
-            other => Err(expected("scalar", other, &["f64", "f32"])),
-        }
+        Self::parse(s)
     }
 }
 
@@ -300,13 +333,7 @@ impl FromStr for Trig {
     type Err = String;
     /// `batched`, `std`, `libm` or `inputs`.
     fn from_str(s: &str) -> Result<Self, String> {
-        match s.trim() {
-            "batched" => Ok(Trig::Batched),
-            "std" => Ok(Trig::Std),
-            "libm" => Ok(Trig::Libm),
-            "inputs" => Ok(Trig::Inputs),
-            other => Err(expected("trigonometry", other, &["batched", "std", "libm", "inputs"])),
-        }
+        Self::parse(s)
     }
 }
 
@@ -314,33 +341,51 @@ impl FromStr for ForwardDynamicsMethod {
     type Err = String;
     /// `auto`, `aba` or `ldlt`.
     fn from_str(s: &str) -> Result<Self, String> {
-        match s.trim() {
-            "auto" => Ok(ForwardDynamicsMethod::Auto),
-            "aba" => Ok(ForwardDynamicsMethod::Aba),
-            "ldlt" => Ok(ForwardDynamicsMethod::Ldlt),
-            other => Err(expected("forward-dynamics method", other, &["auto", "aba", "ldlt"])),
-        }
+        Self::parse(s)
     }
 }
 
 impl Trig {
     /// Its spelling ([`FromStr`] reads it back).
     pub fn name(self) -> &'static str {
-        match self {
-            Trig::Batched => "batched",
-            Trig::Std => "std",
-            Trig::Libm => "libm",
-            Trig::Inputs => "inputs",
-        }
+        self.spelling()
     }
 }
 
 impl ScalarType {
     /// The Rust type's name (its spelling; [`FromStr`] reads it back).
     pub fn name(self) -> &'static str {
-        match self {
-            ScalarType::F64 => "f64",
-            ScalarType::F32 => "f32",
+        self.spelling()
+    }
+}
+
+impl ForwardDynamicsMethod {
+    /// Its spelling ([`FromStr`] reads it back).
+    pub fn name(self) -> &'static str {
+        self.spelling()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every spelling parses to its value and is what `name` writes; an
+    /// unknown one is an error that lists them all.
+    fn round_trips<T: Spelled + FromStr<Err = String> + std::fmt::Debug>(name: impl Fn(T) -> &'static str) {
+        for &(spelling, value) in T::SPELLINGS {
+            assert_eq!(format!(" {spelling} ").parse::<T>(), Ok(value));
+            assert_eq!(name(value), spelling);
         }
+        let e = "nonsense".parse::<T>().unwrap_err();
+        assert!(e.starts_with(&format!("unknown {} \"nonsense\" (expected ", T::WHAT)), "{e}");
+        assert!(T::SPELLINGS.iter().all(|(s, _)| e.contains(s)), "{e}");
+    }
+
+    #[test]
+    fn each_option_enum_reads_back_what_it_writes() {
+        round_trips(ScalarType::name);
+        round_trips(Trig::name);
+        round_trips(ForwardDynamicsMethod::name);
     }
 }
