@@ -163,9 +163,7 @@ impl Robot {
             load.load_tip(r, &mut tips)?;
             let loads = Loads::gravity(&g).with_tips(&tips);
             rnea::rnea(&self.model, &mut self.ws, &qr, Some(&qdr), Some(&qddr), loads, &mut taur);
-            for (j, t) in taur.iter().enumerate() {
-                out[(r, j)] = *t;
-            }
+            out.row_mut(r).copy_from_slice(&taur);
         }
         Ok(out)
     }
@@ -205,12 +203,8 @@ impl Robot {
         let h = dt / int_res as f64;
         let g = self.model.gravity;
         for r in 0..rows {
-            for (j, x) in q.iter().enumerate() {
-                qs[(r, j)] = *x;
-            }
-            for (j, x) in qd.iter().enumerate() {
-                qds[(r, j)] = *x;
-            }
+            qs.row_mut(r).copy_from_slice(&q);
+            qds.row_mut(r).copy_from_slice(&qd);
             if r + 1 == rows {
                 break;
             }
