@@ -5,7 +5,7 @@
 //! double-double reference.
 
 #[path = "src/lib.rs"]
-#[allow(dead_code)]
+#[allow(dead_code, unused_imports)]
 mod cases;
 
 /// Writes the modules.

@@ -1,7 +1,7 @@
 //! Shared helpers of the integration tests in `tests/tests/` (and of the
 //! tests of `tests/no-std-check`): a small deterministic random generator,
 //! the bundled robots, robot families for stiff and extreme cases, and
-//! error measures.
+//! the error measures (`dynagen/tests/support/measure.rs`).
 
 use dynagen::model::{Inertial, JointDescription, RobotBuilder};
 use dynagen::Model;
@@ -90,23 +90,10 @@ pub fn chain(name: &str, links: &[LinkSpec]) -> Model {
     b.build().expect("a chain of physical links is a valid model")
 }
 
-/// max |a − b| over max(max |b|, floor): an error relative to the
-/// reference's scale.
-pub fn rel_err(a: &[f64], b: &[f64], floor: f64) -> f64 {
-    assert_eq!(a.len(), b.len());
-    let scale = b.iter().fold(floor, |m, x| m.max(x.abs()));
-    a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max) / scale
-}
-
-/// ‖got − want‖ / max(‖want‖, `floor`) in Euclidean norms: the error
-/// relative to the reference's size (`floor` bounds the divisor away from
-/// zero: a tiny floor compares an all-zero `want` absolutely).
-pub fn norm_rel_err(got: &[f64], want: &[f64], floor: f64) -> f64 {
-    assert_eq!(got.len(), want.len());
-    let norm = want.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let diff = got.iter().zip(want).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
-    diff / norm.max(floor)
-}
+// The error measures, one file shared with dynagen's own integration tests.
+#[path = "../../dynagen/tests/support/measure.rs"]
+mod measure;
+pub use measure::{norm_rel_err, rel_err, scale};
 
 /// The bundled robots vendored in `generated/` (each `dynagen/robots/<name>.urdf`
 /// → `generated/src/<name>.rs`).

@@ -1,11 +1,17 @@
 //! What dynagen's integration tests share: a deterministic random
-//! generator, the relative errors they compare outputs with, the bundled
-//! robots and scenes, and the skewed chain. A test file takes it with
+//! generator, the error measures `approx` does not provide ([`measure`]),
+//! the bundled robots and scenes, and the skewed chain. A test file takes it with
 //! `mod support;` (each test file is its own crate, so what one file does
 //! not use is dead code there: allowed).
 #![allow(dead_code)]
 
+pub mod measure;
 pub mod skewed_chain;
+
+// Under their short names for the test files (each a crate of its own,
+// most of which use one or none of them).
+#[allow(unused_imports)]
+pub use measure::{norm_rel_err, rel_err, scale};
 
 use dynagen::{Model, Robot};
 use std::path::PathBuf;
@@ -39,24 +45,6 @@ impl Rng {
     pub fn vec(&mut self, n: usize, scale: f64) -> Vec<f64> {
         (0..n).map(|_| scale * self.signed()).collect()
     }
-}
-
-/// ‖got − want‖ / max(‖want‖, `floor`) in Euclidean norms: the error
-/// relative to the reference's size (`floor` bounds the divisor away from
-/// zero: a tiny floor compares an all-zero `want` absolutely).
-pub fn norm_rel_err(got: &[f64], want: &[f64], floor: f64) -> f64 {
-    assert_eq!(got.len(), want.len());
-    let norm = want.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let diff = got.iter().zip(want).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
-    diff / norm.max(floor)
-}
-
-/// max |got − want| / max(max |want|, `floor`): the largest entry's error
-/// relative to the reference's scale.
-pub fn rel_err(got: &[f64], want: &[f64], floor: f64) -> f64 {
-    assert_eq!(got.len(), want.len());
-    let scale = want.iter().fold(floor, |m, x| m.max(x.abs()));
-    got.iter().zip(want).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max) / scale
 }
 
 /// The folder of the bundled robots, `dynagen/robots`.
