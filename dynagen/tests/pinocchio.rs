@@ -7,11 +7,12 @@
 
 mod support;
 
+use approx::abs_diff_eq;
 use dynagen::Robot;
 use nalgebra::DVector;
 use serde_json::Value;
 use std::path::Path;
-use support::rel_err;
+use support::scale;
 
 fn vector(v: &Value) -> Vec<f64> {
     v.as_array().expect("array").iter().map(|x| x.as_f64().expect("number")).collect()
@@ -41,35 +42,33 @@ fn check_robot(name: &str) {
         let qdd = DVector::from_vec(vector(&s["qdd"]));
         let tau_in = DVector::from_vec(vector(&s["tau_in"]));
         let ctx = format!("{name}, state {k}");
-        let e = rel_err(robot.inverse_dynamics(&q, &qd, &qdd).unwrap().as_slice(), &vector(&s["tau"]), 1.0);
-        assert!(e < tol, "{ctx}: tau differs by {e:e}");
+        // Every entry within tol of the reference's largest (at least 1).
+        let close = |what: &str, got: &[f64], want: &[f64]| {
+            let epsilon = tol * scale(want, 1.0);
+            assert!(abs_diff_eq!(got, want, epsilon = epsilon), "{ctx}: {what}: {got:?} against {want:?}");
+        };
+        close("tau", robot.inverse_dynamics(&q, &qd, &qdd).unwrap().as_slice(), &vector(&s["tau"]));
         let m = robot.mass_matrix(&q).unwrap();
         let mref: Vec<f64> = matrix(&s["M"]).into_iter().flatten().collect();
         let mours: Vec<f64> = (0..n).flat_map(|i| (0..n).map(move |j| (i, j))).map(|(i, j)| m[(i, j)]).collect();
-        let e = rel_err(&mours, &mref, 1.0);
-        assert!(e < tol, "{ctx}: M differs by {e:e}");
-        let e = rel_err(robot.bias_forces(&q, &qd).unwrap().as_slice(), &vector(&s["h"]), 1.0);
-        assert!(e < tol, "{ctx}: h differs by {e:e}");
-        let e = rel_err(robot.gravity_torques(&q).unwrap().as_slice(), &vector(&s["g"]), 1.0);
-        assert!(e < tol, "{ctx}: g differs by {e:e}");
+        close("M", &mours, &mref);
+        close("h", robot.bias_forces(&q, &qd).unwrap().as_slice(), &vector(&s["h"]));
+        close("g", robot.gravity_torques(&q).unwrap().as_slice(), &vector(&s["g"]));
         let want_qdd = vector(&s["qdd_fd"]);
-        let e = rel_err(robot.forward_dynamics(&q, &qd, &tau_in).unwrap().as_slice(), &want_qdd, 1.0);
-        assert!(e < tol, "{ctx}: forward dynamics (ABA) differs by {e:e}");
-        let e = rel_err(robot.forward_dynamics_ldlt(&q, &qd, &tau_in).unwrap().as_slice(), &want_qdd, 1.0);
-        assert!(e < tol, "{ctx}: forward dynamics (LTDL) differs by {e:e}");
+        close("forward dynamics (ABA)", robot.forward_dynamics(&q, &qd, &tau_in).unwrap().as_slice(), &want_qdd);
+        let ldlt = robot.forward_dynamics_ldlt(&q, &qd, &tau_in).unwrap();
+        close("forward dynamics (LTDL)", ldlt.as_slice(), &want_qdd);
         let pose = robot.frame_pose(frame, &q).unwrap();
         let pref: Vec<f64> = matrix(&s["frame_pose"]).into_iter().flatten().collect();
         let pours: Vec<f64> = (0..4).flat_map(|i| (0..4).map(move |j| (i, j))).map(|(i, j)| pose[(i, j)]).collect();
-        let e = rel_err(&pours, &pref, 1.0);
-        assert!(e < tol, "{ctx}: pose of {frame} differs by {e:e}");
+        close(&format!("pose of {frame}"), &pours, &pref);
         for (key, jac) in [
             ("jacobian_world", robot.space_jacobian(frame, &q).unwrap()),
             ("jacobian_local", robot.body_jacobian(frame, &q).unwrap()),
         ] {
             let jref: Vec<f64> = matrix(&s[key]).into_iter().flatten().collect();
             let jours: Vec<f64> = (0..6).flat_map(|i| (0..n).map(move |j| (i, j))).map(|(i, j)| jac[(i, j)]).collect();
-            let e = rel_err(&jours, &jref, 1.0);
-            assert!(e < tol, "{ctx}: {key} of {frame} differs by {e:e}");
+            close(&format!("{key} of {frame}"), &jours, &jref);
         }
     }
 }
@@ -132,19 +131,20 @@ fn ur5_from_modern_robotics_lists_agrees_with_pinocchio_on_the_urdf() {
         let qd = DVector::from_vec(vector(&s["qd"]));
         let qdd = DVector::from_vec(vector(&s["qdd"]));
         let tau_in = DVector::from_vec(vector(&s["tau_in"]));
-        let e = rel_err(robot.inverse_dynamics(&q, &qd, &qdd).unwrap().as_slice(), &vector(&s["tau"]), 1.0);
-        assert!(e < 1e-12, "state {k}: tau differs by {e:e}");
-        let e = rel_err(robot.forward_dynamics(&q, &qd, &tau_in).unwrap().as_slice(), &vector(&s["qdd_fd"]), 1.0);
-        assert!(e < 1e-12, "state {k}: forward dynamics differs by {e:e}");
+        // Every entry within 1e-12 of the reference's largest (at least 1).
+        let close = |what: &str, got: &[f64], want: &[f64]| {
+            let epsilon = 1e-12 * scale(want, 1.0);
+            assert!(abs_diff_eq!(got, want, epsilon = epsilon), "state {k}: {what}: {got:?} against {want:?}");
+        };
+        close("tau", robot.inverse_dynamics(&q, &qd, &qdd).unwrap().as_slice(), &vector(&s["tau"]));
+        close("forward dynamics", robot.forward_dynamics(&q, &qd, &tau_in).unwrap().as_slice(), &vector(&s["qdd_fd"]));
         let m = robot.mass_matrix(&q).unwrap();
         let mref: Vec<f64> = matrix(&s["M"]).into_iter().flatten().collect();
-        let e = rel_err(m.transpose().as_slice(), &mref, 1.0);
-        assert!(e < 1e-12, "state {k}: M differs by {e:e}");
+        close("M", m.transpose().as_slice(), &mref);
         // The MR end-effector frame is the URDF's ee_link.
         let pose = robot.frame_pose("ee", &q).unwrap();
         let pref: Vec<f64> = matrix(&s["frame_pose"]).into_iter().flatten().collect();
-        let e = rel_err(pose.transpose().as_slice(), &pref, 1.0);
-        assert!(e < 1e-12, "state {k}: end-effector pose differs by {e:e}");
+        close("end-effector pose", pose.transpose().as_slice(), &pref);
     }
 }
 
