@@ -9,6 +9,7 @@
 
 mod support;
 
+use approx::abs_diff_eq;
 use dynagen::algorithms::floating::{
     self, aba::aba, centroidal, crba::crba, forward_dynamics, kinematics as fk, rnea::rnea,
 };
@@ -17,7 +18,7 @@ use dynagen::spatial::{Force, Motion, Transform, Vec3};
 use dynagen::{Model, ModelError};
 use nalgebra::{DMatrix, DVector};
 use std::fmt::Write;
-use support::{norm_rel_err, rel_err, Rng};
+use support::{norm_rel_err, rel_err, scale, Rng};
 
 const G: [f64; 3] = [0.0, 0.0, -9.81];
 
@@ -138,10 +139,13 @@ fn inverse_of_forward_dynamics_and_two_forward_dynamics_agree() {
             let back = tau_of(&model, &mut ws, &q, &qd, &qdd, &g);
             // τ is compared with the size of the terms that make it
             let h = tau_of(&model, &mut ws, &q, &qd, &vec![0.0; model.nv()], &g);
-            let scale = h.iter().chain(&tau).fold(1.0f64, |m, x| m.max(x.abs()));
-            let e = rel_err(&back, &tau, scale);
-            worst[0] = worst[0].max(e);
-            assert!(e < 1e-10, "seed {seed}: ID(FD(τ)) − τ = {e:e}");
+            let size = scale(&h, scale(&tau, 1.0));
+            let epsilon = 1e-10 * size;
+            assert!(
+                abs_diff_eq!(&back[..], &tau[..], epsilon = epsilon),
+                "seed {seed}: ID(FD(τ)) {back:?} against τ {tau:?}"
+            );
+            worst[0] = worst[0].max(rel_err(&back, &tau, size));
             let mut ldlt = vec![0.0; model.nv()];
             forward_dynamics::forward_dynamics_ldlt(&model, &mut ws, &q, &qd, &tau, Loads::gravity(&g), &mut ldlt);
             let e = norm_rel_err(&ldlt, &qdd, 1.0);
@@ -170,8 +174,12 @@ fn mass_matrix_is_symmetric_positive_definite_and_equals_unit_accelerations() {
             e[j] = 1.0;
             let mut col = vec![0.0; nv];
             rnea(&model, &mut ws, &q, Some(&zero), Some(&e), Loads::none(), &mut col);
-            let err = rel_err(&col, m.column(j).as_slice(), m.amax());
-            assert!(err < 1e-13, "seed {seed}: column {j} {err:e}");
+            let want = m.column(j);
+            let epsilon = 1e-13 * m.amax();
+            assert!(
+                abs_diff_eq!(&col[..], want.as_slice(), epsilon = epsilon),
+                "seed {seed}: column {j} {col:?} against {want}"
+            );
         }
         // the base block is the whole robot's composite inertia: its mass
         for k in 3..6 {
@@ -228,15 +236,24 @@ fn base_rows_are_the_rate_of_change_of_momentum_minus_the_weight() {
         let mass = centroidal::total_mass(&model);
         let weight_world = Force::new(c.cross(&g.scale(mass)), g.scale(mass));
         let want = rate_base - pose(&q).force_to_child(&weight_world);
-        let scale = want.to_array().iter().fold(1.0f64, |m, x| m.max(x.abs()));
-        let e = rel_err(&tau[..6], &want.to_array(), scale);
-        assert!(e < 1e-6, "seed {seed}: base rows vs momentum balance {e:e}");
+        let want = want.to_array();
+        let epsilon = 1e-6 * scale(&want, 1.0);
+        assert!(
+            abs_diff_eq!(&tau[..6], &want[..], epsilon = epsilon),
+            "seed {seed}: base rows {:?} against the momentum balance {want:?}",
+            &tau[..6]
+        );
         // g's base rows hold the weight: minus its wrench
         let mut gv = vec![0.0; nv];
         dynagen::algorithms::bias::gravity_torques(&model, &mut ws, &q, &g, &mut gv);
         let hold = -pose(&q).force_to_child(&weight_world);
-        let e = rel_err(&gv[..6], &hold.to_array(), mass * 9.81);
-        assert!(e < 1e-13, "seed {seed}: g's base rows vs the weight {e:e}");
+        let hold = hold.to_array();
+        let epsilon = 1e-13 * scale(&hold, mass * 9.81);
+        assert!(
+            abs_diff_eq!(&gv[..6], &hold[..], epsilon = epsilon),
+            "seed {seed}: g's base rows {:?} against the weight {hold:?}",
+            &gv[..6]
+        );
     }
 }
 
@@ -266,8 +283,12 @@ fn locked_joints_make_one_rigid_body() {
         let iv = Force::from_array(core::array::from_fn(|k| iv[k]));
         let want = &inertia * a + DVector::from_column_slice(&v.cross_force(&iv).to_array());
         let tau = tau_of(&model, &mut ws, &q, &qd, &qdd, &g);
-        let e = rel_err(&tau[..6], want.as_slice(), 1.0);
-        assert!(e < 1e-12, "seed {seed}: locked robot vs rigid body {e:e}");
+        let epsilon = 1e-12 * scale(want.as_slice(), 1.0);
+        assert!(
+            abs_diff_eq!(&tau[..6], want.as_slice(), epsilon = epsilon),
+            "seed {seed}: locked robot {:?} against the rigid body {want}",
+            &tau[..6]
+        );
         // and the robot with every joint fixed in the file, at q = 0
         let mut rng = Rng::new(seed);
         let text = random_urdf(&mut rng, 6, false)
@@ -281,8 +302,12 @@ fn locked_joints_make_one_rigid_body() {
         let mut ws_r = Workspace::new(&rigid);
         let t_full = tau_of(&model, &mut ws, &q0, &qd, &qdd, &g);
         let t_rigid = tau_of(&rigid, &mut ws_r, &q0[..7], &qd[..6], &qdd[..6], &g);
-        let e = rel_err(&t_rigid, &t_full[..6], 1.0);
-        assert!(e < 1e-12, "seed {seed}: all joints fixed in the file {e:e}");
+        let epsilon = 1e-12 * scale(&t_full[..6], 1.0);
+        assert!(
+            abs_diff_eq!(&t_rigid[..], &t_full[..6], epsilon = epsilon),
+            "seed {seed}: all joints fixed in the file: {t_rigid:?} against {:?}",
+            &t_full[..6]
+        );
     }
 }
 
@@ -351,13 +376,16 @@ fn jacobians_against_finite_differences_on_se3() {
             let space = twist(dt * th.try_inverse().unwrap());
             let col = |j: &[f64]| (0..6).map(|r| j[r * nv + k]).collect::<Vec<_>>();
             for (name, got, want) in [("body", col(&jb), body), ("space", col(&js), space)] {
-                let e = rel_err(&got, &want, 1.0);
-                assert!(e < 1e-8, "seed {seed}, frame {frame}, column {k}: {name} Jacobian {e:e}");
+                let epsilon = 1e-8 * scale(&want, 1.0);
+                assert!(
+                    abs_diff_eq!(&got[..], &want[..], epsilon = epsilon),
+                    "seed {seed}, frame {frame}, column {k}: {name} Jacobian {got:?} against {want:?}"
+                );
             }
             // the base-frame Jacobian is the world one seen from the base
             let world = Motion::from_array(core::array::from_fn(|r| js[r * nv + k]));
             let in_base = pose(&q).motion_to_child(&world).to_array();
-            assert!(rel_err(&col(&jbase), &in_base, 1.0) < 1e-13);
+            assert!(abs_diff_eq!(&col(&jbase)[..], &in_base[..], epsilon = 1e-13 * scale(&in_base, 1.0)));
         }
     }
 }
@@ -381,15 +409,22 @@ fn fixed_base_model_is_the_floating_one_with_the_base_held() {
         let tf = tau_of(&floating, &mut wf, &q, &qd, &qdd, &g);
         let mut tx = vec![0.0; n];
         fixed_rnea::rnea(&fixed, &mut wx, &q[7..], Some(&qd[6..]), Some(&qdd[6..]), Loads::gravity(&gb), &mut tx);
-        let e = rel_err(&tf[6..], &tx, 1.0);
-        assert!(e < 1e-12, "seed {seed}: joint rows of τ {e:e}");
+        let epsilon = 1e-12 * scale(&tx, 1.0);
+        assert!(
+            abs_diff_eq!(&tf[6..], &tx[..], epsilon = epsilon),
+            "seed {seed}: joint rows of τ {:?} against {tx:?}",
+            &tf[6..]
+        );
         let mf = mass_matrix(&floating, &mut wf, &q);
         let mut mx = vec![0.0; n * n];
         fixed_crba::crba(&fixed, &mut wx, &q[7..], Loads::none(), &mut mx);
         let joints: Vec<f64> =
             (0..n).flat_map(|i| (0..n).map(move |j| (i, j))).map(|(i, j)| mf[(6 + i, 6 + j)]).collect();
-        let e = rel_err(&joints, &mx, 1.0);
-        assert!(e < 1e-13, "seed {seed}: joint block of M {e:e}");
+        let epsilon = 1e-13 * scale(&mx, 1.0);
+        assert!(
+            abs_diff_eq!(&joints[..], &mx[..], epsilon = epsilon),
+            "seed {seed}: joint block of M {joints:?} against {mx:?}"
+        );
     }
 }
 
@@ -578,8 +613,13 @@ fn floating_algorithms_trace_on_the_symbolic_scalar() {
             ];
             for (f, want) in checks {
                 let got = f.eval(&inputs).unwrap();
-                let e = rel_err(&got, want, 1.0);
-                assert!(e < 1e-11, "{}: {} traced vs f64 {e:e}", model.name, f.name());
+                let epsilon = 1e-11 * scale(want, 1.0);
+                assert!(
+                    abs_diff_eq!(&got[..], &want[..], epsilon = epsilon),
+                    "{}: {} traced {got:?} against f64 {want:?}",
+                    model.name,
+                    f.name()
+                );
             }
         }
     }
