@@ -5,6 +5,7 @@
 
 mod support;
 
+use approx::abs_diff_eq;
 use dynagen::algorithms::{crba, rnea, Loads, Workspace};
 use dynagen::codegen::{generate, CodegenError, CodegenOptions, Function};
 use dynagen::model::{BuildOptions, Inertial, JointDescription, ModelError, ModelWarning, RobotBuilder};
@@ -13,7 +14,7 @@ use dynagen::{DoubleDouble, InputError, Model, Robot, Scalar};
 use nalgebra::DVector;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use support::rel_err;
+use support::scale;
 
 fn data_path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
@@ -79,10 +80,16 @@ fn a_nonphysical_inertia_loads_on_request_and_matches_pinocchio() {
         // Pinocchio (f64, its own order of operations) and our f64 agree to
         // rounding; both are within rounding of the double-double values.
         for (what, ours, pin, dd) in [("tau", &tau, &vector(&s["tau"]), &tau_dd), ("M", &m, &m_pin, &m_dd)] {
-            let e = rel_err(ours, pin, 1e-3);
-            assert!(e < 1e-13, "state {k}: {what} differs from Pinocchio by {e:e}");
-            let e = rel_err(ours, dd, 1e-3);
-            assert!(e < 1e-14, "state {k}: {what} differs from double-double by {e:e}");
+            let epsilon = 1e-13 * scale(pin, 1e-3);
+            assert!(
+                abs_diff_eq!(&ours[..], &pin[..], epsilon = epsilon),
+                "state {k}: {what} {ours:?} against Pinocchio's {pin:?}"
+            );
+            let epsilon = 1e-14 * scale(dd, 1e-3);
+            assert!(
+                abs_diff_eq!(&ours[..], &dd[..], epsilon = epsilon),
+                "state {k}: {what} {ours:?} against double-double {dd:?}"
+            );
         }
         indefinite |= (0..3).any(|i| m[i * 3 + i] < 0.0);
     }
@@ -212,7 +219,7 @@ fn axes_of_1e200_and_1e_200_are_directions_not_overflows() {
         let a = m.bodies[0].joint.axis.0;
         assert!((a[1] - 0.6).abs() < tol && (a[2] - 0.8).abs() < tol, "{a:?}");
         let (t, u) = (tau_m::<f64>(&m, &[0.4], &[1.0], &[2.0]), tau_m::<f64>(&unit, &[0.4], &[1.0], &[2.0]));
-        assert!(rel_err(&t.0, &u.0, 0.0) < tol);
+        assert!(abs_diff_eq!(&t.0[..], &u.0[..], epsilon = tol * scale(&u.0, 0.0)), "{:?} against {:?}", t.0, u.0);
     }
     // A screw axis (Rust, Modern Robotics) of such a length scales the
     // motion: refused naming the joint and the length, not as an inertia.
