@@ -8,6 +8,7 @@
 
 mod support;
 
+use approx::abs_diff_eq;
 use dynagen::codegen::{generate_scene, CodegenError, CodegenOptions, Function, ScalarType, Trig};
 use dynagen::scene::{
     CodeKeys, Gravity, PayloadInertia, Scene, SceneError, SceneFile, SceneInputError, SceneInputs, SceneModel,
@@ -16,7 +17,7 @@ use dynagen::scene::{
 use dynagen::{Model, Robot};
 use nalgebra::{DMatrix, DVector, Vector3, Vector6};
 use std::path::PathBuf;
-use support::{model, robot as full, robot_path};
+use support::{model, robot as full, robot_path, scale};
 
 /// A deterministic pseudo-random vector with entries in (−scale, scale).
 fn state(n: usize, seed: u64, scale: f64) -> DVector<f64> {
@@ -27,13 +28,11 @@ fn state(n: usize, seed: u64, scale: f64) -> DVector<f64> {
     })
 }
 
-/// max |a − b| ≤ tol · max(1, max |b|).
+/// max |a − b| ≤ tol · max(1, max |b|), by `approx`.
 #[track_caller]
 fn assert_close(a: &[f64], b: &[f64], tol: f64, what: &str) {
-    assert_eq!(a.len(), b.len(), "{what}: lengths differ");
-    let scale = b.iter().fold(1.0f64, |m, x| m.max(x.abs()));
-    let err = a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
-    assert!(err <= tol * scale, "{what}: error {err:e} (scale {scale:e})\n  got  {a:?}\n  want {b:?}");
+    let epsilon = tol * scale(b, 1.0);
+    assert!(abs_diff_eq!(a, b, epsilon = epsilon), "{what}: ε = {epsilon:e}\n  got  {a:?}\n  want {b:?}");
 }
 
 fn pick(v: &DVector<f64>, idx: &[usize]) -> Vec<f64> {
