@@ -7,6 +7,7 @@
 //! axis is then a general one and every placement is rotated, so the
 //! general formulas run. τ, M and q̈ must agree to rounding.
 
+use approx::abs_diff_eq;
 use dynagen::algorithms::{aba, crba, rnea, Loads, Workspace};
 use dynagen::model::{AxisAlignment, Inertial, JointDescription, RobotDescription};
 use dynagen::spatial::{Mat3, Transform, Vec3};
@@ -77,11 +78,10 @@ fn turned(desc: &RobotDescription) -> RobotDescription {
     d
 }
 
+/// max |a − b| ≤ tol · max(1, max |a|), by `approx`.
 fn close(a: &[f64], b: &[f64], tol: f64, what: &str) {
-    let scale = a.iter().fold(1.0f64, |m, x| m.max(x.abs()));
-    for (i, (x, y)) in a.iter().zip(b).enumerate() {
-        assert!((x - y).abs() <= tol * scale, "{what}[{i}]: {x} vs {y} (scale {scale})");
-    }
+    let epsilon = tol * a.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+    assert!(abs_diff_eq!(a, b, epsilon = epsilon), "{what}: {a:?} vs {b:?} (ε {epsilon:e})");
 }
 
 #[test]
