@@ -33,6 +33,7 @@
 //! The radius enters only through Iᵢ; the inertia about the link's own axis
 //! (mᵢr²/2) never moves, since both joints turn about y.
 
+use approx::abs_diff_eq;
 use dynagen::model::{Inertial, JointDescription};
 use dynagen::{Robot, RobotBuilder};
 use nalgebra::{DVector, Matrix2, Vector2};
@@ -92,12 +93,11 @@ const STATES: [([f64; 2], [f64; 2], [f64; 2]); 6] = [
     ([40.0, -17.5], [9.0, 11.0], [-20.0, 13.0]),
 ];
 
-/// |got − want| ≤ 1e-12 (1 + max |want|), entrywise (column-major slices).
+/// |got − want| ≤ 1e-12 (1 + max |want|), entrywise (column-major slices),
+/// by `approx`.
 fn close(what: &str, got: &[f64], want: &[f64]) {
-    assert_eq!(got.len(), want.len());
-    let scale = 1.0 + want.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-    let err = got.iter().zip(want).fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
-    assert!(err <= 1e-12 * scale, "{what}: {got:?} vs {want:?} (error {err:e})");
+    let epsilon = 1e-12 * (1.0 + want.iter().fold(0.0f64, |a, x| a.max(x.abs())));
+    assert!(abs_diff_eq!(got, want, epsilon = epsilon), "{what}: {got:?} vs {want:?} (ε {epsilon:e})");
 }
 
 #[test]
