@@ -25,6 +25,7 @@
 //! (Another proptest version may draw other cases; the tolerances are not
 //! tuned to this seed's cases.)
 
+use approx::abs_diff_eq;
 use dynagen::algorithms::integrators::{rk4, IntegratorScratch, StepInputs};
 use dynagen::algorithms::{aba, crba, energy, forward_dynamics, rnea, BodyInertia, Loads, TipWrench, Workspace};
 use dynagen::model::{Inertial, JointDescription};
@@ -319,11 +320,6 @@ fn max_abs(x: &[f64]) -> f64 {
     x.iter().fold(0.0f64, |a, v| a.max(v.abs()))
 }
 
-fn max_diff(a: &[f64], b: &[f64]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    a.iter().zip(b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
-}
-
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
@@ -400,8 +396,8 @@ proptest! {
         let q = DVector::from_column_slice(&s.q);
         let (ma, mb) = (ra.mass_matrix(&q).unwrap(), rb.mass_matrix(&q).unwrap());
         let (ga, gb) = (ra.gravity_torques(&q).unwrap(), rb.gravity_torques(&q).unwrap());
-        prop_assert!((&ma - &mb).amax() <= 1e-12 * ma.amax(), "M: {ma} vs {mb}");
-        prop_assert!((&ga - &gb).amax() <= 1e-12 * ga.amax(), "g: {ga} vs {gb}");
+        prop_assert!(abs_diff_eq!(ma, mb, epsilon = 1e-12 * ma.amax()), "M: {ma} vs {mb}");
+        prop_assert!(abs_diff_eq!(ga, gb, epsilon = 1e-12 * ga.amax()), "g: {ga} vs {gb}");
     }
 
     /// A run-time payload (an extra inertia on a body, as generated code
@@ -436,15 +432,15 @@ proptest! {
             (Loads::gravity(&g).with_tips(&tips).with_payloads(&payloads), Loads::gravity(&g).with_tips(&tips));
         rnea::rnea(&model, &mut ws, &s.q, Some(&s.qd), Some(&s.tau), loads, &mut t1);
         rnea::rnea(&heavier, &mut wh, &s.q, Some(&s.qd), Some(&s.tau), loads_heavier, &mut t2);
-        prop_assert!(max_diff(&t1, &t2) <= 1e-12 * max_abs(&t2).max(1.0), "τ: {t1:?} vs {t2:?}");
+        prop_assert!(abs_diff_eq!(&t1[..], &t2[..], epsilon = 1e-12 * max_abs(&t2).max(1.0)), "τ: {t1:?} vs {t2:?}");
         let (mut m1, mut m2) = (vec![0.0; n * n], vec![0.0; n * n]);
         crba::crba(&model, &mut ws, &s.q, Loads::none().with_payloads(&payloads), &mut m1);
         crba::crba(&heavier, &mut wh, &s.q, Loads::none(), &mut m2);
-        prop_assert!(max_diff(&m1, &m2) <= 1e-12 * max_abs(&m2), "M: {m1:?} vs {m2:?}");
+        prop_assert!(abs_diff_eq!(&m1[..], &m2[..], epsilon = 1e-12 * max_abs(&m2)), "M: {m1:?} vs {m2:?}");
         // Without q̇ and q̈ (g only) the payload still weighs.
         rnea::rnea(&model, &mut ws, &s.q, None, None, Loads::gravity(&g).with_payloads(&payloads), &mut t1);
         rnea::rnea(&heavier, &mut wh, &s.q, None, None, Loads::gravity(&g), &mut t2);
-        prop_assert!(max_diff(&t1, &t2) <= 1e-12 * max_abs(&t2).max(1.0), "g: {t1:?} vs {t2:?}");
+        prop_assert!(abs_diff_eq!(&t1[..], &t2[..], epsilon = 1e-12 * max_abs(&t2).max(1.0)), "g: {t1:?} vs {t2:?}");
         // The articulated-body algorithm with the payloads inverts inverse
         // dynamics on the heavier model: a residual, 1e-10 relative to the
         // largest of the terms it balances (τ, h + JᵀF, M q̈).
@@ -454,7 +450,7 @@ proptest! {
         rnea::rnea(&heavier, &mut wh, &s.q, Some(&s.qd), None, loads_heavier, &mut h);
         let mqdd = (DMatrix::from_row_slice(n, n, &m2) * DVector::from_column_slice(&a)).amax();
         let scale = max_abs(&s.tau).max(max_abs(&h)).max(mqdd).max(1.0);
-        prop_assert!(max_diff(&t2, &s.tau) <= 1e-10 * scale, "aba with payloads: rnea(aba(τ)) = {t2:?} vs τ = {:?}", s.tau);
+        prop_assert!(abs_diff_eq!(&t2[..], &s.tau[..], epsilon = 1e-10 * scale), "aba with payloads: rnea(aba(τ)) = {t2:?} vs τ = {:?}", s.tau);
     }
 
     /// CRBA against the Modern Robotics construction (n inverse dynamics
@@ -470,8 +466,7 @@ proptest! {
         let mut m2 = vec![0.0; n * n];
         crba::mass_matrix_by_unit_accelerations(&model, &mut ws, &s.q, &mut m2);
         let m2 = DMatrix::from_row_slice(n, n, &m2);
-        let err = (&m - &m2).amax();
-        prop_assert!(err <= 1e-10 * m.amax(), "max |ΔM| = {err:e}, max |M| = {:e}", m.amax());
+        prop_assert!(abs_diff_eq!(m, m2, epsilon = 1e-10 * m.amax()), "M {m} vs unit accelerations {m2}");
     }
 
     /// M(q) is symmetric and positive definite: a Cholesky factorisation
@@ -511,10 +506,9 @@ proptest! {
         let m = mass_matrix(&model, &mut ws, &s.q);
         let eig = m.symmetric_eigenvalues();
         let cond = eig.max() / eig.min();
-        let err = max_diff(&a, &l);
         prop_assert!(
-            err <= 1e-10 * (cond / 100.0).max(1.0) * max_abs(&a),
-            "aba {a:?} vs ldlt {l:?}: {err:e} (cond(M) = {cond:e})"
+            abs_diff_eq!(&a[..], &l[..], epsilon = 1e-10 * (cond / 100.0).max(1.0) * max_abs(&a)),
+            "aba {a:?} vs ldlt {l:?} (cond(M) = {cond:e})"
         );
         // At rest without gravity, aba_at_rest skips the velocity terms: it
         // adds only zeros fewer, so it is ABA bit for bit.
@@ -526,8 +520,7 @@ proptest! {
         rnea::rnea(&model, &mut ws, &s.q, Some(&s.qd), None, Loads::gravity(&g).with_tips(&tips), &mut h);
         let mqdd = (&m * DVector::from_column_slice(&a)).amax();
         let scale = max_abs(&s.tau).max(max_abs(&h)).max(mqdd);
-        let err = max_diff(&tau, &s.tau);
-        prop_assert!(err <= 1e-10 * scale, "rnea(aba(τ)) − τ = {err:e}, scale {scale:e}");
+        prop_assert!(abs_diff_eq!(&tau[..], &s.tau[..], epsilon = 1e-10 * scale), "rnea(aba(τ)) = {tau:?} vs τ = {:?}, scale {scale:e}", s.tau);
     }
 
     /// Tip wrenches: the torques of a wrench F (in the `tip` frame) are
@@ -549,9 +542,9 @@ proptest! {
         let t = robot.frame_pose("tip", &q).unwrap();
         let f_s = adjoint(&t.try_inverse().unwrap()).transpose() * f;
         let scale = jb.amax().max(js.amax()) * f.amax().max(f_s.amax());
-        let eb = (&tau - jb.transpose() * f).amax();
-        let es = (&tau - js.transpose() * f_s).amax();
-        prop_assert!(eb <= 1e-11 * scale && es <= 1e-11 * scale, "errors {eb:e} (J_b), {es:e} (J_s), scale {scale:e}");
+        let (tb, ts) = (jb.transpose() * f, js.transpose() * f_s);
+        prop_assert!(abs_diff_eq!(tau, tb, epsilon = 1e-11 * scale), "τ {tau} vs J_bᵀF {tb}, scale {scale:e}");
+        prop_assert!(abs_diff_eq!(tau, ts, epsilon = 1e-11 * scale), "τ {tau} vs J_sᵀF_s {ts}, scale {scale:e}");
     }
 
     /// Kinetic energy from the body twists (Σ ½VᵢᵀGᵢVᵢ) against ½q̇ᵀM(q)q̇
@@ -681,9 +674,11 @@ proptest! {
                 let dt = Matrix4::from_column_slice(&derivative(pose, 0.05 / a));
                 let (vs, vb) = (se3_to_twist(&(dt * t_inv)), se3_to_twist(&(t_inv * dt)));
                 let scale = a * reach;
-                let (es, eb) = ((vs - js.column(j)).amax(), (vb - jb.column(j)).amax());
-                prop_assert!(es <= 1e-10 * scale && eb <= 1e-10 * scale,
-                    "frame {frame}, joint {j}: J_s error {es:e}, J_b error {eb:e}, scale {scale:e}");
+                let (cs, cb) = (js.column(j).into_owned(), jb.column(j).into_owned());
+                prop_assert!(abs_diff_eq!(vs, cs, epsilon = 1e-10 * scale),
+                    "frame {frame}, joint {j}: J_s column {cs} vs the pose's derivative {vs}, scale {scale:e}");
+                prop_assert!(abs_diff_eq!(vb, cb, epsilon = 1e-10 * scale),
+                    "frame {frame}, joint {j}: J_b column {cb} vs the pose's derivative {vb}, scale {scale:e}");
             }
         }
     }
