@@ -15,6 +15,7 @@
 //! nothing (they plot), so their inputs (1000 rows for the inverse dynamics
 //! one) and the package's results come from that file only.
 
+use approx::abs_diff_eq;
 use dynagen::algorithms::integrators::euler_step;
 use dynagen::{Integrator, Model, Robot, Stepping, TipWrenchHistory};
 use nalgebra::{dmatrix, dvector, DMatrix, DVector, Matrix4, Matrix6, Vector3, Vector6};
@@ -107,12 +108,12 @@ fn check(function: &str, got: &[f64], printed: &[&str]) {
         let decimals = printed[k].split('.').nth(1).map_or(0, str::len) as i32;
         let half_ulp = 0.5 * 10f64.powi(-decimals);
         assert!(
-            (got[k] - p).abs() <= half_ulp * (1.0 + 1e-9),
+            abs_diff_eq!(got[k], p, epsilon = half_ulp * (1.0 + 1e-9)),
             "{function}[{k}]: {} vs printed {p} (±{half_ulp})",
             got[k]
         );
-        assert!((got[k] - full[k]).abs() <= 1e-8, "{function}[{k}]: {} vs the package's {}", got[k], full[k]);
     }
+    assert!(abs_diff_eq!(got, &full[..], epsilon = 1e-8), "{function}: {got:?} vs the package's {full:?}");
 }
 
 fn row_major(m: &DMatrix<f64>) -> Vec<f64> {
@@ -240,12 +241,11 @@ fn inverse_dynamics_trajectory() {
         assert!((want.row(k).transpose() - Vector3::from(row)).amax() > 1e-6, "row {k} is one the shortcut moves");
         want.set_row(k, &Vector3::from(row).transpose());
     }
-    let err = (&tau - &want).amax();
-    assert!(err <= 1e-8, "max |τ − τ_MR| = {err:e}");
+    assert!(abs_diff_eq!(tau, want, epsilon = 1e-8), "τ {tau} vs τ_MR {want}");
     // The per-row history and a constant tip wrench are the same thing here.
     let mut r = loaded_robot();
     let tau2 = r.inverse_dynamics_trajectory(&q, &qd, &qdd, None).unwrap();
-    assert!((&tau2 - &want).amax() <= 1e-8);
+    assert!(abs_diff_eq!(tau2, want, epsilon = 1e-8), "τ {tau2} vs τ_MR {want}");
 }
 
 #[test]
@@ -267,8 +267,8 @@ fn forward_dynamics_trajectory() {
         .unwrap();
     let out = e["output"].as_array().unwrap();
     let (want_q, want_qd) = (matrix(&out[0]), matrix(&out[1]));
-    let (eq, eqd) = ((&q - &want_q).amax(), (&qd - &want_qd).amax());
-    assert!(eq <= 1e-8 && eqd <= 1e-8, "max errors: q {eq:e}, q̇ {eqd:e}");
+    assert!(abs_diff_eq!(q, want_q, epsilon = 1e-8), "q {q} vs {want_q}");
+    assert!(abs_diff_eq!(qd, want_qd, epsilon = 1e-8), "q̇ {qd} vs {want_qd}");
 
     // The other schemes follow the same motion. It is violent (|q̇| up to
     // 12 rad/s), and with 8 Euler sub-steps per 0.1 s the library's result
