@@ -18,12 +18,18 @@
 //! depend on it are NaN (or infinite); a caller that may pass non-finite
 //! values must check them itself. Both are tested below.
 
+use approx::abs_diff_eq;
 use dynagen::{DoubleDouble, Model};
 use dynagen_tests::suite::{eval, fd_bound, id_bound, spd_condition, states};
-use dynagen_tests::{rel_err, stiff_case, Rng, StiffCase};
+use dynagen_tests::{rel_err, scale, stiff_case, Rng, StiffCase};
 use nalgebra::DVector;
 
 const EPS: f64 = f64::EPSILON;
+
+/// Every entry of `got` within `bound` · max |want| of `want`.
+fn within(got: &[f64], want: &[f64], bound: f64) -> bool {
+    abs_diff_eq!(got, want, epsilon = bound * scale(want, 0.0))
+}
 
 /// Worst errors over a case's states.
 #[derive(Debug, Default)]
@@ -66,23 +72,26 @@ fn check(case: &StiffCase, count: usize) -> Worst {
         w.cond = w.cond.max(cond);
         let idb = id_bound(n);
         for (what, a, b) in [("tau", &f.tau, &r.tau), ("M", &f.m, &r.m), ("h", &f.h, &r.h), ("g", &f.g, &r.g)] {
-            let e = rel_err(a, b, 0.0);
-            assert!(e <= idb, "{ctx}: {what} relative error {e:e} > {idb:e}");
-            w.id = w.id.max(e);
+            assert!(within(a, b, idb), "{ctx}: {what} not within {idb:e}: {a:?} vs {b:?}");
+            w.id = w.id.max(rel_err(a, b, 0.0));
         }
         let fdb = fd_bound(n, cond, &r, &tau);
-        let e_aba = rel_err(&f.qdd_aba, &r.qdd_aba, 0.0);
-        let e_ldlt = rel_err(&f.qdd_ldlt, &r.qdd_aba, 0.0);
-        let e_comp = rel_err(comp.as_slice(), &r.qdd_aba, 0.0);
-        for (what, e) in [("ABA", e_aba), ("LTDL", e_ldlt), ("compensated", e_comp)] {
-            assert!(e <= fdb, "{ctx}: {what} relative error {e:e} > {fdb:e} (cond {cond:e})");
+        for (what, x) in [("ABA", &f.qdd_aba[..]), ("LTDL", &f.qdd_ldlt), ("compensated", comp.as_slice())] {
+            assert!(
+                within(x, &r.qdd_aba, fdb),
+                "{ctx}: {what} not within {fdb:e} (cond {cond:e}): {x:?} vs {:?}",
+                r.qdd_aba
+            );
         }
         // The two double-double forward dynamics agree with each other.
-        let e_ref = rel_err(&r.qdd_ldlt, &r.qdd_aba, 0.0);
-        assert!(e_ref <= 1e-20 * cond.max(1.0), "{ctx}: double-double ABA and LTDL differ by {e_ref:e}");
-        w.aba = w.aba.max(e_aba);
-        w.ldlt = w.ldlt.max(e_ldlt);
-        w.comp = w.comp.max(e_comp);
+        let bound = 1e-20 * cond.max(1.0);
+        assert!(
+            within(&r.qdd_ldlt, &r.qdd_aba, bound),
+            "{ctx}: double-double ABA and LTDL differ by more than {bound:e}"
+        );
+        w.aba = w.aba.max(rel_err(&f.qdd_aba, &r.qdd_aba, 0.0));
+        w.ldlt = w.ldlt.max(rel_err(&f.qdd_ldlt, &r.qdd_aba, 0.0));
+        w.comp = w.comp.max(rel_err(comp.as_slice(), &r.qdd_aba, 0.0));
     }
     // Not asserted: ABA is not always the more accurate of the two. With
     // link lengths from 1e-3 to 1e2 m it loses about three digits more than
@@ -198,21 +207,22 @@ fn check_generated(name: &str, fns: GeneratedFns, count: usize) -> (f64, f64) {
             gen.iter().zip([(&f.tau, &r.tau), (&f.m, &r.m), (&f.h, &r.h), (&f.g, &r.g)])
         {
             assert!(x.iter().all(|v| v.is_finite()), "{ctx}: {what} has a non-finite entry");
-            let e = rel_err(x, reference, 0.0);
-            assert!(e <= idb, "{ctx}: {what} relative error {e:e} > {idb:e}");
+            assert!(within(x, reference, idb), "{ctx}: {what} not within {idb:e}: {x:?} vs {reference:?}");
             // Generated and generic differ by the rounding of both.
-            let d = rel_err(x, generic, 0.0);
-            assert!(d <= 2.0 * idb, "{ctx}: {what} generated vs generic {d:e}");
-            worst_id = worst_id.max(e);
+            assert!(within(x, generic, 2.0 * idb), "{ctx}: {what} generated {x:?} vs generic {generic:?}");
+            worst_id = worst_id.max(rel_err(x, reference, 0.0));
         }
         let fd = (fns.fd)(&q, &qd, &tau);
         assert!(fd.iter().all(|v| v.is_finite()), "{ctx}: forward dynamics has a non-finite entry");
         let fdb = fd_bound(n, cond, &r, &tau);
-        let e = rel_err(&fd, &r.qdd_aba, 0.0);
-        assert!(e <= fdb, "{ctx}: forward dynamics relative error {e:e} > {fdb:e} (cond {cond:e})");
-        let d = rel_err(&fd, &f.qdd_aba, 0.0);
-        assert!(d <= 2.0 * fdb, "{ctx}: forward dynamics generated vs generic {d:e}");
-        worst_fd = worst_fd.max(e);
+        let qdd = &r.qdd_aba;
+        assert!(within(&fd, qdd, fdb), "{ctx}: forward dynamics not within {fdb:e} (cond {cond:e}): {fd:?} vs {qdd:?}");
+        assert!(
+            within(&fd, &f.qdd_aba, 2.0 * fdb),
+            "{ctx}: forward dynamics generated {fd:?} vs generic {:?}",
+            f.qdd_aba
+        );
+        worst_fd = worst_fd.max(rel_err(&fd, qdd, 0.0));
     }
     eprintln!("generated {:<36} n={n:<3} τ/M/h/g err ≤ {worst_id:9.2e}  FD err ≤ {worst_fd:9.2e}", case.title);
     (worst_id, worst_fd)
