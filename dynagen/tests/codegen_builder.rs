@@ -4,7 +4,7 @@
 
 mod support;
 
-use dynagen::codegen::{generate, BuildError, CodegenOptions, Function, ScalarType};
+use dynagen::codegen::{generate, BuildError, CodegenOptions, Function, ScalarType, Trig};
 use dynagen::scene::{Gravity, Scene};
 use dynagen::Builder;
 use std::path::{Path, PathBuf};
@@ -244,4 +244,22 @@ fn errors_debug_as_their_message() {
     .unwrap_err();
     let text = panic.downcast_ref::<String>().unwrap();
     assert!(text.starts_with("generating the dynamics: dynagen: robot no/such/robot.urdf: cannot read"), "{text}");
+}
+
+/// `.options(..)` is the base the other setters change, whichever is
+/// called first: it does not reset what was set before it.
+#[test]
+fn options_are_a_base_the_setters_change_in_either_order() {
+    let urdf = format!("{ROBOTS}/planar_2link.urdf");
+    let base = CodegenOptions::default().functions([Function::MassMatrix, Function::GravityTorques]);
+    let module = |b: Builder| b.generate_module().unwrap();
+    let setters_first =
+        module(Builder::new().urdf(&urdf).scalar(ScalarType::F32).trig(Trig::Std).options(base.clone()));
+    let options_first = module(Builder::new().urdf(&urdf).options(base).scalar(ScalarType::F32).trig(Trig::Std));
+    assert_eq!(setters_first.source, options_first.source);
+    let names: Vec<&str> = setters_first.functions.iter().map(|f| f.name.as_str()).collect();
+    assert_eq!(names, ["mass_matrix", "gravity_torques"], "the options' functions");
+    let source = &setters_first.source;
+    assert!(source.contains("pub fn mass_matrix(q: &[f32; DOF]) -> [[f32; DOF]; DOF]"), "the setter's scalar");
+    assert!(source.contains("by std's sin_cos"), "the setter's trigonometry");
 }
