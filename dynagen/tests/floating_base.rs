@@ -615,7 +615,7 @@ fn floating_algorithms_trace_on_the_symbolic_scalar() {
                 let got = f.eval(&inputs).unwrap();
                 let epsilon = 1e-11 * scale(want, 1.0);
                 assert!(
-                    abs_diff_eq!(&got[..], &want[..], epsilon = epsilon),
+                    abs_diff_eq!(&got[..], want, epsilon = epsilon),
                     "{}: {} traced {got:?} against f64 {want:?}",
                     model.name,
                     f.name()
