@@ -37,7 +37,7 @@
 //!
 //! | option | values | default |
 //! | --- | --- | --- |
-//! | `functions` | `[inverse_dynamics, mass_matrix, bias_forces, gravity_torques, coriolis, forward_dynamics]` (`coriolis` makes it a scene module), and on request `inverse_dynamics_derivatives`, `forward_dynamics_derivatives`, `mass_matrix_inverse` | all five |
+//! | `functions` | `[inverse_dynamics, mass_matrix, bias_forces, gravity_torques, forward_dynamics]` (the five of the contract), and on request `coriolis`, `inverse_dynamics_derivatives`, `forward_dynamics_derivatives`, `mass_matrix_inverse` | all five |
 //! | `scalar` | `f64`, `f32` | `f64` |
 //! | `forward_dynamics` | `auto`, `aba`, `ldlt` | `auto` (the faster of the two unless it is less accurate; the header says which) |
 //! | `snap_rounding` | `true`, `false` | `true` |
@@ -54,9 +54,9 @@
 //! "scenes/controller.toml"` (relative to the crate's root), from inline
 //! keys, or both: the keys then change the file's scene, in the order
 //! given (an `armature` entry replaces the file's for that joint, a
-//! `frame_pose` adds a function, …). Any of these makes the module a scene
-//! module
-//! (`dynagen::codegen::generate_scene`): only the scene's functions, its
+//! `frame_pose` adds a function, …). The module is then that scene's
+//! (`dynagen::codegen::generate_scene`; without them it is the default
+//! scene's, the plain module): the functions asked for, the scene's
 //! constants folded in, its run-time inputs as arguments (`gravity: &[f64;
 //! 3]`, `f_tip: &[f64; 6]`, `payload_LINK: &[f64; 10]`). Names are
 //! identifiers or strings; inside braces `=` and `:` both work.
