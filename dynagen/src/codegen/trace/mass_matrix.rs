@@ -14,7 +14,7 @@
 //! children's composites, so `M[i][i]` is the sum of `S_i⁽ᵏ⁾ᵀ I_k S_i⁽ᵏ⁾` over
 //! the bodies `k` less than `d` levels below `i` and of `S_i⁽ᵏ⁾ᵀ Iᶜ_k S_i⁽ᵏ⁾`
 //! over those exactly `d` below. A regrouped body inertia (see
-//! `grouping.rs`) is sparse and constant where a composite is neither, so
+//! `prepare/regroup.rs`) is sparse and constant where a composite is neither, so
 //! each term can be far cheaper than rotating the composite into the
 //! ancestor's frame.
 //!
