@@ -11,7 +11,7 @@ use crate::Scalar;
 /// D and the strictly lower triangle holds L (entries of joints on other
 /// branches are left untouched). Only the lower triangle is read. A
 /// floating model's M is NV×NV, its base's six coordinates a chain ahead of
-/// the joints ([`velocity_parent`](super::floating::velocity_parent)).
+/// the joints ([`velocity_parent`]).
 pub fn factorise<S: Scalar>(model: &Model, m: &mut [S]) {
     if model.is_floating() {
         factorise_tree(model.nv(), |k| velocity_parent(model, k), m)
@@ -22,7 +22,7 @@ pub fn factorise<S: Scalar>(model: &Model, m: &mut [S]) {
 
 /// [`factorise`] for any tree of `n` coordinates given by the parent of
 /// each (`parent(k) < k`): a floating base's six coordinates as a chain
-/// ahead of the joints ([`velocity_parent`](super::floating::velocity_parent)).
+/// ahead of the joints ([`velocity_parent`]).
 pub fn factorise_tree<S: Scalar>(n: usize, parent: impl Fn(usize) -> Option<usize>, m: &mut [S]) {
     assert!(m.len() == n * n, "ldlt: m must be {n}×{n}");
     for k in (0..n).rev() {
