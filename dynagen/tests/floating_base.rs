@@ -702,3 +702,46 @@ fn energies_agree_with_m_and_g() {
         }
     }
 }
+
+/// A payload carried by the floating base ([`BASE_BODY`]) is the base's
+/// inertia plus the payload's, in rnea, crba and aba alike.
+#[test]
+fn a_payload_on_the_base_adds_to_the_base_inertia() {
+    use dynagen::algorithms::{BodyInertia, BASE_BODY};
+    use dynagen::spatial::{Inertia, Sym3};
+    let g = Vec3(G);
+    let model = random_model(17, 6);
+    let nv = model.nv();
+    let payload =
+        Inertia::from_mass_com_inertia(2.5, Vec3([0.1, -0.05, 0.2]), Sym3([0.03, 0.04, 0.02, 0.001, 0.0, -0.002]));
+    let mut heavier = model.clone();
+    heavier.base_inertia = heavier.base_inertia.add(&payload);
+    let carried = [BodyInertia { body: BASE_BODY, inertia: payload }];
+    let loads = Loads::gravity(&g).with_payloads(&carried);
+    let (mut ws, mut wh) = (Workspace::new(&model), Workspace::new(&heavier));
+    let mut rng = Rng::new(23);
+    for _ in 0..3 {
+        let (q, qd) = random_state(&model, &mut rng, 20.0);
+        let (qdd, tau) = (rng.vec(nv, 5.0), rng.vec(nv, 20.0));
+        let (mut a, mut b) = (vec![0.0; nv], vec![0.0; nv]);
+        rnea(&model, &mut ws, &q, Some(&qd), Some(&qdd), loads, &mut a);
+        rnea(&heavier, &mut wh, &q, Some(&qd), Some(&qdd), Loads::gravity(&g), &mut b);
+        assert!(rel_err(&a, &b, 1.0) < 1e-14, "rnea");
+        aba(&model, &mut ws, &q, &qd, &tau, loads, &mut a);
+        aba(&heavier, &mut wh, &q, &qd, &tau, Loads::gravity(&g), &mut b);
+        assert!(rel_err(&a, &b, 1.0) < 1e-12, "aba");
+        let (mut ma, mut mb) = (vec![0.0; nv * nv], vec![0.0; nv * nv]);
+        crba(&model, &mut ws, &q, loads, &mut ma);
+        crba(&heavier, &mut wh, &q, Loads::none(), &mut mb);
+        assert!(rel_err(&ma, &mb, 1.0) < 1e-14, "crba");
+    }
+    // On a fixed base it moves nothing.
+    let mut fixed = model.clone();
+    fixed.root_joint = dynagen::model::RootJoint::Fixed;
+    let n = fixed.dof();
+    let mut wf = Workspace::new(&fixed);
+    let (mut ma, mut mb) = (vec![0.0; n * n], vec![0.0; n * n]);
+    fixed_crba::crba(&fixed, &mut wf, &vec![0.3; n], Loads::none().with_payloads(&carried), &mut ma);
+    fixed_crba::crba(&fixed, &mut wf, &vec![0.3; n], Loads::none(), &mut mb);
+    assert_eq!(ma, mb);
+}

@@ -25,5 +25,5 @@ mod lu;
 pub mod rnea;
 mod workspace;
 
-pub use loads::{BodyInertia, Loads, TipWrench};
+pub use loads::{BodyInertia, Loads, TipWrench, BASE_BODY};
 pub use workspace::Workspace;
