@@ -145,11 +145,16 @@ impl SceneLoads {
         let mut list = Vec::new();
         for p in scene.input_payloads.iter().filter(|_| payloads) {
             let v = tracer.inputs(&payload_argument(&p.link), 10);
-            // On the base a payload moves nothing; on a body it enters the
-            // recursions as one more body inertia, moved into the body's
-            // frame (frames move with the bodies the preparation slides, so
-            // this is exact in the prepared model).
-            let Some(body) = model.frames[p.frame].body else { continue };
+            // On a fixed base a payload moves nothing; on a body (or a
+            // floating base) it enters the recursions as one more body
+            // inertia, moved into the body's frame (frames move with the
+            // bodies the preparation slides, so this is exact in the prepared
+            // model).
+            let body = match model.frames[p.frame].body {
+                Some(b) => b,
+                None if model.is_floating() => crate::algorithms::BASE_BODY,
+                None => continue,
+            };
             let inertia = Inertia::from_mass_com_inertia(
                 v[0],
                 Vec3([v[1], v[2], v[3]]),
