@@ -71,7 +71,7 @@
 //! | `coulomb_velocity` | a number (rad/s or m/s) |
 //! | `payload` | `{ link = LINK, mass = kg, com = [x, y, z], inertia = [ixx, iyy, izz, ixy, ixz, iyz] }` (repeat the key for several) |
 //! | `payload_input` | `LINK`: its payload is an argument |
-//! | `frame_pose`, `frame_jacobian` | `[FRAME, …]`: `frame_pose_FRAME(q)`, `frame_jacobian_FRAME(q)` |
+//! | `frame_pose`, `frame_jacobian`, `frame_world_jacobian`, `frame_acceleration_bias` | `[FRAME, …]`: `frame_pose_FRAME(q)`, `frame_jacobian_FRAME(q)` (body), `frame_world_jacobian_FRAME(q)`, `frame_acceleration_bias_FRAME(q, qd)` (J̇q̇) |
 //! | `target` | `std` (std allowed: the trigonometry is the `trig` option's, `batched` by default), `no_std_libm`, `no_std_sincos` |
 //!
 //! ```ignore
@@ -287,7 +287,8 @@ fn parse_ident<T: std::str::FromStr<Err = String>>(input: ParseStream) -> syn::R
 /// The options every macro accepts, for error messages.
 pub(crate) const OPTION_NAMES: &str = "functions, scalar, forward_dynamics, snap_rounding, trig, split_lets, fma, floating_base, \
                                        dispatch, allow_nonphysical_inertia, scene, gravity, tip_wrench, subtree, lock, armature, viscous, coulomb, \
-                                       coulomb_velocity, payload, payload_input, frame_pose, frame_jacobian, target";
+                                       coulomb_velocity, payload, payload_input, frame_pose, frame_jacobian, frame_world_jacobian, \
+                                       frame_acceleration_bias, target";
 
 struct UrdfInput {
     path: LitStr,

@@ -111,6 +111,10 @@ fn check_with(
                 Function::MassMatrixInverse => rows(&robot.mass_matrix_inverse_with(&dv(&q), i).unwrap()),
                 Function::FramePose(frame) => rows(&robot.frame_pose(frame, &dv(&q)).unwrap()),
                 Function::FrameJacobian(frame) => rows(&robot.frame_jacobian(frame, &dv(&q)).unwrap()),
+                Function::FrameWorldJacobian(frame) => rows(&robot.frame_world_jacobian(frame, &dv(&q)).unwrap()),
+                Function::FrameAccelerationBias(frame) => {
+                    robot.frame_acceleration_bias(frame, &dv(&q), &dv(&qd)).unwrap().as_slice().to_vec()
+                }
             };
             assert_eq!(got.len(), want.len(), "{}", f.label());
             let e = norm_rel_err(&got, &want, 1e-300);

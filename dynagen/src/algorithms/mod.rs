@@ -16,6 +16,7 @@ pub mod derivatives;
 pub mod energy;
 pub mod floating;
 pub mod forward_dynamics;
+pub mod frame_acceleration;
 pub mod integrators;
 pub mod joint;
 pub mod kinematics;

@@ -6,7 +6,7 @@
 mod derivatives;
 
 use super::check::{self, Check};
-use super::{frame_jacobian, frame_pose, matrix, vector, InputError, Jacobian};
+use super::{frame_acceleration_bias, frame_jacobian, frame_pose, matrix, vector, InputError, Jacobian};
 use crate::algorithms::{Loads, TipWrench, Workspace};
 use crate::scene::dynamics;
 use crate::scene::{PayloadInertia, ResolvedGravity, SceneError, SceneModel};
@@ -366,17 +366,40 @@ impl SceneRobot {
     }
 
     /// The pose of a frame in the reduced model's base frame (the sub-tree
-    /// root), 4×4 homogeneous.
+    /// root; a floating base: the world frame), 4×4 homogeneous: what
+    /// `frame_pose_FRAME` computes.
     pub fn frame_pose(&mut self, frame: &str, q: &DVector<f64>) -> Result<Matrix4<f64>, SceneInputError> {
         let f = self.check().frame(frame)?;
         self.check().joints(&[("q", q)])?;
-        Ok(frame_pose(&self.scene.model, &mut self.ws, f, q))
+        Ok(frame_pose(&self.scene.model, &mut self.ws, (f, false), q))
     }
-    /// The body Jacobian of a frame (6×n, rows (ω; v), in the frame):
-    /// `J_bᵀF` is the joint torque of a wrench `F` given in the frame.
+    /// The body Jacobian of a frame (6×n or 6×NV, rows (ω; v), in the
+    /// frame): `J_bᵀF` is the torque of a wrench `F` given in the frame;
+    /// `frame_jacobian_FRAME`.
     pub fn frame_jacobian(&mut self, frame: &str, q: &DVector<f64>) -> Result<Matrix6xX<f64>, SceneInputError> {
         let f = self.check().frame(frame)?;
         self.check().joints(&[("q", q)])?;
         Ok(frame_jacobian(&self.scene.model, &mut self.ws, (f, Jacobian::Body), q, &mut self.jac))
+    }
+    /// The Jacobian of a frame in the world frame (the base frame of a
+    /// fixed base): its twist at the world origin, world axes (the space
+    /// Jacobian); `frame_world_jacobian_FRAME`.
+    pub fn frame_world_jacobian(&mut self, frame: &str, q: &DVector<f64>) -> Result<Matrix6xX<f64>, SceneInputError> {
+        let f = self.check().frame(frame)?;
+        self.check().joints(&[("q", q)])?;
+        Ok(frame_jacobian(&self.scene.model, &mut self.ws, (f, Jacobian::Space), q, &mut self.jac))
+    }
+    /// The classical acceleration bias J̇q̇ of a frame ((angular; linear)
+    /// in the frame, as [`Robot::frame_acceleration_bias`](crate::Robot::frame_acceleration_bias));
+    /// `frame_acceleration_bias_FRAME`.
+    pub fn frame_acceleration_bias(
+        &mut self,
+        frame: &str,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+    ) -> Result<Vector6<f64>, SceneInputError> {
+        let f = self.check().frame(frame)?;
+        self.check().joints(&[("q", q), ("qd", qd)])?;
+        Ok(frame_acceleration_bias(&self.scene.model, &mut self.ws, f, q, qd))
     }
 }

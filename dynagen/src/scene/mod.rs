@@ -96,11 +96,14 @@
 //! # SceneFile::to_toml_string writes them back):
 //! name = "ur5_controller"      # the generated module's name
 //! # Any of inverse_dynamics, mass_matrix, bias_forces, gravity_torques,
-//! # coriolis, forward_dynamics (default: all but coriolis), plus the pose
-//! # and the body Jacobian of named frames.
+//! # coriolis, forward_dynamics (default: all but coriolis), plus the pose,
+//! # the body and world Jacobians and the acceleration bias J̇q̇ of named
+//! # frames (frame_pose_ee_link(q), frame_jacobian_ee_link(q), …).
 //! functions = ["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "forward_dynamics"]
 //! frame_pose = ["ee_link"]
 //! frame_jacobian = ["ee_link"]
+//! frame_world_jacobian = ["ee_link"]
+//! frame_acceleration_bias = ["ee_link"]
 //! scalar = "f64"               # or "f32"
 //! trig = "batched"            # or "std", "libm", "inputs"; or instead, as before,
 //! # target = "std"             # std allowed (the trigonometry stays the options'), or
