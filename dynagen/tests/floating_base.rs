@@ -622,18 +622,6 @@ fn compensated_forward_dynamics_on_a_floating_base() {
     assert!(comp_worst < 1e-9 && comp_worst < plain_worst, "compensated {comp_worst:e}, plain {plain_worst:e}");
 }
 
-/// A scene other than the default one on a floating base is not there
-/// yet: a clear error naming the root, never a panic in the trace. (The
-/// default scene is the model: `tests/codegen_floating.rs` generates it.)
-#[test]
-fn scenes_refuse_a_floating_base_by_name() {
-    let model = support::model("quadruped12").with_floating_base();
-    assert!(dynagen::scene::Scene::default().apply(&model).is_ok());
-    let e = dynagen::scene::Scene::new().armature("FR_hip_joint", 0.1).apply(&model).unwrap_err();
-    assert!(matches!(e, dynagen::SceneError::FloatingBase { ref root } if root == "trunk"), "{e}");
-    assert!(e.to_string().contains("\"trunk\" floats"), "{e}");
-}
-
 /// A floating robot that cannot be accelerated in every direction (a point
 /// mass) gets a warning naming its root; a real one does not.
 #[test]

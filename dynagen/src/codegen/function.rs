@@ -289,25 +289,23 @@ impl Function {
                 doc_code(frame)
             ),
         };
-        if plain && scene.model.is_floating() {
-            return format!(
-                " {what}\n\n Floating base: `q` = [p (world), quaternion (x, y, z, w) world ← base, joints] (`NQ`), \
-                 the velocity-side vectors [ω_b, v_b (the base's body twist, base frame), joints] (`NV`), τ's first six \
-                 the wrench on the base (m; f) in the base frame; joints in [`JOINT_NAMES`] order; rad, m, s, N·m, N; \
-                 gravity {:?} m/s² in the world frame. The quaternion is used as given (the caller keeps it unit).\n {count}.",
-                scene.model.gravity.0
-            );
-        }
+        // What the vectors hold: a floating base's conventions, or the joint order.
+        let layout = if floating {
+            "Floating base: `q` = [p (world), quaternion (x, y, z, w) world ← base, joints] (`NQ`), \
+             the velocity-side vectors [ω_b, v_b (the base's body twist, base frame), joints] (`NV`), τ's first six \
+             the wrench on the base (m; f) in the base frame; joints in [`JOINT_NAMES`] order; rad, m, s, N·m, N"
+        } else {
+            "Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N"
+        };
+        let quaternion = if floating { " The quaternion is used as given (the caller keeps it unit)." } else { "" };
         if plain {
-            return format!(
-                " {what}\n\n Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity {:?} m/s² in the base frame.\n {count}.",
-                scene.model.gravity.0
-            );
+            let g = scene.model.gravity.0;
+            return format!(" {what}\n\n {layout}; gravity {g:?} m/s² in the {world} frame.{quaternion}\n {count}.");
         }
         let mut args = String::new();
         for p in self.params(scene) {
             let what = match p.name.as_str() {
-                "gravity" => "`gravity`: m/s², in the base frame.".to_string(),
+                "gravity" => format!("`gravity`: m/s², in the {world} frame."),
                 "f_tip" => {
                     let frame = scene.tip_wrench_frame.map(|i| scene.model.frames[i].name.as_str()).unwrap_or("");
                     format!(
@@ -322,7 +320,7 @@ impl Function {
             };
             let _ = write!(args, "\n {what}");
         }
-        format!(" {what}\n\n Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N.{args}\n {count}.")
+        format!(" {what}\n\n {layout}.{quaternion}{args}\n {count}.")
     }
 }
 
