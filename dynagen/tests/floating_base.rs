@@ -441,6 +441,15 @@ fn urdf_errors_name_the_item() {
     // two roots
     let e = err(robot(format!("{}{}", link("a"), link("b"))));
     assert!(matches!(&e, ModelError::MultipleRoots(r) if r == &["a", "b"]), "{e}");
+    assert!(e.to_string().contains("several root links (a, b)"), "{e}");
+    // two roots, one of them floated by a floating joint: still two trees
+    let e = err(robot(format!(
+        "<link name=\"world\"/>{}{}{}",
+        link("base"),
+        link("spare"),
+        joint("root", "floating", "world", "base")
+    )));
+    assert!(e.to_string().contains("world") && e.to_string().contains("spare"), "{e}");
 }
 
 #[test]
