@@ -116,16 +116,19 @@ fn frame_jacobian(
     Matrix6xX::from_row_slice(jac)
 }
 
-/// J̇q̇ of frame `frame` of `model` at (q, q̇), (angular; linear) in the frame.
+/// J̇q̇ of the frame named `frame` of `model` at (q, q̇), (angular; linear)
+/// in the frame, the arguments checked.
 fn frame_acceleration_bias(
     model: &Model,
     ws: &mut Workspace<f64>,
-    frame: usize,
+    frame: &str,
     q: &DVector<f64>,
     qd: &DVector<f64>,
-) -> Vector6<f64> {
-    let a = frame_acceleration::frame_acceleration_bias(model, ws, q.as_slice(), qd.as_slice(), frame);
-    Vector6::from(a.to_array())
+) -> Result<Vector6<f64>, InputError> {
+    let f = Check(model).frame(frame)?;
+    Check(model).joints(&[("q", q), ("qd", qd)])?;
+    let a = frame_acceleration::frame_acceleration_bias(model, ws, q.as_slice(), qd.as_slice(), f);
+    Ok(Vector6::from(a.to_array()))
 }
 
 /// A robot with the generic `f64` solver, on nalgebra types: units, frames
@@ -393,9 +396,7 @@ impl Robot {
         q: &DVector<f64>,
         qd: &DVector<f64>,
     ) -> Result<Vector6<f64>, InputError> {
-        let f = self.check().frame(frame)?;
-        self.check().joints(&[("q", q), ("qd", qd)])?;
-        Ok(frame_acceleration_bias(&self.model, &mut self.ws, f, q, qd))
+        frame_acceleration_bias(&self.model, &mut self.ws, frame, q, qd)
     }
     fn jacobian(&mut self, frame: &str, which: Jacobian, q: &DVector<f64>) -> Result<Matrix6xX<f64>, InputError> {
         let f = self.check().frame(frame)?;
