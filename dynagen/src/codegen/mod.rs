@@ -154,7 +154,7 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
     }
     let mut names = std::collections::HashSet::new();
     for f in &options.functions {
-        if let Function::FramePose(frame) | Function::FrameJacobian(frame) = f {
+        if let Some(frame) = f.frame() {
             scene.frame(f.name(), frame).map_err(|e| CodegenError::Scene(Box::new(e)))?;
             emit::identifier(&f.rust_name(), &format!("frame \"{frame}\""))?;
         }

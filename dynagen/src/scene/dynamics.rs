@@ -19,48 +19,48 @@ pub fn smooth_sign<S: Scalar>(v: S, v_eps: f64) -> S {
     v / (v * v + S::from_f64(v_eps * v_eps)).sqrt()
 }
 
-/// Where the joints' entries start in a velocity-side vector (q̇, τ, a
-/// row of M): after a floating base's six, at 0 on a fixed base.
-fn first_joint(scene: &SceneModel) -> usize {
+/// Where the joints' entries start in a velocity-side vector: 0, or 6
+/// after a floating base's twist (friction and armature act on the joints
+/// only).
+fn joints_at(scene: &SceneModel) -> usize {
     scene.model.nv() - scene.dof()
 }
 
-/// Adds the friction torques b∘q̇ + f∘σ(q̇) to `tau`.
+/// Adds the friction torques b∘q̇ + f∘σ(q̇) to `tau` (joints' entries).
 pub fn add_friction<S: Scalar>(scene: &SceneModel, qd: &[S], tau: &mut [S]) {
-    let k0 = first_joint(scene);
-    for (i, (&b, &f)) in scene.viscous_friction.iter().zip(&scene.coulomb_friction).enumerate() {
-        let k = k0 + i;
+    let o = joints_at(scene);
+    for (i, t) in tau[o..].iter_mut().enumerate() {
+        let (b, f) = (scene.viscous_friction[i], scene.coulomb_friction[i]);
         if b != 0.0 {
-            tau[k] += S::from_f64(b) * qd[k];
+            *t += S::from_f64(b) * qd[o + i];
         }
         if f != 0.0 {
-            tau[k] += S::from_f64(f) * smooth_sign(qd[k], scene.coulomb_velocity);
+            *t += S::from_f64(f) * smooth_sign(qd[o + i], scene.coulomb_velocity);
         }
     }
 }
 
-/// Subtracts the friction torques from `tau`.
+/// Subtracts the friction torques from `tau` (joints' entries).
 pub fn sub_friction<S: Scalar>(scene: &SceneModel, qd: &[S], tau: &mut [S]) {
-    let k0 = first_joint(scene);
-    for (i, (&b, &f)) in scene.viscous_friction.iter().zip(&scene.coulomb_friction).enumerate() {
-        let k = k0 + i;
+    let o = joints_at(scene);
+    for (i, t) in tau[o..].iter_mut().enumerate() {
+        let (b, f) = (scene.viscous_friction[i], scene.coulomb_friction[i]);
         if b != 0.0 {
-            tau[k] -= S::from_f64(b) * qd[k];
+            *t -= S::from_f64(b) * qd[o + i];
         }
         if f != 0.0 {
-            tau[k] -= S::from_f64(f) * smooth_sign(qd[k], scene.coulomb_velocity);
+            *t -= S::from_f64(f) * smooth_sign(qd[o + i], scene.coulomb_velocity);
         }
     }
 }
 
-/// Adds the armature to the joints' diagonal entries of the row-major `m`
-/// (n×n, NV×NV on a floating base).
+/// Adds the armature to the joints' diagonal of the row-major `m` (n×n, or
+/// NV×NV on a floating base).
 pub fn add_armature_diagonal<S: Scalar>(scene: &SceneModel, m: &mut [S]) {
-    let (n, k0) = (scene.model.nv(), first_joint(scene));
+    let (o, nv) = (joints_at(scene), scene.model.nv());
     for (i, &a) in scene.armature.iter().enumerate() {
-        let k = k0 + i;
         if a != 0.0 {
-            m[k * n + k] += S::from_f64(a);
+            m[(o + i) * nv + o + i] += S::from_f64(a);
         }
     }
 }
@@ -164,8 +164,8 @@ pub fn forward_dynamics_ldlt<S: Scalar>(
 /// τ − friction, in the workspace's right-hand side (taken out of it; the
 /// caller puts it back).
 fn tau_minus_friction<S: Scalar>(scene: &SceneModel, ws: &mut Workspace<S>, qd: &[S], tau: &[S]) -> Vec<S> {
-    let n = scene.model.nv();
-    assert!(tau.len() == n && ws.rhs.len() == n, "forward_dynamics: tau must have the model's NV = {n} entries");
+    let (n, nv) = (scene.dof(), scene.model.nv());
+    assert!(tau.len() == nv && ws.dof() == n, "forward_dynamics: tau must have the model's {nv} entries");
     let mut rhs = std::mem::take(&mut ws.rhs);
     rhs.copy_from_slice(tau);
     sub_friction(scene, qd, &mut rhs);

@@ -12,6 +12,8 @@
 //! the joint angles into inputs: the body every emitted function has.
 
 pub mod fd_choice;
+mod floating;
+mod frames;
 mod generic_count;
 mod gravity_fold;
 mod mass_matrix;
@@ -23,8 +25,8 @@ pub use sin_cos::{sin_cos_from_q, sin_cos_inputs, SinCosTrace};
 use super::emit::{payload_argument, Sizes};
 use super::{counted, CodegenError, CodegenOptions, ForwardDynamicsMethod, Function, GeneratedFunction};
 use crate::algorithms::derivatives::{self, DerivativeWorkspace, DualLoads};
-use crate::algorithms::{kinematics, ldlt, rnea, BodyInertia, Loads, TipWrench, Workspace};
-use crate::scene::{dynamics, ResolvedGravity, Scene, SceneModel};
+use crate::algorithms::{ldlt, rnea, BodyInertia, Loads, TipWrench, Workspace};
+use crate::scene::{dynamics, ResolvedGravity, SceneModel};
 use crate::spatial::{Force, Inertia, Sym3, Transform, Vec3};
 use crate::symbolic::{factor, Expr, Rewrites, Traced, Tracer};
 
@@ -54,7 +56,7 @@ pub(crate) fn trace_module(
     let n = scene.dof();
     let sizes = Sizes::of(&scene.model);
     // Where joint i's angle is in q: q[i], or q[7 + i] after a floating base's position and quaternion.
-    let offset = scene.model.nq() - scene.dof();
+    let offset = if scene.model.is_floating() { floating::JOINTS_IN_Q } else { 0 };
     let payloads = !scene.input_payloads.is_empty();
     // Both forward dynamics are traced and counted, whichever is emitted.
     let methods: &[ForwardDynamicsMethod] = match options.forward_dynamics {
@@ -144,11 +146,16 @@ impl SceneLoads {
         let mut list = Vec::new();
         for p in scene.input_payloads.iter().filter(|_| payloads) {
             let v = tracer.inputs(&payload_argument(&p.link), 10);
-            // On the base a payload moves nothing; on a body it enters the
-            // recursions as one more body inertia, moved into the body's
-            // frame (frames move with the bodies the preparation slides, so
-            // this is exact in the prepared model).
-            let Some(body) = model.frames[p.frame].body else { continue };
+            // On a fixed base a payload moves nothing; on a body (or a
+            // floating base) it enters the recursions as one more body
+            // inertia, moved into the body's frame (frames move with the
+            // bodies the preparation slides, so this is exact in the prepared
+            // model).
+            let body = match model.frames[p.frame].body {
+                Some(b) => b,
+                None if model.is_floating() => crate::algorithms::BASE_BODY,
+                None => continue,
+            };
             let inertia = Inertia::from_mass_com_inertia(
                 v[0],
                 Vec3([v[1], v[2], v[3]]),
@@ -161,56 +168,31 @@ impl SceneLoads {
     }
 }
 
-/// What a floating-base module can have so far: the default scene's five
-/// functions of the contract; anything else is an error naming it.
-fn floating_supports(scene: &SceneModel, f: &Function) -> Result<(), CodegenError> {
-    let unsupported =
-        |what: String| CodegenError::Unsupported(format!("floating-base robot \"{}\": {what}", scene.model.name));
-    if scene.scene != Scene::default() {
-        return Err(unsupported("scenes other than the default one are not generated yet".into()));
-    }
-    if !Function::DEFAULT.contains(f) {
-        return Err(unsupported(format!("`{}` is not generated yet for a floating base", f.rust_name())));
-    }
-    Ok(())
-}
-
 /// Traces `f` of `scene` without factoring; see [`trace`].
-///
-/// A floating-base model goes through the same arms: its `q` has NQ
-/// entries and the velocity-side vectors NV, `rnea`, `crba` and `aba` are
-/// the floating ones (`algorithms/floating/`), and the fixed-base variants
-/// (the planned mass matrix, the gravity fold) are left out.
 pub(crate) fn trace_unfactored(
     scene: &SceneModel,
     f: &Function,
     method: ForwardDynamicsMethod,
     rewrites: Rewrites,
 ) -> Result<Traced, CodegenError> {
-    let model = &scene.model;
-    let floating = model.is_floating();
-    if floating {
-        floating_supports(scene, f)?;
+    if let Some(name) = f.frame() {
+        return frames::trace_unfactored(scene, f, name, rewrites);
     }
+    if scene.model.is_floating() {
+        return floating::trace_unfactored(scene, f, method, rewrites);
+    }
+    let model = &scene.model;
     let n = model.dof();
     let sizes = Sizes::of(model);
     let use_ldlt =
         *f == Function::ForwardDynamics && (method == ForwardDynamicsMethod::Ldlt || !scene.input_payloads.is_empty());
-    // The mass-matrix plan is made (traced) before this trace starts; a
-    // floating model has none (the generic CRBA instead).
+    // The mass-matrix plan is made (traced) before this trace starts.
     let needs_plan =
         matches!(f, Function::MassMatrix | Function::ForwardDynamicsDerivatives | Function::MassMatrixInverse)
             || use_ldlt;
-    let plan = if needs_plan && !floating { Some(mass_matrix::plan(model, rewrites)?) } else { None };
-    let frame = match f {
-        Function::FramePose(name) | Function::FrameJacobian(name) => {
-            Some(scene.frame(f.name(), name).map_err(|e| CodegenError::Scene(Box::new(e)))?)
-        }
-        _ => None,
-    };
+    let plan = if needs_plan { Some(mass_matrix::plan(model, rewrites)?) } else { None };
     let tracer = Tracer::start_with(rewrites)?;
-    let length = |name: &&str| if *name == "q" { model.nq() } else { model.nv() };
-    let args: Vec<Vec<Expr>> = f.vectors().iter().map(|name| tracer.inputs(name, length(name))).collect();
+    let args: Vec<Vec<Expr>> = f.vectors().iter().map(|name| tracer.inputs(name, n)).collect();
     let loads = SceneLoads::of(scene, f, &tracer);
     let mut ws = Workspace::<Expr>::new(model);
     let zero = tracer.constant(0.0);
@@ -220,14 +202,10 @@ pub(crate) fn trace_unfactored(
         Function::InverseDynamics => {
             dynamics::inverse_dynamics(scene, &mut ws, q, &args[1], &args[2], Loads::new(g, tips, pl), &mut out)
         }
-        Function::MassMatrix => match &plan {
-            Some(plan) => {
-                mass_matrix::mass_matrix(model, &mut ws, q, pl, plan, &mut out);
-                dynamics::add_armature_diagonal(scene, &mut out);
-            }
-            // A floating base (the default scene: no payloads).
-            None => dynamics::mass_matrix(scene, &mut ws, q, &mut out),
-        },
+        Function::MassMatrix => {
+            mass_matrix::mass_matrix(model, &mut ws, q, pl, plan.as_ref().expect("planned above"), &mut out);
+            dynamics::add_armature_diagonal(scene, &mut out);
+        }
         Function::BiasForces if pl.is_empty() => dynamics::bias_forces(scene, &mut ws, q, &args[1], g, &mut out),
         Function::BiasForces => {
             rnea::rnea(model, &mut ws, q, Some(&args[1]), None, Loads::new(g, &[], pl), &mut out);
@@ -247,10 +225,6 @@ pub(crate) fn trace_unfactored(
         },
         Function::Coriolis if pl.is_empty() => dynamics::coriolis(scene, &mut ws, q, &args[1], &mut out),
         Function::Coriolis => rnea::rnea(model, &mut ws, q, Some(&args[1]), None, Loads::new(None, &[], pl), &mut out),
-        Function::ForwardDynamics if use_ldlt && floating => {
-            // The default scene: no tip wrench or payload.
-            dynamics::forward_dynamics_ldlt(scene, &mut ws, q, &args[1], &args[2], Loads::new(g, tips, pl), &mut out)
-        }
         Function::ForwardDynamics if use_ldlt => {
             // M by the planned CRBA with the armature on its diagonal, h by
             // RNEA, on τ − friction, then the sparse LᵀDL solve.
@@ -309,18 +283,10 @@ pub(crate) fn trace_unfactored(
                 }
             }
         }
-        Function::FramePose(_) | Function::FrameJacobian(_) => {
-            let frame = frame.expect("looked up above");
-            kinematics::forward_kinematics(model, &mut ws, q);
-            if matches!(f, Function::FramePose(_)) {
-                let t = kinematics::frame_pose(model, &ws, frame).to_homogeneous();
-                for (o, x) in out.iter_mut().zip(t.iter().flatten()) {
-                    *o = *x;
-                }
-            } else {
-                kinematics::body_jacobian(model, &ws, frame, &mut out);
-            }
-        }
+        Function::FramePose(_)
+        | Function::FrameJacobian(_)
+        | Function::FrameWorldJacobian(_)
+        | Function::FrameAccelerationBias(_) => unreachable!("traced in frames.rs"),
     }
     drop(ws);
     let graph = tracer.finish();
@@ -332,6 +298,7 @@ mod tests {
     use super::*;
     use crate::algorithms::{crba, forward_dynamics};
     use crate::codegen::{prepare, CodegenOptions};
+    use crate::scene::Scene;
     use crate::Scalar;
 
     /// The codegen variant of CRBA never needs more operations than the
