@@ -12,7 +12,6 @@
 //! the joint angles into inputs: the body every emitted function has.
 
 pub mod fd_choice;
-mod floating;
 mod frames;
 mod generic_count;
 mod gravity_fold;
@@ -25,7 +24,7 @@ pub use sin_cos::{sin_cos_from_q, sin_cos_inputs, SinCosTrace};
 use super::emit::{payload_argument, Sizes};
 use super::{counted, CodegenError, CodegenOptions, ForwardDynamicsMethod, Function, GeneratedFunction};
 use crate::algorithms::derivatives::{self, DerivativeWorkspace, DualLoads};
-use crate::algorithms::{ldlt, rnea, BodyInertia, Loads, TipWrench, Workspace};
+use crate::algorithms::{crba, ldlt, rnea, BodyInertia, Loads, TipWrench, Workspace};
 use crate::scene::{dynamics, ResolvedGravity, SceneModel};
 use crate::spatial::{Force, Inertia, Sym3, Transform, Vec3};
 use crate::symbolic::{factor, Expr, Rewrites, Traced, Tracer};
@@ -56,7 +55,7 @@ pub(crate) fn trace_module(
     let n = scene.dof();
     let sizes = Sizes::of(&scene.model);
     // Where joint i's angle is in q: q[i], or q[7 + i] after a floating base's position and quaternion.
-    let offset = if scene.model.is_floating() { floating::JOINTS_IN_Q } else { 0 };
+    let offset = scene.model.nq() - scene.dof();
     let payloads = !scene.input_payloads.is_empty();
     // Both forward dynamics are traced and counted, whichever is emitted.
     let methods: &[ForwardDynamicsMethod] = match options.forward_dynamics {
@@ -169,6 +168,13 @@ impl SceneLoads {
 }
 
 /// Traces `f` of `scene` without factoring; see [`trace`].
+///
+/// A floating-base model goes through the same arms: its `q` has NQ
+/// entries and the velocity-side vectors NV, `rnea`, `crba` and `aba` are
+/// the floating ones (`algorithms/floating/`, gravity in the world frame,
+/// payloads on the base too), the scene's armature and friction act on the
+/// joints after the base's six, and the fixed-base variants (the planned
+/// mass matrix, the gravity fold) are left out.
 pub(crate) fn trace_unfactored(
     scene: &SceneModel,
     f: &Function,
@@ -178,21 +184,25 @@ pub(crate) fn trace_unfactored(
     if let Some(name) = f.frame() {
         return frames::trace_unfactored(scene, f, name, rewrites);
     }
-    if scene.model.is_floating() {
-        return floating::trace_unfactored(scene, f, method, rewrites);
-    }
     let model = &scene.model;
+    let floating = model.is_floating();
+    if floating && f.is_derivative() {
+        let what = format!("`{}` is not generated yet for a floating base", f.rust_name());
+        return Err(CodegenError::Unsupported(format!("floating-base robot \"{}\": {what}", model.name)));
+    }
     let n = model.dof();
     let sizes = Sizes::of(model);
     let use_ldlt =
         *f == Function::ForwardDynamics && (method == ForwardDynamicsMethod::Ldlt || !scene.input_payloads.is_empty());
-    // The mass-matrix plan is made (traced) before this trace starts.
+    // The mass-matrix plan is made (traced) before this trace starts; a
+    // floating model has none (the generic CRBA instead).
     let needs_plan =
         matches!(f, Function::MassMatrix | Function::ForwardDynamicsDerivatives | Function::MassMatrixInverse)
             || use_ldlt;
-    let plan = if needs_plan { Some(mass_matrix::plan(model, rewrites)?) } else { None };
+    let plan = if needs_plan && !floating { Some(mass_matrix::plan(model, rewrites)?) } else { None };
     let tracer = Tracer::start_with(rewrites)?;
-    let args: Vec<Vec<Expr>> = f.vectors().iter().map(|name| tracer.inputs(name, n)).collect();
+    let length = |name: &&str| if *name == "q" { model.nq() } else { model.nv() };
+    let args: Vec<Vec<Expr>> = f.vectors().iter().map(|name| tracer.inputs(name, length(name))).collect();
     let loads = SceneLoads::of(scene, f, &tracer);
     let mut ws = Workspace::<Expr>::new(model);
     let zero = tracer.constant(0.0);
@@ -203,7 +213,11 @@ pub(crate) fn trace_unfactored(
             dynamics::inverse_dynamics(scene, &mut ws, q, &args[1], &args[2], Loads::new(g, tips, pl), &mut out)
         }
         Function::MassMatrix => {
-            mass_matrix::mass_matrix(model, &mut ws, q, pl, plan.as_ref().expect("planned above"), &mut out);
+            match &plan {
+                Some(plan) => mass_matrix::mass_matrix(model, &mut ws, q, pl, plan, &mut out),
+                // A floating base: the generic CRBA.
+                None => crba::crba(model, &mut ws, q, Loads::new(None, &[], pl), &mut out),
+            }
             dynamics::add_armature_diagonal(scene, &mut out);
         }
         Function::BiasForces if pl.is_empty() => dynamics::bias_forces(scene, &mut ws, q, &args[1], g, &mut out),
@@ -225,6 +239,9 @@ pub(crate) fn trace_unfactored(
         },
         Function::Coriolis if pl.is_empty() => dynamics::coriolis(scene, &mut ws, q, &args[1], &mut out),
         Function::Coriolis => rnea::rnea(model, &mut ws, q, Some(&args[1]), None, Loads::new(None, &[], pl), &mut out),
+        Function::ForwardDynamics if use_ldlt && floating => {
+            dynamics::forward_dynamics_ldlt(scene, &mut ws, q, &args[1], &args[2], Loads::new(g, tips, pl), &mut out)
+        }
         Function::ForwardDynamics if use_ldlt => {
             // M by the planned CRBA with the armature on its diagonal, h by
             // RNEA, on τ − friction, then the sparse LᵀDL solve.
@@ -296,7 +313,7 @@ pub(crate) fn trace_unfactored(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::algorithms::{crba, forward_dynamics};
+    use crate::algorithms::forward_dynamics;
     use crate::codegen::{prepare, CodegenOptions};
     use crate::scene::Scene;
     use crate::Scalar;
