@@ -2,8 +2,9 @@
 """Reference dynamics of floating-base robots, computed by Pinocchio.
 
 Writes dynagen/tests/data/pinocchio_floating_<robot>.json for the bundled
-quadruped12 (12 joints, Unitree A1 parameters) and torso_two_arms (14
-joints, a humanoid-like upper body), each with a JointModelFreeFlyer root:
+quadruped12 (12 joints, Unitree A1 parameters), torso_two_arms (14
+joints, a humanoid-like upper body), a random 20-joint tree and humanoid32
+(32 joints, TALOS parameters), each with a JointModelFreeFlyer root:
 pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer()).  For 10 states
 (random unit quaternions, joints in [-pi, pi], |qd| of 2 and of 50), it
 records Pinocchio's rnea, crba, nonLinearEffects, computeGeneralizedGravity
@@ -34,7 +35,7 @@ from refcommon import DATA, REPO, dump_json
 SCRIPT = "scripts/reference/make_pinocchio_floating.py"
 SEED = 20261125
 GRAVITY = np.array([0.0, 0.0, -9.81])
-ROBOTS = {"quadruped12": "FR_foot", "torso_two_arms": "right_ee", "random_tree20": "l17"}
+ROBOTS = {"quadruped12": "FR_foot", "torso_two_arms": "right_ee", "random_tree20": "l17", "humanoid32": "left_sole_link"}
 ANG_LIN = [3, 4, 5, 0, 1, 2]
 
 
