@@ -8,10 +8,7 @@
 //! its origin first).
 
 use super::{check_sizes, quaternion_rotation, write_force};
-use crate::algorithms::rnea::{
-    add_armature, body_wrench, products, rnea_tree, use_products_for_gyroscopic, velocity_product_matrix, Root,
-    RootMotion,
-};
+use crate::algorithms::rnea::{add_armature, body_wrench, rnea_tree, use_products_for_gyroscopic, Root, RootMotion};
 use crate::algorithms::{Loads, Workspace};
 use crate::model::Model;
 use crate::spatial::{Force, Inertia, Mat3, Motion, Transform, Vec3};
@@ -53,15 +50,14 @@ pub fn rnea<S: Scalar>(
     if let Some(g) = loads.gravity {
         a -= quaternion_rotation(&q[3..7]).tr_mul_vec(g);
     }
-    let p = qd.map(|_| products(&w));
+    // The base's own wrench, and its U for the bodies it carries.
     let moving = qd.is_some() || qdd.is_some();
-    let u = moving.then(|| velocity_product_matrix(p.as_ref(), &wd));
+    let base = &model.base_inertia;
+    let gyro = use_products_for_gyroscopic(&base.ibar);
+    let (own, u) = body_wrench(&Inertia::<S>::from_f64(base), [&w, &wd, &a], (qd.is_some(), moving), gyro);
     let root = RootMotion { w, wd, a, u: u.unwrap_or(Mat3::zero()) };
     let (qd_joints, qdd_joints) = (qd.map(|x| &x[6..]), qdd.map(|x| &x[6..]));
     let children = rnea_tree(model, ws, &q[7..], (qd_joints, qdd_joints), Root::Moving(&root), loads, &mut tau[6..]);
-    let base = &model.base_inertia;
-    let gyro = use_products_for_gyroscopic(&base.ibar);
-    let (own, _) = body_wrench(&Inertia::<S>::from_f64(base), [&w, &wd, &a], (qd.is_some(), moving), gyro);
     let mut f0 = own + children;
     for tip in loads.tips {
         let frame = &model.frames[tip.frame];
