@@ -305,10 +305,10 @@ fn aba_impl<S: Scalar, const DISTRIBUTED: bool>(
     );
     loads.check(n, "aba");
     velocities(model, ws, q, qd, None, loads);
-    inward::<S, DISTRIBUTED>(model, ws, (tau, qd.is_some()), loads.armature, None);
+    inward(model, ws, (tau, qd.is_some()), loads.armature, None, DISTRIBUTED);
     // A fixed base is at rest, accelerating at −g.
     let a0 = Motion::new(Vec3::zero(), loads.gravity.map_or(Vec3::zero(), |g| -*g));
-    outward::<S, DISTRIBUTED>(model, ws, &a0, qdd);
+    outward(model, ws, &a0, qdd, DISTRIBUTED);
 }
 
 /// The articulated inertia and bias force that a moving root (a floating
@@ -398,14 +398,16 @@ pub(crate) fn velocities<S: Scalar>(
 /// The inward pass of [`aba_impl`] after [`velocities`]: articulated
 /// inertias and bias forces from the tips to the root; `(tau, moving)` the
 /// joint torques and whether q̇ was given; a moving `root` collects what its
-/// children pass it (a fixed one takes nothing).
+/// children pass it (a fixed one takes nothing); `distributed` the arm (a
+/// constant where it is inlined, see [`aba_impl`]).
 #[inline(always)]
-pub(crate) fn inward<S: Scalar, const DISTRIBUTED: bool>(
+pub(crate) fn inward<S: Scalar>(
     model: &Model,
     ws: &mut Workspace<S>,
     (tau, moving): (&[S], bool),
     armature: Option<&[f64]>,
     mut root: Option<&mut RootArticulated<S>>,
+    distributed: bool,
 ) {
     for (i, body) in model.bodies.iter().enumerate().rev() {
         let u = ws.art[i].mul_subspace(&body.joint);
@@ -417,7 +419,7 @@ pub(crate) fn inward<S: Scalar, const DISTRIBUTED: bool>(
         ws.s1[i] = d_inv;
         // Whether body i passes anything on.
         let passes = body.parent.is_some() || root.is_some();
-        if DISTRIBUTED {
+        if distributed {
             // The transform distributed over the rank-one update (exact
             // algebra, see the function's documentation): what does not
             // wait for 1/d (X Iᴬ Xᵀ, X U, X(pᴬ + Iᴬc), u − Uᵀc) runs
@@ -539,13 +541,14 @@ fn pass_on<S: Scalar>(
 
 /// The outward pass of [`aba_impl`]: q̈ and the bodies' accelerations from
 /// the root's classic acceleration `a0` (ω̇; the acceleration of its origin,
-/// gravity as −g).
+/// gravity as −g); `distributed` as for [`inward`].
 #[inline(always)]
-pub(crate) fn outward<S: Scalar, const DISTRIBUTED: bool>(
+pub(crate) fn outward<S: Scalar>(
     model: &Model,
     ws: &mut Workspace<S>,
     a0: &Motion<S>,
     qdd: &mut [S],
+    distributed: bool,
 ) {
     for (i, body) in model.bodies.iter().enumerate() {
         let a_parent = match body.parent {
@@ -553,7 +556,7 @@ pub(crate) fn outward<S: Scalar, const DISTRIBUTED: bool>(
             None => *a0,
         };
         let a = motion_to_child(&body.joint, &ws.x[i], &a_parent) + ws.a[i];
-        let qddi = if DISTRIBUTED {
+        let qddi = if distributed {
             // Uᵀ(X a_p + c) = (XᵀU)ᵀ a_p + Uᵀc, with u − Uᵀc from the
             // inward pass: q̈ no longer waits for the transform of a_p.
             (ws.s2[i] - a_parent.dot(&ws.u6[i])) * ws.s1[i]

@@ -70,25 +70,6 @@ fn aba_impl<S: Scalar>(
     let nv = model.nv();
     check_sizes(model, "floating aba", q.len(), &[qd.map_or(nv, <[S]>::len), tau.len(), qdd.len()]);
     loads.check(n, "floating aba");
-    // The same arm of the fixed-base passes as their aba_impl takes.
-    if S::TRACED {
-        floating_aba::<S, true>(model, ws, q, qd, tau, loads, qdd)
-    } else {
-        floating_aba::<S, false>(model, ws, q, qd, tau, loads, qdd)
-    }
-}
-
-/// [`aba_impl`] with the fixed-base passes' arm `DISTRIBUTED`.
-#[inline(always)]
-fn floating_aba<S: Scalar, const DISTRIBUTED: bool>(
-    model: &Model,
-    ws: &mut Workspace<S>,
-    q: &[S],
-    qd: Option<&[S]>,
-    tau: &[S],
-    loads: Loads<'_, S>,
-    qdd: &mut [S],
-) {
     let vec3 = |x: &[S]| Vec3([x[0], x[1], x[2]]);
     let w0 = qd.map(vec3);
     velocities(model, ws, &q[7..], qd.map(|x| &x[6..]), w0.as_ref(), loads);
@@ -111,7 +92,9 @@ fn floating_aba<S: Scalar, const DISTRIBUTED: bool>(
             root.bias += Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
         }
     }
-    inward::<S, DISTRIBUTED>(model, ws, (&tau[6..], qd.is_some()), loads.armature, Some(&mut root));
+    // The fixed-base passes' arm: distributed when traced (see aba.rs).
+    let distributed = S::TRACED;
+    inward(model, ws, (&tau[6..], qd.is_some()), loads.armature, Some(&mut root), distributed);
     let mut a0 = [S::zero(); 6];
     for (k, (t, p)) in tau[..6].iter().zip(root.bias.to_array()).enumerate() {
         a0[k] = *t - p;
@@ -127,5 +110,5 @@ fn floating_aba<S: Scalar, const DISTRIBUTED: bool>(
         base.lin += quaternion_rotation(&q[3..7]).tr_mul_vec(g);
     }
     qdd[..6].copy_from_slice(&base.to_array());
-    outward::<S, DISTRIBUTED>(model, ws, &a0, &mut qdd[6..]);
+    outward(model, ws, &a0, &mut qdd[6..], distributed);
 }
