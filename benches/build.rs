@@ -36,7 +36,7 @@ fn main() {
                 Function::ForwardDynamicsDerivatives,
                 Function::MassMatrixInverse,
             ])
-            .source(&format!("dynagen/robots/{robot}.urdf"));
+            .source(format!("dynagen/robots/{robot}.urdf"));
         let module = generate(&model, &derivatives).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
         std::fs::write(Path::new(&out).join(format!("{robot}_derivatives.rs")), module.source).expect("writing");
         let base = CodegenOptions::default().trig(Trig::Inputs).fma(false).runtime_dispatch(false);
