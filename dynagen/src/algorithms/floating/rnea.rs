@@ -1,6 +1,6 @@
 //! Inverse dynamics of a floating-base robot by the recursive Newton-Euler
 //! algorithm in body coordinates: the base is the root that the fixed-base
-//! recursion ([`rnea_tree`]) hangs the bodies from, moving with its body
+//! recursion (`rnea::rnea_tree`) hangs the bodies from, moving with its body
 //! twist and accelerating with gravity folded in (`v̇_b + ω_b × v_b − Rᵀg`,
 //! the ordinary acceleration of its origin, so gravity costs nothing per
 //! body), and the wrench left at the base after the backward pass is
