@@ -27,6 +27,11 @@ generated!(
     "quadruped12_floating.rs",
     "The quadruped12 with a floating base (`--floating-base`), default options."
 );
+generated!(
+    humanoid32_floating,
+    "humanoid32_floating.rs",
+    "The humanoid32 with a floating base (`--floating-base`), default options."
+);
 
 /// The URDF of a bundled robot.
 pub fn urdf(robot: &str) -> String {

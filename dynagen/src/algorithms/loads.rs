@@ -120,26 +120,26 @@ impl<S> Default for Loads<'_, S> {
     }
 }
 
-/// Adds each tip wrench, moved from its frame to its body's, to that body's
-/// wrench in `f` (what rnea and aba do with [`Loads::tips`]). A tip on a
-/// frame fixed to the root goes to `base`, a floating base's wrench (base
-/// frame), and without one is carried by the fixed base.
+/// Adds each tip wrench, moved from its frame into its body's (what rnea
+/// and aba do with [`Loads::tips`]): to that body's wrench in `bodies`, or,
+/// for a frame fixed to the root, to `base` (a floating base's wrench, base
+/// frame). A tip whose place is not given is left to the other call (the
+/// tree's passes and the floating root's each add their own), or carried by
+/// a fixed base.
 pub(crate) fn add_tip_wrenches<S: Scalar>(
     model: &Model,
     tips: &[TipWrench<S>],
-    f: &mut [Force<S>],
+    mut bodies: Option<&mut [Force<S>]>,
     mut base: Option<&mut Force<S>>,
 ) {
     for tip in tips {
         let frame = &model.frames[tip.frame];
-        if frame.body.is_none() && base.is_none() {
-            continue;
-        }
-        let w = Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
-        match (frame.body, base.as_deref_mut()) {
-            (Some(b), _) => f[b] += w,
-            (None, Some(f0)) => *f0 += w,
-            (None, None) => {}
+        let place = match frame.body {
+            Some(b) => bodies.as_deref_mut().map(|f| &mut f[b]),
+            None => base.as_deref_mut(),
+        };
+        if let Some(f) = place {
+            *f += Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
         }
     }
 }
