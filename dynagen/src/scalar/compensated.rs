@@ -344,6 +344,11 @@ impl<E: ExactProduct> Scalar for CompensatedWith<E> {
         let a = Vec3::<Self>::from_f64(axis);
         a.norm_squared() * inverse_norm(&a, norm)
     }
+    const FILE_CONSTANTS: bool = true;
+    #[inline(always)]
+    fn from_double_double(x: crate::DoubleDouble) -> Self {
+        Self::raw(x.hi, x.lo)
+    }
 }
 
 /// 1/|a| to the scalar's precision, from the `f64` norm `approx`: one

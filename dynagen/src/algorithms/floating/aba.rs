@@ -11,7 +11,7 @@ use crate::algorithms::joint::{
 };
 use crate::algorithms::{Loads, Workspace};
 use crate::model::Model;
-use crate::spatial::{Force, Inertia, Motion, Transform};
+use crate::spatial::{Force, Motion};
 use crate::Scalar;
 
 /// q̈ = M(q)⁻¹(τ − h(q, q̇) − Jᵀ F_tip) of a floating-base model: `q` NQ
@@ -69,7 +69,7 @@ fn aba_impl<S: Scalar>(
     // Forward: spatial velocities v, velocity-product accelerations c (in
     // ws.a), bias forces pᴬ = v ×* I v (in ws.f).
     let v0 = qd.map_or(Motion::zero(), base_motion);
-    let i0 = Inertia::<S>::from_f64(&model.base_inertia);
+    let i0 = model.base_inertia_in::<S>();
     let mut art0 = ArticulatedInertia::from_rigid(&i0);
     let mut p0 = match qd {
         Some(_) => v0.cross_force(&i0.mul_motion(&v0)),
@@ -79,7 +79,7 @@ fn aba_impl<S: Scalar>(
         let joint = &body.joint;
         let x = joint_transform(joint, q[7 + i]);
         ws.x[i] = x;
-        let mut inertia = Inertia::<S>::from_f64(&body.inertia);
+        let mut inertia = body.inertia_in::<S>();
         for p in payloads.iter().filter(|p| p.body == i) {
             inertia = inertia.add(&p.inertia);
         }
@@ -99,7 +99,7 @@ fn aba_impl<S: Scalar>(
     }
     for tip in tips {
         let frame = &model.frames[tip.frame];
-        let w = Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
+        let w = frame.placement_in::<S>().force_to_parent(&tip.wrench);
         match frame.body {
             Some(b) => ws.f[b] += w,
             None => p0 += w,

@@ -24,12 +24,12 @@ pub fn composite_inertia<S: Scalar>(
 ) -> Inertia<S> {
     for (i, b) in model.bodies.iter().enumerate() {
         ws.x[i] = joint_transform(&b.joint, q[7 + i]);
-        ws.inertia[i] = Inertia::from_f64(&b.inertia);
+        ws.inertia[i] = b.inertia_in();
     }
     for p in payloads {
         ws.inertia[p.body] = ws.inertia[p.body].add(&p.inertia);
     }
-    let mut ic0 = Inertia::<S>::from_f64(&model.base_inertia);
+    let mut ic0 = model.base_inertia_in::<S>();
     for (i, b) in model.bodies.iter().enumerate().rev() {
         let moved = inertia_to_parent(&b.joint, &ws.x[i], &ws.inertia[i]);
         match b.parent {

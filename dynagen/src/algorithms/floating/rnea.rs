@@ -9,7 +9,7 @@ use super::{base_motion, check_sizes, quaternion_rotation, write_force};
 use crate::algorithms::joint::{add_motion, cross_motion, force_to_parent, joint_transform, motion_to_child, project};
 use crate::algorithms::{Loads, Workspace};
 use crate::model::Model;
-use crate::spatial::{Force, Inertia, Motion, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Motion, Vec3};
 use crate::Scalar;
 
 /// τ = M(q)q̈ + h(q, q̇) (+ Jᵀ F_tip) of a floating-base model.
@@ -43,7 +43,7 @@ pub fn rnea<S: Scalar>(
     if let Some(g) = gravity {
         a0.lin -= quaternion_rotation(&q[3..7]).tr_mul_vec(g);
     }
-    let i0 = Inertia::<S>::from_f64(&model.base_inertia);
+    let i0 = model.base_inertia_in::<S>();
     let mut f0 = i0.mul_motion(&a0);
     if qd.is_some() {
         f0 += v0.cross_force(&i0.mul_motion(&v0));
@@ -65,7 +65,7 @@ pub fn rnea<S: Scalar>(
         if let Some(qdd) = qdd {
             add_motion(joint, &mut a, qdd[6 + i]);
         }
-        let mut inertia = Inertia::<S>::from_f64(&body.inertia);
+        let mut inertia = body.inertia_in::<S>();
         for p in payloads.iter().filter(|p| p.body == i) {
             inertia = inertia.add(&p.inertia);
         }
@@ -79,7 +79,7 @@ pub fn rnea<S: Scalar>(
     }
     for tip in tips {
         let frame = &model.frames[tip.frame];
-        let w = Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
+        let w = frame.placement_in::<S>().force_to_parent(&tip.wrench);
         match frame.body {
             Some(b) => ws.f[b] += w,
             None => f0 += w,
