@@ -813,3 +813,70 @@ fn floating_base_on_the_command_line() {
     );
     assert!(e.contains("fixed-base robots only"), "{e}");
 }
+
+/// `eval --fd`: the forward dynamics behind "qdd" is the library's method
+/// of that name, bit for bit (the default the articulated-body algorithm);
+/// on a cancelling state of a test robot with its 50-digit reference
+/// (`tests/data/file_precision.json`) the compensated method is the
+/// accurate one; an unknown method is a usage error listing the four.
+#[test]
+fn eval_fd_picks_the_forward_dynamics() {
+    let dir = scratch("eval_fd");
+    let states = some_states(9, 21);
+    let file = write(&dir, "states.json", &states_file(&states));
+    let path = support::robot_path("panda").display().to_string();
+    let run = |method: Option<&str>| -> Value {
+        let mut cmd = dynagen();
+        cmd.args(["eval", &path, "--input"]).arg(&file);
+        if let Some(m) = method {
+            cmd.args(["--fd", m]);
+        }
+        serde_json::from_str(&succeeds(&mut cmd)).unwrap()
+    };
+    assert_eq!(run(None), run(Some("aba")), "the default is aba");
+    let v = |x: &Vec<f64>| DVector::from_column_slice(x);
+    let mut counted = 0;
+    for method in ["aba", "ldlt", "compensated", "refined"] {
+        let doc = run(Some(method));
+        let mut robot = support::robot("panda");
+        if method == "refined" {
+            robot.set_compensated_refinement(1);
+        }
+        for (i, (r, (q, qd, _, tau))) in doc["results"].as_array().unwrap().iter().zip(&states).enumerate() {
+            let (Some(qd), Some(tau)) = (qd, tau) else { continue };
+            let want = match method {
+                "aba" => robot.forward_dynamics(&v(q), &v(qd), &v(tau)),
+                "ldlt" => robot.forward_dynamics_ldlt(&v(q), &v(qd), &v(tau)),
+                _ => robot.forward_dynamics_compensated(&v(q), &v(qd), &v(tau)),
+            }
+            .unwrap();
+            bits_eq(&format!("--fd {method} state {i} qdd"), &r["qdd"], want.as_slice());
+            counted += 1;
+        }
+    }
+    assert!(counted >= 16, "{counted}");
+
+    // A cancelling state of the 8-joint test chain: ABA loses digits, compensated does not.
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    let json: Value = serde_json::from_str(&std::fs::read_to_string(data.join("file_precision.json")).unwrap()).unwrap();
+    let robot = &json["robots"][0];
+    let chain = data.join(robot["urdf"].as_str().unwrap());
+    let state = robot["states"].as_array().unwrap().iter().find(|s| s["kind"] == "cancelling").unwrap();
+    let input = format!("{{\"states\": [{{\"q\": {}, \"qd\": {}, \"tau\": {}}}]}}", state["q"], state["qd"], state["tau"]);
+    let reference: Vec<f64> =
+        state["qdd"].as_array().unwrap().iter().map(|x| x.as_str().unwrap().parse().unwrap()).collect();
+    let error = |method: &str| {
+        let mut cmd = dynagen();
+        let out = succeeds(cmd.arg("eval").arg(&chain).args(["--fd", method, "--input", "-"]).write_stdin(input.clone()));
+        let doc: Value = serde_json::from_str(&out).unwrap();
+        let qdd: Vec<f64> = doc["results"][0]["qdd"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        support::norm_rel_err(&qdd, &reference, 0.0)
+    };
+    let (aba, compensated) = (error("aba"), error("compensated"));
+    assert!(100.0 * compensated < aba, "compensated {compensated:e} against ABA {aba:e}");
+
+    let out = dynagen().args(["eval", "--fd", "rk4", "--input", "-"]).write_stdin("{\"states\": []}").output().unwrap();
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("rk4") && stderr.contains("aba, ldlt, compensated, refined"), "{stderr}");
+}
