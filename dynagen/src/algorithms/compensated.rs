@@ -107,9 +107,25 @@ impl<P: Scalar> CompensatedScratch<P> {
 /// # Panics
 /// If a slice or the scratch does not have the model's number of joints, or
 /// a payload's body is not a body of the model.
-// Inlined so that the FMA form (`solve_fma`) compiles it with FMA enabled.
-#[inline(always)]
 pub fn forward_dynamics_compensated<P: Scalar>(
+    model: &Model,
+    scratch: &mut CompensatedScratch<P>,
+    q: &[f64],
+    qd: &[f64],
+    tau: &[f64],
+    loads: Loads<'_, f64>,
+    qdd: &mut [f64],
+) {
+    compensated(model, scratch, q, qd, tau, loads, qdd)
+}
+
+/// [`forward_dynamics_compensated`], inlined into its caller so that the FMA
+/// form (`solve_fma`) compiles it, and the algorithms it inlines, with FMA
+/// enabled. (The public function is not inlined: a debug build keeps each
+/// inlined call's locals apart, and a caller with several calls would need
+/// a stack that many times as deep.)
+#[inline(always)]
+fn compensated<P: Scalar>(
     model: &Model,
     scratch: &mut CompensatedScratch<P>,
     q: &[f64],
@@ -268,7 +284,7 @@ unsafe fn solve_fma(
     loads: Loads<'_, f64>,
     qdd: &mut [f64],
 ) {
-    forward_dynamics_compensated(model, scratch, q, qd, tau, loads, qdd)
+    compensated(model, scratch, q, qd, tau, loads, qdd)
 }
 
 #[cfg(test)]
