@@ -23,13 +23,7 @@ const CALLS: usize = 500;
 
 /// (q, q̇, τ): q in ±π, q̇ in ±300, τ = RNEA(q, q̇, q̈) in f64 for q̈ in ±1.
 fn states(model: &Model, seed: u64) -> Vec<(Vec<f64>, Vec<f64>, Vec<f64>)> {
-    let mut x = seed;
-    let mut next = move || {
-        x ^= x >> 12;
-        x ^= x << 25;
-        x ^= x >> 27;
-        (x.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    };
+    let mut next = dynagen_bench::uniform(seed);
     let n = model.dof();
     let mut ws = Workspace::<f64>::new(model);
     let g = model.gravity;
@@ -97,25 +91,19 @@ fn main() {
                 refined.solve(model, q, qd, tau, Loads::gravity(&g), out)
             }),
         ];
+        // The generated forward dynamics of a bundled robot's default module.
+        macro_rules! generated {
+            ($module:ident) => {
+                Some(Box::new(|k, out: &mut [f64]| {
+                    let (q, qd, tau) = &st[k];
+                    let array = |x: &[f64]| x.try_into().expect("the robot's joints");
+                    out.copy_from_slice(&dynagen_bench::$module::forward_dynamics(array(q), array(qd), array(tau)));
+                }))
+            };
+        }
         let generated: Option<Variant> = match name.as_str() {
-            "ur5" => Some(Box::new(|k, out| {
-                let (q, qd, tau) = &st[k];
-                let r = dynagen_bench::ur5_batched::forward_dynamics(
-                    q[..].try_into().unwrap(),
-                    qd[..].try_into().unwrap(),
-                    tau[..].try_into().unwrap(),
-                );
-                out.copy_from_slice(&r);
-            })),
-            "panda" => Some(Box::new(|k, out| {
-                let (q, qd, tau) = &st[k];
-                let r = dynagen_bench::panda_batched::forward_dynamics(
-                    q[..].try_into().unwrap(),
-                    qd[..].try_into().unwrap(),
-                    tau[..].try_into().unwrap(),
-                );
-                out.copy_from_slice(&r);
-            })),
+            "ur5" => generated!(ur5_batched),
+            "panda" => generated!(panda_batched),
             _ => None,
         };
         variants.extend(generated);

@@ -735,12 +735,18 @@ fn ops_with_a_scene_lists_the_scene_module_beside_the_full_one() {
 /// `eval --derivatives`: the derivatives each state has the inputs for,
 /// `[output][input]` one row per line, bit for bit the library's; M·M⁻¹ = 1
 /// from the printed matrices; without the flag, none of them.
+/// Random states of the Panda for `test` (seeded): the states, their file,
+/// and the Panda's URDF path.
+fn panda_states(test: &str, seed: u64) -> (Vec<Fields>, PathBuf, String) {
+    let dir = scratch(test);
+    let states = some_states(9, seed);
+    let file = write(&dir, "states.json", &states_file(&states));
+    (states, file, support::robot_path("panda").display().to_string())
+}
+
 #[test]
 fn eval_derivatives_agree_bit_for_bit_with_the_library() {
-    let dir = scratch("eval_derivatives");
-    let states = some_states(9, 16);
-    let file = write(&dir, "states.json", &states_file(&states));
-    let path = support::robot_path("panda").display().to_string();
+    let (states, file, path) = panda_states("eval_derivatives", 16);
     let plain = succeeds(dynagen().args(["eval", &path, "--input"]).arg(&file));
     assert!(!plain.contains("dtau_dq") && !plain.contains("minv"));
     let out = succeeds(dynagen().args(["eval", &path, "--derivatives", "--input"]).arg(&file));
@@ -821,10 +827,7 @@ fn floating_base_on_the_command_line() {
 /// accurate one; an unknown method is a usage error listing the four.
 #[test]
 fn eval_fd_picks_the_forward_dynamics() {
-    let dir = scratch("eval_fd");
-    let states = some_states(9, 21);
-    let file = write(&dir, "states.json", &states_file(&states));
-    let path = support::robot_path("panda").display().to_string();
+    let (states, file, path) = panda_states("eval_fd", 21);
     let run = |method: Option<&str>| -> Value {
         let mut cmd = dynagen();
         cmd.args(["eval", &path, "--input"]).arg(&file);
@@ -858,16 +861,19 @@ fn eval_fd_picks_the_forward_dynamics() {
 
     // A cancelling state of the 8-joint test chain: ABA loses digits, compensated does not.
     let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
-    let json: Value = serde_json::from_str(&std::fs::read_to_string(data.join("file_precision.json")).unwrap()).unwrap();
+    let json: Value =
+        serde_json::from_str(&std::fs::read_to_string(data.join("file_precision.json")).unwrap()).unwrap();
     let robot = &json["robots"][0];
     let chain = data.join(robot["urdf"].as_str().unwrap());
     let state = robot["states"].as_array().unwrap().iter().find(|s| s["kind"] == "cancelling").unwrap();
-    let input = format!("{{\"states\": [{{\"q\": {}, \"qd\": {}, \"tau\": {}}}]}}", state["q"], state["qd"], state["tau"]);
+    let input =
+        format!("{{\"states\": [{{\"q\": {}, \"qd\": {}, \"tau\": {}}}]}}", state["q"], state["qd"], state["tau"]);
     let reference: Vec<f64> =
         state["qdd"].as_array().unwrap().iter().map(|x| x.as_str().unwrap().parse().unwrap()).collect();
     let error = |method: &str| {
         let mut cmd = dynagen();
-        let out = succeeds(cmd.arg("eval").arg(&chain).args(["--fd", method, "--input", "-"]).write_stdin(input.clone()));
+        let out =
+            succeeds(cmd.arg("eval").arg(&chain).args(["--fd", method, "--input", "-"]).write_stdin(input.clone()));
         let doc: Value = serde_json::from_str(&out).unwrap();
         let qdd: Vec<f64> = doc["results"][0]["qdd"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
         support::norm_rel_err(&qdd, &reference, 0.0)

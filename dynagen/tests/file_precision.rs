@@ -111,7 +111,8 @@ fn outputs<S: Scalar>(model: &Model, s: &State) -> [Vec<S>; 5] {
     let grav = Vec3::<S>::from_f64(&model.gravity);
     let gravity = Loads::gravity(&grav);
     let mut ws = Workspace::<S>::new(model);
-    let mut out = [vec![S::zero(); n], vec![S::zero(); n], vec![S::zero(); n], vec![S::zero(); n * n], vec![S::zero(); n]];
+    let mut out =
+        [vec![S::zero(); n], vec![S::zero(); n], vec![S::zero(); n], vec![S::zero(); n * n], vec![S::zero(); n]];
     rnea::rnea(model, &mut ws, &q, Some(&qd), Some(&c(&s.qdd_in)), gravity, &mut out[0]);
     bias::bias_forces(model, &mut ws, &q, &qd, Some(&grav), &mut out[1]);
     bias::gravity_torques(model, &mut ws, &q, &grav, &mut out[2]);
@@ -128,33 +129,40 @@ fn dd_errors(model: &Model, s: &State) -> [f64; 5] {
     std::array::from_fn(|k| dd_err(&out[k], refs[k]))
 }
 
-#[test]
-fn double_double_computes_the_files_robot() {
+/// Runs `check` on every state of every case, with the case's model
+/// without its file values (the f64 model) and the state's name.
+fn each_state(mut check: impl FnMut(&Case, &Model, &State, &str)) {
     for case in cases() {
         let rounded = case.model.clone().without_file_values();
-        let n = case.model.dof() as f64;
         for (k, s) in case.states.iter().enumerate() {
-            let at = format!("{} state {k}", case.name);
-            let file = dd_errors(&case.model, s);
-            // τ, h, g and M to double-double precision; q̈ loses the digits
-            // τ − h cancels, and cond(M)'s, of double-double's 32.
-            for (what, e) in ["τ", "h", "g", "M"].iter().zip(&file) {
-                assert!(*e < 1e-29, "{at}: {what} off the file's robot by {e:e}");
-            }
-            let bound = 1e-31 * n * s.cond * (1.0 + s.cancellation);
-            assert!(file[4] < bound, "{at}: q̈ off by {:e} > {bound:e}", file[4]);
-            // The f64 model, re-orthonormalised: a robot an ε away, which the
-            // cancellation amplifies; this is what the reference computed
-            // before the model kept the file's values.
-            let other = dd_errors(&rounded, s);
-            let worst = |e: &[f64]| e[..4].iter().copied().fold(0.0, f64::max);
-            let (worst_file, worst_other) = (worst(&file), worst(&other));
-            assert!(worst_other > 1e3 * worst_file, "{at}: the rounded model is as close ({worst_other:e})");
-            if s.cancelling {
-                assert!(other[4] > 1e-13 && other[4] > 1e4 * file[4], "{at}: q̈ of the rounded model off by {:e}", other[4]);
-            }
+            check(&case, &rounded, s, &format!("{} state {k}", case.name));
         }
     }
+}
+
+#[test]
+fn double_double_computes_the_files_robot() {
+    each_state(|case, rounded, s, at| {
+        let n = case.model.dof() as f64;
+        let file = dd_errors(&case.model, s);
+        // τ, h, g and M to double-double precision; q̈ loses the digits
+        // τ − h cancels, and cond(M)'s, of double-double's 32.
+        for (what, e) in ["τ", "h", "g", "M"].iter().zip(&file) {
+            assert!(*e < 1e-29, "{at}: {what} off the file's robot by {e:e}");
+        }
+        let bound = 1e-31 * n * s.cond * (1.0 + s.cancellation);
+        assert!(file[4] < bound, "{at}: q̈ off by {:e} > {bound:e}", file[4]);
+        // The f64 model, re-orthonormalised: a robot an ε away, which the
+        // cancellation amplifies; this is what the reference computed
+        // before the model kept the file's values.
+        let other = dd_errors(rounded, s);
+        let worst = |e: &[f64]| e[..4].iter().copied().fold(0.0, f64::max);
+        let (worst_file, worst_other) = (worst(&file), worst(&other));
+        assert!(worst_other > 1e3 * worst_file, "{at}: the rounded model is as close ({worst_other:e})");
+        if s.cancelling {
+            assert!(other[4] > 1e-13 && other[4] > 1e4 * file[4], "{at}: q̈ of the rounded model off by {:e}", other[4]);
+        }
+    });
 }
 
 /// The relative error of a forward dynamics that solves M q̈ = τ − h stably:
@@ -167,29 +175,21 @@ fn solve_bound(s: &State) -> f64 {
 
 #[test]
 fn f64_is_unchanged_by_the_file_values_and_within_its_bounds() {
-    for case in cases() {
-        let rounded = case.model.clone().without_file_values();
+    each_state(|case, rounded, s, at| {
         let n = case.model.dof() as f64;
-        for (k, s) in case.states.iter().enumerate() {
-            let at = format!("{} state {k}", case.name);
-            // f64 computes the f64 model, bit for bit, with or without the file's values
-            let f = outputs::<f64>(&case.model, s);
-            assert_eq!(f, outputs::<f64>(&rounded, s), "{at}: f64 results changed");
-            assert_eq!(
-                outputs::<f32>(&case.model, s),
-                outputs::<f32>(&rounded, s),
-                "{at}: f32 results changed"
-            );
-            // and against the file's robot, the model's rounding is ε there
-            let refs = [&s.tau_of_qdd_in, &s.h, &s.g, &s.m];
-            for ((what, got), want) in ["τ", "h", "g", "M"].iter().zip(&f).zip(refs) {
-                let e = norm_rel_err(got, &to_f64(want), 0.0);
-                assert!(e < 100.0 * n * EPS, "{at}: f64 {what} off by {e:e}");
-            }
-            let e = norm_rel_err(&f[4], &to_f64(&s.qdd), 0.0);
-            assert!(e < solve_bound(s), "{at}: f64 ABA off by {e:e} > {:e}", solve_bound(s));
+        // f64 computes the f64 model, bit for bit, with or without the file's values
+        let f = outputs::<f64>(&case.model, s);
+        assert_eq!(f, outputs::<f64>(rounded, s), "{at}: f64 results changed");
+        assert_eq!(outputs::<f32>(&case.model, s), outputs::<f32>(rounded, s), "{at}: f32 results changed");
+        // and against the file's robot, the model's rounding is ε there
+        let refs = [&s.tau_of_qdd_in, &s.h, &s.g, &s.m];
+        for ((what, got), want) in ["τ", "h", "g", "M"].iter().zip(&f).zip(refs) {
+            let e = norm_rel_err(got, &to_f64(want), 0.0);
+            assert!(e < 100.0 * n * EPS, "{at}: f64 {what} off by {e:e}");
         }
-    }
+        let e = norm_rel_err(&f[4], &to_f64(&s.qdd), 0.0);
+        assert!(e < solve_bound(s), "{at}: f64 ABA off by {e:e} > {:e}", solve_bound(s));
+    });
 }
 
 #[test]
@@ -210,7 +210,9 @@ fn compensated_is_a_hundredfold_more_accurate_than_aba_where_m_is_well_condition
             solver.solve(&case.model, &s.q, &s.qd, &s.tau, Loads::gravity(&g), &mut by_solver);
             let reference = to_f64(&s.qdd);
             let ea = norm_rel_err(&plain, &reference, 0.0);
-            for (how, ec) in [("", norm_rel_err(&comp, &reference, 0.0)), (" (solver)", norm_rel_err(&by_solver, &reference, 0.0))] {
+            for (how, ec) in
+                [("", norm_rel_err(&comp, &reference, 0.0)), (" (solver)", norm_rel_err(&by_solver, &reference, 0.0))]
+            {
                 // As accurate as a stable solve of M q̈ = u with u exact: its
                 // error no longer grows with ‖h‖/‖τ − h‖.
                 let bound = 10.0 * n as f64 * EPS * s.cond;

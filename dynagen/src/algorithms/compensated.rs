@@ -116,7 +116,7 @@ pub fn forward_dynamics_compensated<P: Scalar>(
     loads: Loads<'_, f64>,
     qdd: &mut [f64],
 ) {
-    compensated(model, scratch, q, qd, tau, loads, qdd)
+    compensated(model, scratch, [q, qd, tau], loads, qdd)
 }
 
 /// [`forward_dynamics_compensated`], inlined into its caller so that the FMA
@@ -128,9 +128,7 @@ pub fn forward_dynamics_compensated<P: Scalar>(
 fn compensated<P: Scalar>(
     model: &Model,
     scratch: &mut CompensatedScratch<P>,
-    q: &[f64],
-    qd: &[f64],
-    tau: &[f64],
+    [q, qd, tau]: [&[f64]; 3],
     loads: Loads<'_, f64>,
     qdd: &mut [f64],
 ) {
@@ -284,7 +282,7 @@ unsafe fn solve_fma(
     loads: Loads<'_, f64>,
     qdd: &mut [f64],
 ) {
-    compensated(model, scratch, q, qd, tau, loads, qdd)
+    compensated(model, scratch, [q, qd, tau], loads, qdd)
 }
 
 #[cfg(test)]

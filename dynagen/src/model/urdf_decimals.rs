@@ -81,7 +81,8 @@ pub(super) fn origin(attrs: &[(String, String)], version: (u32, u32)) -> Option<
 pub(super) fn file_transform(file: Option<Transform<DD>>, pose: &Transform<f64>) -> Option<FileTransform> {
     let file = file?;
     let rounds = file.trans.0.iter().zip(&pose.trans.0).all(|(a, b)| a.to_f64() == *b);
-    let close = file.rot.0.iter().flatten().zip(pose.rot.0.iter().flatten()).all(|(a, b)| (a.to_f64() - b).abs() <= 1e-12);
+    let close =
+        file.rot.0.iter().flatten().zip(pose.rot.0.iter().flatten()).all(|(a, b)| (a.to_f64() - b).abs() <= 1e-12);
     (rounds && close).then(|| FileValue::new(*pose, file))
 }
 
