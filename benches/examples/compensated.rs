@@ -42,6 +42,11 @@ fn states(model: &Model, seed: u64) -> Vec<(Vec<f64>, Vec<f64>, Vec<f64>)> {
 /// A variant: runs one call on state `k`, writing q̈.
 type Variant<'a> = Box<dyn FnMut(usize, &mut [f64]) + 'a>;
 
+/// A state's vector as the array a generated function takes.
+fn array<const N: usize>(x: &[f64]) -> &[f64; N] {
+    x.try_into().expect("the robot's joints")
+}
+
 fn stats(per_call: &mut [f64]) -> (f64, f64) {
     per_call.sort_by(f64::total_cmp);
     (per_call[0], per_call[per_call.len() / 2])
@@ -96,7 +101,6 @@ fn main() {
             ($module:ident) => {
                 Some(Box::new(|k, out: &mut [f64]| {
                     let (q, qd, tau) = &st[k];
-                    let array = |x: &[f64]| x.try_into().expect("the robot's joints");
                     out.copy_from_slice(&dynagen_bench::$module::forward_dynamics(array(q), array(qd), array(tau)));
                 }))
             };

@@ -84,7 +84,7 @@ fn cases() -> Vec<Case> {
                     h: decimals(&s["h"]),
                     g: decimals(&s["g"]),
                     tau_of_qdd_in: decimals(&s["tau_of_qdd_in"]),
-                    m: s["M"].as_array().unwrap().iter().flat_map(|row| decimals(row)).collect(),
+                    m: s["M"].as_array().unwrap().iter().flat_map(decimals).collect(),
                 })
                 .collect();
             Case { name: r["name"].as_str().unwrap().to_string(), model, states }

@@ -34,7 +34,7 @@ fn pow10(e: u32) -> DoubleDouble {
     let mut k = e / 22;
     while k > 0 {
         if k & 1 == 1 {
-            result = result * base;
+            result *= base;
         }
         k >>= 1;
         if k > 0 {
@@ -134,7 +134,7 @@ impl DoubleDouble {
             return None;
         }
         if exponent >= 0 {
-            value = value * pow10(exponent as u32);
+            value *= pow10(exponent as u32);
         } else {
             // Divided in two steps when 10^|e| alone would overflow.
             let mut e = -exponent;
@@ -167,6 +167,7 @@ mod tests {
     }
 
     #[test]
+    #[allow(clippy::approx_constant)] // the literals are data from mpmath, not constants
     fn decimals_to_double_double_precision() {
         // (text, hi, lo): mpmath, 60 digits, the decimal split as hi + lo.
         check("0.1", 0.1, -5.551115123125783e-18);
