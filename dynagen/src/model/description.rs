@@ -71,7 +71,8 @@ pub struct LinkDescription {
     /// Mass properties; `None` is a massless link.
     pub inertial: Option<Inertial>,
     /// The link's spatial inertia in its own frame as the robot file defines
-    /// it, beyond `f64` ([`FileValue`]), refining `inertial`.
+    /// it, beyond `f64` ([`FileValue`]), refining `inertial`; without it (a
+    /// link described in Rust), `inertial`'s numbers are taken as exact.
     pub file_inertia: Option<FileInertial>,
 }
 
@@ -116,7 +117,8 @@ pub struct JointDescription {
     /// `origin` as the robot file defines it (the rotation from the file's
     /// rpy or quaternion), beyond `f64` ([`FileValue`]).
     pub file_origin: Option<FileTransform>,
-    /// `axis` as the robot file writes it, beyond `f64`.
+    /// `axis` as the robot file writes it, beyond `f64` (without it, the
+    /// `f64` axis is taken as exact).
     pub file_axis: Option<FileVec3>,
 }
 
@@ -153,10 +155,13 @@ impl JointDescription {
         Self::new(name, JointType::Fixed, parent, child, [0.0, 0.0, 0.0])
     }
     /// Places the joint frame at `xyz` with URDF roll-pitch-yaw `rpy` in the
-    /// parent link's frame.
+    /// parent link's frame. The numbers are exact: the precise scalars take
+    /// the rotation computed from them in double-double (`file_origin`).
     pub fn origin(mut self, xyz: [f64; 3], rpy: [f64; 3]) -> Self {
         self.origin = Transform::new(Mat3::from_rpy(rpy[0], rpy[1], rpy[2]), Vec3(xyz));
-        self.file_origin = None;
+        let [r, p, y] = rpy.map(DoubleDouble::from);
+        let exact = Transform::new(Mat3::rpy(r, p, y), Vec3(xyz.map(DoubleDouble::from)));
+        self.file_origin = Some(FileValue::new(self.origin, exact));
         self
     }
     /// Makes the axis a direction (as URDF's): the joint turns by exactly

@@ -240,6 +240,31 @@ mod tests {
     }
 
     #[test]
+    fn a_robot_described_in_rust_is_exact_as_written() {
+        use crate::model::{Inertial, JointDescription, RobotBuilder};
+        let (rpy, axis) = ([0.1, -0.7, 2.0], [0.3, -0.5, 0.8]);
+        let model = RobotBuilder::new("r")
+            .link("base", None)
+            .link("a", Some(Inertial::new(1.3, [0.1, 0.2, 0.3], [0.02, 0.03, 0.04, 0.001, 0.0, 0.0])))
+            .joint(JointDescription::revolute("j", "base", "a", axis).unit_axis().origin([0.1, 0.0, 0.2], rpy))
+            .build()
+            .unwrap();
+        assert!(model.has_file_values());
+        let joint = &model.bodies[0].joint;
+        // the rotation from the f64 rpy in double-double, the unit axis of the f64 axis
+        let [r, p, y] = rpy.map(DoubleDouble::from);
+        assert_eq!(joint.placement_in::<DoubleDouble>().rot, Mat3::rpy(r, p, y));
+        let a = Vec3(axis.map(DoubleDouble::from));
+        assert_eq!(joint.axis_in::<DoubleDouble>(), a.scale(DoubleDouble::ONE / a.norm_squared().sqrt()));
+        // the inertia about the joint's origin from the exact mass, centre and inertia
+        let exact = model.bodies[0].inertia_in::<DoubleDouble>();
+        let dd = |x: f64| DoubleDouble::from(x);
+        let c = Vec3([0.1, 0.2, 0.3].map(dd));
+        let want = Inertia::from_mass_com_inertia(dd(1.3), c, Sym3([0.02, 0.03, 0.04, 0.001, 0.0, 0.0].map(dd)));
+        assert_eq!(exact, want);
+    }
+
+    #[test]
     fn an_edited_constant_drops_its_file_value() {
         let mut model = Model::from_urdf_str(URDF).unwrap();
         model.bodies[0].inertia.mass = 3.0;

@@ -7,7 +7,7 @@ use super::{
     validate, AxisAlignment, Body, BuildOptions, Frame, Joint, JointKind, Model, ModelError, ModelWarning, RootJoint,
     DEFAULT_GRAVITY,
 };
-use crate::spatial::{Inertia, Mat3, Transform, Vec3};
+use crate::spatial::{Inertia, Mat3, Sym3, Transform, Vec3};
 use crate::{DoubleDouble, Scalar};
 use std::collections::HashMap;
 
@@ -257,16 +257,22 @@ fn exact_zero() -> Option<Inertia<DoubleDouble>> {
 }
 
 /// Adds a link's inertia, at `pose` in its body's frame, to the body's
-/// total (f64, and from the file's values while the link and the pose have
-/// them). The same formulas in both scalars.
+/// total (f64, and from the file's values while the pose has them). The
+/// same formulas in both scalars. A link without its file's inertia (one
+/// described in Rust) has exact f64 numbers: they are taken as they are.
 fn add_link_inertia(total: &mut (Inertia<f64>, Option<Inertia<DoubleDouble>>), link: &LinkDescription, pose: &Pose) {
     let Some(inertial) = &link.inertial else { return };
     let at_com = inertial.inertia.rotate(&inertial.origin.rot);
-    let local = Inertia::from_mass_com_inertia(inertial.mass, inertial.origin.trans, at_com);
-    total.0 = total.0.add(&pose.0.inertia_to_parent(&local));
-    let file = link.file_inertia.as_ref().and_then(|f| f.value_for(inertial));
-    total.1 = match (total.1, pose.1, file) {
-        (Some(sum), Some(p), Some(local)) => Some(sum.add(&p.inertia_to_parent(local))),
+    let at_link = Inertia::from_mass_com_inertia(inertial.mass, inertial.origin.trans, at_com);
+    total.0 = total.0.add(&pose.0.inertia_to_parent(&at_link));
+    let exact = link.file_inertia.as_ref().and_then(|f| f.value_for(inertial)).copied().unwrap_or_else(|| {
+        let dd = DoubleDouble::from;
+        let rot = Mat3(inertial.origin.rot.0.map(|row| row.map(dd)));
+        let inertia = Sym3(inertial.inertia.0.map(dd));
+        Inertia::from_mass_com_inertia(dd(inertial.mass), Vec3::from_f64(&inertial.origin.trans), inertia.rotate(&rot))
+    });
+    total.1 = match (total.1, pose.1) {
+        (Some(sum), Some(p)) => Some(sum.add(&p.inertia_to_parent(&exact))),
         _ => None,
     };
 }
@@ -291,8 +297,12 @@ fn joint_from(desc: &JointDescription, pose: Pose) -> Joint {
     let file_placement = file_placement
         .filter(|p| !placement_rotation_is_identity || p.rot == Mat3::identity())
         .map(|p| FileTransform::new(placement, p));
-    let file_axis = desc.file_axis.as_ref().and_then(|f| f.value_for(&desc.axis)).filter(|_| desc.axis_is_direction);
-    let file_axis = file_axis.map(|a| FileValue::new(axis, a.scale(DoubleDouble::ONE / a.norm_squared().sqrt())));
+    // (a direction without the file's value, one given in Rust, is exact as it is)
+    let file_axis = desc.file_axis.as_ref().and_then(|f| f.value_for(&desc.axis)).copied();
+    let file_axis = file_axis.unwrap_or_else(|| Vec3::from_f64(&desc.axis));
+    let file_axis = desc
+        .axis_is_direction
+        .then(|| FileValue::new(axis, file_axis.scale(DoubleDouble::ONE / file_axis.norm_squared().sqrt())));
     let file_values = (file_placement.is_some() || file_axis.is_some())
         .then(|| Box::new(JointFileValues { placement: file_placement, axis: file_axis }));
     Joint {
