@@ -9,23 +9,26 @@
 # alternation: Pinocchio, dynagen, Pinocchio, ... for ROUNDS rounds (default
 # 2). ABA's time does not depend on the state's values.
 # Needs: pip install pin cmeel-eigen cmeel-urdfdom-headers ; g++ ; cargo.
+# Pinocchio is compiled with CXXFLAGS (default "-O3 -DNDEBUG -march=native",
+# pinocchio_build.sh); the dynagen side with the caller's RUSTFLAGS (e.g.
+# RUSTFLAGS="-C target-cpu=native").
 # Not run in CI; see README.md in this folder.
 set -euo pipefail
 
 here="$(cd "$(dirname "$0")" && pwd)"
 repo="$(cd "$here/../.." && pwd)"
 rounds="${1:-2}"
-out="${TMPDIR:-/tmp}/pinocchio_bench"
-# shellcheck source=pinocchio_build.sh
-. "$here/pinocchio_build.sh"
-pinocchio_build "$here/pinocchio_bench.cpp" "$out"
-(cd "$repo" && cargo build --release -q -p dynagen-bench --example compensated)
-target="${CARGO_TARGET_DIR:-$repo/target}"
+out="${TMPDIR:-/tmp}/pinocchio_compensated_bench"
 data="$repo/dynagen/tests/data"
 robots=("$repo/dynagen/robots/ur5.urdf" "$repo/dynagen/robots/panda.urdf")
 for r in chain8 hand tiny huge near_dependent dependent; do
   robots+=("$data/precision_$r.urdf")
 done
+# shellcheck source=pinocchio_build.sh
+. "$here/pinocchio_build.sh"
+pinocchio_build "$here/pinocchio_bench.cpp" "$out" "${robots[@]}"
+(cd "$repo" && cargo build --release -q -p dynagen-bench --example compensated)
+target="${CARGO_TARGET_DIR:-$repo/target}"
 for r in $(seq "$rounds"); do
   echo "== round $r"
   "$out" "${robots[@]}"

@@ -18,7 +18,6 @@
 #include <string>
 #include <vector>
 
-#include "pinocchio/parsers/urdf.hpp"
 #include "bench_common.hpp"
 #include "pinocchio/algorithm/aba.hpp"
 #include "pinocchio/algorithm/crba.hpp"
@@ -29,8 +28,7 @@ namespace {
 using namespace bench_common;
 
 void bench(const std::string& path) {
-  pinocchio::Model model;
-  pinocchio::urdf::buildModel(path, model);
+  const pinocchio::Model model = load_model(path, false);
   pinocchio::Data data(model);
   const int nv = model.nv;
 
