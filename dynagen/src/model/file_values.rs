@@ -178,7 +178,8 @@ impl Model {
         inertia_in(&self.base_inertia, self.file_base_inertia.as_deref())
     }
     /// Whether any constant of the model has its file value (a robot read
-    /// from a URDF file); a precise scalar then computes the file's robot.
+    /// from a URDF file, or described in Rust with joint origins or
+    /// direction axes); a precise scalar then computes the file's robot.
     pub fn has_file_values(&self) -> bool {
         self.bodies.iter().any(|b| b.file_inertia.is_some() || b.joint.file_values.is_some())
     }
