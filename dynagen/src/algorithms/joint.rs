@@ -44,7 +44,7 @@ fn joint_angle<S: Scalar>(joint: &Joint, q: S) -> S {
     if joint.axis_norm == 1.0 {
         q
     } else {
-        q * S::axis_norm_constant(&joint.axis, joint.axis_norm)
+        q * joint.axis_norm_in::<S>()
     }
 }
 

@@ -44,8 +44,37 @@ impl<F: PartialEq, D> FileValue<F, D> {
 
 /// A placement (rotation and translation) from the file.
 pub type FileTransform = FileValue<Transform<f64>, Transform<DoubleDouble>>;
-/// A vector (a unit joint axis) from the file.
+/// A vector (a joint axis as a description writes it) from the file.
 pub type FileVec3 = FileValue<Vec3<f64>, Vec3<DoubleDouble>>;
+/// A joint's axis from the file, refining [`Joint::axis`].
+pub type FileAxis = FileValue<Vec3<f64>, ExactAxis>;
+
+/// A joint axis in double-double: the axis S·q̇ moves along (for a
+/// direction, its unit vector), its unit vector, and its length, the factor
+/// between the joint's position and its angle (exactly 1 for a direction).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ExactAxis {
+    /// The joint's axis ([`Joint::axis`]).
+    pub axis: Vec3<DoubleDouble>,
+    /// `axis / |axis|`.
+    pub unit: Vec3<DoubleDouble>,
+    /// `|axis|`.
+    pub norm: DoubleDouble,
+}
+
+impl ExactAxis {
+    /// A direction (the joint turns by exactly q about it: `axis` is its
+    /// unit vector), or a screw axis (by `|axis|·q`), from its exact value.
+    pub fn new(axis: Vec3<DoubleDouble>, direction: bool) -> Self {
+        let norm = axis.norm_squared().sqrt();
+        let unit = axis.scale(DoubleDouble::ONE / norm);
+        if direction {
+            ExactAxis { axis: unit, unit, norm: DoubleDouble::ONE }
+        } else {
+            ExactAxis { axis, unit, norm }
+        }
+    }
+}
 /// A spatial inertia from the file.
 pub type FileInertia = FileValue<Inertia<f64>, Inertia<DoubleDouble>>;
 
@@ -55,9 +84,8 @@ pub struct JointFileValues {
     /// The placement in the parent body's frame (fixed joints above it
     /// composed in).
     pub placement: Option<FileTransform>,
-    /// The unit axis, for a joint whose axis is a direction (every URDF
-    /// joint: it turns by exactly q about the unit axis).
-    pub axis: Option<FileVec3>,
+    /// The axis, its unit vector and its length.
+    pub axis: Option<FileAxis>,
 }
 
 #[inline(always)]
@@ -135,21 +163,38 @@ impl Joint {
             None => Vec3::from_f64(&self.placement.trans),
         }
     }
-    /// The file's unit axis in `S`, when `S` takes file constants and the
-    /// model has it for the current axis (a joint whose axis is a direction).
+    /// The file's axis, when `S` takes file constants and the model has it
+    /// for the current axis.
     #[inline(always)]
-    pub(crate) fn file_unit_axis<S: Scalar>(&self) -> Option<Vec3<S>> {
+    fn file_axis<S: Scalar>(&self) -> Option<&ExactAxis> {
         if !S::FILE_CONSTANTS {
             return None;
         }
-        let file = self.file_values.as_ref()?.axis.as_ref()?;
-        file.value_for(&self.axis).map(vec3)
+        self.file_values.as_ref()?.axis.as_ref()?.value_for(&self.axis)
     }
-    /// The axis (`self.axis`) in `S`: the file's unit axis for a precise
-    /// scalar when the model has it, else the `f64` one converted.
+    /// The file's unit axis in `S`, as [`file_axis`](Self::file_axis).
+    #[inline(always)]
+    pub(crate) fn file_unit_axis<S: Scalar>(&self) -> Option<Vec3<S>> {
+        self.file_axis::<S>().map(|a| vec3(&a.unit))
+    }
+    /// `|axis|` in `S`, the factor between the joint's position and its
+    /// angle: the file's for a precise scalar when the model has it, else
+    /// [`Scalar::axis_norm_constant`].
+    #[inline(always)]
+    pub(crate) fn axis_norm_in<S: Scalar>(&self) -> S {
+        match self.file_axis::<S>() {
+            Some(a) => S::from_double_double(a.norm),
+            None => S::axis_norm_constant(&self.axis, self.axis_norm),
+        }
+    }
+    /// The axis (`self.axis`) in `S`: the file's for a precise scalar when
+    /// the model has it, else the `f64` one converted.
     #[inline(always)]
     pub fn axis_in<S: Scalar>(&self) -> Vec3<S> {
-        self.file_unit_axis().unwrap_or_else(|| Vec3::from_f64(&self.axis))
+        match self.file_axis::<S>() {
+            Some(a) => vec3(&a.axis),
+            None => Vec3::from_f64(&self.axis),
+        }
     }
 }
 
@@ -263,6 +308,17 @@ mod tests {
         let c = Vec3([0.1, 0.2, 0.3].map(dd));
         let want = Inertia::from_mass_com_inertia(dd(1.3), c, Sym3([0.02, 0.03, 0.04, 0.001, 0.0, 0.0].map(dd)));
         assert_eq!(exact, want);
+        // a screw axis (the Rust constructors' default) turns by |axis|·q: its length in double-double
+        let screw = RobotBuilder::new("s")
+            .link("base", None)
+            .link("a", Some(Inertial::new(1.0, [0.1, 0.0, 0.0], [0.01, 0.01, 0.01, 0.0, 0.0, 0.0])))
+            .joint(JointDescription::revolute("j", "base", "a", axis))
+            .build()
+            .unwrap();
+        let joint = &screw.bodies[0].joint;
+        assert_eq!(joint.axis_in::<DoubleDouble>(), a);
+        assert_eq!(joint.axis_norm_in::<DoubleDouble>(), a.norm_squared().sqrt());
+        assert_eq!(joint.axis_norm_in::<f64>(), joint.axis_norm);
     }
 
     #[test]

@@ -27,7 +27,7 @@ pub use builder::RobotBuilder;
 pub use description::{Inertial, JointDescription, JointLimits, JointType, LinkDescription, RobotDescription};
 pub(crate) use error::quoted as quoted_names;
 pub use error::{ModelError, ModelWarning};
-pub use file_values::{FileInertia, FileTransform, FileValue, FileVec3, JointFileValues};
+pub use file_values::{ExactAxis, FileAxis, FileInertia, FileTransform, FileValue, FileVec3, JointFileValues};
 pub use modern_robotics::ModernRoboticsLists;
 
 use crate::spatial::{Inertia, Mat3, Transform, Vec3};

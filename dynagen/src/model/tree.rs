@@ -2,13 +2,13 @@
 //! depth-first joint order, and fixed joints merged away.
 
 use super::description::{JointDescription, JointType, LinkDescription, RobotDescription};
-use super::file_values::{FileInertia, FileTransform, FileValue, JointFileValues};
+use super::file_values::{ExactAxis, FileInertia, FileTransform, FileValue, JointFileValues};
 use super::{
     validate, AxisAlignment, Body, BuildOptions, Frame, Joint, JointKind, Model, ModelError, ModelWarning, RootJoint,
     DEFAULT_GRAVITY,
 };
 use crate::spatial::{Inertia, Mat3, Sym3, Transform, Vec3};
-use crate::{DoubleDouble, Scalar};
+use crate::DoubleDouble;
 use std::collections::HashMap;
 
 impl Model {
@@ -297,12 +297,10 @@ fn joint_from(desc: &JointDescription, pose: Pose) -> Joint {
     let file_placement = file_placement
         .filter(|p| !placement_rotation_is_identity || p.rot == Mat3::identity())
         .map(|p| FileTransform::new(placement, p));
-    // (a direction without the file's value, one given in Rust, is exact as it is)
+    // (an axis without the file's value, one given in Rust, is exact as it is)
     let file_axis = desc.file_axis.as_ref().and_then(|f| f.value_for(&desc.axis)).copied();
     let file_axis = file_axis.unwrap_or_else(|| Vec3::from_f64(&desc.axis));
-    let file_axis = desc
-        .axis_is_direction
-        .then(|| FileValue::new(axis, file_axis.scale(DoubleDouble::ONE / file_axis.norm_squared().sqrt())));
+    let file_axis = Some(FileValue::new(axis, ExactAxis::new(file_axis, desc.axis_is_direction)));
     let file_values = (file_placement.is_some() || file_axis.is_some())
         .then(|| Box::new(JointFileValues { placement: file_placement, axis: file_axis }));
     Joint {
