@@ -24,7 +24,9 @@ mod urdf_decimals;
 mod validate;
 
 pub use builder::RobotBuilder;
-pub use description::{Inertial, JointDescription, JointLimits, JointType, LinkDescription, RobotDescription};
+pub use description::{
+    FileInertial, Inertial, JointDescription, JointLimits, JointType, LinkDescription, RobotDescription,
+};
 pub(crate) use error::quoted as quoted_names;
 pub use error::{ModelError, ModelWarning};
 pub use file_values::{ExactAxis, FileAxis, FileInertia, FileTransform, FileValue, FileVec3, JointFileValues};
