@@ -348,7 +348,7 @@ pub(crate) fn velocities<S: Scalar>(
         let joint = &body.joint;
         let x = joint_transform(joint, q[i]);
         ws.x[i] = x;
-        let mut inertia = Inertia::<S>::from_f64(&body.inertia);
+        let mut inertia = body.inertia_in::<S>();
         for p in loads.payloads.iter().filter(|p| p.body == i) {
             inertia = inertia.add(&p.inertia);
         }

@@ -3,7 +3,7 @@
 //! carries beyond the model's (payloads on bodies, armature on joints).
 
 use crate::model::Model;
-use crate::spatial::{Force, Inertia, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Vec3};
 use crate::Scalar;
 
 /// A wrench that a frame of the robot applies to its environment, in that
@@ -139,7 +139,7 @@ pub(crate) fn add_tip_wrenches<S: Scalar>(
             None => base.as_deref_mut(),
         };
         if let Some(f) = place {
-            *f += Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
+            *f += frame.placement_in::<S>().force_to_parent(&tip.wrench);
         }
     }
 }

@@ -319,7 +319,7 @@ pub(crate) fn rnea_tree<S: Scalar>(
         if let Some(qdd) = qdd {
             add_axis(joint, if revolute { &mut wd } else { &mut a }, qdd[i]);
         }
-        let inertia = Inertia::<S>::from_f64(&body.inertia);
+        let inertia = body.inertia_in::<S>();
         let (mut f, u) = body_wrench(&inertia, [&w, &wd, &a], (qd.is_some(), moving), gyro[i]);
         for extra in payloads.iter().filter(|x| x.body == i) {
             // the dense forms, with the payload's inertia an input
