@@ -283,11 +283,10 @@ fn aba_traced_or_compact<S: Scalar>(
 /// joint, the exact zeros of `clear_subspace` are kept (the inertia and U
 /// are cleared before the transform, and the joint's own force enters as
 /// `e_k u/a`). It costs a few operations (U is transformed on its own, and
-/// the rank-one update is made on the dense transformed inertia): the
-/// generated ABA's critical path fell from 514 to 324 cycles on the Panda
-/// (1639 to 1661 operations), from 310 to 202 on the UR5 (610 to 644). On
-/// `f64` the compact arm is kept: there the operation count, not the chain,
-/// sets the speed.
+/// the rank-one update is made on the dense transformed inertia), for a
+/// much shorter critical path of the generated ABA (`docs/performance.md`,
+/// "Design choices decided by a measurement"). On `f64` the compact arm is
+/// kept: there the operation count, not the chain, sets the speed.
 #[inline(always)]
 fn aba_impl<S: Scalar, const DISTRIBUTED: bool>(
     model: &Model,
