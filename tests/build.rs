@@ -6,7 +6,9 @@
 //! UR5 with only τ and no gravity; the derivatives of the UR5, the Panda,
 //! the two-armed torso, an f32 UR5 and the `ur5_controller` scene
 //! (`tests/generated_derivatives.rs`); the stiff robots (`build_stiff.rs`) and
-//! the split long-chain modules (`build_split.rs`).
+//! the split long-chain modules (`build_split.rs`); the Panda with its mimic
+//! finger and the mimic gripper linkage, with the batched and with std's
+//! trigonometry (`tests/generated_mimic.rs`).
 
 use dynagen::codegen::ScalarType;
 use dynagen::scene::{Gravity, Scene};
@@ -83,6 +85,22 @@ fn main() {
         .file_name("quadruped12_floating.rs")
         .generate()
         .expect("generating the floating quadruped");
+    // Robots with mimic joints, as users have them (tests/generated_mimic.rs).
+    for robot in ["panda", "gripper"] {
+        let urdf = format!("../dynagen/tests/data/{robot}_mimic.urdf");
+        println!("cargo:rerun-if-changed={urdf}");
+        dynagen::Builder::new()
+            .urdf(&urdf)
+            .file_name(&format!("{robot}_mimic.rs"))
+            .generate()
+            .expect("generating a mimic module");
+        dynagen::Builder::new()
+            .urdf(&urdf)
+            .trig(dynagen::codegen::Trig::Std)
+            .file_name(&format!("{robot}_mimic_std.rs"))
+            .generate()
+            .expect("generating a mimic module with std's trigonometry");
+    }
     build_stiff::generate();
     build_split::generate();
 }

@@ -22,6 +22,7 @@ pub mod kinematics;
 pub mod ldlt;
 mod loads;
 mod lu;
+pub mod mimic;
 pub mod rnea;
 mod workspace;
 

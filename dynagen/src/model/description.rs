@@ -95,8 +95,22 @@ pub struct JointDescription {
     pub axis_is_direction: bool,
     /// Limits, when known.
     pub limits: Option<JointLimits>,
-    /// Whether the joint mimics another (not supported yet).
-    pub mimic: bool,
+    /// The joint this one follows (URDF `<mimic>`), if any.
+    pub mimic: Option<MimicDescription>,
+}
+
+/// A joint that follows another (URDF `<mimic>`): its position is
+/// `multiplier·q_master + offset` (rad or m), its rate and acceleration
+/// `multiplier` times the master's. The master must be a moving joint that
+/// follows no other.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MimicDescription {
+    /// The master joint's name.
+    pub joint: String,
+    /// The factor on the master's position (URDF default 1).
+    pub multiplier: f64,
+    /// The position at the master's zero (URDF default 0).
+    pub offset: f64,
 }
 
 impl JointDescription {
@@ -110,7 +124,7 @@ impl JointDescription {
             axis: Vec3(axis),
             axis_is_direction: false,
             limits: None,
-            mimic: false,
+            mimic: None,
         }
     }
     /// A revolute joint about `axis` (in the joint frame).
@@ -139,6 +153,12 @@ impl JointDescription {
     /// `q` about `axis/|axis|` (see [`axis_is_direction`](Self::axis_is_direction)).
     pub fn unit_axis(mut self) -> Self {
         self.axis_is_direction = true;
+        self
+    }
+    /// Makes the joint follow `master`: its position is
+    /// `multiplier·q_master + offset` (see [`MimicDescription`]).
+    pub fn mimic(mut self, master: &str, multiplier: f64, offset: f64) -> Self {
+        self.mimic = Some(MimicDescription { joint: master.to_string(), multiplier, offset });
         self
     }
     /// Sets the limits.

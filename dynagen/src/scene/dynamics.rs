@@ -155,7 +155,10 @@ pub fn forward_dynamics_ldlt<S: Scalar>(
 /// caller puts it back).
 fn tau_minus_friction<S: Scalar>(scene: &SceneModel, ws: &mut Workspace<S>, qd: &[S], tau: &[S]) -> Vec<S> {
     let n = scene.dof();
-    assert!(tau.len() == n && ws.dof() == n, "forward_dynamics: slices must have the model's {n} joints");
+    assert!(
+        tau.len() == n && ws.dof() == scene.model.bodies.len(),
+        "forward_dynamics: slices must have the model's {n} joints"
+    );
     let mut rhs = std::mem::take(&mut ws.rhs);
     rhs.copy_from_slice(tau);
     sub_friction(scene, qd, &mut rhs);

@@ -4,7 +4,7 @@
 //! of the whole robot at the base, a 6×6 symmetric positive-definite solve
 //! for the base's acceleration. O(n), without forming M.
 
-use super::{base_motion, check_sizes, quaternion_rotation, solve6};
+use super::{base_motion, check_tree_sizes, quaternion_rotation, solve6};
 use crate::algorithms::aba::ArticulatedInertia;
 use crate::algorithms::joint::{
     add_motion, cross_motion, force_to_parent, joint_transform, motion_to_child, project, with_rotation,
@@ -61,9 +61,9 @@ fn aba_impl<S: Scalar>(
     loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
-    let n = model.dof();
-    let nv = model.nv();
-    check_sizes(model, "floating aba", q.len(), &[qd.map_or(nv, <[S]>::len), tau.len(), qdd.len()]);
+    let n = model.bodies.len();
+    let nv = model.tree_nv();
+    check_tree_sizes(model, "floating aba", q.len(), &[qd.map_or(nv, <[S]>::len), tau.len(), qdd.len()]);
     loads.check(n, "floating aba");
     let Loads { gravity, tips, payloads, armature } = loads;
     // Forward: spatial velocities v, velocity-product accelerations c (in

@@ -5,7 +5,7 @@
 //! `τ[0..6]`, the wrench that must act on the base (base frame, moment
 //! about its origin first).
 
-use super::{base_motion, check_sizes, quaternion_rotation, write_force};
+use super::{base_motion, check_tree_sizes, quaternion_rotation, write_force};
 use crate::algorithms::joint::{add_motion, cross_motion, force_to_parent, joint_transform, motion_to_child, project};
 use crate::algorithms::{Loads, Workspace};
 use crate::model::Model;
@@ -31,9 +31,14 @@ pub fn rnea<S: Scalar>(
     loads: Loads<'_, S>,
     tau: &mut [S],
 ) {
-    let n = model.dof();
-    let nv = model.nv();
-    check_sizes(model, "floating rnea", q.len(), &[tau.len(), qd.map_or(nv, <[S]>::len), qdd.map_or(nv, <[S]>::len)]);
+    let n = model.bodies.len();
+    let nv = model.tree_nv();
+    check_tree_sizes(
+        model,
+        "floating rnea",
+        q.len(),
+        &[tau.len(), qd.map_or(nv, <[S]>::len), qdd.map_or(nv, <[S]>::len)],
+    );
     loads.check(n, "floating rnea");
     let Loads { gravity, tips, payloads, armature } = loads;
     // The base: its twist, its acceleration with gravity as a fictitious
