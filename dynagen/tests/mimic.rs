@@ -395,3 +395,238 @@ fn integrators_step_a_model_with_mimic_joints() {
         assert!(q.iter().chain(qd.iter()).all(|x| x.is_finite()) && q != q0, "{integrator:?}");
     }
 }
+
+/// Scenes: locking a master locks the joints that follow it where they
+/// are then (the scene is the full tree's with all of them locked there);
+/// armature and friction go to the master's column; a mimic joint has no
+/// lock, armature or friction of its own, and a sub-tree that would keep a
+/// mimic joint without its master, or merge it rigidly while its master
+/// moves, is refused naming both.
+#[test]
+fn scenes_lock_masters_with_their_mimic_joints() {
+    use dynagen::scene::{Scene, SceneError, SceneRobot};
+    let model = mimic_model("gripper");
+    let full = FullTree::new(&model, "gripper").full;
+    let locked = Scene::new().lock("c_finger", 0.3).apply(&model).unwrap();
+    assert_eq!(locked.joint_names(), ["a_shoulder", "b_elbow", "h_cam"]);
+    assert!(!locked.model.has_mimic());
+    let at = |j: &str| locked.fixed_joints.iter().find(|(n, _)| n == j).map(|(_, q)| *q);
+    assert_eq!(at("c_finger"), Some(0.3));
+    assert_eq!(at("d_tip_l"), Some(-0.75 * 0.3 + 0.2));
+    assert_eq!(at("e_knuckle_r"), Some(0.3 - 0.1));
+    assert_eq!(at("f_tip_r"), Some(-0.3));
+    assert_eq!(at("g_slide"), Some(0.02 * 0.3 + 0.01));
+    let mut by_hand = Scene::new();
+    for (j, q) in &locked.fixed_joints {
+        by_hand = by_hand.lock(j, *q);
+    }
+    let (mut a, mut b) = (SceneRobot::new(locked.clone()), SceneRobot::new(by_hand.apply(&full).unwrap()));
+    let (q, qd, qdd) = (
+        DVector::from_vec(vec![0.4, -0.7, 1.1]),
+        DVector::from_vec(vec![0.3, 1.2, -0.5]),
+        DVector::from_vec(vec![2.0, -1.0, 0.5]),
+    );
+    let (ta, tb) = (a.inverse_dynamics(&q, &qd, &qdd).unwrap(), b.inverse_dynamics(&q, &qd, &qdd).unwrap());
+    assert!(rel_err(ta.as_slice(), tb.as_slice(), 1e-9) <= 1e-14, "{ta} against {tb}");
+
+    // armature and friction on a master: its column's
+    let scene = Scene::new().armature("c_finger", 0.05).viscous("c_finger", 0.2).apply(&model).unwrap();
+    let (mut s, mut plain) = (SceneRobot::new(scene), Robot::new(model.clone()));
+    let q = DVector::from_vec(vec![0.4, -0.7, 1.1, 0.2]);
+    let (qd, qdd) = (DVector::from_vec(vec![0.3, 1.2, -0.5, 0.1]), DVector::from_vec(vec![2.0, -1.0, 0.5, 1.5]));
+    let mut want = plain.inverse_dynamics(&q, &qd, &qdd).unwrap();
+    want[2] += 0.05 * qdd[2] + 0.2 * qd[2];
+    let got = s.inverse_dynamics(&q, &qd, &qdd).unwrap();
+    assert!(rel_err(got.as_slice(), want.as_slice(), 1e-9) <= 1e-14, "{got} against {want}");
+    let back = s.forward_dynamics(&q, &qd, &got).unwrap();
+    assert!(rel_err(back.as_slice(), qdd.as_slice(), 1e-9) <= 1e-12, "{back} against {qdd}");
+
+    let msg = |scene: Scene| match scene.apply(&model) {
+        Err(e @ SceneError::MimicJoint { .. }) => e.to_string(),
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(
+        msg(Scene::new().lock("d_tip_l", 0.1)),
+        "joint \"d_tip_l\" follows joint \"c_finger\" (mimic): it has no lock of its own; give the lock to its master"
+    );
+    assert_eq!(
+        msg(Scene::new().armature("g_slide", 0.1)),
+        "joint \"g_slide\" follows joint \"c_finger\" (mimic): it has no armature of its own; give the armature to \
+         its master"
+    );
+    assert_eq!(
+        msg(Scene::new().subtree("palm", &["tip_r"])),
+        "joint \"e_knuckle_r\" follows joint \"c_finger\" (mimic): the sub-tree keeps it but not its master (which is \
+         on a branch the sub-tree drops): lock the master, or keep it by listing a tip below it"
+    );
+    assert_eq!(
+        msg(Scene::new().subtree("base", &["knuckle_l"])),
+        "joint \"d_tip_l\" follows joint \"c_finger\" (mimic): the sub-tree merges it rigidly below a tip, but its \
+         master moves: lock the master, or list a tip below the mimic joint"
+    );
+    // a locked master lets the sub-tree merge its mimic joints, where they are
+    let merged = Scene::new().subtree("base", &["knuckle_l"]).lock("c_finger", 0.3).apply(&model).unwrap();
+    assert_eq!(merged.joint_names(), ["a_shoulder", "b_elbow"]);
+    let at = |j: &str| merged.fixed_joints.iter().find(|(n, _)| n == j).map(|(_, q)| *q);
+    assert_eq!(at("d_tip_l"), Some(-0.75 * 0.3 + 0.2));
+}
+
+/// Every function code generation makes of a model with mimic joints, as
+/// traced (the emitted arithmetic, evaluated), against the generic solver:
+/// the contract's five, coriolis, the derivatives, a frame's pose and
+/// Jacobian, in f64 and f32; a scene's; a floating base's. Sines and cosines given by the caller cannot hold a mimic
+/// joint's own angle: refused, naming the option.
+#[test]
+fn every_generated_function_of_a_mimic_model_is_the_generic_one() {
+    use dynagen::codegen::{generate_scene, ForwardDynamicsMethod, ScalarType, Trig};
+    use dynagen::scene::{Scene, SceneRobot};
+    let rows = |m: DMatrix<f64>| m.transpose().as_slice().to_vec();
+    let mut all = vec![
+        Function::InverseDynamics,
+        Function::MassMatrix,
+        Function::BiasForces,
+        Function::GravityTorques,
+        Function::ForwardDynamics,
+        Function::Coriolis,
+        Function::InverseDynamicsDerivatives,
+        Function::ForwardDynamicsDerivatives,
+        Function::MassMatrixInverse,
+    ];
+    for robot in ["gripper", "panda"] {
+        let model = mimic_model(robot);
+        let frame = model.frames.last().unwrap().name.clone();
+        all.truncate(9);
+        all.extend([Function::FramePose(frame.clone()), Function::FrameJacobian(frame.clone())]);
+        let mut generic = Robot::new(model.clone());
+        let n = model.dof();
+        let mut rng = support::Rng::new(0x6e6e);
+        let (q, qd, x) = (rng.vec(n, 2.0), rng.vec(n, 1.5), rng.vec(n, 5.0));
+        let v = |a: &Vec<f64>| DVector::from_vec(a.clone());
+        let mut want = |f: &Function| -> Vec<f64> {
+            let r = &mut generic;
+            match f {
+                Function::InverseDynamics => r.inverse_dynamics(&v(&q), &v(&qd), &v(&x)).unwrap().as_slice().to_vec(),
+                Function::MassMatrix => rows(r.mass_matrix(&v(&q)).unwrap()),
+                Function::BiasForces => r.bias_forces(&v(&q), &v(&qd)).unwrap().as_slice().to_vec(),
+                Function::GravityTorques => r.gravity_torques(&v(&q)).unwrap().as_slice().to_vec(),
+                Function::ForwardDynamics => r.forward_dynamics(&v(&q), &v(&qd), &v(&x)).unwrap().as_slice().to_vec(),
+                Function::Coriolis => r.coriolis_torques(&v(&q), &v(&qd)).unwrap().as_slice().to_vec(),
+                Function::InverseDynamicsDerivatives => {
+                    let (a, b) = r.inverse_dynamics_derivatives(&v(&q), &v(&qd), &v(&x)).unwrap();
+                    [rows(a), rows(b)].concat()
+                }
+                Function::ForwardDynamicsDerivatives => {
+                    let (a, b, c) = r.forward_dynamics_derivatives(&v(&q), &v(&qd), &v(&x)).unwrap();
+                    [rows(a), rows(b), rows(c)].concat()
+                }
+                Function::MassMatrixInverse => rows(r.mass_matrix_inverse(&v(&q)).unwrap()),
+                Function::FramePose(name) => r.frame_pose(name, &v(&q)).unwrap().transpose().as_slice().to_vec(),
+                Function::FrameJacobian(name) => r.body_jacobian(name, &v(&q)).unwrap().transpose().as_slice().to_vec(),
+            }
+        };
+        let inputs: [(&str, &[f64]); 4] = [("q", &q), ("qd", &qd), ("qdd", &x), ("tau", &x)];
+        // (the trace is the same whatever the trigonometry: tests/tests/generated_mimic.rs
+        // compiles the batched and std's)
+        for (scalar, tol) in [(ScalarType::F64, 1e-12), (ScalarType::F32, 1e-4)] {
+            let options = CodegenOptions::default().functions(all.clone()).scalar(scalar);
+            let module = generate(&model, &options).unwrap();
+            for f in module.functions.iter().filter(|f| f.emitted) {
+                let got: Vec<f64> = match scalar {
+                    ScalarType::F32 => f.traced.eval_as::<f32>(&inputs).unwrap().into_iter().map(f64::from).collect(),
+                    ScalarType::F64 => f.traced.eval(&inputs).unwrap(),
+                };
+                let e = support::norm_rel_err(&got, &want(&f.function), 1e-300);
+                assert!(e <= tol, "{robot} {scalar:?}: {} relative error {e:e}", f.label());
+            }
+        }
+        // the caller's sines and cosines: the Panda's mimic finger is prismatic, the gripper's joints turn
+        let inputs = generate(&model, &CodegenOptions::default().trig(Trig::Inputs));
+        match robot {
+            "panda" => assert!(inputs.is_ok()),
+            _ => assert!(inputs.unwrap_err().to_string().contains("trig inputs"), "the gripper with trig inputs"),
+        }
+        // ABA asked for by name
+        let aba = generate(&model, &CodegenOptions::default().forward_dynamics(ForwardDynamicsMethod::Aba));
+        assert!(aba.unwrap_err().to_string().contains("articulated-body algorithm (aba)"));
+    }
+    // a scene: armature and friction on the gripper's master, a lock
+    let model = mimic_model("gripper");
+    let scene =
+        Scene::new().armature("c_finger", 0.05).coulomb("c_finger", 0.3).lock("h_cam", 0.2).apply(&model).unwrap();
+    let module = generate_scene(&scene, &CodegenOptions::default()).unwrap();
+    let mut generic = SceneRobot::new(scene);
+    let (q, qd, x) = (vec![0.3, -0.4, 0.8], vec![1.0, 0.5, -2.0], vec![3.0, -1.0, 2.0]);
+    let v = |a: &Vec<f64>| DVector::from_vec(a.clone());
+    for f in module.functions.iter().filter(|f| f.emitted) {
+        let want = match f.function {
+            Function::InverseDynamics => generic.inverse_dynamics(&v(&q), &v(&qd), &v(&x)).unwrap(),
+            Function::BiasForces => generic.bias_forces(&v(&q), &v(&qd)).unwrap(),
+            Function::GravityTorques => generic.gravity_torques(&v(&q)).unwrap(),
+            Function::ForwardDynamics => generic.forward_dynamics(&v(&q), &v(&qd), &v(&x)).unwrap(),
+            _ => DVector::from_vec(rows(generic.mass_matrix(&v(&q)).unwrap())),
+        };
+        let got = f.traced.eval(&[("q", &q), ("qd", &qd), ("qdd", &x), ("tau", &x)]).unwrap();
+        let e = support::norm_rel_err(&got, want.as_slice(), 1e-300);
+        assert!(e <= 1e-12, "gripper scene: {} relative error {e:e}", f.label());
+    }
+    // a floating base
+    let model = floating(mimic_model("panda"));
+    let module = generate(&model, &CodegenOptions::default()).unwrap();
+    let mut generic = Robot::new(model.clone());
+    let mut rng = support::Rng::new(0xf10a);
+    let mut q = rng.vec(model.nq(), 1.0);
+    let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+    q[3..7].iter_mut().for_each(|x| *x /= norm);
+    let (qd, x) = (rng.vec(model.nv(), 1.5), rng.vec(model.nv(), 5.0));
+    for f in module.functions.iter().filter(|f| f.emitted) {
+        let want = match f.function {
+            Function::InverseDynamics => generic.inverse_dynamics(&v(&q), &v(&qd), &v(&x)).unwrap(),
+            Function::BiasForces => generic.bias_forces(&v(&q), &v(&qd)).unwrap(),
+            Function::GravityTorques => generic.gravity_torques(&v(&q)).unwrap(),
+            Function::ForwardDynamics => generic.forward_dynamics(&v(&q), &v(&qd), &v(&x)).unwrap(),
+            _ => DVector::from_vec(rows(generic.mass_matrix(&v(&q)).unwrap())),
+        };
+        let got = f.traced.eval(&[("q", &q), ("qd", &qd), ("qdd", &x), ("tau", &x)]).unwrap();
+        let e = support::norm_rel_err(&got, want.as_slice(), 1e-300);
+        assert!(e <= 1e-12, "floating Panda: {} relative error {e:e}", f.label());
+    }
+}
+
+/// The `<mimic>` element as the raw-XML check reads it: the master's name
+/// required, multiplier and offset whole finite numbers (urdf-rs would keep
+/// what parses of "2x"), one element per joint; errors name the joint.
+#[test]
+fn the_mimic_element_is_checked_in_the_xml() {
+    let inertial = r#"<inertial><mass value="1"/><origin xyz="0 0 0.1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>"#;
+    let xml = |mimic: &str| {
+        format!(
+            r#"<robot name="r"><link name="base"/><link name="a">{inertial}</link><link name="b">{inertial}</link>
+            <joint name="lead" type="revolute"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+            <joint name="follow" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/>{mimic}</joint></robot>"#
+        )
+    };
+    let err = |mimic: &str| Model::from_urdf_str(&xml(mimic)).unwrap_err().to_string();
+    assert_eq!(
+        err(r#"<mimic joint="lead" multiplier="2x"/>"#),
+        "joint \"follow\": cannot read mimic multiplier from \"2x\""
+    );
+    assert_eq!(err(r#"<mimic joint="lead" offset="nan"/>"#), "joint \"follow\": cannot read mimic offset from \"nan\"");
+    assert_eq!(err(r#"<mimic multiplier="2"/>"#), "malformed URDF: joint \"follow\": <mimic> has no joint attribute");
+    assert_eq!(err(r#"<mimic joint=""/>"#), "malformed URDF: joint \"follow\": <mimic> has an empty joint attribute");
+    assert_eq!(
+        err(r#"<mimic joint="lead"/><mimic joint="lead"/>"#),
+        "malformed URDF: joint \"follow\" has more than one <mimic>"
+    );
+    assert_eq!(err(r#"<mimic joint="leed"/>"#), "joint \"follow\" (mimic): its master joint \"leed\" does not exist");
+    // URDF's defaults: multiplier 1, offset 0
+    let m = Model::from_urdf_str(&xml(r#"<mimic joint="lead"/>"#)).unwrap();
+    assert_eq!(m.mimic(1).map(|c| (c.master, c.multiplier, c.offset)), Some((0, 1.0, 0.0)));
+    let m = Model::from_urdf_str(&xml(r#"<mimic joint="lead" multiplier="-0.5" offset="0.25"/>"#)).unwrap();
+    assert_eq!(m.mimic(1).map(|c| (c.multiplier, c.offset)), Some((-0.5, 0.25)));
+    // a master and follower that move nothing together are refused, naming both
+    let massless = r#"<robot name="r"><link name="base"/><link name="a"/><link name="b"/>
+        <joint name="lead" type="continuous"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/></joint>
+        <joint name="follow" type="continuous"><parent link="base"/><child link="b"/><axis xyz="0 1 0"/><mimic joint="lead"/></joint></robot>"#;
+    let e = Model::from_urdf_str(massless).unwrap_err().to_string();
+    assert!(e.contains("joint \"lead\"") && e.contains("\"follow\"") && e.contains("<inertial>"), "{e}");
+}
