@@ -21,7 +21,9 @@
 //!
 //! The pre-check refuses each of these with an error that names the link or
 //! joint, the attribute and the text; what urdf-rs then reads is only used
-//! for what the pre-check has vouched for.
+//! for what the pre-check has vouched for. A joint's `<mimic joint=".."
+//! multiplier=".." offset=".."/>` is read here too (the master's name
+//! required; the numbers whole and finite, 1 and 0 when absent).
 //!
 //! urdf-rs is given only what dynagen reads: the links without their
 //! visuals and collisions, and the joints. So what urdfdom and Pinocchio

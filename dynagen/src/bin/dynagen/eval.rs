@@ -12,7 +12,7 @@
 //! | `M` | q | [`Robot::mass_matrix`] (CRBA) |
 //! | `h` | q, qd | [`Robot::bias_forces`] |
 //! | `g` | q | [`Robot::gravity_torques`] |
-//! | `qdd` | q, qd, tau | [`Robot::forward_dynamics`] (ABA) |
+//! | `qdd` | q, qd, tau | [`Robot::forward_dynamics`] (ABA; with mimic joints, M by LᵀDL) |
 //!
 //! With `--derivatives`, also (matrices `[output][input]`, one row per line):
 //!
@@ -56,7 +56,8 @@ pub struct Args {
 const EVAL_HELP: &str = "\
 Input (STATES.json):
   {\"states\": [{\"q\": [...], \"qd\": [...], \"qdd\": [...], \"tau\": [...]}, ...]}
-  One number per joint, in the order `dynagen inspect` lists. \"q\" is required;
+  One number per joint, in the order `dynagen inspect` lists (a mimic joint has
+  none: it follows its master, unless --mimic independent). \"q\" is required;
   leave out a field to skip the outputs that need it. States count from 0 in
   messages. An optional \"joint_names\" list is checked against the robot's.
 
@@ -66,7 +67,8 @@ Output (stdout):
     M    mass matrix, one row per line    needs q
     h    bias forces C(q,qd)qd + g(q)     needs q, qd
     g    gravity torques                  needs q
-    qdd  forward dynamics (ABA)           needs q, qd, tau
+    qdd  forward dynamics (ABA; with      needs q, qd, tau
+         mimic joints M by LTDL)
   With --derivatives, also (matrices [output][input]: row i is output i):
     dtau_dq, dtau_dqd          d tau / d q, d tau / d qd   needs q, qd, qdd
     dqdd_dq, dqdd_dqd, minv    d qdd / d q, d qdd / d qd,
