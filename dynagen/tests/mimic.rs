@@ -630,3 +630,25 @@ fn the_mimic_element_is_checked_in_the_xml() {
     let e = Model::from_urdf_str(massless).unwrap_err().to_string();
     assert!(e.contains("joint \"lead\"") && e.contains("\"follow\"") && e.contains("<inertial>"), "{e}");
 }
+
+/// The names of a master and of its mimic joint reach the header's list of
+/// couplings escaped, like every name from a robot file: a newline, a
+/// carriage return or a line separator in them ends no comment.
+#[test]
+fn mimic_names_in_the_header_are_escaped() {
+    let body = Some(dynagen::model::Inertial::new(0.5, [0.0, 0.0, 0.1], [0.01, 0.01, 0.01, 0.0, 0.0, 0.0]));
+    let (master, follower) = ("m\npub fn injected() -> u32 { 42 }\n//", "f\r\u{2028}*/\"\\");
+    let model = dynagen::RobotBuilder::new("r")
+        .link("base", None)
+        .link("a", body)
+        .link("b", body)
+        .joint(JointDescription::revolute(master, "base", "a", [0.0, 0.0, 1.0]))
+        .joint(JointDescription::revolute(follower, "base", "b", [0.0, 1.0, 0.0]).mimic(master, 2.0, 0.5))
+        .build()
+        .unwrap();
+    let module = generate(&model, &CodegenOptions::default()).unwrap();
+    let header: Vec<&str> = module.source.lines().take_while(|l| l.starts_with("//")).collect();
+    let line = header.iter().find(|l| l.contains("= 2.0 *")).expect("the coupling's line");
+    assert!(line.contains(r"\u{a}") && line.contains(r"\u{d}") && line.contains(r"\u{2028}"), "{line}");
+    assert!(!module.source.contains("\npub fn injected"));
+}
