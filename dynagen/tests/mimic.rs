@@ -126,8 +126,9 @@ fn mimic_joints_can_be_independent_joints_as_before() {
     assert_eq!(independent.bodies, bundled.bodies);
 }
 
-/// A robot with a master `m` and the joint `f` following it, as written.
-fn follower(f: JointDescription) -> Result<Model, ModelError> {
+/// A robot of the joint `m` from `base` to `a` and the joints `x` and `y`
+/// among the links `a`, `b` and `c`.
+fn three_joints(x: JointDescription, y: JointDescription) -> Result<Model, ModelError> {
     let body = Some(dynagen::model::Inertial::new(0.5, [0.0, 0.0, 0.1], [0.01, 0.01, 0.01, 0.0, 0.0, 0.0]));
     dynagen::RobotBuilder::new("r")
         .link("base", None)
@@ -135,9 +136,15 @@ fn follower(f: JointDescription) -> Result<Model, ModelError> {
         .link("b", body)
         .link("c", body)
         .joint(JointDescription::revolute("m", "base", "a", [0.0, 0.0, 1.0]))
-        .joint(JointDescription::fixed("fix", "a", "b"))
-        .joint(f)
+        .joint(x)
+        .joint(y)
         .build()
+}
+
+/// A robot with a master `m`, a fixed joint `fix` and the joint `f`, which
+/// follows one of them as written.
+fn follower(f: JointDescription) -> Result<Model, ModelError> {
+    three_joints(JointDescription::fixed("fix", "a", "b"), f)
 }
 
 #[test]
@@ -165,18 +172,7 @@ fn a_bad_mimic_is_an_error_naming_the_joint() {
          mimic)"
     );
     // a chain of mimics, and a cycle of them
-    let body = Some(dynagen::model::Inertial::new(0.5, [0.0, 0.0, 0.1], [0.01, 0.01, 0.01, 0.0, 0.0, 0.0]));
-    let two = |x: JointDescription, y: JointDescription| {
-        dynagen::RobotBuilder::new("r")
-            .link("base", None)
-            .link("a", body)
-            .link("b", body)
-            .link("c", body)
-            .joint(JointDescription::revolute("m", "base", "a", [0.0, 0.0, 1.0]))
-            .joint(x)
-            .joint(y)
-            .build()
-    };
+    let two = three_joints;
     let x = JointDescription::revolute("x", "a", "b", [0.0, 1.0, 0.0]).mimic("y", 2.0, 0.5);
     let y = JointDescription::revolute("y", "b", "c", [0.0, 1.0, 0.0]);
     assert_eq!(
@@ -555,20 +551,8 @@ fn every_generated_function_of_a_mimic_model_is_the_generic_one() {
         Scene::new().armature("c_finger", 0.05).coulomb("c_finger", 0.3).lock("h_cam", 0.2).apply(&model).unwrap();
     let module = generate_scene(&scene, &CodegenOptions::default()).unwrap();
     let mut generic = SceneRobot::new(scene);
-    let (q, qd, x) = (vec![0.3, -0.4, 0.8], vec![1.0, 0.5, -2.0], vec![3.0, -1.0, 2.0]);
-    let v = |a: &Vec<f64>| DVector::from_vec(a.clone());
-    for f in module.functions.iter().filter(|f| f.emitted) {
-        let want = match f.function {
-            Function::InverseDynamics => generic.inverse_dynamics(&v(&q), &v(&qd), &v(&x)).unwrap(),
-            Function::BiasForces => generic.bias_forces(&v(&q), &v(&qd)).unwrap(),
-            Function::GravityTorques => generic.gravity_torques(&v(&q)).unwrap(),
-            Function::ForwardDynamics => generic.forward_dynamics(&v(&q), &v(&qd), &v(&x)).unwrap(),
-            _ => DVector::from_vec(rows(generic.mass_matrix(&v(&q)).unwrap())),
-        };
-        let got = f.traced.eval(&[("q", &q), ("qd", &qd), ("qdd", &x), ("tau", &x)]).unwrap();
-        let e = support::norm_rel_err(&got, want.as_slice(), 1e-300);
-        assert!(e <= 1e-12, "gripper scene: {} relative error {e:e}", f.label());
-    }
+    let state = [vec![0.3, -0.4, 0.8], vec![1.0, 0.5, -2.0], vec![3.0, -1.0, 2.0]];
+    traced_five(&module, &state, "gripper scene", |f, [q, qd, x]| five!(generic, f, q, qd, x));
     // a floating base
     let model = floating(mimic_model("panda"));
     let module = generate(&model, &CodegenOptions::default()).unwrap();
@@ -577,18 +561,39 @@ fn every_generated_function_of_a_mimic_model_is_the_generic_one() {
     let mut q = rng.vec(model.nq(), 1.0);
     let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
     q[3..7].iter_mut().for_each(|x| *x /= norm);
-    let (qd, x) = (rng.vec(model.nv(), 1.5), rng.vec(model.nv(), 5.0));
+    let state = [q, rng.vec(model.nv(), 1.5), rng.vec(model.nv(), 5.0)];
+    traced_five(&module, &state, "floating Panda", |f, [q, qd, x]| five!(generic, f, q, qd, x));
+}
+
+/// The contract's five functions of a `Robot` or `SceneRobot` at (q, q̇, x),
+/// x being q̈ or τ, M row-major.
+macro_rules! five {
+    ($robot:expr, $f:expr, $q:expr, $qd:expr, $x:expr) => {{
+        let v = |a: &[f64]| DVector::from_column_slice(a);
+        match $f {
+            Function::InverseDynamics => $robot.inverse_dynamics(&v($q), &v($qd), &v($x)).unwrap(),
+            Function::BiasForces => $robot.bias_forces(&v($q), &v($qd)).unwrap(),
+            Function::GravityTorques => $robot.gravity_torques(&v($q)).unwrap(),
+            Function::ForwardDynamics => $robot.forward_dynamics(&v($q), &v($qd), &v($x)).unwrap(),
+            _ => DVector::from_column_slice($robot.mass_matrix(&v($q)).unwrap().transpose().as_slice()),
+        }
+    }};
+}
+use five;
+
+/// Each emitted function of `module` as traced, at `state` = (q, q̇, x),
+/// against `want` within 1e-12.
+fn traced_five(
+    module: &dynagen::codegen::GeneratedModule,
+    state: &[Vec<f64>; 3],
+    tag: &str,
+    mut want: impl FnMut(&Function, [&[f64]; 3]) -> DVector<f64>,
+) {
+    let [q, qd, x] = state;
     for f in module.functions.iter().filter(|f| f.emitted) {
-        let want = match f.function {
-            Function::InverseDynamics => generic.inverse_dynamics(&v(&q), &v(&qd), &v(&x)).unwrap(),
-            Function::BiasForces => generic.bias_forces(&v(&q), &v(&qd)).unwrap(),
-            Function::GravityTorques => generic.gravity_torques(&v(&q)).unwrap(),
-            Function::ForwardDynamics => generic.forward_dynamics(&v(&q), &v(&qd), &v(&x)).unwrap(),
-            _ => DVector::from_vec(rows(generic.mass_matrix(&v(&q)).unwrap())),
-        };
-        let got = f.traced.eval(&[("q", &q), ("qd", &qd), ("qdd", &x), ("tau", &x)]).unwrap();
-        let e = support::norm_rel_err(&got, want.as_slice(), 1e-300);
-        assert!(e <= 1e-12, "floating Panda: {} relative error {e:e}", f.label());
+        let got = f.traced.eval(&[("q", q), ("qd", qd), ("qdd", x), ("tau", x)]).unwrap();
+        let e = support::norm_rel_err(&got, want(&f.function, [q, qd, x]).as_slice(), 1e-300);
+        assert!(e <= 1e-12, "{tag}: {} relative error {e:e}", f.label());
     }
 }
 

@@ -1,11 +1,11 @@
-mod gripper {
+mod hand {
     dynagen_macros::robot! {
-        name: gripper,
+        name: hand,
         link palm {},
-        link left { mass: 0.1, com: [0, 0.01, 0.02], inertia: [1e-5, 1e-5, 1e-5, 0, 0, 0] },
-        link right { mass: 0.1, com: [0, -0.01, 0.02], inertia: [1e-5, 1e-5, 1e-5, 0, 0, 0] },
-        joint slide: prismatic(palm -> left) { axis: [0, 1, 0] },
-        joint mirror: prismatic(palm -> right) { axis: [0, -1, 0], mimic: slid },
+        link a { mass: 0.1 },
+        link b { mass: 0.1 },
+        joint slide: prismatic(palm -> a) { axis: [0, 1, 0] },
+        joint mirror: prismatic(palm -> b) { axis: [0, -1, 0], mimic: slid },
     }
 }
 

@@ -67,13 +67,8 @@ impl<S: Scalar> TreeScratch<S> {
             return TreeScratch::default();
         }
         let (nq, nv) = (model.tree_nq(), model.tree_nv());
-        TreeScratch {
-            q: vec![S::zero(); nq],
-            qd: vec![S::zero(); nv],
-            qdd: vec![S::zero(); nv],
-            out: vec![S::zero(); nv],
-            m: vec![S::zero(); nv * nv],
-        }
+        let zeros = |n: usize| vec![S::zero(); n];
+        TreeScratch { q: zeros(nq), qd: zeros(nv), qdd: zeros(nv), out: zeros(nv), m: zeros(nv * nv) }
     }
 }
 
@@ -206,9 +201,7 @@ pub(crate) fn on_tree<S: Scalar, R>(
 pub(crate) fn rnea<S: Scalar>(
     model: &Model,
     ws: &mut Workspace<S>,
-    q: &[S],
-    qd: Option<&[S]>,
-    qdd: Option<&[S]>,
+    (q, qd, qdd): rnea::State<'_, S>,
     loads: Loads<'_, S>,
     tau: &mut [S],
 ) {
@@ -220,15 +213,8 @@ pub(crate) fn rnea<S: Scalar>(
     if let Some(qdd) = qdd {
         tree_rates(model, qdd, &mut t.qdd);
     }
-    rnea::rnea_tree(
-        model,
-        ws,
-        &t.q,
-        qd.map(|_| &t.qd[..]),
-        qdd.map(|_| &t.qdd[..]),
-        loads.with_armature(None),
-        &mut t.out,
-    );
+    let state = (&t.q[..], qd.map(|_| &t.qd[..]), qdd.map(|_| &t.qdd[..]));
+    rnea::rnea_tree(model, ws, state, loads.with_armature(None), &mut t.out);
     project(model, &t.out, tau);
     if let (Some(armature), Some(qdd)) = (loads.armature, qdd) {
         let base = model.nv() - model.dof();

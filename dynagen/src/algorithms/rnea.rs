@@ -162,19 +162,20 @@ pub fn rnea<S: Scalar>(
     tau: &mut [S],
 ) {
     if model.has_mimic() {
-        return super::mimic::rnea(model, ws, q, qd, qdd, loads, tau);
+        return super::mimic::rnea(model, ws, (q, qd, qdd), loads, tau);
     }
-    rnea_tree(model, ws, q, qd, qdd, loads, tau)
+    rnea_tree(model, ws, (q, qd, qdd), loads, tau)
 }
+
+/// The state an inverse dynamics reads: q, and q̇ and q̈ unless zero.
+pub(crate) type State<'a, S> = (&'a [S], Option<&'a [S]>, Option<&'a [S]>);
 
 /// [`rnea`] on the bodies' coordinates, one per body ([`Model::tree_nq`]).
 #[inline(always)]
 pub(crate) fn rnea_tree<S: Scalar>(
     model: &Model,
     ws: &mut Workspace<S>,
-    q: &[S],
-    qd: Option<&[S]>,
-    qdd: Option<&[S]>,
+    (q, qd, qdd): State<'_, S>,
     loads: Loads<'_, S>,
     tau: &mut [S],
 ) {

@@ -1,5 +1,5 @@
-//! The robot: a kinematic tree of rigid bodies, one degree of freedom per
-//! body, in topological order.
+//! The robot: a kinematic tree of rigid bodies, one moving joint per body,
+//! in topological order; a joint may follow another ([`Mimic`]).
 //!
 //! A [`Model`] is built from a [`RobotDescription`] (links and joints, as in a
 //! URDF) by [`Model::from_description`], which validates everything and
@@ -11,6 +11,9 @@
 //! Conventions: body `i` carries joint `i`; `parent[i] < i`; joint order is
 //! depth-first over the tree, children in the order the description lists
 //! their joints (file order for URDF). A body's frame is its joint's frame.
+//! The joint vectors (q, q̇, τ) have an entry per joint with a coordinate
+//! of its own: body `i`'s is [`Model::column`]`(i)` (a mimic joint's is its
+//! master's), the same as `i` when no joint follows another.
 
 mod builder;
 mod coupling;
@@ -244,7 +247,8 @@ pub struct Model {
     pub name: String,
     /// The name of the root link (the fixed base frame).
     pub root: String,
-    /// The moving bodies in topological order; body `i` carries joint `i`.
+    /// The moving bodies in topological order; body `i` carries joint `i`
+    /// (whose entry in the joint vectors is [`Model::column`]`(i)`).
     pub bodies: Vec<Body>,
     /// Every named frame.
     pub frames: Vec<Frame>,

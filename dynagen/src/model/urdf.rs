@@ -21,9 +21,8 @@
 //!
 //! The pre-check refuses each of these with an error that names the link or
 //! joint, the attribute and the text; what urdf-rs then reads is only used
-//! for what the pre-check has vouched for. A joint's `<mimic joint=".."
-//! multiplier=".." offset=".."/>` is read here too (the master's name
-//! required; the numbers whole and finite, 1 and 0 when absent).
+//! for what the pre-check has vouched for, `<mimic>` included (its joint
+//! required, multiplier and offset finite, 1 and 0 when absent).
 //!
 //! urdf-rs is given only what dynagen reads: the links without their
 //! visuals and collisions, and the joints. So what urdfdom and Pinocchio
@@ -504,10 +503,9 @@ fn span(facts: &mut RawFacts, stack: &[Ctx], start: usize, end: usize, link: &Li
 /// master's name is required, the numbers default to URDF's 1 and 0.
 fn mimic_element(attrs: &[(String, String)], item: &str) -> Result<MimicDescription, ModelError> {
     check_numbers::<1>(attrs, item, "mimic", &["multiplier", "offset"], &["joint"])?;
-    let joint = get(attrs, "joint").unwrap_or_default();
-    if joint.is_empty() {
+    let Some(joint) = get(attrs, "joint").filter(|j| !j.is_empty()) else {
         return Err(ModelError::Urdf(format!("{item}: <mimic> has an empty joint attribute")));
-    }
+    };
     let number = |key: &str, default: f64| match get(attrs, key) {
         Some(text) => numbers::<1>(item, &format!("mimic {key}"), text).map(|[x]| x),
         None => Ok(default),

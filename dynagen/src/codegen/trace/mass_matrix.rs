@@ -234,10 +234,10 @@ pub(crate) fn mass_matrix<S: Scalar>(
         let nt = model.bodies.len();
         let (mut tq, mut mt) = (vec![S::zero(); nt], vec![S::zero(); nt * nt]);
         mimic::tree_positions(model, q, &mut tq);
-        tree_mass_matrix(model, ws, &tq, payloads, plan, &mut mt);
+        tree_mass_matrix(model, ws, &tq, (payloads, plan), &mut mt);
         return mimic::project_matrix(model, &mt, m);
     }
-    tree_mass_matrix(model, ws, q, payloads, plan, m)
+    tree_mass_matrix(model, ws, q, (payloads, plan), m)
 }
 
 /// [`mass_matrix`] of the bodies' coordinates: M_tree.
@@ -245,8 +245,7 @@ fn tree_mass_matrix<S: Scalar>(
     model: &Model,
     ws: &mut Workspace<S>,
     q: &[S],
-    payloads: &[BodyInertia<S>],
-    plan: &Plan,
+    (payloads, plan): (&[BodyInertia<S>], &Plan),
     m: &mut [S],
 ) {
     let n = model.bodies.len();
