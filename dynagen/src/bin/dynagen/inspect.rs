@@ -77,7 +77,7 @@ fn report(model: &Model, source: &str) -> String {
         if model.has_mimic() {
             cells.push(model.mimic(i).map_or("-".into(), |m| {
                 let offset = match m.offset {
-                    o if o == 0.0 => String::new(),
+                    0.0 => String::new(),
                     o if o < 0.0 => format!(" − {}", num(-o)),
                     o => format!(" + {}", num(o)),
                 };
