@@ -68,4 +68,10 @@ fn a_module_of_which_one_function_is_called_compiles_without_a_warning() {
         "robot::gravity_torques(&[0.1; robot::DOF])[2]",
         &[],
     );
+    compiles_without_warnings(
+        "mimic_floating",
+        &module(Builder::new().urdf(&gripper).floating_base(true)),
+        "robot::gravity_torques(&[0.1; robot::NQ])[2]",
+        &[],
+    );
 }

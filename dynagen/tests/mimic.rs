@@ -552,15 +552,17 @@ fn every_generated_function_of_a_mimic_model_is_the_generic_one() {
     let state = [vec![0.3, -0.4, 0.8], vec![1.0, 0.5, -2.0], vec![3.0, -1.0, 2.0]];
     traced_five(&module, &state, "gripper scene", |f, [q, qd, x]| five!(generic, f, q, qd, x));
     // a floating base
-    let model = floating(mimic_model("panda"));
-    let module = generate(&model, &CodegenOptions::default()).unwrap();
-    let mut generic = Robot::new(model.clone());
-    let mut rng = support::Rng::new(0xf10a);
-    let mut q = rng.vec(model.nq(), 1.0);
-    let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
-    q[3..7].iter_mut().for_each(|x| *x /= norm);
-    let state = [q, rng.vec(model.nv(), 1.5), rng.vec(model.nv(), 5.0)];
-    traced_five(&module, &state, "floating Panda", |f, [q, qd, x]| five!(generic, f, q, qd, x));
+    for robot in ["panda", "gripper"] {
+        let model = floating(mimic_model(robot));
+        let module = generate(&model, &CodegenOptions::default()).unwrap();
+        let mut generic = Robot::new(model.clone());
+        let mut rng = support::Rng::new(0xf10a);
+        let mut q = rng.vec(model.nq(), 1.0);
+        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        let state = [q, rng.vec(model.nv(), 1.5), rng.vec(model.nv(), 5.0)];
+        traced_five(&module, &state, &format!("floating {robot}"), |f, [q, qd, x]| five!(generic, f, q, qd, x));
+    }
 }
 
 /// The contract's five functions of a `Robot` or `SceneRobot` at (q, q̇, x),
