@@ -4,7 +4,8 @@
 //! with the same bodies without fused multiply-adds and run-time dispatch (`*_base`),
 //! and each with the derivatives of the dynamics (`*_derivatives`); and the
 //! quadruped12 with a floating base, default options (`quadruped12_floating`,
-//! as `dynagen generate dynagen/robots/quadruped12.urdf --floating-base`).
+//! as `dynagen generate dynagen/robots/quadruped12.urdf --floating-base`); the
+//! Panda with its mimic finger, default options (`panda_mimic`).
 
 use dynagen::codegen::{generate, CodegenOptions, Function, Trig};
 use dynagen::{Builder, Model};
@@ -42,6 +43,15 @@ fn main() {
         let module = generate(&model, &base).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
         std::fs::write(Path::new(&out).join(format!("{robot}_base.rs")), module.source).expect("writing");
     }
+    // The Panda with its mimic finger (examples/mimic.rs), default options.
+    let urdf = Path::new(env!("CARGO_MANIFEST_DIR")).join("../dynagen/tests/data/panda_mimic.urdf");
+    println!("cargo:rerun-if-changed={}", urdf.display());
+    let module = Builder::new()
+        .urdf(&urdf)
+        .source("dynagen/tests/data/panda_mimic.urdf")
+        .generate_module()
+        .unwrap_or_else(|e| panic!("generating panda_mimic: {e}"));
+    std::fs::write(Path::new(&out).join("panda_mimic.rs"), module.source).expect("writing");
     // The floating-base quadruped (examples/floating.rs).
     let urdf = robots.join("quadruped12.urdf");
     println!("cargo:rerun-if-changed={}", urdf.display());
