@@ -169,7 +169,8 @@ fn a_bad_mimic_is_an_error_naming_the_joint() {
     assert_eq!(
         msg(follower(JointDescription::fixed("f", "a", "c").mimic("m", 1.0, 0.0))),
         "joint \"f\" (mimic): a fixed joint cannot follow another (only revolute, continuous and prismatic joints \
-         mimic)"
+         mimic): remove its <mimic>, or read mimic joints as independent joints (the option mimic = independent), \
+         which ignores it"
     );
     // a chain of mimics, and a cycle of them
     let two = three_joints;
@@ -656,4 +657,46 @@ fn mimic_names_in_the_header_are_escaped() {
     let line = header.iter().find(|l| l.contains("= 2.0 *")).expect("the coupling's line");
     assert!(line.contains(r"\u{a}") && line.contains(r"\u{d}") && line.contains(r"\u{2028}"), "{line}");
     assert!(!module.source.contains("\npub fn injected"));
+}
+
+/// A master below the joint that follows it, and a master on one branch
+/// followed on another: τ and M are the full tree's projected, and forward
+/// dynamics (LᵀDL along M's elimination tree, which these patterns fill in)
+/// inverts them.
+#[test]
+fn masters_below_and_beside_their_followers() {
+    use dynagen::model::{Inertial, RobotBuilder};
+    let body = |m: f64| Some(Inertial::new(m, [0.05, 0.02, 0.1], [0.01, 0.02, 0.015, 0.001, 0.0, 0.002]));
+    let robot = |mimic: MimicJoints| {
+        RobotBuilder::new("r")
+            .link("base", None)
+            .link("a", body(1.0))
+            .link("b", body(0.7))
+            .link("c", body(0.5))
+            .link("d", body(0.3))
+            .joint(JointDescription::revolute("up", "base", "a", [0.0, 0.0, 1.0]).mimic("low", -0.5, 0.3))
+            .joint(JointDescription::revolute("low", "a", "b", [0.0, 1.0, 0.0]).origin([0.0, 0.0, 0.3], [0.0; 3]))
+            .joint(JointDescription::revolute("side", "base", "c", [1.0, 0.0, 0.0]).origin([0.2, 0.0, 0.0], [0.0; 3]))
+            .joint(JointDescription::prismatic("far", "c", "d", [0.0, 0.6, 0.8]).mimic("low", 0.1, 0.0))
+            .mimic_joints(mimic)
+            .build()
+            .unwrap()
+    };
+    let (model, full) = (robot(MimicJoints::Follow), robot(MimicJoints::Independent));
+    assert_eq!(model.joint_names(), ["low", "side"]);
+    let (mut ours, mut theirs) = (Robot::new(model), Robot::new(full));
+    let g = DMatrix::from_row_slice(4, 2, &[-0.5, 0.0, 1.0, 0.0, 0.0, 1.0, 0.1, 0.0]);
+    let o = DVector::from_vec(vec![0.3, 0.0, 0.0, 0.0]);
+    let (q, qd, qdd) =
+        (DVector::from_vec(vec![0.7, -0.4]), DVector::from_vec(vec![1.1, 0.6]), DVector::from_vec(vec![-2.0, 3.0]));
+    let qf = &g * &q + &o;
+    let col = |v: DVector<f64>| DMatrix::from_column_slice(v.len(), 1, v.as_slice());
+    let tau = ours.inverse_dynamics(&q, &qd, &qdd).unwrap();
+    let want = g.transpose() * col(theirs.inverse_dynamics(&qf, &(&g * &qd), &(&g * &qdd)).unwrap());
+    assert!(max_diff(&col(tau.clone()), &want) <= 1e-14);
+    let m = ours.mass_matrix(&q).unwrap();
+    assert!(max_diff(&m, &(g.transpose() * theirs.mass_matrix(&qf).unwrap() * &g)) <= 1e-14);
+    assert!(m[(0, 1)] != 0.0, "the branches share an entry through the mimic joints");
+    let back = ours.forward_dynamics(&q, &qd, &tau).unwrap();
+    assert!(max_diff(&col(back), &col(qdd)) <= 1e-12);
 }

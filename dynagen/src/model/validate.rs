@@ -113,7 +113,8 @@ fn check_mimic(j: &JointDescription, desc: &RobotDescription) -> Result<(), Mode
     let kind = |t: JointType| format!("{t:?}").to_lowercase();
     if !moves(j.joint_type) {
         return err(format!(
-            "a {} joint cannot follow another (only revolute, continuous and prismatic joints mimic)",
+            "a {} joint cannot follow another (only revolute, continuous and prismatic joints mimic): remove its \
+             <mimic>, or read mimic joints as independent joints (the option mimic = independent), which ignores it",
             kind(j.joint_type)
         ));
     }
