@@ -6,9 +6,10 @@
 //! UR5 with only τ and no gravity; the derivatives of the UR5, the Panda,
 //! the two-armed torso, an f32 UR5 and the `ur5_controller` scene
 //! (`tests/generated_derivatives.rs`); the stiff robots (`build_stiff.rs`) and
-//! the split long-chain modules (`build_split.rs`); the Panda with its mimic
-//! finger and the mimic gripper linkage, with the batched and with std's
-//! trigonometry (`tests/generated_mimic.rs`).
+//! the split long-chain modules (`build_split.rs`); the floating quadruped and
+//! the legged manipulator's controller scene (`tests/generated_floating.rs`);
+//! the Panda with its mimic finger and the mimic gripper linkage, with the
+//! batched and with std's trigonometry (`tests/generated_mimic.rs`).
 
 use dynagen::codegen::ScalarType;
 use dynagen::scene::{Gravity, Scene};
@@ -78,13 +79,21 @@ fn main() {
         .functions(&derivatives)
         .generate()
         .expect("generating the ur5_controller scene's derivatives");
-    // A floating-base quadruped, for tests/generated_floating.rs.
+    // A floating-base quadruped, and the legged manipulator's controller
+    // scene (armature, friction, a tool wrench, a run-time payload, contact
+    // frames), for tests/generated_floating.rs.
     dynagen::Builder::new()
         .urdf("../dynagen/robots/quadruped12.urdf")
         .floating_base(true)
         .file_name("quadruped12_floating.rs")
         .generate()
         .expect("generating the floating quadruped");
+    dynagen::Builder::new()
+        .urdf("../dynagen/robots/legged_manipulator.urdf")
+        .floating_base(true)
+        .scene_file("../dynagen/scenes/legged_manipulator.toml")
+        .generate()
+        .expect("generating the legged manipulator's controller scene");
     // Robots with mimic joints, as users have them (tests/generated_mimic.rs).
     for robot in ["panda", "gripper"] {
         let urdf = format!("../dynagen/tests/data/{robot}_mimic.urdf");

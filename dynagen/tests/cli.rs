@@ -791,8 +791,9 @@ fn eval_derivatives_agree_bit_for_bit_with_the_library() {
 }
 
 /// `--floating-base` on the commands that load a robot: `generate` writes
-/// the NQ/NV module, `ops` counts it against the floating-base recursion,
-/// `eval` says it does not take one yet.
+/// the NQ/NV module (and a floating scene's, with contact frames), `ops`
+/// counts it against the floating-base recursion, `inspect` says it
+/// floats, `eval` takes NQ/NV-long states (checked below).
 #[test]
 fn floating_base_on_the_command_line() {
     let quad = support::robot_path("quadruped12");
@@ -805,11 +806,87 @@ fn floating_base_on_the_command_line() {
     let row = ops.lines().find(|l| l.starts_with("mass_matrix")).expect("a mass_matrix row");
     let counts: Vec<usize> = row.split_whitespace().skip(1).take(2).map(|x| x.parse().unwrap()).collect();
     assert!(counts[0] > 0 && counts[1] > counts[0], "generated and generic counts: {row}");
-    let e = fails(
-        dynagen()
-            .args(["eval", quad.to_str().unwrap(), "--floating-base", "--input", "-"])
-            .write_stdin("{\"states\": []}"),
-        1,
+    let inspect = succeeds(dynagen().args(["inspect", quad.to_str().unwrap(), "--floating-base"]));
+    assert!(inspect.contains("a floating base (the root link moves freely): q has NQ = 19 entries"), "{inspect}");
+    assert!(inspect.contains("  trunk (floating base)") && inspect.contains("m/s² in the world frame"), "{inspect}");
+    let lm = support::robot_path("legged_manipulator");
+    let scene = support::scene_path("legged_manipulator");
+    let (lm, scene) = (lm.to_str().unwrap(), scene.to_str().unwrap());
+    let out = succeeds(dynagen().args(["generate", lm, "--floating-base", "--scene", scene]));
+    assert!(out.contains("pub fn frame_acceleration_bias_fl_foot(q: &[f64; NQ], qd: &[f64; NV]) -> [f64; 6]"));
+    assert!(out.contains("// Run-time inputs: f_tip: &[T; 6] (m; f) at frame \"arm_ee\""), "{out}");
+    let ops = succeeds(dynagen().args(["ops", lm, "--floating-base", "--scene", scene]));
+    assert!(ops.contains("frame_acceleration_bias_rr_foot"), "{ops}");
+}
+
+/// The legged manipulator's Pinocchio data (free-flyer root) as `dynagen
+/// eval` input: with `--floating-base`, or a URDF whose root joint is
+/// `floating`, τ, M, h, g and q̈ agree with Pinocchio's within 1e-12; the
+/// errors name NQ/NV, the base's entries and the quaternion.
+#[test]
+fn eval_takes_floating_base_states() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(dir.join("tests/data/pinocchio_floating_legged_manipulator.json")).unwrap();
+    let data: Value = serde_json::from_str(&text).unwrap();
+    let states: Vec<Value> = data["states"].as_array().unwrap()[..4]
+        .iter()
+        .map(|s| serde_json::json!({"q": s["q"], "qd": s["qd"], "qdd": s["qdd"], "tau": s["tau"]}))
+        .collect();
+    let input = serde_json::json!({ "states": states }).to_string();
+    let lm = support::robot_path("legged_manipulator");
+    let with_flag = succeeds(
+        dynagen().args(["eval", lm.to_str().unwrap(), "--floating-base", "--input", "-"]).write_stdin(input.clone()),
     );
-    assert!(e.contains("fixed-base robots only"), "{e}");
+    // the same robot floated by its file: a world link and a floating joint
+    let dir = scratch("eval_takes_floating_base_states");
+    let floated = dir.join("floated.urdf");
+    let urdf = std::fs::read_to_string(&lm).unwrap().replace(
+        "<robot name=\"legged_manipulator\">",
+        "<robot name=\"legged_manipulator\"><link name=\"world\"/><joint name=\"root\" type=\"floating\">\
+         <parent link=\"world\"/><child link=\"trunk\"/></joint>",
+    );
+    std::fs::write(&floated, urdf).unwrap();
+    let by_file =
+        succeeds(dynagen().args(["eval", floated.to_str().unwrap(), "--input", "-"]).write_stdin(input.clone()));
+    assert_eq!(by_file, with_flag);
+    let out: Value = serde_json::from_str(&with_flag).unwrap();
+    assert_eq!(out["joint_names"].as_array().unwrap().len(), 18);
+    // every number of a value, rows flattened
+    fn flat(v: &Value) -> Vec<f64> {
+        match v {
+            Value::Array(a) => a.iter().flat_map(flat).collect(),
+            x => vec![x.as_f64().unwrap()],
+        }
+    }
+    for (k, (got, want)) in
+        out["results"].as_array().unwrap().iter().zip(data["states"].as_array().unwrap()).enumerate()
+    {
+        for (field, key) in [("tau", "tau_id"), ("M", "M"), ("h", "h"), ("g", "g"), ("qdd", "qdd_fd")] {
+            let (g, w) = (flat(&got[field]), flat(&want[key]));
+            assert_eq!(g.len(), w.len(), "{field}");
+            let scale = w.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            let e = g.iter().zip(&w).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max) / scale;
+            assert!(e < 1e-12, "state {k}: {field} differs from Pinocchio by {e:e}");
+        }
+    }
+    // errors: NQ and NV named, the base's entries named, the quaternion checked
+    let lm = lm.to_str().unwrap();
+    let eval = |states: &str| {
+        fails(dynagen().args(["eval", lm, "--floating-base", "--input", "-"]).write_stdin(states.to_string()), 1)
+    };
+    let zeros = |n: usize| format!("[{}]", vec!["0"; n].join(", "));
+    let e = eval(&format!("{{\"states\": [{{\"q\": {}}}]}}", zeros(18)));
+    assert!(e.contains("\"q\" has 18 entries, a floating-base q has NQ = 25"), "{e}");
+    let e = eval(&format!("{{\"states\": [{{\"q\": {}, \"qd\": {}}}]}}", zeros(25), zeros(18)));
+    assert!(e.contains("\"qd\" has 18 entries, a floating-base \"qd\" has NV = 24"), "{e}");
+    let mut q: Vec<String> = vec!["0".into(); 25];
+    q[4] = "\"y\"".into();
+    let e = eval(&format!("{{\"states\": [{{\"q\": [{}]}}]}}", q.join(", ")));
+    assert!(e.contains("state 0: \"q\"[4] (base quaternion y) is a string"), "{e}");
+    let e = eval(&format!("{{\"states\": [{{\"q\": {}}}]}}", zeros(25)));
+    assert!(e.contains("state 0: q[3..7], the base's quaternion (x, y, z, w), has norm 0"), "{e}");
+    q[4] = "0".into();
+    q[6] = "1.01".into();
+    let e = eval(&format!("{{\"states\": [{{\"q\": [{}]}}]}}", q.join(", ")));
+    assert!(e.contains("has norm 1.01, but it must be 1"), "{e}");
 }

@@ -313,6 +313,16 @@ fn every_generic_function_is_the_full_trees_projected() {
                         ours.body_jacobian(&frame, &q).unwrap().resize(6, model.nv(), 0.0),
                         (full.body_jacobian(&frame, &qf).unwrap() * &gv).resize(6, model.nv(), 0.0),
                     ),
+                    (
+                        "J_base",
+                        ours.base_jacobian(&frame, &q).unwrap().resize(6, model.nv(), 0.0),
+                        (full.base_jacobian(&frame, &qf).unwrap() * &gv).resize(6, model.nv(), 0.0),
+                    ),
+                    (
+                        "Jdot qd",
+                        col(ours.frame_acceleration_bias(&frame, &q, &qd).unwrap().resize_vertically(6, 0.0)),
+                        col(full.frame_acceleration_bias(&frame, &qf, &qdf).unwrap().resize_vertically(6, 0.0)),
+                    ),
                 ];
                 for (what, got, want) in checks {
                     let e = max_diff(&got, &want);
@@ -491,7 +501,12 @@ fn every_generated_function_of_a_mimic_model_is_the_generic_one() {
         let model = mimic_model(robot);
         let frame = model.frames.last().unwrap().name.clone();
         all.truncate(9);
-        all.extend([Function::FramePose(frame.clone()), Function::FrameJacobian(frame.clone())]);
+        all.extend([
+            Function::FramePose(frame.clone()),
+            Function::FrameJacobian(frame.clone()),
+            Function::FrameWorldJacobian(frame.clone()),
+            Function::FrameAccelerationBias(frame.clone()),
+        ]);
         let mut generic = Robot::new(model.clone());
         let n = model.dof();
         let mut rng = support::Rng::new(0x6e6e);
@@ -517,6 +532,12 @@ fn every_generated_function_of_a_mimic_model_is_the_generic_one() {
                 Function::MassMatrixInverse => rows(r.mass_matrix_inverse(&v(&q)).unwrap()),
                 Function::FramePose(name) => r.frame_pose(name, &v(&q)).unwrap().transpose().as_slice().to_vec(),
                 Function::FrameJacobian(name) => r.body_jacobian(name, &v(&q)).unwrap().transpose().as_slice().to_vec(),
+                Function::FrameWorldJacobian(name) => {
+                    r.space_jacobian(name, &v(&q)).unwrap().transpose().as_slice().to_vec()
+                }
+                Function::FrameAccelerationBias(name) => {
+                    r.frame_acceleration_bias(name, &v(&q), &v(&qd)).unwrap().as_slice().to_vec()
+                }
             }
         };
         let inputs: [(&str, &[f64]); 4] = [("q", &q), ("qd", &qd), ("qdd", &x), ("tau", &x)];

@@ -9,10 +9,13 @@
 #include <algorithm>
 #include <chrono>
 #include <random>
+#include <string>
 #include <vector>
 
-// Included after pinocchio/parsers/urdf.hpp, which brings pinocchio::Model
-// and Eigen.
+// pinocchio_models.hpp is written by make_pinocchio_models.py (see
+// pinocchio_build.sh): the models, built without the URDF parser's
+// prebuilt library, so that everything compiles with -march=native.
+#include "pinocchio_models.hpp"
 
 namespace bench_common {
 
@@ -22,6 +25,13 @@ constexpr int kBatches = 300;
 constexpr int kWarmupBatches = 20;
 
 using Clock = std::chrono::steady_clock;
+
+// The model of the URDF file at `path` (by its file name), with a
+// JointModelFreeFlyer root if `floating`.
+inline pinocchio::Model load_model(const std::string& path, bool floating) {
+  const std::string file = path.substr(path.find_last_of('/') + 1);
+  return pinocchio_models::build(floating ? file + ":floating" : file);
+}
 
 // Keeps the optimiser from dropping a result.
 inline double g_sink = 0.0;

@@ -6,11 +6,10 @@
 # alternation for ROUNDS rounds (default 3), the same states' distribution and
 # statistic (median of 300 batches of 1000 calls).
 # Needs: pip install pin cmeel-eigen cmeel-urdfdom-headers ; g++ ; cargo.
-# CXXFLAGS default "-O3 -DNDEBUG": with -march=native the program segfaults
-# (Eigen's alignment changes the layout of Model/Data, which must match the
-# prebuilt libpinocchio_parsers that builds the model; see
-# pinocchio_bench.sh), so both sides run the baseline x86-64 ISA (dynagen's
-# modules with their run-time AVX2 + FMA dispatch where they have it).
+# Pinocchio is compiled with CXXFLAGS (default "-O3 -DNDEBUG -march=native",
+# pinocchio_build.sh); the dynagen side with the caller's RUSTFLAGS (a
+# default build: baseline x86-64 with the modules' run-time AVX2 + FMA
+# dispatch where they have it; or RUSTFLAGS="-C target-cpu=native").
 # Not run in CI; see README.md in this folder.
 set -euo pipefail
 
@@ -20,7 +19,7 @@ rounds="${1:-3}"
 out="${TMPDIR:-/tmp}/pinocchio_derivatives_bench"
 # shellcheck source=pinocchio_build.sh
 . "$here/pinocchio_build.sh"
-pinocchio_build "$here/pinocchio_derivatives_bench.cpp" "$out"
+pinocchio_build "$here/pinocchio_derivatives_bench.cpp" "$out" "$repo/dynagen/robots/ur5.urdf" "$repo/dynagen/robots/panda.urdf"
 (cd "$repo" && cargo build --release -q -p dynagen-bench --example derivatives)
 target="${CARGO_TARGET_DIR:-$repo/target}"
 for r in $(seq "$rounds"); do

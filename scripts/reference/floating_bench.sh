@@ -9,11 +9,8 @@
 # with the same method (8 states, minimum per call over 200 alternating
 # rounds of 2000 calls).
 # Needs: pip install pin cmeel-eigen cmeel-urdfdom-headers ; g++ ; cargo.
-# CXXFLAGS default "-O3 -DNDEBUG": with -march=native the program segfaults
-# (Eigen's alignment changes the layout of Model/Data, which must match the
-# prebuilt libpinocchio_parsers that builds the model; see
-# pinocchio_bench.sh), so Pinocchio runs the baseline x86-64 ISA.  The
-# dynagen side is built with the caller's RUSTFLAGS (e.g.
+# Pinocchio is compiled with CXXFLAGS (default "-O3 -DNDEBUG -march=native",
+# pinocchio_build.sh); the dynagen side with the caller's RUSTFLAGS (e.g.
 # RUSTFLAGS="-C target-cpu=native").
 # Not run in CI; see README.md in this folder.
 set -euo pipefail
@@ -24,10 +21,10 @@ rounds="${1:-2}"
 out="${TMPDIR:-/tmp}/pinocchio_floating_bench"
 # shellcheck source=pinocchio_build.sh
 . "$here/pinocchio_build.sh"
-pinocchio_build "$here/pinocchio_floating_bench.cpp" "$out"
+urdf="$repo/dynagen/robots/quadruped12.urdf"
+pinocchio_build "$here/pinocchio_floating_bench.cpp" "$out" "$urdf:floating"
 (cd "$repo" && cargo build --release -q -p dynagen-bench --example floating)
 target="${CARGO_TARGET_DIR:-$repo/target}"
-urdf="$repo/dynagen/robots/quadruped12.urdf"
 for r in $(seq "$rounds"); do
   echo "== round $r"
   "$out" "$urdf"

@@ -10,6 +10,6 @@ repo="$(cd "$here/../.." && pwd)"
 out="${TMPDIR:-/tmp}/pinocchio_bench"
 # shellcheck source=pinocchio_build.sh
 . "$here/pinocchio_build.sh"
-pinocchio_build "$here/pinocchio_bench.cpp" "$out"
+pinocchio_build "$here/pinocchio_bench.cpp" "$out" "$repo/dynagen/robots/ur5.urdf" "$repo/dynagen/robots/panda.urdf"
 
 "$out" "$repo/dynagen/robots/ur5.urdf" "$repo/dynagen/robots/panda.urdf"

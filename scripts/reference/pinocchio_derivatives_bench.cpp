@@ -19,7 +19,6 @@
 #include <string>
 #include <vector>
 
-#include "pinocchio/parsers/urdf.hpp"
 #include "bench_common.hpp"
 #include "pinocchio/algorithm/aba.hpp"
 #include "pinocchio/algorithm/aba-derivatives.hpp"
@@ -31,8 +30,7 @@ namespace {
 using namespace bench_common;
 
 void bench(const std::string& path) {
-  pinocchio::Model model;
-  pinocchio::urdf::buildModel(path, model);
+  const pinocchio::Model model = load_model(path, false);
   pinocchio::Data data(model);
   const int nv = model.nv;
 

@@ -28,7 +28,7 @@
 #include "pinocchio/algorithm/aba.hpp"
 #include "pinocchio/algorithm/crba.hpp"
 #include "pinocchio/algorithm/rnea.hpp"
-#include "pinocchio/parsers/urdf.hpp"
+#include "bench_common.hpp"
 
 namespace {
 
@@ -50,8 +50,7 @@ int main(int argc, char** argv) {
   const std::string path = argv[1];
   const int rounds = argc > 2 ? std::atoi(argv[2]) : 200;
 
-  pinocchio::Model model;
-  pinocchio::urdf::buildModel(path, pinocchio::JointModelFreeFlyer(), model);
+  const pinocchio::Model model = bench_common::load_model(path, true);
   pinocchio::Data data(model);
   const int nq = model.nq, nv = model.nv;
 

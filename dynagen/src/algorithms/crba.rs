@@ -43,7 +43,8 @@ pub(crate) fn crba_tree<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S]
     for (i, b) in model.bodies.iter().enumerate() {
         ws.inertia[i] = Inertia::from_f64(&b.inertia);
     }
-    for p in loads.payloads {
+    // (a payload on the fixed base moves nothing)
+    for p in loads.payloads.iter().filter(|p| p.body != super::BASE_BODY) {
         ws.inertia[p.body] = ws.inertia[p.body].add(&p.inertia);
     }
     for i in (0..n).rev() {

@@ -19,6 +19,7 @@ pub mod derivatives;
 pub mod energy;
 pub mod floating;
 pub mod forward_dynamics;
+pub mod frame_acceleration;
 pub mod integrators;
 pub mod joint;
 pub mod kinematics;
@@ -29,5 +30,5 @@ pub mod mimic;
 pub mod rnea;
 mod workspace;
 
-pub use loads::{BodyInertia, Loads, TipWrench};
+pub use loads::{BodyInertia, Loads, TipWrench, BASE_BODY};
 pub use workspace::Workspace;

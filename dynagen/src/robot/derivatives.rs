@@ -32,7 +32,7 @@ impl DerivativeScratch {
 
 /// Copies the row-major `rows` into `m`.
 /// The error of a derivative asked of a floating-base robot.
-const FIXED_BASE_ONLY: &str = "the derivatives are computed for fixed-base robots only (yet)";
+pub(super) const FIXED_BASE_ONLY: &str = "the derivatives are computed for fixed-base robots only (yet)";
 
 pub(super) fn copy_rows(rows: &[f64], m: &mut DMatrix<f64>) {
     let n = m.nrows();

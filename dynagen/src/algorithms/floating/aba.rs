@@ -4,7 +4,7 @@
 //! of the whole robot at the base, a 6×6 symmetric positive-definite solve
 //! for the base's acceleration. O(n), without forming M.
 
-use super::{base_motion, check_tree_sizes, quaternion_rotation, solve6};
+use super::{base_inertia, base_motion, check_tree_sizes, quaternion_rotation, solve6};
 use crate::algorithms::aba::ArticulatedInertia;
 use crate::algorithms::joint::{
     add_motion, cross_motion, force_to_parent, joint_transform, motion_to_child, project, with_rotation,
@@ -69,7 +69,7 @@ fn aba_impl<S: Scalar>(
     // Forward: spatial velocities v, velocity-product accelerations c (in
     // ws.a), bias forces pᴬ = v ×* I v (in ws.f).
     let v0 = qd.map_or(Motion::zero(), base_motion);
-    let i0 = Inertia::<S>::from_f64(&model.base_inertia);
+    let i0 = base_inertia(model, payloads);
     let mut art0 = ArticulatedInertia::from_rigid(&i0);
     let mut p0 = match qd {
         Some(_) => v0.cross_force(&i0.mul_motion(&v0)),

@@ -5,7 +5,7 @@
 //! `τ[0..6]`, the wrench that must act on the base (base frame, moment
 //! about its origin first).
 
-use super::{base_motion, check_tree_sizes, quaternion_rotation, write_force};
+use super::{base_inertia, base_motion, check_tree_sizes, quaternion_rotation, write_force};
 use crate::algorithms::joint::{add_motion, cross_motion, force_to_parent, joint_transform, motion_to_child, project};
 use crate::algorithms::{Loads, Workspace};
 use crate::model::Model;
@@ -17,7 +17,9 @@ use crate::Scalar;
 /// - `q`: NQ entries (base position, quaternion (x, y, z, w), joints);
 ///   `qd`, `qdd`: NV entries (`None`: zero); `tau`: NV entries written.
 /// - `loads`: gravity in the world frame; tip wrenches at frames (those on
-///   the base too); payloads on bodies; armature on the joints (not the base).
+///   the base too); payloads on bodies and on the base
+///   ([`BASE_BODY`](crate::algorithms::BASE_BODY)); armature on the joints
+///   (not the base).
 ///
 /// # Panics
 /// If a slice's length is not NQ or NV, or the model's root is not floating.
@@ -48,7 +50,7 @@ pub fn rnea<S: Scalar>(
     if let Some(g) = gravity {
         a0.lin -= quaternion_rotation(&q[3..7]).tr_mul_vec(g);
     }
-    let i0 = Inertia::<S>::from_f64(&model.base_inertia);
+    let i0 = base_inertia(model, payloads);
     let mut f0 = i0.mul_motion(&a0);
     if qd.is_some() {
         f0 += v0.cross_force(&i0.mul_motion(&v0));

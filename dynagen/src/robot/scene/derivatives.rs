@@ -7,7 +7,7 @@
 use super::{SceneInputError, SceneInputs, SceneRobot, Uses};
 use crate::algorithms::derivatives as d;
 use crate::algorithms::Loads;
-use crate::robot::derivatives::{copy_rows, DerivativeScratch};
+use crate::robot::derivatives::{copy_rows, DerivativeScratch, FIXED_BASE_ONLY};
 use crate::scene::dynamics;
 use nalgebra::{DMatrix, DVector};
 
@@ -21,7 +21,7 @@ impl SceneRobot {
         qdd: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<(DMatrix<f64>, DMatrix<f64>), SceneInputError> {
-        self.check().joints(&[("q", q), ("qd", qd), ("qdd", qdd)])?;
+        self.check().fixed_base(FIXED_BASE_ONLY)?.joints(&[("q", q), ("qd", qd), ("qdd", qdd)])?;
         let n = self.dof();
         let g = self.prepare(inputs, Uses { gravity: true, tip: true })?;
         let DerivativeScratch { dw, loads, rows } = &mut self.deriv;
@@ -48,7 +48,7 @@ impl SceneRobot {
         tau: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<(DMatrix<f64>, DMatrix<f64>, DMatrix<f64>), SceneInputError> {
-        self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?;
+        self.check().fixed_base(FIXED_BASE_ONLY)?.joints(&[("q", q), ("qd", qd), ("tau", tau)])?;
         let n = self.dof();
         let g = self.prepare(inputs, Uses { gravity: true, tip: true })?;
         let DerivativeScratch { dw, loads, rows } = &mut self.deriv;
@@ -75,7 +75,7 @@ impl SceneRobot {
         q: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DMatrix<f64>, SceneInputError> {
-        self.check().joints(&[("q", q)])?;
+        self.check().fixed_base(FIXED_BASE_ONLY)?.joints(&[("q", q)])?;
         let n = self.dof();
         self.prepare(inputs, Uses { gravity: false, tip: false })?;
         let [m, linv, _] = &mut self.deriv.rows;
