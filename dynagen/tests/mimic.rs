@@ -721,3 +721,35 @@ fn masters_below_and_beside_their_followers() {
     let back = ours.forward_dynamics(&q, &qd, &tau).unwrap();
     assert!(max_diff(&col(back), &col(qdd)) <= 1e-12);
 }
+
+/// A scene on a floating base with mimic joints: armature on the master
+/// finger and a locked wrist. Its τ is the plain floating robot's (the
+/// wrist held where it is locked) plus the armature term, and its forward
+/// dynamics inverts it.
+#[test]
+fn a_floating_scene_with_mimic_joints() {
+    use dynagen::scene::{Scene, SceneRobot};
+    let model = floating(mimic_model("panda"));
+    let scene = Scene::new().armature("panda_finger_joint1", 0.1).lock("panda_joint7", 0.2).apply(&model).unwrap();
+    assert!(scene.model.is_floating() && scene.model.has_mimic());
+    assert_eq!(scene.model.nv(), 6 + 7);
+    let (mut s, mut plain) = (SceneRobot::new(scene), Robot::new(model.clone()));
+    let mut rng = support::Rng::new(0x5ce4e);
+    let mut q = DVector::from_vec(rng.vec(7 + 7, 1.0));
+    let norm = q.rows(3, 4).norm();
+    q.rows_mut(3, 4).unscale_mut(norm);
+    q[13] = 0.02; // the finger, in its range
+    let (qd, qdd) = (DVector::from_vec(rng.vec(13, 1.0)), DVector::from_vec(rng.vec(13, 3.0)));
+    let tau = s.inverse_dynamics(&q, &qd, &qdd).unwrap();
+    // the plain robot with the wrist at 0.2, still
+    let ins = |v: &DVector<f64>, at: usize, x: f64| {
+        DVector::from_iterator(v.len() + 1, v.iter().take(at).chain([x].iter()).chain(v.iter().skip(at)).copied())
+    };
+    let (pq, pqd, pqdd) = (ins(&q, 13, 0.2), ins(&qd, 12, 0.0), ins(&qdd, 12, 0.0));
+    let full = plain.inverse_dynamics(&pq, &pqd, &pqdd).unwrap();
+    let mut want = DVector::from_iterator(13, full.iter().take(12).chain(full.iter().skip(13)).copied());
+    want[12] += 0.1 * qdd[12];
+    assert!(rel_err(tau.as_slice(), want.as_slice(), 1e-9) <= 1e-13, "{tau} against {want}");
+    let back = s.forward_dynamics(&q, &qd, &tau).unwrap();
+    assert!(rel_err(back.as_slice(), qdd.as_slice(), 1e-9) <= 1e-10, "{back} against {qdd}");
+}
