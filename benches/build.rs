@@ -3,9 +3,10 @@
 //! `NAME_sc` bodies, which take the sines and cosines as inputs), and each
 //! with the same bodies without fused multiply-adds and run-time dispatch (`*_base`),
 //! and each with the derivatives of the dynamics (`*_derivatives`); and the
-//! quadruped12 with a floating base, default options (`quadruped12_floating`,
-//! as `dynagen generate dynagen/robots/quadruped12.urdf --floating-base`); the
-//! Panda with its mimic finger, default options (`panda_mimic`).
+//! quadruped12 and the humanoid32 with a floating base, default options
+//! (`quadruped12_floating`, `humanoid32_floating`, as `dynagen generate
+//! dynagen/robots/ROBOT.urdf --floating-base`); the Panda with its mimic
+//! finger, default options (`panda_mimic`).
 
 use dynagen::codegen::{generate, CodegenOptions, Function, Trig};
 use dynagen::{Builder, Model};
@@ -52,15 +53,17 @@ fn main() {
         .generate_module()
         .unwrap_or_else(|e| panic!("generating panda_mimic: {e}"));
     std::fs::write(Path::new(&out).join("panda_mimic.rs"), module.source).expect("writing");
-    // The floating-base quadruped (examples/floating.rs).
-    let urdf = robots.join("quadruped12.urdf");
-    println!("cargo:rerun-if-changed={}", urdf.display());
-    let model = Model::from_urdf_file(&urdf).unwrap_or_else(|e| panic!("{}: {e}", urdf.display()));
-    let module = Builder::new()
-        .model(model)
-        .floating_base(true)
-        .source("dynagen/robots/quadruped12.urdf")
-        .generate_module()
-        .unwrap_or_else(|e| panic!("generating quadruped12 (floating): {e}"));
-    std::fs::write(Path::new(&out).join("quadruped12_floating.rs"), module.source).expect("writing");
+    // The floating-base quadruped and humanoid (examples/floating.rs).
+    for robot in ["quadruped12", "humanoid32"] {
+        let urdf = robots.join(format!("{robot}.urdf"));
+        println!("cargo:rerun-if-changed={}", urdf.display());
+        let model = Model::from_urdf_file(&urdf).unwrap_or_else(|e| panic!("{}: {e}", urdf.display()));
+        let module = Builder::new()
+            .model(model)
+            .floating_base(true)
+            .source(&format!("dynagen/robots/{robot}.urdf"))
+            .generate_module()
+            .unwrap_or_else(|e| panic!("generating {robot} (floating): {e}"));
+        std::fs::write(Path::new(&out).join(format!("{robot}_floating.rs")), module.source).expect("writing");
+    }
 }

@@ -36,6 +36,11 @@ generated!(
     "quadruped12_floating.rs",
     "The quadruped12 with a floating base (`--floating-base`), default options."
 );
+generated!(
+    humanoid32_floating,
+    "humanoid32_floating.rs",
+    "The humanoid32 with a floating base (`--floating-base`), default options."
+);
 
 /// The states, calls per batch, batches and warm-up batches of the
 /// timings with Pinocchio's statistic (`scripts/reference/bench_common.hpp`).

@@ -1,10 +1,13 @@
 //! The floating base against Pinocchio with a `JointModelFreeFlyer` root,
 //! on a 12-joint quadruped (Unitree A1 parameters), the 7-joint
 //! torso_two_arms, a random 20-joint tree (prismatic and fixed joints,
-//! non-aligned axes, rotated origins) and the 18-joint legged manipulator
+//! non-aligned axes, rotated origins), the 18-joint legged manipulator
 //! (Go1 legs, a Z1 arm: its contact frames, and a scene with armature,
-//! payloads and a tip wrench), 10 states each with random unit quaternions
-//! and |q̇| of 2 and 50.
+//! payloads and a tip wrench) and the 32-joint humanoid32 (TALOS
+//! parameters), 10 states each with random unit quaternions and |q̇| of 2
+//! and 50: the generic solver, and the generated functions (their traced
+//! graphs, evaluated as the emitted code computes them, fused and unfused,
+//! so that no 38×38 module is compiled in a test run).
 //!
 //! The values in `tests/data/pinocchio_floating_<robot>.json` were computed
 //! by Pinocchio with `scripts/reference/make_pinocchio_floating.py`
@@ -155,6 +158,52 @@ fn torso_two_arms_floating_agrees_with_pinocchio() {
 #[test]
 fn random_tree20_agrees_with_pinocchio() {
     check("random_tree20");
+}
+
+#[test]
+fn humanoid32_agrees_with_pinocchio() {
+    check("humanoid32");
+}
+
+/// The functions of the default floating-base module of `name`, as traced
+/// (what the emitted code computes, with its fused multiply-adds and
+/// without), against Pinocchio's values; the largest relative error.
+fn check_generated(name: &str) -> f64 {
+    let (data, model) = load(name);
+    let module = generate(&model, &CodegenOptions::default()).unwrap();
+    let mut worst = 0.0f64;
+    for (k, s) in data["states"].as_array().unwrap().iter().enumerate() {
+        for f in &module.functions {
+            let want = match f.name.as_str() {
+                "inverse_dynamics" => vector(&s["tau_id"]),
+                "mass_matrix" => flat(&s["M"]),
+                "bias_forces" => vector(&s["h"]),
+                "gravity_torques" => vector(&s["g"]),
+                "forward_dynamics" => vector(&s["qdd_fd"]),
+                other => panic!("{name}: unexpected function {other}"),
+            };
+            let args: Vec<Vec<f64>> = f.function.vectors().iter().map(|v| vector(&s[*v])).collect();
+            let inputs: Vec<(&str, &[f64])> =
+                f.function.vectors().iter().zip(&args).map(|(n, v)| (*n, v.as_slice())).collect();
+            for (got, how) in [
+                (f.traced.eval(&inputs).unwrap(), "unfused"),
+                (f.traced.eval_fused(&f.traced.fusion(), &inputs).unwrap(), "fused"),
+            ] {
+                let e = rel_err(&got, &want, 1.0);
+                assert!(e < 1e-12, "{name} generated {} ({how}), state {k}: {e:e} from Pinocchio", f.label());
+                worst = worst.max(e);
+            }
+        }
+    }
+    println!("{name}: generated functions within {worst:.1e} of Pinocchio");
+    worst
+}
+
+#[test]
+fn generated_floating_functions_agree_with_pinocchio() {
+    for name in ["quadruped12", "torso_two_arms", "random_tree20", "humanoid32"] {
+        check_generated(name);
+    }
 }
 
 #[test]

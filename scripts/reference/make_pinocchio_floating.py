@@ -3,9 +3,9 @@
 
 Writes dynagen/tests/data/pinocchio_floating_<robot>.json for the bundled
 quadruped12 (12 joints, Unitree A1 parameters), torso_two_arms (14
-joints, a humanoid-like upper body), a random 20-joint tree and the
-legged_manipulator (18 joints: Go1 legs, a Z1 arm), each with a
-JointModelFreeFlyer root:
+joints, a humanoid-like upper body), a random 20-joint tree, the
+legged_manipulator (18 joints: Go1 legs, a Z1 arm) and humanoid32 (32
+joints, TALOS parameters), each with a JointModelFreeFlyer root:
 pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer()).  For 10 states
 (random unit quaternions, joints in [-pi, pi], |qd| of 2 and of 50), it
 records Pinocchio's rnea, crba, nonLinearEffects, computeGeneralizedGravity
@@ -46,7 +46,8 @@ from refcommon import DATA, REPO, dump_json
 SCRIPT = "scripts/reference/make_pinocchio_floating.py"
 SEED = 20261125
 GRAVITY = np.array([0.0, 0.0, -9.81])
-ROBOTS = {"quadruped12": "FR_foot", "torso_two_arms": "right_ee", "random_tree20": "l17", "legged_manipulator": "arm_ee"}
+ROBOTS = {"quadruped12": "FR_foot", "torso_two_arms": "right_ee", "random_tree20": "l17", "legged_manipulator": "arm_ee",
+          "humanoid32": "left_sole_link"}
 CONTACTS = {"legged_manipulator": ["FL_foot", "FR_foot", "RL_foot", "RR_foot", "arm_ee"]}
 # The legged manipulator's scene: armature (kg m^2) on each joint by kind,
 # payloads (link, mass, com, inertia ixx iyy izz ixy ixz iyz about the com,

@@ -214,7 +214,7 @@ pub(crate) fn rnea<S: Scalar>(
         tree_rates(model, qdd, &mut t.qdd);
     }
     let state = (&t.q[..], qd.map(|_| &t.qd[..]), qdd.map(|_| &t.qdd[..]));
-    rnea::rnea_tree(model, ws, state, loads.with_armature(None), &mut t.out);
+    rnea::rnea_bodies(model, ws, state, loads.with_armature(None), &mut t.out);
     project(model, &t.out, tau);
     if let (Some(armature), Some(qdd)) = (loads.armature, qdd) {
         let base = model.nv() - model.dof();

@@ -92,8 +92,7 @@ pub(crate) fn header(facts: &HeaderFacts) -> String {
         options.scalar.name(),
         on_off(options.snap_rounding),
         snapped.len(),
-        // (a floating base keeps its model as it is: see prepare/)
-        on_off(options.regroup_inertia && !model.is_floating()),
+        on_off(options.regroup_inertia),
         on_off(r.like_terms),
         on_off(r.constant_products),
         on_off(r.constant_sums),
