@@ -32,13 +32,7 @@ type Timed<const NQ: usize, const NV: usize> = fn(&State<NQ, NV>) -> f64;
 /// 8 states: base position in [-1, 1]³, a uniformly random unit quaternion,
 /// joints in [-π, π], q̇ in [-2, 2], q̈ in [-5, 5], τ in [-20, 20].
 fn states<const NQ: usize, const NV: usize>(seed: u64) -> Vec<State<NQ, NV>> {
-    let mut x = seed;
-    let mut next = move || {
-        x ^= x >> 12;
-        x ^= x << 25;
-        x ^= x >> 27;
-        (x.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    };
+    let mut next = dynagen_bench::uniform(seed);
     (0..8)
         .map(|_| {
             let mut q = [0.0; NQ];

@@ -71,17 +71,23 @@ pub fn time(mut call: impl FnMut(usize)) -> (f64, f64) {
     (per[BATCHES / 2], per[0])
 }
 
-/// Random states as the Pinocchio program draws them (its distribution, not
-/// its generator): q in [-π, π] (prismatic joints within 0..0.04 m), q̇ in
-/// [-2, 2], q̈ in [-5, 5], τ in [-10, 10].
-pub fn pinocchio_states<const N: usize>(prismatic: &[bool]) -> Vec<[[f64; N]; 4]> {
-    let mut x = 0x2024_0611_u64;
-    let mut unit = move || {
+/// A deterministic generator of numbers uniform in [−1, 1) (xorshift64*),
+/// the examples' states: the same every run, no dependency.
+pub fn uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut x = seed;
+    move || {
         x ^= x >> 12;
         x ^= x << 25;
         x ^= x >> 27;
         (x.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    };
+    }
+}
+
+/// Random states as the Pinocchio program draws them (its distribution, not
+/// its generator): q in [-π, π] (prismatic joints within 0..0.04 m), q̇ in
+/// [-2, 2], q̈ in [-5, 5], τ in [-10, 10].
+pub fn pinocchio_states<const N: usize>(prismatic: &[bool]) -> Vec<[[f64; N]; 4]> {
+    let mut unit = uniform(0x2024_0611);
     (0..STATES)
         .map(|_| {
             let q =

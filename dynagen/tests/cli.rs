@@ -735,12 +735,18 @@ fn ops_with_a_scene_lists_the_scene_module_beside_the_full_one() {
 /// `eval --derivatives`: the derivatives each state has the inputs for,
 /// `[output][input]` one row per line, bit for bit the library's; M·M⁻¹ = 1
 /// from the printed matrices; without the flag, none of them.
+/// Random states of the Panda for `test` (seeded): the states, their file,
+/// and the Panda's URDF path.
+fn panda_states(test: &str, seed: u64) -> (Vec<Fields>, PathBuf, String) {
+    let dir = scratch(test);
+    let states = some_states(9, seed);
+    let file = write(&dir, "states.json", &states_file(&states));
+    (states, file, support::robot_path("panda").display().to_string())
+}
+
 #[test]
 fn eval_derivatives_agree_bit_for_bit_with_the_library() {
-    let dir = scratch("eval_derivatives");
-    let states = some_states(9, 16);
-    let file = write(&dir, "states.json", &states_file(&states));
-    let path = support::robot_path("panda").display().to_string();
+    let (states, file, path) = panda_states("eval_derivatives", 16);
     let plain = succeeds(dynagen().args(["eval", &path, "--input"]).arg(&file));
     assert!(!plain.contains("dtau_dq") && !plain.contains("minv"));
     let out = succeeds(dynagen().args(["eval", &path, "--derivatives", "--input"]).arg(&file));
@@ -889,4 +895,71 @@ fn eval_takes_floating_base_states() {
     q[6] = "1.01".into();
     let e = eval(&format!("{{\"states\": [{{\"q\": [{}]}}]}}", q.join(", ")));
     assert!(e.contains("has norm 1.01, but it must be 1"), "{e}");
+}
+
+/// `eval --fd`: the forward dynamics behind "qdd" is the library's method
+/// of that name, bit for bit (the default the articulated-body algorithm);
+/// on a cancelling state of a test robot with its 50-digit reference
+/// (`tests/data/file_precision.json`) the compensated method is the
+/// accurate one; an unknown method is a usage error listing the four.
+#[test]
+fn eval_fd_picks_the_forward_dynamics() {
+    let (states, file, path) = panda_states("eval_fd", 21);
+    let run = |method: Option<&str>| -> Value {
+        let mut cmd = dynagen();
+        cmd.args(["eval", &path, "--input"]).arg(&file);
+        if let Some(m) = method {
+            cmd.args(["--fd", m]);
+        }
+        serde_json::from_str(&succeeds(&mut cmd)).unwrap()
+    };
+    assert_eq!(run(None), run(Some("aba")), "the default is aba");
+    let v = |x: &Vec<f64>| DVector::from_column_slice(x);
+    let mut counted = 0;
+    for method in ["aba", "ldlt", "compensated", "refined"] {
+        let doc = run(Some(method));
+        let mut robot = support::robot("panda");
+        if method == "refined" {
+            robot.set_compensated_refinement(1);
+        }
+        for (i, (r, (q, qd, _, tau))) in doc["results"].as_array().unwrap().iter().zip(&states).enumerate() {
+            let (Some(qd), Some(tau)) = (qd, tau) else { continue };
+            let want = match method {
+                "aba" => robot.forward_dynamics(&v(q), &v(qd), &v(tau)),
+                "ldlt" => robot.forward_dynamics_ldlt(&v(q), &v(qd), &v(tau)),
+                _ => robot.forward_dynamics_compensated(&v(q), &v(qd), &v(tau)),
+            }
+            .unwrap();
+            bits_eq(&format!("--fd {method} state {i} qdd"), &r["qdd"], want.as_slice());
+            counted += 1;
+        }
+    }
+    assert!(counted >= 16, "{counted}");
+
+    // A cancelling state of the 8-joint test chain: ABA loses digits, compensated does not.
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    let json: Value =
+        serde_json::from_str(&std::fs::read_to_string(data.join("file_precision.json")).unwrap()).unwrap();
+    let robot = &json["robots"][0];
+    let chain = data.join(robot["urdf"].as_str().unwrap());
+    let state = robot["states"].as_array().unwrap().iter().find(|s| s["kind"] == "cancelling").unwrap();
+    let input =
+        format!("{{\"states\": [{{\"q\": {}, \"qd\": {}, \"tau\": {}}}]}}", state["q"], state["qd"], state["tau"]);
+    let reference: Vec<f64> =
+        state["qdd"].as_array().unwrap().iter().map(|x| x.as_str().unwrap().parse().unwrap()).collect();
+    let error = |method: &str| {
+        let mut cmd = dynagen();
+        let out =
+            succeeds(cmd.arg("eval").arg(&chain).args(["--fd", method, "--input", "-"]).write_stdin(input.clone()));
+        let doc: Value = serde_json::from_str(&out).unwrap();
+        let qdd: Vec<f64> = doc["results"][0]["qdd"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        support::norm_rel_err(&qdd, &reference, 0.0)
+    };
+    let (aba, compensated) = (error("aba"), error("compensated"));
+    assert!(100.0 * compensated < aba, "compensated {compensated:e} against ABA {aba:e}");
+
+    let out = dynagen().args(["eval", "--fd", "rk4", "--input", "-"]).write_stdin("{\"states\": []}").output().unwrap();
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("rk4") && stderr.contains("aba, ldlt, compensated, refined"), "{stderr}");
 }

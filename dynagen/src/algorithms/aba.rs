@@ -10,7 +10,7 @@ use super::joint::{
 use super::rnea::{gyroscopic, products, velocity_product_matrix};
 use super::{Loads, Workspace};
 use crate::model::{AxisAlignment, Joint, JointKind, Model};
-use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Vec3};
 use crate::Scalar;
 
 /// A symmetric 6×6 articulated-body inertia `[[A, B], [Bᵀ, C]]` in
@@ -364,7 +364,7 @@ pub(crate) fn velocities<S: Scalar>(
         let joint = &body.joint;
         let x = joint_transform(joint, q[i]);
         ws.x[i] = x;
-        let mut inertia = Inertia::<S>::from_f64(&body.inertia);
+        let mut inertia = body.inertia_in::<S>();
         for p in loads.payloads.iter().filter(|p| p.body == i) {
             inertia = inertia.add(&p.inertia);
         }
@@ -406,7 +406,7 @@ pub(crate) fn velocities<S: Scalar>(
     for tip in loads.tips {
         let frame = &model.frames[tip.frame];
         if let Some(b) = frame.body {
-            ws.f[b] += Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
+            ws.f[b] += frame.placement_in::<S>().force_to_parent(&tip.wrench);
         }
     }
 }

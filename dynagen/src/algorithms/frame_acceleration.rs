@@ -18,7 +18,7 @@ use super::floating::base_motion;
 use super::joint::{add_motion, cross_motion, joint_transform, motion_to_child};
 use super::Workspace;
 use crate::model::Model;
-use crate::spatial::{Motion, Transform};
+use crate::spatial::Motion;
 use crate::Scalar;
 
 /// J̇q̇ of frame `frame` (an index into [`Model::frames`]) at (q, q̇): its
@@ -67,7 +67,7 @@ fn bias_on_tree<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], qd: &[
             (ws.v[fb], ws.a[fb])
         }
     };
-    let place = Transform::<S>::from_f64(&f.placement);
+    let place = f.placement_in::<S>();
     let v = place.motion_to_child(&v);
     let mut a = place.motion_to_child(&a);
     a.lin += v.ang.cross(&v.lin);

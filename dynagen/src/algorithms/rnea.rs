@@ -20,7 +20,7 @@
 use super::joint::{add_axis, cross_axis, force_to_parent, joint_transform, project, with_rotation, Rotation};
 use super::{Loads, Workspace};
 use crate::model::Model;
-use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Vec3};
 use crate::Scalar;
 
 /// The products `ω ωᵀ` as `[xx, yy, zz, xy, xz, yz]`, shared by
@@ -342,7 +342,7 @@ pub(crate) fn rnea_tree<S: Scalar>(
         if let Some(qdd) = qdd {
             add_axis(joint, if revolute { &mut wd } else { &mut a }, qdd[i]);
         }
-        let inertia = Inertia::<S>::from_f64(&body.inertia);
+        let inertia = body.inertia_in::<S>();
         let (mut f, u) = body_wrench(&inertia, [&w, &wd, &a], (qd.is_some(), moving), gyro[i]);
         for extra in payloads.iter().filter(|x| x.body == i) {
             // the dense forms, with the payload's inertia an input
@@ -367,7 +367,7 @@ pub(crate) fn rnea_tree<S: Scalar>(
     for tip in tips {
         let frame = &model.frames[tip.frame];
         if let Some(b) = frame.body {
-            let place = Transform::<S>::from_f64(&frame.placement);
+            let place = frame.placement_in::<S>();
             fs[b] += place.force_to_parent(&tip.wrench);
         }
     }

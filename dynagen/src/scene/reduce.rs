@@ -381,7 +381,7 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
         None if floating => inertial_of(&from_root.inertia_to_parent(&model.base_inertia)),
         None => None,
     };
-    desc.links.push(LinkDescription { name: root_name.clone(), inertial: base_inertial });
+    desc.links.push(LinkDescription::new(&root_name, base_inertial));
     let mut used_names: HashSet<String> = model.bodies.iter().map(|b| b.joint.name.clone()).collect();
     let (mut fixed_joints, mut removed_joints, mut dropped_links) = (Vec::new(), Vec::new(), Vec::new());
     for (b, body) in model.bodies.iter().enumerate() {
@@ -397,7 +397,7 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
                 continue;
             }
         }
-        desc.links.push(LinkDescription { name: body.name.clone(), inertial: inertial_of(&body.inertia) });
+        desc.links.push(LinkDescription::new(&body.name, inertial_of(&body.inertia)));
         let on_root = body.parent == br;
         let parent = match body.parent {
             Some(p) if !on_root => model.bodies[p].name.clone(),
@@ -432,6 +432,8 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
                 multiplier: m.multiplier,
                 offset: m.offset,
             }),
+            file_origin: None,
+            file_axis: None,
         });
     }
     // Every other kept frame, as a massless link fixed where it was.
@@ -445,7 +447,7 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
             Some(b) => (model.bodies[b].name.clone(), frame.placement),
             None => continue,
         };
-        desc.links.push(LinkDescription { name: frame.name.clone(), inertial: None });
+        desc.links.push(LinkDescription::new(&frame.name, None));
         let mut jname = format!("{}_fixed", frame.name);
         while !used_names.insert(jname.clone()) {
             jname.push('_');

@@ -10,7 +10,7 @@ use crate::algorithms::aba::{inward, outward, velocities, ArticulatedInertia, Ro
 use crate::algorithms::rnea::{gyroscopic, products, use_products_for_gyroscopic, velocity_product_matrix};
 use crate::algorithms::{Loads, Workspace};
 use crate::model::Model;
-use crate::spatial::{Force, Motion, Transform, Vec3};
+use crate::spatial::{Force, Motion, Vec3};
 use crate::Scalar;
 
 /// q̈ = M(q)⁻¹(τ − h(q, q̇) − Jᵀ F_tip) of a floating-base model: `q` NQ
@@ -90,7 +90,7 @@ fn aba_impl<S: Scalar>(
     for tip in loads.tips {
         let frame = &model.frames[tip.frame];
         if frame.body.is_none() {
-            root.bias += Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
+            root.bias += frame.placement_in::<S>().force_to_parent(&tip.wrench);
         }
     }
     // The fixed-base passes' arm: distributed when traced (see aba.rs).

@@ -25,7 +25,7 @@ pub fn composite_inertia<S: Scalar>(
 ) -> Inertia<S> {
     for (i, b) in model.bodies.iter().enumerate() {
         ws.x[i] = joint_transform(&b.joint, q[7 + i]);
-        ws.inertia[i] = Inertia::from_f64(&b.inertia);
+        ws.inertia[i] = b.inertia_in();
     }
     for p in payloads.iter().filter(|p| p.body != BASE_BODY) {
         ws.inertia[p.body] = ws.inertia[p.body].add(&p.inertia);

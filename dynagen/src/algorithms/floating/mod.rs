@@ -60,7 +60,7 @@ pub fn base_pose<S: Scalar>(q: &[S]) -> Transform<S> {
 /// payload carried by the base ([`BASE_BODY`]).
 #[inline(always)]
 pub(crate) fn base_inertia<S: Scalar>(model: &Model, payloads: &[BodyInertia<S>]) -> Inertia<S> {
-    let mut i0 = Inertia::<S>::from_f64(&model.base_inertia);
+    let mut i0 = model.base_inertia_in::<S>();
     for p in payloads.iter().filter(|p| p.body == BASE_BODY) {
         i0 = i0.add(&p.inertia);
     }

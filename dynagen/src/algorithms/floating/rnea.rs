@@ -11,7 +11,7 @@ use super::{base_inertia, check_tree_sizes, quaternion_rotation, write_force};
 use crate::algorithms::rnea::{add_armature, body_wrench, rnea_tree, use_products_for_gyroscopic, Root, RootMotion};
 use crate::algorithms::{Loads, Workspace};
 use crate::model::Model;
-use crate::spatial::{Force, Inertia, Mat3, Motion, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Mat3, Motion, Vec3};
 use crate::Scalar;
 
 /// τ = M(q)q̈ + h(q, q̇) (+ Jᵀ F_tip) of a floating-base model.
@@ -70,7 +70,7 @@ pub fn rnea<S: Scalar>(
     for tip in loads.tips {
         let frame = &model.frames[tip.frame];
         if frame.body.is_none() {
-            f0 += Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
+            f0 += frame.placement_in::<S>().force_to_parent(&tip.wrench);
         }
     }
     write_force(&f0, tau);

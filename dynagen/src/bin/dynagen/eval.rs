@@ -12,7 +12,12 @@
 //! | `M` | q | [`Robot::mass_matrix`] (CRBA) |
 //! | `h` | q, qd | [`Robot::bias_forces`] |
 //! | `g` | q | [`Robot::gravity_torques`] |
-//! | `qdd` | q, qd, tau | [`Robot::forward_dynamics`] (ABA; with mimic joints, M by LᵀDL) |
+//! | `qdd` | q, qd, tau | [`Robot::forward_dynamics`] (ABA; with mimic joints, M by LᵀDL), or the method `--fd` names |
+//!
+//! `--fd aba|ldlt|compensated|refined` picks the forward dynamics:
+//! [`Robot::forward_dynamics`] (the default), [`Robot::forward_dynamics_ldlt`],
+//! [`Robot::forward_dynamics_compensated`], or the compensated one with a step
+//! of refinement ([`Robot::set_compensated_refinement`]).
 //!
 //! A floating-base robot (`--floating-base`, or a URDF `floating` root
 //! joint) takes NQ-long q (base position, quaternion x, y, z, w, joints)
@@ -59,6 +64,26 @@ pub struct Args {
     /// tau), `[output][input]`.
     #[arg(long)]
     pub derivatives: bool,
+    /// The forward dynamics behind "qdd".
+    #[arg(long = "fd", value_enum, value_name = "METHOD", default_value_t = FdMethod::Aba)]
+    pub fd: FdMethod,
+}
+
+/// The forward dynamics `--fd` picks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum FdMethod {
+    /// The articulated-body algorithm (Robot::forward_dynamics).
+    Aba,
+    /// M by the composite-rigid-body algorithm, h by RNEA, a sparse LᵀDL
+    /// solve (Robot::forward_dynamics_ldlt).
+    Ldlt,
+    /// h and τ − h in compensated (double-f64) arithmetic, then the
+    /// articulated-body algorithm (Robot::forward_dynamics_compensated): as
+    /// many digits more as τ − h cancels.
+    Compensated,
+    /// Compensated, then one step of iterative refinement (the residual in
+    /// compensated arithmetic): for an ill-conditioned mass matrix.
+    Refined,
 }
 
 const EVAL_HELP: &str = "\
@@ -80,8 +105,11 @@ Output (stdout):
     M    mass matrix, one row per line    needs q
     h    bias forces C(q,qd)qd + g(q)     needs q, qd
     g    gravity torques                  needs q
-    qdd  forward dynamics (ABA; with      needs q, qd, tau
-         mimic joints M by LTDL)
+    qdd  forward dynamics                 needs q, qd, tau
+         --fd aba (default): the articulated-body algorithm; ldlt: M, h and
+         a sparse LTDL solve (what aba is with mimic joints); compensated: h and tau - h in double-f64, then
+         ABA (accurate where tau nearly balances h at high speed); refined:
+         compensated and one step of refinement (an ill-conditioned M)
   With --derivatives, also (matrices [output][input]: row i is output i):
     dtau_dq, dtau_dqd          d tau / d q, d tau / d qd   needs q, qd, qdd
     dqdd_dq, dqdd_dqd, minv    d qdd / d q, d qdd / d qd,
@@ -111,6 +139,9 @@ pub fn run(args: &Args) -> Result<Output, CliError> {
     let layout = Layout::of(&model);
     let warnings = source.warnings(&model);
     let mut robot = Robot::new(model);
+    if args.fd == FdMethod::Refined {
+        robot.set_compensated_refinement(1);
+    }
     if let Some(text) = &args.gravity {
         let g = parse_gravity(text)?;
         robot.set_gravity(Vector3::from(g)).map_err(|e| CliError::input("--gravity", e))?;
@@ -122,7 +153,7 @@ pub fn run(args: &Args) -> Result<Output, CliError> {
 
     let mut results = Vec::with_capacity(states.len());
     for (i, state) in states.iter().enumerate() {
-        let result = evaluate(&mut robot, state, &layout.v, args.derivatives)
+        let result = evaluate(&mut robot, state, &layout.v, (args.fd, args.derivatives))
             .map_err(|e| CliError::input(&name, format!("state {i}: {e}")))?;
         results.push(result);
     }
@@ -166,8 +197,14 @@ fn parse_gravity(text: &str) -> Result<[f64; 3], CliError> {
 }
 
 /// Every output the state has the inputs for, in the order tau, M, h, g, qdd
-/// (`entries`: what each output entry is, for messages).
-fn evaluate(robot: &mut Robot, s: &State, entries: &[Entry], derivatives: bool) -> Result<Json, String> {
+/// (by `fd`), and the derivatives when asked (`entries`: what each output
+/// entry is, for messages).
+fn evaluate(
+    robot: &mut Robot,
+    s: &State,
+    entries: &[Entry],
+    (fd, derivatives): (FdMethod, bool),
+) -> Result<Json, String> {
     let err = |e: dynagen::InputError| e.to_string();
     let mut out = Vec::new();
     if let (Some(qd), Some(qdd)) = (&s.qd, &s.qdd) {
@@ -182,7 +219,12 @@ fn evaluate(robot: &mut Robot, s: &State, entries: &[Entry], derivatives: bool) 
     let g = robot.gravity_torques(&s.q).map_err(err)?;
     out.push(("g".to_string(), finite("g", g.as_slice(), entries)?));
     if let (Some(qd), Some(tau)) = (&s.qd, &s.tau) {
-        let qdd = robot.forward_dynamics(&s.q, qd, tau).map_err(err)?;
+        let qdd = match fd {
+            FdMethod::Aba => robot.forward_dynamics(&s.q, qd, tau),
+            FdMethod::Ldlt => robot.forward_dynamics_ldlt(&s.q, qd, tau),
+            FdMethod::Compensated | FdMethod::Refined => robot.forward_dynamics_compensated(&s.q, qd, tau),
+        }
+        .map_err(err)?;
         if let Some(k) = qdd.iter().position(|v| !v.is_finite()) {
             // singular here (not at every q: dependent joints are refused above)
             let joints_q = &s.q.as_slice()[s.q.len() - robot.dof()..];
