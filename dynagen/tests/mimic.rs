@@ -126,6 +126,30 @@ fn mimic_joints_can_be_independent_joints_as_before() {
     assert_eq!(independent.bodies, bundled.bodies);
 }
 
+/// The Builder's option: the same file read with its mimic joint as a
+/// joint of its own generates the bundled Panda's 9-joint dynamics, and by
+/// default the 8 joints of the mimic model.
+#[test]
+fn the_builder_reads_mimic_joints_either_way() {
+    let path = data_path("panda_mimic.urdf");
+    let module = |mimic: MimicJoints| {
+        let module = dynagen::Builder::new().urdf(&path).mimic_joints(mimic).generate_module().unwrap();
+        module.functions.into_iter().find(|f| f.function == Function::InverseDynamics).unwrap()
+    };
+    let (follow, independent) = (module(MimicJoints::Follow), module(MimicJoints::Independent));
+    let mut bundled = Robot::new(support::model("panda"));
+    let state = |n: usize, k: usize| -> Vec<f64> { (0..n).map(|j| (0.3 * (j + 7 * k) as f64 + 0.1).sin()).collect() };
+    let (q, qd, qdd) = (state(9, 0), state(9, 1), state(9, 2));
+    let v = |x: &[f64]| DVector::from_column_slice(x);
+    let want = bundled.inverse_dynamics(&v(&q), &v(&qd), &v(&qdd)).unwrap();
+    let got = independent.traced.eval(&[("q", &q), ("qd", &qd), ("qdd", &qdd)]).unwrap();
+    assert!(rel_err(&got, want.as_slice(), 1e-9) <= 1e-13, "{got:?}\n{want:?}");
+    let mut mimic = Robot::new(mimic_model("panda"));
+    let want = mimic.inverse_dynamics(&v(&q[..8]), &v(&qd[..8]), &v(&qdd[..8])).unwrap();
+    let got = follow.traced.eval(&[("q", &q[..8]), ("qd", &qd[..8]), ("qdd", &qdd[..8])]).unwrap();
+    assert!(rel_err(&got, want.as_slice(), 1e-9) <= 1e-13, "{got:?}\n{want:?}");
+}
+
 /// A robot of the joint `m` from `base` to `a` and the joints `x` and `y`
 /// among the links `a`, `b` and `c`.
 fn three_joints(x: JointDescription, y: JointDescription) -> Result<Model, ModelError> {
@@ -334,10 +358,12 @@ fn every_generic_function_is_the_full_trees_projected() {
                 let qdd1 = ours.forward_dynamics(&q, &qd, &tau).unwrap();
                 let rhs = &tau - ours.bias_forces(&q, &qd).unwrap();
                 assert!(max_diff(&col(&m * &qdd1), &col(rhs.clone())) <= 1e-12, "{tag}: M q̈ = τ − h");
-                for other in [
-                    ours.forward_dynamics_ldlt(&q, &qd, &tau).unwrap(),
-                    ours.forward_dynamics_compensated(&q, &qd, &tau).unwrap(),
-                ] {
+                let compensated = ours.forward_dynamics_compensated(&q, &qd, &tau).unwrap();
+                // (with a step of refinement: the residual by the projected RNEA)
+                ours.set_compensated_refinement(1);
+                let refined = ours.forward_dynamics_compensated(&q, &qd, &tau).unwrap();
+                ours.set_compensated_refinement(0);
+                for other in [ours.forward_dynamics_ldlt(&q, &qd, &tau).unwrap(), compensated, refined] {
                     assert!(max_diff(&col(other), &col(qdd1.clone())) <= 1e-12, "{tag}: forward dynamics variants");
                 }
                 // kinetic energy

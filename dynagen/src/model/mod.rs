@@ -30,7 +30,8 @@ mod validate;
 pub use builder::RobotBuilder;
 pub(crate) use coupling::Coupling;
 pub use description::{
-    FileInertial, Inertial, JointDescription, JointLimits, JointType, LinkDescription, MimicDescription, RobotDescription,
+    FileInertial, Inertial, JointDescription, JointLimits, JointType, LinkDescription, MimicDescription,
+    RobotDescription,
 };
 pub(crate) use error::quoted as quoted_names;
 pub use error::{ModelError, ModelWarning};
