@@ -5,7 +5,8 @@
 //! and each with the derivatives of the dynamics (`*_derivatives`); and the
 //! quadruped12 and the humanoid32 with a floating base, default options
 //! (`quadruped12_floating`, `humanoid32_floating`, as `dynagen generate
-//! dynagen/robots/ROBOT.urdf --floating-base`).
+//! dynagen/robots/ROBOT.urdf --floating-base`); the Panda with its mimic
+//! finger, default options (`panda_mimic`).
 
 use dynagen::codegen::{generate, CodegenOptions, Function, Trig};
 use dynagen::{Builder, Model};
@@ -43,6 +44,15 @@ fn main() {
         let module = generate(&model, &base).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
         std::fs::write(Path::new(&out).join(format!("{robot}_base.rs")), module.source).expect("writing");
     }
+    // The Panda with its mimic finger (examples/mimic.rs), default options.
+    let urdf = Path::new(env!("CARGO_MANIFEST_DIR")).join("../dynagen/tests/data/panda_mimic.urdf");
+    println!("cargo:rerun-if-changed={}", urdf.display());
+    let module = Builder::new()
+        .urdf(&urdf)
+        .source("dynagen/tests/data/panda_mimic.urdf")
+        .generate_module()
+        .unwrap_or_else(|e| panic!("generating panda_mimic: {e}"));
+    std::fs::write(Path::new(&out).join("panda_mimic.rs"), module.source).expect("writing");
     // The floating-base quadruped and humanoid (examples/floating.rs).
     for robot in ["quadruped12", "humanoid32"] {
         let urdf = robots.join(format!("{robot}.urdf"));

@@ -11,10 +11,9 @@
 //! `cargo run --release -p dynagen-bench --example derivatives`
 
 use dynagen::Robot;
-use dynagen_bench::urdf;
+use dynagen_bench::{pinocchio_states as states, time, urdf, BATCH, BATCHES};
 use nalgebra::{DMatrix, DVector};
 use std::hint::black_box;
-use std::time::Instant;
 
 #[allow(dead_code)]
 mod ur5 {
@@ -31,57 +30,6 @@ mod ur5_tau {
 #[allow(dead_code)]
 mod panda_tau {
     include!(concat!(env!("OUT_DIR"), "/panda_batched.rs"));
-}
-
-const STATES: usize = 1000;
-const BATCH: usize = 1000;
-const BATCHES: usize = 300;
-const WARMUP: usize = 20;
-
-/// (median, minimum) ns per call of `call(state index)`.
-fn time(mut call: impl FnMut(usize)) -> (f64, f64) {
-    for _ in 0..WARMUP {
-        for i in 0..BATCH {
-            call(i % STATES);
-        }
-    }
-    let mut per = Vec::with_capacity(BATCHES);
-    for _ in 0..BATCHES {
-        let t = Instant::now();
-        for i in 0..BATCH {
-            call(i % STATES);
-        }
-        per.push(t.elapsed().as_nanos() as f64 / BATCH as f64);
-    }
-    per.sort_by(f64::total_cmp);
-    (per[BATCHES / 2], per[0])
-}
-
-/// Random states as the Pinocchio program draws them (its distribution, not
-/// its generator): q in [-π, π] (prismatic joints within 0..0.04 m), q̇ in
-/// [-2, 2], q̈ in [-5, 5], τ in [-10, 10].
-fn states<const N: usize>(prismatic: &[bool]) -> Vec<[[f64; N]; 4]> {
-    let mut x = 0x2024_0611_u64;
-    let mut unit = move || {
-        x ^= x >> 12;
-        x ^= x << 25;
-        x ^= x >> 27;
-        (x.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    };
-    (0..STATES)
-        .map(|_| {
-            let q =
-                core::array::from_fn(
-                    |j| if prismatic[j] { 0.02 * (unit() + 1.0) } else { std::f64::consts::PI * unit() },
-                );
-            [
-                q,
-                core::array::from_fn(|_| 2.0 * unit()),
-                core::array::from_fn(|_| 5.0 * unit()),
-                core::array::from_fn(|_| 10.0 * unit()),
-            ]
-        })
-        .collect()
 }
 
 macro_rules! bench {

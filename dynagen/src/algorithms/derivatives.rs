@@ -176,7 +176,9 @@ pub fn mass_matrix_inverse<S: Scalar>(model: &Model, factor: &mut [S], linv: &mu
     let n = model.dof();
     assert!(linv.len() == n * n && minv.len() == n * n, "mass_matrix_inverse: m must be {n}×{n}");
     ldlt::factorise(model, factor);
-    let parent = |i: usize| model.bodies[i].parent;
+    // the tree of the factorisation (the kinematic tree, or with mimic
+    // joints the elimination tree of M's pattern)
+    let parent = |i: usize| ldlt::parent(model, i);
     // L⁻¹: row i = e_i − Σ_{m ancestor of i} L[i][m]·row m (rows of
     // ancestors first, as joints come after their parents).
     for i in 0..n {

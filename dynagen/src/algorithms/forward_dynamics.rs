@@ -38,9 +38,21 @@ pub fn forward_dynamics_ldlt<S: Scalar>(
     for i in 0..n {
         qdd[i] = tau[i] - qdd[i];
     }
+    solve_with_mass_matrix(model, ws, q, loads, qdd);
+}
+
+/// Solves M(q) x = b in place (`b` becomes x): M by [`crba`] (with the
+/// inertias of `loads`), then its sparse LᵀDL factorisation.
+pub(crate) fn solve_with_mass_matrix<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    loads: Loads<'_, S>,
+    b: &mut [S],
+) {
     let mut m = std::mem::take(&mut ws.mat);
     crba(model, ws, q, loads, &mut m);
     ldlt::factorise(model, &mut m);
-    ldlt::solve(model, &m, qdd);
+    ldlt::solve(model, &m, b);
     ws.mat = m;
 }

@@ -58,7 +58,10 @@ fn is_point_mass_leaf(model: &Model, i: usize) -> bool {
 /// the leaves folded; `None` if there are none, or the model's base floats
 /// (its gravity torques are those of the floating recursion).
 pub(crate) fn fold_for_gravity(model: &Model) -> Option<(Model, Vec<FoldedLeaf>)> {
-    if model.is_floating() {
+    // A leaf's torque is its own joint's: with mimic joints it would belong
+    // in its master's column. Folded and projected, the mimic Panda's g took
+    // 184 operations against 169 unfolded (the recursion projects it).
+    if model.is_floating() || model.has_mimic() {
         return None;
     }
     let leaves: Vec<FoldedLeaf> = (0..model.dof())

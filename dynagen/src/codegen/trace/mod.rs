@@ -19,7 +19,7 @@ mod mass_matrix;
 mod sin_cos;
 
 pub use generic_count::generic_op_count;
-pub use sin_cos::{sin_cos_from_q, sin_cos_inputs, SinCosTrace};
+pub use sin_cos::{sin_cos_from_q, sin_cos_inputs, Angle, SinCosTrace};
 
 use super::emit::{payload_argument, Sizes};
 use super::{counted, CodegenError, CodegenOptions, ForwardDynamicsMethod, Function, GeneratedFunction};
@@ -57,9 +57,21 @@ pub(crate) fn trace_module(
     // Where joint i's angle is in q: q[i], or q[7 + i] after a floating base's position and quaternion.
     let offset = scene.model.nq() - scene.dof();
     let payloads = !scene.input_payloads.is_empty();
+    // The articulated-body recursion cannot take mimic joints (see algorithms::mimic).
+    let mimic = scene.model.has_mimic();
+    if mimic
+        && options.forward_dynamics == ForwardDynamicsMethod::Aba
+        && options.functions.contains(&Function::ForwardDynamics)
+    {
+        return Err(CodegenError::Unsupported(format!(
+            "forward dynamics by the articulated-body algorithm (aba): {}; its q̈ comes from M by LTDL (ldlt, or \
+             the default)",
+            mimic_note(&scene.model)
+        )));
+    }
     // Both forward dynamics are traced and counted, whichever is emitted.
     let methods: &[ForwardDynamicsMethod] = match options.forward_dynamics {
-        _ if payloads => &[ForwardDynamicsMethod::Ldlt],
+        _ if payloads || mimic => &[ForwardDynamicsMethod::Ldlt],
         _ => &[ForwardDynamicsMethod::Aba, ForwardDynamicsMethod::Ldlt],
     };
     let mut functions = Vec::new();
@@ -101,6 +113,12 @@ pub(crate) fn trace_module(
                   LTDL solve"
                 .to_string(),
         },
+        _ if mimic => fd_choice::FdChoice {
+            method: ForwardDynamicsMethod::Ldlt,
+            why: "CRBA projected on the independent joints (mimic joints follow their masters), RNEA, and a sparse \
+                  LTDL solve: the articulated-body recursion cannot take mimic joints"
+                .to_string(),
+        },
         _ if options.forward_dynamics == ForwardDynamicsMethod::Ldlt => fd(ForwardDynamicsMethod::Ldlt),
         _ => fd(ForwardDynamicsMethod::Aba),
     };
@@ -110,6 +128,17 @@ pub(crate) fn trace_module(
         }
     }
     Ok((functions, choice))
+}
+
+/// `joint "a" follows "b"` for the first mimic joint of `model` (which has one).
+fn mimic_note(model: &crate::model::Model) -> String {
+    let follower = (0..model.bodies.len()).find_map(|i| model.mimic(i).map(|m| (i, m.master)));
+    match follower {
+        Some((i, master)) => {
+            format!("joint \"{}\" follows \"{}\" (mimic)", model.bodies[i].joint.name, model.bodies[master].joint.name)
+        }
+        None => "the model has mimic joints".to_string(),
+    }
 }
 
 /// The run-time loads a function of a scene reads, as symbolic inputs (or
@@ -192,8 +221,8 @@ pub(crate) fn trace_unfactored(
     }
     let n = model.dof();
     let sizes = Sizes::of(model);
-    let use_ldlt =
-        *f == Function::ForwardDynamics && (method == ForwardDynamicsMethod::Ldlt || !scene.input_payloads.is_empty());
+    let use_ldlt = *f == Function::ForwardDynamics
+        && (method == ForwardDynamicsMethod::Ldlt || !scene.input_payloads.is_empty() || model.has_mimic());
     // The mass-matrix plan is made (traced) before this trace starts; a
     // floating model has none (the generic CRBA instead).
     let needs_plan =
