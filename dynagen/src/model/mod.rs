@@ -24,6 +24,7 @@ mod file_values;
 mod modern_robotics;
 mod tree;
 mod urdf;
+mod urdf_attributes;
 mod urdf_decimals;
 mod validate;
 

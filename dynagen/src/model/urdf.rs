@@ -35,11 +35,12 @@
 use super::description::{
     Inertial, JointDescription, JointLimits, JointType, LinkDescription, MimicDescription, RobotDescription,
 };
+use super::urdf_attributes::{attributes, check_numbers, check_origin, get, malformed, numbers, urdf_version};
 use super::urdf_decimals::{self as decimals, InertialDecimals, RawInertial};
 use super::{BuildOptions, Model, ModelError, ModelWarning};
 use crate::spatial::{Mat3, Sym3, Transform, Vec3};
 use crate::DoubleDouble;
-use quick_xml::events::{BytesStart, Event};
+use quick_xml::events::Event;
 use std::path::Path;
 
 /// Elements may nest at most this deep (`<robot><link><visual><geometry>
@@ -199,107 +200,6 @@ struct JointState {
     mimic: Option<MimicDescription>,
     file_origin: Option<Transform<DoubleDouble>>,
     file_axis: Option<[DoubleDouble; 3]>,
-}
-
-/// Reads the attributes of an element as (local name, unescaped value).
-fn attributes(
-    e: &BytesStart<'_>,
-    reader: &quick_xml::Reader<&[u8]>,
-    xml: &str,
-) -> Result<Vec<(String, String)>, ModelError> {
-    let mut out = Vec::new();
-    for a in e.attributes().with_checks(true) {
-        let a = a.map_err(|err| malformed(xml, reader, &err.to_string()))?;
-        let key = String::from_utf8_lossy(a.key.local_name().as_ref()).into_owned();
-        let value =
-            a.decode_and_unescape_value(reader.decoder()).map_err(|err| malformed(xml, reader, &err.to_string()))?;
-        out.push((key, value.into_owned()));
-    }
-    Ok(out)
-}
-
-/// The line (1-based) of a byte offset.
-fn line_of(xml: &str, pos: u64) -> usize {
-    let pos = usize::try_from(pos).unwrap_or(usize::MAX).min(xml.len());
-    xml.as_bytes()[..pos].iter().filter(|&&b| b == b'\n').count() + 1
-}
-
-fn malformed(xml: &str, reader: &quick_xml::Reader<&[u8]>, why: &str) -> ModelError {
-    ModelError::Urdf(format!("line {}: {why}", line_of(xml, reader.buffer_position())))
-}
-
-/// Parses `text` as exactly `N` finite numbers separated by white space.
-fn numbers<const N: usize>(item: &str, what: &str, text: &str) -> Result<[f64; N], ModelError> {
-    let bad = || ModelError::BadNumber { item: item.to_string(), what: what.to_string(), text: text.to_string() };
-    let mut out = [0.0; N];
-    let mut tokens = text.split_whitespace();
-    for x in &mut out {
-        *x = tokens.next().and_then(|t| t.parse::<f64>().ok()).filter(|x| x.is_finite()).ok_or_else(bad)?;
-    }
-    if tokens.next().is_some() {
-        return Err(bad());
-    }
-    Ok(out)
-}
-
-fn get<'a>(attrs: &'a [(String, String)], key: &str) -> Option<&'a str> {
-    attrs.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str())
-}
-
-/// Checks the numbers of an element: each of `keys` that is present must be
-/// `N` finite numbers (every attribute with that local name, so a prefixed
-/// duplicate cannot slip past); those in `required` must be present.
-fn check_numbers<const N: usize>(
-    attrs: &[(String, String)],
-    item: &str,
-    element: &str,
-    keys: &[&str],
-    required: &[&str],
-) -> Result<(), ModelError> {
-    for (k, v) in attrs {
-        if keys.contains(&k.as_str()) {
-            numbers::<N>(item, &format!("{element} {k}"), v)?;
-        }
-    }
-    for k in required {
-        if get(attrs, k).is_none() {
-            return Err(ModelError::Urdf(format!("{item}: <{element}> has no {k} attribute")));
-        }
-    }
-    Ok(())
-}
-
-/// Checks an `<origin>`: xyz and rpy three finite numbers each; from URDF
-/// 1.1 on, `quat_xyzw` four, not all zero, and not together with rpy.
-fn check_origin(attrs: &[(String, String)], item: &str, element: &str, version: (u32, u32)) -> Result<(), ModelError> {
-    check_numbers::<3>(attrs, item, element, &["xyz", "rpy"], &[])?;
-    if version >= (1, 1) {
-        if let Some(q) = get(attrs, "quat_xyzw") {
-            let v = numbers::<4>(item, &format!("{element} quat_xyzw"), q)?;
-            if v.iter().all(|&x| x == 0.0) {
-                return Err(ModelError::BadNumber {
-                    item: item.to_string(),
-                    what: format!("{element} quat_xyzw (a zero quaternion is no rotation)"),
-                    text: q.to_string(),
-                });
-            }
-            if get(attrs, "rpy").is_some() {
-                return Err(ModelError::Urdf(format!("{item}: <{element}> has both rpy and quat_xyzw")));
-            }
-        }
-    }
-    Ok(())
-}
-
-/// The `version` attribute of `<robot>` as urdf-rs reads it: "major.minor",
-/// anything else (or nothing) is 1.0.
-fn urdf_version(attrs: &[(String, String)]) -> (u32, u32) {
-    get(attrs, "version")
-        .and_then(|v| {
-            let (major, minor) = v.trim().split_once('.')?;
-            Some((major.parse().ok()?, minor.parse().ok()?))
-        })
-        .unwrap_or((1, 0))
 }
 
 /// Reads the raw XML for what urdf-rs would lose or not name: every number
