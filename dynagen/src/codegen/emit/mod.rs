@@ -67,8 +67,6 @@ pub(crate) struct ModuleParts<'a> {
     pub fd: &'a FdChoice,
     pub snapped: &'a [SnappedConstant],
     pub hash: u64,
-    /// The header's line on a run-time dispatch left out (or empty).
-    pub dispatch_note: &'a str,
 }
 
 /// The module's source: header, constants, the emitted functions, kernel.
@@ -161,7 +159,7 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
     let facts =
         header::HeaderFacts { scene, options, fd: parts.fd, functions, snapped: parts.snapped, hash: parts.hash };
     let header =
-        header::header(&facts) + &split::header_note(options.split_lets, &split_functions) + parts.dispatch_note;
+        header::header(&facts) + &split::header_note(options.split_lets, &split_functions);
     let kernel = sin_cos::kernel_source(options.scalar, options.runtime_dispatch);
     let source = format!("{header}\n{body}\n{kernel}");
     text::check_source(&header, &source)?;
