@@ -1,10 +1,12 @@
 //! Generates the benchmarked modules into OUT_DIR: the UR5 and the Panda,
-//! each with std's sin_cos and with the batched `sin_cos_all` (both have the
-//! `NAME_sc` bodies, which take the sines and cosines as inputs), and each
-//! with the same bodies without fused multiply-adds and run-time dispatch (`*_base`),
-//! and each with the derivatives of the dynamics (`*_derivatives`); and the
-//! quadruped12 with a floating base, default options (`quadruped12_floating`,
-//! as `dynagen generate dynagen/robots/quadruped12.urdf --floating-base`).
+//! each with std's sin_cos (`*_std`) and with the same bodies without fused
+//! multiply-adds and run-time dispatch (`*_base`); the UR5, the Panda, the
+//! KUKA iiwa 14 and the quadruped12 with its trunk fixed, each with the
+//! batched `sin_cos_all` (`*_batched`, every module has the `NAME_sc`
+//! bodies, which take the sines and cosines as inputs) and with the
+//! derivatives of the dynamics (`*_derivatives`); and the quadruped12 with
+//! a floating base, default options (`quadruped12_floating`, as `dynagen
+//! generate dynagen/robots/quadruped12.urdf --floating-base`).
 
 use dynagen::codegen::{generate, CodegenOptions, Function, Trig};
 use dynagen::{Builder, Model};
@@ -14,33 +16,34 @@ fn main() {
     let robots = Path::new(env!("CARGO_MANIFEST_DIR")).join("../dynagen/robots");
     println!("cargo:rerun-if-changed=build.rs");
     let out = std::env::var("OUT_DIR").expect("OUT_DIR");
-    for robot in ["ur5", "panda"] {
+    for robot in ["ur5", "panda", "iiwa14", "quadruped12"] {
         let urdf = robots.join(format!("{robot}.urdf"));
         println!("cargo:rerun-if-changed={}", urdf.display());
         let model = Model::from_urdf_file(&urdf).unwrap_or_else(|e| panic!("{}: {e}", urdf.display()));
-        for (suffix, trig) in [("std", Trig::Std), ("batched", Trig::Batched)] {
-            let opts = CodegenOptions::default().trig(trig).source(format!("dynagen/robots/{robot}.urdf"));
-            let module = generate(&model, &opts).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
+        let write = |suffix: &str, opts: CodegenOptions| {
+            let module = generate(&model, &opts.source(format!("dynagen/robots/{robot}.urdf")))
+                .unwrap_or_else(|e| panic!("generating {robot}: {e}"));
             std::fs::write(Path::new(&out).join(format!("{robot}_{suffix}.rs")), module.source).expect("writing");
-        }
-        // The same bodies without fused multiply-adds and without run-time
-        // dispatch, for with/without in one run: on a default build, what
-        // the bodies ran before either (SSE2, unfused); on a build with the
-        // `fma` and `avx2` target features (RUSTFLAGS="-C target-cpu=native"),
-        // where dispatch compiles out, the unfused body alone.
+        };
+        write("batched", CodegenOptions::default().trig(Trig::Batched));
         // The derivatives (examples/derivatives.rs), default options.
-        let derivatives = CodegenOptions::default()
-            .functions([
+        write(
+            "derivatives",
+            CodegenOptions::default().functions([
                 Function::InverseDynamicsDerivatives,
                 Function::ForwardDynamicsDerivatives,
                 Function::MassMatrixInverse,
-            ])
-            .source(format!("dynagen/robots/{robot}.urdf"));
-        let module = generate(&model, &derivatives).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
-        std::fs::write(Path::new(&out).join(format!("{robot}_derivatives.rs")), module.source).expect("writing");
-        let base = CodegenOptions::default().trig(Trig::Inputs).fma(false).runtime_dispatch(false);
-        let module = generate(&model, &base).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
-        std::fs::write(Path::new(&out).join(format!("{robot}_base.rs")), module.source).expect("writing");
+            ]),
+        );
+        if robot == "ur5" || robot == "panda" {
+            write("std", CodegenOptions::default().trig(Trig::Std));
+            // The same bodies without fused multiply-adds and without run-time
+            // dispatch, for with/without in one run: on a default build, what
+            // the bodies ran before either (SSE2, unfused); on a build with the
+            // `fma` and `avx2` target features (RUSTFLAGS="-C target-cpu=native"),
+            // where dispatch compiles out, the unfused body alone.
+            write("base", CodegenOptions::default().trig(Trig::Inputs).fma(false).runtime_dispatch(false));
+        }
     }
     // The floating-base quadruped (examples/floating.rs).
     let urdf = robots.join("quadruped12.urdf");

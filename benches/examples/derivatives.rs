@@ -1,4 +1,5 @@
-//! The generated derivatives of the dynamics of the UR5 and the Panda
+//! The generated derivatives of the dynamics of the UR5, the Panda, the
+//! KUKA iiwa 14 and the quadruped12 with its trunk fixed
 //! (`inverse_dynamics_derivatives`, `forward_dynamics_derivatives`,
 //! `mass_matrix_inverse`, and `inverse_dynamics` for scale), and the generic
 //! solver's (`Robot`), with the statistic of
@@ -23,6 +24,22 @@ mod ur5 {
 #[allow(dead_code)]
 mod panda {
     include!(concat!(env!("OUT_DIR"), "/panda_derivatives.rs"));
+}
+#[allow(dead_code)]
+mod iiwa14 {
+    include!(concat!(env!("OUT_DIR"), "/iiwa14_derivatives.rs"));
+}
+#[allow(dead_code)]
+mod quadruped12 {
+    include!(concat!(env!("OUT_DIR"), "/quadruped12_derivatives.rs"));
+}
+#[allow(dead_code)]
+mod iiwa14_tau {
+    include!(concat!(env!("OUT_DIR"), "/iiwa14_batched.rs"));
+}
+#[allow(dead_code)]
+mod quadruped12_tau {
+    include!(concat!(env!("OUT_DIR"), "/quadruped12_batched.rs"));
 }
 #[allow(dead_code)]
 mod ur5_tau {
@@ -154,4 +171,6 @@ fn main() {
     println!("dynagen generated (default options) and generic, ns per call (median and minimum of {BATCHES} batches of {BATCH} calls)");
     bench!(ur5, ur5_tau, "ur5");
     bench!(panda, panda_tau, "panda");
+    bench!(iiwa14, iiwa14_tau, "iiwa14");
+    bench!(quadruped12, quadruped12_tau, "quadruped12");
 }
