@@ -59,7 +59,10 @@ fn main() {
         (ur5, "ur5_derivatives", ScalarType::F64),
         ("../dynagen/robots/panda.urdf", "panda_derivatives", ScalarType::F64),
         ("../dynagen/robots/torso_two_arms.urdf", "torso_two_arms_derivatives", ScalarType::F64),
+        ("../dynagen/robots/iiwa14.urdf", "iiwa14_derivatives", ScalarType::F64),
+        ("../dynagen/robots/quadruped12.urdf", "quadruped12_derivatives", ScalarType::F64),
         (ur5, "ur5_derivatives_f32", ScalarType::F32),
+        ("../dynagen/robots/panda.urdf", "panda_derivatives_f32", ScalarType::F32),
     ] {
         dynagen::Builder::new()
             .urdf(robot)

@@ -120,7 +120,7 @@ fn check(name: &str, model: &Model, robot: &mut Robot, tips: &[(usize, [f64; 6])
 
 #[test]
 fn bundled_robots_match_double_double_finite_differences() {
-    for name in ["ur5", "panda", "torso_two_arms", "planar_2link"] {
+    for name in ["ur5", "panda", "torso_two_arms", "planar_2link", "iiwa14", "quadruped12"] {
         let model = support::model(name);
         let mut robot = Robot::new(model.clone());
         check(name, &model, &mut robot, &[], 3, 0x5eed_0001);
@@ -229,4 +229,83 @@ fn double_double_differences_are_the_reference() {
     let h = Dd::from(1e-7);
     let d = ((x + h).sin() - (x - h).sin()) / (h + h);
     assert!((d.to_f64() - 0.3_f64.cos()).abs() < 1e-14);
+}
+
+/// The two formulations of ∂τ/∂(q, q̇) (the analytical recursion, the
+/// generic solver's; dual numbers through the RNEA) and the forward
+/// dynamics' derivatives built on each, on f64: the same matrices to
+/// rounding, on random trees with a viscous and a Coulomb friction on every
+/// joint, an armature, a payload and a tip wrench.
+#[test]
+fn both_formulations_agree() {
+    use dynagen::algorithms::derivatives::{self as d, DerivativeWorkspace, Dynamics, Formulation, JointTorques};
+    use dynagen::algorithms::BodyInertia;
+    use dynagen::spatial::{Inertia, Sym3};
+    /// b∘q̇ + f∘tanh-like smooth sign, as a scene's friction.
+    struct Friction(Vec<f64>);
+    impl JointTorques for Friction {
+        fn add_to<S: Scalar>(&self, qd: &[S], tau: &mut [S]) {
+            for (i, t) in tau.iter_mut().enumerate() {
+                let v = qd[i];
+                *t += S::from_f64(self.0[i]) * v + S::from_f64(0.3) * (v / (v * v + S::from_f64(0.01)).sqrt());
+            }
+        }
+    }
+    let mut rng = Rng::new(0xf0f0);
+    for t in 0..8 {
+        let n = 2 + (rng.bits() % 9) as usize;
+        let model = Model::from_urdf_str(&random_tree(&mut rng, n)).unwrap();
+        let friction = Friction(rng.vec(n, 0.5).iter().map(|x| x.abs()).collect());
+        let armature: Vec<f64> = rng.vec(n, 0.2).iter().map(|x| x.abs()).collect();
+        let g = model.gravity;
+        let frame = model.frames.iter().rposition(|f| f.body.is_some()).unwrap();
+        let tips = [TipWrench { frame, wrench: Force::from_array([0.3, -1.2, 0.7, 15.0, -4.0, 22.0]) }];
+        let payload =
+            Inertia::from_mass_com_inertia(0.7, Vec3([0.1, 0.0, -0.05]), Sym3([0.01, 0.02, 0.015, 0.0, 0.001, 0.0]));
+        let payloads = [BodyInertia { body: n - 1, inertia: payload }];
+        let loads = Loads::gravity(&g).with_tips(&tips).with_payloads(&payloads).with_armature(Some(&armature));
+        let dynamics = Dynamics { model: &model, loads, torques: &friction, mass: None };
+        let mut dw = DerivativeWorkspace::new(&model);
+        let (q, qd, x) = (rng.vec(n, 2.0), rng.vec(n, 1.5), rng.vec(n, 3.0));
+        let mut out = [[vec![0.0; n * n], vec![0.0; n * n]], [vec![0.0; n * n], vec![0.0; n * n]]];
+        let mut fd = [
+            [vec![0.0; n * n], vec![0.0; n * n], vec![0.0; n * n]],
+            [vec![0.0; n * n], vec![0.0; n * n], vec![0.0; n * n]],
+        ];
+        for (k, formulation) in Formulation::ALL.into_iter().enumerate() {
+            let [a, b] = &mut out[k];
+            d::inverse_dynamics_derivatives(&dynamics, &mut dw, [&q, &qd, &x], formulation, [a, b], None);
+            let [a, b, c] = &mut fd[k];
+            d::forward_dynamics_derivatives(&dynamics, &mut dw, [&q, &qd, &x], formulation, [a, b, c]);
+        }
+        let rel = |a: &[f64], b: &[f64]| support::norm_rel_err(a, b, 1e-12);
+        let errs = [
+            rel(&out[0][0], &out[1][0]),
+            rel(&out[0][1], &out[1][1]),
+            rel(&fd[0][0], &fd[1][0]),
+            rel(&fd[0][1], &fd[1][1]),
+            rel(&fd[0][2], &fd[1][2]),
+        ];
+        println!("tree {t} ({n} joints): analytical against dual numbers {errs:?}");
+        assert!(errs.iter().all(|e| *e <= 1e-12), "tree {t}: {errs:?}");
+        // and the friction's derivative is in ∂τ/∂q̇'s diagonal: remove it, the rest changes only there
+        let none = Dynamics { model: &model, loads, torques: &d::RigidBodyOnly, mass: None };
+        let (mut a, mut b) = (vec![0.0; n * n], vec![0.0; n * n]);
+        d::inverse_dynamics_derivatives(&none, &mut dw, [&q, &qd, &x], Formulation::Analytical, [&mut a, &mut b], None);
+        for i in 0..n {
+            for j in 0..n {
+                let diff = out[0][1][i * n + j] - b[i * n + j];
+                if i == j {
+                    let v = qd[i];
+                    let want = friction.0[i] + 0.3 * 0.01 / (v * v + 0.01).powf(1.5);
+                    assert!(
+                        (diff - want).abs() <= 1e-12 * want.abs().max(1.0),
+                        "tree {t} [{i}][{i}]: {diff} vs {want}"
+                    );
+                } else {
+                    assert!(diff.abs() <= 1e-12 * b.iter().fold(1.0_f64, |m, x| m.max(x.abs())), "tree {t} [{i}][{j}]");
+                }
+            }
+        }
+    }
 }

@@ -23,6 +23,7 @@ pub mod ldlt;
 mod loads;
 mod lu;
 pub mod rnea;
+pub mod rnea_derivatives;
 mod workspace;
 
 pub use loads::{BodyInertia, Loads, TipWrench};

@@ -4,8 +4,8 @@
 //! `[output][input]`: entry (i, j) is ∂yᵢ/∂xⱼ.
 
 use super::{matrix, Robot};
-use crate::algorithms::derivatives::{self as d, DerivativeWorkspace, DualLoads};
-use crate::algorithms::{crba, rnea, Loads};
+use crate::algorithms::derivatives::{self as d, DerivativeWorkspace, Dynamics, Formulation, RigidBodyOnly};
+use crate::algorithms::{crba, Loads};
 use crate::model::Model;
 use crate::InputError;
 use nalgebra::{DMatrix, DVector};
@@ -14,7 +14,6 @@ use nalgebra::{DMatrix, DVector};
 #[derive(Clone, Debug)]
 pub(crate) struct DerivativeScratch {
     pub(super) dw: DerivativeWorkspace<f64>,
-    pub(super) loads: DualLoads<f64>,
     /// Three row-major n×n results.
     pub(super) rows: [Vec<f64>; 3],
 }
@@ -24,7 +23,6 @@ impl DerivativeScratch {
         let n = model.dof();
         DerivativeScratch {
             dw: DerivativeWorkspace::new(model),
-            loads: DualLoads::with_capacity(model.frames.len(), n),
             rows: [vec![0.0; n * n], vec![0.0; n * n], vec![0.0; n * n]],
         }
     }
@@ -73,14 +71,12 @@ impl Robot {
             .square("dtau_dq", dtau_dq)?
             .square("dtau_dqd", dtau_dqd)?;
         let g = self.model.gravity;
-        let DerivativeScratch { dw, loads, rows } = &mut self.deriv;
-        loads.set(&Loads::gravity(&g).with_tips(&self.tips));
-        let model = &self.model;
+        let DerivativeScratch { dw, rows } = &mut self.deriv;
+        let loads = Loads::gravity(&g).with_tips(&self.tips);
+        let d = Dynamics { model: &self.model, loads, torques: &RigidBodyOnly, mass: None };
         let [a, b, _] = rows;
-        let tau = |ws: &mut _, q: &[_], qd: &[_], qdd: &[_], out: &mut [_]| {
-            rnea::rnea(model, ws, q, Some(qd), Some(qdd), loads.loads(), out)
-        };
-        d::inverse_dynamics_derivatives(dw, [q.as_slice(), qd.as_slice(), qdd.as_slice()], tau, a, b);
+        let state = [q.as_slice(), qd.as_slice(), qdd.as_slice()];
+        d::inverse_dynamics_derivatives(&d, dw, state, Formulation::Analytical, [a, b], None);
         copy_rows(a, dtau_dq);
         copy_rows(b, dtau_dqd);
         Ok(())
@@ -119,16 +115,12 @@ impl Robot {
             .square("dqdd_dqd", dqdd_dqd)?
             .square("minv", minv)?;
         let g = self.model.gravity;
-        let DerivativeScratch { dw, loads, rows } = &mut self.deriv;
-        loads.set(&Loads::gravity(&g).with_tips(&self.tips));
-        let model = &self.model;
+        let DerivativeScratch { dw, rows } = &mut self.deriv;
+        let loads = Loads::gravity(&g).with_tips(&self.tips);
+        let d = Dynamics { model: &self.model, loads, torques: &RigidBodyOnly, mass: None };
         let [a, b, c] = rows;
-        let tau_fn = |ws: &mut _, q: &[_], qd: &[_], qdd: &[_], out: &mut [_]| {
-            rnea::rnea(model, ws, q, Some(qd), Some(qdd), loads.loads(), out)
-        };
-        let mass = |ws: &mut _, q: &[f64], m: &mut [f64]| crba::crba(model, ws, q, Loads::none(), m);
-        let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());
-        d::forward_dynamics_derivatives(model, dw, [q, qd, tau], tau_fn, mass, [a, b, c]);
+        let state = [q.as_slice(), qd.as_slice(), tau.as_slice()];
+        d::forward_dynamics_derivatives(&d, dw, state, Formulation::Analytical, [a, b, c]);
         copy_rows(a, dqdd_dq);
         copy_rows(b, dqdd_dqd);
         copy_rows(c, minv);

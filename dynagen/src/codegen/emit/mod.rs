@@ -158,8 +158,7 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
     let body = tidy_dispatch(&prettyplease::unparse(&file));
     let facts =
         header::HeaderFacts { scene, options, fd: parts.fd, functions, snapped: parts.snapped, hash: parts.hash };
-    let header =
-        header::header(&facts) + &split::header_note(options.split_lets, &split_functions);
+    let header = header::header(&facts) + &split::header_note(options.split_lets, &split_functions);
     let kernel = sin_cos::kernel_source(options.scalar, options.runtime_dispatch);
     let source = format!("{header}\n{body}\n{kernel}");
     text::check_source(&header, &source)?;
