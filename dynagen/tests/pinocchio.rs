@@ -160,7 +160,7 @@ fn derivatives_match_pinocchio() {
             .unwrap();
     assert_eq!(data["source"]["generator"], "pinocchio");
     let robots = data["robots"].as_object().unwrap();
-    assert_eq!(robots.len(), 4);
+    assert_eq!(robots.len(), 6);
     for (name, doc) in robots {
         let mut robot = support::robot(name);
         let names: Vec<String> =

@@ -23,41 +23,18 @@ Conventions are converted to dynagen's (shared/DESIGN.md):
 Not run in CI.  See README.md in this folder.
 """
 
-import xml.etree.ElementTree as ET
 from importlib import metadata
 
 import numpy as np
 import pinocchio as pin
 
-from refcommon import DATA, REPO, dump_json
+from refcommon import DATA, REPO, dump_json, file_order
 
 SCRIPT = "scripts/reference/make_pinocchio_floating.py"
 SEED = 20261125
 GRAVITY = np.array([0.0, 0.0, -9.81])
 ROBOTS = {"quadruped12": "FR_foot", "torso_two_arms": "right_ee", "random_tree20": "l17"}
 ANG_LIN = [3, 4, 5, 0, 1, 2]
-
-
-def file_order(path):
-    """dynagen's joint order: moving joints depth first over the URDF tree,
-    children in file order (Pinocchio may visit children in another)."""
-    root = ET.parse(path).getroot()
-    children, child_links = {}, set()
-    for j in root.findall("joint"):
-        children.setdefault(j.find("parent").get("link"), []).append(j)
-        child_links.add(j.find("child").get("link"))
-    roots = [l.get("name") for l in root.findall("link") if l.get("name") not in child_links]
-    assert len(roots) == 1, roots
-    order = []
-
-    def visit(link):
-        for j in children.get(link, []):
-            if j.get("type") != "fixed":
-                order.append(j.get("name"))
-            visit(j.find("child").get("link"))
-
-    visit(roots[0])
-    return order
 
 
 def random_tree(rng, n):
