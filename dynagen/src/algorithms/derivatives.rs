@@ -95,7 +95,8 @@ impl<S: Scalar, J: JointTorques> Dynamics<'_, S, J> {
     /// τ(q, q̇, q̈) (`qdd: None`: h(q, q̇)).
     fn tau(&self, ws: &mut Workspace<S>, q: &[S], qd: &[S], qdd: Option<&[S]>, tau: &mut [S]) {
         rnea::rnea(self.model, ws, q, Some(qd), qdd, self.loads, tau);
-        self.torques.add_to(qd, tau);
+        let off = self.model.nv() - self.model.dof();
+        self.torques.add_to(&qd[off..], &mut tau[off..]);
     }
     /// M(q) with the payloads and the armature.
     fn mass_matrix(&self, ws: &mut Workspace<S>, q: &[S], m: &mut [S]) {
@@ -134,23 +135,23 @@ pub struct DerivativeWorkspace<S> {
 impl<S: Scalar> DerivativeWorkspace<S> {
     /// Scratch for `model`.
     pub fn new(model: &Model) -> Self {
-        let n = model.dof();
-        let d = vec![Dual::constant(S::zero()); n];
+        let nv = model.nv();
+        let d = vec![Dual::constant(S::zero()); nv];
         DerivativeWorkspace {
             ws: Workspace::new(model),
             analytical: RneaDerivativeWorkspace::new(model),
             dual: Workspace::new(model),
             dual_loads: DualLoads::with_capacity(model.frames.len()),
-            q: d.clone(),
+            q: vec![Dual::constant(S::zero()); model.nq()],
             qd: d.clone(),
             qdd: d.clone(),
             tau: d,
-            factor: vec![S::zero(); n * n],
-            linv: vec![S::zero(); n * n],
-            dtau_dq: vec![S::zero(); n * n],
-            dtau_dqd: vec![S::zero(); n * n],
-            rhs: vec![S::zero(); n],
-            qdd_value: vec![S::zero(); n],
+            factor: vec![S::zero(); nv * nv],
+            linv: vec![S::zero(); nv * nv],
+            dtau_dq: vec![S::zero(); nv * nv],
+            dtau_dqd: vec![S::zero(); nv * nv],
+            rhs: vec![S::zero(); nv],
+            qdd_value: vec![S::zero(); nv],
         }
     }
 }
@@ -199,30 +200,34 @@ impl<S: Scalar> DualLoads<S> {
     }
 }
 
-/// Adds ∂φ/∂q̇ (a diagonal) of `torques` at `qd` to the row-major n×n
-/// `dtau_dqd`: one run on dual numbers with every q̇ᵢ seeded (φᵢ reads q̇ᵢ
+/// Adds ∂φ/∂q̇ (a diagonal) of `torques` at `qd` to the row-major NV×NV
+/// `dtau_dqd`, on the joints (after a floating base's six coordinates,
+/// `off`): one run on dual numbers with every q̇ᵢ seeded (φᵢ reads q̇ᵢ
 /// alone), in `dw`'s scratch.
 fn add_joint_torque_derivatives<S: Scalar>(
     dw: &mut DerivativeWorkspace<S>,
     torques: &impl JointTorques,
-    qd: &[S],
+    (qd, off): (&[S], usize),
     dtau_dqd: &mut [S],
 ) {
-    let n = qd.len();
-    for ((d, t), &v) in dw.qd.iter_mut().zip(&mut dw.tau).zip(qd) {
+    let nv = qd.len();
+    let (dqd, tau) = (&mut dw.qd[off..], &mut dw.tau[off..]);
+    for ((d, t), &v) in dqd.iter_mut().zip(tau.iter_mut()).zip(&qd[off..]) {
         (*d, *t) = (Dual::variable(v), Dual::constant(S::zero()));
     }
-    torques.add_to(&dw.qd, &mut dw.tau);
-    for (i, t) in dw.tau.iter().enumerate() {
+    torques.add_to(dqd, tau);
+    for (i, t) in tau.iter().enumerate() {
         if t.eps.to_f64() != Some(0.0) {
-            dtau_dqd[i * n + i] += t.eps;
+            dtau_dqd[(off + i) * nv + off + i] += t.eps;
         }
     }
 }
 
-/// ∂τ/∂q and ∂τ/∂q̇ (row-major n×n each) of `d` at `[q, q̇, q̈]` by
-/// `formulation`, and the mass matrix into `mass` if given (the analytical
-/// recursion gives it on the way; the dual numbers call the CRBA).
+/// ∂τ/∂q and ∂τ/∂q̇ (row-major NV×NV each; n×n on a fixed base) of `d` at
+/// `[q, q̇, q̈]` by `formulation`, and the mass matrix into `mass` if given
+/// (the analytical recursion gives it on the way; the dual numbers call the
+/// CRBA). On a floating base the configuration's tangent is the base's body
+/// twist ([`rnea_derivatives`]).
 pub fn inverse_dynamics_derivatives<S: Scalar, J: JointTorques>(
     d: &Dynamics<'_, S, J>,
     dw: &mut DerivativeWorkspace<S>,
@@ -231,14 +236,14 @@ pub fn inverse_dynamics_derivatives<S: Scalar, J: JointTorques>(
     [dtau_dq, dtau_dqd]: [&mut [S]; 2],
     mass: Option<&mut [S]>,
 ) {
-    let n = d.model.dof();
+    let (model, nv) = (d.model, d.model.nv());
     assert!(
-        q.len() == n && qd.len() == n && qdd.len() == n && dtau_dq.len() == n * n && dtau_dqd.len() == n * n,
-        "inverse_dynamics_derivatives: sizes must fit the model's {n} joints"
+        q.len() == model.nq() && qd.len() == nv && qdd.len() == nv,
+        "inverse_dynamics_derivatives: q must have NQ entries, q̇ and q̈ NV"
     );
     match formulation {
         Formulation::Analytical => {
-            rnea_derivatives(d.model, &mut dw.analytical, [q, qd, qdd], d.loads, [dtau_dq, dtau_dqd], mass)
+            rnea_derivatives(model, &mut dw.analytical, [q, qd, qdd], d.loads, [dtau_dq, dtau_dqd], mass)
         }
         Formulation::DualNumbers => {
             dual_derivatives(d, dw, [q, qd, qdd], dtau_dq, dtau_dqd);
@@ -247,11 +252,13 @@ pub fn inverse_dynamics_derivatives<S: Scalar, J: JointTorques>(
             }
         }
     }
-    add_joint_torque_derivatives(dw, d.torques, qd, dtau_dqd);
+    add_joint_torque_derivatives(dw, d.torques, (qd, nv - model.dof()), dtau_dqd);
 }
 
 /// The rigid-body part of ∂τ/∂q and ∂τ/∂q̇ by dual numbers: one run of the
-/// RNEA per column.
+/// RNEA per column. A floating base's tangent columns: moving the base
+/// changes nothing in its frame, turning it about eₖ turns gravity there, so
+/// the world's gravity is seeded with its change g × R eₖ (R: world ← base).
 fn dual_derivatives<S: Scalar, J>(
     d: &Dynamics<'_, S, J>,
     dw: &mut DerivativeWorkspace<S>,
@@ -259,23 +266,45 @@ fn dual_derivatives<S: Scalar, J>(
     dtau_dq: &mut [S],
     dtau_dqd: &mut [S],
 ) {
-    let n = q.len();
+    let (model, nv) = (d.model, d.model.nv());
+    let (off, qoff) = if model.is_floating() { (6, 7) } else { (0, 0) };
     dw.dual_loads.set(&d.loads);
-    for i in 0..n {
-        dw.q[i] = Dual::constant(q[i]);
+    for (x, &v) in dw.q.iter_mut().zip(q) {
+        *x = Dual::constant(v);
+    }
+    for i in 0..nv {
         dw.qd[i] = Dual::constant(qd[i]);
         dw.qdd[i] = Dual::constant(qdd[i]);
     }
-    let loads = dw.dual_loads.loads(d.loads.armature);
-    for (wrt_qd, out) in [(false, dtau_dq), (true, dtau_dqd)] {
-        for j in 0..n {
-            let x = if wrt_qd { &mut dw.qd } else { &mut dw.q };
-            x[j].eps = S::one();
-            rnea::rnea(d.model, &mut dw.dual, &dw.q, Some(&dw.qd), Some(&dw.qdd), loads, &mut dw.tau);
-            let x = if wrt_qd { &mut dw.qd } else { &mut dw.q };
-            x[j].eps = S::zero();
-            for i in 0..n {
-                out[i * n + j] = dw.tau[i].eps;
+    let run = |dw: &mut DerivativeWorkspace<S>, out: &mut [S], column: usize| {
+        let loads = dw.dual_loads.loads(d.loads.armature);
+        rnea::rnea(model, &mut dw.dual, &dw.q, Some(&dw.qd), Some(&dw.qdd), loads, &mut dw.tau);
+        for i in 0..nv {
+            out[i * nv + column] = dw.tau[i].eps;
+        }
+    };
+    for j in 0..nv - off {
+        dw.q[qoff + j].eps = S::one();
+        run(dw, dtau_dq, off + j);
+        dw.q[qoff + j].eps = S::zero();
+    }
+    for j in 0..nv {
+        dw.qd[j].eps = S::one();
+        run(dw, dtau_dqd, j);
+        dw.qd[j].eps = S::zero();
+    }
+    if off == 6 {
+        let rot = super::floating::quaternion_rotation(&q[3..7]);
+        for k in 0..6 {
+            match (k < 3, d.loads.gravity) {
+                (true, Some(g)) => {
+                    let turned = g.cross(&rot.col(k));
+                    let re = dw.dual_loads.gravity.expect("set with the loads").0.map(|x| x.re);
+                    dw.dual_loads.gravity = Some(Vec3(std::array::from_fn(|c| Dual { re: re[c], eps: turned.0[c] })));
+                    run(dw, dtau_dq, k);
+                    dw.dual_loads.gravity = Some(Vec3(re.map(Dual::constant)));
+                }
+                _ => (0..nv).for_each(|i| dtau_dq[i * nv + k] = S::zero()),
             }
         }
     }
@@ -286,10 +315,15 @@ fn dual_derivatives<S: Scalar, J>(
 /// (M⁻¹)ᵢⱼ = Σₖ (L⁻¹)ᵢₖ (L⁻¹)ⱼₖ / Dₖ over the common ancestors k of i and
 /// j, for j ≤ i. `linv` is n×n scratch.
 pub fn mass_matrix_inverse<S: Scalar>(model: &Model, factor: &mut [S], linv: &mut [S], minv: &mut [S]) {
-    let n = model.dof();
+    let n = model.nv();
     assert!(linv.len() == n * n && minv.len() == n * n, "mass_matrix_inverse: m must be {n}×{n}");
-    ldlt::factorise(model, factor);
-    let parent = |i: usize| model.bodies[i].parent;
+    // The tree of the velocity coordinates: the joints', a floating base's
+    // six as a chain ahead of them.
+    let parent = |k: usize| match model.is_floating() {
+        true => super::floating::velocity_parent(model, k),
+        false => model.bodies[k].parent,
+    };
+    ldlt::factorise_tree(n, parent, factor);
     // L⁻¹: row i = e_i − Σ_{m ancestor of i} L[i][m]·row m (rows of
     // ancestors first, as joints come after their parents).
     for i in 0..n {
@@ -340,10 +374,10 @@ pub fn forward_dynamics_derivatives<S: Scalar, J: JointTorques>(
     formulation: Formulation,
     [dqdd_dq, dqdd_dqd, minv]: [&mut [S]; 3],
 ) {
-    let (model, n) = (d.model, d.model.dof());
+    let (model, n) = (d.model, d.model.nv());
     assert!(
         tau.len() == n && dqdd_dq.len() == n * n && dqdd_dqd.len() == n * n,
-        "forward_dynamics_derivatives: sizes must fit the model's {n} joints"
+        "forward_dynamics_derivatives: τ must have NV entries and the matrices NV×NV ({n}×{n})"
     );
     let (mut dq, mut dqd) = (std::mem::take(&mut dw.dtau_dq), std::mem::take(&mut dw.dtau_dqd));
     let (mut factor, mut qdd) = (std::mem::take(&mut dw.factor), std::mem::take(&mut dw.qdd_value));

@@ -28,7 +28,20 @@
 //! Tip wrenches fixed in their frames and payloads enter as in the RNEA (a
 //! wrench turning with its body, an inertia added to its body's), held
 //! constant; the armature does not depend on q or q̇.
+//!
+//! A floating base is one more ancestor of every joint, with six
+//! coordinates: the tangent of the configuration is the base's body twist
+//! (q ⊕ δ moves the base to T·exp(δ), as the floating integrator and
+//! Pinocchio's free-flyer do), and everything is in the base's frame, so
+//! Sᵦ = 1 (six unit twists) and the vectors t above, carried one step more,
+//! give the base's rows (t₃, t₂ themselves) and columns. The base's Ψ̇ is
+//! zero (the world does not move), its Ψ̈ₖ = (0; eₖ × gᵦ) with gᵦ = Rᵀg
+//! (turning the base turns gravity in its frame; moving it changes nothing)
+//! and its q̇ column k reads t₁·(vᵦ × eₖ) + t₄·eₖ (Singh et al.'s Ψ̇ + Ṡ of a
+//! multi-degree joint); the 6×6 block of the base is Iᶜᵦ Ψ̈ₖ and
+//! Iᶜᵦ(vᵦ × eₖ) + İᶜᵦ eₖ + eₖ ×* hᶜᵦ over the whole robot.
 
+use super::floating::{base_motion, quaternion_rotation};
 use super::joint::{add_motion, joint_transform, motion, project};
 use super::joint::{cross_motion, force_to_parent, inertia_times_subspace, inertia_to_parent, motion_to_child};
 use super::Loads;
@@ -52,6 +65,8 @@ pub struct RneaDerivativeWorkspace<S> {
     idot: Vec<Inertia<S>>,
     hc: Vec<Force<S>>,
     f: Vec<Force<S>>,
+    /// A floating base's Iᶜ, İᶜ, hᶜ and F (the whole robot's).
+    base: (Inertia<S>, Inertia<S>, Force<S>, Force<S>),
 }
 
 impl<S: Scalar> RneaDerivativeWorkspace<S> {
@@ -68,6 +83,7 @@ impl<S: Scalar> RneaDerivativeWorkspace<S> {
             idot: vec![Inertia::zero(); n],
             hc: vec![Force::zero(); n],
             f: vec![Force::zero(); n],
+            base: (Inertia::zero(), Inertia::zero(), Force::zero(), Force::zero()),
         }
     }
 }
@@ -94,13 +110,22 @@ pub(crate) fn inertia_rate<S: Scalar>(i: &Inertia<S>, v: &Motion<S>) -> Inertia<
     Inertia { mass: S::zero(), h: w.cross(&i.h) + nu.scale(i.mass), ibar: rot + Sym3::cross_shift(&i.h, nu) }
 }
 
-/// ∂τ/∂q and ∂τ/∂q̇ (row-major n×n, `[i * n + j] = ∂τᵢ/∂xⱼ`) of
+/// The unit twist `e_k` (angular first).
+#[inline(always)]
+fn unit<S: Scalar>(k: usize) -> Motion<S> {
+    let mut e = [S::zero(); 6];
+    e[k] = S::one();
+    Motion::from_array(e)
+}
+
+/// ∂τ/∂q and ∂τ/∂q̇ (row-major NV×NV, `[i * nv + j] = ∂τᵢ/∂xⱼ`) of
 /// [`rnea`](super::rnea::rnea) at `[q, q̇, q̈]` under `loads` (gravity, tip
 /// wrenches and payloads held constant), and the mass matrix into `mass`
-/// if given (with the armature). Fixed-base models.
+/// if given (with the armature). On a floating base the configuration's
+/// tangent is the base's body twist (see the module documentation).
 ///
 /// # Panics
-/// If a slice does not fit the model's joints, or the model floats.
+/// If a slice does not fit the model (q: NQ, the others NV, NV×NV).
 pub fn rnea_derivatives<S: Scalar>(
     model: &Model,
     ws: &mut RneaDerivativeWorkspace<S>,
@@ -109,31 +134,43 @@ pub fn rnea_derivatives<S: Scalar>(
     [dtau_dq, dtau_dqd]: [&mut [S]; 2],
     mut mass: Option<&mut [S]>,
 ) {
-    let n = model.dof();
-    assert!(!model.is_floating(), "rnea_derivatives: a fixed-base model");
+    let (n, nv, floating) = (model.dof(), model.nv(), model.is_floating());
+    // Joint i's row and column, and its angle's place in q.
+    let (off, qoff) = if floating { (6, 7) } else { (0, 0) };
     assert!(
-        q.len() == n && qd.len() == n && qdd.len() == n && dtau_dq.len() == n * n && dtau_dqd.len() == n * n,
-        "rnea_derivatives: sizes must fit the model's {n} joints"
+        q.len() == model.nq() && qd.len() == nv && qdd.len() == nv,
+        "rnea_derivatives: q must have NQ entries, q̇ and q̈ NV"
     );
-    assert!(mass.as_ref().is_none_or(|m| m.len() == n * n), "rnea_derivatives: the mass matrix must be {n}×{n}");
+    assert!(
+        dtau_dq.len() == nv * nv && dtau_dqd.len() == nv * nv && mass.as_ref().is_none_or(|m| m.len() == nv * nv),
+        "rnea_derivatives: the matrices must be NV×NV ({nv}×{nv})"
+    );
     loads.check(n, "rnea_derivatives");
     let bodies = &model.bodies[..n];
+    // Gravity in the root's frame, and the root's motion: a fixed base at
+    // rest accelerating at −g, a floating one with its twist and its
+    // acceleration less g.
+    let g = match loads.gravity {
+        Some(g) if floating => quaternion_rotation(&q[3..7]).tr_mul_vec(g),
+        Some(g) => *g,
+        None => Vec3::zero(),
+    };
+    let world = Motion::new(Vec3::zero(), -g);
+    let (v0, a0) = if floating { (base_motion(qd), base_motion(qdd) + world) } else { (Motion::zero(), world) };
     for (i, body) in bodies.iter().enumerate() {
         let joint = &body.joint;
-        let x = joint_transform(joint, q[i]);
-        let (v_in, a_in) = match body.parent {
-            Some(p) => (motion_to_child(joint, &x, &ws.v[p]), motion_to_child(joint, &x, &ws.a[p])),
-            None => {
-                let a0 = Motion::new(Vec3::zero(), loads.gravity.map_or(Vec3::zero(), |g| -*g));
-                (Motion::zero(), motion_to_child(joint, &x, &a0))
-            }
+        let x = joint_transform(joint, q[qoff + i]);
+        let (vp, ap) = match body.parent {
+            Some(p) => (&ws.v[p], &ws.a[p]),
+            None => (&v0, &a0),
         };
+        let (v_in, a_in) = (motion_to_child(joint, &x, vp), motion_to_child(joint, &x, ap));
         let sdot = cross_motion(joint, &v_in, S::one());
         let psidd = cross_motion(joint, &a_in, S::one()) + v_in.cross_motion(&sdot);
         let mut v = v_in;
-        add_motion(joint, &mut v, qd[i]);
-        let mut a = a_in + sdot.scale(qd[i]);
-        add_motion(joint, &mut a, qdd[i]);
+        add_motion(joint, &mut v, qd[off + i]);
+        let mut a = a_in + sdot.scale(qd[off + i]);
+        add_motion(joint, &mut a, qdd[off + i]);
         let mut inertia = Inertia::from_f64(&body.inertia);
         for p in loads.payloads.iter().filter(|p| p.body == i) {
             inertia = inertia.add(&p.inertia);
@@ -145,10 +182,18 @@ pub fn rnea_derivatives<S: Scalar>(
         ws.hc[i] = h;
         (ws.x[i], ws.v[i], ws.a[i], ws.sdot[i], ws.psidd[i]) = (x, v, a, sdot, psidd);
     }
+    if floating {
+        let i0 = Inertia::from_f64(&model.base_inertia);
+        let h0 = i0.mul_motion(&v0);
+        ws.base = (i0, inertia_rate(&i0, &v0), h0, i0.mul_motion(&a0) + v0.cross_force(&h0));
+    }
     for tip in loads.tips {
         let frame = &model.frames[tip.frame];
-        if let Some(b) = frame.body {
-            ws.f[b] += Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
+        let w = Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
+        match frame.body {
+            Some(b) => ws.f[b] += w,
+            None if floating => ws.base.3 += w,
+            None => {}
         }
     }
     dtau_dq.fill(S::zero());
@@ -158,6 +203,7 @@ pub fn rnea_derivatives<S: Scalar>(
     }
     for i in (0..n).rev() {
         let joint = &bodies[i].joint;
+        let r = off + i;
         let s = motion(joint, S::one());
         let (ic, idot, hc, f) = (&ws.ic[i], &ws.idot[i], &ws.hc[i], &ws.f[i]);
         let (sdot, psidd) = (&ws.sdot[i], &ws.psidd[i]);
@@ -168,43 +214,80 @@ pub fn rnea_derivatives<S: Scalar>(
         let ic_sdot = ic.mul_motion(sdot);
         let mut t2 = ic_sdot + ic_sdot + idot_s + s_hc;
         let mut t3 = s.cross_force(f) + ic.mul_motion(psidd) + idot.mul_motion(sdot) + sdot.cross_force(hc);
-        dtau_dq[i * n + i] = project(joint, &t3);
-        dtau_dqd[i * n + i] = project(joint, &t2);
+        dtau_dq[r * nv + r] = project(joint, &t3);
+        dtau_dqd[r * nv + r] = project(joint, &t2);
         if let Some(m) = mass.as_deref_mut() {
-            m[i * n + i] = project(joint, &t1);
+            m[r * nv + r] = project(joint, &t1);
         }
         let mut k = i;
-        while let Some(j) = bodies[k].parent {
+        // Up the ancestors (and to a floating base's frame).
+        while bodies[k].parent.is_some() || floating {
             let (jk, xk) = (&bodies[k].joint, &ws.x[k]);
             [t1, t2, t3, t4] = [t1, t2, t3, t4].map(|t| force_to_parent(jk, xk, &t));
+            let Some(j) = bodies[k].parent else { break };
             k = j;
-            let joint_j = &bodies[j].joint;
+            let (joint_j, c) = (&bodies[j].joint, off + j);
             let sdot_j = &ws.sdot[j];
             let t1_sdot = sdot_j.dot(&t1);
-            dtau_dq[i * n + j] = ws.psidd[j].dot(&t1) + sdot_j.dot(&t4);
-            dtau_dqd[i * n + j] = (t1_sdot + t1_sdot) + project(joint_j, &t4);
-            dtau_dq[j * n + i] = project(joint_j, &t3);
-            dtau_dqd[j * n + i] = project(joint_j, &t2);
+            dtau_dq[r * nv + c] = ws.psidd[j].dot(&t1) + sdot_j.dot(&t4);
+            dtau_dqd[r * nv + c] = (t1_sdot + t1_sdot) + project(joint_j, &t4);
+            dtau_dq[c * nv + r] = project(joint_j, &t3);
+            dtau_dqd[c * nv + r] = project(joint_j, &t2);
             if let Some(m) = mass.as_deref_mut() {
                 let mij = project(joint_j, &t1);
-                m[i * n + j] = mij;
-                m[j * n + i] = mij;
+                m[r * nv + c] = mij;
+                m[c * nv + r] = mij;
             }
         }
-        if let Some(p) = bodies[i].parent {
-            let x = &ws.x[i];
-            let up = (inertia_to_parent(joint, x, &ws.ic[i]), inertia_to_parent(joint, x, &ws.idot[i]));
-            ws.ic[p] = ws.ic[p].add(&up.0);
-            ws.idot[p] = ws.idot[p].add(&up.1);
-            let (hc, f) = (force_to_parent(joint, x, &ws.hc[i]), force_to_parent(joint, x, &ws.f[i]));
-            ws.hc[p] += hc;
-            ws.f[p] += f;
+        if floating {
+            // The t vectors in the base's frame: its columns and rows.
+            let (t2a, t3a, t4a, t1a) = (t2.to_array(), t3.to_array(), t4.to_array(), t1.to_array());
+            for c in 0..6 {
+                let e = unit::<S>(c);
+                dtau_dq[r * nv + c] = world.cross_motion(&e).dot(&t1);
+                dtau_dqd[r * nv + c] = v0.cross_motion(&e).dot(&t1) + t4a[c];
+                dtau_dq[c * nv + r] = t3a[c];
+                dtau_dqd[c * nv + r] = t2a[c];
+                if let Some(m) = mass.as_deref_mut() {
+                    m[r * nv + c] = t1a[c];
+                    m[c * nv + r] = t1a[c];
+                }
+            }
+        }
+        let x = &ws.x[i];
+        let up = (inertia_to_parent(joint, x, &ws.ic[i]), inertia_to_parent(joint, x, &ws.idot[i]));
+        let (hc, f) = (force_to_parent(joint, x, &ws.hc[i]), force_to_parent(joint, x, &ws.f[i]));
+        let (ic_p, idot_p, hc_p, f_p) = match bodies[i].parent {
+            Some(p) => (&mut ws.ic[p], &mut ws.idot[p], &mut ws.hc[p], &mut ws.f[p]),
+            None if floating => (&mut ws.base.0, &mut ws.base.1, &mut ws.base.2, &mut ws.base.3),
+            None => continue,
+        };
+        *ic_p = ic_p.add(&up.0);
+        *idot_p = idot_p.add(&up.1);
+        *hc_p += hc;
+        *f_p += f;
+    }
+    if floating {
+        // The base's own 6×6 blocks, over the whole robot.
+        let (ic, idot, hc, _) = &ws.base;
+        for k in 0..6 {
+            let e = unit::<S>(k);
+            let dq = ic.mul_motion(&world.cross_motion(&e)).to_array();
+            let dqd = (ic.mul_motion(&v0.cross_motion(&e)) + idot.mul_motion(&e) + e.cross_force(hc)).to_array();
+            let m = ic.mul_motion(&e).to_array();
+            for l in 0..6 {
+                dtau_dq[l * nv + k] = dq[l];
+                dtau_dqd[l * nv + k] = dqd[l];
+                if let Some(mm) = mass.as_deref_mut() {
+                    mm[l * nv + k] = m[l];
+                }
+            }
         }
     }
     if let (Some(m), Some(armature)) = (mass, loads.armature) {
         for (i, &a) in armature.iter().enumerate() {
             if a != 0.0 {
-                m[i * n + i] += S::from_f64(a);
+                m[(off + i) * nv + off + i] += S::from_f64(a);
             }
         }
     }

@@ -20,7 +20,7 @@ pub(crate) struct DerivativeScratch {
 
 impl DerivativeScratch {
     pub(crate) fn new(model: &Model) -> Self {
-        let n = model.dof();
+        let n = model.nv();
         DerivativeScratch {
             dw: DerivativeWorkspace::new(model),
             rows: [vec![0.0; n * n], vec![0.0; n * n], vec![0.0; n * n]],
@@ -29,9 +29,6 @@ impl DerivativeScratch {
 }
 
 /// Copies the row-major `rows` into `m`.
-/// The error of a derivative asked of a floating-base robot.
-const FIXED_BASE_ONLY: &str = "the derivatives are computed for fixed-base robots only (yet)";
-
 pub(super) fn copy_rows(rows: &[f64], m: &mut DMatrix<f64>) {
     let n = m.nrows();
     for i in 0..n {
@@ -51,8 +48,9 @@ impl Robot {
         qd: &DVector<f64>,
         qdd: &DVector<f64>,
     ) -> Result<(DMatrix<f64>, DMatrix<f64>), InputError> {
-        let mut dqd = DMatrix::zeros(self.dof(), self.dof());
-        let dq = matrix(self.dof(), |dq| self.inverse_dynamics_derivatives_into(q, qd, qdd, dq, &mut dqd))?;
+        let nv = self.model.nv();
+        let mut dqd = DMatrix::zeros(nv, nv);
+        let dq = matrix(nv, |dq| self.inverse_dynamics_derivatives_into(q, qd, qdd, dq, &mut dqd))?;
         Ok((dq, dqd))
     }
     /// [`inverse_dynamics_derivatives`](Self::inverse_dynamics_derivatives)
@@ -66,7 +64,6 @@ impl Robot {
         dtau_dqd: &mut DMatrix<f64>,
     ) -> Result<(), InputError> {
         self.check()
-            .fixed_base(FIXED_BASE_ONLY)?
             .joints(&[("q", q), ("qd", qd), ("qdd", qdd)])?
             .square("dtau_dq", dtau_dq)?
             .square("dtau_dqd", dtau_dqd)?;
@@ -92,7 +89,7 @@ impl Robot {
         qd: &DVector<f64>,
         tau: &DVector<f64>,
     ) -> Result<(DMatrix<f64>, DMatrix<f64>, DMatrix<f64>), InputError> {
-        let n = self.dof();
+        let n = self.model.nv();
         let (mut dqd, mut minv) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n));
         let dq = matrix(n, |dq| self.forward_dynamics_derivatives_into(q, qd, tau, dq, &mut dqd, &mut minv))?;
         Ok((dq, dqd, minv))
@@ -109,8 +106,8 @@ impl Robot {
         minv: &mut DMatrix<f64>,
     ) -> Result<(), InputError> {
         self.check()
-            .fixed_base(FIXED_BASE_ONLY)?
             .joints(&[("q", q), ("qd", qd), ("tau", tau)])?
+            .forward_dynamics()?
             .square("dqdd_dq", dqdd_dq)?
             .square("dqdd_dqd", dqdd_dqd)?
             .square("minv", minv)?;
@@ -130,12 +127,12 @@ impl Robot {
     /// M(q)⁻¹, from the sparse LᵀDL factors of the mass matrix (no dense
     /// inversion).
     pub fn mass_matrix_inverse(&mut self, q: &DVector<f64>) -> Result<DMatrix<f64>, InputError> {
-        matrix(self.dof(), |m| self.mass_matrix_inverse_into(q, m))
+        matrix(self.model.nv(), |m| self.mass_matrix_inverse_into(q, m))
     }
     /// [`mass_matrix_inverse`](Self::mass_matrix_inverse) into `minv` (n×n),
     /// allocating nothing.
     pub fn mass_matrix_inverse_into(&mut self, q: &DVector<f64>, minv: &mut DMatrix<f64>) -> Result<(), InputError> {
-        self.check().fixed_base(FIXED_BASE_ONLY)?.joints(&[("q", q)])?.square("minv", minv)?;
+        self.check().joints(&[("q", q)])?.forward_dynamics()?.square("minv", minv)?;
         let [m, linv, _] = &mut self.deriv.rows;
         crba::crba(&self.model, &mut self.ws, q.as_slice(), Loads::none(), m);
         // M⁻¹ is symmetric: row-major and column-major agree.
