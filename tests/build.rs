@@ -86,6 +86,14 @@ fn main() {
         .file_name("quadruped12_floating.rs")
         .generate()
         .expect("generating the floating quadruped");
+    // Its derivatives (tests/generated_derivatives.rs).
+    dynagen::Builder::new()
+        .urdf("../dynagen/robots/quadruped12.urdf")
+        .floating_base(true)
+        .name("quadruped12_floating_derivatives")
+        .functions(&derivatives)
+        .generate()
+        .expect("generating the floating quadruped's derivatives");
     build_stiff::generate();
     build_split::generate();
 }

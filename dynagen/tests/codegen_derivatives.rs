@@ -233,3 +233,49 @@ fn derivatives_only_on_request() {
     assert_eq!(f, Function::ForwardDynamicsDerivatives);
     assert!("mass_matrix_inverse".parse::<Function>().is_ok());
 }
+
+/// A floating base's generated derivatives (NV × NV, the tangent of the
+/// base's body twist), both formulations, evaluated as traced against the
+/// generic ones (themselves checked against differences on the manifold and
+/// Pinocchio's free flyer): the two-armed torso (the quadruped12's module
+/// is compiled and checked in `tests/tests/generated_derivatives.rs`).
+#[test]
+fn floating_base_derivatives_match_the_generic_ones() {
+    let name = "torso_two_arms";
+    {
+        let model = support::model(name).with_floating_base();
+        let (nq, nv) = (model.nq(), model.nv());
+        let robot = Robot::new(model.clone());
+        let module = generate(&model, &CodegenOptions::default().functions(DERIVATIVES)).unwrap();
+        assert_eq!(module.functions.len(), 5);
+        assert!(module.source.contains("pub fn forward_dynamics_derivatives(\n    q: &[f64; NQ],"), "NQ-long q");
+        assert!(module.source.contains("[[f64; NV]; NV]"), "NV × NV matrices");
+        let mut rng = Rng::new(0xf1 + nv as u64);
+        for _ in 0..2 {
+            let mut q = rng.vec(nq, 2.0);
+            let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+            q[3..7].iter_mut().for_each(|x| *x /= norm);
+            let (qd, x) = (rng.vec(nv, 1.5), rng.vec(nv, 5.0));
+            let dv = |v: &Vec<f64>| DVector::from_vec(v.clone());
+            let inputs: [(&str, &[f64]); 4] = [("q", &q), ("qd", &qd), ("qdd", &x), ("tau", &x)];
+            let e = compare(
+                &module,
+                ScalarType::F64,
+                &inputs,
+                |f| match f {
+                    Function::InverseDynamicsDerivatives => {
+                        let (a, b) = robot.clone().inverse_dynamics_derivatives(&dv(&q), &dv(&qd), &dv(&x)).unwrap();
+                        [rows(&a), rows(&b)].concat()
+                    }
+                    Function::ForwardDynamicsDerivatives => {
+                        let (a, b, c) = robot.clone().forward_dynamics_derivatives(&dv(&q), &dv(&qd), &dv(&x)).unwrap();
+                        [rows(&a), rows(&b), rows(&c)].concat()
+                    }
+                    _ => rows(&robot.clone().mass_matrix_inverse(&dv(&q)).unwrap()),
+                },
+                1e-12,
+            );
+            println!("{name} (floating): worst relative error {e:.1e}");
+        }
+    }
+}

@@ -26,6 +26,7 @@ module!(iiwa14_derivatives);
 module!(quadruped12_derivatives);
 module!(ur5_derivatives_f32);
 module!(panda_derivatives_f32);
+module!(quadruped12_floating_derivatives);
 module!(ur5_controller_derivatives);
 
 /// Row-major entries.
@@ -90,6 +91,43 @@ fn iiwa14_derivatives_match_the_generic_ones() {
 #[test]
 fn quadruped12_derivatives_match_the_generic_ones() {
     check!(quadruped12_derivatives, "quadruped12", 100);
+}
+
+/// The floating quadruped's derivatives (NQ-long q, NV × NV matrices in the
+/// tangent of the base's body twist) against the generic ones.
+#[test]
+fn floating_quadruped12_derivatives_match_the_generic_ones() {
+    use quadruped12_floating_derivatives as m;
+    let mut robot = dynagen::Robot::new(bundled_model("quadruped12").with_floating_base());
+    assert_eq!(m::JOINT_NAMES.to_vec(), robot.joint_names());
+    let mut rng = Rng::new(0xf10a7);
+    let mut worst = 0.0_f64;
+    for _ in 0..50 {
+        let mut q: [f64; m::NQ] = core::array::from_fn(|_| rng.range(-2.0, 2.0));
+        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        let mut arr = |a: f64| -> [f64; m::NV] { core::array::from_fn(|_| rng.range(-a, a)) };
+        let (qd, x) = (arr(2.0), arr(10.0));
+        let v = |a: &[f64]| DVector::from_column_slice(a);
+        let (a, b) = m::inverse_dynamics_derivatives(&q, &qd, &x);
+        let (wa, wb) = robot.inverse_dynamics_derivatives(&v(&q), &v(&qd), &v(&x)).unwrap();
+        let (c, d, e) = m::forward_dynamics_derivatives(&q, &qd, &x);
+        let (wc, wd, we) = robot.forward_dynamics_derivatives(&v(&q), &v(&qd), &v(&x)).unwrap();
+        let minv = m::mass_matrix_inverse(&q);
+        for (what, got, want) in [
+            ("dtau/dq", a.concat(), rows(&wa)),
+            ("dtau/dqd", b.concat(), rows(&wb)),
+            ("dqdd/dq", c.concat(), rows(&wc)),
+            ("dqdd/dqd", d.concat(), rows(&wd)),
+            ("Minv", e.concat(), rows(&we)),
+            ("mass_matrix_inverse", minv.concat(), rows(&we)),
+        ] {
+            let err = norm_rel_err(&got, &want, 1e-300);
+            assert!(err <= 1e-12, "floating quadruped12 {what}: {err:e}");
+            worst = worst.max(err);
+        }
+    }
+    println!("floating quadruped12: worst relative error {worst:.1e}");
 }
 
 /// An f32 module against the generic f64 derivatives, ≤ 1e-4 of each

@@ -6,6 +6,7 @@
 //! only sines and cosines are the joints' (`q[7 + i]`).
 
 use super::CodegenError;
+use crate::algorithms::derivatives::{self, DerivativeWorkspace, Dynamics, Formulation, RigidBodyOnly};
 use crate::algorithms::floating::{aba, crba, forward_dynamics, rnea};
 use crate::algorithms::{Loads, Workspace};
 use crate::codegen::emit::Sizes;
@@ -18,11 +19,14 @@ use crate::symbolic::{Expr, Rewrites, Traced, Tracer};
 pub(crate) const JOINTS_IN_Q: usize = 7;
 
 /// Traces `f` of a floating-base `scene` without factoring. Only the default
-/// scene and the five functions of the contract are supported so far.
+/// scene, the five functions of the contract and the derivatives (their
+/// ∂τ by `formulation`, in the tangent space of the base's body twist) are
+/// supported so far.
 pub(crate) fn trace_unfactored(
     scene: &SceneModel,
     f: &Function,
     method: ForwardDynamicsMethod,
+    formulation: Formulation,
     rewrites: Rewrites,
 ) -> Result<Traced, CodegenError> {
     let unsupported =
@@ -37,6 +41,9 @@ pub(crate) fn trace_unfactored(
             | Function::BiasForces
             | Function::GravityTorques
             | Function::ForwardDynamics
+            | Function::InverseDynamicsDerivatives
+            | Function::ForwardDynamicsDerivatives
+            | Function::MassMatrixInverse
     ) {
         return Err(unsupported(format!("`{}` is not generated yet for a floating base", f.rust_name())));
     }
@@ -61,6 +68,28 @@ pub(crate) fn trace_unfactored(
         Function::GravityTorques => {
             if g.is_some() {
                 rnea::rnea(model, &mut ws, q, None, None, Loads::new(g, &[], &[]), &mut out)
+            }
+        }
+        Function::InverseDynamicsDerivatives | Function::ForwardDynamicsDerivatives | Function::MassMatrixInverse => {
+            let nv = sizes.nv;
+            let d = Dynamics { model, loads: Loads::new(g, &[], &[]), torques: &RigidBodyOnly, mass: None };
+            let mut dw = DerivativeWorkspace::<Expr>::new(model);
+            let (a, rest) = out.split_at_mut(nv * nv);
+            let state = || [q.as_slice(), &args[1], &args[2]];
+            match f {
+                Function::InverseDynamicsDerivatives => {
+                    derivatives::inverse_dynamics_derivatives(&d, &mut dw, state(), formulation, [a, rest], None)
+                }
+                Function::ForwardDynamicsDerivatives => {
+                    let (b, c) = rest.split_at_mut(nv * nv);
+                    derivatives::forward_dynamics_derivatives(&d, &mut dw, state(), formulation, [a, b, c])
+                }
+                _ => {
+                    let mut m = vec![tracer.constant(0.0); nv * nv];
+                    let mut linv = m.clone();
+                    crba::crba(model, &mut ws, q, Loads::none(), &mut m);
+                    derivatives::mass_matrix_inverse(model, &mut m, &mut linv, a);
+                }
             }
         }
         _ if method == ForwardDynamicsMethod::Ldlt => forward_dynamics::forward_dynamics_ldlt(

@@ -17,16 +17,18 @@ use crate::symbolic::OpCount;
 /// the algorithms never branch on the state. `None` for a frame the model
 /// does not have, and for what a floating-base module does not have.
 pub fn generic_op_count(model: &Model, f: &Function, method: ForwardDynamicsMethod) -> Option<OpCount> {
-    let n = model.dof();
-    let contract = matches!(
+    let supported = matches!(
         f,
         Function::InverseDynamics
             | Function::MassMatrix
             | Function::BiasForces
             | Function::GravityTorques
             | Function::ForwardDynamics
+            | Function::InverseDynamicsDerivatives
+            | Function::ForwardDynamicsDerivatives
+            | Function::MassMatrixInverse
     );
-    if model.is_floating() && !contract {
+    if model.is_floating() && !supported {
         // A floating base's other functions are not generated (nor counted) yet.
         return None;
     }
@@ -50,7 +52,7 @@ pub fn generic_op_count(model: &Model, f: &Function, method: ForwardDynamicsMeth
         _ => None,
     };
     let mut dw = DerivativeWorkspace::<Counting>::new(model);
-    let mut linv = vec![Counting::zero(); n * n];
+    let mut linv = vec![Counting::zero(); model.nv() * model.nv()];
     let (ws, out, a, g) = (&mut ws, &mut out, &args, Some(&g));
     let loads = Loads::new(g, &[], &[]);
     // The generic solver's derivatives: the analytical recursion.
@@ -67,12 +69,13 @@ pub fn generic_op_count(model: &Model, f: &Function, method: ForwardDynamicsMeth
         }
         Function::ForwardDynamics => aba::aba(model, ws, &a[0], &a[1], &a[2], loads, out),
         Function::InverseDynamicsDerivatives => {
-            let (x, y) = out.split_at_mut(n * n);
+            let (x, y) = out.split_at_mut(model.nv() * model.nv());
             d::inverse_dynamics_derivatives(&dynamics, &mut dw, [&a[0], &a[1], &a[2]], analytical, [x, y], None)
         }
         Function::ForwardDynamicsDerivatives => {
-            let (x, rest) = out.split_at_mut(n * n);
-            let (y, z) = rest.split_at_mut(n * n);
+            let nv = model.nv();
+            let (x, rest) = out.split_at_mut(nv * nv);
+            let (y, z) = rest.split_at_mut(nv * nv);
             d::forward_dynamics_derivatives(&dynamics, &mut dw, [&a[0], &a[1], &a[2]], analytical, [x, y, z])
         }
         Function::MassMatrixInverse => {

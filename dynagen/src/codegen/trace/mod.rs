@@ -208,7 +208,7 @@ pub(crate) fn trace_unfactored(
     rewrites: Rewrites,
 ) -> Result<Traced, CodegenError> {
     if scene.model.is_floating() {
-        return floating::trace_unfactored(scene, f, method, rewrites);
+        return floating::trace_unfactored(scene, f, method, formulation, rewrites);
     }
     let model = &scene.model;
     let n = model.dof();
