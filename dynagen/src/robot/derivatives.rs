@@ -1,7 +1,12 @@
 //! The derivatives of the dynamics on [`Robot`]: ∂τ/∂(q, q̇), ∂q̈/∂(q, q̇)
-//! and M⁻¹, by [`algorithms::derivatives`](crate::algorithms::derivatives),
-//! checked and allocation-free in their `_into` forms. Matrices are
-//! `[output][input]`: entry (i, j) is ∂yᵢ/∂xⱼ.
+//! and M⁻¹, by [`algorithms::derivatives`](crate::algorithms::derivatives)
+//! (the analytical recursion), checked and allocation-free in their `_into`
+//! forms. Matrices are `[output][input]`: entry (i, j) is ∂yᵢ/∂xⱼ, NV × NV.
+//! On a floating base the configuration's columns are in its tangent space:
+//! column k < 6 moves the base by exp of the body twist eₖ (angular first),
+//! as [`integrate`](crate::algorithms::floating::integrate) does; the
+//! translation columns are zero (`docs/architecture.md`, "Derivatives:
+//! conventions").
 
 use super::{matrix, Robot};
 use crate::algorithms::derivatives::{self as d, DerivativeWorkspace, Dynamics, Formulation, RigidBodyOnly};
