@@ -4,9 +4,10 @@
 //! KUKA iiwa 14 and the quadruped12 with its trunk fixed, each with the
 //! batched `sin_cos_all` (`*_batched`, every module has the `NAME_sc`
 //! bodies, which take the sines and cosines as inputs) and with the
-//! derivatives of the dynamics (`*_derivatives`); and the quadruped12 with
-//! a floating base, default options (`quadruped12_floating`, as `dynagen
-//! generate dynagen/robots/quadruped12.urdf --floating-base`).
+//! derivatives of the dynamics (`*_derivatives`); and the quadruped12 and
+//! the humanoid32 with a floating base, default options
+//! (`quadruped12_floating`, `humanoid32_floating`, as `dynagen generate
+//! dynagen/robots/ROBOT.urdf --floating-base`).
 
 use dynagen::codegen::{generate, CodegenOptions, Function, Trig};
 use dynagen::{Builder, Model};
@@ -45,15 +46,17 @@ fn main() {
             write("base", CodegenOptions::default().trig(Trig::Inputs).fma(false).runtime_dispatch(false));
         }
     }
-    // The floating-base quadruped (examples/floating.rs).
-    let urdf = robots.join("quadruped12.urdf");
-    println!("cargo:rerun-if-changed={}", urdf.display());
-    let model = Model::from_urdf_file(&urdf).unwrap_or_else(|e| panic!("{}: {e}", urdf.display()));
-    let module = Builder::new()
-        .model(model)
-        .floating_base(true)
-        .source("dynagen/robots/quadruped12.urdf")
-        .generate_module()
-        .unwrap_or_else(|e| panic!("generating quadruped12 (floating): {e}"));
-    std::fs::write(Path::new(&out).join("quadruped12_floating.rs"), module.source).expect("writing");
+    // The floating-base quadruped and humanoid (examples/floating.rs).
+    for robot in ["quadruped12", "humanoid32"] {
+        let urdf = robots.join(format!("{robot}.urdf"));
+        println!("cargo:rerun-if-changed={}", urdf.display());
+        let model = Model::from_urdf_file(&urdf).unwrap_or_else(|e| panic!("{}: {e}", urdf.display()));
+        let module = Builder::new()
+            .model(model)
+            .floating_base(true)
+            .source(&format!("dynagen/robots/{robot}.urdf"))
+            .generate_module()
+            .unwrap_or_else(|e| panic!("generating {robot} (floating): {e}"));
+        std::fs::write(Path::new(&out).join(format!("{robot}_floating.rs")), module.source).expect("writing");
+    }
 }

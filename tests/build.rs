@@ -6,7 +6,8 @@
 //! UR5 with only τ and no gravity; the derivatives of the UR5, the Panda,
 //! the two-armed torso, an f32 UR5 and the `ur5_controller` scene
 //! (`tests/generated_derivatives.rs`); the stiff robots (`build_stiff.rs`) and
-//! the split long-chain modules (`build_split.rs`).
+//! the split long-chain modules (`build_split.rs`); the floating quadruped and
+//! the legged manipulator's controller scene (`tests/generated_floating.rs`).
 
 use dynagen::codegen::ScalarType;
 use dynagen::scene::{Gravity, Scene};
@@ -79,7 +80,9 @@ fn main() {
         .functions(&derivatives)
         .generate()
         .expect("generating the ur5_controller scene's derivatives");
-    // A floating-base quadruped, for tests/generated_floating.rs.
+    // A floating-base quadruped, and the legged manipulator's controller
+    // scene (armature, friction, a tool wrench, a run-time payload, contact
+    // frames), for tests/generated_floating.rs.
     dynagen::Builder::new()
         .urdf("../dynagen/robots/quadruped12.urdf")
         .floating_base(true)
@@ -94,6 +97,12 @@ fn main() {
         .functions(&derivatives)
         .generate()
         .expect("generating the floating quadruped's derivatives");
+    dynagen::Builder::new()
+        .urdf("../dynagen/robots/legged_manipulator.urdf")
+        .floating_base(true)
+        .scene_file("../dynagen/scenes/legged_manipulator.toml")
+        .generate()
+        .expect("generating the legged manipulator's controller scene");
     build_stiff::generate();
     build_split::generate();
 }

@@ -1,46 +1,41 @@
-//! The generated floating-base functions of the quadruped12 (the module of
-//! `dynagen generate dynagen/robots/quadruped12.urdf --floating-base`,
-//! written by build.rs): `inverse_dynamics`, `mass_matrix`, `bias_forces`
-//! and `forward_dynamics`, each from q (its sines and cosines computed
-//! inside), timed as `examples/interleaved.rs` times the fixed-base ones
-//! and as `scripts/reference/pinocchio_floating_bench.cpp` times Pinocchio:
-//! 8 states, alternating rounds of 2,000 calls (each call's output left
-//! where it was written, behind a `black_box` of its address), the minimum
-//! over rounds per call (and the median). Run alternately with Pinocchio by
+//! The generated floating-base functions of the quadruped12 and the
+//! humanoid32 (the modules of `dynagen generate dynagen/robots/ROBOT.urdf
+//! --floating-base`, written by build.rs): `inverse_dynamics`,
+//! `mass_matrix`, `bias_forces` and `forward_dynamics`, each from q (its
+//! sines and cosines computed inside), timed as `examples/interleaved.rs`
+//! times the fixed-base ones and as
+//! `scripts/reference/pinocchio_floating_bench.cpp` times Pinocchio: 8
+//! states, alternating rounds of 2,000 calls (each call's output left where
+//! it was written, behind a `black_box` of its address), the minimum over
+//! rounds per call (and the median). Run alternately with Pinocchio by
 //! `scripts/reference/floating_bench.sh`.
 //!
-//! `cargo run --release -p dynagen-bench --example floating [ROUNDS]`
+//! `cargo run --release -p dynagen-bench --example floating [ROUNDS] [ROBOT]`
+//! (ROBOT: quadruped12 or humanoid32; both without it)
 
-use dynagen_bench::quadruped12_floating as m;
 use std::hint::black_box;
 use std::time::Instant;
 
 const CALLS: usize = 2000;
 
-/// A timed function on a state (the first entry of its output).
-type Timed = fn(&State) -> f64;
-
 /// One state: q, q̇, q̈, τ.
-struct State {
-    q: [f64; m::NQ],
-    qd: [f64; m::NV],
-    qdd: [f64; m::NV],
-    tau: [f64; m::NV],
+struct State<const NQ: usize, const NV: usize> {
+    q: [f64; NQ],
+    qd: [f64; NV],
+    qdd: [f64; NV],
+    tau: [f64; NV],
 }
+
+/// A timed function on a state (the first entry of its output).
+type Timed<const NQ: usize, const NV: usize> = fn(&State<NQ, NV>) -> f64;
 
 /// 8 states: base position in [-1, 1]³, a uniformly random unit quaternion,
 /// joints in [-π, π], q̇ in [-2, 2], q̈ in [-5, 5], τ in [-20, 20].
-fn states(seed: u64) -> Vec<State> {
-    let mut x = seed;
-    let mut next = move || {
-        x ^= x >> 12;
-        x ^= x << 25;
-        x ^= x >> 27;
-        (x.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    };
+fn states<const NQ: usize, const NV: usize>(seed: u64) -> Vec<State<NQ, NV>> {
+    let mut next = dynagen_bench::uniform(seed);
     (0..8)
         .map(|_| {
-            let mut q = [0.0; m::NQ];
+            let mut q = [0.0; NQ];
             for p in &mut q[..3] {
                 *p = next();
             }
@@ -75,24 +70,32 @@ fn first<T: Copy, const K: usize>(out: &[T; K]) -> T {
     out[0]
 }
 
-fn tau(s: &State) -> f64 {
-    first(&m::inverse_dynamics(&s.q, &s.qd, &s.qdd))
-}
-fn mass(s: &State) -> f64 {
-    first(&m::mass_matrix(&s.q))[0]
-}
-fn h(s: &State) -> f64 {
-    first(&m::bias_forces(&s.q, &s.qd))
-}
-fn fd(s: &State) -> f64 {
-    first(&m::forward_dynamics(&s.q, &s.qd, &s.tau))
+/// The four timed functions of a generated floating-base module `$m`.
+macro_rules! timed {
+    ($m:path) => {{
+        use $m as m;
+        fn tau(s: &State<{ m::NQ }, { m::NV }>) -> f64 {
+            first(&m::inverse_dynamics(&s.q, &s.qd, &s.qdd))
+        }
+        fn mass(s: &State<{ m::NQ }, { m::NV }>) -> f64 {
+            first(&m::mass_matrix(&s.q))[0]
+        }
+        fn h(s: &State<{ m::NQ }, { m::NV }>) -> f64 {
+            first(&m::bias_forces(&s.q, &s.qd))
+        }
+        fn fd(s: &State<{ m::NQ }, { m::NV }>) -> f64 {
+            first(&m::forward_dynamics(&s.q, &s.qd, &s.tau))
+        }
+        let fs: [(&str, Timed<{ m::NQ }, { m::NV }>); 4] =
+            [("inverse_dynamics", tau), ("mass_matrix", mass), ("bias_forces", h), ("forward_dynamics", fd)];
+        fs
+    }};
 }
 
-fn main() {
-    let rounds: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(200);
-    let st = states(0x5eed);
-    let fs: [(&str, Timed); 4] =
-        [("inverse_dynamics", tau), ("mass_matrix", mass), ("bias_forces", h), ("forward_dynamics", fd)];
+/// Times `fs` on `robot`'s states in alternating rounds and prints the
+/// minimum and median per call.
+fn run<const NQ: usize, const NV: usize>(robot: &str, fs: [(&str, Timed<NQ, NV>); 4], rounds: usize) {
+    let st = states::<NQ, NV>(0x5eed);
     let n = fs.len();
     let mut times = vec![Vec::with_capacity(rounds); n];
     for (_, f) in fs {
@@ -112,13 +115,22 @@ fn main() {
             times[k].push(t.elapsed().as_nanos() as f64 / CALLS as f64);
         }
     }
-    println!(
-        "dynagen generated, quadruped12 floating (NQ = {}, NV = {}), {rounds} rounds of {CALLS} calls",
-        m::NQ,
-        m::NV
-    );
+    println!("dynagen generated, {robot} floating (NQ = {NQ}, NV = {NV}), {rounds} rounds of {CALLS} calls");
     for ((name, _), t) in fs.iter().zip(&mut times) {
         t.sort_by(f64::total_cmp);
         println!("dynagen   {name:<18} min {:8.1} ns  median {:8.1} ns", t[0], t[t.len() / 2]);
+    }
+}
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let rounds: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(200);
+    let robot = args.next();
+    let wants = |name: &str| robot.as_deref().is_none_or(|r| r == name);
+    if wants("quadruped12") {
+        run("quadruped12", timed!(dynagen_bench::quadruped12_floating), rounds);
+    }
+    if wants("humanoid32") {
+        run("humanoid32", timed!(dynagen_bench::humanoid32_floating), rounds);
     }
 }

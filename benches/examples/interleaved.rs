@@ -28,13 +28,7 @@ type State<const N: usize> = [[f64; N]; 6];
 type Body<const N: usize> = fn(&State<N>) -> f64;
 
 fn states<const N: usize>(seed: u64) -> Vec<[[f64; N]; 6]> {
-    let mut x = seed;
-    let mut next = move || {
-        x ^= x >> 12;
-        x ^= x << 25;
-        x ^= x >> 27;
-        (x.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    };
+    let mut next = dynagen_bench::uniform(seed);
     (0..8)
         .map(|_| {
             let q: [f64; N] = core::array::from_fn(|_| 2.0 * next());

@@ -27,6 +27,23 @@ generated!(
     "quadruped12_floating.rs",
     "The quadruped12 with a floating base (`--floating-base`), default options."
 );
+generated!(
+    humanoid32_floating,
+    "humanoid32_floating.rs",
+    "The humanoid32 with a floating base (`--floating-base`), default options."
+);
+
+/// A deterministic generator of numbers uniform in [−1, 1) (xorshift64*),
+/// the examples' states: the same every run, no dependency.
+pub fn uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut x = seed;
+    move || {
+        x ^= x >> 12;
+        x ^= x << 25;
+        x ^= x >> 27;
+        (x.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+}
 
 /// The URDF of a bundled robot.
 pub fn urdf(robot: &str) -> String {

@@ -46,7 +46,7 @@
 //! | `fma` | `true`, `false`: `a*b + c` as `fma(a, b, c)`, one rounding where the target has a fused multiply-add | `true` |
 //! | `allow_nonphysical_inertia` | `true`, `false`: accept links whose rotational inertia is not positive semi-definite, with a warning (the mass matrix may be indefinite) | `false` (refused) |
 //! | `dispatch` | `true`, `false`: on x86-64 builds without the `avx2` and `fma` target features, also compile each function for AVX2 and FMA and run that copy where the processor has both (results differ in the last bits between machines) | `true` |
-//! | `floating_base` | `true`, `false`: the robot's root link moves freely (`NQ = DOF + 7`, `NV = DOF + 6`; the five functions of the contract) | `false` (a URDF `floating` root joint: `true`) |
+//! | `floating_base` | `true`, `false`: the robot's root link moves freely (`NQ = DOF + 7`, `NV = DOF + 6`; every scene key and frame function too, not the derivatives yet) | `false` (a URDF `floating` root joint: `true`) |
 //!
 //! # Scenes (both macros)
 //!
@@ -71,7 +71,7 @@
 //! | `coulomb_velocity` | a number (rad/s or m/s) |
 //! | `payload` | `{ link = LINK, mass = kg, com = [x, y, z], inertia = [ixx, iyy, izz, ixy, ixz, iyz] }` (repeat the key for several) |
 //! | `payload_input` | `LINK`: its payload is an argument |
-//! | `frame_pose`, `frame_jacobian` | `[FRAME, …]`: `frame_pose_FRAME(q)`, `frame_jacobian_FRAME(q)` |
+//! | `frame_pose`, `frame_jacobian`, `frame_world_jacobian`, `frame_acceleration_bias` | `[FRAME, …]`: `frame_pose_FRAME(q)`, `frame_jacobian_FRAME(q)` (body), `frame_world_jacobian_FRAME(q)`, `frame_acceleration_bias_FRAME(q, qd)` (J̇q̇) |
 //! | `target` | `std` (std allowed: the trigonometry is the `trig` option's, `batched` by default), `no_std_libm`, `no_std_sincos` |
 //!
 //! ```ignore
@@ -287,7 +287,8 @@ fn parse_ident<T: std::str::FromStr<Err = String>>(input: ParseStream) -> syn::R
 /// The options every macro accepts, for error messages.
 pub(crate) const OPTION_NAMES: &str = "functions, scalar, forward_dynamics, snap_rounding, trig, split_lets, fma, floating_base, \
                                        dispatch, allow_nonphysical_inertia, scene, gravity, tip_wrench, subtree, lock, armature, viscous, coulomb, \
-                                       coulomb_velocity, payload, payload_input, frame_pose, frame_jacobian, target";
+                                       coulomb_velocity, payload, payload_input, frame_pose, frame_jacobian, frame_world_jacobian, \
+                                       frame_acceleration_bias, target";
 
 struct UrdfInput {
     path: LitStr,

@@ -14,7 +14,8 @@ use syn::{braced, bracketed, Ident, LitStr, Token};
 
 /// The scene keys, for error messages.
 pub(crate) const SCENE_KEYS: &str = "scene, gravity, tip_wrench, subtree, lock, armature, viscous, coulomb, \
-                                     coulomb_velocity, payload, payload_input, frame_pose, frame_jacobian, target";
+                                     coulomb_velocity, payload, payload_input, frame_pose, frame_jacobian, \
+                                     frame_world_jacobian, frame_acceleration_bias, target";
 
 /// A link, joint or frame name: an identifier or a string.
 struct Name(String, Span);
@@ -224,13 +225,11 @@ impl SceneOptions {
                 let l = self.name(&n);
                 self.edit(move |s| s.payload_input(&l));
             }
-            "frame_pose" | "frame_jacobian" => {
+            kind if Function::FRAME_KINDS.contains(&kind) => {
                 for n in names(input)? {
-                    let f = self.name(&n);
-                    let pose = k == "frame_pose";
+                    let frame = Function::frame_function(kind, &self.name(&n)).expect("a frame kind");
                     self.edit_code(move |mut file| {
-                        let frame =
-                            if pose { Function::FramePose(f.clone()) } else { Function::FrameJacobian(f.clone()) };
+                        let frame = frame.clone();
                         let list = file.code.functions.get_or_insert_with(|| Function::DEFAULT.to_vec());
                         if !list.contains(&frame) {
                             list.push(frame);

@@ -735,12 +735,18 @@ fn ops_with_a_scene_lists_the_scene_module_beside_the_full_one() {
 /// `eval --derivatives`: the derivatives each state has the inputs for,
 /// `[output][input]` one row per line, bit for bit the library's; M·M⁻¹ = 1
 /// from the printed matrices; without the flag, none of them.
+/// Random states of the Panda for `test` (seeded): the states, their file,
+/// and the Panda's URDF path.
+fn panda_states(test: &str, seed: u64) -> (Vec<Fields>, PathBuf, String) {
+    let dir = scratch(test);
+    let states = some_states(9, seed);
+    let file = write(&dir, "states.json", &states_file(&states));
+    (states, file, support::robot_path("panda").display().to_string())
+}
+
 #[test]
 fn eval_derivatives_agree_bit_for_bit_with_the_library() {
-    let dir = scratch("eval_derivatives");
-    let states = some_states(9, 16);
-    let file = write(&dir, "states.json", &states_file(&states));
-    let path = support::robot_path("panda").display().to_string();
+    let (states, file, path) = panda_states("eval_derivatives", 16);
     let plain = succeeds(dynagen().args(["eval", &path, "--input"]).arg(&file));
     assert!(!plain.contains("dtau_dq") && !plain.contains("minv"));
     let out = succeeds(dynagen().args(["eval", &path, "--derivatives", "--input"]).arg(&file));
@@ -791,8 +797,9 @@ fn eval_derivatives_agree_bit_for_bit_with_the_library() {
 }
 
 /// `--floating-base` on the commands that load a robot: `generate` writes
-/// the NQ/NV module, `ops` counts it against the floating-base recursion,
-/// `eval` says it does not take one yet.
+/// the NQ/NV module (and a floating scene's, with contact frames), `ops`
+/// counts it against the floating-base recursion, `inspect` says it
+/// floats, `eval` takes NQ/NV-long states (checked below).
 #[test]
 fn floating_base_on_the_command_line() {
     let quad = support::robot_path("quadruped12");
@@ -805,11 +812,154 @@ fn floating_base_on_the_command_line() {
     let row = ops.lines().find(|l| l.starts_with("mass_matrix")).expect("a mass_matrix row");
     let counts: Vec<usize> = row.split_whitespace().skip(1).take(2).map(|x| x.parse().unwrap()).collect();
     assert!(counts[0] > 0 && counts[1] > counts[0], "generated and generic counts: {row}");
-    let e = fails(
-        dynagen()
-            .args(["eval", quad.to_str().unwrap(), "--floating-base", "--input", "-"])
-            .write_stdin("{\"states\": []}"),
-        1,
+    let inspect = succeeds(dynagen().args(["inspect", quad.to_str().unwrap(), "--floating-base"]));
+    assert!(inspect.contains("a floating base (the root link moves freely): q has NQ = 19 entries"), "{inspect}");
+    assert!(inspect.contains("  trunk (floating base)") && inspect.contains("m/s² in the world frame"), "{inspect}");
+    let lm = support::robot_path("legged_manipulator");
+    let scene = support::scene_path("legged_manipulator");
+    let (lm, scene) = (lm.to_str().unwrap(), scene.to_str().unwrap());
+    let out = succeeds(dynagen().args(["generate", lm, "--floating-base", "--scene", scene]));
+    assert!(out.contains("pub fn frame_acceleration_bias_fl_foot(q: &[f64; NQ], qd: &[f64; NV]) -> [f64; 6]"));
+    assert!(out.contains("// Run-time inputs: f_tip: &[T; 6] (m; f) at frame \"arm_ee\""), "{out}");
+    let ops = succeeds(dynagen().args(["ops", lm, "--floating-base", "--scene", scene]));
+    assert!(ops.contains("frame_acceleration_bias_rr_foot"), "{ops}");
+}
+
+/// The legged manipulator's Pinocchio data (free-flyer root) as `dynagen
+/// eval` input: with `--floating-base`, or a URDF whose root joint is
+/// `floating`, τ, M, h, g and q̈ agree with Pinocchio's within 1e-12; the
+/// errors name NQ/NV, the base's entries and the quaternion.
+#[test]
+fn eval_takes_floating_base_states() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(dir.join("tests/data/pinocchio_floating_legged_manipulator.json")).unwrap();
+    let data: Value = serde_json::from_str(&text).unwrap();
+    let states: Vec<Value> = data["states"].as_array().unwrap()[..4]
+        .iter()
+        .map(|s| serde_json::json!({"q": s["q"], "qd": s["qd"], "qdd": s["qdd"], "tau": s["tau"]}))
+        .collect();
+    let input = serde_json::json!({ "states": states }).to_string();
+    let lm = support::robot_path("legged_manipulator");
+    let with_flag = succeeds(
+        dynagen().args(["eval", lm.to_str().unwrap(), "--floating-base", "--input", "-"]).write_stdin(input.clone()),
     );
-    assert!(e.contains("fixed-base robots only"), "{e}");
+    // the same robot floated by its file: a world link and a floating joint
+    let dir = scratch("eval_takes_floating_base_states");
+    let floated = dir.join("floated.urdf");
+    let urdf = std::fs::read_to_string(&lm).unwrap().replace(
+        "<robot name=\"legged_manipulator\">",
+        "<robot name=\"legged_manipulator\"><link name=\"world\"/><joint name=\"root\" type=\"floating\">\
+         <parent link=\"world\"/><child link=\"trunk\"/></joint>",
+    );
+    std::fs::write(&floated, urdf).unwrap();
+    let by_file =
+        succeeds(dynagen().args(["eval", floated.to_str().unwrap(), "--input", "-"]).write_stdin(input.clone()));
+    assert_eq!(by_file, with_flag);
+    let out: Value = serde_json::from_str(&with_flag).unwrap();
+    assert_eq!(out["joint_names"].as_array().unwrap().len(), 18);
+    // every number of a value, rows flattened
+    fn flat(v: &Value) -> Vec<f64> {
+        match v {
+            Value::Array(a) => a.iter().flat_map(flat).collect(),
+            x => vec![x.as_f64().unwrap()],
+        }
+    }
+    for (k, (got, want)) in
+        out["results"].as_array().unwrap().iter().zip(data["states"].as_array().unwrap()).enumerate()
+    {
+        for (field, key) in [("tau", "tau_id"), ("M", "M"), ("h", "h"), ("g", "g"), ("qdd", "qdd_fd")] {
+            let (g, w) = (flat(&got[field]), flat(&want[key]));
+            assert_eq!(g.len(), w.len(), "{field}");
+            let scale = w.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            let e = g.iter().zip(&w).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max) / scale;
+            assert!(e < 1e-12, "state {k}: {field} differs from Pinocchio by {e:e}");
+        }
+    }
+    // errors: NQ and NV named, the base's entries named, the quaternion checked
+    let lm = lm.to_str().unwrap();
+    let eval = |states: &str| {
+        fails(dynagen().args(["eval", lm, "--floating-base", "--input", "-"]).write_stdin(states.to_string()), 1)
+    };
+    let zeros = |n: usize| format!("[{}]", vec!["0"; n].join(", "));
+    let e = eval(&format!("{{\"states\": [{{\"q\": {}}}]}}", zeros(18)));
+    assert!(e.contains("\"q\" has 18 entries, a floating-base q has NQ = 25"), "{e}");
+    let e = eval(&format!("{{\"states\": [{{\"q\": {}, \"qd\": {}}}]}}", zeros(25), zeros(18)));
+    assert!(e.contains("\"qd\" has 18 entries, a floating-base \"qd\" has NV = 24"), "{e}");
+    let mut q: Vec<String> = vec!["0".into(); 25];
+    q[4] = "\"y\"".into();
+    let e = eval(&format!("{{\"states\": [{{\"q\": [{}]}}]}}", q.join(", ")));
+    assert!(e.contains("state 0: \"q\"[4] (base quaternion y) is a string"), "{e}");
+    let e = eval(&format!("{{\"states\": [{{\"q\": {}}}]}}", zeros(25)));
+    assert!(e.contains("state 0: q[3..7], the base's quaternion (x, y, z, w), has norm 0"), "{e}");
+    q[4] = "0".into();
+    q[6] = "1.01".into();
+    let e = eval(&format!("{{\"states\": [{{\"q\": [{}]}}]}}", q.join(", ")));
+    assert!(e.contains("has norm 1.01, but it must be 1"), "{e}");
+}
+
+/// `eval --fd`: the forward dynamics behind "qdd" is the library's method
+/// of that name, bit for bit (the default the articulated-body algorithm);
+/// on a cancelling state of a test robot with its 50-digit reference
+/// (`tests/data/file_precision.json`) the compensated method is the
+/// accurate one; an unknown method is a usage error listing the four.
+#[test]
+fn eval_fd_picks_the_forward_dynamics() {
+    let (states, file, path) = panda_states("eval_fd", 21);
+    let run = |method: Option<&str>| -> Value {
+        let mut cmd = dynagen();
+        cmd.args(["eval", &path, "--input"]).arg(&file);
+        if let Some(m) = method {
+            cmd.args(["--fd", m]);
+        }
+        serde_json::from_str(&succeeds(&mut cmd)).unwrap()
+    };
+    assert_eq!(run(None), run(Some("aba")), "the default is aba");
+    let v = |x: &Vec<f64>| DVector::from_column_slice(x);
+    let mut counted = 0;
+    for method in ["aba", "ldlt", "compensated", "refined"] {
+        let doc = run(Some(method));
+        let mut robot = support::robot("panda");
+        if method == "refined" {
+            robot.set_compensated_refinement(1);
+        }
+        for (i, (r, (q, qd, _, tau))) in doc["results"].as_array().unwrap().iter().zip(&states).enumerate() {
+            let (Some(qd), Some(tau)) = (qd, tau) else { continue };
+            let want = match method {
+                "aba" => robot.forward_dynamics(&v(q), &v(qd), &v(tau)),
+                "ldlt" => robot.forward_dynamics_ldlt(&v(q), &v(qd), &v(tau)),
+                _ => robot.forward_dynamics_compensated(&v(q), &v(qd), &v(tau)),
+            }
+            .unwrap();
+            bits_eq(&format!("--fd {method} state {i} qdd"), &r["qdd"], want.as_slice());
+            counted += 1;
+        }
+    }
+    assert!(counted >= 16, "{counted}");
+
+    // A cancelling state of the 8-joint test chain: ABA loses digits, compensated does not.
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    let json: Value =
+        serde_json::from_str(&std::fs::read_to_string(data.join("file_precision.json")).unwrap()).unwrap();
+    let robot = &json["robots"][0];
+    let chain = data.join(robot["urdf"].as_str().unwrap());
+    let state = robot["states"].as_array().unwrap().iter().find(|s| s["kind"] == "cancelling").unwrap();
+    let input =
+        format!("{{\"states\": [{{\"q\": {}, \"qd\": {}, \"tau\": {}}}]}}", state["q"], state["qd"], state["tau"]);
+    let reference: Vec<f64> =
+        state["qdd"].as_array().unwrap().iter().map(|x| x.as_str().unwrap().parse().unwrap()).collect();
+    let error = |method: &str| {
+        let mut cmd = dynagen();
+        let out =
+            succeeds(cmd.arg("eval").arg(&chain).args(["--fd", method, "--input", "-"]).write_stdin(input.clone()));
+        let doc: Value = serde_json::from_str(&out).unwrap();
+        let qdd: Vec<f64> = doc["results"][0]["qdd"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        support::norm_rel_err(&qdd, &reference, 0.0)
+    };
+    let (aba, compensated) = (error("aba"), error("compensated"));
+    assert!(100.0 * compensated < aba, "compensated {compensated:e} against ABA {aba:e}");
+
+    let out = dynagen().args(["eval", "--fd", "rk4", "--input", "-"]).write_stdin("{\"states\": []}").output().unwrap();
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("rk4") && stderr.contains("aba, ldlt, compensated, refined"), "{stderr}");
 }

@@ -10,7 +10,7 @@ mod support;
 
 use dynagen::algorithms::{Loads, TipWrench, Workspace};
 use dynagen::codegen::{generate, generate_scene, CodegenOptions, Function, GeneratedModule, ScalarType};
-use dynagen::scene::{dynamics, SceneFile, SceneInputs, SceneRobot};
+use dynagen::scene::{dynamics, Gravity, PayloadInertia, Scene, SceneFile, SceneInputs, SceneRobot};
 use dynagen::spatial::{Force, Vec3};
 use dynagen::symbolic::Node;
 use dynagen::{DoubleDouble, Robot};
@@ -237,45 +237,75 @@ fn derivatives_only_on_request() {
 /// A floating base's generated derivatives (NV × NV, the tangent of the
 /// base's body twist), both formulations, evaluated as traced against the
 /// generic ones (themselves checked against differences on the manifold and
-/// Pinocchio's free flyer): the two-armed torso (the quadruped12's module
-/// is compiled and checked in `tests/tests/generated_derivatives.rs`).
+/// Pinocchio's free flyer): the two-armed torso plain, and in a scene with
+/// armature, viscous and Coulomb friction, a constant payload on the
+/// floating base, a run-time payload on a hand, gravity and a tip wrench as
+/// inputs (held constant). The quadruped12's module is compiled and checked
+/// in `tests/tests/generated_derivatives.rs`.
 #[test]
 fn floating_base_derivatives_match_the_generic_ones() {
-    let name = "torso_two_arms";
-    {
-        let model = support::model(name).with_floating_base();
+    let model = support::model("torso_two_arms").with_floating_base();
+    let payload = PayloadInertia::new(2.5, [0.05, -0.02, 0.1], [0.02, 0.03, 0.04, 0.002, -0.001, 0.0005]);
+    let scene = Scene::new()
+        .gravity(Gravity::Input)
+        .tip_wrench("right_ee")
+        .payload("base", payload)
+        .payload_input("left_hand")
+        .armature("left_shoulder_joint", 0.05)
+        .armature("torso_yaw_joint", 0.1)
+        .viscous("right_elbow_joint", 0.4)
+        .coulomb("left_elbow_joint", 1.5)
+        .coulomb_velocity(0.05);
+    for (what, applied) in [("plain", Scene::new()), ("scene", scene)].map(|(w, s)| (w, s.apply(&model).unwrap())) {
         let (nq, nv) = (model.nq(), model.nv());
-        let robot = Robot::new(model.clone());
-        let module = generate(&model, &CodegenOptions::default().functions(DERIVATIVES)).unwrap();
-        assert_eq!(module.functions.len(), 5);
+        let module = generate_scene(&applied, &CodegenOptions::default().functions(DERIVATIVES)).unwrap();
+        assert_eq!(module.functions.len(), 5, "both formulations of the two ∂τ-based functions");
         assert!(module.source.contains("pub fn forward_dynamics_derivatives(\n    q: &[f64; NQ],"), "NQ-long q");
         assert!(module.source.contains("[[f64; NV]; NV]"), "NV × NV matrices");
+        let mut robot = SceneRobot::new(applied.clone());
         let mut rng = Rng::new(0xf1 + nv as u64);
         for _ in 0..2 {
             let mut q = rng.vec(nq, 2.0);
             let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
             q[3..7].iter_mut().for_each(|x| *x /= norm);
             let (qd, x) = (rng.vec(nv, 1.5), rng.vec(nv, 5.0));
+            let (gravity, f_tip) = ([0.8, -0.4, -9.7], rng.vec(6, 10.0));
+            let hand = [PayloadInertia::new(0.7, [0.02, 0.01, -0.03], [0.001, 0.002, 0.0015, 0.0, 0.0001, 0.0])];
+            let p = &hand[0];
+            let payload_arg: Vec<f64> = [p.mass].into_iter().chain(p.com).chain(p.inertia).collect();
+            let inputs: [(&str, &[f64]); 7] = [
+                ("q", &q),
+                ("qd", &qd),
+                ("qdd", &x),
+                ("tau", &x),
+                ("gravity", &gravity),
+                ("f_tip", &f_tip),
+                ("payload_left_hand", &payload_arg),
+            ];
+            let si = match what {
+                "plain" => SceneInputs::default(),
+                _ => SceneInputs {
+                    gravity: Some(gravity.into()),
+                    tip_wrench: Some(Vector6::from_column_slice(&f_tip)),
+                    payloads: &hand,
+                },
+            };
             let dv = |v: &Vec<f64>| DVector::from_vec(v.clone());
-            let inputs: [(&str, &[f64]); 4] = [("q", &q), ("qd", &qd), ("qdd", &x), ("tau", &x)];
-            let e = compare(
+            let (a, b) = robot.inverse_dynamics_derivatives_with(&dv(&q), &dv(&qd), &dv(&x), &si).unwrap();
+            let (c, d, e) = robot.forward_dynamics_derivatives_with(&dv(&q), &dv(&qd), &dv(&x), &si).unwrap();
+            let minv = robot.mass_matrix_inverse_with(&dv(&q), &si).unwrap();
+            let worst = compare(
                 &module,
                 ScalarType::F64,
                 &inputs,
                 |f| match f {
-                    Function::InverseDynamicsDerivatives => {
-                        let (a, b) = robot.clone().inverse_dynamics_derivatives(&dv(&q), &dv(&qd), &dv(&x)).unwrap();
-                        [rows(&a), rows(&b)].concat()
-                    }
-                    Function::ForwardDynamicsDerivatives => {
-                        let (a, b, c) = robot.clone().forward_dynamics_derivatives(&dv(&q), &dv(&qd), &dv(&x)).unwrap();
-                        [rows(&a), rows(&b), rows(&c)].concat()
-                    }
-                    _ => rows(&robot.clone().mass_matrix_inverse(&dv(&q)).unwrap()),
+                    Function::InverseDynamicsDerivatives => [rows(&a), rows(&b)].concat(),
+                    Function::ForwardDynamicsDerivatives => [rows(&c), rows(&d), rows(&e)].concat(),
+                    _ => rows(&minv),
                 },
                 1e-12,
             );
-            println!("{name} (floating): worst relative error {e:.1e}");
+            println!("torso_two_arms (floating, {what}): worst relative error {worst:.1e}");
         }
     }
 }

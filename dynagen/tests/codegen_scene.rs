@@ -53,11 +53,16 @@ fn check_with(
     let applied = scene.apply(model).unwrap();
     let module = generate_scene(&applied, options).unwrap();
     let mut robot = SceneRobot::new(applied.clone());
-    let n = applied.dof();
+    // n joints, or a floating base's NQ-long q (a unit quaternion) and NV-long rest
+    let (nq, nv) = (applied.model.nq(), applied.model.nv());
     let mut rng = Rng::new(0x9e37_79b9_7f4a_7c15);
     let f32 = options.scalar == ScalarType::F32;
     for _ in 0..states {
-        let (q, qd, qdd, tau) = (rng.vec(n, 3.0), rng.vec(n, 2.0), rng.vec(n, 5.0), rng.vec(n, 20.0));
+        let (mut q, qd, qdd, tau) = (rng.vec(nq, 3.0), rng.vec(nv, 2.0), rng.vec(nv, 5.0), rng.vec(nv, 20.0));
+        if applied.model.is_floating() {
+            let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+            q[3..7].iter_mut().for_each(|x| *x /= norm);
+        }
         let gravity = [rng.signed(), rng.signed(), -9.81 + rng.signed()];
         let f_tip = rng.vec(6, 10.0);
         let payloads: Vec<PayloadInertia> = applied.input_payloads.iter().map(|_| payload(&mut rng)).collect();
@@ -111,6 +116,10 @@ fn check_with(
                 Function::MassMatrixInverse => rows(&robot.mass_matrix_inverse_with(&dv(&q), i).unwrap()),
                 Function::FramePose(frame) => rows(&robot.frame_pose(frame, &dv(&q)).unwrap()),
                 Function::FrameJacobian(frame) => rows(&robot.frame_jacobian(frame, &dv(&q)).unwrap()),
+                Function::FrameWorldJacobian(frame) => rows(&robot.frame_world_jacobian(frame, &dv(&q)).unwrap()),
+                Function::FrameAccelerationBias(frame) => {
+                    robot.frame_acceleration_bias(frame, &dv(&q), &dv(&qd)).unwrap().as_slice().to_vec()
+                }
             };
             assert_eq!(got.len(), want.len(), "{}", f.label());
             let e = norm_rel_err(&got, &want, 1e-300);
@@ -542,4 +551,76 @@ fn codegen_errors_name_the_item() {
     let e = SceneFile::from_toml_str("functions = []").unwrap_err();
     assert!(matches!(e, SceneError::NoFunctions), "{e}");
     assert!(e.to_string().contains("no function"), "{e}");
+}
+
+/// The legged manipulator (18 joints: Go1 legs, a Z1 arm) with a floating
+/// trunk.
+fn legged_manipulator() -> Model {
+    support::model("legged_manipulator").with_floating_base()
+}
+
+/// The five functions, coriolis, and every frame function of a foot and of
+/// the arm's tool.
+fn floating_options() -> CodegenOptions {
+    let mut options = CodegenOptions::default().function(Function::Coriolis);
+    for frame in ["FL_foot", "arm_ee"] {
+        for kind in Function::FRAME_KINDS {
+            options = options.function(Function::frame_function(kind, frame).unwrap());
+        }
+    }
+    options
+}
+
+/// Every scene option on a floating base, generated and checked against
+/// [`SceneRobot`] (which `tests/floating_scene.rs` and
+/// `tests/floating_pinocchio.rs` check against independent computations):
+/// run-time gravity (world frame), a tip wrench at a foot, run-time payloads
+/// on the floating trunk and on the arm, armature, friction and a lock; a
+/// constant payload and a tip wrench on the base; a sub-tree of the legs
+/// that keeps the floating base; one rooted on the arm's mount, a
+/// fixed-base arm.
+#[test]
+fn every_scene_option_on_a_floating_base_matches_the_scene_robot() {
+    let model = legged_manipulator();
+    let everything = Scene::new()
+        .gravity(Gravity::Input)
+        .tip_wrench("FL_foot")
+        .payload_input("trunk")
+        .payload_input("arm_link06")
+        .armature("FL_calf_joint", 0.03)
+        .armature("arm_joint2", 0.01)
+        .viscous("RR_thigh_joint", 0.2)
+        .coulomb("arm_joint1", 1.5)
+        .lock("arm_joint6", 0.3);
+    let (applied, m) = check_with(&model, &everything, &floating_options(), 3, 1e-12);
+    assert!(applied.model.is_floating() && applied.dof() == 17, "{}", applied.dof());
+    // the signatures, whitespace aside
+    let flat: String = m.source.split_whitespace().collect();
+    for signature in [
+        "pub fn inverse_dynamics(q: &[f64; NQ], qd: &[f64; NV], qdd: &[f64; NV], gravity: &[f64; 3], f_tip: &[f64; 6], \
+         payload_trunk: &[f64; 10], payload_arm_link06: &[f64; 10],) -> [f64; NV]",
+        "pub fn frame_acceleration_bias_fl_foot(q: &[f64; NQ], qd: &[f64; NV]) -> [f64; 6]",
+        "pub fn frame_world_jacobian_arm_ee(q: &[f64; NQ]) -> [[f64; NV]; 6]",
+    ] {
+        let want: String = signature.split_whitespace().collect();
+        assert!(flat.contains(&want), "missing: {signature}");
+    }
+    assert!(m.source.contains("// Gravity: a run-time input, m/s^2 in the world frame."));
+    assert!(m.source.contains("`gravity`: m/s², in the world frame."));
+    let on_base = Scene::new()
+        .gravity(Gravity::Constant([0.5, -0.3, -9.7]))
+        .payload("trunk", PayloadInertia::new(2.0, [0.05, 0.0, 0.03], [0.01, 0.02, 0.02, 0.001, 0.0, 0.0]))
+        .tip_wrench("trunk")
+        .lock("FL_calf_joint", -1.2);
+    let (applied, _) = check_with(&model, &on_base, &floating_options(), 3, 1e-12);
+    assert!(applied.warnings.is_empty(), "{:?}", applied.warnings);
+    let legs = Scene::new().gravity(Gravity::None).subtree("trunk", &["FL_foot", "FR_foot", "RL_foot", "RR_foot"]);
+    let options = CodegenOptions::default().function(Function::FrameAccelerationBias("RR_foot".into()));
+    let (applied, _) = check_with(&model, &legs, &options, 3, 1e-12);
+    assert!(applied.model.is_floating() && applied.dof() == 12);
+    let arm = Scene::new().subtree("arm_link00", &["arm_ee"]).armature("arm_joint3", 0.02);
+    let options = CodegenOptions::default().function(Function::FrameAccelerationBias("arm_ee".into()));
+    let (applied, m) = check_with(&model, &arm, &options, 3, 1e-12);
+    assert!(!applied.model.is_floating() && applied.dof() == 6);
+    assert!(m.source.contains("pub const NQ: usize = DOF;"));
 }

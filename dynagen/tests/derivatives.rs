@@ -424,3 +424,85 @@ fn a_floating_base_matches_double_double_differences_on_the_manifold() {
         }
     }
 }
+
+/// A floating-base scene (the legged manipulator: armature, viscous and
+/// Coulomb friction on the joints, a constant payload on the floating trunk,
+/// a run-time payload on the arm, gravity and a foot's wrench as inputs):
+/// `SceneRobot`'s derivatives against double-double central differences on
+/// the manifold of the scene's own dynamics with the inputs held constant,
+/// M·M⁻¹ = 1, and M⁻¹ alone equal to the forward dynamics' third matrix.
+#[test]
+fn a_floating_scene_enters_its_derivatives() {
+    use dynagen::scene::{dynamics, Gravity, PayloadInertia, Scene, SceneInputs, SceneRobot};
+    let model = support::model("legged_manipulator").with_floating_base();
+    let trunk = PayloadInertia::new(3.0, [0.05, -0.02, 0.06], [0.02, 0.03, 0.04, 0.002, -0.001, 0.0005]);
+    let arm = [PayloadInertia::new(0.5, [0.04, 0.0, 0.01], [0.0005, 0.0006, 0.0004, 0.0, 0.0, 0.0])];
+    let applied = Scene::new()
+        .gravity(Gravity::Input)
+        .tip_wrench("RL_foot")
+        .payload("trunk", trunk)
+        .payload_input("arm_link06")
+        .armature("FL_hip_joint", 0.011)
+        .armature("arm_joint2", 0.004)
+        .viscous("RR_calf_joint", 0.3)
+        .coulomb("arm_joint1", 1.2)
+        .coulomb_velocity(0.05)
+        .apply(&model)
+        .unwrap();
+    let frame = applied.tip_wrench_frame.unwrap();
+    let mut robot = SceneRobot::new(applied);
+    let (nq, nv) = (model.nq(), model.nv());
+    let (g, w) = ([1.5, -0.7, -9.6], [0.3, -1.2, 0.7, 15.0, -4.0, 22.0]);
+    let inputs = SceneInputs {
+        gravity: Some(nalgebra::Vector3::from(g)),
+        tip_wrench: Some(nalgebra::Vector6::from(w)),
+        payloads: &arm,
+    };
+    let (gd, tips) = (Vec3(g.map(Dd::from)), dd_tips(&[(frame, w)]));
+    let loads = Loads::gravity(&gd).with_tips(&tips);
+    let mut rng = Rng::new(0x5ce4e);
+    for k in 0..2 {
+        let mut q = rng.vec(nq, 2.0);
+        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        // the arm's Coulomb joint well inside its smooth sign's slope
+        let (mut qd, qdd, tau) = (rng.vec(nv, 1.5), rng.vec(nv, 3.0), rng.vec(nv, 10.0));
+        qd[6 + model.bodies.iter().position(|b| b.joint.name == "arm_joint1").unwrap()] = 0.03;
+        let v = |x: &Vec<f64>| DVector::from_vec(x.clone());
+        let (dq, dqd) = robot.inverse_dynamics_derivatives_with(&v(&q), &v(&qd), &v(&qdd), &inputs).unwrap();
+        let (fq, fqd, minv) = robot.forward_dynamics_derivatives_with(&v(&q), &v(&qd), &v(&tau), &inputs).unwrap();
+        let m = robot.mass_matrix_with(&v(&q), &inputs).unwrap();
+        let minv_alone = robot.mass_matrix_inverse_with(&v(&q), &inputs).unwrap();
+        // The scene as the last call left it: the run-time payload in its model.
+        let scene = robot.scene().clone();
+        let mut ws = Workspace::<Dd>::new(&scene.model);
+        let mut id = |a: &[Dd], b: &[Dd], c: &[Dd], y: &mut [Dd]| {
+            dynamics::inverse_dynamics(&scene, &mut ws, a, b, c, loads, y)
+        };
+        let at = (&q[..], &qd[..], &qdd[..]);
+        let (e_dq, e_dqd, e_m) = (
+            err(&dq, &central_floating(&scene.model, at, Wrt::Q, &mut id)),
+            err(&dqd, &central_floating(&scene.model, at, Wrt::Qd, &mut id)),
+            err(&m, &central_floating(&scene.model, at, Wrt::Third, &mut id)),
+        );
+        let mut ws = Workspace::<Dd>::new(&scene.model);
+        let mut fd = |a: &[Dd], b: &[Dd], c: &[Dd], y: &mut [Dd]| {
+            dynamics::forward_dynamics(&scene, &mut ws, a, b, c, loads, y)
+        };
+        let at = (&q[..], &qd[..], &tau[..]);
+        let (e_fq, e_fqd, e_minv) = (
+            err(&fq, &central_floating(&scene.model, at, Wrt::Q, &mut fd)),
+            err(&fqd, &central_floating(&scene.model, at, Wrt::Qd, &mut fd)),
+            err(&minv, &central_floating(&scene.model, at, Wrt::Third, &mut fd)),
+        );
+        let e_eye = (&m * &minv - DMatrix::identity(nv, nv)).norm();
+        let e_alone = (&minv_alone - &minv).norm() / minv.norm();
+        let all = [e_dq, e_dqd, e_m, e_fq, e_fqd, e_minv, e_eye, e_alone];
+        let msg = format!(
+            "legged manipulator scene state {k}: dtau/dq {e_dq:.1e}, dtau/dqd {e_dqd:.1e}, M {e_m:.1e}, \
+             dqdd/dq {e_fq:.1e}, dqdd/dqd {e_fqd:.1e}, Minv {e_minv:.1e}, M Minv - 1 {e_eye:.1e}, Minv alone {e_alone:.1e}"
+        );
+        println!("{msg}");
+        assert!(all.iter().all(|e| *e <= 1e-9), "{msg}");
+    }
+}

@@ -441,6 +441,15 @@ fn urdf_errors_name_the_item() {
     // two roots
     let e = err(robot(format!("{}{}", link("a"), link("b"))));
     assert!(matches!(&e, ModelError::MultipleRoots(r) if r == &["a", "b"]), "{e}");
+    assert!(e.to_string().contains("several root links (a, b)"), "{e}");
+    // two roots, one of them floated by a floating joint: still two trees
+    let e = err(robot(format!(
+        "<link name=\"world\"/>{}{}{}",
+        link("base"),
+        link("spare"),
+        joint("root", "floating", "world", "base")
+    )));
+    assert!(e.to_string().contains("world") && e.to_string().contains("spare"), "{e}");
 }
 
 #[test]
@@ -622,18 +631,6 @@ fn compensated_forward_dynamics_on_a_floating_base() {
     assert!(comp_worst < 1e-9 && comp_worst < plain_worst, "compensated {comp_worst:e}, plain {plain_worst:e}");
 }
 
-/// A scene other than the default one on a floating base is not there
-/// yet: a clear error naming the root, never a panic in the trace. (The
-/// default scene is the model: `tests/codegen_floating.rs` generates it.)
-#[test]
-fn scenes_refuse_a_floating_base_by_name() {
-    let model = support::model("quadruped12").with_floating_base();
-    assert!(dynagen::scene::Scene::default().apply(&model).is_ok());
-    let e = dynagen::scene::Scene::new().armature("FR_hip_joint", 0.1).apply(&model).unwrap_err();
-    assert!(matches!(e, dynagen::SceneError::FloatingBase { ref root } if root == "trunk"), "{e}");
-    assert!(e.to_string().contains("\"trunk\" floats"), "{e}");
-}
-
 /// A floating robot that cannot be accelerated in every direction (a point
 /// mass) gets a warning naming its root; a real one does not.
 #[test]
@@ -712,4 +709,47 @@ fn energies_agree_with_m_and_g() {
             assert!((slope - gv[k]).abs() < 1e-7 * scale, "seed {seed}: dV/dq[{k}] = {slope} vs g = {}", gv[k]);
         }
     }
+}
+
+/// A payload carried by the floating base ([`BASE_BODY`]) is the base's
+/// inertia plus the payload's, in rnea, crba and aba alike.
+#[test]
+fn a_payload_on_the_base_adds_to_the_base_inertia() {
+    use dynagen::algorithms::{BodyInertia, BASE_BODY};
+    use dynagen::spatial::{Inertia, Sym3};
+    let g = Vec3(G);
+    let model = random_model(17, 6);
+    let nv = model.nv();
+    let payload =
+        Inertia::from_mass_com_inertia(2.5, Vec3([0.1, -0.05, 0.2]), Sym3([0.03, 0.04, 0.02, 0.001, 0.0, -0.002]));
+    let mut heavier = model.clone();
+    heavier.base_inertia = heavier.base_inertia.add(&payload);
+    let carried = [BodyInertia { body: BASE_BODY, inertia: payload }];
+    let loads = Loads::gravity(&g).with_payloads(&carried);
+    let (mut ws, mut wh) = (Workspace::new(&model), Workspace::new(&heavier));
+    let mut rng = Rng::new(23);
+    for _ in 0..3 {
+        let (q, qd) = random_state(&model, &mut rng, 20.0);
+        let (qdd, tau) = (rng.vec(nv, 5.0), rng.vec(nv, 20.0));
+        let (mut a, mut b) = (vec![0.0; nv], vec![0.0; nv]);
+        rnea(&model, &mut ws, &q, Some(&qd), Some(&qdd), loads, &mut a);
+        rnea(&heavier, &mut wh, &q, Some(&qd), Some(&qdd), Loads::gravity(&g), &mut b);
+        assert!(rel_err(&a, &b, 1.0) < 1e-14, "rnea");
+        aba(&model, &mut ws, &q, &qd, &tau, loads, &mut a);
+        aba(&heavier, &mut wh, &q, &qd, &tau, Loads::gravity(&g), &mut b);
+        assert!(rel_err(&a, &b, 1.0) < 1e-12, "aba");
+        let (mut ma, mut mb) = (vec![0.0; nv * nv], vec![0.0; nv * nv]);
+        crba(&model, &mut ws, &q, loads, &mut ma);
+        crba(&heavier, &mut wh, &q, Loads::none(), &mut mb);
+        assert!(rel_err(&ma, &mb, 1.0) < 1e-14, "crba");
+    }
+    // On a fixed base it moves nothing.
+    let mut fixed = model.clone();
+    fixed.root_joint = dynagen::model::RootJoint::Fixed;
+    let n = fixed.dof();
+    let mut wf = Workspace::new(&fixed);
+    let (mut ma, mut mb) = (vec![0.0; n * n], vec![0.0; n * n]);
+    fixed_crba::crba(&fixed, &mut wf, &vec![0.3; n], Loads::none().with_payloads(&carried), &mut ma);
+    fixed_crba::crba(&fixed, &mut wf, &vec![0.3; n], Loads::none(), &mut mb);
+    assert_eq!(ma, mb);
 }

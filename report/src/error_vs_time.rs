@@ -12,11 +12,14 @@
 //! report gives the median and the minimum over the repetitions.
 //!
 //! Error: ‖x − x_ref‖₂ / ‖x_ref‖₂ (Frobenius for M), where x_ref is the same
-//! algorithm run in [`DoubleDouble`] (≈ 32 digits; the model's rotations are
-//! re-orthonormalised at that precision by the `Scalar` hooks), on random and
-//! on extreme states. Every state is made of f32 numbers, so that f32 and
-//! f64 variants compute from the same input and the f32 error is the
-//! computation's, not the rounding of its input.
+//! algorithm run in [`DoubleDouble`] (≈ 32 digits) on the robot as its file
+//! defines it (every constant from the file's decimals:
+//! [`Scalar::FILE_CONSTANTS`]), on random and on extreme states. Every state
+//! is made of f32 numbers, so that f32 and f64 variants compute from the
+//! same input and the f32 error is the computation's, not the rounding of
+//! its input. A row [`MODEL_ROUNDING`] gives the part of the error that is
+//! the model's rounding alone: the `f64` model (its constants rounded as
+//! f64 code computes with them) run in double-double, against the file's.
 
 use crate::plot::{self, Series};
 use crate::report::Report;
@@ -131,6 +134,10 @@ pub const VARIANTS: [&str; 6] = [
     "generated f64, sin/cos inputs",
     "generated f32",
 ];
+
+/// The row of the model's rounding: the `f64` model computed in
+/// double-double, against the file's robot; it has no time.
+pub const MODEL_ROUNDING: &str = "f64 model, exact arithmetic (the model's rounding)";
 
 /// One state of the robot. Every entry is an f32 number.
 #[derive(Clone, Debug)]
@@ -452,17 +459,21 @@ pub fn median_max(values: &[f64]) -> Option<(f64, f64)> {
 }
 
 /// The errors of each variant (in `variants`' order) over `states`, against
-/// the double-double reference; states where the reference is zero are left
-/// out.
+/// the double-double reference on the file's robot, then those of the
+/// double-double computation on the `f64` model (the model's rounding);
+/// states where the reference is zero are left out.
 pub fn errors(model: &Model, f: Func, variants: &mut [Variant], states: &[State]) -> Vec<Vec<f64>> {
     // The two forward dynamics have one exact answer: both are measured
     // against the double-double articulated-body algorithm.
     let reference_f = if f == Func::FdLdlt { Func::FdAba } else { f };
-    let mut errs = vec![Vec::with_capacity(states.len()); variants.len()];
+    let rounded = model.clone().without_file_values();
+    let mut errs = vec![Vec::with_capacity(states.len()); variants.len() + 1];
     for state in states {
         let r = generic_eval::<DoubleDouble>(model, reference_f, state);
-        for (v, e) in variants.iter_mut().zip(&mut errs) {
-            if let Some(x) = relative_error(&(v.eval)(state), &r) {
+        let results = variants.iter_mut().map(|v| (v.eval)(state));
+        let results = results.chain(std::iter::once(generic_eval::<DoubleDouble>(&rounded, reference_f, state)));
+        for (x, e) in results.zip(&mut errs) {
+            if let Some(x) = relative_error(&x, &r) {
                 e.push(x);
             }
         }
@@ -569,9 +580,11 @@ pub fn measure(report: &Report, robot: &str, model: &Model, quick: bool) -> Vec<
         let mut vs = variants(robot, model, f, &timing);
         let e_random = errors(model, f, &mut vs, &random);
         let e_extreme = errors(model, f, &mut vs, &extreme);
-        let times = time(&mut vs, timing.len(), z.reps, z.batch);
-        for (((v, t), r), e) in vs.iter().zip(times).zip(e_random).zip(e_extreme) {
-            rows.push(Row { func: f, variant: v.name, time: t, random: r, extreme: e });
+        let mut times = time(&mut vs, timing.len(), z.reps, z.batch);
+        times.push(Timing { median: f64::NAN, min: f64::NAN });
+        let names = vs.iter().map(|v| v.name).chain([MODEL_ROUNDING]);
+        for (((name, t), r), e) in names.zip(times).zip(e_random).zip(e_extreme) {
+            rows.push(Row { func: f, variant: name, time: t, random: r, extreme: e });
         }
     }
     rows
@@ -612,7 +625,9 @@ fn table(rows: &[Row]) -> String {
     );
     for r in rows {
         let generic = rows.iter().find(|g| g.func == r.func && g.variant == VARIANTS[0]).map(|g| g.time.median);
-        let speedup = generic.map_or("–".into(), |g| format!("{:.1}×", g / r.time.median));
+        let speedup = generic
+            .filter(|_| r.time.median.is_finite())
+            .map_or("–".into(), |g| format!("{:.1}×", g / r.time.median));
         let (rm, rx) = fmt_stats(&r.random);
         let (em, ex) = fmt_stats(&r.extreme);
         let _ = writeln!(
@@ -670,7 +685,12 @@ pub fn run(report: &mut Report) {
          minimum is closer to what a quiet machine gives, and the ratios between variants, measured \
          interleaved, hold better than either.\n\n\
          **Error**: ‖x − x_ref‖₂ / ‖x_ref‖₂ (Frobenius for M) against the same algorithm run in \
-         double-double (≈ 32 digits), both forward dynamics against the double-double ABA. \
+         double-double (≈ 32 digits) on the robot as its URDF file defines it (rotations from rpy, unit \
+         axes, inertias moved to body frames and fixed links merged, all in double-double from the file's \
+         decimals), both forward dynamics against the double-double ABA. The row *{rounding}* is that \
+         computation on the f64 model (each constant rounded to f64, as every f64 and f32 variant and the \
+         generated code compute with it) against the file's robot: the part of each variant's error that is \
+         the model's rounding, not its arithmetic. \
          *Random*: {random} states with |q| ≤ π, |q̇| ≤ 2 rad/s, |q̈| ≤ 5 rad/s², |τ| ≤ 30 N·m. \
          *Extreme*: {extreme} states: the zero state, then alternately |q̇| ≤ 100 rad/s and |q| ≤ 1e3 rad \
          (prismatic joints stay within ±4 cm). Every input is an f32 number, so f32 and f64 variants see the \
@@ -682,6 +702,7 @@ pub fn run(report: &mut Report) {
         timing = z.timing,
         random = z.random,
         extreme = z.extreme,
+        rounding = MODEL_ROUNDING,
     );
     let mut summary = String::from(
         "| robot | function | generic f64 [ns] | generated f64, default (`sin_cos_all`) [ns] | speed-up | \
@@ -775,7 +796,15 @@ fn observations(all: &[(&str, Vec<Row>)]) -> String {
             .collect()
     };
     let f32_worst = worst(&|v: &str| v.ends_with("f32"));
-    let f64_worst = worst(&|v: &str| !v.ends_with("f32"));
+    let f64_worst = worst(&|v: &str| !v.ends_with("f32") && v != MODEL_ROUNDING);
+    let rounding: Vec<(f64, String)> = all
+        .iter()
+        .flat_map(|(robot, rows)| {
+            rows.iter()
+                .filter(|r| r.variant == MODEL_ROUNDING)
+                .map(move |r| (r.max_error(), format!("{robot} {}", r.func.short())))
+        })
+        .collect();
     let nan = all.iter().flat_map(|(_, rows)| rows).filter(|r| r.max_error().is_nan()).count();
     let ldlt_vs_aba: Vec<(f64, String)> = all
         .iter()
@@ -791,7 +820,9 @@ fn observations(all: &[(&str, Vec<Row>)]) -> String {
          - The batched `sin_cos_all` against std's `sin_cos`, whole function: {} the time.\n\
          - Generated f32 against generated f64: {} the time.\n\
          - Forward dynamics, generated f64, CRBA + LTDL against ABA: {} the time.\n\
-         - Largest error of any f64 variant: {}; of any f32 variant: {}; non-finite results: {nan}.\n",
+         - Largest error of any f64 variant: {}; of any f32 variant: {}; non-finite results: {nan}.\n\
+         - The model's rounding alone (the f64 model computed in double-double, against the file's robot): \
+         {}; against the same reference, the f64 variants' errors above are their arithmetic plus this.\n",
         spread(&ratio(VARIANTS[0], VARIANTS[3]), times),
         spread(&trig_share, percent),
         spread(&ratio(VARIANTS[3], VARIANTS[2]), times),
@@ -799,6 +830,7 @@ fn observations(all: &[(&str, Vec<Row>)]) -> String {
         spread(&ldlt_vs_aba, times),
         spread(&f64_worst, fmt_err).split(" to ").last().unwrap_or("–"),
         spread(&f32_worst, fmt_err).split(" to ").last().unwrap_or("–"),
+        spread(&rounding, fmt_err),
     )
 }
 
@@ -818,6 +850,9 @@ mod tests {
             let mut vs = variants("planar_2link", &model, f, &states[..2]);
             assert_eq!(vs.iter().map(|v| v.name).collect::<Vec<_>>(), VARIANTS);
             let errs = errors(&model, f, &mut vs, &states);
+            assert_eq!(errs.len(), VARIANTS.len() + 1, "the variants and the model's rounding");
+            let (median, max) = median_max(&errs[VARIANTS.len()]).unwrap();
+            assert!(max < 1e-14 && median > 1e-20, "{f:?}: the model's rounding, median {median:e}, max {max:e}");
             for (name, e) in VARIANTS.iter().zip(&errs) {
                 assert!(e.len() >= states.len() - 1, "{f:?} {name}: only {} states measured", e.len());
                 let (median, max) = median_max(e).unwrap();

@@ -1,7 +1,9 @@
-//! The compiled floating-base module of the quadruped (written by
-//! `build.rs`) against the floating-base algorithms, at random unit
-//! quaternions and |q̇| up to 50: the generated code computes what the
-//! generic solver computes, with the contract's NQ/NV signatures.
+//! The compiled floating-base modules (written by `build.rs`) against the
+//! generic solver, at random unit quaternions and |q̇| up to 50: the
+//! quadruped's against the floating-base algorithms, the legged
+//! manipulator's controller scene (inputs, contact frames) against
+//! `SceneRobot`; the generated code computes what the generic solver
+//! computes, with the contract's NQ/NV signatures.
 
 use dynagen::algorithms::floating::{aba, crba, rnea};
 use dynagen::algorithms::{Loads, Workspace};
@@ -52,4 +54,79 @@ fn the_compiled_floating_quadruped_matches_the_generic_solver() {
         check(quad::mass_matrix(&q).as_flattened(), &m, "M");
     }
     println!("floating quadruped, compiled: worst relative error {worst:.1e}");
+}
+
+#[allow(dead_code)] // the module's helpers this test does not call
+mod controller {
+    include!(concat!(env!("OUT_DIR"), "/legged_manipulator_controller.rs"));
+}
+
+/// The legged manipulator's controller scene (`dynagen/scenes/
+/// legged_manipulator.toml`: armature and friction on the joints, the
+/// tool's wrench and the grasped payload as run-time inputs, the feet and
+/// the tool as contact frames), compiled, against the generic solver under
+/// the same scene ([`SceneRobot`]).
+#[test]
+fn the_compiled_legged_manipulator_controller_matches_the_scene_robot() {
+    use dynagen::scene::{PayloadInertia, SceneFile, SceneInputs, SceneRobot};
+    use nalgebra::{DVector, Vector6};
+    let model = Model::from_urdf_file(workspace_root().join("dynagen/robots/legged_manipulator.urdf"))
+        .unwrap()
+        .with_floating_base();
+    let file = SceneFile::from_toml_file(workspace_root().join("dynagen/scenes/legged_manipulator.toml")).unwrap();
+    let mut robot = SceneRobot::new(file.scene.apply(&model).unwrap());
+    assert_eq!((controller::NQ, controller::NV), (robot.nq(), robot.nv()));
+    let mut rng = Rng::new(9);
+    let mut worst = 0.0f64;
+    for k in 0..20 {
+        let mut q: [f64; controller::NQ] = core::array::from_fn(|_| rng.range(-1.5, 1.5));
+        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        let speed = if k % 2 == 0 { 2.0 } else { 30.0 };
+        let mut v = |s: f64| -> [f64; controller::NV] { core::array::from_fn(|_| rng.range(-s, s)) };
+        let (qd, qdd, tau) = (v(speed), v(5.0), v(20.0));
+        let f_tip: [f64; 6] = core::array::from_fn(|_| rng.range(-10.0, 10.0));
+        let p = PayloadInertia::new(rng.range(0.2, 1.0), [0.02, -0.01, 0.03], [4e-4, 5e-4, 3e-4, 1e-5, 0.0, 0.0]);
+        let payload = [p.mass, p.com[0], p.com[1], p.com[2], 4e-4, 5e-4, 3e-4, 1e-5, 0.0, 0.0];
+        let values = [p];
+        let inputs = SceneInputs { tip_wrench: Some(Vector6::from(f_tip)), payloads: &values, ..Default::default() };
+        let no_tip = SceneInputs { payloads: &values, ..Default::default() };
+        let d = |x: &[f64]| DVector::from_column_slice(x);
+        let (qv, qdv) = (d(&q), d(&qd));
+        let mut check = |what: &str, got: &[f64], want: &[f64]| {
+            let e = norm_rel_err(got, want, 1e-300);
+            assert!(e < 1e-12, "{what} at state {k}: relative error {e:e}");
+            worst = worst.max(e);
+        };
+        let want = robot.inverse_dynamics_with(&qv, &qdv, &d(&qdd), &inputs).unwrap();
+        check("tau", &controller::inverse_dynamics(&q, &qd, &qdd, &f_tip, &payload), want.as_slice());
+        let want = robot.mass_matrix_with(&qv, &no_tip).unwrap();
+        check("M", controller::mass_matrix(&q, &payload).as_flattened(), want.as_slice());
+        let want = robot.bias_forces_with(&qv, &qdv, &no_tip).unwrap();
+        check("h", &controller::bias_forces(&q, &qd, &payload), want.as_slice());
+        let want = robot.gravity_torques_with(&qv, &no_tip).unwrap();
+        check("g", &controller::gravity_torques(&q, &payload), want.as_slice());
+        let want = robot.forward_dynamics_with(&qv, &qdv, &d(&tau), &inputs).unwrap();
+        check("qdd", &controller::forward_dynamics(&q, &qd, &tau, &f_tip, &payload), want.as_slice());
+        // row-major: the transpose's column-major storage
+        let rows = |m: nalgebra::Matrix6xX<f64>| m.transpose().as_slice().to_vec();
+        type Jacobian = fn(&[f64; controller::NQ]) -> [[f64; controller::NV]; 6];
+        type Bias = fn(&[f64; controller::NQ], &[f64; controller::NV]) -> [f64; 6];
+        let contacts: [(&str, Jacobian, Bias); 5] = [
+            ("FL_foot", controller::frame_jacobian_fl_foot, controller::frame_acceleration_bias_fl_foot),
+            ("FR_foot", controller::frame_jacobian_fr_foot, controller::frame_acceleration_bias_fr_foot),
+            ("RL_foot", controller::frame_jacobian_rl_foot, controller::frame_acceleration_bias_rl_foot),
+            ("RR_foot", controller::frame_jacobian_rr_foot, controller::frame_acceleration_bias_rr_foot),
+            ("arm_ee", controller::frame_jacobian_arm_ee, controller::frame_acceleration_bias_arm_ee),
+        ];
+        for (frame, jacobian, bias) in contacts {
+            check(frame, jacobian(&q).as_flattened(), &rows(robot.frame_jacobian(frame, &qv).unwrap()));
+            check(frame, &bias(&q, &qd), robot.frame_acceleration_bias(frame, &qv, &qdv).unwrap().as_slice());
+        }
+        let world = rows(robot.frame_world_jacobian("arm_ee", &qv).unwrap());
+        check("arm_ee world", controller::frame_world_jacobian_arm_ee(&q).as_flattened(), &world);
+        let pose = robot.frame_pose("arm_ee", &qv).unwrap().transpose();
+        check("arm_ee pose", controller::frame_pose_arm_ee(&q).as_flattened(), pose.as_slice());
+    }
+    println!("legged manipulator controller, compiled: worst relative error {worst:.1e}");
 }

@@ -10,7 +10,7 @@ use super::joint::{
 use super::rnea::{gyroscopic, products, velocity_product_matrix};
 use super::{Loads, Workspace};
 use crate::model::{AxisAlignment, Joint, JointKind, Model};
-use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Vec3};
 use crate::Scalar;
 
 /// A symmetric 6×6 articulated-body inertia `[[A, B], [Bᵀ, C]]` in
@@ -298,28 +298,58 @@ fn aba_impl<S: Scalar, const DISTRIBUTED: bool>(
     loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
-    let Loads { gravity, tips, payloads, armature } = loads;
     let n = model.dof();
     assert!(
         q.len() == n && qd.is_none_or(|qd| qd.len() == n) && tau.len() == n && qdd.len() == n && ws.dof() == n,
         "aba: slices must have the model's {n} joints"
     );
     loads.check(n, "aba");
-    // Forward: angular velocities ω, velocity-product accelerations c, bias
-    // forces pA. The accelerations of this algorithm are "classic": (ω̇; the
-    // ordinary acceleration of the frame's origin), as in the RNEA, so the
-    // linear velocity is never needed: a body's wrench is I·(ω̇; a) + b with
-    // b = (ω × Ī ω; ω × (ω × h)), and the origin of a child at p (in the
-    // parent) accelerates by X·(ω̇_p; a_p) + c with c's linear part
-    // ω_p × (ω_p × p) (plus the Coriolis 2 ω × ṗ of a prismatic joint) and
-    // c's angular part ω_in × S q̇ (revolute). Featherstone's spatial form
-    // gives the same q̈ with more operations.
+    velocities(model, ws, q, qd, None, loads);
+    inward(model, ws, (tau, qd.is_some()), loads.armature, None, DISTRIBUTED);
+    // A fixed base is at rest, accelerating at −g.
+    let a0 = Motion::new(Vec3::zero(), loads.gravity.map_or(Vec3::zero(), |g| -*g));
+    outward(model, ws, &a0, qdd, DISTRIBUTED);
+}
+
+/// The articulated inertia and bias force that a moving root (a floating
+/// base) collects from its children in [`inward`], in its frame.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RootArticulated<S> {
+    pub(crate) inertia: ArticulatedInertia<S>,
+    pub(crate) bias: Force<S>,
+}
+
+/// The first pass of [`aba_impl`]: poses (`ws.x`), angular velocities ω
+/// (`ws.v`), velocity-product accelerations c (`ws.a`), bias forces pᴬ
+/// (`ws.f`, with the tip wrenches on bodies), rigid inertias (`ws.art`, the
+/// payloads added); `qd: None` at rest. `root_w`: the ω of a moving root,
+/// in its frame (`None`: a root at rest).
+///
+/// The accelerations of this algorithm are "classic": (ω̇; the ordinary
+/// acceleration of the frame's origin), as in the RNEA, so the linear
+/// velocity is never needed: a body's wrench is I·(ω̇; a) + b with
+/// b = (ω × Ī ω; ω × (ω × h)), and the origin of a child at p (in the
+/// parent) accelerates by X·(ω̇_p; a_p) + c with c's linear part
+/// ω_p × (ω_p × p) (plus the Coriolis 2 ω × ṗ of a prismatic joint) and
+/// c's angular part ω_in × S q̇ (revolute). Featherstone's spatial form
+/// gives the same q̈ with more operations.
+#[inline(always)]
+pub(crate) fn velocities<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    qd: Option<&[S]>,
+    root_w: Option<&Vec3<S>>,
+    loads: Loads<'_, S>,
+) {
+    // [ω×]² of the moving root: the centripetal acceleration of its children's origins.
+    let root = root_w.map(|w| (*w, velocity_product_matrix(Some(&products(w)), &Vec3::zero())));
     for (i, body) in model.bodies.iter().enumerate() {
         let joint = &body.joint;
         let x = joint_transform(joint, q[i]);
         ws.x[i] = x;
-        let mut inertia = Inertia::<S>::from_f64(&body.inertia);
-        for p in payloads.iter().filter(|p| p.body == i) {
+        let mut inertia = body.inertia_in::<S>();
+        for p in loads.payloads.iter().filter(|p| p.body == i) {
             inertia = inertia.add(&p.inertia);
         }
         ws.art[i] = ArticulatedInertia::from_rigid(&inertia);
@@ -330,10 +360,13 @@ fn aba_impl<S: Scalar, const DISTRIBUTED: bool>(
             continue;
         };
         let revolute = joint.is_revolute();
-        let (mut w, mut c) = match body.parent {
-            Some(p) => with_rotation!(joint, x, |r| {
-                let wp = ws.v[p].ang;
-                let centripetal = ws.u[p].mul_vec(&x.trans);
+        let parent = match body.parent {
+            Some(p) => Some((ws.v[p].ang, ws.u[p])),
+            None => root,
+        };
+        let (mut w, mut c) = match parent {
+            Some((wp, up)) => with_rotation!(joint, x, |r| {
+                let centripetal = up.mul_vec(&x.trans);
                 (r.tr_mul(&wp), Motion::new(Vec3::zero(), r.tr_mul(&centripetal)))
             }),
             None => (Vec3::zero(), Motion::zero()),
@@ -354,13 +387,28 @@ fn aba_impl<S: Scalar, const DISTRIBUTED: bool>(
         let gyro = if ws.gyro_products[i] { gyroscopic(&inertia.ibar, &p) } else { w.cross(&inertia.ibar.mul_vec(&w)) };
         ws.f[i] = Force::new(gyro, wwh);
     }
-    for tip in tips {
+    for tip in loads.tips {
         let frame = &model.frames[tip.frame];
         if let Some(b) = frame.body {
-            ws.f[b] += Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
+            ws.f[b] += frame.placement_in::<S>().force_to_parent(&tip.wrench);
         }
     }
-    // Backward: articulated inertias and bias forces.
+}
+
+/// The inward pass of [`aba_impl`] after [`velocities`]: articulated
+/// inertias and bias forces from the tips to the root; `(tau, moving)` the
+/// joint torques and whether q̇ was given; a moving `root` collects what its
+/// children pass it (a fixed one takes nothing); `distributed` the arm (a
+/// constant where it is inlined, see [`aba_impl`]).
+#[inline(always)]
+pub(crate) fn inward<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    (tau, moving): (&[S], bool),
+    armature: Option<&[f64]>,
+    mut root: Option<&mut RootArticulated<S>>,
+    distributed: bool,
+) {
     for (i, body) in model.bodies.iter().enumerate().rev() {
         let u = ws.art[i].mul_subspace(&body.joint);
         let d = project(&body.joint, &u);
@@ -369,7 +417,9 @@ fn aba_impl<S: Scalar, const DISTRIBUTED: bool>(
         let d_inv = S::one() / d;
         let ui = tau[i] - project(&body.joint, &ws.f[i]);
         ws.s1[i] = d_inv;
-        if DISTRIBUTED {
+        // Whether body i passes anything on.
+        let passes = body.parent.is_some() || root.is_some();
+        if distributed {
             // The transform distributed over the rank-one update (exact
             // algebra, see the function's documentation): what does not
             // wait for 1/d (X Iᴬ Xᵀ, X U, X(pᴬ + Iᴬc), u − Uᵀc) runs
@@ -414,20 +464,14 @@ fn aba_impl<S: Scalar, const DISTRIBUTED: bool>(
                 None => u0_p,
             };
             // u − U₀ᵀc, and the outward pass's u − Uᵀc = u − U₀ᵀc − U_k c_k.
-            let s0 = match qd {
-                Some(_) => ui - ws.a[i].dot(&u0),
-                None => ui,
-            };
-            ws.s2[i] = match (qd, along) {
-                (Some(_), Some((u, _))) => s0 - ws.a[i].dot(&(u - u0)),
+            let s0 = if moving { ui - ws.a[i].dot(&u0) } else { ui };
+            ws.s2[i] = match (moving, along) {
+                (true, Some((u, _))) => s0 - ws.a[i].dot(&(u - u0)),
                 _ => s0,
             };
-            if let Some(p) = body.parent {
+            if passes {
                 let art_p = with_rotation!(&body.joint, x, |r| art0.expressed_in_parent(&r, &x.trans));
-                let g = match qd {
-                    Some(_) => ws.f[i] + art0.mul_motion(&ws.a[i]),
-                    None => ws.f[i],
-                };
+                let g = if moving { ws.f[i] + art0.mul_motion(&ws.a[i]) } else { ws.f[i] };
                 let g = match along {
                     Some((_, along)) => g + along,
                     None => g,
@@ -437,47 +481,82 @@ fn aba_impl<S: Scalar, const DISTRIBUTED: bool>(
                 // axis, if aligned) as e − (v_k v_k)·(1/d): the square does
                 // not wait for the division, one multiplication less on the
                 // chain from this d to the parent's.
-                let parent_joint = &model.bodies[p].joint;
-                if let Some(k) = axis_index(parent_joint) {
+                let parent_joint = body.parent.map(|p| &model.bodies[p].joint);
+                if let Some((k, parent_joint)) = parent_joint.and_then(|j| Some((axis_index(j)?, j))) {
                     let (block, old, v) = match parent_joint.kind {
                         JointKind::Revolute | JointKind::Continuous => (&mut ia_p.a, &art_p.a, u0_p.ang.0[k]),
                         JointKind::Prismatic => (&mut ia_p.c, &art_p.c, u0_p.lin.0[k]),
                     };
                     block.0[k] = old.0[k] - v * v * d_inv;
                 }
-                ws.art[p] = ws.art[p].add(&ia_p);
-                ws.f[p] += force_to_parent(&body.joint, &x, &g) + u0_p.scale(s0 * d_inv);
+                let pa_p = || force_to_parent(&body.joint, &x, &g) + u0_p.scale(s0 * d_inv);
+                pass_on(ws, root.as_deref_mut(), body.parent, &ia_p, pa_p);
             }
             continue;
         }
         ws.u6[i] = u;
         ws.s2[i] = ui;
-        if let Some(p) = body.parent {
+        if passes {
             let mut ia = ws.art[i].sub_outer(&u, d_inv);
             // Without armature (I − u uᵀ/d)·S = 0 exactly; with it, the
             // product is u·a/d, which the parent must see.
             if arm == 0.0 {
                 ia.clear_subspace(&body.joint);
             }
-            let pa = match qd {
-                Some(_) => ws.f[i] + ia.mul_motion(&ws.a[i]) + u.scale(ui * d_inv),
-                None => ws.f[i] + u.scale(ui * d_inv), // c_i = 0 at rest
+            let pa = if moving {
+                ws.f[i] + ia.mul_motion(&ws.a[i]) + u.scale(ui * d_inv)
+            } else {
+                ws.f[i] + u.scale(ui * d_inv) // c_i = 0 at rest
             };
             let x = ws.x[i];
             let ia_p = with_rotation!(&body.joint, x, |r| ia.expressed_in_parent(&r, &x.trans));
-            ws.art[p] = ws.art[p].add(&ia_p);
-            ws.f[p] += force_to_parent(&body.joint, &x, &pa);
+            pass_on(ws, root.as_deref_mut(), body.parent, &ia_p, || force_to_parent(&body.joint, &x, &pa));
         }
     }
-    // Forward: accelerations.
-    let a0 = Motion::new(Vec3::zero(), gravity.map_or(Vec3::zero(), |g| -*g));
+}
+
+/// Adds a body's articulated inertia and bias force (computed by `pa` after
+/// the inertia is added), in its parent's frame, to its parent's (or to the
+/// moving root's).
+#[inline(always)]
+fn pass_on<S: Scalar>(
+    ws: &mut Workspace<S>,
+    root: Option<&mut RootArticulated<S>>,
+    parent: Option<usize>,
+    ia: &ArticulatedInertia<S>,
+    pa: impl FnOnce() -> Force<S>,
+) {
+    match (parent, root) {
+        (Some(p), _) => {
+            ws.art[p] = ws.art[p].add(ia);
+            ws.f[p] += pa();
+        }
+        (None, Some(root)) => {
+            root.inertia = root.inertia.add(ia);
+            root.bias += pa();
+        }
+        (None, None) => {}
+    }
+}
+
+/// The outward pass of [`aba_impl`]: q̈ and the bodies' accelerations from
+/// the root's classic acceleration `a0` (ω̇; the acceleration of its origin,
+/// gravity as −g); `distributed` as for [`inward`].
+#[inline(always)]
+pub(crate) fn outward<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    a0: &Motion<S>,
+    qdd: &mut [S],
+    distributed: bool,
+) {
     for (i, body) in model.bodies.iter().enumerate() {
         let a_parent = match body.parent {
             Some(p) => ws.a[p],
-            None => a0,
+            None => *a0,
         };
         let a = motion_to_child(&body.joint, &ws.x[i], &a_parent) + ws.a[i];
-        let qddi = if DISTRIBUTED {
+        let qddi = if distributed {
             // Uᵀ(X a_p + c) = (XᵀU)ᵀ a_p + Uᵀc, with u − Uᵀc from the
             // inward pass: q̈ no longer waits for the transform of a_p.
             (ws.s2[i] - a_parent.dot(&ws.u6[i])) * ws.s1[i]

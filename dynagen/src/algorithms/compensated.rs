@@ -15,7 +15,18 @@
 //! velocity and no gravity. The error is then about ε·‖u‖/‖M‖ plus `P`'s
 //! error on h, instead of ε·‖h‖/‖M‖: as many digits won as ‖h‖/‖τ − h‖ has.
 //! On ordinary states (no cancellation) it is as accurate as the plain
-//! algorithm.
+//! algorithm. `P` takes the model's constants from the robot file's
+//! decimals where the model has them ([`Scalar::FILE_CONSTANTS`]): h is the
+//! file's robot's, not that of the `f64` model an ε away.
+//!
+//! What remains is the `f64` solve's error, about ε·cond(M)·‖q̈‖. On request
+//! ([`CompensatedScratch::with_refinement`]) each step of iterative
+//! refinement computes the residual r = τ − RNEA(q, q̇, q̈) in `P` (with
+//! every load: gravity, tip wrenches, payloads, armature), rounds it once,
+//! and adds the correction M⁻¹r (the `f64` articulated-body algorithm at
+//! rest again): one step takes the error to about (ε·cond(M))²·‖q̈‖ plus
+//! `P`'s own, for about the cost of the first pass again. It pays where
+//! ε·cond(M) is large; `docs/performance.md` has the measurements.
 
 use super::aba::aba_at_rest;
 use super::rnea::rnea;
@@ -38,6 +49,12 @@ pub struct CompensatedScratch<P> {
     payloads: Vec<BodyInertia<P>>,
     /// The right-hand side u = τ − h, rounded to `f64`.
     rhs: Vec<f64>,
+    /// Steps of iterative refinement, and their scratch: q̈ in `P`, the
+    /// residual rounded to `f64` and the correction.
+    refinements: usize,
+    qdd: Vec<P>,
+    residual: Vec<f64>,
+    correction: Vec<f64>,
 }
 
 impl<P: Scalar> CompensatedScratch<P> {
@@ -54,7 +71,21 @@ impl<P: Scalar> CompensatedScratch<P> {
             tips: Vec::new(),
             payloads: Vec::new(),
             rhs: vec![0.0; n],
+            refinements: 0,
+            qdd: vec![P::zero(); n],
+            residual: vec![0.0; n],
+            correction: vec![0.0; n],
         }
+    }
+    /// This scratch with `steps` steps of iterative refinement (0, the
+    /// default: none): see the module documentation.
+    pub fn with_refinement(mut self, steps: usize) -> Self {
+        self.refinements = steps;
+        self
+    }
+    /// The steps of iterative refinement each call takes.
+    pub fn refinements(&self) -> usize {
+        self.refinements
     }
     /// The number of joints this scratch is for (NV for a floating base).
     pub fn dof(&self) -> usize {
@@ -76,8 +107,6 @@ impl<P: Scalar> CompensatedScratch<P> {
 /// # Panics
 /// If a slice or the scratch does not have the model's number of joints, or
 /// a payload's body is not a body of the model.
-// Inlined so that the FMA form (`solve_fma`) compiles it with FMA enabled.
-#[inline(always)]
 pub fn forward_dynamics_compensated<P: Scalar>(
     model: &Model,
     scratch: &mut CompensatedScratch<P>,
@@ -87,14 +116,42 @@ pub fn forward_dynamics_compensated<P: Scalar>(
     loads: Loads<'_, f64>,
     qdd: &mut [f64],
 ) {
+    compensated(model, scratch, [q, qd, tau], loads, qdd)
+}
+
+/// [`forward_dynamics_compensated`], inlined into its caller so that the FMA
+/// form (`solve_fma`) compiles it, and the algorithms it inlines, with FMA
+/// enabled. (The public function is not inlined: a debug build keeps each
+/// inlined call's locals apart, and a caller with several calls would need
+/// a stack that many times as deep.)
+#[inline(always)]
+fn compensated<P: Scalar>(
+    model: &Model,
+    scratch: &mut CompensatedScratch<P>,
+    [q, qd, tau]: [&[f64]; 3],
+    loads: Loads<'_, f64>,
+    qdd: &mut [f64],
+) {
     // NQ and NV (n and n for a fixed base)
     let (nq, n) = (model.nq(), model.nv());
     assert!(
         q.len() == nq && qd.len() == n && tau.len() == n && qdd.len() == n && scratch.dof() == n,
         "forward_dynamics_compensated: slices and scratch must have the model's {n} joints (NQ/NV with a floating base)"
     );
-    let CompensatedScratch { ws: ws_p, ws_f64: ws, q: qp, qd: qdp, h, tips: tips_p, payloads: payloads_p, rhs } =
-        scratch;
+    let CompensatedScratch {
+        ws: ws_p,
+        ws_f64: ws,
+        q: qp,
+        qd: qdp,
+        h,
+        tips: tips_p,
+        payloads: payloads_p,
+        rhs,
+        refinements,
+        qdd: qdd_p,
+        residual,
+        correction,
+    } = scratch;
     for i in 0..nq {
         qp[i] = P::from_f64(q[i]);
     }
@@ -110,14 +167,32 @@ pub fn forward_dynamics_compensated<P: Scalar>(
     payloads_p
         .extend(loads.payloads.iter().map(|p| BodyInertia { body: p.body, inertia: Inertia::from_f64(&p.inertia) }));
     let g = loads.gravity.map(Vec3::<P>::from_f64);
-    // h(q, q̇) + JᵀF_tip in P, then u = τ − h in P, rounded once.
-    let loads_p = Loads::new(g.as_ref(), tips_p, payloads_p);
-    rnea(model, ws_p, qp, Some(qdp), None, loads_p, h);
-    for i in 0..n {
-        rhs[i] = (P::from_f64(tau[i]) - h[i]).to_f64().unwrap_or(f64::NAN);
+    // The loads in P; the armature counts only with q̈ (in the residuals).
+    let loads_p = Loads::new(g.as_ref(), tips_p, payloads_p).with_armature(loads.armature);
+    // Pass 0: u = τ − (h(q, q̇) + JᵀF_tip) in P, rounded once, and q̈ = M⁻¹u.
+    // Each refinement: r = τ − RNEA(q, q̇, q̈) in P, rounded once, q̈ += M⁻¹r.
+    // (One call of each algorithm: they are inlined, and a debug build's
+    // stack holds each call's locals apart.)
+    for pass in 0..=*refinements {
+        let accelerations = if pass == 0 {
+            None
+        } else {
+            for i in 0..n {
+                qdd_p[i] = P::from_f64(qdd[i]);
+            }
+            Some(&qdd_p[..])
+        };
+        rnea(model, ws_p, qp, Some(qdp), accelerations, loads_p, h);
+        let right = if pass == 0 { &mut *rhs } else { &mut *residual };
+        for i in 0..n {
+            right[i] = (P::from_f64(tau[i]) - h[i]).to_f64().unwrap_or(f64::NAN);
+        }
+        // (M + diag(armature)) x = right: the articulated-body algorithm at rest, without gravity.
+        aba_at_rest(model, ws, q, right, loads, correction);
+        for i in 0..n {
+            qdd[i] = if pass == 0 { correction[i] } else { qdd[i] + correction[i] };
+        }
     }
-    // (M + diag(armature)) q̈ = u: the articulated-body algorithm at rest, without gravity.
-    aba_at_rest(model, ws, q, rhs, loads, qdd);
 }
 
 /// The compensated forward dynamics with its scratch, choosing at run time
@@ -149,6 +224,14 @@ impl CompensatedSolver {
     /// Whether products use FMA instructions detected at run time.
     pub fn uses_fma(&self) -> bool {
         matches!(self, CompensatedSolver::Fused(_))
+    }
+    /// Takes `steps` steps of iterative refinement in each call (0, the
+    /// default: none); see the [module documentation](self).
+    pub fn set_refinement(&mut self, steps: usize) {
+        match self {
+            CompensatedSolver::Portable(s) => s.refinements = steps,
+            CompensatedSolver::Fused(s) => s.refinements = steps,
+        }
     }
     /// [`forward_dynamics_compensated`] with this solver's scratch.
     ///
@@ -199,7 +282,7 @@ unsafe fn solve_fma(
     loads: Loads<'_, f64>,
     qdd: &mut [f64],
 ) {
-    forward_dynamics_compensated(model, scratch, q, qd, tau, loads, qdd)
+    compensated(model, scratch, [q, qd, tau], loads, qdd)
 }
 
 #[cfg(test)]
@@ -232,23 +315,26 @@ mod tests {
         let armature: Vec<f64> = (0..n).map(|k| 0.1 * (k % 2) as f64).collect();
         let all = Loads::gravity(&g).with_tips(&tips).with_payloads(&payloads).with_armature(Some(&armature));
         let mut ws = Workspace::<f64>::new(&model);
-        let mut scratch = CompensatedScratch::<Compensated>::new(&model);
-        let run = |loads: Loads<'_, f64>, ws: &mut Workspace<f64>, scratch: &mut CompensatedScratch<Compensated>| {
-            let (mut plain, mut comp) = (vec![0.0; n], vec![0.0; n]);
-            aba(&model, ws, &q, &qd, &tau, loads, &mut plain);
-            forward_dynamics_compensated(&model, scratch, &q, &qd, &tau, loads, &mut comp);
-            let scale = plain.iter().fold(1.0f64, |m, x| m.max(x.abs()));
-            for k in 0..n {
-                assert!((plain[k] - comp[k]).abs() <= 1e-12 * scale, "q̈[{k}]: {} vs {}", plain[k], comp[k]);
+        // without and with refinement: its residual takes every load too
+        for steps in [0, 1] {
+            let mut scratch = CompensatedScratch::<Compensated>::new(&model).with_refinement(steps);
+            let mut run = |loads: Loads<'_, f64>| {
+                let (mut plain, mut comp) = (vec![0.0; n], vec![0.0; n]);
+                aba(&model, &mut ws, &q, &qd, &tau, loads, &mut plain);
+                forward_dynamics_compensated(&model, &mut scratch, &q, &qd, &tau, loads, &mut comp);
+                let scale = plain.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+                for k in 0..n {
+                    assert!((plain[k] - comp[k]).abs() <= 1e-12 * scale, "q̈[{k}]: {} vs {}", plain[k], comp[k]);
+                }
+                comp
+            };
+            let with_all = run(all);
+            for fewer in
+                [all.with_tips(&[]), all.with_payloads(&[]), all.with_armature(None), Loads { gravity: None, ..all }]
+            {
+                let other = run(fewer);
+                assert!(other.iter().zip(&with_all).any(|(a, b)| (a - b).abs() > 1e-6), "a load had no effect");
             }
-            comp
-        };
-        let with_all = run(all, &mut ws, &mut scratch);
-        for fewer in
-            [all.with_tips(&[]), all.with_payloads(&[]), all.with_armature(None), Loads { gravity: None, ..all }]
-        {
-            let other = run(fewer, &mut ws, &mut scratch);
-            assert!(other.iter().zip(&with_all).any(|(a, b)| (a - b).abs() > 1e-6), "a load had no effect");
         }
     }
 }

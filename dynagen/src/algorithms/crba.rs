@@ -7,7 +7,6 @@ use super::joint::{force_to_parent, inertia_times_subspace, inertia_to_parent, p
 use super::rnea::{rnea, update_joint_transforms};
 use super::{Loads, Workspace};
 use crate::model::Model;
-use crate::spatial::Inertia;
 use crate::Scalar;
 
 /// M(q) by the composite-rigid-body algorithm, written row-major into `m`
@@ -31,9 +30,10 @@ pub fn crba<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], loads: Loa
     // Entries of joints on different branches stay zero.
     m.fill(S::zero());
     for (i, b) in model.bodies.iter().enumerate() {
-        ws.inertia[i] = Inertia::from_f64(&b.inertia);
+        ws.inertia[i] = b.inertia_in();
     }
-    for p in loads.payloads {
+    // (a payload on the fixed base moves nothing)
+    for p in loads.payloads.iter().filter(|p| p.body != super::BASE_BODY) {
         ws.inertia[p.body] = ws.inertia[p.body].add(&p.inertia);
     }
     for i in (0..n).rev() {

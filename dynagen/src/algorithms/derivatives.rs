@@ -62,7 +62,8 @@ impl Formulation {
 /// velocity alone (a scene's friction): τᵢ += φᵢ(q̇ᵢ). Their derivatives
 /// (a diagonal) are taken by one run on dual numbers with every q̇ᵢ seeded.
 pub trait JointTorques {
-    /// Adds φ(q̇) to `tau`.
+    /// Adds φ(q̇) to `tau`, both velocity-side vectors (NV long: a floating
+    /// base's six entries first, which φ leaves alone).
     fn add_to<S: Scalar>(&self, qd: &[S], tau: &mut [S]);
 }
 
@@ -95,8 +96,7 @@ impl<S: Scalar, J: JointTorques> Dynamics<'_, S, J> {
     /// τ(q, q̇, q̈) (`qdd: None`: h(q, q̇)).
     fn tau(&self, ws: &mut Workspace<S>, q: &[S], qd: &[S], qdd: Option<&[S]>, tau: &mut [S]) {
         rnea::rnea(self.model, ws, q, Some(qd), qdd, self.loads, tau);
-        let off = self.model.nv() - self.model.dof();
-        self.torques.add_to(&qd[off..], &mut tau[off..]);
+        self.torques.add_to(qd, tau);
     }
     /// M(q) with the payloads and the armature.
     fn mass_matrix(&self, ws: &mut Workspace<S>, q: &[S], m: &mut [S]) {
@@ -211,14 +211,14 @@ fn add_joint_torque_derivatives<S: Scalar>(
     dtau_dqd: &mut [S],
 ) {
     let nv = qd.len();
-    let (dqd, tau) = (&mut dw.qd[off..], &mut dw.tau[off..]);
-    for ((d, t), &v) in dqd.iter_mut().zip(tau.iter_mut()).zip(&qd[off..]) {
+    let (dqd, tau) = (&mut dw.qd, &mut dw.tau);
+    for ((d, t), &v) in dqd.iter_mut().zip(tau.iter_mut()).zip(qd) {
         (*d, *t) = (Dual::variable(v), Dual::constant(S::zero()));
     }
     torques.add_to(dqd, tau);
-    for (i, t) in tau.iter().enumerate() {
+    for (i, t) in tau.iter().enumerate().skip(off) {
         if t.eps.to_f64() != Some(0.0) {
-            dtau_dqd[(off + i) * nv + off + i] += t.eps;
+            dtau_dqd[i * nv + i] += t.eps;
         }
     }
 }

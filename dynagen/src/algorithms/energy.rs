@@ -3,7 +3,7 @@
 use super::joint::{joint_transform, motion};
 use super::{floating, Workspace};
 use crate::model::Model;
-use crate::spatial::{Inertia, Motion, Vec3};
+use crate::spatial::{Motion, Vec3};
 use crate::Scalar;
 
 /// Kinetic energy ½ Σ Vᵢᵀ Gᵢ Vᵢ = ½ q̇ᵀ M(q) q̇ (J). A floating model
@@ -14,7 +14,7 @@ pub fn kinetic_energy<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], 
     let (v0, oq, ov) = if model.is_floating() {
         floating::check_sizes(model, "kinetic_energy", q.len(), &[qd.len()]);
         let v0 = floating::base_motion(qd);
-        e += v0.dot(&Inertia::<S>::from_f64(&model.base_inertia).mul_motion(&v0));
+        e += v0.dot(&model.base_inertia_in::<S>().mul_motion(&v0));
         (v0, 7, 6)
     } else {
         (Motion::zero(), 0, 0)
@@ -28,7 +28,7 @@ pub fn kinetic_energy<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], 
             None => s,
         };
         ws.v[i] = v;
-        e += v.dot(&Inertia::<S>::from_f64(&b.inertia).mul_motion(&v));
+        e += v.dot(&b.inertia_in::<S>().mul_motion(&v));
     }
     e * S::from_f64(0.5)
 }
@@ -47,8 +47,8 @@ pub fn potential_energy<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S]
     for (i, b) in model.bodies.iter().enumerate() {
         // m·c in the base frame = R h + m p
         let w = &ws.world[i];
-        let h = Vec3::<S>::from_f64(&b.inertia.h);
-        let mc = w.rot.mul_vec(&h) + w.trans.scale(S::from_f64(b.inertia.mass));
+        let inertia = b.inertia_in::<S>();
+        let mc = w.rot.mul_vec(&inertia.h) + w.trans.scale(inertia.mass);
         e -= gravity.dot(&mc);
     }
     e

@@ -44,7 +44,7 @@ fn joint_angle<S: Scalar>(joint: &Joint, q: S) -> S {
     if joint.axis_norm == 1.0 {
         q
     } else {
-        q * S::axis_norm_constant(&joint.axis, joint.axis_norm)
+        q * joint.axis_norm_in::<S>()
     }
 }
 
@@ -52,16 +52,19 @@ fn joint_angle<S: Scalar>(joint: &Joint, q: S) -> S {
 /// with the placement.
 #[inline(always)]
 pub(crate) fn joint_transform_general<S: Scalar>(joint: &Joint, q: S) -> Transform<S> {
-    let place = Transform::<S>::from_f64(&joint.placement);
+    let place = joint.placement_in::<S>();
     match joint.kind {
         JointKind::Revolute | JointKind::Continuous => {
             let (s, c) = joint_angle(joint, q).sin_cos();
-            let r = S::axis_rotation(&joint.axis, &joint.unit_axis, s, c);
+            let r = match joint.file_unit_axis::<S>() {
+                Some(unit) => crate::spatial::rodrigues_generic(&unit, s, c),
+                None => S::axis_rotation(&joint.axis, &joint.unit_axis, s, c),
+            };
             let rot = if joint.placement_rotation_is_identity { r } else { place.rot.mul_mat(&r) };
             Transform { rot, trans: place.trans }
         }
         JointKind::Prismatic => {
-            let d = Vec3::<S>::from_f64(&joint.axis).scale(q);
+            let d = joint.axis_in::<S>().scale(q);
             let d = if joint.placement_rotation_is_identity { d } else { place.rot.mul_vec(&d) };
             Transform { rot: place.rot, trans: place.trans + d }
         }
@@ -76,7 +79,7 @@ fn joint_transform_aligned<S: Scalar, const K: usize, const I: usize, const J: u
     q: S,
 ) -> Transform<S> {
     let identity = joint.placement_rotation_is_identity;
-    let trans = Vec3::<S>::from_f64(&joint.placement.trans);
+    let trans = joint.placement_translation_in::<S>();
     match joint.kind {
         JointKind::Revolute | JointKind::Continuous => {
             let (s, c) = joint_angle(joint, q).sin_cos();
@@ -95,7 +98,7 @@ fn joint_transform_aligned<S: Scalar, const K: usize, const I: usize, const J: u
             } else {
                 // P·R: column I is c·P_I + s·P_J, column J is c·P_J − s·P_I,
                 // column K is P_K.
-                let p = S::rotation_constant(&joint.placement.rot).0;
+                let p = joint.placement_rotation_in::<S>().0;
                 let mut r = p;
                 for row in 0..3 {
                     r[row][I] = p[row][I] * c + p[row][J] * s;
@@ -112,7 +115,7 @@ fn joint_transform_aligned<S: Scalar, const K: usize, const I: usize, const J: u
                 t.0[K] += d;
                 Transform { rot: Mat3::identity(), trans: t }
             } else {
-                let p = S::rotation_constant(&joint.placement.rot);
+                let p = joint.placement_rotation_in::<S>();
                 Transform { rot: p, trans: trans + p.col(K).scale(d) }
             }
         }
@@ -128,7 +131,7 @@ pub fn motion<S: Scalar>(joint: &Joint, x: S) -> Motion<S> {
             a.0[k] = S::from_f64(joint.axis.0[k]) * x;
             a
         }
-        None => Vec3::<S>::from_f64(&joint.axis).scale(x),
+        None => joint.axis_in::<S>().scale(x),
     };
     match joint.kind {
         JointKind::Revolute | JointKind::Continuous => Motion::new(a, Vec3::zero()),
@@ -151,7 +154,7 @@ pub fn add_motion<S: Scalar>(joint: &Joint, m: &mut Motion<S>, x: S) {
 pub(crate) fn add_axis<S: Scalar>(joint: &Joint, u: &mut Vec3<S>, x: S) {
     match aligned_indices(joint.alignment) {
         Some((k, _, _)) => u.0[k] += S::from_f64(joint.axis.0[k]) * x,
-        None => *u += Vec3::<S>::from_f64(&joint.axis).scale(x),
+        None => *u += joint.axis_in::<S>().scale(x),
     }
 }
 
@@ -167,7 +170,7 @@ pub(crate) fn cross_axis<S: Scalar>(joint: &Joint, u: &Vec3<S>, x: S) -> Vec3<S>
             r.0[j] = -(u.0[i] * w);
             r
         }
-        None => u.cross(&Vec3::<S>::from_f64(&joint.axis).scale(x)),
+        None => u.cross(&joint.axis_in::<S>().scale(x)),
     }
 }
 
@@ -217,7 +220,7 @@ pub fn project<S: Scalar>(joint: &Joint, f: &Force<S>) -> S {
     };
     match aligned_indices(joint.alignment) {
         Some((k, _, _)) => S::from_f64(joint.axis.0[k]) * part.0[k],
-        None => Vec3::<S>::from_f64(&joint.axis).dot(part),
+        None => joint.axis_in::<S>().dot(part),
     }
 }
 
@@ -559,6 +562,7 @@ mod tests {
             axis_norm: n,
             alignment: AxisAlignment::of(&axis),
             placement_rotation_is_identity: placement.rot == Mat3::identity(),
+            file_values: None,
         }
     }
 

@@ -30,7 +30,7 @@ pub fn body_pose<S: Scalar>(ws: &Workspace<S>, i: usize) -> Transform<S> {
 /// base frame, after [`forward_kinematics`].
 pub fn frame_pose<S: Scalar>(model: &Model, ws: &Workspace<S>, frame: usize) -> Transform<S> {
     let f = &model.frames[frame];
-    let place = Transform::<S>::from_f64(&f.placement);
+    let place = f.placement_in::<S>();
     match f.body {
         Some(b) => ws.world[b].compose(&place),
         None => place,

@@ -14,13 +14,19 @@ pub struct TipWrench<S> {
     pub wrench: Force<S>,
 }
 
+/// The `body` of a [`BodyInertia`] carried by the root body: a floating
+/// base adds it to its own inertia; on a fixed base it moves nothing and
+/// every algorithm leaves it out.
+pub const BASE_BODY: usize = usize::MAX;
+
 /// An inertia carried by a body in addition to the model's own, in the
 /// body's frame: a payload known only at run time (its parameters are
 /// inputs of the generated code), added where the body's inertia enters the
 /// recursion ([`Loads::payloads`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BodyInertia<S> {
-    /// The body's index (its joint's index).
+    /// The body's index (its joint's index), or [`BASE_BODY`] for the root
+    /// body (in the root's frame).
     pub body: usize,
     /// The inertia, in the body's frame.
     pub inertia: Inertia<S>,
@@ -95,10 +101,13 @@ impl<'a, S> Loads<'a, S> {
     pub const fn inertias(self) -> Self {
         Loads { gravity: None, tips: &[], ..self }
     }
-    /// Panics unless every payload's body, and the armature, fit a model of
-    /// `n` joints; `what` names the algorithm.
+    /// Panics unless every payload's body (or [`BASE_BODY`]), and the
+    /// armature, fit a model of `n` joints; `what` names the algorithm.
     pub(crate) fn check(&self, n: usize, what: &str) {
-        assert!(self.payloads.iter().all(|p| p.body < n), "{what}: a payload's body is not one of the model's {n}");
+        assert!(
+            self.payloads.iter().all(|p| p.body < n || p.body == BASE_BODY),
+            "{what}: a payload's body is not one of the model's {n}"
+        );
         assert!(self.armature.is_none_or(|a| a.len() == n), "{what}: the armature must have the model's {n} joints");
     }
 }

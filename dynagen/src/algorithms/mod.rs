@@ -16,6 +16,7 @@ pub mod derivatives;
 pub mod energy;
 pub mod floating;
 pub mod forward_dynamics;
+pub mod frame_acceleration;
 pub mod integrators;
 pub mod joint;
 pub mod kinematics;
@@ -26,5 +27,5 @@ pub mod rnea;
 pub mod rnea_derivatives;
 mod workspace;
 
-pub use loads::{BodyInertia, Loads, TipWrench};
+pub use loads::{BodyInertia, Loads, TipWrench, BASE_BODY};
 pub use workspace::Workspace;

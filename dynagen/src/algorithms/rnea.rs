@@ -20,7 +20,7 @@
 use super::joint::{add_axis, cross_axis, force_to_parent, joint_transform, project, with_rotation, Rotation};
 use super::{Loads, Workspace};
 use crate::model::Model;
-use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Vec3};
 use crate::Scalar;
 
 /// The products `ω ωᵀ` as `[xx, yy, zz, xy, xz, yz]`, shared by
@@ -126,6 +126,67 @@ pub(crate) fn update_joint_transforms<S: Scalar>(model: &Model, ws: &mut Workspa
     }
 }
 
+/// The motion of the body the tree's first joints hang from, in its own
+/// frame: ω, ω̇, the ordinary acceleration of its origin with gravity folded
+/// in (`a − Rᵀg`), and `U` ([`velocity_product_matrix`]) of ω and ω̇. A
+/// floating base moves so; a fixed base is at rest and accelerates at −g.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RootMotion<S> {
+    pub(crate) w: Vec3<S>,
+    pub(crate) wd: Vec3<S>,
+    pub(crate) a: Vec3<S>,
+    pub(crate) u: Mat3<S>,
+}
+
+/// The root of [`rnea_tree`]: a fixed base accelerating at −g (base frame;
+/// `None`: no gravity), or a moving one.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Root<'a, S> {
+    Fixed(Option<&'a Vec3<S>>),
+    Moving(&'a RootMotion<S>),
+}
+
+/// The wrench `(n; f)` about a body's origin that produces its motion
+/// (ω, ω̇, origin acceleration `a`): `f = m·a + U·h`, `n = Ī·ω̇ + ω × (Ī·ω)
+/// + h × a`, and `U` ([`velocity_product_matrix`]). `spinning`: whether ω
+/// may be non-zero (q̇ given), `moving`: whether ω or ω̇ may be (`U` is
+/// `None` otherwise); `gyro` the body's choice of form for `ω × (Ī·ω)` on
+/// numbers (see [`use_products_for_gyroscopic`]).
+#[inline(always)]
+pub(crate) fn body_wrench<S: Scalar>(
+    inertia: &Inertia<S>,
+    [w, wd, a]: [&Vec3<S>; 3],
+    (spinning, moving): (bool, bool),
+    gyro: bool,
+) -> (Force<S>, Option<Mat3<S>>) {
+    let (h, ibar) = (&inertia.h, &inertia.ibar);
+    let mut f = a.scale(inertia.mass);
+    let mut m = h.cross(a);
+    let p = spinning.then(|| products(w));
+    let mut u = None;
+    if moving {
+        // U = [ω̇×] + [ω×][ω×]: U·v = ω̇ × v + ω × (ω × v), shared by this
+        // body's force (v = h) and its children's origins (v = p)
+        let uu = velocity_product_matrix(p.as_ref(), wd);
+        f += uu.mul_vec(h);
+        // Traced: Ī·ω̇ + ω × (Ī·ω) grouped by the entries of Ī, fewer
+        // products than Ī·ω̇ plus either form of the gyroscopic moment. On
+        // f64 it made `bias_forces` 1.5–2 % slower in instructions, so
+        // there it is compiled out (Scalar::TRACED).
+        match &p {
+            Some(p) if S::TRACED => m += inertial_moment(ibar, wd, p, &uu),
+            _ => m += ibar.mul_vec(wd),
+        }
+        u = Some(uu);
+    }
+    if let Some(p) = &p {
+        if !S::TRACED {
+            m += if gyro { gyroscopic(ibar, p) } else { w.cross(&ibar.mul_vec(w)) };
+        }
+    }
+    (Force::new(m, f), u)
+}
+
 /// Inverse dynamics by the recursive Newton-Euler algorithm. A floating
 /// model goes to [`floating::rnea`](super::floating::rnea::rnea) (NQ/NV-long
 /// slices, gravity in the world frame).
@@ -159,7 +220,6 @@ pub fn rnea<S: Scalar>(
     if model.is_floating() {
         return super::floating::rnea::rnea(model, ws, q, qd, qdd, loads, tau);
     }
-    let Loads { gravity, tips, payloads, armature } = loads;
     let n = model.dof();
     loads.check(n, "rnea");
     assert!(q.len() == n && tau.len() == n && ws.dof() == n, "rnea: slices must have the model's {n} joints");
@@ -167,7 +227,40 @@ pub fn rnea<S: Scalar>(
         qd.is_none_or(|x| x.len() == n) && qdd.is_none_or(|x| x.len() == n),
         "rnea: slices must have the model's {n} joints"
     );
+    rnea_tree(model, ws, q, (qd, qdd), Root::Fixed(loads.gravity), loads, tau);
+    add_armature(loads.armature, qdd, tau);
+}
 
+/// `τ += armature∘q̈` (joints only: `tau` and `qdd` are the joints' slices).
+#[inline(always)]
+pub(crate) fn add_armature<S: Scalar>(armature: Option<&[f64]>, qdd: Option<&[S]>, tau: &mut [S]) {
+    if let (Some(armature), Some(qdd)) = (armature, qdd) {
+        for (i, &a) in armature.iter().enumerate() {
+            if a != 0.0 {
+                tau[i] += S::from_f64(a) * qdd[i];
+            }
+        }
+    }
+}
+
+/// The two passes of [`rnea`] over the bodies, hanging from `root`, without
+/// the armature: `q`, `(qd, qdd)` and `tau` are the joints' slices (n long,
+/// checked by the caller). Of `loads` the tips on bodies and the payloads are
+/// read (gravity comes with the root). Returns the wrench the root's
+/// children exert on it, in its frame (zero for a fixed root, which is not
+/// summed).
+#[inline(always)]
+pub(crate) fn rnea_tree<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    (qd, qdd): (Option<&[S]>, Option<&[S]>),
+    root: Root<'_, S>,
+    loads: Loads<'_, S>,
+    tau: &mut [S],
+) -> Force<S> {
+    let n = model.dof();
+    let Loads { tips, payloads, .. } = loads;
     // Slices of the known length, so that indexing by body needs no checks.
     let (bodies, q, tau) = (&model.bodies[..n], &q[..n], &mut tau[..n]);
     let (qd, qdd) = (qd.map(|x| &x[..n]), qdd.map(|x| &x[..n]));
@@ -180,27 +273,36 @@ pub fn rnea<S: Scalar>(
         let joint = &body.joint;
         let x = joint_transform(joint, q[i]);
         xs[i] = x;
+        // The parent's ω, ω̇, origin acceleration and U, in its frame.
+        let parent = match body.parent {
+            Some(p) => Some((vs[p].ang, accs[p], us[p])),
+            None => match root {
+                Root::Moving(r) => Some((r.w, Motion::new(r.wd, r.a), r.u)),
+                Root::Fixed(_) => None,
+            },
+        };
         // The parent's ω and ω̇, and the acceleration of this body's origin,
-        // all in this body's frame. The base is at rest, accelerating at −g.
-        let (w_in, wd_in, mut a) = match body.parent {
-            Some(p) => with_rotation!(joint, x, |r| {
+        // all in this body's frame. A fixed base is at rest, accelerating at −g.
+        let (w_in, wd_in, mut a) = match (parent, root) {
+            (Some((wp, ap, up)), _) => with_rotation!(joint, x, |r| {
                 // a_origin = a_parent + ω̇ × p + ω × (ω × p) = a_parent + U·p,
                 // in the parent's frame
-                let mut ao = accs[p].lin;
+                let mut ao = ap.lin;
                 let (mut w_in, mut wd_in) = (Vec3::zero(), Vec3::zero());
                 if moving {
-                    ao += us[p].mul_vec(&x.trans);
-                    wd_in = r.tr_mul(&accs[p].ang);
+                    ao += up.mul_vec(&x.trans);
+                    wd_in = r.tr_mul(&ap.ang);
                 }
                 if qd.is_some() {
-                    w_in = r.tr_mul(&vs[p].ang);
+                    w_in = r.tr_mul(&wp);
                 }
                 (w_in, wd_in, r.tr_mul(&ao))
             }),
-            None => {
+            (None, Root::Fixed(gravity)) => {
                 let a = gravity.map_or(Vec3::zero(), |g| with_rotation!(joint, x, |r| r.tr_mul(&-*g)));
                 (Vec3::zero(), Vec3::zero(), a)
             }
+            (None, Root::Moving(_)) => unreachable!("a moving root is every root body's parent"),
         };
         let (mut w, mut wd) = (w_in, wd_in);
         let revolute = joint.is_revolute();
@@ -217,68 +319,48 @@ pub fn rnea<S: Scalar>(
         if let Some(qdd) = qdd {
             add_axis(joint, if revolute { &mut wd } else { &mut a }, qdd[i]);
         }
-        let inertia = Inertia::<S>::from_f64(&body.inertia);
-        let (h, ibar) = (&inertia.h, &inertia.ibar);
-        let mut f = a.scale(inertia.mass);
-        let mut m = h.cross(&a);
-        let p = qd.is_some().then(|| products(&w));
-        if moving {
-            // U = [ω̇×] + [ω×][ω×]: U·v = ω̇ × v + ω × (ω × v), shared by
-            // this body's force (v = h) and its children's origins (v = p)
-            let u = velocity_product_matrix(p.as_ref(), &wd);
-            f += u.mul_vec(h);
-            // Traced: Ī·ω̇ + ω × (Ī·ω) grouped by the entries of Ī, fewer
-            // products than Ī·ω̇ plus either form of the gyroscopic moment. On
-            // f64 it made `bias_forces` 1.5–2 % slower in instructions, so
-            // there it is compiled out (Scalar::TRACED).
-            match &p {
-                Some(p) if S::TRACED => m += inertial_moment(ibar, &wd, p, &u),
-                _ => m += ibar.mul_vec(&wd),
-            }
-            us[i] = u;
-        }
-        if let Some(p) = &p {
-            if !S::TRACED {
-                m += if gyro[i] { gyroscopic(ibar, p) } else { w.cross(&ibar.mul_vec(&w)) };
-            }
-        }
+        let inertia = body.inertia_in::<S>();
+        let (mut f, u) = body_wrench(&inertia, [&w, &wd, &a], (qd.is_some(), moving), gyro[i]);
         for extra in payloads.iter().filter(|x| x.body == i) {
+            // the dense forms, with the payload's inertia an input
             let Inertia { mass, h, ibar } = &extra.inertia;
-            f += a.scale(*mass);
-            m += h.cross(&a);
-            if moving {
-                f += us[i].mul_vec(h);
-                m += ibar.mul_vec(&wd);
+            f.lin += a.scale(*mass);
+            f.ang += h.cross(&a);
+            if let Some(u) = &u {
+                f.lin += u.mul_vec(h);
+                f.ang += ibar.mul_vec(&wd);
             }
             if qd.is_some() {
-                m += w.cross(&ibar.mul_vec(&w));
+                f.ang += w.cross(&ibar.mul_vec(&w));
             }
+        }
+        if let Some(u) = u {
+            us[i] = u;
         }
         vs[i].ang = w;
         accs[i] = Motion::new(wd, a);
-        fs[i] = Force::new(m, f);
+        fs[i] = f;
     }
     for tip in tips {
         let frame = &model.frames[tip.frame];
         if let Some(b) = frame.body {
-            let place = Transform::<S>::from_f64(&frame.placement);
+            let place = frame.placement_in::<S>();
             fs[b] += place.force_to_parent(&tip.wrench);
         }
     }
+    let mut at_root = Force::zero();
     for (i, body) in bodies.iter().enumerate().rev() {
         tau[i] = project(&body.joint, &fs[i]);
-        if let Some(p) = body.parent {
-            let fp = force_to_parent(&body.joint, &xs[i], &fs[i]);
-            fs[p] += fp;
-        }
-    }
-    if let (Some(armature), Some(qdd)) = (armature, qdd) {
-        for (i, &a) in armature.iter().enumerate() {
-            if a != 0.0 {
-                tau[i] += S::from_f64(a) * qdd[i];
+        match (body.parent, root) {
+            (Some(p), _) => {
+                let fp = force_to_parent(&body.joint, &xs[i], &fs[i]);
+                fs[p] += fp;
             }
+            (None, Root::Moving(_)) => at_root += force_to_parent(&body.joint, &xs[i], &fs[i]),
+            (None, Root::Fixed(_)) => {}
         }
     }
+    at_root
 }
 
 #[cfg(test)]

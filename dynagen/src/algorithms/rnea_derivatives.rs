@@ -26,8 +26,10 @@
 //! On the way, t₁ gives the mass matrix's entries Sⱼ·t₁ᵢ (the CRBA's).
 //!
 //! Tip wrenches fixed in their frames and payloads enter as in the RNEA (a
-//! wrench turning with its body, an inertia added to its body's), held
-//! constant; the armature does not depend on q or q̇.
+//! wrench turning with its body, an inertia added to its body's, or to a
+//! floating base's), held constant; the armature does not depend on q or q̇.
+//! The model's constants are read as the other algorithms read them
+//! (`inertia_in`, `placement_in`), exact for a double-double scalar.
 //!
 //! A floating base is one more ancestor of every joint, with six
 //! coordinates: the tangent of the configuration is the base's body twist
@@ -41,7 +43,7 @@
 //! multi-degree joint); the 6×6 block of the base is Iᶜᵦ Ψ̈ₖ and
 //! Iᶜᵦ(vᵦ × eₖ) + İᶜᵦ eₖ + eₖ ×* hᶜᵦ over the whole robot.
 
-use super::floating::{base_motion, quaternion_rotation};
+use super::floating::{base_inertia, base_motion, quaternion_rotation};
 use super::joint::{add_motion, joint_transform, motion, project};
 use super::joint::{cross_motion, force_to_parent, inertia_times_subspace, inertia_to_parent, motion_to_child};
 use super::Loads;
@@ -171,7 +173,7 @@ pub fn rnea_derivatives<S: Scalar>(
         add_motion(joint, &mut v, qd[off + i]);
         let mut a = a_in + sdot.scale(qd[off + i]);
         add_motion(joint, &mut a, qdd[off + i]);
-        let mut inertia = Inertia::from_f64(&body.inertia);
+        let mut inertia = body.inertia_in::<S>();
         for p in loads.payloads.iter().filter(|p| p.body == i) {
             inertia = inertia.add(&p.inertia);
         }
@@ -183,13 +185,13 @@ pub fn rnea_derivatives<S: Scalar>(
         (ws.x[i], ws.v[i], ws.a[i], ws.sdot[i], ws.psidd[i]) = (x, v, a, sdot, psidd);
     }
     if floating {
-        let i0 = Inertia::from_f64(&model.base_inertia);
+        let i0 = base_inertia(model, loads.payloads);
         let h0 = i0.mul_motion(&v0);
         ws.base = (i0, inertia_rate(&i0, &v0), h0, i0.mul_motion(&a0) + v0.cross_force(&h0));
     }
     for tip in loads.tips {
         let frame = &model.frames[tip.frame];
-        let w = Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
+        let w = frame.placement_in::<S>().force_to_parent(&tip.wrench);
         match frame.body {
             Some(b) => ws.f[b] += w,
             None if floating => ws.base.3 += w,

@@ -73,8 +73,7 @@ impl Setting {
                     let f: Function = name.parse().map_err(|_| BuildError::UnknownFunction { name: name.clone() })?;
                     list.push(f);
                 }
-                let frames =
-                    o.functions.iter().filter(|f| matches!(f, Function::FramePose(_) | Function::FrameJacobian(_)));
+                let frames = o.functions.iter().filter(|f| f.frame().is_some());
                 list.extend(frames.cloned().collect::<Vec<_>>());
                 o = o.functions(list);
             }
@@ -193,8 +192,8 @@ pub enum BuildError {
         source: Box<SceneError>,
     },
     /// A function name that is not one of [`Function::NAMES`] (or
-    /// `frame_pose:FRAME`, `frame_jacobian:FRAME`).
-    #[error("dynagen: unknown function \"{name}\" (the functions are {}, frame_pose:FRAME, frame_jacobian:FRAME)", Function::NAMES.join(", "))]
+    /// `KIND:FRAME` with a kind of [`Function::FRAME_KINDS`]).
+    #[error("dynagen: unknown function \"{name}\" (the functions are {})", Function::all_names())]
     UnknownFunction {
         /// The name given.
         name: String,
@@ -362,7 +361,8 @@ impl Builder {
     /// Only these functions, by name (`inverse_dynamics`, `mass_matrix`,
     /// `bias_forces`, `gravity_torques`, `coriolis`, `forward_dynamics`,
     /// `inverse_dynamics_derivatives`, `forward_dynamics_derivatives`,
-    /// `mass_matrix_inverse`, `frame_pose:FRAME`, `frame_jacobian:FRAME`);
+    /// `mass_matrix_inverse`, `frame_pose:FRAME`, `frame_jacobian:FRAME`,
+    /// `frame_world_jacobian:FRAME`, `frame_acceleration_bias:FRAME`);
     /// default the five of the
     /// contract. A scene file's frame functions stay.
     pub fn functions<S: AsRef<str>>(self, names: &[S]) -> Self {

@@ -8,8 +8,9 @@ use std::fmt::Write;
 use std::str::FromStr;
 
 /// A function code generation can emit. The Rust name of each is
-/// [`Function::rust_name`]; `FramePose` and `FrameJacobian` name a frame
-/// (link) of the robot.
+/// [`Function::rust_name`]; the frame functions (`FramePose`,
+/// `FrameJacobian`, `FrameWorldJacobian`, `FrameAccelerationBias`) name a
+/// frame (link) of the robot.
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Function {
     /// `inverse_dynamics(q, qd, qdd) -> τ` by the recursive Newton-Euler
@@ -37,11 +38,22 @@ pub enum Function {
     /// `mass_matrix_inverse(q) -> M⁻¹`, from the sparse LᵀDL factors;
     /// generated only on request.
     MassMatrixInverse,
-    /// `frame_pose_FRAME(q)`: the pose of a frame in the base frame.
+    /// `frame_pose_FRAME(q)`: the pose of a frame in the base frame (a
+    /// floating base: in the world frame).
     FramePose(String),
     /// `frame_jacobian_FRAME(q)`: the body Jacobian of a frame (in the
-    /// frame itself: JᵀF is the torque of a wrench given in that frame).
+    /// frame itself: JᵀF is the torque of a wrench given in that frame;
+    /// Pinocchio's `LOCAL`), 6 × DOF (6 × NV on a floating base).
     FrameJacobian(String),
+    /// `frame_world_jacobian_FRAME(q)`: the space Jacobian of a frame, its
+    /// twist at the world origin in world axes (Pinocchio's `WORLD`; on a
+    /// fixed base the world is the base frame).
+    FrameWorldJacobian(String),
+    /// `frame_acceleration_bias_FRAME(q, qd)`: the classical acceleration
+    /// bias J̇q̇ of a frame, its acceleration at q̈ = 0 in its own axes
+    /// (angular; linear), so that a contact holding the frame's origin
+    /// still is `J q̈ + J̇q̇ = 0` in the linear rows of `frame_jacobian`.
+    FrameAccelerationBias(String),
 }
 
 impl Function {
@@ -68,6 +80,34 @@ impl Function {
         "mass_matrix_inverse",
     ];
 
+    /// The kinds of frame function, as TOML and the option lists spell
+    /// them (`KIND:FRAME` in a list of functions).
+    pub const FRAME_KINDS: [&'static str; 4] =
+        ["frame_pose", "frame_jacobian", "frame_world_jacobian", "frame_acceleration_bias"];
+
+    /// The frame function of kind `kind` (one of [`FRAME_KINDS`](Self::FRAME_KINDS))
+    /// for `frame`, if `kind` is one.
+    pub fn frame_function(kind: &str, frame: &str) -> Option<Function> {
+        let frame = frame.to_string();
+        Some(match kind {
+            "frame_pose" => Function::FramePose(frame),
+            "frame_jacobian" => Function::FrameJacobian(frame),
+            "frame_world_jacobian" => Function::FrameWorldJacobian(frame),
+            "frame_acceleration_bias" => Function::FrameAccelerationBias(frame),
+            _ => return None,
+        })
+    }
+    /// The frame a frame function names (`None` for the others).
+    pub fn frame(&self) -> Option<&str> {
+        match self {
+            Function::FramePose(f)
+            | Function::FrameJacobian(f)
+            | Function::FrameWorldJacobian(f)
+            | Function::FrameAccelerationBias(f) => Some(f),
+            _ => None,
+        }
+    }
+
     /// The function without a frame named `name`, if it is one.
     pub fn from_name(name: &str) -> Option<Function> {
         Some(match name.trim() {
@@ -83,8 +123,8 @@ impl Function {
             _ => return None,
         })
     }
-    /// The function's kind as TOML and the option lists spell it
-    /// (`frame_pose` and `frame_jacobian` for the frame functions).
+    /// The function's kind as TOML and the option lists spell it (one of
+    /// [`FRAME_KINDS`](Self::FRAME_KINDS) for the frame functions).
     pub fn name(&self) -> &'static str {
         match self {
             Function::InverseDynamics => "inverse_dynamics",
@@ -98,16 +138,17 @@ impl Function {
             Function::MassMatrixInverse => "mass_matrix_inverse",
             Function::FramePose(_) => "frame_pose",
             Function::FrameJacobian(_) => "frame_jacobian",
+            Function::FrameWorldJacobian(_) => "frame_world_jacobian",
+            Function::FrameAccelerationBias(_) => "frame_acceleration_bias",
         }
     }
     /// The function's name in generated code (`frame_pose_ee_link` for a
     /// frame function: the frame's name in snake case, ASCII letters and
     /// digits, every other run of characters one `_`).
     pub fn rust_name(&self) -> String {
-        match self {
-            Function::FramePose(f) => identifier_name("frame_pose", f),
-            Function::FrameJacobian(f) => identifier_name("frame_jacobian", f),
-            f => f.name().to_string(),
+        match self.frame() {
+            Some(frame) => identifier_name(self.name(), frame),
+            None => self.name().to_string(),
         }
     }
     /// The state vectors it takes, in argument order.
@@ -116,6 +157,7 @@ impl Function {
             Function::InverseDynamics | Function::InverseDynamicsDerivatives => &["q", "qd", "qdd"],
             Function::BiasForces | Function::Coriolis => &["q", "qd"],
             Function::ForwardDynamics | Function::ForwardDynamicsDerivatives => &["q", "qd", "tau"],
+            Function::FrameAccelerationBias(_) => &["q", "qd"],
             _ => &["q"],
         }
     }
@@ -129,7 +171,10 @@ impl Function {
             | Function::ForwardDynamicsDerivatives => (true, true, true),
             Function::BiasForces | Function::GravityTorques => (true, false, true),
             Function::MassMatrix | Function::Coriolis | Function::MassMatrixInverse => (false, false, true),
-            Function::FramePose(_) | Function::FrameJacobian(_) => (false, false, false),
+            Function::FramePose(_)
+            | Function::FrameJacobian(_)
+            | Function::FrameWorldJacobian(_)
+            | Function::FrameAccelerationBias(_) => (false, false, false),
         }
     }
     /// Its arguments in `scene`: the state vectors, then the scene's
@@ -171,7 +216,8 @@ impl Function {
             Function::InverseDynamicsDerivatives => Shape::Matrices(2, v, v),
             Function::ForwardDynamicsDerivatives => Shape::Matrices(3, v, v),
             Function::FramePose(_) => Shape::Matrix(Dim::Fixed(4), Dim::Fixed(4)),
-            Function::FrameJacobian(_) => Shape::Matrix(Dim::Fixed(6), v),
+            Function::FrameJacobian(_) | Function::FrameWorldJacobian(_) => Shape::Matrix(Dim::Fixed(6), v),
+            Function::FrameAccelerationBias(_) => Shape::Vector(Dim::Fixed(6)),
             _ => Shape::Vector(v),
         }
     }
@@ -188,6 +234,9 @@ impl Function {
     /// what a plain module says.
     pub(crate) fn doc(&self, scene: &SceneModel, ldlt: bool, count: &OpCount) -> String {
         let plain = scene.is_plain();
+        let floating = scene.model.is_floating();
+        let (world, cols, torque) =
+            if floating { ("world", "NV", "generalised force") } else { ("base", "DOF", "joint torque") };
         let what = match self {
             Function::InverseDynamics if plain => {
                 "Inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton-Euler algorithm.".to_string()
@@ -222,33 +271,41 @@ impl Function {
             ),
             Function::MassMatrixInverse if plain => "The inverse of the mass matrix M(q)⁻¹ from its sparse LᵀDL factors (symmetric, `[row][col]`).".to_string(),
             Function::MassMatrixInverse => "The inverse (M(q) + diag(armature))⁻¹ from its sparse LᵀDL factors (symmetric, `[row][col]`).".to_string(),
-            Function::FramePose(frame) => {
-                format!("The pose of frame {} in the base frame, as a homogeneous matrix `[row][col]`.", doc_code(frame))
-            }
+            Function::FramePose(frame) => format!(
+                "The pose of frame {} in the {} frame, as a homogeneous matrix `[row][col]`.",
+                doc_code(frame),
+                world
+            ),
             Function::FrameJacobian(frame) => format!(
-                "The body Jacobian of frame {} (6 × DOF, rows (ω; v), in the frame): its twist is `J q̇`, and `Jᵀ F` is the joint torque of a wrench `F` given in the frame.",
+                "The body Jacobian of frame {} (6 × {cols}, rows (ω; v), in the frame): its twist is `J q̇`, and `Jᵀ F` is the {torque} of a wrench `F` given in the frame.",
+                doc_code(frame)
+            ),
+            Function::FrameWorldJacobian(frame) => format!(
+                "The space Jacobian of frame {} in the {world} frame (6 × {cols}, rows (ω; v)): `J q̇` is its twist at the {world} origin, in {world} axes.",
+                doc_code(frame)
+            ),
+            Function::FrameAccelerationBias(frame) => format!(
+                "The classical acceleration bias J̇q̇ of frame {}: its acceleration at q̈ = 0, (angular; linear) in the frame, the linear part that of the frame's origin. With `J` the body Jacobian its acceleration is `J q̈ + J̇q̇`: a contact holding the origin still is `J[3..6] q̈ + J̇q̇[3..6] = 0` (world axes: rotate both by the pose's rotation).",
                 doc_code(frame)
             ),
         };
-        if plain && scene.model.is_floating() {
-            return format!(
-                " {what}\n\n Floating base: `q` = [p (world), quaternion (x, y, z, w) world ← base, joints] (`NQ`), \
-                 the velocity-side vectors [ω_b, v_b (the base's body twist, base frame), joints] (`NV`), τ's first six \
-                 the wrench on the base (m; f) in the base frame; joints in [`JOINT_NAMES`] order; rad, m, s, N·m, N; \
-                 gravity {:?} m/s² in the world frame. The quaternion is used as given (the caller keeps it unit).\n {count}.",
-                scene.model.gravity.0
-            );
-        }
+        // What the vectors hold: a floating base's conventions, or the joint order.
+        let layout = if floating {
+            "Floating base: `q` = [p (world), quaternion (x, y, z, w) world ← base, joints] (`NQ`), \
+             the velocity-side vectors [ω_b, v_b (the base's body twist, base frame), joints] (`NV`), τ's first six \
+             the wrench on the base (m; f) in the base frame; joints in [`JOINT_NAMES`] order; rad, m, s, N·m, N"
+        } else {
+            "Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N"
+        };
+        let quaternion = if floating { " The quaternion is used as given (the caller keeps it unit)." } else { "" };
         if plain {
-            return format!(
-                " {what}\n\n Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity {:?} m/s² in the base frame.\n {count}.",
-                scene.model.gravity.0
-            );
+            let g = scene.model.gravity.0;
+            return format!(" {what}\n\n {layout}; gravity {g:?} m/s² in the {world} frame.{quaternion}\n {count}.");
         }
         let mut args = String::new();
         for p in self.params(scene) {
             let what = match p.name.as_str() {
-                "gravity" => "`gravity`: m/s², in the base frame.".to_string(),
+                "gravity" => format!("`gravity`: m/s², in the {world} frame."),
                 "f_tip" => {
                     let frame = scene.tip_wrench_frame.map(|i| scene.model.frames[i].name.as_str()).unwrap_or("");
                     format!(
@@ -263,28 +320,32 @@ impl Function {
             };
             let _ = write!(args, "\n {what}");
         }
-        format!(" {what}\n\n Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N.{args}\n {count}.")
+        format!(" {what}\n\n {layout}.{quaternion}{args}\n {count}.")
     }
 }
 
 impl FromStr for Function {
     type Err = String;
-    /// A function without a frame by its name, or `frame_pose:FRAME` /
-    /// `frame_jacobian:FRAME`; the error says what the names are.
+    /// A function without a frame by its name, or `KIND:FRAME` for a frame
+    /// function (`frame_pose:FRAME`, …); the error says what the names are.
     fn from_str(s: &str) -> Result<Function, String> {
         let s = s.trim();
         if let Some(f) = Function::from_name(s) {
             return Ok(f);
         }
         match s.split_once(':') {
-            Some(("frame_pose", frame)) if !frame.trim().is_empty() => Ok(Function::FramePose(frame.trim().into())),
-            Some(("frame_jacobian", frame)) if !frame.trim().is_empty() => {
-                Ok(Function::FrameJacobian(frame.trim().into()))
-            }
-            _ => Err(format!(
-                "unknown function \"{s}\" (the functions are {}, frame_pose:FRAME, frame_jacobian:FRAME)",
-                Function::NAMES.join(", ")
-            )),
+            Some((kind, frame)) if !frame.trim().is_empty() => Function::frame_function(kind.trim(), frame.trim()),
+            _ => None,
         }
+        .ok_or_else(|| format!("unknown function \"{s}\" (the functions are {})", Function::all_names()))
+    }
+}
+
+impl Function {
+    /// Every function's spelling, for messages: the names, then
+    /// `KIND:FRAME` for each frame function.
+    pub fn all_names() -> String {
+        let frames = Function::FRAME_KINDS.iter().map(|k| format!("{k}:FRAME"));
+        Function::NAMES.iter().map(|n| n.to_string()).chain(frames).collect::<Vec<_>>().join(", ")
     }
 }

@@ -154,10 +154,8 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
     }
     let mut names = std::collections::HashSet::new();
     for f in &options.functions {
-        if let Function::FramePose(frame) | Function::FrameJacobian(frame) = f {
+        if let Some(frame) = f.frame() {
             scene.frame(f.name(), frame).map_err(|e| CodegenError::Scene(Box::new(e)))?;
-        }
-        if let Function::FramePose(frame) | Function::FrameJacobian(frame) = f {
             emit::identifier(&f.rust_name(), &format!("frame \"{frame}\""))?;
         }
         if !names.insert(f.rust_name()) {

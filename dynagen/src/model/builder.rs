@@ -34,7 +34,7 @@ impl RobotBuilder {
     }
     /// Adds a link; `None` is massless.
     pub fn link(mut self, name: &str, inertial: Option<Inertial>) -> Self {
-        self.desc.links.push(LinkDescription { name: name.to_string(), inertial });
+        self.desc.links.push(LinkDescription::new(name, inertial));
         self
     }
     /// Adds a joint (see [`JointDescription::revolute`] and its siblings).

@@ -1,7 +1,9 @@
 //! A robot as links and joints, before validation: what importers produce
 //! and [`Model::from_description`](super::Model::from_description) checks.
 
-use crate::spatial::{Mat3, Sym3, Transform, Vec3};
+use super::file_values::{FileTransform, FileValue, FileVec3};
+use crate::spatial::{Inertia, Mat3, Sym3, Transform, Vec3};
+use crate::DoubleDouble;
 
 /// The type of a joint as a description (URDF) names it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -68,6 +70,21 @@ pub struct LinkDescription {
     pub name: String,
     /// Mass properties; `None` is a massless link.
     pub inertial: Option<Inertial>,
+    /// The link's spatial inertia in its own frame as the robot file defines
+    /// it, beyond `f64` ([`FileValue`]), refining `inertial`; without it (a
+    /// link described in Rust), `inertial`'s numbers are taken as exact.
+    pub file_inertia: Option<FileInertial>,
+}
+
+/// A link's spatial inertia in its frame from the file's decimals, beside
+/// the [`Inertial`] it refines.
+pub type FileInertial = FileValue<Inertial, Inertia<DoubleDouble>>;
+
+impl LinkDescription {
+    /// A link with these mass properties (none: massless).
+    pub fn new(name: &str, inertial: Option<Inertial>) -> Self {
+        LinkDescription { name: name.to_string(), inertial, file_inertia: None }
+    }
 }
 
 /// A joint.
@@ -97,6 +114,12 @@ pub struct JointDescription {
     pub limits: Option<JointLimits>,
     /// Whether the joint mimics another (not supported yet).
     pub mimic: bool,
+    /// `origin` as the robot file defines it (the rotation from the file's
+    /// rpy or quaternion), beyond `f64` ([`FileValue`]).
+    pub file_origin: Option<FileTransform>,
+    /// `axis` as the robot file writes it, beyond `f64` (without it, the
+    /// `f64` axis is taken as exact).
+    pub file_axis: Option<FileVec3>,
 }
 
 impl JointDescription {
@@ -111,6 +134,8 @@ impl JointDescription {
             axis_is_direction: false,
             limits: None,
             mimic: false,
+            file_origin: None,
+            file_axis: None,
         }
     }
     /// A revolute joint about `axis` (in the joint frame).
@@ -130,9 +155,13 @@ impl JointDescription {
         Self::new(name, JointType::Fixed, parent, child, [0.0, 0.0, 0.0])
     }
     /// Places the joint frame at `xyz` with URDF roll-pitch-yaw `rpy` in the
-    /// parent link's frame.
+    /// parent link's frame. The numbers are exact: the precise scalars take
+    /// the rotation computed from them in double-double (`file_origin`).
     pub fn origin(mut self, xyz: [f64; 3], rpy: [f64; 3]) -> Self {
         self.origin = Transform::new(Mat3::from_rpy(rpy[0], rpy[1], rpy[2]), Vec3(xyz));
+        let [r, p, y] = rpy.map(DoubleDouble::from);
+        let exact = Transform::new(Mat3::rpy(r, p, y), Vec3(xyz.map(DoubleDouble::from)));
+        self.file_origin = Some(FileValue::new(self.origin, exact));
         self
     }
     /// Makes the axis a direction (as URDF's): the joint turns by exactly

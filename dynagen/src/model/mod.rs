@@ -16,15 +16,20 @@ mod builder;
 mod dependent;
 mod description;
 mod error;
+mod file_values;
 mod modern_robotics;
 mod tree;
 mod urdf;
+mod urdf_decimals;
 mod validate;
 
 pub use builder::RobotBuilder;
-pub use description::{Inertial, JointDescription, JointLimits, JointType, LinkDescription, RobotDescription};
+pub use description::{
+    FileInertial, Inertial, JointDescription, JointLimits, JointType, LinkDescription, RobotDescription,
+};
 pub(crate) use error::quoted as quoted_names;
 pub use error::{ModelError, ModelWarning};
+pub use file_values::{ExactAxis, FileAxis, FileInertia, FileTransform, FileValue, FileVec3, JointFileValues};
 pub use modern_robotics::ModernRoboticsLists;
 
 use crate::spatial::{Inertia, Mat3, Transform, Vec3};
@@ -92,6 +97,10 @@ pub struct Joint {
     /// Derived from `placement`: whether its rotation is exactly the
     /// identity, so that the algorithms can skip the product with it.
     pub placement_rotation_is_identity: bool,
+    /// The placement and unit axis as the robot file defines them, beyond
+    /// `f64`, for the precise scalars ([`FileValue`]); `None` for a joint
+    /// built in Rust, whose `f64` numbers are exact.
+    pub file_values: Option<Box<JointFileValues>>,
 }
 
 /// Which coordinate axis of its frame a joint's axis lies along (its other
@@ -171,6 +180,8 @@ pub struct Body {
     /// The spatial inertia of the body and every link fixed to it, in the
     /// body's (joint's) frame.
     pub inertia: Inertia<f64>,
+    /// `inertia` as the robot file defines it, beyond `f64` ([`FileValue`]).
+    pub file_inertia: Option<Box<FileInertia>>,
 }
 
 /// A named frame rigidly attached to a body (or to the fixed base): every
@@ -183,6 +194,8 @@ pub struct Frame {
     pub body: Option<usize>,
     /// The frame's pose in the body's frame.
     pub placement: Transform<f64>,
+    /// `placement` as the robot file defines it, beyond `f64` ([`FileValue`]).
+    pub file_placement: Option<Box<FileTransform>>,
 }
 
 /// A robot: the constant data every algorithm reads.
@@ -210,6 +223,8 @@ pub struct Model {
     /// the root's frame: the floating base's own inertia (unused when the
     /// root is fixed).
     pub base_inertia: Inertia<f64>,
+    /// `base_inertia` as the robot file defines it, beyond `f64` ([`FileValue`]).
+    pub file_base_inertia: Option<Box<FileInertia>>,
 }
 
 /// The default gravity: (0, 0, −9.81) m/s² in the base frame.

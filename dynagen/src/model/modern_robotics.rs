@@ -106,7 +106,7 @@ impl ModernRoboticsLists {
                 return Err(err(format!("M_{}{} does not end in the row [0, 0, 0, 1]", i, i + 1)));
             }
         }
-        let mut links = vec![LinkDescription { name: "base".into(), inertial: None }];
+        let mut links = vec![LinkDescription::new("base", None)];
         let mut joints = Vec::new();
         let mut home = Transform::<f64>::identity(); // {i} in the space frame at home
         let mut parent = "base".to_string();
@@ -135,11 +135,8 @@ impl ModernRoboticsLists {
                 (JointType::Prismatic, v, Vec3([0.0; 3]))
             };
             let name = format!("link{i}");
-            links.push(LinkDescription { name: name.clone(), inertial: None });
-            links.push(LinkDescription {
-                name: format!("{name}_com"),
-                inertial: inertial_from_g(i, &self.glist[i - 1])?,
-            });
+            links.push(LinkDescription::new(&name, None));
+            links.push(LinkDescription::new(&format!("{name}_com"), inertial_from_g(i, &self.glist[i - 1])?));
             let mut j = JointDescription::revolute(&format!("joint{i}"), &parent, &name, axis.0);
             j.joint_type = joint_type;
             j.origin = m.compose(&Transform::translation(r));
@@ -149,7 +146,7 @@ impl ModernRoboticsLists {
             joints.push(fixed);
             parent = format!("{name}_com");
         }
-        links.push(LinkDescription { name: "ee".into(), inertial: None });
+        links.push(LinkDescription::new("ee", None));
         let mut ee = JointDescription::fixed("ee_joint", &parent, "ee");
         ee.origin = transform(&self.mlist[n]);
         joints.push(ee);

@@ -1,12 +1,14 @@
 //! From a checked description to a [`Model`]: the tree's topology, the
 //! depth-first joint order, and fixed joints merged away.
 
-use super::description::{JointDescription, JointType, RobotDescription};
+use super::description::{JointDescription, JointType, LinkDescription, RobotDescription};
+use super::file_values::{ExactAxis, FileInertia, FileTransform, FileValue, JointFileValues};
 use super::{
     validate, AxisAlignment, Body, BuildOptions, Frame, Joint, JointKind, Model, ModelError, ModelWarning, RootJoint,
     DEFAULT_GRAVITY,
 };
-use crate::spatial::{Inertia, Mat3, Transform, Vec3};
+use crate::spatial::{Inertia, Mat3, Sym3, Transform, Vec3};
+use crate::DoubleDouble;
 use std::collections::HashMap;
 
 impl Model {
@@ -52,19 +54,21 @@ impl Model {
         let (root, world) = floating_root(desc, root, &child_joints, &link_index)?;
 
         // Depth-first walk from the root with an explicit stack (a long chain
-        // must not overflow the call stack), children in file order. An entry
-        // is (link, body it hangs from, link pose in that body's frame, the
-        // moving joint that starts a new body at this link).
+        // must not overflow the call stack), children in file order. Every
+        // pose and inertia is computed twice: in f64, and in double-double
+        // from the file's values while every one on the way has them.
         let mut bodies: Vec<Body> = Vec::new();
         let mut frames: Vec<Frame> = Vec::new();
         let mut base_mass = 0.0;
-        let mut base_inertia = Inertia::zero();
+        // the base's inertia, then each body's: f64, and from the file's values
+        let mut inertias: Vec<(Inertia<f64>, Option<Inertia<DoubleDouble>>)> = vec![(Inertia::zero(), exact_zero())];
         let mut visited = vec![false; desc.links.len()];
         if let Some(w) = world {
             visited[w] = true;
         }
-        let mut stack: Vec<WalkEntry> = vec![(root, None, Transform::identity(), None)];
-        while let Some((link, parent_body, pose, moving)) = stack.pop() {
+        let identity = (Transform::identity(), Some(Transform::identity()));
+        let mut stack: Vec<WalkEntry> = vec![WalkEntry { link: root, parent_body: None, pose: identity, moving: None }];
+        while let Some(WalkEntry { link, parent_body, pose, moving }) = stack.pop() {
             visited[link] = true;
             let (body, pose) = match moving {
                 Some(ji) => {
@@ -73,30 +77,38 @@ impl Model {
                         parent: parent_body,
                         joint: joint_from(&desc.joints[ji], pose),
                         inertia: Inertia::zero(),
+                        file_inertia: None,
                     });
-                    (Some(bodies.len() - 1), Transform::identity())
+                    inertias.push((Inertia::zero(), exact_zero()));
+                    (Some(bodies.len() - 1), identity)
                 }
                 None => (parent_body, pose),
             };
             let l = &desc.links[link];
-            frames.push(Frame { name: l.name.clone(), body, placement: pose });
-            if let Some(inertial) = &l.inertial {
-                let at_com = inertial.inertia.rotate(&inertial.origin.rot);
-                let local = Inertia::from_mass_com_inertia(inertial.mass, inertial.origin.trans, at_com);
-                match body {
-                    Some(b) => bodies[b].inertia = bodies[b].inertia.add(&pose.inertia_to_parent(&local)),
-                    None => {
-                        base_mass += inertial.mass;
-                        base_inertia = base_inertia.add(&pose.inertia_to_parent(&local));
-                    }
-                }
+            let file_placement = pose.1.map(|p| Box::new(FileValue::new(pose.0, p)));
+            frames.push(Frame { name: l.name.clone(), body, placement: pose.0, file_placement });
+            let total = &mut inertias[body.map_or(0, |b| b + 1)];
+            add_link_inertia(total, l, &pose);
+            if body.is_none() {
+                base_mass += l.inertial.map_or(0.0, |i| i.mass);
             }
             for &ji in child_joints[link].iter().rev() {
                 let j = &desc.joints[ji];
                 let moving = (j.joint_type != JointType::Fixed).then_some(ji);
-                stack.push((link_index[j.child.as_str()], body, pose.compose(&j.origin), moving));
+                let file_origin = j.file_origin.as_ref().and_then(|f| f.value_for(&j.origin));
+                let child_pose = (pose.0.compose(&j.origin), pose.1.zip(file_origin).map(|(p, o)| p.compose(o)));
+                let parent_body = body;
+                stack.push(WalkEntry { link: link_index[j.child.as_str()], parent_body, pose: child_pose, moving });
             }
         }
+        let file_inertia = |(f64, exact): &(Inertia<f64>, Option<Inertia<DoubleDouble>>)| {
+            exact.map(|e| Box::new(FileInertia::new(*f64, e)))
+        };
+        for (b, total) in bodies.iter_mut().zip(&inertias[1..]) {
+            b.inertia = total.0;
+            b.file_inertia = file_inertia(total);
+        }
+        let (base_inertia, file_base_inertia) = (inertias[0].0, file_inertia(&inertias[0]));
         // A link the walk did not reach has a parent (the one root was
         // reached), and so has that parent: going up from it must close a
         // cycle, apart from the tree.
@@ -115,6 +127,7 @@ impl Model {
             base_mass,
             root_joint: RootJoint::Fixed,
             base_inertia,
+            file_base_inertia,
         };
         let mut model = model;
         let nonphysical = model.warnings.iter().any(|w| matches!(w, ModelWarning::NonPhysicalInertia { .. }));
@@ -224,11 +237,48 @@ fn check_finite(bodies: &[Body], frames: &[Frame], base_mass: f64, root: &str) -
     Ok(())
 }
 
-/// (link, body it hangs from, link pose in that body's frame, the moving
-/// joint that starts a new body at this link)
-type WalkEntry = (usize, Option<usize>, Transform<f64>, Option<usize>);
+/// A pose in f64, and from the file's values when every pose composed into
+/// it has them.
+type Pose = (Transform<f64>, Option<Transform<DoubleDouble>>);
 
-fn joint_from(desc: &JointDescription, placement: Transform<f64>) -> Joint {
+/// A link to visit in the walk over the tree.
+struct WalkEntry {
+    link: usize,
+    /// The body it hangs from (`None`: the base).
+    parent_body: Option<usize>,
+    /// The link's pose in that body's frame.
+    pose: Pose,
+    /// The moving joint that starts a new body at this link.
+    moving: Option<usize>,
+}
+
+fn exact_zero() -> Option<Inertia<DoubleDouble>> {
+    Some(Inertia::zero())
+}
+
+/// Adds a link's inertia, at `pose` in its body's frame, to the body's
+/// total (f64, and from the file's values while the pose has them). The
+/// same formulas in both scalars. A link without its file's inertia (one
+/// described in Rust) has exact f64 numbers: they are taken as they are.
+fn add_link_inertia(total: &mut (Inertia<f64>, Option<Inertia<DoubleDouble>>), link: &LinkDescription, pose: &Pose) {
+    let Some(inertial) = &link.inertial else { return };
+    let at_com = inertial.inertia.rotate(&inertial.origin.rot);
+    let at_link = Inertia::from_mass_com_inertia(inertial.mass, inertial.origin.trans, at_com);
+    total.0 = total.0.add(&pose.0.inertia_to_parent(&at_link));
+    let exact = link.file_inertia.as_ref().and_then(|f| f.value_for(inertial)).copied().unwrap_or_else(|| {
+        let dd = DoubleDouble::from;
+        let rot = Mat3(inertial.origin.rot.0.map(|row| row.map(dd)));
+        let inertia = Sym3(inertial.inertia.0.map(dd));
+        Inertia::from_mass_com_inertia(dd(inertial.mass), Vec3::from_f64(&inertial.origin.trans), inertia.rotate(&rot))
+    });
+    total.1 = match (total.1, pose.1) {
+        (Some(sum), Some(p)) => Some(sum.add(&p.inertia_to_parent(&exact))),
+        _ => None,
+    };
+}
+
+fn joint_from(desc: &JointDescription, pose: Pose) -> Joint {
+    let (placement, file_placement) = pose;
     let kind = match desc.joint_type {
         JointType::Revolute => JointKind::Revolute,
         JointType::Continuous => JointKind::Continuous,
@@ -240,6 +290,19 @@ fn joint_from(desc: &JointDescription, placement: Transform<f64>) -> Joint {
     // A direction (URDF) turns by exactly q: its axis is the unit one and
     // its scale exactly 1, whatever ulp its length was off by.
     let (axis, axis_norm) = if desc.axis_is_direction { (unit_axis, 1.0) } else { (desc.axis, n) };
+    let placement_rotation_is_identity = placement.rot == Mat3::identity();
+    // The file's placement, unless its f64 rotation is the identity and the
+    // file's is not (the algorithms then skip the rotation); the file's unit
+    // axis, of a direction.
+    let file_placement = file_placement
+        .filter(|p| !placement_rotation_is_identity || p.rot == Mat3::identity())
+        .map(|p| FileTransform::new(placement, p));
+    // (an axis without the file's value, one given in Rust, is exact as it is)
+    let file_axis = desc.file_axis.as_ref().and_then(|f| f.value_for(&desc.axis)).copied();
+    let file_axis = file_axis.unwrap_or_else(|| Vec3::from_f64(&desc.axis));
+    let file_axis = Some(FileValue::new(axis, ExactAxis::new(file_axis, desc.axis_is_direction)));
+    let file_values = (file_placement.is_some() || file_axis.is_some())
+        .then(|| Box::new(JointFileValues { placement: file_placement, axis: file_axis }));
     Joint {
         name: desc.name.clone(),
         kind,
@@ -249,7 +312,8 @@ fn joint_from(desc: &JointDescription, placement: Transform<f64>) -> Joint {
         unit_axis,
         axis_norm,
         alignment: AxisAlignment::of(&desc.axis),
-        placement_rotation_is_identity: placement.rot == Mat3::identity(),
+        placement_rotation_is_identity,
+        file_values,
     }
 }
 

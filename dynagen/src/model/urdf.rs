@@ -32,8 +32,10 @@
 //! column and the link or joint, found by giving urdf-rs each alone.
 
 use super::description::{Inertial, JointDescription, JointLimits, JointType, LinkDescription, RobotDescription};
+use super::urdf_decimals::{self as decimals, InertialDecimals, RawInertial};
 use super::{BuildOptions, Model, ModelError, ModelWarning};
 use crate::spatial::{Mat3, Sym3, Transform, Vec3};
+use crate::DoubleDouble;
 use quick_xml::events::{BytesStart, Event};
 use std::path::Path;
 
@@ -132,6 +134,8 @@ fn line_column(xml: &str, pos: usize) -> (usize, usize) {
 struct RawLink {
     name: String,
     has_inertial: bool,
+    /// The `<inertial>` from the file's decimals.
+    file_inertial: Option<RawInertial>,
 }
 
 /// A `<joint>` as the pre-check read it.
@@ -142,6 +146,9 @@ struct RawJoint {
     parent: String,
     child: String,
     has_limit: bool,
+    /// The `<origin>` and `<axis>` from the file's decimals.
+    file_origin: Option<Transform<DoubleDouble>>,
+    file_axis: Option<[DoubleDouble; 3]>,
 }
 
 /// The URDF joint types, as urdf-rs spells them.
@@ -170,6 +177,7 @@ struct LinkState {
     origin: bool,
     mass: bool,
     inertia: bool,
+    file: InertialDecimals,
 }
 
 /// The state of the `<joint>` being read.
@@ -183,6 +191,8 @@ struct JointState {
     limit: bool,
     parent: Option<String>,
     child: Option<String>,
+    file_origin: Option<Transform<DoubleDouble>>,
+    file_axis: Option<[DoubleDouble; 3]>,
 }
 
 /// Reads the attributes of an element as (local name, unescaped value).
@@ -392,17 +402,20 @@ fn precheck(xml: &str) -> Result<RawFacts, ModelError> {
                     "origin" => {
                         once(&mut link.origin, item, "inertial><origin")?;
                         check_origin(&attrs, item, "inertial origin", version)?;
+                        link.file.origin = Some(decimals::origin(&attrs, version));
                         Ctx::Leaf("inertial><origin", false)
                     }
                     "mass" => {
                         once(&mut link.mass, item, "inertial><mass")?;
                         check_numbers::<1>(&attrs, item, "mass", &["value"], &["value"])?;
+                        link.file.mass = get(&attrs, "value").and_then(decimals::decimals::<1>).map(|[m]| m);
                         Ctx::Leaf("mass", false)
                     }
                     "inertia" => {
                         once(&mut link.inertia, item, "inertial><inertia")?;
                         let keys = ["ixx", "ixy", "ixz", "iyy", "iyz", "izz"];
                         check_numbers::<1>(&attrs, item, "inertia", &keys, &keys)?;
+                        link.file.inertia = decimals::inertia(&attrs);
                         Ctx::Leaf("inertia", false)
                     }
                     _ => Ctx::Other,
@@ -414,11 +427,13 @@ fn precheck(xml: &str) -> Result<RawFacts, ModelError> {
                     "origin" => {
                         once(&mut joint.origin, item, "origin")?;
                         check_origin(&attrs, item, "origin", version)?;
+                        joint.file_origin = decimals::origin(&attrs, version);
                         Ctx::Leaf("origin", true)
                     }
                     "axis" => {
                         once(&mut joint.axis, item, "axis")?;
                         check_numbers::<3>(&attrs, item, "axis", &["xyz"], &["xyz"])?;
+                        joint.file_axis = get(&attrs, "xyz").and_then(decimals::decimals::<3>);
                         Ctx::Leaf("axis", true)
                     }
                     "limit" => {
@@ -497,7 +512,11 @@ fn once(seen: &mut bool, item: &str, element: &str) -> Result<(), ModelError> {
 /// What to check and record when an element ends.
 fn close(ctx: Option<Ctx>, facts: &mut RawFacts, link: &LinkState, joint: &JointState) -> Result<(), ModelError> {
     match ctx {
-        Some(Ctx::Link) => facts.links.push(RawLink { name: link.name.clone(), has_inertial: link.inertial }),
+        Some(Ctx::Link) => facts.links.push(RawLink {
+            name: link.name.clone(),
+            has_inertial: link.inertial,
+            file_inertial: link.file.read(),
+        }),
         Some(Ctx::Joint) => {
             let (Some(parent), Some(child)) = (&joint.parent, &joint.child) else {
                 let role = if joint.parent.is_none() { "parent" } else { "child" };
@@ -509,6 +528,9 @@ fn close(ctx: Option<Ctx>, facts: &mut RawFacts, link: &LinkState, joint: &Joint
                 parent: parent.clone(),
                 child: child.clone(),
                 has_limit: joint.limit,
+                // a missing origin is the identity, a missing axis x (as urdf-rs reads them)
+                file_origin: if joint.origin { joint.file_origin } else { Some(Transform::identity()) },
+                file_axis: if joint.axis { joint.file_axis } else { Some([1.0, 0.0, 0.0].map(DoubleDouble::from)) },
             });
         }
         Some(Ctx::Inertial) => {
@@ -571,10 +593,9 @@ fn description_from_urdf(
             let i = &l.inertial;
             let inertia =
                 Sym3([i.inertia.ixx, i.inertia.iyy, i.inertia.izz, i.inertia.ixy, i.inertia.ixz, i.inertia.iyz]);
-            LinkDescription {
-                name: l.name.clone(),
-                inertial: raw.has_inertial.then(|| Inertial { mass: i.mass.value, origin: pose(&i.origin), inertia }),
-            }
+            let inertial = raw.has_inertial.then(|| Inertial { mass: i.mass.value, origin: pose(&i.origin), inertia });
+            let file_inertia = inertial.and_then(|i| decimals::file_inertial(raw.file_inertial, &i));
+            LinkDescription { name: l.name.clone(), inertial, file_inertia }
         })
         .collect();
     let joints = robot
@@ -605,16 +626,19 @@ fn description_from_urdf(
                     effort: j.limit.effort,
                 },
             );
+            let origin = pose(&j.origin);
             JointDescription {
                 name: j.name.clone(),
                 joint_type,
                 parent: j.parent.link.clone(),
                 child: j.child.link.clone(),
-                origin: pose(&j.origin),
+                origin,
                 axis,
                 axis_is_direction: true,
                 limits,
                 mimic: j.mimic.is_some(),
+                file_origin: decimals::file_transform(raw.file_origin, &origin),
+                file_axis: decimals::file_axis(raw.file_axis, &j.axis.xyz, &axis),
             }
         })
         .collect();

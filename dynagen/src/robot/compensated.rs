@@ -37,6 +37,16 @@ impl Robot {
     ) -> Result<DVector<f64>, InputError> {
         vector(self.model.nv(), |qdd| self.forward_dynamics_compensated_into(q, qd, tau, qdd))
     }
+    /// Makes [`forward_dynamics_compensated`](Self::forward_dynamics_compensated)
+    /// take `steps` steps of iterative refinement (0, the default: none):
+    /// each computes the residual τ − RNEA(q, q̇, q̈) in compensated
+    /// arithmetic and adds the articulated-body algorithm's correction, for
+    /// about the time of the first pass again. It pays where M(q) is
+    /// ill-conditioned (nearly dependent joints), where the `f64` solve
+    /// loses about ε·cond(M) of q̈; measurements in `docs/performance.md`.
+    pub fn set_compensated_refinement(&mut self, steps: usize) {
+        self.comp.set_refinement(steps);
+    }
     /// [`forward_dynamics_compensated`](Self::forward_dynamics_compensated)
     /// into `qdd`, allocating nothing.
     pub fn forward_dynamics_compensated_into(

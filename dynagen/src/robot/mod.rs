@@ -32,7 +32,9 @@ pub use simulate::{Stepping, TipWrenchHistory};
 
 use crate::algorithms::compensated::CompensatedSolver;
 use crate::algorithms::integrators::IntegratorScratch;
-use crate::algorithms::{aba, bias, crba, floating, forward_dynamics, kinematics, rnea, Loads, TipWrench, Workspace};
+use crate::algorithms::{
+    aba, bias, crba, floating, forward_dynamics, frame_acceleration, kinematics, rnea, Loads, TipWrench, Workspace,
+};
 use crate::model::{BuildOptions, Model, ModelError};
 use check::Check;
 use nalgebra::{DMatrix, DVector, Matrix4, Matrix6xX, Vector3, Vector6};
@@ -54,12 +56,20 @@ fn matrix<E>(n: usize, into: impl FnOnce(&mut DMatrix<f64>) -> Result<(), E>) ->
 }
 
 /// The pose of frame `frame` of `model` at `q`, 4×4 homogeneous in the base
-/// frame (in the world for a floating base).
-fn frame_pose(model: &Model, ws: &mut Workspace<f64>, frame: usize, q: &DVector<f64>) -> Matrix4<f64> {
+/// frame (in the world for a floating base, unless `in_base`).
+fn frame_pose(
+    model: &Model,
+    ws: &mut Workspace<f64>,
+    (frame, in_base): (usize, bool),
+    q: &DVector<f64>,
+) -> Matrix4<f64> {
     let q = q.as_slice();
     let t = if model.is_floating() {
         floating::kinematics::forward_kinematics(model, ws, q);
-        floating::kinematics::frame_pose_world(model, ws, q, frame)
+        match in_base {
+            true => kinematics::frame_pose(model, ws, frame),
+            false => floating::kinematics::frame_pose_world(model, ws, q, frame),
+        }
     } else {
         kinematics::forward_kinematics(model, ws, q);
         kinematics::frame_pose(model, ws, frame)
@@ -71,10 +81,12 @@ fn frame_pose(model: &Model, ws: &mut Workspace<f64>, frame: usize, q: &DVector<
 /// Which Jacobian of a frame.
 #[derive(Clone, Copy)]
 enum Jacobian {
-    /// In the base frame (J_s).
+    /// In the world frame (J_s; on a fixed base, the base frame).
     Space,
     /// In the frame itself (J_b).
     Body,
+    /// In the base frame, at the base origin (on a fixed base, J_s).
+    Base,
 }
 
 /// A Jacobian of frame `frame` of `model` at `q` (6×n, rows (ω; v)), with
@@ -92,15 +104,31 @@ fn frame_jacobian(
         match which {
             Jacobian::Space => floating::kinematics::space_jacobian_world(model, ws, q, frame, jac),
             Jacobian::Body => floating::kinematics::body_jacobian(model, ws, frame, jac),
+            Jacobian::Base => floating::kinematics::space_jacobian_base(model, ws, frame, jac),
         }
         return Matrix6xX::from_row_slice(jac);
     }
     kinematics::forward_kinematics(model, ws, q);
     match which {
-        Jacobian::Space => kinematics::space_jacobian(model, ws, frame, jac),
+        Jacobian::Space | Jacobian::Base => kinematics::space_jacobian(model, ws, frame, jac),
         Jacobian::Body => kinematics::body_jacobian(model, ws, frame, jac),
     }
     Matrix6xX::from_row_slice(jac)
+}
+
+/// J̇q̇ of the frame named `frame` of `model` at (q, q̇), (angular; linear)
+/// in the frame, the arguments checked.
+fn frame_acceleration_bias(
+    model: &Model,
+    ws: &mut Workspace<f64>,
+    frame: &str,
+    q: &DVector<f64>,
+    qd: &DVector<f64>,
+) -> Result<Vector6<f64>, InputError> {
+    let f = Check(model).frame(frame)?;
+    Check(model).joints(&[("q", q), ("qd", qd)])?;
+    let a = frame_acceleration::frame_acceleration_bias(model, ws, q.as_slice(), qd.as_slice(), f);
+    Ok(Vector6::from(a.to_array()))
 }
 
 /// A robot with the generic `f64` solver, on nalgebra types: units, frames
@@ -325,20 +353,50 @@ impl Robot {
         })
     }
 
-    /// The pose T_sb of a frame (a link name for URDF) in the base frame.
+    /// The pose T_sb of a frame (a link name for URDF) in the base frame
+    /// (a floating base: in the world frame).
     pub fn frame_pose(&mut self, frame: &str, q: &DVector<f64>) -> Result<Matrix4<f64>, InputError> {
         let f = self.check().frame(frame)?;
         self.check().joints(&[("q", q)])?;
-        Ok(frame_pose(&self.model, &mut self.ws, f, q))
+        Ok(frame_pose(&self.model, &mut self.ws, (f, false), q))
     }
-    /// The space Jacobian J_s(q) of a frame (6×n, rows (ω; v)): see
+    /// The pose of a frame in the base frame (the same as
+    /// [`frame_pose`](Self::frame_pose) on a fixed base).
+    pub fn frame_pose_in_base(&mut self, frame: &str, q: &DVector<f64>) -> Result<Matrix4<f64>, InputError> {
+        let f = self.check().frame(frame)?;
+        self.check().joints(&[("q", q)])?;
+        Ok(frame_pose(&self.model, &mut self.ws, (f, true), q))
+    }
+    /// The space Jacobian J_s(q) of a frame (6×n, rows (ω; v); a floating
+    /// base: 6×NV, in the world frame, Pinocchio's `WORLD`): see
     /// [`kinematics::space_jacobian`].
     pub fn space_jacobian(&mut self, frame: &str, q: &DVector<f64>) -> Result<Matrix6xX<f64>, InputError> {
         self.jacobian(frame, Jacobian::Space, q)
     }
-    /// The body Jacobian J_b(q) of a frame (6×n, rows (ω; v)), in the frame.
+    /// The body Jacobian J_b(q) of a frame (6×n or 6×NV, rows (ω; v)), in
+    /// the frame (Pinocchio's `LOCAL`).
     pub fn body_jacobian(&mut self, frame: &str, q: &DVector<f64>) -> Result<Matrix6xX<f64>, InputError> {
         self.jacobian(frame, Jacobian::Body, q)
+    }
+    /// The Jacobian of a frame in the base frame: its twist at the base
+    /// origin in base axes (a floating base's own six columns the
+    /// identity); on a fixed base the space Jacobian.
+    pub fn base_jacobian(&mut self, frame: &str, q: &DVector<f64>) -> Result<Matrix6xX<f64>, InputError> {
+        self.jacobian(frame, Jacobian::Base, q)
+    }
+    /// The classical acceleration bias J̇q̇ of a frame: its acceleration at
+    /// q̈ = 0, (angular; linear) in the frame, the linear part the
+    /// acceleration of the frame's origin, so that `body_jacobian · q̈ +
+    /// J̇q̇` is the frame's classical acceleration (a contact holding the
+    /// point: the linear rows = 0); see
+    /// [`frame_acceleration`](crate::algorithms::frame_acceleration).
+    pub fn frame_acceleration_bias(
+        &mut self,
+        frame: &str,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+    ) -> Result<Vector6<f64>, InputError> {
+        frame_acceleration_bias(&self.model, &mut self.ws, frame, q, qd)
     }
     fn jacobian(&mut self, frame: &str, which: Jacobian, q: &DVector<f64>) -> Result<Matrix6xX<f64>, InputError> {
         let f = self.check().frame(frame)?;

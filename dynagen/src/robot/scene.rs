@@ -6,7 +6,7 @@
 mod derivatives;
 
 use super::check::{self, Check};
-use super::{frame_jacobian, frame_pose, matrix, vector, InputError, Jacobian};
+use super::{frame_acceleration_bias, frame_jacobian, frame_pose, matrix, vector, InputError, Jacobian};
 use crate::algorithms::{Loads, TipWrench, Workspace};
 use crate::scene::dynamics;
 use crate::scene::{PayloadInertia, ResolvedGravity, SceneError, SceneModel};
@@ -74,6 +74,8 @@ pub struct SceneRobot {
     scene: SceneModel,
     /// Body inertias without the input payloads.
     base_inertia: Vec<Inertia<f64>>,
+    /// The floating base's inertia without the input payloads.
+    root_inertia: Inertia<f64>,
     ws: Workspace<f64>,
     tips: Vec<TipWrench<f64>>,
     jac: Vec<f64>,
@@ -91,20 +93,30 @@ struct Uses {
 impl SceneRobot {
     /// Wraps an applied scene.
     pub fn new(scene: SceneModel) -> Self {
-        let n = scene.dof();
+        let nv = scene.model.nv();
         let ws = Workspace::new(&scene.model);
         let base_inertia = scene.model.bodies.iter().map(|b| b.inertia).collect();
+        let root_inertia = scene.model.base_inertia;
         let deriv = super::derivatives::DerivativeScratch::new(&scene.model);
-        SceneRobot { scene, base_inertia, ws, tips: Vec::with_capacity(1), jac: vec![0.0; 6 * n], deriv }
+        SceneRobot { scene, base_inertia, root_inertia, ws, tips: Vec::with_capacity(1), jac: vec![0.0; 6 * nv], deriv }
     }
     /// The applied scene (its model's inertias include the input payloads of
     /// the last call).
     pub fn scene(&self) -> &SceneModel {
         &self.scene
     }
-    /// The number of joints.
+    /// The number of joints (n, without a floating base's six).
     pub fn dof(&self) -> usize {
         self.scene.dof()
+    }
+    /// The length of a configuration q: n, or n + 7 with a floating base.
+    pub fn nq(&self) -> usize {
+        self.scene.model.nq()
+    }
+    /// The length of q̇, q̈, τ and the side of M: n, or n + 6 with a
+    /// floating base.
+    pub fn nv(&self) -> usize {
+        self.scene.model.nv()
     }
     /// The joint names, in the order of every vector and matrix index.
     pub fn joint_names(&self) -> Vec<&str> {
@@ -156,15 +168,21 @@ impl SceneRobot {
             for (p, v) in self.scene.input_payloads.iter().zip(inputs.payloads) {
                 v.check(&p.link)?;
             }
+            // On a fixed base a payload on the base moves nothing; a
+            // floating base carries it.
             let model = &mut self.scene.model;
+            let floating = model.is_floating();
+            model.base_inertia = self.root_inertia;
             for p in &self.scene.input_payloads {
                 if let Some(b) = p.body {
                     model.bodies[b].inertia = self.base_inertia[b];
                 }
             }
             for (p, v) in self.scene.input_payloads.iter().zip(inputs.payloads) {
-                if let Some(b) = p.body {
-                    model.bodies[b].inertia = model.bodies[b].inertia.add(&p.inertia_in_body(v));
+                match p.body {
+                    Some(b) => model.bodies[b].inertia = model.bodies[b].inertia.add(&p.inertia_in_body(v)),
+                    None if floating => model.base_inertia = model.base_inertia.add(&p.inertia_in_body(v)),
+                    None => {}
                 }
             }
         }
@@ -190,7 +208,7 @@ impl SceneRobot {
         qdd: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DVector<f64>, SceneInputError> {
-        vector(self.dof(), |tau| self.inverse_dynamics_into(q, qd, qdd, inputs, tau))
+        vector(self.nv(), |tau| self.inverse_dynamics_into(q, qd, qdd, inputs, tau))
     }
     /// [`inverse_dynamics_with`](Self::inverse_dynamics_with) into `tau`,
     /// allocating nothing.
@@ -222,7 +240,7 @@ impl SceneRobot {
         q: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DMatrix<f64>, SceneInputError> {
-        matrix(self.dof(), |m| self.mass_matrix_into(q, inputs, m))
+        matrix(self.nv(), |m| self.mass_matrix_into(q, inputs, m))
     }
     /// [`mass_matrix_with`](Self::mass_matrix_with) into `m` (n×n),
     /// allocating nothing.
@@ -252,7 +270,7 @@ impl SceneRobot {
         qd: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DVector<f64>, SceneInputError> {
-        vector(self.dof(), |h| self.bias_forces_into(q, qd, inputs, h))
+        vector(self.nv(), |h| self.bias_forces_into(q, qd, inputs, h))
     }
     /// [`bias_forces_with`](Self::bias_forces_with) into `h`, allocating
     /// nothing.
@@ -281,7 +299,7 @@ impl SceneRobot {
         q: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DVector<f64>, SceneInputError> {
-        vector(self.dof(), |g| self.gravity_torques_into(q, inputs, g))
+        vector(self.nv(), |g| self.gravity_torques_into(q, inputs, g))
     }
     /// [`gravity_torques_with`](Self::gravity_torques_with) into `out`,
     /// allocating nothing.
@@ -310,7 +328,7 @@ impl SceneRobot {
         qd: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DVector<f64>, SceneInputError> {
-        vector(self.dof(), |c| self.coriolis_into(q, qd, inputs, c))
+        vector(self.nv(), |c| self.coriolis_into(q, qd, inputs, c))
     }
     /// [`coriolis_with`](Self::coriolis_with) into `c`, allocating nothing.
     pub fn coriolis_into(
@@ -345,7 +363,7 @@ impl SceneRobot {
         tau: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DVector<f64>, SceneInputError> {
-        vector(self.dof(), |qdd| self.forward_dynamics_into(q, qd, tau, inputs, qdd))
+        vector(self.nv(), |qdd| self.forward_dynamics_into(q, qd, tau, inputs, qdd))
     }
     /// [`forward_dynamics_with`](Self::forward_dynamics_with) into `qdd`,
     /// allocating nothing.
@@ -366,17 +384,38 @@ impl SceneRobot {
     }
 
     /// The pose of a frame in the reduced model's base frame (the sub-tree
-    /// root), 4×4 homogeneous.
+    /// root; a floating base: the world frame), 4×4 homogeneous: what
+    /// `frame_pose_FRAME` computes.
     pub fn frame_pose(&mut self, frame: &str, q: &DVector<f64>) -> Result<Matrix4<f64>, SceneInputError> {
         let f = self.check().frame(frame)?;
         self.check().joints(&[("q", q)])?;
-        Ok(frame_pose(&self.scene.model, &mut self.ws, f, q))
+        Ok(frame_pose(&self.scene.model, &mut self.ws, (f, false), q))
     }
-    /// The body Jacobian of a frame (6×n, rows (ω; v), in the frame):
-    /// `J_bᵀF` is the joint torque of a wrench `F` given in the frame.
+    /// The body Jacobian of a frame (6×n or 6×NV, rows (ω; v), in the
+    /// frame): `J_bᵀF` is the torque of a wrench `F` given in the frame;
+    /// `frame_jacobian_FRAME`.
     pub fn frame_jacobian(&mut self, frame: &str, q: &DVector<f64>) -> Result<Matrix6xX<f64>, SceneInputError> {
         let f = self.check().frame(frame)?;
         self.check().joints(&[("q", q)])?;
         Ok(frame_jacobian(&self.scene.model, &mut self.ws, (f, Jacobian::Body), q, &mut self.jac))
+    }
+    /// The Jacobian of a frame in the world frame (the base frame of a
+    /// fixed base): its twist at the world origin, world axes (the space
+    /// Jacobian); `frame_world_jacobian_FRAME`.
+    pub fn frame_world_jacobian(&mut self, frame: &str, q: &DVector<f64>) -> Result<Matrix6xX<f64>, SceneInputError> {
+        let f = self.check().frame(frame)?;
+        self.check().joints(&[("q", q)])?;
+        Ok(frame_jacobian(&self.scene.model, &mut self.ws, (f, Jacobian::Space), q, &mut self.jac))
+    }
+    /// The classical acceleration bias J̇q̇ of a frame ((angular; linear)
+    /// in the frame, as [`Robot::frame_acceleration_bias`](crate::Robot::frame_acceleration_bias));
+    /// `frame_acceleration_bias_FRAME`.
+    pub fn frame_acceleration_bias(
+        &mut self,
+        frame: &str,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+    ) -> Result<Vector6<f64>, SceneInputError> {
+        Ok(frame_acceleration_bias(&self.scene.model, &mut self.ws, frame, q, qd)?)
     }
 }

@@ -62,6 +62,10 @@ pub type CompensatedFma = CompensatedWith<Fused>;
 pub trait ExactProduct: Copy + core::fmt::Debug + Default + PartialEq + 'static {
     /// `(p, e)` with `p = fl(a·b)` and `p + e = a·b` exactly.
     fn two_prod(a: f64, b: f64) -> (f64, f64);
+    /// `a·b + c`, fused (one rounding) where products are formed by
+    /// fused multiply-adds, else rounded twice: for the small cross terms
+    /// of a product, whose own rounding is of order ε².
+    fn mul_add(a: f64, b: f64, c: f64) -> f64;
 }
 
 /// Exact products by Dekker's splitting: 17 `f64` operations.
@@ -81,6 +85,10 @@ impl ExactProduct for Dekker {
         let (bh, bl) = split(b);
         (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
     }
+    #[inline(always)]
+    fn mul_add(a: f64, b: f64, c: f64) -> f64 {
+        a * b + c
+    }
 }
 
 /// Exact products by one fused multiply-add.
@@ -90,6 +98,10 @@ impl ExactProduct for Fused {
     #[inline(always)]
     fn two_prod(a: f64, b: f64) -> (f64, f64) {
         two_prod_fma(a, b)
+    }
+    #[inline(always)]
+    fn mul_add(a: f64, b: f64, c: f64) -> f64 {
+        a.mul_add(b, c)
     }
 }
 
@@ -149,7 +161,7 @@ impl<E: ExactProduct> CompensatedWith<E> {
     #[inline(always)]
     pub fn mul_f64(self, b: f64) -> Self {
         let (p, e) = E::two_prod(self.hi, b);
-        let (hi, lo) = quick_two_sum(p, e + self.lo * b);
+        let (hi, lo) = quick_two_sum(p, E::mul_add(self.lo, b, e));
         Self::raw(hi, lo)
     }
     /// Division by a double.
@@ -255,7 +267,7 @@ impl<E: ExactProduct> Mul for CompensatedWith<E> {
     fn mul(self, b: Self) -> Self {
         // No renormalisation: hi is the f64 product, lo gathers the errors.
         let (p, e) = E::two_prod(self.hi, b.hi);
-        Self::raw(p, e + (self.hi * b.lo + self.lo * b.hi))
+        Self::raw(p, E::mul_add(self.hi, b.lo, E::mul_add(self.lo, b.hi, e)))
     }
 }
 
@@ -343,6 +355,11 @@ impl<E: ExactProduct> Scalar for CompensatedWith<E> {
         // |a| = |a|²/|a|
         let a = Vec3::<Self>::from_f64(axis);
         a.norm_squared() * inverse_norm(&a, norm)
+    }
+    const FILE_CONSTANTS: bool = true;
+    #[inline(always)]
+    fn from_double_double(x: crate::DoubleDouble) -> Self {
+        Self::raw(x.hi, x.lo)
     }
 }
 

@@ -251,6 +251,10 @@ impl Scalar for DoubleDouble {
     fn axis_norm_constant(axis: &Vec3<f64>, _norm: f64) -> Self {
         Vec3::<Self>::from_f64(axis).norm_squared().sqrt()
     }
+    const FILE_CONSTANTS: bool = true;
+    fn from_double_double(x: DoubleDouble) -> Self {
+        x
+    }
 }
 
 #[cfg(test)]

@@ -132,6 +132,11 @@ impl<S: Scalar> Scalar for Dual<S> {
     fn axis_norm_constant(axis: &crate::spatial::Vec3<f64>, norm: f64) -> Self {
         Dual::constant(S::axis_norm_constant(axis, norm))
     }
+    const FILE_CONSTANTS: bool = S::FILE_CONSTANTS;
+    #[inline(always)]
+    fn from_double_double(x: crate::DoubleDouble) -> Self {
+        Dual::constant(S::from_double_double(x))
+    }
 }
 
 #[cfg(test)]

@@ -94,6 +94,26 @@ pub trait Scalar:
         let _ = axis;
         Self::from_f64(norm)
     }
+
+    /// Whether the scalar computes with the robot file's own constants
+    /// where the model has them ([`FileValue`](crate::model::FileValue):
+    /// placements with their rotations from rpy, unit axes, inertias moved
+    /// to body frames and merged through fixed joints, all computed in
+    /// double-double from the file's decimals) rather than with their `f64`
+    /// rounding. `false` by default: `f64`, `f32` and the symbolic scalar
+    /// (hence generated code) compute with the `f64` model. The precise
+    /// scalars set it, so that a double-double reference is the file's
+    /// robot, not one an ε away, which cancelling states would amplify.
+    /// Where the model has no file value (a robot built in Rust, whose
+    /// `f64` numbers are exact), the hooks above apply.
+    const FILE_CONSTANTS: bool = false;
+    /// A model constant from the robot file, in double-double (called only
+    /// when [`FILE_CONSTANTS`](Self::FILE_CONSTANTS) is set); the default
+    /// rounds it to `f64`.
+    #[inline(always)]
+    fn from_double_double(x: DoubleDouble) -> Self {
+        Self::from_f64(x.to_f64())
+    }
 }
 
 impl Scalar for f64 {
@@ -136,6 +156,7 @@ impl Scalar for f32 {
 
 mod compensated;
 mod counting;
+mod decimal;
 mod double_double;
 mod dual;
 mod error_free;

@@ -20,45 +20,56 @@ pub fn smooth_sign<S: Scalar>(v: S, v_eps: f64) -> S {
     v / (v * v + S::from_f64(v_eps * v_eps)).sqrt()
 }
 
-/// Adds the friction torques b∘q̇ + f∘σ(q̇) to `tau`.
+/// Where the joints' entries start in a velocity-side vector: 0, or 6
+/// after a floating base's twist (friction and armature act on the joints
+/// only).
+fn joints_at(scene: &SceneModel) -> usize {
+    scene.model.nv() - scene.dof()
+}
+
+/// Adds the friction torques b∘q̇ + f∘σ(q̇) to `tau` (joints' entries).
 pub fn add_friction<S: Scalar>(scene: &SceneModel, qd: &[S], tau: &mut [S]) {
-    for (i, t) in tau.iter_mut().enumerate() {
+    let o = joints_at(scene);
+    for (i, t) in tau[o..].iter_mut().enumerate() {
         let (b, f) = (scene.viscous_friction[i], scene.coulomb_friction[i]);
         if b != 0.0 {
-            *t += S::from_f64(b) * qd[i];
+            *t += S::from_f64(b) * qd[o + i];
         }
         if f != 0.0 {
-            *t += S::from_f64(f) * smooth_sign(qd[i], scene.coulomb_velocity);
+            *t += S::from_f64(f) * smooth_sign(qd[o + i], scene.coulomb_velocity);
         }
     }
 }
 
-/// Subtracts the friction torques from `tau`.
+/// Subtracts the friction torques from `tau` (joints' entries).
 pub fn sub_friction<S: Scalar>(scene: &SceneModel, qd: &[S], tau: &mut [S]) {
-    for (i, t) in tau.iter_mut().enumerate() {
+    let o = joints_at(scene);
+    for (i, t) in tau[o..].iter_mut().enumerate() {
         let (b, f) = (scene.viscous_friction[i], scene.coulomb_friction[i]);
         if b != 0.0 {
-            *t -= S::from_f64(b) * qd[i];
+            *t -= S::from_f64(b) * qd[o + i];
         }
         if f != 0.0 {
-            *t -= S::from_f64(f) * smooth_sign(qd[i], scene.coulomb_velocity);
+            *t -= S::from_f64(f) * smooth_sign(qd[o + i], scene.coulomb_velocity);
         }
     }
 }
 
-/// The scene's friction, for the derivatives of its dynamics.
+/// The scene's friction, for the derivatives of its dynamics (velocity-side
+/// vectors: n long, or NV on a floating base).
 impl JointTorques for SceneModel {
     fn add_to<S: Scalar>(&self, qd: &[S], tau: &mut [S]) {
         add_friction(self, qd, tau);
     }
 }
 
-/// Adds the armature to the diagonal of the n×n row-major `m`.
+/// Adds the armature to the joints' diagonal of the row-major `m` (n×n, or
+/// NV×NV on a floating base).
 pub fn add_armature_diagonal<S: Scalar>(scene: &SceneModel, m: &mut [S]) {
-    let n = scene.dof();
+    let (o, nv) = (joints_at(scene), scene.model.nv());
     for (i, &a) in scene.armature.iter().enumerate() {
         if a != 0.0 {
-            m[i * n + i] += S::from_f64(a);
+            m[(o + i) * nv + o + i] += S::from_f64(a);
         }
     }
 }
@@ -162,8 +173,8 @@ pub fn forward_dynamics_ldlt<S: Scalar>(
 /// τ − friction, in the workspace's right-hand side (taken out of it; the
 /// caller puts it back).
 fn tau_minus_friction<S: Scalar>(scene: &SceneModel, ws: &mut Workspace<S>, qd: &[S], tau: &[S]) -> Vec<S> {
-    let n = scene.dof();
-    assert!(tau.len() == n && ws.dof() == n, "forward_dynamics: slices must have the model's {n} joints");
+    let (n, nv) = (scene.dof(), scene.model.nv());
+    assert!(tau.len() == nv && ws.dof() == n, "forward_dynamics: tau must have the model's {nv} entries");
     let mut rhs = std::mem::take(&mut ws.rhs);
     rhs.copy_from_slice(tau);
     sub_friction(scene, qd, &mut rhs);

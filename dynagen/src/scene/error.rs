@@ -88,17 +88,6 @@ pub enum SceneError {
     /// Gravity options that contradict each other.
     #[error("gravity: {0}")]
     Gravity(String),
-    /// A scene other than the default one on a floating-base model: its
-    /// reductions, armature, friction and inputs are not made for a floating
-    /// base yet (the default scene, and so a plain module, is).
-    #[error(
-        "the root link \"{root}\" floats: scenes of floating-base robots other than the default one (sub-trees, \
-         locks, payloads, armature, friction, inputs) are not supported yet"
-    )]
-    FloatingBase {
-        /// The floating root link.
-        root: String,
-    },
     /// A sub-tree without tips.
     #[error("sub-tree rooted at \"{root}\" has no tip links")]
     NoTips {
@@ -192,6 +181,15 @@ pub enum SceneWarning {
         /// The link.
         link: String,
     },
+    /// A sub-tree of a floating-base robot rooted at another link than the
+    /// floating root: the reduced robot is fixed-base, its root link the
+    /// fixed base.
+    SubTreeOffFloatingBase {
+        /// The sub-tree root.
+        root: String,
+        /// The floating base (the original root link).
+        base: String,
+    },
 }
 
 impl std::fmt::Display for SceneWarning {
@@ -211,6 +209,12 @@ impl std::fmt::Display for SceneWarning {
             SceneWarning::TipWrenchOnBase { link } => {
                 write!(f, "tip wrench at link \"{link}\": the link is fixed to the base, so the wrench loads no joint")
             }
+            SceneWarning::SubTreeOffFloatingBase { root, base } => write!(
+                f,
+                "sub-tree: the root \"{root}\" is not the floating base \"{base}\", so the reduced robot is fixed-base: \
+                 \"{root}\" is held still, the base's motion is left out, and gravity is seen with the base level (give \
+                 gravity as an input to follow the base)"
+            ),
         }
     }
 }

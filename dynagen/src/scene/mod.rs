@@ -82,10 +82,35 @@
 //!   ([`SceneInputs::payloads`]); generated code takes it as an argument
 //!   `payload_LINK: &[T; 10]`.
 //!
+//! # A floating base
+//!
+//! Every option works on a floating-base model ([`Model::with_floating_base`]);
+//! q, q̇ and τ keep their floating layout (NQ = n + 7, NV = n + 6).
+//!
+//! - **Gravity** is in the world frame: the model's, a constant, or an
+//!   input, all given in world axes (never re-expressed).
+//! - **Armature and friction** act on the joints only, never on the base's
+//!   six coordinates (a free body has no rotor and no bearing); the base
+//!   rows of M get no armature and those of τ no friction.
+//! - **Payloads and tip wrenches** may be on any link, the floating root
+//!   and the links fixed to it included: there they load the base (on a
+//!   fixed base they would move nothing, and warn).
+//! - **Locks**: a locked joint's bodies merge into their parent, the base
+//!   when the joint hangs from it; the base stays floating.
+//! - **Sub-trees**: a sub-tree whose root is the floating root link keeps
+//!   the floating base; one rooted at any other link (an arm's mount, even
+//!   one fixed to the trunk) is a **fixed-base** robot, as any sub-tree
+//!   is: the root link held still, the base's motion left out, gravity
+//!   seen with the base level (or an input in the root's frame), with a
+//!   [`SceneWarning::SubTreeOffFloatingBase`]. That is the model of a
+//!   controller of the arm alone; to keep the body's motion, root the
+//!   sub-tree at the floating root.
+//!
 //! # The TOML format
 //!
 //! Every key is optional; unknown keys are errors naming the key. Vectors
-//! are in the original robot's base frame, payloads in their link's frame.
+//! are in the original robot's base frame (a floating base's: the world
+//! frame), payloads in their link's frame.
 //! A scene file may also carry code-generation keys, which
 //! [`SceneFile`] reads apart from the physics and which set
 //! [`CodegenOptions`](crate::codegen::CodegenOptions) (options set in Rust
@@ -96,11 +121,14 @@
 //! # SceneFile::to_toml_string writes them back):
 //! name = "ur5_controller"      # the generated module's name
 //! # Any of inverse_dynamics, mass_matrix, bias_forces, gravity_torques,
-//! # coriolis, forward_dynamics (default: all but coriolis), plus the pose
-//! # and the body Jacobian of named frames.
+//! # coriolis, forward_dynamics (default: all but coriolis), plus the pose,
+//! # the body and world Jacobians and the acceleration bias J̇q̇ of named
+//! # frames (frame_pose_ee_link(q), frame_jacobian_ee_link(q), …).
 //! functions = ["inverse_dynamics", "mass_matrix", "bias_forces", "gravity_torques", "forward_dynamics"]
 //! frame_pose = ["ee_link"]
 //! frame_jacobian = ["ee_link"]
+//! frame_world_jacobian = ["ee_link"]
+//! frame_acceleration_bias = ["ee_link"]
 //! scalar = "f64"               # or "f32"
 //! trig = "batched"            # or "std", "libm", "inputs"; or instead, as before,
 //! # target = "std"             # std allowed (the trigonometry stays the options'), or
@@ -171,14 +199,17 @@ pub const DEFAULT_COULOMB_VELOCITY: f64 = 0.01;
 /// Where gravity comes from.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub enum Gravity {
-    /// The model's gravity (in the original base frame).
+    /// The model's gravity (in the original base frame; a floating base's
+    /// is in the world frame).
     #[default]
     Default,
-    /// This vector (m/s², in the original base frame).
+    /// This vector (m/s², in the original base frame; a floating base: the
+    /// world frame).
     Constant([f64; 3]),
     /// No gravity: g(q) = 0 and the gravity terms are left out.
     None,
-    /// A run-time argument, in the reduced model's base frame.
+    /// A run-time argument, in the reduced model's base frame (a floating
+    /// base: the world frame).
     Input,
 }
 

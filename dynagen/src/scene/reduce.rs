@@ -37,7 +37,7 @@ pub struct InputPayload {
     /// That link's frame in the reduced model.
     pub frame: usize,
     /// The reduced model's body the link belongs to (`None`: the base, where
-    /// a payload moves nothing).
+    /// a payload moves nothing unless the base floats).
     pub body: Option<usize>,
     /// The link's frame in the body's frame.
     pub placement: Transform<f64>,
@@ -156,8 +156,10 @@ impl SceneModel {
         let mut model = self.model.clone();
         for (p, v) in self.input_payloads.iter().zip(values) {
             v.check(&p.link)?;
-            if let Some(b) = p.body {
-                model.bodies[b].inertia = model.bodies[b].inertia.add(&p.inertia_in_body(v));
+            match p.body {
+                Some(b) => model.bodies[b].inertia = model.bodies[b].inertia.add(&p.inertia_in_body(v)),
+                None if model.is_floating() => model.base_inertia = model.base_inertia.add(&p.inertia_in_body(v)),
+                None => {}
             }
         }
         Ok(model)
@@ -199,11 +201,6 @@ impl Fate {
 }
 
 pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneError> {
-    // The default scene of a floating-base model is the model (what code
-    // generation of a floating base takes); reductions of one are not made yet.
-    if model.is_floating() && *scene != Scene::default() {
-        return Err(SceneError::FloatingBase { root: model.root.clone() });
-    }
     scene.check()?;
     let n = model.dof();
     let joint_index = |what: &'static str, name: &str| {
@@ -234,6 +231,10 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
         None => frame_index("the model's root", &model.root)?,
     };
     let br = model.frames[root_frame].body;
+    // A floating base stays floating when the sub-tree root is its root
+    // link; a sub-tree rooted anywhere else is a fixed-base robot (see the
+    // module docs).
+    let floating = model.is_floating() && model.frames[root_frame].name == model.root;
     let mut fate: Vec<Fate> = (0..n).map(|i| if lock[i].is_some() { Fate::Locked } else { Fate::Moving }).collect();
     if let Some(st) = &scene.subtree {
         let mut on_path = vec![false; n];
@@ -303,6 +304,12 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
         .collect();
 
     let mut warnings = Vec::new();
+    if model.is_floating() && !floating {
+        warnings.push(SceneWarning::SubTreeOffFloatingBase {
+            root: model.frames[root_frame].name.clone(),
+            base: model.root.clone(),
+        });
+    }
     for b in 0..n {
         let parent_dropped = model.bodies[b].parent.is_some_and(|p| fate[p] == Fate::Dropped);
         if fate[b] == Fate::Dropped && !parent_dropped {
@@ -315,12 +322,13 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
     }
 
     // Gravity in the root's frame, with the joints above it at their lock
-    // positions or zero.
+    // positions or zero (a floating base's in the world, as given; a
+    // sub-tree rooted below one sees the base as it is at q = 0).
     let q0: Vec<f64> = lock.iter().map(|l| l.unwrap_or(0.0)).collect();
     let mut ws = Workspace::<f64>::new(model);
     kinematics::forward_kinematics(model, &mut ws, &q0);
     let root_rot = kinematics::frame_pose(model, &ws, root_frame).rot;
-    let to_root = |g: [f64; 3]| root_rot.tr_mul_vec(&Vec3(g)).0;
+    let to_root = |g: [f64; 3]| if floating { g } else { root_rot.tr_mul_vec(&Vec3(g)).0 };
     let gravity = match scene.gravity {
         Gravity::Default => ResolvedGravity::Constant(to_root(model.gravity.0)),
         Gravity::Constant(g) => ResolvedGravity::Constant(to_root(g)),
@@ -340,8 +348,13 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
             _ => [0.0; 3],
         }),
     };
-    let base_inertial = br.and_then(|b| inertial_of(&from_root.inertia_to_parent(&model.bodies[b].inertia)));
-    desc.links.push(LinkDescription { name: root_name.clone(), inertial: base_inertial });
+    let base_inertial = match br {
+        Some(b) => inertial_of(&from_root.inertia_to_parent(&model.bodies[b].inertia)),
+        // the floating base's own inertia (on a fixed base it moves nothing)
+        None if floating => inertial_of(&from_root.inertia_to_parent(&model.base_inertia)),
+        None => None,
+    };
+    desc.links.push(LinkDescription::new(&root_name, base_inertial));
     let mut used_names: HashSet<String> = model.bodies.iter().map(|b| b.joint.name.clone()).collect();
     let (mut fixed_joints, mut removed_joints, mut dropped_links) = (Vec::new(), Vec::new(), Vec::new());
     for (b, body) in model.bodies.iter().enumerate() {
@@ -357,7 +370,7 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
                 continue;
             }
         }
-        desc.links.push(LinkDescription { name: body.name.clone(), inertial: inertial_of(&body.inertia) });
+        desc.links.push(LinkDescription::new(&body.name, inertial_of(&body.inertia)));
         let on_root = body.parent == br;
         let parent = match body.parent {
             Some(p) if !on_root => model.bodies[p].name.clone(),
@@ -388,6 +401,8 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
             axis_is_direction: body.joint.axis_norm == 1.0,
             limits: body.joint.limits,
             mimic: false,
+            file_origin: None,
+            file_axis: None,
         });
     }
     // Every other kept frame, as a massless link fixed where it was.
@@ -401,7 +416,7 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
             Some(b) => (model.bodies[b].name.clone(), frame.placement),
             None => continue,
         };
-        desc.links.push(LinkDescription { name: frame.name.clone(), inertial: None });
+        desc.links.push(LinkDescription::new(&frame.name, None));
         let mut jname = format!("{}_fixed", frame.name);
         while !used_names.insert(jname.clone()) {
             jname.push('_');
@@ -434,7 +449,12 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
     let reduced = if reduces {
         // a non-physical inertia the model was loaded with stays accepted
         let nonphysical = model.warnings.iter().any(|w| matches!(w, ModelWarning::NonPhysicalInertia { .. }));
-        Model::from_description_with(&desc, &BuildOptions::default().allow_nonphysical_inertia(nonphysical))?
+        let m = Model::from_description_with(&desc, &BuildOptions::default().allow_nonphysical_inertia(nonphysical))?;
+        if floating {
+            m.with_floating_base()
+        } else {
+            m
+        }
     } else {
         let mut m = model.clone();
         m.gravity = Vec3(desc.gravity.unwrap_or([0.0; 3]));
@@ -448,7 +468,7 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
             why: "merged away",
         })?;
         let body = reduced.frames[frame].body;
-        if body.is_none() {
+        if body.is_none() && !floating {
             warnings.push(SceneWarning::PayloadOnBase { link: p.link.clone() });
         }
         if p.value == PayloadValue::Input {
@@ -462,7 +482,7 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
     }
     let tip_wrench_frame = scene.tip_wrench.as_ref().and_then(|t| reduced.frame_index(t));
     if let (Some(f), Some(link)) = (tip_wrench_frame, &scene.tip_wrench) {
-        if reduced.frames[f].body.is_none() {
+        if reduced.frames[f].body.is_none() && !floating {
             warnings.push(SceneWarning::TipWrenchOnBase { link: link.clone() });
         }
     }

@@ -17,6 +17,10 @@ struct FileText {
     frame_pose: Vec<String>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     frame_jacobian: Vec<String>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    frame_world_jacobian: Vec<String>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    frame_acceleration_bias: Vec<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     scalar: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -103,8 +107,9 @@ struct PayloadFile {
 pub struct CodeKeys {
     /// `name`.
     pub name: Option<String>,
-    /// `functions`, `frame_pose` and `frame_jacobian` (`None` if the file
-    /// has none of them).
+    /// `functions` and the frame keys (`frame_pose`, `frame_jacobian`,
+    /// `frame_world_jacobian`, `frame_acceleration_bias`; `None` if the
+    /// file has none of them).
     pub functions: Option<Vec<Function>>,
     /// `scalar`.
     pub scalar: Option<ScalarType>,
@@ -146,7 +151,13 @@ pub struct SceneFile {
 fn scene_from_file(f: FileText) -> Result<SceneFile, SceneError> {
     let mut scene = Scene { tip_wrench: f.tip_wrench, ..Scene::default() };
     let mut code = CodeKeys { name: f.name, ..CodeKeys::default() };
-    if f.functions.is_some() || !f.frame_pose.is_empty() || !f.frame_jacobian.is_empty() {
+    let frames = [
+        (Function::FRAME_KINDS[0], f.frame_pose),
+        (Function::FRAME_KINDS[1], f.frame_jacobian),
+        (Function::FRAME_KINDS[2], f.frame_world_jacobian),
+        (Function::FRAME_KINDS[3], f.frame_acceleration_bias),
+    ];
+    if f.functions.is_some() || frames.iter().any(|(_, list)| !list.is_empty()) {
         let mut list: Vec<Function> = match f.functions {
             // The spelling the command line and the macros read too.
             Some(names) => names
@@ -162,8 +173,9 @@ fn scene_from_file(f: FileText) -> Result<SceneFile, SceneError> {
                 .collect::<Result<_, _>>()?,
             None => Function::DEFAULT.to_vec(),
         };
-        list.extend(f.frame_pose.into_iter().map(Function::FramePose));
-        list.extend(f.frame_jacobian.into_iter().map(Function::FrameJacobian));
+        for (kind, names) in frames {
+            list.extend(names.iter().filter_map(|frame| Function::frame_function(kind, frame)));
+        }
         let mut functions = Vec::new();
         for x in list {
             if !functions.contains(&x) {
@@ -319,7 +331,7 @@ impl SceneFile {
 impl SceneFile {
     /// The scene file as TOML: reading it back gives the same [`SceneFile`]
     /// (the per-joint options grouped by joint, in name order; functions,
-    /// then frame poses, then frame Jacobians; the trigonometry as `trig`).
+    /// then each frame key's frames; the trigonometry as `trig`).
     pub fn to_toml_string(&self) -> Result<String, SceneError> {
         let mut f = file_from_scene(&self.scene);
         let c = &self.code;
@@ -330,6 +342,8 @@ impl SceneFile {
                 match x {
                     Function::FramePose(frame) => f.frame_pose.push(frame.clone()),
                     Function::FrameJacobian(frame) => f.frame_jacobian.push(frame.clone()),
+                    Function::FrameWorldJacobian(frame) => f.frame_world_jacobian.push(frame.clone()),
+                    Function::FrameAccelerationBias(frame) => f.frame_acceleration_bias.push(frame.clone()),
                     other => names.push(other.name().to_string()),
                 }
             }

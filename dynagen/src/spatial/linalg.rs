@@ -179,6 +179,18 @@ impl<S: Scalar> Mat3<S> {
     pub fn col(&self, j: usize) -> Vec3<S> {
         Vec3([self.0[0][j], self.0[1][j], self.0[2][j]])
     }
+    /// Rotation matrix from URDF roll-pitch-yaw, in this scalar (see
+    /// [`Mat3::from_rpy`]).
+    pub fn rpy(roll: S, pitch: S, yaw: S) -> Self {
+        let (sr, cr) = roll.sin_cos();
+        let (sp, cp) = pitch.sin_cos();
+        let (sy, cy) = yaw.sin_cos();
+        Mat3([
+            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+            [-sp, cp * sr, cp * cr],
+        ])
+    }
 }
 
 impl Mat3<f64> {
@@ -189,14 +201,7 @@ impl Mat3<f64> {
     /// Rotation matrix from URDF roll-pitch-yaw: fixed axes X, Y, Z, so
     /// `R = Rz(yaw) · Ry(pitch) · Rx(roll)`.
     pub fn from_rpy(roll: f64, pitch: f64, yaw: f64) -> Self {
-        let (sr, cr) = roll.sin_cos();
-        let (sp, cp) = pitch.sin_cos();
-        let (sy, cy) = yaw.sin_cos();
-        Mat3([
-            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-            [-sp, cp * sr, cp * cr],
-        ])
+        Mat3::rpy(roll, pitch, yaw)
     }
     /// The rotation by `angle` radians about the unit vector `axis`
     /// (Rodrigues' formula).

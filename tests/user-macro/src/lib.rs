@@ -259,3 +259,67 @@ mod scene_tests {
         }
     }
 }
+
+/// The quadruped with a floating trunk under inline scene keys: gravity a
+/// run-time argument (world frame), armature on a knee, the wrench at the
+/// front-right foot an argument, and that foot's body Jacobian and
+/// acceleration bias J̇q̇ for a contact constraint.
+pub mod quadruped_contact {
+    dynagen_macros::urdf!(
+        "../../dynagen/robots/quadruped12.urdf",
+        floating_base = true,
+        functions = [inverse_dynamics, mass_matrix],
+        gravity = input,
+        armature = { FR_calf_joint = 0.02 },
+        tip_wrench = FR_foot,
+        frame_jacobian = [FR_foot],
+        frame_acceleration_bias = [FR_foot],
+    );
+}
+
+#[cfg(test)]
+mod floating_tests {
+    use super::quadruped_contact as quad;
+
+    /// A configuration with the trunk level at the origin.
+    fn level() -> [f64; quad::NQ] {
+        let mut q = [0.0; quad::NQ];
+        q[6] = 1.0;
+        q[7..].copy_from_slice(&[0.1, 0.8, -1.5, -0.1, 0.8, -1.5, 0.1, 1.0, -1.6, -0.1, 1.0, -1.6]);
+        q
+    }
+
+    #[test]
+    fn a_floating_module_takes_world_gravity_and_the_foot_wrench() {
+        let (q, zero) = (level(), [0.0; quad::NV]);
+        // At rest the base's rows hold the whole weight (12.453 kg): the
+        // wrench on the base is m·9.81 up, in the (level) base frame.
+        let tau = quad::inverse_dynamics(&q, &zero, &zero, &[0.0, 0.0, -9.81], &[0.0; 6]);
+        assert!((tau[5] - 12.453 * 9.81).abs() < 1e-9, "{}", tau[5]);
+        assert!(tau[3].abs() < 1e-12 && tau[4].abs() < 1e-12);
+        // The foot's wrench adds Jᵀ F to every row, the base's included.
+        let f = [0.1, -0.2, 0.3, 4.0, -2.0, 30.0];
+        let with = quad::inverse_dynamics(&q, &zero, &zero, &[0.0; 3], &f);
+        let j = quad::frame_jacobian_fr_foot(&q);
+        for (i, w) in with.iter().enumerate() {
+            let jt_f: f64 = (0..6).map(|r| j[r][i] * f[r]).sum();
+            assert!((w - jt_f).abs() < 1e-10, "row {i}");
+        }
+        // The knee's armature is on its diagonal only.
+        let m = quad::mass_matrix(&q);
+        let knee = 6 + 2;
+        let without = super::quadruped_plain::mass_matrix(&q);
+        assert!((m[knee][knee] - without[knee][knee] - 0.02).abs() < 1e-14);
+        assert!((m[5][5] - without[5][5]).abs() < 1e-14 && (m[5][5] - 12.453).abs() < 1e-12);
+        // At rest the foot's acceleration bias is zero; moving, it is not.
+        assert!(quad::frame_acceleration_bias_fr_foot(&q, &zero).iter().all(|x| *x == 0.0));
+        let mut qd = zero;
+        qd[2] = 1.0;
+        assert!(quad::frame_acceleration_bias_fr_foot(&q, &qd)[3..].iter().any(|x| x.abs() > 0.01));
+    }
+}
+
+/// The same floating quadruped's plain mass matrix.
+pub mod quadruped_plain {
+    dynagen_macros::urdf!("../../dynagen/robots/quadruped12.urdf", floating_base = true, functions = [mass_matrix]);
+}

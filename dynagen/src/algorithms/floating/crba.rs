@@ -4,15 +4,16 @@
 //! joint rate gives the whole robot, and its joint block the fixed-base
 //! mass matrix of the same tree.
 
-use super::check_sizes;
+use super::{base_inertia, check_sizes};
 use crate::algorithms::joint::{force_to_parent, inertia_times_subspace, inertia_to_parent, joint_transform, project};
-use crate::algorithms::{BodyInertia, Loads, Workspace};
+use crate::algorithms::{BodyInertia, Loads, Workspace, BASE_BODY};
 use crate::model::Model;
 use crate::spatial::{Force, Inertia};
 use crate::Scalar;
 
 /// Places the bodies (`ws.x`) and sums the composite inertias up the tree
-/// (`ws.inertia[i]`: body i's subtree, in its frame, payloads included);
+/// (`ws.inertia[i]`: body i's subtree, in its frame, payloads included,
+/// those on the base too);
 /// returns the whole robot's composite inertia at the base, in the base
 /// frame.
 #[inline(always)]
@@ -24,12 +25,12 @@ pub fn composite_inertia<S: Scalar>(
 ) -> Inertia<S> {
     for (i, b) in model.bodies.iter().enumerate() {
         ws.x[i] = joint_transform(&b.joint, q[7 + i]);
-        ws.inertia[i] = Inertia::from_f64(&b.inertia);
+        ws.inertia[i] = b.inertia_in();
     }
-    for p in payloads {
+    for p in payloads.iter().filter(|p| p.body != BASE_BODY) {
         ws.inertia[p.body] = ws.inertia[p.body].add(&p.inertia);
     }
-    let mut ic0 = Inertia::<S>::from_f64(&model.base_inertia);
+    let mut ic0 = base_inertia(model, payloads);
     for (i, b) in model.bodies.iter().enumerate().rev() {
         let moved = inertia_to_parent(&b.joint, &ws.x[i], &ws.inertia[i]);
         match b.parent {

@@ -27,8 +27,9 @@ pub mod kinematics;
 pub mod rnea;
 pub mod step;
 
+use crate::algorithms::{BodyInertia, BASE_BODY};
 use crate::model::Model;
-use crate::spatial::{Force, Mat3, Motion, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Mat3, Motion, Transform, Vec3};
 use crate::Scalar;
 
 /// The rotation (world ← base) of the quaternion `(x, y, z, w)`, as the
@@ -53,6 +54,17 @@ pub fn quaternion_rotation<S: Scalar>(quat: &[S]) -> Mat3<S> {
 #[inline(always)]
 pub fn base_pose<S: Scalar>(q: &[S]) -> Transform<S> {
     Transform::new(quaternion_rotation(&q[3..7]), Vec3([q[0], q[1], q[2]]))
+}
+
+/// The floating base's inertia (base frame): the model's, and every
+/// payload carried by the base ([`BASE_BODY`]).
+#[inline(always)]
+pub(crate) fn base_inertia<S: Scalar>(model: &Model, payloads: &[BodyInertia<S>]) -> Inertia<S> {
+    let mut i0 = model.base_inertia_in::<S>();
+    for p in payloads.iter().filter(|p| p.body == BASE_BODY) {
+        i0 = i0.add(&p.inertia);
+    }
+    i0
 }
 
 /// `x[0..6]` as a twist or acceleration (angular; linear).

@@ -1,15 +1,17 @@
 //! Inverse dynamics of a floating-base robot by the recursive Newton-Euler
-//! algorithm in body coordinates: the base's body twist and its derivative
-//! start the forward pass (gravity as the base's fictitious acceleration
-//! `−(0; Rᵀg)`), and the wrench left at the base after the backward pass is
-//! `τ[0..6]`, the wrench that must act on the base (base frame, moment
-//! about its origin first).
+//! algorithm in body coordinates: the base is the root that the fixed-base
+//! recursion (`rnea::rnea_tree`) hangs the bodies from, moving with its body
+//! twist and accelerating with gravity folded in (`v̇_b + ω_b × v_b − Rᵀg`,
+//! the ordinary acceleration of its origin, so gravity costs nothing per
+//! body), and the wrench left at the base after the backward pass is
+//! `τ[0..6]`, the wrench that must act on the base (base frame, moment about
+//! its origin first).
 
-use super::{base_motion, check_sizes, quaternion_rotation, write_force};
-use crate::algorithms::joint::{add_motion, cross_motion, force_to_parent, joint_transform, motion_to_child, project};
+use super::{base_inertia, check_sizes, quaternion_rotation, write_force};
+use crate::algorithms::rnea::{add_armature, body_wrench, rnea_tree, use_products_for_gyroscopic, Root, RootMotion};
 use crate::algorithms::{Loads, Workspace};
 use crate::model::Model;
-use crate::spatial::{Force, Inertia, Motion, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Mat3, Motion, Vec3};
 use crate::Scalar;
 
 /// τ = M(q)q̈ + h(q, q̇) (+ Jᵀ F_tip) of a floating-base model.
@@ -17,7 +19,9 @@ use crate::Scalar;
 /// - `q`: NQ entries (base position, quaternion (x, y, z, w), joints);
 ///   `qd`, `qdd`: NV entries (`None`: zero); `tau`: NV entries written.
 /// - `loads`: gravity in the world frame; tip wrenches at frames (those on
-///   the base too); payloads on bodies; armature on the joints (not the base).
+///   the base too); payloads on bodies and on the base
+///   ([`BASE_BODY`](crate::algorithms::BASE_BODY)); armature on the joints
+///   (not the base).
 ///
 /// # Panics
 /// If a slice's length is not NQ or NV, or the model's root is not floating.
@@ -35,73 +39,37 @@ pub fn rnea<S: Scalar>(
     let nv = model.nv();
     check_sizes(model, "floating rnea", q.len(), &[tau.len(), qd.map_or(nv, <[S]>::len), qdd.map_or(nv, <[S]>::len)]);
     loads.check(n, "floating rnea");
-    let Loads { gravity, tips, payloads, armature } = loads;
-    // The base: its twist, its acceleration with gravity as a fictitious
-    // one, and the wrench that produces its motion.
-    let v0 = qd.map_or(Motion::zero(), base_motion);
-    let mut a0 = qdd.map_or(Motion::zero(), base_motion);
-    if let Some(g) = gravity {
-        a0.lin -= quaternion_rotation(&q[3..7]).tr_mul_vec(g);
+    let vec3 = |x: &[S]| Vec3([x[0], x[1], x[2]]);
+    let zero = Vec3::zero();
+    // The base's ω, ω̇ and the ordinary acceleration of its origin
+    // v̇ + ω × v, with gravity as a fictitious acceleration −Rᵀg.
+    let w = qd.map_or(zero, vec3);
+    let wd = qdd.map_or(zero, vec3);
+    let mut a = qdd.map_or(zero, |x| vec3(&x[3..]));
+    if let Some(qd) = qd {
+        a += w.cross(&vec3(&qd[3..]));
     }
-    let i0 = Inertia::<S>::from_f64(&model.base_inertia);
-    let mut f0 = i0.mul_motion(&a0);
-    if qd.is_some() {
-        f0 += v0.cross_force(&i0.mul_motion(&v0));
+    if let Some(g) = loads.gravity {
+        a -= quaternion_rotation(&q[3..7]).tr_mul_vec(g);
     }
-    for (i, body) in model.bodies.iter().enumerate() {
-        let joint = &body.joint;
-        let x = joint_transform(joint, q[7 + i]);
-        ws.x[i] = x;
-        let (vp, ap) = match body.parent {
-            Some(p) => (ws.v[p], ws.a[p]),
-            None => (v0, a0),
-        };
-        let mut v = motion_to_child(joint, &x, &vp);
-        let mut a = motion_to_child(joint, &x, &ap);
-        if let Some(qd) = qd {
-            add_motion(joint, &mut v, qd[6 + i]);
-            a += cross_motion(joint, &v, qd[6 + i]);
-        }
-        if let Some(qdd) = qdd {
-            add_motion(joint, &mut a, qdd[6 + i]);
-        }
-        let mut inertia = Inertia::<S>::from_f64(&body.inertia);
-        for p in payloads.iter().filter(|p| p.body == i) {
-            inertia = inertia.add(&p.inertia);
-        }
-        let mut f = inertia.mul_motion(&a);
-        if qd.is_some() {
-            f += v.cross_force(&inertia.mul_motion(&v));
-        }
-        ws.v[i] = v;
-        ws.a[i] = a;
-        ws.f[i] = f;
-    }
-    for tip in tips {
+    // The base's own wrench, and its U for the bodies it carries.
+    let moving = qd.is_some() || qdd.is_some();
+    // (a payload on the base is part of its inertia; the form of ω × (Ī·ω)
+    // is chosen by the model's own base inertia)
+    let gyro = use_products_for_gyroscopic(&model.base_inertia.ibar);
+    let (own, u) = body_wrench(&base_inertia(model, loads.payloads), [&w, &wd, &a], (qd.is_some(), moving), gyro);
+    let root = RootMotion { w, wd, a, u: u.unwrap_or(Mat3::zero()) };
+    let (qd_joints, qdd_joints) = (qd.map(|x| &x[6..]), qdd.map(|x| &x[6..]));
+    let children = rnea_tree(model, ws, &q[7..], (qd_joints, qdd_joints), Root::Moving(&root), loads, &mut tau[6..]);
+    let mut f0 = own + children;
+    for tip in loads.tips {
         let frame = &model.frames[tip.frame];
-        let w = Transform::<S>::from_f64(&frame.placement).force_to_parent(&tip.wrench);
-        match frame.body {
-            Some(b) => ws.f[b] += w,
-            None => f0 += w,
-        }
-    }
-    for (i, body) in model.bodies.iter().enumerate().rev() {
-        let f = ws.f[i];
-        tau[6 + i] = project(&body.joint, &f);
-        let fp = force_to_parent(&body.joint, &ws.x[i], &f);
-        match body.parent {
-            Some(p) => ws.f[p] += fp,
-            None => f0 += fp,
+        if frame.body.is_none() {
+            f0 += frame.placement_in::<S>().force_to_parent(&tip.wrench);
         }
     }
     write_force(&f0, tau);
-    if let (Some(armature), Some(qdd)) = (armature, qdd) {
-        for (i, &a) in armature.iter().enumerate() {
-            if a != 0.0 {
-                tau[6 + i] += S::from_f64(a) * qdd[6 + i];
-            }
-        }
-    }
+    add_armature(loads.armature, qdd_joints, &mut tau[6..]);
 }
 
 /// The wrench of the robot's weight on its base (base frame, moment about

@@ -22,7 +22,8 @@ pub struct Args {
     /// Only these functions (comma-separated): inverse_dynamics, mass_matrix,
     /// bias_forces, gravity_torques, coriolis, forward_dynamics,
     /// inverse_dynamics_derivatives, forward_dynamics_derivatives,
-    /// mass_matrix_inverse, frame_pose:FRAME, frame_jacobian:FRAME.
+    /// mass_matrix_inverse, frame_pose:FRAME, frame_jacobian:FRAME,
+    /// frame_world_jacobian:FRAME, frame_acceleration_bias:FRAME.
     #[arg(long, value_name = "a,b,...", value_delimiter = ',')]
     pub functions: Option<Vec<String>>,
     /// Generate f32 code (constants rounded to f32).
@@ -91,8 +92,8 @@ cosines, and the square roots of a scene's Coulomb friction, are the module's
 own (--trig std: std's f64::sin_cos and f64::sqrt).
 Each function's operation count is printed on stderr.
 
-With --scene SCENE.toml the module has the scene's functions only (coriolis,
-frame_pose_FRAME and frame_jacobian_FRAME too if it asks), and the scene's
+With --scene SCENE.toml the module has the scene's functions only (coriolis and
+the frame functions too if it asks), and the scene's
 run-time inputs as arguments after the usual ones: gravity: &[f64; 3],
 f_tip: &[f64; 6], payload_LINK: &[f64; 10]. Its header lists what the scene
 left out and each function's operation count.

@@ -42,12 +42,23 @@ fn report(model: &Model, source: &str) -> String {
         if n == 1 { "y" } else { "ies" },
         plural(links)
     );
-    let _ = writeln!(o, "  gravity {} m/s²", vec3(&model.gravity));
+    if model.is_floating() {
+        let _ = writeln!(
+            o,
+            "  a floating base (the root link moves freely): q has NQ = {} entries (base position, quaternion x y z \
+             w, joints), qd, qdd and tau NV = {} (the base's body twist or wrench, angular first, then the joints)",
+            model.nq(),
+            model.nv()
+        );
+    }
+    let frame = if model.is_floating() { "world" } else { "base" };
+    let _ = writeln!(o, "  gravity {} m/s² in the {frame} frame", vec3(&model.gravity));
 
     // Tree.
     let _ = writeln!(o, "\ntree (joint index, joint, type -> the link the body is made of; + links fixed to it):");
     let base_fixed = fixed_links(model, None);
-    let _ = writeln!(o, "  {} (fixed base){}", model.root, plus_fixed(&base_fixed));
+    let base = if model.is_floating() { "floating base" } else { "fixed base" };
+    let _ = writeln!(o, "  {} ({base}){}", model.root, plus_fixed(&base_fixed));
     let roots: Vec<usize> = (0..n).filter(|&i| model.bodies[i].parent.is_none()).collect();
     tree(model, &roots, "  ", &mut o);
 
@@ -96,9 +107,13 @@ fn report(model: &Model, source: &str) -> String {
     }
     table(&rows, &mut o);
     let moving = model.total_mass();
+    let (moving_what, base_what) = match model.is_floating() {
+        true => ("in the joints' bodies", "in the floating base"),
+        false => ("moving", "fixed to the base (it does not enter the dynamics)"),
+    };
     let _ = writeln!(
         o,
-        "  total mass {} kg: {} kg moving, {} kg fixed to the base (it does not enter the dynamics)",
+        "  total mass {} kg: {} kg {moving_what}, {} kg {base_what}",
         num(moving + model.base_mass),
         num(moving),
         num(model.base_mass)

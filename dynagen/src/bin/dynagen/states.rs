@@ -1,9 +1,92 @@
 //! Reading the states of `dynagen eval`: JSON in, checked vectors out.
 //! Every message names the state (counting from 0), the field and, for a
-//! bad entry, its index and joint.
+//! bad entry, its index and joint (or a floating base's coordinate).
 
+use dynagen::Model;
 use nalgebra::DVector;
 use serde_json::Value;
+use std::fmt;
+
+/// What an entry of a state vector is, for messages: a joint's, or one of
+/// a floating base's coordinates.
+#[derive(Clone, Debug)]
+pub enum Entry {
+    /// The joint of this name.
+    Joint(String),
+    /// A floating base's coordinate (`base quaternion w`, `base angular x`).
+    Base(&'static str),
+}
+
+impl fmt::Display for Entry {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Entry::Joint(name) => write!(f, "joint \"{name}\""),
+            Entry::Base(what) => f.write_str(what),
+        }
+    }
+}
+
+/// A floating base's entries of q: its position and quaternion.
+const BASE_Q: [&str; 7] = [
+    "base position x",
+    "base position y",
+    "base position z",
+    "base quaternion x",
+    "base quaternion y",
+    "base quaternion z",
+    "base quaternion w",
+];
+/// A floating base's entries of the velocity side: its body twist.
+const BASE_V: [&str; 6] =
+    ["base angular x", "base angular y", "base angular z", "base linear x", "base linear y", "base linear z"];
+
+/// The entries of a robot's states: q's (NQ), and the velocity side's
+/// (NV: qd, qdd, tau and every output), with the joint names.
+#[derive(Clone, Debug)]
+pub struct Layout {
+    /// The joint names, in order.
+    pub joints: Vec<String>,
+    /// The entries of q: the joints, after a floating base's position and
+    /// quaternion.
+    pub q: Vec<Entry>,
+    /// The entries of qd, qdd and tau: the joints, after a floating base's
+    /// twist (angular, then linear).
+    pub v: Vec<Entry>,
+}
+
+impl Layout {
+    /// The layout of `model`'s states.
+    pub fn of(model: &Model) -> Self {
+        let joints: Vec<String> = model.joint_names().iter().map(|s| s.to_string()).collect();
+        let named = joints.iter().map(|j| Entry::Joint(j.clone()));
+        let (q_base, v_base): (&[&'static str], &[&'static str]) =
+            if model.is_floating() { (&BASE_Q, &BASE_V) } else { (&[], &[]) };
+        let q = q_base.iter().map(|b| Entry::Base(b)).chain(named.clone()).collect();
+        let v = v_base.iter().map(|b| Entry::Base(b)).chain(named).collect();
+        Layout { joints, q, v }
+    }
+    /// Whether the robot floats.
+    fn floating(&self) -> bool {
+        self.q.len() > self.joints.len()
+    }
+    /// The entries of the field `name`.
+    pub fn entries(&self, name: &str) -> &[Entry] {
+        if name == "q" {
+            &self.q
+        } else {
+            &self.v
+        }
+    }
+    /// How many entries the field `name` must have, in words.
+    fn expected(&self, name: &str) -> String {
+        let n = self.joints.len();
+        match (self.floating(), name) {
+            (false, _) => format!("the robot has {n} joints"),
+            (true, "q") => format!("a floating-base q has NQ = {} (position, quaternion x y z w, {n} joints)", n + 7),
+            (true, _) => format!("a floating-base \"{name}\" has NV = {} (base twist, {n} joints)", n + 6),
+        }
+    }
+}
 
 /// The fields of a state.
 const FIELDS: [&str; 4] = ["q", "qd", "qdd", "tau"];
@@ -100,9 +183,9 @@ impl<'de> serde::de::Visitor<'de> for DistinctVisitor {
 /// Parses and checks the whole input; errors name the state and the field.
 /// A UTF-8 byte-order mark at the start is skipped (editors on Windows
 /// write one; the URDF reader skips it too).
-pub fn parse_states(text: &str, joint_names: &[String]) -> Result<Vec<State>, String> {
+pub fn parse_states(text: &str, layout: &Layout) -> Result<Vec<State>, String> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let Distinct(doc) = serde_json::from_str(text).map_err(|e| parse_error(text, &e, joint_names))?;
+    let Distinct(doc) = serde_json::from_str(text).map_err(|e| parse_error(text, &e, layout))?;
     let Value::Object(top) = doc else {
         return Err(format!("expected an object {{\"states\": [...]}} at the top level, found {}", kind(&doc)));
     };
@@ -114,14 +197,14 @@ pub fn parse_states(text: &str, joint_names: &[String]) -> Result<Vec<State>, St
         }
     }
     if let Some(names) = top.get("joint_names") {
-        check_joint_names(names, joint_names)?;
+        check_joint_names(names, &layout.joints)?;
     }
     let states = match top.get("states") {
         None => return Err("no \"states\" field (expected {\"states\": [{\"q\": [...], ...}, ...]})".into()),
         Some(Value::Array(a)) => a,
         Some(other) => return Err(format!("\"states\" must be an array of states, found {}", kind(other))),
     };
-    states.iter().enumerate().map(|(i, s)| parse_state(s, joint_names).map_err(|e| format!("state {i}: {e}"))).collect()
+    states.iter().enumerate().map(|(i, s)| parse_state(s, layout).map_err(|e| format!("state {i}: {e}"))).collect()
 }
 
 fn check_joint_names(names: &Value, joint_names: &[String]) -> Result<(), String> {
@@ -153,7 +236,7 @@ fn check_joint_names(names: &Value, joint_names: &[String]) -> Result<(), String
     Ok(())
 }
 
-fn parse_state(v: &Value, joint_names: &[String]) -> Result<State, String> {
+fn parse_state(v: &Value, layout: &Layout) -> Result<State, String> {
     let Value::Object(fields) = v else {
         return Err(format!(
             "expected an object with \"q\" (and optionally \"qd\", \"qdd\", \"tau\"), found {}",
@@ -166,7 +249,7 @@ fn parse_state(v: &Value, joint_names: &[String]) -> Result<State, String> {
         }
     }
     let field = |name: &str| -> Result<Option<DVector<f64>>, String> {
-        fields.get(name).map(|v| parse_vector(name, v, joint_names)).transpose()
+        fields.get(name).map(|v| parse_vector(name, v, layout)).transpose()
     };
     Ok(State {
         q: field("q")?.ok_or("\"q\" is missing (it is required; the other fields are optional)")?,
@@ -176,7 +259,8 @@ fn parse_state(v: &Value, joint_names: &[String]) -> Result<State, String> {
     })
 }
 
-fn parse_vector(name: &str, v: &Value, joint_names: &[String]) -> Result<DVector<f64>, String> {
+fn parse_vector(name: &str, v: &Value, layout: &Layout) -> Result<DVector<f64>, String> {
+    let entries = layout.entries(name);
     let items = match v {
         Value::Array(a) => a,
         Value::Null => {
@@ -184,16 +268,16 @@ fn parse_vector(name: &str, v: &Value, joint_names: &[String]) -> Result<DVector
         }
         other => return Err(format!("\"{name}\" must be an array of numbers, one per joint, found {}", kind(other))),
     };
-    if items.len() != joint_names.len() {
-        return Err(format!("\"{name}\" has {} entries, the robot has {} joints", items.len(), joint_names.len()));
+    if items.len() != entries.len() {
+        return Err(format!("\"{name}\" has {} entries, {}", items.len(), layout.expected(name)));
     }
     let mut x = DVector::zeros(items.len());
     for (k, item) in items.iter().enumerate() {
-        let joint = &joint_names[k];
+        let entry = &entries[k];
         x[k] = match item.as_f64() {
             Some(value) if value.is_finite() => value,
-            Some(value) => return Err(format!("\"{name}\"[{k}] (joint \"{joint}\") is {value}, not a finite number")),
-            None => return Err(format!("\"{name}\"[{k}] (joint \"{joint}\") is {}, not a number", kind(item))),
+            Some(value) => return Err(format!("\"{name}\"[{k}] ({entry}) is {value}, not a finite number")),
+            None => return Err(format!("\"{name}\"[{k}] ({entry}) is {}, not a number", kind(item))),
         };
     }
     Ok(x)
@@ -202,7 +286,7 @@ fn parse_vector(name: &str, v: &Value, joint_names: &[String]) -> Result<DVector
 /// A JSON syntax error, with the place it is in (`state 3: "qd"[2] (joint
 /// "elbow")`) when the text up to the error says. serde_json refuses numbers
 /// beyond f64's range (1e400) while parsing, so this is where they end up.
-fn parse_error(text: &str, e: &serde_json::Error, joint_names: &[String]) -> String {
+fn parse_error(text: &str, e: &serde_json::Error, layout: &Layout) -> String {
     let what = if e.to_string().starts_with("number out of range") {
         format!("a number too large for f64 (line {} column {})", e.line(), e.column())
     } else if let Some(key) = e.to_string().strip_prefix("duplicate key ").and_then(|k| k.split(" at line").next()) {
@@ -217,7 +301,7 @@ fn parse_error(text: &str, e: &serde_json::Error, joint_names: &[String]) -> Str
     // At the end of the text, serde_json points at the last character read
     // rather than at an offending one: everything has been read.
     let path = if e.is_eof() { locate(text, usize::MAX, 0) } else { locate(text, e.line(), e.column()) };
-    match path.and_then(|path| describe(&path, joint_names)) {
+    match path.and_then(|path| describe(&path, layout)) {
         Some(place) => format!("{place}: {what}"),
         None => what,
     }
@@ -278,11 +362,11 @@ fn locate(text: &str, line: usize, column: usize) -> Option<Vec<Step>> {
 }
 
 /// `state 3: "qd"[2] (joint "elbow")`, or as much of it as the path has.
-fn describe(path: &[Step], joint_names: &[String]) -> Option<String> {
+fn describe(path: &[Step], layout: &Layout) -> Option<String> {
     match path {
         [Step::Key(states), Step::Index(i), rest @ ..] if states == "states" => Some(match rest {
-            [Step::Key(field), Step::Index(k), ..] => match joint_names.get(*k) {
-                Some(joint) => format!("state {i}: \"{field}\"[{k}] (joint \"{joint}\")"),
+            [Step::Key(field), Step::Index(k), ..] => match layout.entries(field).get(*k) {
+                Some(entry) => format!("state {i}: \"{field}\"[{k}] ({entry})"),
                 None => format!("state {i}: \"{field}\"[{k}]"),
             },
             [Step::Key(field), ..] => format!("state {i}: \"{field}\""),
@@ -297,8 +381,10 @@ fn describe(path: &[Step], joint_names: &[String]) -> Option<String> {
 mod tests {
     use super::*;
 
-    fn names() -> Vec<String> {
-        ["a", "b", "c"].iter().map(|s| s.to_string()).collect()
+    fn names() -> Layout {
+        let joints: Vec<String> = ["a", "b", "c"].iter().map(|s| s.to_string()).collect();
+        let entries: Vec<Entry> = joints.iter().map(|j| Entry::Joint(j.clone())).collect();
+        Layout { joints, q: entries.clone(), v: entries }
     }
 
     #[test]

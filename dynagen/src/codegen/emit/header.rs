@@ -72,13 +72,13 @@ pub(crate) fn header(facts: &HeaderFacts) -> String {
     let _ = writeln!(h, "// Model source: {}", esc(options.source.as_deref().unwrap_or("(not given)")));
     let reduced = if default { "Model" } else { "Reduced model" };
     let _ = writeln!(h, "// {reduced} content hash (FNV-1a 64 of its canonical text): {hash:016x}");
+    let frame = if model.is_floating() { "world" } else { "base" };
     let _ = match scene.gravity {
         ResolvedGravity::Constant(_) => {
-            let frame = if model.is_floating() { "world" } else { "base" };
             writeln!(h, "// Gravity: {:?} m/s^2 in the {frame} frame, folded in.", model.gravity.0)
         }
         ResolvedGravity::None => writeln!(h, "// Gravity: none (every gravity term is gone; g(q) = 0)."),
-        ResolvedGravity::Input => writeln!(h, "// Gravity: a run-time input, m/s^2 in the base frame."),
+        ResolvedGravity::Input => writeln!(h, "// Gravity: a run-time input, m/s^2 in the {frame} frame."),
     };
     let fd_name = match fd.method {
         ForwardDynamicsMethod::Aba | ForwardDynamicsMethod::Auto => "articulated-body algorithm",
@@ -92,8 +92,7 @@ pub(crate) fn header(facts: &HeaderFacts) -> String {
         options.scalar.name(),
         on_off(options.snap_rounding),
         snapped.len(),
-        // (a floating base keeps its model as it is: see prepare/)
-        on_off(options.regroup_inertia && !model.is_floating()),
+        on_off(options.regroup_inertia),
         on_off(r.like_terms),
         on_off(r.constant_products),
         on_off(r.constant_sums),
@@ -179,6 +178,7 @@ fn list(items: &[String]) -> String {
 /// run time, and the scene itself.
 fn scene_section(h: &mut String, scene: &SceneModel, functions: &[GeneratedFunction]) {
     let model = &scene.model;
+    let frame = if model.is_floating() { "world" } else { "base" };
     let _ = writeln!(h, "//");
     let _ = writeln!(h, "// Left out by the scene:");
     let all = Function::NAMES.iter().filter_map(|n| Function::from_name(n)).filter(|f| !f.is_derivative());
@@ -214,7 +214,7 @@ fn scene_section(h: &mut String, scene: &SceneModel, functions: &[GeneratedFunct
     };
     let _ = writeln!(h, "// Folded in:");
     if let ResolvedGravity::Constant(_) = scene.gravity {
-        let _ = writeln!(h, "//   gravity: {:?} m/s^2 in the base frame", model.gravity.0);
+        let _ = writeln!(h, "//   gravity: {:?} m/s^2 in the {frame} frame", model.gravity.0);
     }
     let _ = writeln!(h, "//   armature: {}", list(&per_joint(&scene.armature)));
     let _ = writeln!(h, "//   viscous friction: {}", list(&per_joint(&scene.viscous_friction)));
@@ -234,7 +234,7 @@ fn scene_section(h: &mut String, scene: &SceneModel, functions: &[GeneratedFunct
     let _ = writeln!(h, "//   constant payloads: {}", list(&constant_payloads));
     let mut inputs = Vec::new();
     if scene.gravity == ResolvedGravity::Input {
-        inputs.push("gravity: &[T; 3] (m/s^2, base frame)".to_string());
+        inputs.push(format!("gravity: &[T; 3] (m/s^2, {frame} frame)"));
     }
     if let Some(i) = scene.tip_wrench_frame {
         inputs.push(format!("f_tip: &[T; 6] (m; f) at frame \"{}\", in that frame", esc(&model.frames[i].name)));

@@ -23,10 +23,9 @@ use crate::scene::SceneModel;
 pub(crate) fn prepare_model(model: &Model, options: &CodegenOptions) -> (Model, Vec<SnappedConstant>) {
     let (snapped_model, snapped) =
         if options.snap_rounding { snap_rounding(model) } else { (model.clone(), Vec::new()) };
-    // The regrouping gives the inertia a joint cannot move to its parent, and
-    // drops what reaches the fixed base: a floating base moves, so it keeps
-    // the model as it is.
-    let prepared = if options.regroup_inertia && !model.is_floating() {
+    // The regrouping gives the inertia a joint cannot move to its parent (a
+    // fixed base drops it, a floating base carries it).
+    let prepared = if options.regroup_inertia {
         regroup_inertia(&slide_origins_along_axes(&center_prismatic_leaves(&snapped_model)))
     } else {
         snapped_model

@@ -16,14 +16,15 @@
 //! leaves the Lagrangian, hence τ, M, h, g and q̈, exactly as they were. What
 //! stays on the body is its mass-free remainder `(0, h_I e_I + h_J e_J,
 //! Ī − Ī_JJ·(e_I e_Iᵀ + e_J e_Jᵀ))`: the mass, `h_K` and `Ī_JJ` are now
-//! zeros the symbolic graph folds away. A part that reaches the fixed base
-//! is dropped. For a prismatic joint the body does not turn relative to its
-//! parent, and a rotational inertia without mass is the same about every
-//! point: its whole `Ī` moves to the parent (so that a prismatic body
-//! without children, its frame first moved to its centre of mass by
-//! [`center_prismatic_leaves`], keeps only a point mass). This is the regrouping of
-//! inertial parameters of Khalil and Kleinfinger (the "base parameters"),
-//! written as a transformation of the model's spatial inertias.
+//! zeros the symbolic graph folds away. A part that reaches a fixed base
+//! is dropped; a floating base carries it. For a prismatic joint the body
+//! does not turn relative to its parent, and a rotational inertia without
+//! mass is the same about every point: its whole `Ī` moves to the parent
+//! (so that a prismatic body without children, its frame first moved to its
+//! centre of mass by [`center_prismatic_leaves`], keeps only a point mass).
+//! This is the regrouping of inertial parameters of Khalil and Kleinfinger
+//! (the "base parameters"), written as a transformation of the model's
+//! spatial inertias.
 //!
 //! A difference `Ī_II − Ī_JJ` within [`ROUNDING_TOLERANCE`] of its operands
 //! (a body symmetric about its axis, whose two moments differ only by the
@@ -87,9 +88,12 @@ pub fn regroup_inertia(model: &Model) -> Model {
         }
         let (parent, placement) = (body.parent, body.joint.placement);
         m.bodies[i].inertia = rest;
-        if let Some(p) = parent {
-            let carried = placement.inertia_to_parent(&moved);
-            m.bodies[p].inertia = m.bodies[p].inertia.add(&carried);
+        let carried = placement.inertia_to_parent(&moved);
+        match parent {
+            Some(p) => m.bodies[p].inertia = m.bodies[p].inertia.add(&carried),
+            // A floating base moves: it carries what reaches it.
+            None if m.is_floating() => m.base_inertia = m.base_inertia.add(&carried),
+            None => {}
         }
     }
     m

@@ -2,7 +2,7 @@
 //! generated code's: the generic algorithm run on the [`Counting`] scalar.
 
 use crate::algorithms::derivatives::{self as d, DerivativeWorkspace, Dynamics, Formulation, RigidBodyOnly};
-use crate::algorithms::{aba, bias, crba, forward_dynamics, kinematics, rnea, Loads, Workspace};
+use crate::algorithms::{aba, bias, crba, forward_dynamics, rnea, Loads, Workspace};
 use crate::codegen::{ForwardDynamicsMethod, Function};
 use crate::model::Model;
 use crate::scalar::{Counting, Scalar};
@@ -15,23 +15,8 @@ use crate::symbolic::OpCount;
 /// beforehand and not counted; `method` picks the forward dynamics'). The
 /// state is a fixed non-trivial one; the count does not depend on it, as
 /// the algorithms never branch on the state. `None` for a frame the model
-/// does not have, and for what a floating-base module does not have.
+/// does not have.
 pub fn generic_op_count(model: &Model, f: &Function, method: ForwardDynamicsMethod) -> Option<OpCount> {
-    let supported = matches!(
-        f,
-        Function::InverseDynamics
-            | Function::MassMatrix
-            | Function::BiasForces
-            | Function::GravityTorques
-            | Function::ForwardDynamics
-            | Function::InverseDynamicsDerivatives
-            | Function::ForwardDynamicsDerivatives
-            | Function::MassMatrixInverse
-    );
-    if model.is_floating() && !supported {
-        // A floating base's other functions are not generated (nor counted) yet.
-        return None;
-    }
     // q has NQ entries, the velocity-side vectors NV (both n on a fixed base);
     // rnea, crba, aba and the LᵀDL forward dynamics take a floating model to
     // its own algorithms.
@@ -47,9 +32,9 @@ pub fn generic_op_count(model: &Model, f: &Function, method: ForwardDynamicsMeth
     let mut ws = Workspace::<Counting>::new(model);
     let g = Vec3::<Counting>::from_f64(&model.gravity);
     let mut out = vec![Counting::zero(); f.output_len(crate::codegen::emit::Sizes::of(model))];
-    let frame = match f {
-        Function::FramePose(name) | Function::FrameJacobian(name) => Some(model.frame_index(name)?),
-        _ => None,
+    let frame = match f.frame() {
+        Some(name) => Some(model.frame_index(name)?),
+        None => None,
     };
     let mut dw = DerivativeWorkspace::<Counting>::new(model);
     let mut linv = vec![Counting::zero(); model.nv() * model.nv()];
@@ -84,14 +69,11 @@ pub fn generic_op_count(model: &Model, f: &Function, method: ForwardDynamicsMeth
             d::mass_matrix_inverse(model, &mut m, &mut linv, out);
             ws.mat = m;
         }
-        Function::FramePose(_) | Function::FrameJacobian(_) => {
-            let frame = frame.expect("looked up above");
-            kinematics::forward_kinematics(model, ws, &a[0]);
-            if matches!(f, Function::FramePose(_)) {
-                let _ = kinematics::frame_pose(model, ws, frame);
-            } else {
-                kinematics::body_jacobian(model, ws, frame, out);
-            }
+        Function::FramePose(_)
+        | Function::FrameJacobian(_)
+        | Function::FrameWorldJacobian(_)
+        | Function::FrameAccelerationBias(_) => {
+            super::frames::frame_outputs(model, ws, f, frame.expect("looked up above"), a, out)
         }
     });
     Some(ops)

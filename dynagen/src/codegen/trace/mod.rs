@@ -13,6 +13,7 @@
 
 pub mod fd_choice;
 mod floating;
+mod frames;
 mod generic_count;
 mod gravity_fold;
 mod mass_matrix;
@@ -24,7 +25,7 @@ pub use sin_cos::{sin_cos_from_q, sin_cos_inputs, SinCosTrace};
 use super::emit::{payload_argument, Sizes};
 use super::{counted, CodegenError, CodegenOptions, ForwardDynamicsMethod, Function, GeneratedFunction};
 use crate::algorithms::derivatives::{self, DerivativeWorkspace, Dynamics, Formulation, MassMatrixFn};
-use crate::algorithms::{kinematics, ldlt, rnea, BodyInertia, Loads, TipWrench, Workspace};
+use crate::algorithms::{ldlt, rnea, BodyInertia, Loads, TipWrench, Workspace};
 use crate::scene::{dynamics, ResolvedGravity, SceneModel};
 use crate::spatial::{Force, Inertia, Sym3, Transform, Vec3};
 use crate::symbolic::{factor, Expr, OpCount, Rewrites, Traced, Tracer};
@@ -182,11 +183,16 @@ impl SceneLoads {
         let mut list = Vec::new();
         for p in scene.input_payloads.iter().filter(|_| payloads) {
             let v = tracer.inputs(&payload_argument(&p.link), 10);
-            // On the base a payload moves nothing; on a body it enters the
-            // recursions as one more body inertia, moved into the body's
-            // frame (frames move with the bodies the preparation slides, so
-            // this is exact in the prepared model).
-            let Some(body) = model.frames[p.frame].body else { continue };
+            // On a fixed base a payload moves nothing; on a body (or a
+            // floating base) it enters the recursions as one more body
+            // inertia, moved into the body's frame (frames move with the
+            // bodies the preparation slides, so this is exact in the prepared
+            // model).
+            let body = match model.frames[p.frame].body {
+                Some(b) => b,
+                None if model.is_floating() => crate::algorithms::BASE_BODY,
+                None => continue,
+            };
             let inertia = Inertia::from_mass_com_inertia(
                 v[0],
                 Vec3([v[1], v[2], v[3]]),
@@ -207,6 +213,9 @@ pub(crate) fn trace_unfactored(
     formulation: Formulation,
     rewrites: Rewrites,
 ) -> Result<Traced, CodegenError> {
+    if let Some(name) = f.frame() {
+        return frames::trace_unfactored(scene, f, name, rewrites);
+    }
     if scene.model.is_floating() {
         return floating::trace_unfactored(scene, f, method, formulation, rewrites);
     }
@@ -220,12 +229,6 @@ pub(crate) fn trace_unfactored(
         matches!(f, Function::MassMatrix | Function::ForwardDynamicsDerivatives | Function::MassMatrixInverse)
             || use_ldlt;
     let plan = if needs_plan { Some(mass_matrix::plan(model, rewrites)?) } else { None };
-    let frame = match f {
-        Function::FramePose(name) | Function::FrameJacobian(name) => {
-            Some(scene.frame(f.name(), name).map_err(|e| CodegenError::Scene(Box::new(e)))?)
-        }
-        _ => None,
-    };
     let tracer = Tracer::start_with(rewrites)?;
     let args: Vec<Vec<Expr>> = f.vectors().iter().map(|name| tracer.inputs(name, n)).collect();
     let loads = SceneLoads::of(scene, f, &tracer);
@@ -319,18 +322,10 @@ pub(crate) fn trace_unfactored(
                 }
             }
         }
-        Function::FramePose(_) | Function::FrameJacobian(_) => {
-            let frame = frame.expect("looked up above");
-            kinematics::forward_kinematics(model, &mut ws, q);
-            if matches!(f, Function::FramePose(_)) {
-                let t = kinematics::frame_pose(model, &ws, frame).to_homogeneous();
-                for (o, x) in out.iter_mut().zip(t.iter().flatten()) {
-                    *o = *x;
-                }
-            } else {
-                kinematics::body_jacobian(model, &ws, frame, &mut out);
-            }
-        }
+        Function::FramePose(_)
+        | Function::FrameJacobian(_)
+        | Function::FrameWorldJacobian(_)
+        | Function::FrameAccelerationBias(_) => unreachable!("traced in frames.rs"),
     }
     drop(ws);
     let graph = tracer.finish();

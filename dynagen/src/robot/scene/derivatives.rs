@@ -2,7 +2,9 @@
 //! friction, constant payloads and gravity enter them; its run-time inputs
 //! (gravity, tip wrench, payloads) are held constant. The same algorithm
 //! ([`algorithms::derivatives`](crate::algorithms::derivatives)) on the
-//! scene's dynamics as the generated functions are traced from.
+//! scene's dynamics as the generated functions are traced from. On a
+//! floating base the matrices are NV × NV, the configuration's columns in
+//! the tangent space of the base's body twist (as [`Robot`](crate::Robot)'s).
 
 use super::{SceneInputError, SceneInputs, SceneRobot, Uses};
 use crate::algorithms::derivatives::{self as d, Dynamics, Formulation};
@@ -22,7 +24,7 @@ impl SceneRobot {
         inputs: &SceneInputs<'_>,
     ) -> Result<(DMatrix<f64>, DMatrix<f64>), SceneInputError> {
         self.check().joints(&[("q", q), ("qd", qd), ("qdd", qdd)])?;
-        let n = self.dof();
+        let n = self.nv();
         let g = self.prepare(inputs, Uses { gravity: true, tip: true })?;
         let DerivativeScratch { dw, rows } = &mut self.deriv;
         let scene = &self.scene;
@@ -48,7 +50,7 @@ impl SceneRobot {
         inputs: &SceneInputs<'_>,
     ) -> Result<(DMatrix<f64>, DMatrix<f64>, DMatrix<f64>), SceneInputError> {
         self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?;
-        let n = self.dof();
+        let n = self.nv();
         let g = self.prepare(inputs, Uses { gravity: true, tip: true })?;
         let DerivativeScratch { dw, rows } = &mut self.deriv;
         let scene = &self.scene;
@@ -72,7 +74,7 @@ impl SceneRobot {
         inputs: &SceneInputs<'_>,
     ) -> Result<DMatrix<f64>, SceneInputError> {
         self.check().joints(&[("q", q)])?;
-        let n = self.dof();
+        let n = self.nv();
         self.prepare(inputs, Uses { gravity: false, tip: false })?;
         let [m, linv, _] = &mut self.deriv.rows;
         dynamics::mass_matrix(&self.scene, &mut self.ws, q.as_slice(), m);
