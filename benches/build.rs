@@ -7,11 +7,16 @@
 //! derivatives of the dynamics (`*_derivatives`); and the quadruped12 and
 //! the humanoid32 with a floating base, default options
 //! (`quadruped12_floating`, `humanoid32_floating`, as `dynagen generate
-//! dynagen/robots/ROBOT.urdf --floating-base`).
+//! dynagen/robots/ROBOT.urdf --floating-base`), and the floating
+//! quadruped12's derivatives (`quadruped12_floating_derivatives`).
 
 use dynagen::codegen::{generate, CodegenOptions, Function, Trig};
 use dynagen::{Builder, Model};
 use std::path::Path;
+
+/// The derivative functions of the `*_derivatives` modules.
+const DERIVATIVES: [Function; 3] =
+    [Function::InverseDynamicsDerivatives, Function::ForwardDynamicsDerivatives, Function::MassMatrixInverse];
 
 fn main() {
     let robots = Path::new(env!("CARGO_MANIFEST_DIR")).join("../dynagen/robots");
@@ -30,11 +35,7 @@ fn main() {
         // The derivatives (examples/derivatives.rs), default options.
         write(
             "derivatives",
-            CodegenOptions::default().functions([
-                Function::InverseDynamicsDerivatives,
-                Function::ForwardDynamicsDerivatives,
-                Function::MassMatrixInverse,
-            ]),
+            CodegenOptions::default().functions(DERIVATIVES),
         );
         if robot == "ur5" || robot == "panda" {
             write("std", CodegenOptions::default().trig(Trig::Std));
@@ -59,4 +60,10 @@ fn main() {
             .unwrap_or_else(|e| panic!("generating {robot} (floating): {e}"));
         std::fs::write(Path::new(&out).join(format!("{robot}_floating.rs")), module.source).expect("writing");
     }
+    // The floating quadruped's derivatives (examples/derivatives.rs).
+    let model = Model::from_urdf_file(robots.join("quadruped12.urdf")).expect("quadruped12.urdf");
+    let opts = CodegenOptions::default().functions(DERIVATIVES).source("dynagen/robots/quadruped12.urdf");
+    let module = generate(&model.with_floating_base(), &opts)
+        .unwrap_or_else(|e| panic!("generating quadruped12's floating derivatives: {e}"));
+    std::fs::write(Path::new(&out).join("quadruped12_floating_derivatives.rs"), module.source).expect("writing");
 }

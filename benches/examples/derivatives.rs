@@ -1,5 +1,5 @@
 //! The generated derivatives of the dynamics of the UR5, the Panda, the
-//! KUKA iiwa 14 and the quadruped12 with its trunk fixed
+//! KUKA iiwa 14 and the quadruped12 with its trunk fixed and floating
 //! (`inverse_dynamics_derivatives`, `forward_dynamics_derivatives`,
 //! `mass_matrix_inverse`, and `inverse_dynamics` for scale), and the generic
 //! solver's (`Robot`), with the statistic of
@@ -42,6 +42,11 @@ mod quadruped12_tau {
     include!(concat!(env!("OUT_DIR"), "/quadruped12_batched.rs"));
 }
 #[allow(dead_code)]
+mod quadruped12_floating {
+    include!(concat!(env!("OUT_DIR"), "/quadruped12_floating_derivatives.rs"));
+}
+use dynagen_bench::quadruped12_floating as quadruped12_floating_tau;
+#[allow(dead_code)]
 mod ur5_tau {
     include!(concat!(env!("OUT_DIR"), "/ur5_batched.rs"));
 }
@@ -74,45 +79,49 @@ fn time(mut call: impl FnMut(usize)) -> (f64, f64) {
     (per[BATCHES / 2], per[0])
 }
 
+/// One state: q, and q̇, q̈, τ.
+struct State<const NQ: usize, const NV: usize> {
+    q: [f64; NQ],
+    v: [[f64; NV]; 3],
+}
+
 /// Random states as the Pinocchio program draws them (its distribution, not
-/// its generator): q in [-π, π] (prismatic joints within 0..0.04 m), q̇ in
-/// [-2, 2], q̈ in [-5, 5], τ in [-10, 10].
-fn states<const N: usize>(prismatic: &[bool]) -> Vec<[[f64; N]; 4]> {
-    let mut x = 0x2024_0611_u64;
-    let mut unit = move || {
-        x ^= x >> 12;
-        x ^= x << 25;
-        x ^= x >> 27;
-        (x.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    };
+/// its generator): q in [-π, π] (prismatic joints within 0..0.04 m; a
+/// floating base's position too, its quaternion uniform on the unit
+/// sphere), q̇ in [-2, 2], q̈ in [-5, 5], τ in [-10, 10].
+fn states<const NQ: usize, const NV: usize>(prismatic: &[bool]) -> Vec<State<NQ, NV>> {
+    let mut unit = dynagen_bench::uniform(0x2024_0611);
+    let base = NQ - prismatic.len();
     (0..STATES)
         .map(|_| {
-            let q =
-                core::array::from_fn(
-                    |j| if prismatic[j] { 0.02 * (unit() + 1.0) } else { std::f64::consts::PI * unit() },
-                );
-            [
-                q,
-                core::array::from_fn(|_| 2.0 * unit()),
-                core::array::from_fn(|_| 5.0 * unit()),
-                core::array::from_fn(|_| 10.0 * unit()),
-            ]
+            let mut q: [f64; NQ] = core::array::from_fn(|j| match j.checked_sub(base) {
+                Some(j) if prismatic[j] => 0.02 * (unit() + 1.0),
+                _ => std::f64::consts::PI * unit(),
+            });
+            if base == 7 {
+                let n = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+                q[3..7].iter_mut().for_each(|x| *x /= n);
+            }
+            let v = [2.0, 5.0, 10.0].map(|scale| core::array::from_fn(|_| scale * unit()));
+            State { q, v }
         })
         .collect()
 }
 
+/// Times module `$m`'s derivatives (and `$tau`'s τ) on `$robot` (a
+/// `Robot`, fixed or floating, named `$name`).
 macro_rules! bench {
-    ($m:ident, $tau:ident, $robot:expr) => {{
-        const N: usize = $m::DOF;
-        let mut robot = Robot::from_urdf_file(urdf($robot)).unwrap();
+    ($m:ident, $tau:ident, $name:expr, $robot:expr) => {{
+        const N: usize = $m::NV;
+        let mut robot: Robot = $robot;
         let prismatic: Vec<bool> = robot.model().bodies.iter().map(|b| !b.joint.is_revolute()).collect();
-        let st = states::<N>(&prismatic);
+        let st = states::<{ $m::NQ }, N>(&prismatic);
         let rows = [
             (
                 "inverse_dynamics (τ)",
                 time(|i| {
                     let s = black_box(&st[i]);
-                    let out = $tau::inverse_dynamics(&s[0], &s[1], &s[2]);
+                    let out = $tau::inverse_dynamics(&s.q, &s.v[0], &s.v[1]);
                     black_box(&out);
                 }),
             ),
@@ -120,7 +129,7 @@ macro_rules! bench {
                 "inverse_dynamics_derivatives",
                 time(|i| {
                     let s = black_box(&st[i]);
-                    let out = $m::inverse_dynamics_derivatives(&s[0], &s[1], &s[2]);
+                    let out = $m::inverse_dynamics_derivatives(&s.q, &s.v[0], &s.v[1]);
                     black_box(&out);
                 }),
             ),
@@ -128,7 +137,7 @@ macro_rules! bench {
                 "forward_dynamics_derivatives",
                 time(|i| {
                     let s = black_box(&st[i]);
-                    let out = $m::forward_dynamics_derivatives(&s[0], &s[1], &s[3]);
+                    let out = $m::forward_dynamics_derivatives(&s.q, &s.v[0], &s.v[2]);
                     black_box(&out);
                 }),
             ),
@@ -136,12 +145,14 @@ macro_rules! bench {
                 "mass_matrix_inverse",
                 time(|i| {
                     let s = black_box(&st[i]);
-                    let out = $m::mass_matrix_inverse(&s[0]);
+                    let out = $m::mass_matrix_inverse(&s.q);
                     black_box(&out);
                 }),
             ),
         ];
-        let v: Vec<[DVector<f64>; 4]> = st.iter().map(|s| s.map(|x| DVector::from_column_slice(&x))).collect();
+        let dv = |x: &[f64]| DVector::from_column_slice(x);
+        let v: Vec<[DVector<f64>; 4]> =
+            st.iter().map(|s| [dv(&s.q), dv(&s.v[0]), dv(&s.v[1]), dv(&s.v[2])]).collect();
         let (mut a, mut b, mut c) = (DMatrix::zeros(N, N), DMatrix::zeros(N, N), DMatrix::zeros(N, N));
         let generic = [
             (
@@ -162,15 +173,18 @@ macro_rules! bench {
             ),
         ];
         for (name, (median, min)) in rows.iter().chain(&generic) {
-            println!("{:<8} {name:<44} median {median:9.1} ns  min {min:9.1} ns", $robot);
+            println!("{:<20} {name:<44} median {median:9.1} ns  min {min:9.1} ns", $name);
         }
     }};
 }
 
 fn main() {
     println!("dynagen generated (default options) and generic, ns per call (median and minimum of {BATCHES} batches of {BATCH} calls)");
-    bench!(ur5, ur5_tau, "ur5");
-    bench!(panda, panda_tau, "panda");
-    bench!(iiwa14, iiwa14_tau, "iiwa14");
-    bench!(quadruped12, quadruped12_tau, "quadruped12");
+    let fixed = |name: &str| Robot::from_urdf_file(urdf(name)).unwrap();
+    bench!(ur5, ur5_tau, "ur5", fixed("ur5"));
+    bench!(panda, panda_tau, "panda", fixed("panda"));
+    bench!(iiwa14, iiwa14_tau, "iiwa14", fixed("iiwa14"));
+    bench!(quadruped12, quadruped12_tau, "quadruped12", fixed("quadruped12"));
+    let model = dynagen::Model::from_urdf_file(urdf("quadruped12")).unwrap().with_floating_base();
+    bench!(quadruped12_floating, quadruped12_floating_tau, "quadruped12:floating", Robot::new(model));
 }

@@ -3,7 +3,7 @@
 # derivatives (pinocchio_derivatives_bench.cpp: computeRNEADerivatives,
 # computeABADerivatives, computeMinverse, rnea) and dynagen's generated ones
 # (benches/examples/derivatives.rs), on ur5.urdf, panda.urdf, iiwa14.urdf and
-# quadruped12.urdf (its trunk fixed), in
+# quadruped12.urdf (its trunk fixed, then floating: a free flyer), in
 # alternation for ROUNDS rounds (default 3), the same states' distribution and
 # statistic (median of 300 batches of 1000 calls).
 # Needs: pip install pin cmeel-eigen cmeel-urdfdom-headers ; g++ ; cargo.
@@ -22,6 +22,7 @@ out="${TMPDIR:-/tmp}/pinocchio_derivatives_bench"
 . "$here/pinocchio_build.sh"
 robots=()
 for r in ur5 panda iiwa14 quadruped12; do robots+=("$repo/dynagen/robots/$r.urdf"); done
+robots+=("$repo/dynagen/robots/quadruped12.urdf:floating")
 pinocchio_build "$here/pinocchio_derivatives_bench.cpp" "$out" "${robots[@]}"
 (cd "$repo" && cargo build --release -q -p dynagen-bench --example derivatives)
 target="${CARGO_TARGET_DIR:-$repo/target}"
