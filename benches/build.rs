@@ -8,7 +8,8 @@
 //! the humanoid32 with a floating base, default options
 //! (`quadruped12_floating`, `humanoid32_floating`, as `dynagen generate
 //! dynagen/robots/ROBOT.urdf --floating-base`), and the floating
-//! quadruped12's derivatives (`quadruped12_floating_derivatives`).
+//! quadruped12's derivatives (`quadruped12_floating_derivatives`); the
+//! Panda with its mimic finger, default options (`panda_mimic`).
 
 use dynagen::codegen::{generate, CodegenOptions, Function, Trig};
 use dynagen::{Builder, Model};
@@ -33,10 +34,7 @@ fn main() {
         };
         write("batched", CodegenOptions::default().trig(Trig::Batched));
         // The derivatives (examples/derivatives.rs), default options.
-        write(
-            "derivatives",
-            CodegenOptions::default().functions(DERIVATIVES),
-        );
+        write("derivatives", CodegenOptions::default().functions(DERIVATIVES));
         if robot == "ur5" || robot == "panda" {
             write("std", CodegenOptions::default().trig(Trig::Std));
             // The same bodies without fused multiply-adds and without run-time
@@ -47,6 +45,15 @@ fn main() {
             write("base", CodegenOptions::default().trig(Trig::Inputs).fma(false).runtime_dispatch(false));
         }
     }
+    // The Panda with its mimic finger (examples/mimic.rs), default options.
+    let urdf = Path::new(env!("CARGO_MANIFEST_DIR")).join("../dynagen/tests/data/panda_mimic.urdf");
+    println!("cargo:rerun-if-changed={}", urdf.display());
+    let module = Builder::new()
+        .urdf(&urdf)
+        .source("dynagen/tests/data/panda_mimic.urdf")
+        .generate_module()
+        .unwrap_or_else(|e| panic!("generating panda_mimic: {e}"));
+    std::fs::write(Path::new(&out).join("panda_mimic.rs"), module.source).expect("writing");
     // The floating-base quadruped and humanoid (examples/floating.rs).
     for robot in ["quadruped12", "humanoid32"] {
         let urdf = robots.join(format!("{robot}.urdf"));

@@ -7,7 +7,9 @@
 //! the two-armed torso, an f32 UR5 and the `ur5_controller` scene
 //! (`tests/generated_derivatives.rs`); the stiff robots (`build_stiff.rs`) and
 //! the split long-chain modules (`build_split.rs`); the floating quadruped and
-//! the legged manipulator's controller scene (`tests/generated_floating.rs`).
+//! the legged manipulator's controller scene (`tests/generated_floating.rs`);
+//! the Panda with its mimic finger and the mimic gripper linkage, with the
+//! batched and with std's trigonometry (`tests/generated_mimic.rs`).
 
 use dynagen::codegen::ScalarType;
 use dynagen::scene::{Gravity, Scene};
@@ -103,6 +105,22 @@ fn main() {
         .scene_file("../dynagen/scenes/legged_manipulator.toml")
         .generate()
         .expect("generating the legged manipulator's controller scene");
+    // Robots with mimic joints, as users have them (tests/generated_mimic.rs).
+    for robot in ["panda", "gripper"] {
+        let urdf = format!("../dynagen/tests/data/{robot}_mimic.urdf");
+        println!("cargo:rerun-if-changed={urdf}");
+        dynagen::Builder::new()
+            .urdf(&urdf)
+            .file_name(&format!("{robot}_mimic.rs"))
+            .generate()
+            .expect("generating a mimic module");
+        dynagen::Builder::new()
+            .urdf(&urdf)
+            .trig(dynagen::codegen::Trig::Std)
+            .file_name(&format!("{robot}_mimic_std.rs"))
+            .generate()
+            .expect("generating a mimic module with std's trigonometry");
+    }
     build_stiff::generate();
     build_split::generate();
 }

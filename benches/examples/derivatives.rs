@@ -12,10 +12,9 @@
 //! `cargo run --release -p dynagen-bench --example derivatives`
 
 use dynagen::Robot;
-use dynagen_bench::urdf;
+use dynagen_bench::{pinocchio_states as states, time, urdf, BATCH, BATCHES};
 use nalgebra::{DMatrix, DVector};
 use std::hint::black_box;
-use std::time::Instant;
 
 #[allow(dead_code)]
 mod ur5 {
@@ -53,59 +52,6 @@ mod ur5_tau {
 #[allow(dead_code)]
 mod panda_tau {
     include!(concat!(env!("OUT_DIR"), "/panda_batched.rs"));
-}
-
-const STATES: usize = 1000;
-const BATCH: usize = 1000;
-const BATCHES: usize = 300;
-const WARMUP: usize = 20;
-
-/// (median, minimum) ns per call of `call(state index)`.
-fn time(mut call: impl FnMut(usize)) -> (f64, f64) {
-    for _ in 0..WARMUP {
-        for i in 0..BATCH {
-            call(i % STATES);
-        }
-    }
-    let mut per = Vec::with_capacity(BATCHES);
-    for _ in 0..BATCHES {
-        let t = Instant::now();
-        for i in 0..BATCH {
-            call(i % STATES);
-        }
-        per.push(t.elapsed().as_nanos() as f64 / BATCH as f64);
-    }
-    per.sort_by(f64::total_cmp);
-    (per[BATCHES / 2], per[0])
-}
-
-/// One state: q, and q̇, q̈, τ.
-struct State<const NQ: usize, const NV: usize> {
-    q: [f64; NQ],
-    v: [[f64; NV]; 3],
-}
-
-/// Random states as the Pinocchio program draws them (its distribution, not
-/// its generator): q in [-π, π] (prismatic joints within 0..0.04 m; a
-/// floating base's position too, its quaternion uniform on the unit
-/// sphere), q̇ in [-2, 2], q̈ in [-5, 5], τ in [-10, 10].
-fn states<const NQ: usize, const NV: usize>(prismatic: &[bool]) -> Vec<State<NQ, NV>> {
-    let mut unit = dynagen_bench::uniform(0x2024_0611);
-    let base = NQ - prismatic.len();
-    (0..STATES)
-        .map(|_| {
-            let mut q: [f64; NQ] = core::array::from_fn(|j| match j.checked_sub(base) {
-                Some(j) if prismatic[j] => 0.02 * (unit() + 1.0),
-                _ => std::f64::consts::PI * unit(),
-            });
-            if base == 7 {
-                let n = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
-                q[3..7].iter_mut().for_each(|x| *x /= n);
-            }
-            let v = [2.0, 5.0, 10.0].map(|scale| core::array::from_fn(|_| scale * unit()));
-            State { q, v }
-        })
-        .collect()
 }
 
 /// Times module `$m`'s derivatives (and `$tau`'s τ) on `$robot` (a

@@ -1,6 +1,10 @@
 //! The generated modules benchmarked by `benches/codegen.rs` (written by
 //! build.rs from the bundled URDFs), and the path of the bundled robots.
-//! See README.md for the results and the command.
+//! See README.md for the results and the command. The timing with
+//! Pinocchio's statistic ([`time`], [`pinocchio_states`]) is shared by the
+//! examples that run beside a Pinocchio program.
+
+use std::time::Instant;
 
 macro_rules! generated {
     ($name:ident, $file:literal, $what:literal) => {
@@ -23,6 +27,11 @@ generated!(
 );
 generated!(panda_batched, "panda_batched.rs", "The Panda, `NAME(q, …)` by `sin_cos_all`.");
 generated!(
+    panda_mimic,
+    "panda_mimic.rs",
+    "The Panda with franka_description's mimic finger (`dynagen/tests/data/panda_mimic.urdf`), default options."
+);
+generated!(
     quadruped12_floating,
     "quadruped12_floating.rs",
     "The quadruped12 with a floating base (`--floating-base`), default options."
@@ -32,6 +41,35 @@ generated!(
     "humanoid32_floating.rs",
     "The humanoid32 with a floating base (`--floating-base`), default options."
 );
+
+/// The states, calls per batch, batches and warm-up batches of the
+/// timings with Pinocchio's statistic (`scripts/reference/bench_common.hpp`).
+pub const STATES: usize = 1000;
+/// Calls per batch.
+pub const BATCH: usize = 1000;
+/// Batches timed.
+pub const BATCHES: usize = 300;
+/// Batches run before.
+pub const WARMUP: usize = 20;
+
+/// (median, minimum) ns per call of `call(state index)`.
+pub fn time(mut call: impl FnMut(usize)) -> (f64, f64) {
+    for _ in 0..WARMUP {
+        for i in 0..BATCH {
+            call(i % STATES);
+        }
+    }
+    let mut per = Vec::with_capacity(BATCHES);
+    for _ in 0..BATCHES {
+        let t = Instant::now();
+        for i in 0..BATCH {
+            call(i % STATES);
+        }
+        per.push(t.elapsed().as_nanos() as f64 / BATCH as f64);
+    }
+    per.sort_by(f64::total_cmp);
+    (per[BATCHES / 2], per[0])
+}
 
 /// A deterministic generator of numbers uniform in [−1, 1) (xorshift64*),
 /// the examples' states: the same every run, no dependency.
@@ -43,6 +81,37 @@ pub fn uniform(seed: u64) -> impl FnMut() -> f64 {
         x ^= x >> 27;
         (x.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
     }
+}
+
+/// One state: q, and q̇, q̈, τ.
+pub struct State<const NQ: usize, const NV: usize> {
+    /// The configuration (NQ).
+    pub q: [f64; NQ],
+    /// q̇, q̈ and τ (NV each).
+    pub v: [[f64; NV]; 3],
+}
+
+/// Random states as the Pinocchio program draws them (its distribution, not
+/// its generator): q in [-π, π] (prismatic joints, flagged in `prismatic`,
+/// within 0..0.04 m; a floating base's position too, its quaternion made a
+/// unit one), q̇ in [-2, 2], q̈ in [-5, 5], τ in [-10, 10].
+pub fn pinocchio_states<const NQ: usize, const NV: usize>(prismatic: &[bool]) -> Vec<State<NQ, NV>> {
+    let mut unit = uniform(0x2024_0611);
+    let base = NQ - prismatic.len();
+    (0..STATES)
+        .map(|_| {
+            let mut q: [f64; NQ] = core::array::from_fn(|j| match j.checked_sub(base) {
+                Some(j) if prismatic[j] => 0.02 * (unit() + 1.0),
+                _ => std::f64::consts::PI * unit(),
+            });
+            if base == 7 {
+                let n = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+                q[3..7].iter_mut().for_each(|x| *x /= n);
+            }
+            let v = [2.0, 5.0, 10.0].map(|scale| core::array::from_fn(|_| scale * unit()));
+            State { q, v }
+        })
+        .collect()
 }
 
 /// The URDF of a bundled robot.

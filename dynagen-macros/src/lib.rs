@@ -47,6 +47,7 @@
 //! | `allow_nonphysical_inertia` | `true`, `false`: accept links whose rotational inertia is not positive semi-definite, with a warning (the mass matrix may be indefinite) | `false` (refused) |
 //! | `dispatch` | `true`, `false`: on x86-64 builds without the `avx2` and `fma` target features, also compile each function for AVX2 and FMA and run that copy where the processor has both (results differ in the last bits between machines) | `true` |
 //! | `floating_base` | `true`, `false`: the robot's root link moves freely (`NQ = DOF + 7`, `NV = DOF + 6`; every scene key and frame function too, not the derivatives yet) | `false` (a URDF `floating` root joint: `true`) |
+//! | `mimic` | `follow`: a joint with a `<mimic>` (in `robot!`, a `mimic` field) follows its master, `q = multiplier·q_master + offset`, and is not in `DOF` and `JOINT_NAMES`; `independent`: it is a joint of its own | `follow` |
 //!
 //! # Scenes (both macros)
 //!
@@ -139,7 +140,11 @@ pub fn urdf(input: proc_macro::TokenStream) -> proc_macro::TokenStream {
 ///   (inertia about the centre of mass, kg·m²; `{}` is a massless link);
 /// - `joint NAME: TYPE(PARENT -> CHILD) { origin: [x, y, z], rpy: [r, p, y], axis: [x, y, z], limits: [lower, upper, velocity, effort] }`
 ///   with TYPE `revolute`, `continuous`, `prismatic` or `fixed`; every
-///   field optional (origin and rpy zero; axis required unless fixed).
+///   field optional (origin and rpy zero; axis required unless fixed);
+///   `mimic: MASTER, multiplier: k, offset: o` makes the joint follow the
+///   joint MASTER, `q = k·q_MASTER + o` (URDF's `<mimic>`; k 1 and o 0 by
+///   default): it is not in `DOF` and `JOINT_NAMES` (option `mimic:
+///   independent` makes it a joint of its own).
 ///
 /// Conventions are URDF's: the joint frame is the child link's frame, rpy is
 /// fixed-axis X, Y, Z. Items are separated by commas.
@@ -164,6 +169,7 @@ pub(crate) struct MacroOptions {
     floating_base: Option<bool>,
     dispatch: Option<bool>,
     allow_nonphysical_inertia: Option<bool>,
+    mimic: Option<dynagen::model::MimicJoints>,
     scene: scene::SceneOptions,
 }
 
@@ -218,6 +224,7 @@ impl MacroOptions {
             "floating_base" => self.floating_base = Some(input.parse::<LitBool>()?.value),
             "dispatch" => self.dispatch = Some(input.parse::<LitBool>()?.value),
             "allow_nonphysical_inertia" => self.allow_nonphysical_inertia = Some(input.parse::<LitBool>()?.value),
+            "mimic" => self.mimic = Some(parse_ident(input)?),
             _ => return self.scene.parse_value(key, input),
         }
         Ok(true)
@@ -254,6 +261,9 @@ impl MacroOptions {
         if let Some(a) = self.allow_nonphysical_inertia {
             b = b.allow_nonphysical_inertia(a);
         }
+        if let Some(m) = self.mimic {
+            b = b.mimic_joints(m);
+        }
         if let Some(f) = &self.functions {
             b = b.functions(&f.iter().map(Ident::to_string).collect::<Vec<_>>());
         }
@@ -286,7 +296,7 @@ fn parse_ident<T: std::str::FromStr<Err = String>>(input: ParseStream) -> syn::R
 
 /// The options every macro accepts, for error messages.
 pub(crate) const OPTION_NAMES: &str = "functions, scalar, forward_dynamics, snap_rounding, trig, split_lets, fma, floating_base, \
-                                       dispatch, allow_nonphysical_inertia, scene, gravity, tip_wrench, subtree, lock, armature, viscous, coulomb, \
+                                       dispatch, allow_nonphysical_inertia, mimic, scene, gravity, tip_wrench, subtree, lock, armature, viscous, coulomb, \
                                        coulomb_velocity, payload, payload_input, frame_pose, frame_jacobian, frame_world_jacobian, \
                                        frame_acceleration_bias, target";
 

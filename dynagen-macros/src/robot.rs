@@ -76,6 +76,8 @@ struct Joint {
     rpy: [f64; 3],
     axis: Option<[f64; 3]>,
     limits: Option<[f64; 4]>,
+    /// The master, multiplier and offset of a joint that follows another.
+    mimic: Option<(Ident, f64, f64)>,
 }
 
 pub(crate) struct RobotInput {
@@ -130,17 +132,33 @@ impl Parse for Joint {
         let parent: Ident = content.parse()?;
         content.parse::<Token![->]>()?;
         let child: Ident = content.parse()?;
-        let mut j = Joint { name, kind, parent, child, origin: [0.0; 3], rpy: [0.0; 3], axis: None, limits: None };
+        let mut j =
+            Joint { name, kind, parent, child, origin: [0.0; 3], rpy: [0.0; 3], axis: None, limits: None, mimic: None };
+        let (mut multiplier, mut offset) = (None, None);
         fields(input, |key, v| {
             match key.to_string().as_str() {
                 "origin" => j.origin = array(v, "origin")?,
                 "rpy" => j.rpy = array(v, "rpy")?,
                 "axis" => j.axis = Some(array(v, "axis")?),
                 "limits" => j.limits = Some(array(v, "limits")?),
-                _ => return Err(unknown(key, "origin, rpy, axis, limits")),
+                "mimic" => j.mimic = Some((v.parse()?, 1.0, 0.0)),
+                "multiplier" => multiplier = Some(v.parse::<Num>()?.0),
+                "offset" => offset = Some(v.parse::<Num>()?.0),
+                _ => return Err(unknown(key, "origin, rpy, axis, limits, mimic, multiplier, offset")),
             }
             Ok(())
         })?;
+        match &mut j.mimic {
+            // URDF's defaults: multiplier 1, offset 0
+            Some((_, k, o)) => (*k, *o) = (multiplier.unwrap_or(1.0), offset.unwrap_or(0.0)),
+            None if multiplier.is_some() || offset.is_some() => {
+                return Err(syn::Error::new(
+                    j.name.span(),
+                    format!("joint `{}`: `multiplier` and `offset` go with `mimic: MASTER_JOINT`", j.name),
+                ))
+            }
+            None => {}
+        }
         if j.axis.is_none() && j.kind != "fixed" {
             return Err(syn::Error::new(
                 j.name.span(),
@@ -227,7 +245,8 @@ fn error_span(robot: &RobotInput, message: &str) -> Span {
 
 pub(crate) fn expand(robot: RobotInput) -> syn::Result<TokenStream> {
     let mut b = RobotBuilder::new(&robot.name.to_string())
-        .allow_nonphysical_inertia(robot.options.allow_nonphysical_inertia.unwrap_or(false));
+        .allow_nonphysical_inertia(robot.options.allow_nonphysical_inertia.unwrap_or(false))
+        .mimic_joints(robot.options.mimic.unwrap_or_default());
     if let Some(g) = robot.gravity {
         b = b.gravity(g);
     }
@@ -246,6 +265,9 @@ pub(crate) fn expand(robot: RobotInput) -> syn::Result<TokenStream> {
         d = d.origin(j.origin, j.rpy);
         if let Some([lo, hi, v, e]) = j.limits {
             d = d.limits(lo, hi, v, e);
+        }
+        if let Some((master, k, o)) = &j.mimic {
+            d = d.mimic(&master.to_string(), *k, *o);
         }
         b = b.joint(d);
     }

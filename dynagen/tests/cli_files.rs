@@ -129,3 +129,58 @@ fn eval_names_the_joints_of_a_mass_matrix_singular_at_this_q() {
         "{error}"
     );
 }
+
+/// A robot with mimic joints, as users have it, through every command: the
+/// Panda of franka_description has 8 joints (the second finger follows the
+/// first), `inspect` shows the couplings, `eval` matches Pinocchio with its
+/// mimic option, `generate` writes 8 joint names; `--mimic independent`
+/// gives the 9 joints of old.
+#[test]
+fn mimic_joints_through_every_command() {
+    let urdf = data("gripper_mimic.urdf");
+    let (status, stdout, stderr) = run(dynagen().arg("inspect").arg(&urdf));
+    assert_eq!(status, 0, "{stderr}");
+    assert!(stdout.contains("4 joints (degrees of freedom) and 4 mimic joints that follow them"), "{stdout}");
+    assert!(stdout.contains("[follows c_finger] d_tip_l (revolute) -> tip_l"), "{stdout}");
+    assert!(stdout.contains("-0.75 × c_finger + 0.2") && stdout.contains("1 × c_finger − 0.1"), "{stdout}");
+    let (status, stdout, stderr) = run(dynagen().arg("inspect").arg(&urdf).args(["--mimic", "independent"]));
+    assert_eq!(status, 0, "{stderr}");
+    assert!(stdout.contains("8 joints (degrees of freedom), 8 moving bodies") && !stdout.contains("follows"));
+    let (status, _, stderr) = run(dynagen().arg("inspect").arg(&urdf).args(["--mimic", "sideways"]));
+    assert_eq!(status, 2, "{stderr}");
+    assert!(stderr.contains("unknown mimic mode \"sideways\""), "{stderr}");
+
+    let urdf = data("panda_mimic.urdf");
+    let text = std::fs::read_to_string(data("pinocchio_mimic_panda.json")).unwrap();
+    let reference: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let state = &reference["states"][3];
+    let input = serde_json::json!({"states": [{"q": state["q"], "qd": state["qd"], "qdd": state["qdd"], "tau": state["tau_in"]}]});
+    let (status, stdout, stderr) =
+        run(dynagen().arg("eval").arg(&urdf).args(["--input", "-"]).write_stdin(input.to_string()));
+    assert_eq!(status, 0, "{stderr}");
+    let out: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(out["joint_names"], reference["joint_names"]);
+    for (ours, theirs) in [("tau", "tau"), ("h", "h"), ("g", "g"), ("qdd", "qdd_fd")] {
+        let v =
+            |x: &serde_json::Value| -> Vec<f64> { x.as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect() };
+        let (got, want) = (v(&out["results"][0][ours]), v(&state[theirs]));
+        let scale = want.iter().fold(1e-9f64, |m, x| m.max(x.abs()));
+        let e = got.iter().zip(&want).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max) / scale;
+        assert!(e <= 1e-12, "eval {ours}: relative error {e:e} against Pinocchio");
+    }
+    let dir = scratch("mimic");
+    let out = dir.join("panda_mimic.rs");
+    let (status, _, stderr) = run(dynagen().arg("generate").arg(&urdf).arg("-o").arg(&out));
+    assert_eq!(status, 0, "{stderr}");
+    let source = std::fs::read_to_string(&out).unwrap();
+    assert!(source.contains("pub const DOF: usize = 8;"));
+    assert!(source.contains("//   \"panda_finger_joint2\" = 1.0 * \"panda_finger_joint1\" + 0.0"), "the header");
+    let (status, _, stderr) =
+        run(dynagen().arg("generate").arg(&urdf).args(["--mimic", "independent", "-o"]).arg(&out));
+    assert_eq!(status, 0, "{stderr}");
+    let source = std::fs::read_to_string(&out).unwrap();
+    assert!(source.contains("pub const DOF: usize = 9;") && !source.contains("Mimic joints"));
+    let (status, stdout, stderr) = run(dynagen().arg("ops").arg(&urdf));
+    assert_eq!(status, 0, "{stderr}");
+    assert!(stdout.contains("8 joints"), "{stdout}");
+}

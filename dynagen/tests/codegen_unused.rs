@@ -60,4 +60,18 @@ fn a_module_of_which_one_function_is_called_compiles_without_a_warning() {
         "robot::frame_pose_ee_link(&[0.1; robot::DOF])[0][3]",
         &[],
     );
+    // Mimic joints, with angles of their own among the sines and cosines.
+    let gripper = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/gripper_mimic.urdf");
+    compiles_without_warnings(
+        "mimic",
+        &module(Builder::new().urdf(&gripper)),
+        "robot::gravity_torques(&[0.1; robot::DOF])[2]",
+        &[],
+    );
+    compiles_without_warnings(
+        "mimic_floating",
+        &module(Builder::new().urdf(&gripper).floating_base(true)),
+        "robot::gravity_torques(&[0.1; robot::NQ])[2]",
+        &[],
+    );
 }

@@ -37,7 +37,8 @@ fn tau_m<S: Scalar>(model: &Model, q: &[f64], qd: &[f64], qdd: &[f64]) -> (Vec<f
     (back(&tau), back(&m))
 }
 
-const ALLOW: BuildOptions = BuildOptions { strict: false, allow_nonphysical_inertia: true };
+const ALLOW: BuildOptions =
+    BuildOptions { strict: false, allow_nonphysical_inertia: true, mimic: dynagen::model::MimicJoints::Follow };
 
 #[test]
 fn a_nonphysical_inertia_is_refused_naming_the_link_and_the_option() {

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes a C++ header that builds Pinocchio models without its URDF parser.
 
-Usage: make_pinocchio_models.py OUT.hpp ROBOT.urdf[:floating] ...
+Usage: make_pinocchio_models.py OUT.hpp ROBOT.urdf[:floating|:mimic] ...
 
 Pinocchio's URDF parser lives in the `pin` wheel's prebuilt
 libpinocchio_parsers, compiled for baseline x86-64: a benchmark built with
@@ -11,7 +11,9 @@ written out as C++ that makes the same model with Pinocchio's header-only
 API (addJoint, appendBodyToJoint, the joint limits), which the benchmark then
 compiles with whatever flags it likes. `:floating` puts a
 JointModelFreeFlyer root above the URDF's root link, as
-`buildModelFromUrdf(path, JointModelFreeFlyer())` does.
+`buildModelFromUrdf(path, JointModelFreeFlyer())` does; `:mimic` reads the
+file with the parser's mimic option (`buildModelFromUrdf(path, mimic=True)`):
+a JointModelMimic of the joint's own type, following its master's joint.
 
 The header also holds, for each model, rnea at one state as Python's
 Pinocchio computed it; `pinocchio_models::build` rebuilds the model, runs
@@ -63,11 +65,22 @@ def check_state(model):
     return q, v, a
 
 
-def emit(name, model):
+def mimic_joint(model, full, i):
+    """JointModelMimic i of `model`: its own type, read from `full` (the same
+    file without the mimic option), following its master's joint."""
+    jm = model.joints[i].extract()
+    master = list(model.mimicked_joints)[list(model.mimicking_joints).index(i)]
+    own = joint(full.joints[full.getJointId(model.names[i])])
+    return f"pinocchio::JointModelMimic({own}, m.joints[{master}], {cpp(jm.scaling)}, {cpp(jm.offset)})"
+
+
+def emit(name, model, full=None):
     lines = [f"inline pinocchio::Model build_{name}() {{", "  pinocchio::Model m;"]
     for i in range(1, model.njoints):
+        jm = model.joints[i]
+        made = mimic_joint(model, full, i) if jm.shortname() == "JointModelMimic" else joint(jm)
         lines.append(
-            f"  m.addJoint({model.parents[i]}, {joint(model.joints[i])}, "
+            f"  m.addJoint({model.parents[i]}, {made}, "
             f"{se3(model.jointPlacements[i])}, \"{model.names[i]}\");")
         inertia = model.inertias[i]
         lines.append(
@@ -100,10 +113,10 @@ def main():
         path, _, kind = spec.partition(":")
         floating = kind == "floating"
         model = (pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer()) if floating
-                 else pin.buildModelFromUrdf(path))
-        key = os.path.basename(path) + (":floating" if floating else "")
+                 else pin.buildModelFromUrdf(path, mimic=kind == "mimic"))
+        key = os.path.basename(path) + (f":{kind}" if kind else "")
         ident = "".join(c if c.isalnum() else "_" for c in key)
-        parts.append(emit(ident, model))
+        parts.append(emit(ident, model, pin.buildModelFromUrdf(path)))
         table.append((key, ident))
     dispatch = "\n".join(
         f"  if (key == \"{key}\") {{ m = build_{ident}(); c = check_{ident}(); }}"
@@ -125,7 +138,8 @@ struct Check {{ Eigen::VectorXd q, v, a, tau; }};
 {chr(10).join(parts)}
 
 // The model of `key` (a URDF file name, with ":floating" for a free-flyer
-// root), checked against Python's rnea; exits on an unknown key or a
+// root, ":mimic" for the mimic option), checked against Python's rnea; exits
+// on an unknown key or a
 // mismatch.
 inline pinocchio::Model build(const std::string& key) {{
   pinocchio::Model m;

@@ -207,6 +207,12 @@ fn axis_index(joint: &Joint) -> Option<usize> {
 /// Nothing else changes, so the algorithm keeps its O(n) cost and its
 /// accuracy. A joint with `a_i = 0` costs nothing more.
 ///
+/// A model with mimic joints has no articulated-body recursion (a mimic
+/// joint has no acceleration of its own to eliminate): its q̈ is the same
+/// M(q)⁻¹(τ − h − JᵀF_tip) through M by
+/// [`forward_dynamics_ldlt`](super::forward_dynamics::forward_dynamics_ldlt)
+/// ([`mimic`](super::mimic)).
+///
 /// # Panics
 /// If a slice's length is not the model's number of joints, or a payload's
 /// body is not a body of the model.
@@ -219,6 +225,9 @@ pub fn aba<S: Scalar>(
     loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
+    if model.has_mimic() {
+        return super::forward_dynamics::forward_dynamics_ldlt(model, ws, q, qd, tau, loads, qdd);
+    }
     if model.is_floating() {
         return super::floating::aba::aba(model, ws, q, qd, tau, loads, qdd);
     }
@@ -233,6 +242,9 @@ pub fn aba<S: Scalar>(
 /// ([`forward_dynamics_compensated`](super::compensated::forward_dynamics_compensated)),
 /// which has the bias forces already.
 ///
+/// A model with mimic joints: M(q)⁻¹τ by the LᵀDL factorisation of M, as
+/// [`aba`].
+///
 /// # Panics
 /// As [`aba`].
 pub fn aba_at_rest<S: Scalar>(
@@ -243,6 +255,10 @@ pub fn aba_at_rest<S: Scalar>(
     loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
+    if model.has_mimic() {
+        qdd.copy_from_slice(tau);
+        return super::forward_dynamics::solve_with_mass_matrix(model, ws, q, loads.inertias(), qdd);
+    }
     if model.is_floating() {
         return super::floating::aba::aba_at_rest(model, ws, q, tau, loads, qdd);
     }
@@ -298,7 +314,7 @@ fn aba_impl<S: Scalar, const DISTRIBUTED: bool>(
     loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
-    let n = model.dof();
+    let n = model.bodies.len();
     assert!(
         q.len() == n && qd.is_none_or(|qd| qd.len() == n) && tau.len() == n && qdd.len() == n && ws.dof() == n,
         "aba: slices must have the model's {n} joints"

@@ -16,14 +16,24 @@ use crate::Scalar;
 /// before the composite inertias are summed up the tree (exactly as if the
 /// body's own inertia were the sum), and the armature to the diagonal.
 ///
+/// A model with mimic joints: `Gᵀ M_tree G` ([`mimic`](super::mimic)).
+///
 /// # Panics
 /// If `q` does not have the model's number of joints, `m` is not n×n, or a
 /// payload's body is not a body of the model.
 pub fn crba<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], loads: Loads<'_, S>, m: &mut [S]) {
+    if model.has_mimic() {
+        return super::mimic::crba(model, ws, q, loads, m);
+    }
+    crba_tree(model, ws, q, loads, m)
+}
+
+/// [`crba`] on the bodies' coordinates: M_tree, one row per body.
+pub(crate) fn crba_tree<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], loads: Loads<'_, S>, m: &mut [S]) {
     if model.is_floating() {
         return super::floating::crba::crba(model, ws, q, loads, m);
     }
-    let n = model.dof();
+    let n = model.bodies.len();
     assert!(q.len() == n && m.len() == n * n && ws.dof() == n, "crba: slices must fit the model's {n} joints");
     loads.check(n, "crba");
     update_joint_transforms(model, ws, q);

@@ -241,6 +241,10 @@ pub fn inverse_dynamics_derivatives<S: Scalar, J: JointTorques>(
         q.len() == model.nq() && qd.len() == nv && qdd.len() == nv,
         "inverse_dynamics_derivatives: q must have NQ entries, q̇ and q̈ NV"
     );
+    // The analytical recursion runs over the bodies, one coordinate each; a
+    // model with mimic joints takes the dual numbers, through the RNEA's
+    // expansion and projection (`algorithms/mimic.rs`).
+    let formulation = if model.has_mimic() { Formulation::DualNumbers } else { formulation };
     match formulation {
         Formulation::Analytical => {
             rnea_derivatives(model, &mut dw.analytical, [q, qd, qdd], d.loads, [dtau_dq, dtau_dqd], mass)
@@ -317,13 +321,11 @@ fn dual_derivatives<S: Scalar, J>(
 pub fn mass_matrix_inverse<S: Scalar>(model: &Model, factor: &mut [S], linv: &mut [S], minv: &mut [S]) {
     let n = model.nv();
     assert!(linv.len() == n * n && minv.len() == n * n, "mass_matrix_inverse: m must be {n}×{n}");
-    // The tree of the velocity coordinates: the joints', a floating base's
-    // six as a chain ahead of them.
-    let parent = |k: usize| match model.is_floating() {
-        true => super::floating::velocity_parent(model, k),
-        false => model.bodies[k].parent,
-    };
-    ldlt::factorise_tree(n, parent, factor);
+    ldlt::factorise(model, factor);
+    // The tree of the factorisation: the kinematic tree (a floating base's
+    // six coordinates a chain ahead of the joints), or with mimic joints the
+    // elimination tree of M's pattern.
+    let parent = |i: usize| ldlt::parent(model, i);
     // L⁻¹: row i = e_i − Σ_{m ancestor of i} L[i][m]·row m (rows of
     // ancestors first, as joints come after their parents).
     for i in 0..n {

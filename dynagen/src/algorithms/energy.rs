@@ -9,10 +9,17 @@ use crate::Scalar;
 /// Kinetic energy ½ Σ Vᵢᵀ Gᵢ Vᵢ = ½ q̇ᵀ M(q) q̇ (J). A floating model
 /// takes NQ/NV-long `q`, `qd` and counts its base too.
 pub fn kinetic_energy<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], qd: &[S]) -> S {
+    if model.is_floating() {
+        floating::check_sizes(model, "kinetic_energy", q.len(), &[qd.len()]);
+    }
+    super::mimic::on_tree(model, ws, q, Some(qd), |ws, q, qd| kinetic_energy_tree(model, ws, q, qd.unwrap_or(&[])))
+}
+
+/// [`kinetic_energy`] of the bodies' coordinates.
+fn kinetic_energy_tree<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], qd: &[S]) -> S {
     let mut e = S::zero();
     // the base's twist and the offsets of the joints in q and q̇
     let (v0, oq, ov) = if model.is_floating() {
-        floating::check_sizes(model, "kinetic_energy", q.len(), &[qd.len()]);
         let v0 = floating::base_motion(qd);
         e += v0.dot(&model.base_inertia_in::<S>().mul_motion(&v0));
         (v0, 7, 6)

@@ -37,6 +37,12 @@ pub fn frame_acceleration_bias<S: Scalar>(
 ) -> Motion<S> {
     let (nq, nv) = (model.nq(), model.nv());
     assert!(q.len() == nq && qd.len() == nv, "frame_acceleration_bias: q must have {nq} entries and qd {nv}");
+    // (with mimic joints, on the bodies' coordinates)
+    super::mimic::on_tree(model, ws, q, Some(qd), |ws, q, qd| bias_on_tree(model, ws, q, qd.unwrap_or(&[]), frame))
+}
+
+/// [`frame_acceleration_bias`] of the bodies' coordinates, one per body.
+fn bias_on_tree<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], qd: &[S], frame: usize) -> Motion<S> {
     // Where the joints start in q and q̇, and the base's twist.
     let (oq, ov, v0) = if model.is_floating() { (7, 6, base_motion(qd)) } else { (0, 0, Motion::zero()) };
     let f = &model.frames[frame];

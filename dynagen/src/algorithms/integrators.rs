@@ -141,7 +141,7 @@ fn step_by_aba<S: Scalar>(
     }
     let n = model.dof();
     assert!(
-        q.len() == n && qd.len() == n && inputs.tau.len() == n && ws.dof() == n && scratch.dof() == n,
+        q.len() == n && qd.len() == n && inputs.tau.len() == n && ws.dof() == model.bodies.len() && scratch.dof() == n,
         "integrators: slices and scratch must have the model's {n} joints"
     );
     let accel = |q: &[S], qd: &[S], qdd: &mut [S]| aba(model, ws, q, qd, inputs.tau, inputs.loads, qdd);

@@ -6,11 +6,30 @@
 use crate::model::Model;
 use crate::Scalar;
 
-/// Factorises the n×n row-major `m` in place: on return the diagonal holds
-/// D and the strictly lower triangle holds L (entries of joints on other
-/// branches are left untouched). Only the lower triangle is read.
+/// Factorises the NV×NV row-major mass matrix `m` of `model` in place: on
+/// return the diagonal holds D and the strictly lower triangle holds L
+/// (entries of joints on other branches are left untouched). Only the
+/// lower triangle is read.
 pub fn factorise<S: Scalar>(model: &Model, m: &mut [S]) {
-    factorise_tree(model.dof(), |k| model.bodies[k].parent, m)
+    factorise_tree(model.nv(), |k| parent(model, k), m)
+}
+
+/// The parent of velocity coordinate `k` in the tree the factorisation of
+/// `model`'s mass matrix follows: the kinematic tree; a floating base's six
+/// coordinates as a chain ahead of the joints (its 6×6 block is dense, and
+/// a joint on the base has the base's last coordinate as its parent); with
+/// mimic joints, the elimination tree of M's pattern (see
+/// [`mimic`](super::mimic)).
+#[inline(always)]
+pub fn parent(model: &Model, k: usize) -> Option<usize> {
+    let base = model.nv() - model.dof();
+    match k.checked_sub(base) {
+        None => k.checked_sub(1),
+        Some(j) => match model.coupling.parent[j] {
+            Some(p) => Some(p + base),
+            None => base.checked_sub(1),
+        },
+    }
 }
 
 /// [`factorise`] for any tree of `n` coordinates given by the parent of
@@ -36,7 +55,7 @@ pub fn factorise_tree<S: Scalar>(n: usize, parent: impl Fn(usize) -> Option<usiz
 
 /// Solves M x = b in place (`b` becomes x) with a factor from [`factorise`].
 pub fn solve<S: Scalar>(model: &Model, factor: &[S], b: &mut [S]) {
-    solve_tree(model.dof(), |k| model.bodies[k].parent, factor, b)
+    solve_tree(model.nv(), |k| parent(model, k), factor, b)
 }
 
 /// [`solve`] for a factor from [`factorise_tree`] with the same `parent`.

@@ -6,7 +6,10 @@
 //! take the model's constants as `f64`, write into caller-provided slices
 //! and allocate nothing: their scratch lives in a [`Workspace`].
 //!
-//! Joint order is the model's: body `i` carries joint `i`.
+//! Joint order is the model's: body `i` carries joint `i`. The public
+//! algorithms take the joint vectors ([`Model::dof`](crate::Model::dof)
+//! entries, a floating base's first); with mimic joints they run over the
+//! bodies' own coordinates and project ([`mimic`]).
 
 pub mod aba;
 pub mod bias;
@@ -23,6 +26,7 @@ pub mod kinematics;
 pub mod ldlt;
 mod loads;
 mod lu;
+pub mod mimic;
 pub mod rnea;
 pub mod rnea_derivatives;
 mod workspace;

@@ -118,7 +118,8 @@ pub(crate) fn inertial_moment<S: Scalar>(i: &Sym3<S>, wd: &Vec3<S>, p: &Sym3<S>,
     ])
 }
 
-/// Computes the pose of every body in its parent's frame into `ws.x`.
+/// Computes the pose of every body in its parent's frame into `ws.x`, from
+/// the bodies' coordinates (one per body).
 #[inline(always)]
 pub(crate) fn update_joint_transforms<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S]) {
     for (i, b) in model.bodies.iter().enumerate() {
@@ -202,6 +203,10 @@ pub(crate) fn body_wrench<S: Scalar>(
 ///   armature (armature∘q̈ added last).
 /// - `tau`: the joint torques (N·m) or forces (N) are written here.
 ///
+/// A model with mimic joints takes one entry per joint with a coordinate of
+/// its own, and the recursion runs on the bodies' coordinates
+/// ([`mimic`](super::mimic)).
+///
 /// # Panics
 /// If a slice's length is not the model's number of joints, or a payload's
 /// body is not a body of the model.
@@ -217,10 +222,28 @@ pub fn rnea<S: Scalar>(
     loads: Loads<'_, S>,
     tau: &mut [S],
 ) {
+    if model.has_mimic() {
+        return super::mimic::rnea(model, ws, (q, qd, qdd), loads, tau);
+    }
+    rnea_bodies(model, ws, (q, qd, qdd), loads, tau)
+}
+
+/// The state an inverse dynamics reads: q, and q̇ and q̈ unless zero.
+pub(crate) type State<'a, S> = (&'a [S], Option<&'a [S]>, Option<&'a [S]>);
+
+/// [`rnea`] on the bodies' coordinates, one per body ([`Model::tree_nq`]).
+#[inline(always)]
+pub(crate) fn rnea_bodies<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    (q, qd, qdd): State<'_, S>,
+    loads: Loads<'_, S>,
+    tau: &mut [S],
+) {
     if model.is_floating() {
         return super::floating::rnea::rnea(model, ws, q, qd, qdd, loads, tau);
     }
-    let n = model.dof();
+    let n = model.bodies.len();
     loads.check(n, "rnea");
     assert!(q.len() == n && tau.len() == n && ws.dof() == n, "rnea: slices must have the model's {n} joints");
     assert!(
@@ -259,7 +282,7 @@ pub(crate) fn rnea_tree<S: Scalar>(
     loads: Loads<'_, S>,
     tau: &mut [S],
 ) -> Force<S> {
-    let n = model.dof();
+    let n = model.bodies.len();
     let Loads { tips, payloads, .. } = loads;
     // Slices of the known length, so that indexing by body needs no checks.
     let (bodies, q, tau) = (&model.bodies[..n], &q[..n], &mut tau[..n]);

@@ -39,12 +39,15 @@ pub struct Workspace<S> {
     pub(crate) rhs: Vec<S>,
     /// Pose of each body in the base frame.
     pub(crate) world: Vec<Transform<S>>,
+    /// The bodies' coordinates and results of a model with mimic joints
+    /// (empty without).
+    pub(crate) tree: crate::algorithms::mimic::TreeScratch<S>,
 }
 
 impl<S: Scalar> Workspace<S> {
     /// Scratch for `model`.
     pub fn new(model: &Model) -> Self {
-        let n = model.dof();
+        let n = model.bodies.len();
         Workspace {
             x: vec![Transform::identity(); n],
             v: vec![Motion::zero(); n],
@@ -64,9 +67,11 @@ impl<S: Scalar> Workspace<S> {
             mat: vec![S::zero(); model.nv() * model.nv()],
             rhs: vec![S::zero(); model.nv()],
             world: vec![Transform::identity(); n],
+            tree: crate::algorithms::mimic::TreeScratch::new(model),
         }
     }
-    /// The number of joints this workspace is for.
+    /// The number of bodies this workspace is for (of joints, without
+    /// mimic joints).
     pub fn dof(&self) -> usize {
         self.x.len()
     }

@@ -387,6 +387,14 @@ impl Builder {
         self.model_options.allow_nonphysical_inertia = allow;
         self
     }
+    /// Whether URDF joints with a `<mimic>` element follow their master
+    /// ([`MimicJoints::Follow`](crate::model::MimicJoints::Follow), the
+    /// default: `DOF` and `JOINT_NAMES` are the other joints) or are
+    /// independent joints ([`MimicJoints::Independent`](crate::model::MimicJoints::Independent)).
+    pub fn mimic_joints(mut self, mimic: crate::model::MimicJoints) -> Self {
+        self.model_options.mimic = mimic;
+        self
+    }
     /// Replace model constants that are 0 or ±1 up to rounding
     /// ([`CodegenOptions::snap_rounding`], on).
     pub fn snap_rounding(self, on: bool) -> Self {

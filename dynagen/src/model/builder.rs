@@ -1,7 +1,7 @@
 //! Describing a robot in Rust.
 
 use super::description::{Inertial, JointDescription, LinkDescription, RobotDescription};
-use super::{BuildOptions, Model, ModelError};
+use super::{BuildOptions, MimicJoints, Model, ModelError};
 
 /// Builds a [`Model`] from links and joints written in Rust, with the same
 /// checks as a URDF.
@@ -56,6 +56,26 @@ impl RobotBuilder {
     /// each with a warning ([`BuildOptions::allow_nonphysical_inertia`]).
     pub fn allow_nonphysical_inertia(mut self, allow: bool) -> Self {
         self.opts.allow_nonphysical_inertia = allow;
+        self
+    }
+    /// Whether joints made with [`JointDescription::mimic`] follow their
+    /// master (the default) or are independent joints
+    /// ([`BuildOptions::mimic`]).
+    ///
+    /// ```
+    /// use dynagen::model::{Inertial, JointDescription, MimicJoints, RobotBuilder};
+    /// let finger = Some(Inertial::new(0.02, [0.0, 0.0, 0.03], [1e-6, 1e-6, 1e-6, 0.0, 0.0, 0.0]));
+    /// let gripper = RobotBuilder::new("gripper")
+    ///     .link("palm", None)
+    ///     .link("left", finger)
+    ///     .link("right", finger)
+    ///     .joint(JointDescription::prismatic("left_joint", "palm", "left", [0.0, 1.0, 0.0]))
+    ///     .joint(JointDescription::prismatic("right_joint", "palm", "right", [0.0, -1.0, 0.0]).mimic("left_joint", 1.0, 0.0));
+    /// assert_eq!(gripper.build().unwrap().dof(), 1); // the fingers move together
+    /// assert_eq!(gripper.mimic_joints(MimicJoints::Independent).build().unwrap().dof(), 2);
+    /// ```
+    pub fn mimic_joints(mut self, mimic: MimicJoints) -> Self {
+        self.opts.mimic = mimic;
         self
     }
     /// The description built so far.

@@ -28,6 +28,8 @@ const MAX_DOF: usize = 1000;
 /// mass at configuration `q`: one per vanishing pivot of M(q).
 pub(crate) fn singular_sets_at(model: &Model, q: &[f64]) -> Vec<Vec<usize>> {
     let n = model.dof();
+    // the tree of the factorisation (the kinematic tree without mimic joints)
+    let parent = |k: usize| model.coupling.parent[k];
     let mut m = vec![0.0; n * n];
     let mut ws = Workspace::<f64>::new(model);
     crba::crba(model, &mut ws, q, Loads::none(), &mut m);
@@ -39,23 +41,23 @@ pub(crate) fn singular_sets_at(model: &Model, q: &[f64]) -> Vec<Vec<usize>> {
         let d = m[k * n + k];
         if !d.is_finite() || d.abs() <= PIVOT_RTOL * diag[k] {
             vanished.push(k);
-            let mut i = model.bodies[k].parent;
+            let mut i = parent(k);
             while let Some(ii) = i {
                 m[k * n + ii] = 0.0;
-                i = model.bodies[ii].parent;
+                i = parent(ii);
             }
             continue;
         }
-        let mut i = model.bodies[k].parent;
+        let mut i = parent(k);
         while let Some(ii) = i {
             let a = m[k * n + ii] / d;
             let mut j = Some(ii);
             while let Some(jj) = j {
                 m[ii * n + jj] -= a * m[k * n + jj];
-                j = model.bodies[jj].parent;
+                j = parent(jj);
             }
             m[k * n + ii] = a;
-            i = model.bodies[ii].parent;
+            i = parent(ii);
         }
     }
     // For each vanishing pivot k, x with L·x = e_k (from the base down:
@@ -68,13 +70,13 @@ pub(crate) fn singular_sets_at(model: &Model, q: &[f64]) -> Vec<Vec<usize>> {
             let mut x = vec![0.0; n];
             for i in k..n {
                 let mut acc = if i == k { 1.0 } else { 0.0 };
-                let mut j = model.bodies[i].parent;
+                let mut j = parent(i);
                 while let Some(jj) = j {
                     if jj < k {
                         break;
                     }
                     acc -= m[i * n + jj] * x[jj];
-                    j = model.bodies[jj].parent;
+                    j = parent(jj);
                 }
                 x[i] = acc;
             }
@@ -101,9 +103,8 @@ pub(super) fn dependent_joints(model: &Model) -> Vec<Vec<String>> {
     };
     let mut common: Option<Vec<Vec<usize>>> = None;
     for _ in 0..CONFIGURATIONS {
-        let q: Vec<f64> = model
-            .bodies
-            .iter()
+        let q: Vec<f64> = (0..n)
+            .map(|k| &model.bodies[model.joint_body(k)])
             .map(|b| match (b.joint.kind, &b.joint.limits) {
                 (JointKind::Prismatic, Some(l)) if l.lower.is_finite() && l.upper.is_finite() => {
                     0.5 * (l.lower + l.upper) + 0.5 * (l.upper - l.lower) * next()
@@ -118,7 +119,7 @@ pub(super) fn dependent_joints(model: &Model) -> Vec<Vec<String>> {
             Some(c) => c.into_iter().filter(|s| sets.contains(s)).collect(),
         });
     }
-    let names = |s: &Vec<usize>| s.iter().map(|&i| model.bodies[i].joint.name.clone()).collect();
+    let names = |s: &Vec<usize>| s.iter().map(|&k| model.bodies[model.joint_body(k)].joint.name.clone()).collect();
     common.unwrap_or_default().iter().map(names).collect()
 }
 
@@ -131,7 +132,7 @@ impl Model {
         assert_eq!(q.len(), self.dof(), "singular_joints_at: q must have one entry per joint");
         singular_sets_at(self, q)
             .iter()
-            .map(|s| s.iter().map(|&i| self.bodies[i].joint.name.clone()).collect())
+            .map(|s| s.iter().map(|&k| self.bodies[self.joint_body(k)].joint.name.clone()).collect())
             .collect()
     }
     /// The sets of joints found dependent at load time (a

@@ -112,14 +112,28 @@ pub struct JointDescription {
     pub axis_is_direction: bool,
     /// Limits, when known.
     pub limits: Option<JointLimits>,
-    /// Whether the joint mimics another (not supported yet).
-    pub mimic: bool,
+    /// The joint this one follows (URDF `<mimic>`), if any.
+    pub mimic: Option<MimicDescription>,
     /// `origin` as the robot file defines it (the rotation from the file's
     /// rpy or quaternion), beyond `f64` ([`FileValue`]).
     pub file_origin: Option<FileTransform>,
     /// `axis` as the robot file writes it, beyond `f64` (without it, the
     /// `f64` axis is taken as exact).
     pub file_axis: Option<FileVec3>,
+}
+
+/// A joint that follows another (URDF `<mimic>`): its position is
+/// `multiplier·q_master + offset` (rad or m), its rate and acceleration
+/// `multiplier` times the master's. The master must be a moving joint that
+/// follows no other.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MimicDescription {
+    /// The master joint's name.
+    pub joint: String,
+    /// The factor on the master's position (URDF default 1).
+    pub multiplier: f64,
+    /// The position at the master's zero (URDF default 0).
+    pub offset: f64,
 }
 
 impl JointDescription {
@@ -133,7 +147,7 @@ impl JointDescription {
             axis: Vec3(axis),
             axis_is_direction: false,
             limits: None,
-            mimic: false,
+            mimic: None,
             file_origin: None,
             file_axis: None,
         }
@@ -168,6 +182,12 @@ impl JointDescription {
     /// `q` about `axis/|axis|` (see [`axis_is_direction`](Self::axis_is_direction)).
     pub fn unit_axis(mut self) -> Self {
         self.axis_is_direction = true;
+        self
+    }
+    /// Makes the joint follow `master`: its position is
+    /// `multiplier·q_master + offset` (see [`MimicDescription`]).
+    pub fn mimic(mut self, master: &str, multiplier: f64, offset: f64) -> Self {
+        self.mimic = Some(MimicDescription { joint: master.to_string(), multiplier, offset });
         self
     }
     /// Sets the limits.

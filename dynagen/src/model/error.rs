@@ -152,6 +152,16 @@ pub enum ModelError {
         /// The upper limit.
         upper: f64,
     },
+    /// A joint that follows another (`<mimic>`) in a way dynagen cannot
+    /// model: an unknown, fixed or mimicking master, or a joint that does
+    /// not move.
+    #[error("joint \"{joint}\" (mimic): {why}")]
+    Mimic {
+        /// The mimic joint.
+        joint: String,
+        /// What is wrong.
+        why: String,
+    },
     /// A feature the model does not handle yet.
     #[error("joint \"{joint}\": {what} not supported yet")]
     Unsupported {

@@ -1,5 +1,5 @@
-//! The robot: a kinematic tree of rigid bodies, one degree of freedom per
-//! body, in topological order.
+//! The robot: a kinematic tree of rigid bodies, one moving joint per body,
+//! in topological order; a joint may follow another ([`Mimic`]).
 //!
 //! A [`Model`] is built from a [`RobotDescription`] (links and joints, as in a
 //! URDF) by [`Model::from_description`], which validates everything and
@@ -11,8 +11,12 @@
 //! Conventions: body `i` carries joint `i`; `parent[i] < i`; joint order is
 //! depth-first over the tree, children in the order the description lists
 //! their joints (file order for URDF). A body's frame is its joint's frame.
+//! The joint vectors (q, q̇, τ) have an entry per joint with a coordinate
+//! of its own: body `i`'s is [`Model::column`]`(i)` (a mimic joint's is its
+//! master's), the same as `i` when no joint follows another.
 
 mod builder;
+mod coupling;
 mod dependent;
 mod description;
 mod error;
@@ -24,8 +28,10 @@ mod urdf_decimals;
 mod validate;
 
 pub use builder::RobotBuilder;
+pub(crate) use coupling::Coupling;
 pub use description::{
-    FileInertial, Inertial, JointDescription, JointLimits, JointType, LinkDescription, RobotDescription,
+    FileInertial, Inertial, JointDescription, JointLimits, JointType, LinkDescription, MimicDescription,
+    RobotDescription,
 };
 pub(crate) use error::quoted as quoted_names;
 pub use error::{ModelError, ModelWarning};
@@ -47,6 +53,36 @@ pub struct BuildOptions {
     /// dynamics may fail. Some published files (GRiD's Atlas) have such
     /// links, and Pinocchio loads them.
     pub allow_nonphysical_inertia: bool,
+    /// What a joint with a `<mimic>` element is: coupled to its master
+    /// (the default), or an independent joint as if it had none.
+    pub mimic: MimicJoints,
+}
+
+/// How to model the joints a description marks as following another
+/// (URDF `<mimic>`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum MimicJoints {
+    /// Each follows its master, `q = multiplier·q_master + offset`: it has
+    /// no coordinate of its own, its motion counts in the master's column,
+    /// and τ, M and h are those of the independent joints (as Pinocchio's
+    /// URDF parser with its mimic option builds them).
+    #[default]
+    Follow,
+    /// Each is an independent joint with its own coordinate (the
+    /// `<mimic>` element is ignored): the robot as before dynagen knew
+    /// mimic joints, for a controller that drives every joint itself.
+    Independent,
+}
+
+impl std::str::FromStr for MimicJoints {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "follow" => Ok(MimicJoints::Follow),
+            "independent" => Ok(MimicJoints::Independent),
+            _ => Err(format!("unknown mimic mode \"{s}\": \"follow\" (the default) or \"independent\"")),
+        }
+    }
 }
 
 impl BuildOptions {
@@ -55,6 +91,24 @@ impl BuildOptions {
         self.allow_nonphysical_inertia = allow;
         self
     }
+    /// These options with [`mimic`](Self::mimic) set.
+    pub fn mimic_joints(mut self, mimic: MimicJoints) -> Self {
+        self.mimic = mimic;
+        self
+    }
+}
+
+/// A joint that follows another (URDF `<mimic>`, with
+/// [`MimicJoints::Follow`]): its position is `multiplier·q_master + offset`,
+/// its rate and acceleration `multiplier` times the master's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Mimic {
+    /// The body whose joint is the master (a joint that follows no other).
+    pub master: usize,
+    /// The factor on the master's position.
+    pub multiplier: f64,
+    /// The position at the master's zero (rad or m).
+    pub offset: f64,
 }
 
 /// The kind of a moving joint.
@@ -205,7 +259,8 @@ pub struct Model {
     pub name: String,
     /// The name of the root link (the fixed base frame).
     pub root: String,
-    /// The moving bodies in topological order; body `i` carries joint `i`.
+    /// The moving bodies in topological order; body `i` carries joint `i`
+    /// (whose entry in the joint vectors is [`Model::column`]`(i)`).
     pub bodies: Vec<Body>,
     /// Every named frame.
     pub frames: Vec<Frame>,
@@ -223,6 +278,9 @@ pub struct Model {
     /// the root's frame: the floating base's own inertia (unused when the
     /// root is fixed).
     pub base_inertia: Inertia<f64>,
+    /// Which bodies follow another's joint ([`Mimic`]), and where each
+    /// body's motion is in the joint vectors: made when the model is built.
+    pub(crate) coupling: Coupling,
     /// `base_inertia` as the robot file defines it, beyond `f64` ([`FileValue`]).
     pub file_base_inertia: Option<Box<FileInertia>>,
 }
@@ -231,10 +289,41 @@ pub struct Model {
 pub const DEFAULT_GRAVITY: [f64; 3] = [0.0, 0.0, -9.81];
 
 impl Model {
-    /// The number of actuated joints (one per body); a floating base's six
-    /// degrees of freedom are not counted (see [`Model::nv`]).
+    /// The number of joints with a coordinate of their own: one per body,
+    /// less the joints that follow another ([`Model::mimic`]); a floating
+    /// base's six degrees of freedom are not counted (see [`Model::nv`]).
     pub fn dof(&self) -> usize {
-        self.bodies.len()
+        self.coupling.dof()
+    }
+    /// Whether some joint follows another ([`Mimic`]): then the joint
+    /// vectors are shorter than the bodies, and body `i`'s motion is in
+    /// column [`column(i)`](Self::column).
+    pub fn has_mimic(&self) -> bool {
+        self.coupling.any()
+    }
+    /// How body `i`'s joint follows another, if it does.
+    pub fn mimic(&self, body: usize) -> Option<&Mimic> {
+        self.coupling.mimic[body].as_ref()
+    }
+    /// The index in the joint vectors (q, q̇, τ, without a floating base's
+    /// entries) of body `i`'s joint, or of its master's if it follows one.
+    pub fn column(&self, body: usize) -> usize {
+        self.coupling.column[body]
+    }
+    /// The body whose joint has column `k` of the joint vectors.
+    pub fn joint_body(&self, column: usize) -> usize {
+        self.coupling.body[column]
+    }
+    /// The length of a configuration the recursions over the bodies take:
+    /// one coordinate per body, plus 7 with a floating base (`nq()` without
+    /// mimic joints).
+    pub fn tree_nq(&self) -> usize {
+        self.bodies.len() + if self.is_floating() { 7 } else { 0 }
+    }
+    /// The length of a velocity the recursions over the bodies take (`nv()`
+    /// without mimic joints).
+    pub fn tree_nv(&self) -> usize {
+        self.bodies.len() + if self.is_floating() { 6 } else { 0 }
     }
     /// Whether the root moves freely ([`RootJoint::Floating`]).
     pub fn is_floating(&self) -> bool {
@@ -277,12 +366,20 @@ impl Model {
         }
         self
     }
-    /// The joint names, in joint order.
+    /// The names of the joints with a coordinate of their own, in joint
+    /// order (the order of every joint vector; joints that follow another
+    /// are not among them).
     pub fn joint_names(&self) -> Vec<&str> {
-        self.bodies.iter().map(|b| b.joint.name.as_str()).collect()
+        self.coupling.body.iter().map(|&b| self.bodies[b].joint.name.as_str()).collect()
     }
-    /// The index of the joint with this name.
+    /// The index in the joint vectors of the joint with this name; `None`
+    /// for a joint that follows another (it has no entry) or no joint.
     pub fn joint_index(&self, name: &str) -> Option<usize> {
+        let b = self.joint_body_index(name)?;
+        self.mimic(b).is_none().then(|| self.column(b))
+    }
+    /// The body whose joint has this name (any moving joint).
+    pub fn joint_body_index(&self, name: &str) -> Option<usize> {
         self.bodies.iter().position(|b| b.joint.name == name)
     }
     /// The index of the frame with this name (a link name for URDF).

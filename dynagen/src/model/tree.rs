@@ -4,8 +4,8 @@
 use super::description::{JointDescription, JointType, LinkDescription, RobotDescription};
 use super::file_values::{ExactAxis, FileInertia, FileTransform, FileValue, JointFileValues};
 use super::{
-    validate, AxisAlignment, Body, BuildOptions, Frame, Joint, JointKind, Model, ModelError, ModelWarning, RootJoint,
-    DEFAULT_GRAVITY,
+    validate, AxisAlignment, Body, BuildOptions, Coupling, Frame, Joint, JointKind, Mimic, MimicJoints, Model,
+    ModelError, ModelWarning, RootJoint, DEFAULT_GRAVITY,
 };
 use crate::spatial::{Inertia, Mat3, Sym3, Transform, Vec3};
 use crate::DoubleDouble;
@@ -58,6 +58,8 @@ impl Model {
         // pose and inertia is computed twice: in f64, and in double-double
         // from the file's values while every one on the way has them.
         let mut bodies: Vec<Body> = Vec::new();
+        // the description's joint of each body
+        let mut body_joint: Vec<usize> = Vec::new();
         let mut frames: Vec<Frame> = Vec::new();
         let mut base_mass = 0.0;
         // the base's inertia, then each body's: f64, and from the file's values
@@ -79,6 +81,7 @@ impl Model {
                         inertia: Inertia::zero(),
                         file_inertia: None,
                     });
+                    body_joint.push(ji);
                     inertias.push((Inertia::zero(), exact_zero()));
                     (Some(bodies.len() - 1), identity)
                 }
@@ -116,6 +119,7 @@ impl Model {
             return Err(ModelError::Cycle(cycle_above(l, &parent_link, desc)));
         }
         check_finite(&bodies, &frames, base_mass, &desc.links[root].name)?;
+        let coupling = Coupling::new(&bodies, mimics(desc, opts, &bodies, &body_joint));
 
         let model = Model {
             name: desc.name.clone(),
@@ -127,6 +131,7 @@ impl Model {
             base_mass,
             root_joint: RootJoint::Fixed,
             base_inertia,
+            coupling,
             file_base_inertia,
         };
         let mut model = model;
@@ -138,6 +143,22 @@ impl Model {
         // a floating joint at the root floats the model (and checks its inertia)
         Ok(if world.is_some() { model.with_floating_base() } else { model })
     }
+}
+
+/// Each body's [`Mimic`] (with [`MimicJoints::Follow`]): its description's
+/// `<mimic>`, the master found by name among the bodies' joints (checked by
+/// `validate::check`: it exists, moves and follows no other).
+fn mimics(desc: &RobotDescription, opts: &BuildOptions, bodies: &[Body], body_joint: &[usize]) -> Vec<Option<Mimic>> {
+    body_joint
+        .iter()
+        .map(|&ji| match &desc.joints[ji].mimic {
+            Some(m) if opts.mimic == MimicJoints::Follow => {
+                let master = bodies.iter().position(|b| b.joint.name == m.joint).expect("a validated master moves");
+                Some(Mimic { master, multiplier: m.multiplier, offset: m.offset })
+            }
+            _ => None,
+        })
+        .collect()
 }
 
 /// The root link and, when the root's joint is `floating`, the world link
@@ -350,6 +371,10 @@ fn massless(b: &Body, mass: f64) -> ModelError {
 /// With non-physical inertias accepted (`nonphysical`), a diagonal entry
 /// may be negative: that is what the warning about them says, not an
 /// error (a zero one still is).
+///
+/// A joint that shares its column with mimic joints (a master, or a joint
+/// that follows one) is checked as the column: M's diagonal entry at q = 0,
+/// the motion of all of them together.
 fn check_every_joint_moves_mass(model: &Model, nonphysical: bool) -> Result<Vec<ModelWarning>, ModelError> {
     let along = |ic: &Inertia<f64>, s: &[f64; 6]| {
         let a = Vec3([s[0], s[1], s[2]]);
@@ -369,6 +394,7 @@ fn check_every_joint_moves_mass(model: &Model, nonphysical: bool) -> Result<Vec<
         .collect();
     let mut warnings = Vec::new();
     let mut composite: Vec<Inertia<f64>> = model.bodies.iter().map(|b| b.inertia).collect();
+    let coupled = coupled_columns(model);
     for i in (0..model.bodies.len()).rev() {
         let b = &model.bodies[i];
         let s = b.joint.motion_subspace();
@@ -380,6 +406,14 @@ fn check_every_joint_moves_mass(model: &Model, nonphysical: bool) -> Result<Vec<
                 what: "inertia moved by the joint (its subtree's)",
             });
         }
+        if let Some(p) = b.parent {
+            let moved = b.joint.placement.inertia_to_parent(&ic);
+            composite[p] = composite[p].add(&moved);
+            solid[p] |= solid[i];
+        }
+        if coupled[model.column(i)] {
+            continue;
+        }
         let negative_by_nonphysical_inertia = nonphysical && diag < 0.0;
         if diag.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) && !negative_by_nonphysical_inertia {
             return Err(massless(b, ic.mass));
@@ -389,12 +423,51 @@ fn check_every_joint_moves_mass(model: &Model, nonphysical: bool) -> Result<Vec<
         if !provably_positive {
             warnings.push(ModelWarning::MassMatrixMayBeSingular { joint: b.joint.name.clone() });
         }
-        if let Some(p) = b.parent {
-            let moved = b.joint.placement.inertia_to_parent(&ic);
-            composite[p] = composite[p].add(&moved);
-            solid[p] |= solid[i];
-        }
     }
     warnings.reverse();
+    if coupled.iter().any(|&c| c) {
+        check_coupled_columns(model, &coupled, nonphysical)?;
+    }
     Ok(warnings)
+}
+
+/// Per column of the joint vectors: whether mimic joints share it.
+fn coupled_columns(model: &Model) -> Vec<bool> {
+    let mut coupled = vec![false; model.dof()];
+    for i in 0..model.bodies.len() {
+        if let Some(m) = model.mimic(i) {
+            coupled[model.column(m.master)] = true;
+        }
+    }
+    coupled
+}
+
+/// The diagonal of M at q = 0 in each column that mimic joints share: a
+/// master and its followers that together move no mass are refused, naming
+/// them all.
+fn check_coupled_columns(model: &Model, coupled: &[bool], nonphysical: bool) -> Result<(), ModelError> {
+    use crate::algorithms::{crba, Loads, Workspace};
+    let n = model.dof();
+    let mut m = vec![0.0; n * n];
+    crba::crba(model, &mut Workspace::new(model), &vec![0.0; n], Loads::none(), &mut m);
+    for (a, _) in coupled.iter().enumerate().filter(|(_, &c)| c) {
+        let d = m[a * n + a];
+        if d > 0.0 || (nonphysical && d < 0.0) {
+            continue;
+        }
+        let master = &model.bodies[model.joint_body(a)];
+        let followers: Vec<String> = (0..model.bodies.len())
+            .filter(|&i| model.mimic(i).is_some() && model.column(i) == a)
+            .map(|i| model.bodies[i].joint.name.clone())
+            .collect();
+        let fix = format!(
+            "neither it nor the joints that follow it ({}) move anything with mass or inertia along their motion \
+             (its link \"{}\" and theirs have none, nor has anything fixed to them or below them): give one of \
+             these links a mass and an inertia (URDF: an <inertial> element)",
+            super::quoted_names(&followers),
+            master.name
+        );
+        return Err(ModelError::MasslessSubtree { joint: master.joint.name.clone(), link: master.name.clone(), fix });
+    }
+    Ok(())
 }

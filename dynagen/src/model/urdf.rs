@@ -21,7 +21,8 @@
 //!
 //! The pre-check refuses each of these with an error that names the link or
 //! joint, the attribute and the text; what urdf-rs then reads is only used
-//! for what the pre-check has vouched for.
+//! for what the pre-check has vouched for, `<mimic>` included (its joint
+//! required, multiplier and offset finite, 1 and 0 when absent).
 //!
 //! urdf-rs is given only what dynagen reads: the links without their
 //! visuals and collisions, and the joints. So what urdfdom and Pinocchio
@@ -31,7 +32,9 @@
 //! joint's `<dynamics damping="abc">`), the error gives the line, the
 //! column and the link or joint, found by giving urdf-rs each alone.
 
-use super::description::{Inertial, JointDescription, JointLimits, JointType, LinkDescription, RobotDescription};
+use super::description::{
+    Inertial, JointDescription, JointLimits, JointType, LinkDescription, MimicDescription, RobotDescription,
+};
 use super::urdf_decimals::{self as decimals, InertialDecimals, RawInertial};
 use super::{BuildOptions, Model, ModelError, ModelWarning};
 use crate::spatial::{Mat3, Sym3, Transform, Vec3};
@@ -146,6 +149,8 @@ struct RawJoint {
     parent: String,
     child: String,
     has_limit: bool,
+    /// The `<mimic>` element, with URDF's defaults (multiplier 1, offset 0).
+    mimic: Option<MimicDescription>,
     /// The `<origin>` and `<axis>` from the file's decimals.
     file_origin: Option<Transform<DoubleDouble>>,
     file_axis: Option<[DoubleDouble; 3]>,
@@ -191,6 +196,7 @@ struct JointState {
     limit: bool,
     parent: Option<String>,
     child: Option<String>,
+    mimic: Option<MimicDescription>,
     file_origin: Option<Transform<DoubleDouble>>,
     file_axis: Option<[DoubleDouble; 3]>,
 }
@@ -444,6 +450,13 @@ fn precheck(xml: &str) -> Result<RawFacts, ModelError> {
                         check_numbers::<1>(&attrs, item, "limit", &["lower", "upper", "effort", "velocity"], required)?;
                         Ctx::Leaf("limit", true)
                     }
+                    "mimic" => {
+                        if joint.mimic.is_some() {
+                            return Err(ModelError::Urdf(format!("{item} has more than one <mimic>")));
+                        }
+                        joint.mimic = Some(mimic_element(&attrs, item)?);
+                        Ctx::Leaf("mimic", true)
+                    }
                     "parent" | "child" => {
                         let (seen, role) =
                             if name == "parent" { (&mut joint.parent, "parent") } else { (&mut joint.child, "child") };
@@ -501,6 +514,24 @@ fn span(facts: &mut RawFacts, stack: &[Ctx], start: usize, end: usize, link: &Li
     }
 }
 
+/// A joint's `<mimic joint="..." multiplier="..." offset="..."/>`: the
+/// master's name is required, the numbers default to URDF's 1 and 0.
+fn mimic_element(attrs: &[(String, String)], item: &str) -> Result<MimicDescription, ModelError> {
+    check_numbers::<1>(attrs, item, "mimic", &["multiplier", "offset"], &["joint"])?;
+    let Some(joint) = get(attrs, "joint").filter(|j| !j.is_empty()) else {
+        return Err(ModelError::Urdf(format!("{item}: <mimic> has an empty joint attribute")));
+    };
+    let number = |key: &str, default: f64| match get(attrs, key) {
+        Some(text) => numbers::<1>(item, &format!("mimic {key}"), text).map(|[x]| x),
+        None => Ok(default),
+    };
+    Ok(MimicDescription {
+        joint: joint.to_string(),
+        multiplier: number("multiplier", 1.0)?,
+        offset: number("offset", 0.0)?,
+    })
+}
+
 /// Marks an element seen, refusing a second one.
 fn once(seen: &mut bool, item: &str, element: &str) -> Result<(), ModelError> {
     if std::mem::replace(seen, true) {
@@ -528,6 +559,7 @@ fn close(ctx: Option<Ctx>, facts: &mut RawFacts, link: &LinkState, joint: &Joint
                 parent: parent.clone(),
                 child: child.clone(),
                 has_limit: joint.limit,
+                mimic: joint.mimic.clone(),
                 // a missing origin is the identity, a missing axis x (as urdf-rs reads them)
                 file_origin: if joint.origin { joint.file_origin } else { Some(Transform::identity()) },
                 file_axis: if joint.axis { joint.file_axis } else { Some([1.0, 0.0, 0.0].map(DoubleDouble::from)) },
@@ -578,8 +610,8 @@ fn description_from_urdf(
     }
     for (j, raw) in robot.joints.iter().zip(&facts.joints) {
         let joint_type = format!("{:?}", j.joint_type).to_lowercase();
-        if (&j.name, &joint_type, &j.parent.link, &j.child.link)
-            != (&raw.name, &raw.joint_type, &raw.parent, &raw.child)
+        if (&j.name, &joint_type, &j.parent.link, &j.child.link, j.mimic.is_some())
+            != (&raw.name, &raw.joint_type, &raw.parent, &raw.child, raw.mimic.is_some())
         {
             return Err(differ(format!("joint \"{}\" against \"{}\"", j.name, raw.name)));
         }
@@ -636,7 +668,7 @@ fn description_from_urdf(
                 axis,
                 axis_is_direction: true,
                 limits,
-                mimic: j.mimic.is_some(),
+                mimic: raw.mimic.clone(),
                 file_origin: decimals::file_transform(raw.file_origin, &origin),
                 file_axis: decimals::file_axis(raw.file_axis, &j.axis.xyz, &axis),
             }

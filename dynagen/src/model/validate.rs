@@ -1,8 +1,8 @@
 //! Checks of a description that do not need the tree: names, numbers,
 //! axes, inertias and unsupported features.
 
-use super::description::{Inertial, JointType, RobotDescription};
-use super::{BuildOptions, ModelError, ModelWarning};
+use super::description::{Inertial, JointDescription, JointType, RobotDescription};
+use super::{BuildOptions, MimicJoints, ModelError, ModelWarning};
 use crate::spatial::{Mat3, Sym3};
 use std::collections::HashSet;
 
@@ -42,7 +42,6 @@ pub(super) fn check(
         let unsupported = match j.joint_type {
             JointType::Planar => Some("planar joints are"),
             JointType::Spherical => Some("spherical joints are"),
-            _ if j.mimic => Some("mimic joints are"),
             _ => None,
         };
         if let Some(what) = unsupported {
@@ -80,10 +79,75 @@ pub(super) fn check(
             }
         }
     }
+    if opts.mimic == MimicJoints::Follow {
+        for j in desc.joints.iter().filter(|j| j.mimic.is_some()) {
+            check_mimic(j, desc)?;
+        }
+    }
     for l in &desc.links {
         if let Some(inertial) = &l.inertial {
             check_inertial(&l.name, inertial, opts, warnings)?;
         }
+    }
+    Ok(())
+}
+
+/// Whether a joint of this type moves (has a coordinate).
+fn moves(t: JointType) -> bool {
+    matches!(t, JointType::Revolute | JointType::Continuous | JointType::Prismatic)
+}
+
+/// A joint that follows another: finite multiplier and offset, itself a
+/// moving joint, and a master that exists, moves and follows no other
+/// (so no cycle of masters is possible).
+fn check_mimic(j: &JointDescription, desc: &RobotDescription) -> Result<(), ModelError> {
+    let Some(m) = &j.mimic else { return Ok(()) };
+    let err = |why: String| Err(ModelError::Mimic { joint: j.name.clone(), why });
+    let item = format!("joint \"{}\"", j.name);
+    if !m.multiplier.is_finite() {
+        return Err(ModelError::NonFinite { item, what: "mimic multiplier" });
+    }
+    if !m.offset.is_finite() {
+        return Err(ModelError::NonFinite { item, what: "mimic offset" });
+    }
+    let kind = |t: JointType| format!("{t:?}").to_lowercase();
+    if !moves(j.joint_type) {
+        return err(format!(
+            "a {} joint cannot follow another (only revolute, continuous and prismatic joints mimic): remove its \
+             <mimic>, or read mimic joints as independent joints (the option mimic = independent), which ignores it",
+            kind(j.joint_type)
+        ));
+    }
+    if m.joint == j.name {
+        return err("it mimics itself".to_string());
+    }
+    let Some(master) = desc.joints.iter().find(|k| k.name == m.joint) else {
+        return err(format!("its master joint \"{}\" does not exist", m.joint));
+    };
+    if !moves(master.joint_type) {
+        return err(format!(
+            "its master joint \"{}\" is {}: a mimic joint follows a revolute, continuous or prismatic joint",
+            m.joint,
+            kind(master.joint_type)
+        ));
+    }
+    if let Some(mm) = &master.mimic {
+        if mm.joint == j.name {
+            return err(format!(
+                "its master joint \"{}\" follows it in turn: mimic joints cannot form a cycle",
+                m.joint
+            ));
+        }
+        return err(format!(
+            "its master joint \"{}\" follows \"{}\" itself: mimic joints cannot be chained; make \"{}\" follow \"{}\" \
+             directly (multiplier {} and offset {})",
+            m.joint,
+            mm.joint,
+            j.name,
+            mm.joint,
+            m.multiplier * mm.multiplier,
+            m.multiplier * mm.offset + m.offset
+        ));
     }
     Ok(())
 }

@@ -151,7 +151,7 @@ impl Check<'_> {
         }
         if let Some(index) = x.iter().position(|v| !v.is_finite()) {
             let joint = match index.checked_sub(base) {
-                Some(i) => model.bodies[i].joint.name.clone(),
+                Some(i) => model.bodies[model.joint_body(i)].joint.name.clone(),
                 None if config && index >= 3 => "base quaternion".to_string(),
                 None => names[index.min(names.len() - 1)].to_string(),
             };

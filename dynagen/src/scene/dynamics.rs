@@ -173,7 +173,7 @@ pub fn forward_dynamics_ldlt<S: Scalar>(
 /// τ − friction, in the workspace's right-hand side (taken out of it; the
 /// caller puts it back).
 fn tau_minus_friction<S: Scalar>(scene: &SceneModel, ws: &mut Workspace<S>, qd: &[S], tau: &[S]) -> Vec<S> {
-    let (n, nv) = (scene.dof(), scene.model.nv());
+    let (n, nv) = (scene.model.bodies.len(), scene.model.nv());
     assert!(tau.len() == nv && ws.dof() == n, "forward_dynamics: tau must have the model's {nv} entries");
     let mut rhs = std::mem::take(&mut ws.rhs);
     rhs.copy_from_slice(tau);

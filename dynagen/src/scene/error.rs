@@ -64,6 +64,19 @@ pub enum SceneError {
         /// Why it is not kept.
         why: &'static str,
     },
+    /// What a scene cannot do with a joint that follows another (`<mimic>`):
+    /// lock it or give it armature or friction (those are its master's to
+    /// have), keep it moving while its master is dropped, or merge it
+    /// rigidly while its master moves.
+    #[error("joint \"{joint}\" follows joint \"{master}\" (mimic): {why}")]
+    MimicJoint {
+        /// The mimic joint.
+        joint: String,
+        /// Its master.
+        master: String,
+        /// What the scene asks that cannot be, and what to do.
+        why: String,
+    },
     /// A negative or non-finite armature or friction coefficient.
     #[error("joint \"{joint}\": {what} is {value}; it must be finite and not negative")]
     BadCoefficient {

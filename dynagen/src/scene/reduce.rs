@@ -11,8 +11,8 @@ use super::{Gravity, PayloadInertia, PayloadValue, Scene, SceneError, SceneWarni
 use crate::algorithms::joint::joint_transform;
 use crate::algorithms::{kinematics, Workspace};
 use crate::model::{
-    BuildOptions, Inertial, JointDescription, JointKind, JointType, LinkDescription, Model, ModelWarning,
-    RobotDescription,
+    BuildOptions, Inertial, JointDescription, JointKind, JointType, LinkDescription, MimicDescription, Model,
+    ModelWarning, RobotDescription,
 };
 use crate::spatial::{Inertia, Sym3, Transform, Vec3};
 use std::collections::{HashMap, HashSet};
@@ -202,9 +202,20 @@ impl Fate {
 
 pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneError> {
     scene.check()?;
-    let n = model.dof();
+    let n = model.bodies.len();
+    // the body of a named joint; a mimic joint has no lock, armature or
+    // friction of its own (its master's move it)
     let joint_index = |what: &'static str, name: &str| {
-        model.joint_index(name).ok_or_else(|| SceneError::UnknownJoint { what, name: name.to_string() })
+        let b =
+            model.joint_body_index(name).ok_or_else(|| SceneError::UnknownJoint { what, name: name.to_string() })?;
+        match model.mimic(b) {
+            Some(m) => Err(SceneError::MimicJoint {
+                joint: name.to_string(),
+                master: model.bodies[m.master].joint.name.clone(),
+                why: format!("it has no {what} of its own; give the {what} to its master"),
+            }),
+            None => Ok(b),
+        }
     };
     let frame_index = |what: &'static str, name: &str| {
         model.frame_index(name).ok_or_else(|| SceneError::UnknownLink { what, name: name.to_string() })
@@ -213,6 +224,19 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
     let mut lock: Vec<Option<f64>> = vec![None; n];
     for (j, q) in &scene.locks {
         lock[joint_index("lock", j)?] = Some(*q);
+    }
+    // Every body's position where the scene fixes it: its lock, else zero;
+    // a mimic joint's from its master's (so a locked master locks it).
+    let fixed_at: Vec<f64> = (0..n)
+        .map(|b| match model.mimic(b) {
+            Some(m) => m.multiplier * lock[m.master].unwrap_or(0.0) + m.offset,
+            None => lock[b].unwrap_or(0.0),
+        })
+        .collect();
+    for b in 0..n {
+        if model.mimic(b).is_some_and(|m| lock[m.master].is_some()) {
+            lock[b] = Some(fixed_at[b]);
+        }
     }
     // Armature, viscous and Coulomb coefficients by original joint.
     let mut coef = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
@@ -277,6 +301,7 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
             return Err(SceneError::RemovedJointParameter { joint: j.to_string(), what, why: fate[i].why() });
         }
     }
+    mimic_fates(model, &mut fate, &mut lock, &fixed_at)?;
     // Whether an original frame is in the reduced model, or why not.
     let frame_kept = |f: usize| -> Result<(), &'static str> {
         let body = model.frames[f].body;
@@ -316,15 +341,17 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
             let links = (b..n).filter(|&j| model.is_in_subtree(b, j)).map(|j| model.bodies[j].name.clone()).collect();
             warnings.push(SceneWarning::DroppedBranch { joint: model.bodies[b].joint.name.clone(), links });
         }
-        if lock[b].is_some() && matches!(fate[b], Fate::Dropped | Fate::Outside) {
+        let locked_by_scene = lock[b].is_some() && model.mimic(b).is_none();
+        if locked_by_scene && matches!(fate[b], Fate::Dropped | Fate::Outside) {
             warnings.push(SceneWarning::LockOnDroppedJoint { joint: model.bodies[b].joint.name.clone() });
         }
     }
 
     // Gravity in the root's frame, with the joints above it at their lock
-    // positions or zero (a floating base's in the world, as given; a
-    // sub-tree rooted below one sees the base as it is at q = 0).
-    let q0: Vec<f64> = lock.iter().map(|l| l.unwrap_or(0.0)).collect();
+    // positions or zero (a mimic joint where its master puts it; a floating
+    // base's in the world, as given; a sub-tree rooted below one sees the
+    // base as it is at q = 0).
+    let q0: Vec<f64> = (0..model.dof()).map(|k| fixed_at[model.joint_body(k)]).collect();
     let mut ws = Workspace::<f64>::new(model);
     kinematics::forward_kinematics(model, &mut ws, &q0);
     let root_rot = kinematics::frame_pose(model, &ws, root_frame).rot;
@@ -380,7 +407,7 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
         let x = if moving {
             body.joint.placement
         } else {
-            let q = lock[b].unwrap_or(0.0);
+            let q = fixed_at[b];
             fixed_joints.push((body.joint.name.clone(), q));
             joint_transform::<f64>(&body.joint, q)
         };
@@ -400,7 +427,11 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
             // a joint whose angle is q (a URDF joint's) stays one
             axis_is_direction: body.joint.axis_norm == 1.0,
             limits: body.joint.limits,
-            mimic: false,
+            mimic: model.mimic(b).filter(|_| moving).map(|m| MimicDescription {
+                joint: model.bodies[m.master].joint.name.clone(),
+                multiplier: m.multiplier,
+                offset: m.offset,
+            }),
             file_origin: None,
             file_axis: None,
         });
@@ -487,7 +518,7 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
         }
     }
     let per_joint = |k: usize| -> Vec<f64> {
-        reduced.bodies.iter().map(|b| model.joint_index(&b.joint.name).map_or(0.0, |i| coef[k][i])).collect()
+        reduced.joint_names().iter().map(|j| model.joint_body_index(j).map_or(0.0, |i| coef[k][i])).collect()
     };
     Ok(SceneModel {
         armature: per_joint(0),
@@ -505,6 +536,50 @@ pub(super) fn apply(scene: &Scene, model: &Model) -> Result<SceneModel, SceneErr
         dropped_links,
         warnings,
     })
+}
+
+/// What a scene makes of the mimic joints: a mimic joint whose master is
+/// fixed (locked, above the root, or merged below a tip) is fixed too, at
+/// its position there (`lock`, from `fixed_at`); one that stays while its
+/// master is dropped, or is merged rigidly while its master moves, is an
+/// error naming both.
+fn mimic_fates(model: &Model, fate: &mut [Fate], lock: &mut [Option<f64>], fixed_at: &[f64]) -> Result<(), SceneError> {
+    for b in 0..model.bodies.len() {
+        let Some(m) = model.mimic(b) else { continue };
+        let names = || (model.bodies[b].joint.name.clone(), model.bodies[m.master].joint.name.clone());
+        match (fate[m.master], fate[b]) {
+            (_, Fate::Base | Fate::Above | Fate::Outside | Fate::Dropped) => {}
+            (Fate::Moving, Fate::BelowTip) => {
+                let (joint, master) = names();
+                return Err(SceneError::MimicJoint {
+                    joint,
+                    master,
+                    why: "the sub-tree merges it rigidly below a tip, but its master moves: lock the master, or list \
+                          a tip below the mimic joint"
+                        .to_string(),
+                });
+            }
+            (Fate::Outside | Fate::Dropped, _) => {
+                let (joint, master) = names();
+                return Err(SceneError::MimicJoint {
+                    joint,
+                    master,
+                    why: format!(
+                        "the sub-tree keeps it but not its master (which is {}): lock the master, or keep it by \
+                         listing a tip below it",
+                        fate[m.master].why()
+                    ),
+                });
+            }
+            (Fate::Moving, _) => {}
+            (Fate::Locked | Fate::BelowTip | Fate::Base | Fate::Above, Fate::Moving) => {
+                fate[b] = Fate::Locked;
+                lock[b] = Some(fixed_at[b]);
+            }
+            (Fate::Locked | Fate::BelowTip | Fate::Base | Fate::Above, _) => {}
+        }
+    }
+    Ok(())
 }
 
 /// A link's inertial as a spatial inertia in the link's frame.

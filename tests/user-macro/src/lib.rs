@@ -53,6 +53,30 @@ pub mod panda_no_dispatch {
 /// A robot whose names try to inject code: they stay names.
 pub mod hostile;
 
+/// The Panda as franka_description has it: the second finger follows the
+/// first (`<mimic>`), so the module has 8 joints.
+pub mod panda_mimic {
+    dynagen_macros::urdf!("../../dynagen/tests/data/panda_mimic.urdf");
+}
+
+/// The same file with its mimic joint made a joint of its own: 9 joints.
+pub mod panda_mimic_independent {
+    dynagen_macros::urdf!("../../dynagen/tests/data/panda_mimic.urdf", mimic = independent);
+}
+
+/// A parallel gripper written inline: the right finger follows the left,
+/// mirrored (the same slide, its axis turned), 1 mm further out.
+pub mod gripper {
+    dynagen_macros::robot! {
+        name: gripper,
+        link palm {},
+        link left { mass: 0.1, com: [0, 0.01, 0.02], inertia: [1e-5, 1e-5, 1e-5, 0, 0, 0] },
+        link right { mass: 0.1, com: [0, -0.01, 0.02], inertia: [1e-5, 1e-5, 1e-5, 0, 0, 0] },
+        joint slide: prismatic(palm -> left) { axis: [0, 1, 0] },
+        joint mirror: prismatic(palm -> right) { axis: [0, -1, 0], mimic: slide, multiplier: 1, offset: 0.001 },
+    }
+}
+
 use panda::DOF;
 
 /// τ = M(q)(q̈_des + Kp e + Kd ė) + h(q, q̇), e = q_des − q.
@@ -92,6 +116,27 @@ mod tests {
             assert!((f64::from(g32) - g).abs() < 1e-5, "{g32}");
         }
         assert_eq!(pendulum::JOINT_NAMES, ["hinge"]);
+    }
+
+    #[test]
+    fn mimic_joints_follow_their_masters() {
+        assert_eq!(panda_mimic::DOF, 8);
+        assert_eq!(panda_mimic::JOINT_NAMES[7], "panda_finger_joint1");
+        assert_eq!(panda_mimic_independent::DOF, 9);
+        // the fingers together: the independent model's entries summed (G = [1, 1] on them)
+        let q8 = [0.3, -1.1, 0.7, -2.0, -0.4, 1.9, 0.8, 0.02];
+        let q9 = [0.3, -1.1, 0.7, -2.0, -0.4, 1.9, 0.8, 0.02, 0.02];
+        let (g8, g9) = (panda_mimic::gravity_torques(&q8), panda_mimic_independent::gravity_torques(&q9));
+        assert!(
+            (g8[7] - (g9[7] + g9[8])).abs() < 1e-14 && g8[..7].iter().zip(&g9[..7]).all(|(a, b)| (a - b).abs() < 1e-13)
+        );
+        let (m8, m9) = (panda_mimic::mass_matrix(&q8), panda_mimic_independent::mass_matrix(&q9));
+        assert!((m8[7][7] - (m9[7][7] + 2.0 * m9[7][8] + m9[8][8])).abs() < 1e-15);
+        // a 0.2 kg gripper on one slide: M = the two fingers' masses, no gravity along y
+        assert_eq!(gripper::JOINT_NAMES, ["slide"]);
+        assert!((gripper::mass_matrix(&[0.01])[0][0] - 0.2).abs() < 1e-15);
+        assert_eq!(gripper::gravity_torques(&[0.01]), [0.0]);
+        assert!((gripper::forward_dynamics(&[0.01], &[0.0], &[1.0])[0] - 5.0).abs() < 1e-13);
     }
 
     #[test]

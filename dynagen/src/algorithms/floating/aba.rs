@@ -5,7 +5,7 @@
 //! positive-definite solve for the base's acceleration. O(n), without
 //! forming M.
 
-use super::{base_inertia, check_sizes, quaternion_rotation, solve6};
+use super::{base_inertia, check_tree_sizes, quaternion_rotation, solve6};
 use crate::algorithms::aba::{inward, outward, velocities, ArticulatedInertia, RootArticulated};
 use crate::algorithms::rnea::{gyroscopic, products, use_products_for_gyroscopic, velocity_product_matrix};
 use crate::algorithms::{Loads, Workspace};
@@ -66,9 +66,9 @@ fn aba_impl<S: Scalar>(
     loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
-    let n = model.dof();
-    let nv = model.nv();
-    check_sizes(model, "floating aba", q.len(), &[qd.map_or(nv, <[S]>::len), tau.len(), qdd.len()]);
+    let n = model.bodies.len();
+    let nv = model.tree_nv();
+    check_tree_sizes(model, "floating aba", q.len(), &[qd.map_or(nv, <[S]>::len), tau.len(), qdd.len()]);
     loads.check(n, "floating aba");
     let vec3 = |x: &[S]| Vec3([x[0], x[1], x[2]]);
     let w0 = qd.map(vec3);

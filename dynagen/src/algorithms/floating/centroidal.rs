@@ -6,6 +6,7 @@
 
 use super::crba::{carry_to_base, composite_inertia};
 use super::{check_sizes, quaternion_rotation};
+use crate::algorithms::mimic::{body_column, on_tree, times};
 use crate::algorithms::Workspace;
 use crate::model::Model;
 use crate::spatial::{Force, Vec3};
@@ -19,7 +20,7 @@ pub fn total_mass(model: &Model) -> f64 {
 /// The centre of mass of the whole robot, in the world frame.
 pub fn center_of_mass<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S]) -> Vec3<S> {
     check_sizes(model, "center_of_mass", q.len(), &[]);
-    let ic = composite_inertia(model, ws, q, &[]);
+    let ic = on_tree(model, ws, q, None, |ws, q, _| composite_inertia(model, ws, q, &[]));
     let c_base = ic.h.scale(S::one() / ic.mass);
     quaternion_rotation(&q[3..7]).mul_vec(&c_base) + Vec3([q[0], q[1], q[2]])
 }
@@ -31,24 +32,28 @@ pub fn centroidal_momentum_matrix<S: Scalar>(model: &Model, ws: &mut Workspace<S
     check_sizes(model, "centroidal_momentum_matrix", q.len(), &[]);
     let nv = model.nv();
     assert!(a.len() == 6 * nv, "centroidal_momentum_matrix: a must be 6×{nv}");
-    let ic = composite_inertia(model, ws, q, &[]);
+    let ic = on_tree(model, ws, q, None, |ws, q, _| composite_inertia(model, ws, q, &[]));
     let c = ic.h.scale(S::one() / ic.mass);
     let r = quaternion_rotation(&q[3..7]);
     // A momentum about the base origin (base axes) moved to the centre of
     // mass and turned into world axes: (R(m − c × f); R f).
-    let mut put = |k: usize, f: &Force<S>| {
+    // (a mimic joint's column added to its master's, times its multiplier)
+    a.fill(S::zero());
+    let mut put = |k: usize, f: &Force<S>, m: f64| {
         let ang = r.mul_vec(&(f.ang - c.cross(&f.lin)));
         let lin = r.mul_vec(&f.lin);
         for (row, x) in ang.0.into_iter().chain(lin.0).enumerate() {
-            a[row * nv + k] = x;
+            let e = &mut a[row * nv + k];
+            *e = if model.has_mimic() { *e + times(m, x) } else { x };
         }
     };
     // the base's columns: the composite inertia (symmetric), row by row
     for (k, row) in ic.to_matrix().into_iter().enumerate() {
-        put(k, &Force::from_array(row));
+        put(k, &Force::from_array(row), 1.0);
     }
-    for i in 0..model.dof() {
+    for i in 0..model.bodies.len() {
         let f = carry_to_base(model, ws, i, |_, _| {});
-        put(6 + i, &f);
+        let (col, m) = body_column(model, i);
+        put(6 + col, &f, m);
     }
 }

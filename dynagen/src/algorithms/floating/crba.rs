@@ -4,7 +4,7 @@
 //! joint rate gives the whole robot, and its joint block the fixed-base
 //! mass matrix of the same tree.
 
-use super::{base_inertia, check_sizes};
+use super::{base_inertia, check_tree_sizes};
 use crate::algorithms::joint::{force_to_parent, inertia_times_subspace, inertia_to_parent, joint_transform, project};
 use crate::algorithms::{BodyInertia, Loads, Workspace, BASE_BODY};
 use crate::model::Model;
@@ -75,8 +75,8 @@ pub(crate) fn carry_to_base<S: Scalar>(
 /// # Panics
 /// If `q` is not NQ long, `m` not NV × NV, or the model's root not floating.
 pub fn crba<S: Scalar>(model: &Model, ws: &mut Workspace<S>, q: &[S], loads: Loads<'_, S>, m: &mut [S]) {
-    let (n, nv) = (model.dof(), model.nv());
-    check_sizes(model, "floating crba", q.len(), &[]);
+    let (n, nv) = (model.bodies.len(), model.tree_nv());
+    check_tree_sizes(model, "floating crba", q.len(), &[]);
     assert!(m.len() == nv * nv, "floating crba: m must be {nv}×{nv}");
     loads.check(n, "floating crba");
     let ic0 = composite_inertia(model, ws, q, loads.payloads);

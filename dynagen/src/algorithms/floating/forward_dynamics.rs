@@ -24,6 +24,10 @@ pub fn forward_dynamics_ldlt<S: Scalar>(
     loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
+    if model.has_mimic() {
+        // the recursions below take one coordinate per body: the dispatching form expands them
+        return crate::algorithms::forward_dynamics::forward_dynamics_ldlt(model, ws, q, qd, tau, loads, qdd);
+    }
     let nv = model.nv();
     check_sizes(model, "floating forward_dynamics_ldlt", q.len(), &[qd.len(), tau.len(), qdd.len()]);
     rnea(model, ws, q, Some(qd), None, loads, qdd);

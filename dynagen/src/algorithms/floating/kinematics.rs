@@ -47,10 +47,16 @@ fn jacobian<S: Scalar>(
         e[k] = S::one();
         put(k, &Motion::from_array(e));
     }
-    // the joints that move the frame: their screw axes in the base frame
+    // the joints that move the frame: their screw axes in the base frame (a
+    // mimic joint's added to its master's column, times its multiplier)
     let mut b = model.frames[frame].body;
     while let Some(i) = b {
-        put(6 + i, &ws.world[i].motion_to_parent(&motion(&model.bodies[i].joint, S::one())));
+        let axis = ws.world[i].motion_to_parent(&motion(&model.bodies[i].joint, S::one()));
+        let (c, k) = crate::algorithms::mimic::body_column(model, i);
+        for (r, x) in map(&axis).to_array().into_iter().enumerate() {
+            let e = &mut j[r * nv + 6 + c];
+            *e = if model.has_mimic() { *e + crate::algorithms::mimic::times(k, x) } else { x };
+        }
         b = model.bodies[i].parent;
     }
 }

@@ -86,18 +86,23 @@ pub(crate) fn write_force<S: Scalar>(f: &Force<S>, out: &mut [S]) {
 /// the base's last coordinate as its parent.
 #[inline(always)]
 pub fn velocity_parent(model: &Model, k: usize) -> Option<usize> {
-    match k {
-        0 => None,
-        1..=5 => Some(k - 1),
-        _ => Some(model.bodies[k - 6].parent.map_or(5, |p| p + 6)),
-    }
+    crate::algorithms::ldlt::parent(model, k)
 }
 
 /// Panics unless `q` has NQ entries and each of `nv_slices` NV; `what`
 /// names the algorithm.
 pub(crate) fn check_sizes(model: &Model, what: &str, q: usize, nv_slices: &[usize]) {
+    check_lengths(model, what, (model.nq(), model.nv()), q, nv_slices)
+}
+
+/// [`check_sizes`] for a recursion over the bodies, which takes one
+/// coordinate per body ([`Model::tree_nq`]; NQ and NV without mimic joints).
+pub(crate) fn check_tree_sizes(model: &Model, what: &str, q: usize, nv_slices: &[usize]) {
+    check_lengths(model, what, (model.tree_nq(), model.tree_nv()), q, nv_slices)
+}
+
+fn check_lengths(model: &Model, what: &str, (nq, nv): (usize, usize), q: usize, nv_slices: &[usize]) {
     assert!(model.is_floating(), "{what}: the model's root is not floating");
-    let (nq, nv) = (model.nq(), model.nv());
     assert!(
         q == nq && nv_slices.iter().all(|&l| l == nv),
         "{what}: q must have NQ = {nq} entries and velocity-side slices NV = {nv}"

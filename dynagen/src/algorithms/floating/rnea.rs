@@ -7,7 +7,7 @@
 //! `τ[0..6]`, the wrench that must act on the base (base frame, moment about
 //! its origin first).
 
-use super::{base_inertia, check_sizes, quaternion_rotation, write_force};
+use super::{base_inertia, check_tree_sizes, quaternion_rotation, write_force};
 use crate::algorithms::rnea::{add_armature, body_wrench, rnea_tree, use_products_for_gyroscopic, Root, RootMotion};
 use crate::algorithms::{Loads, Workspace};
 use crate::model::Model;
@@ -35,9 +35,14 @@ pub fn rnea<S: Scalar>(
     loads: Loads<'_, S>,
     tau: &mut [S],
 ) {
-    let n = model.dof();
-    let nv = model.nv();
-    check_sizes(model, "floating rnea", q.len(), &[tau.len(), qd.map_or(nv, <[S]>::len), qdd.map_or(nv, <[S]>::len)]);
+    let n = model.bodies.len();
+    let nv = model.tree_nv();
+    check_tree_sizes(
+        model,
+        "floating rnea",
+        q.len(),
+        &[tau.len(), qd.map_or(nv, <[S]>::len), qdd.map_or(nv, <[S]>::len)],
+    );
     loads.check(n, "floating rnea");
     let vec3 = |x: &[S]| Vec3([x[0], x[1], x[2]]);
     let zero = Vec3::zero();

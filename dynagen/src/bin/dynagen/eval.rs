@@ -12,7 +12,7 @@
 //! | `M` | q | [`Robot::mass_matrix`] (CRBA) |
 //! | `h` | q, qd | [`Robot::bias_forces`] |
 //! | `g` | q | [`Robot::gravity_torques`] |
-//! | `qdd` | q, qd, tau | [`Robot::forward_dynamics`] (ABA), or the method `--fd` names |
+//! | `qdd` | q, qd, tau | [`Robot::forward_dynamics`] (ABA; with mimic joints, M by LᵀDL), or the method `--fd` names |
 //!
 //! `--fd aba|ldlt|compensated|refined` picks the forward dynamics:
 //! [`Robot::forward_dynamics`] (the default), [`Robot::forward_dynamics_ldlt`],
@@ -89,7 +89,8 @@ pub enum FdMethod {
 const EVAL_HELP: &str = "\
 Input (STATES.json):
   {\"states\": [{\"q\": [...], \"qd\": [...], \"qdd\": [...], \"tau\": [...]}, ...]}
-  One number per joint, in the order `dynagen inspect` lists. \"q\" is required;
+  One number per joint, in the order `dynagen inspect` lists (a mimic joint has
+  none: it follows its master, unless --mimic independent). \"q\" is required;
   leave out a field to skip the outputs that need it. States count from 0 in
   messages. An optional \"joint_names\" list is checked against the robot's.
   With a floating base (--floating-base, or a URDF floating root joint):
@@ -106,7 +107,7 @@ Output (stdout):
     g    gravity torques                  needs q
     qdd  forward dynamics                 needs q, qd, tau
          --fd aba (default): the articulated-body algorithm; ldlt: M, h and
-         a sparse LTDL solve; compensated: h and tau - h in double-f64, then
+         a sparse LTDL solve (what aba is with mimic joints); compensated: h and tau - h in double-f64, then
          ABA (accurate where tau nearly balances h at high speed); refined:
          compensated and one step of refinement (an ill-conditioned M)
   With --derivatives, also (matrices [output][input]: row i is output i):

@@ -2,8 +2,8 @@
 //!
 //! The tree of moving bodies (each with its joint, the link it is made of and
 //! the links fixed to it, merged in), the joint order with types, axes and
-//! limits, each body's mass and centre of mass, the frames, and the
-//! validation warnings.
+//! limits (and, for a joint that follows another, the coupling), each body's
+//! mass and centre of mass, the frames, and the validation warnings.
 
 use crate::error::{CliError, Output};
 use crate::robot_source::RobotSource;
@@ -32,14 +32,19 @@ pub fn run(args: &Args) -> Result<Output, CliError> {
 /// The whole report. `writeln!` into a String cannot fail.
 fn report(model: &Model, source: &str) -> String {
     let mut o = String::new();
-    let n = model.dof();
+    let (n, nb) = (model.dof(), model.bodies.len());
     let links = model.frames.len();
     let _ = writeln!(o, "robot \"{}\" from {source}", model.name);
+    let mimics = match nb - n {
+        0 => String::new(),
+        1 => " and 1 mimic joint that follows one of them".to_string(),
+        k => format!(" and {k} mimic joints that follow them"),
+    };
     let _ = writeln!(
         o,
-        "  {n} joint{} (degrees of freedom), {n} moving bod{}, {links} link{} (every link is a frame)",
+        "  {n} joint{} (degrees of freedom){mimics}, {nb} moving bod{}, {links} link{} (every link is a frame)",
         plural(n),
-        if n == 1 { "y" } else { "ies" },
+        if nb == 1 { "y" } else { "ies" },
         plural(links)
     );
     if model.is_floating() {
@@ -59,12 +64,15 @@ fn report(model: &Model, source: &str) -> String {
     let base_fixed = fixed_links(model, None);
     let base = if model.is_floating() { "floating base" } else { "fixed base" };
     let _ = writeln!(o, "  {} ({base}){}", model.root, plus_fixed(&base_fixed));
-    let roots: Vec<usize> = (0..n).filter(|&i| model.bodies[i].parent.is_none()).collect();
+    let roots: Vec<usize> = (0..nb).filter(|&i| model.bodies[i].parent.is_none()).collect();
     tree(model, &roots, "  ", &mut o);
 
     // Joints.
     let _ = writeln!(o, "\njoints (the order of every vector and matrix index; limits: position, velocity, effort):");
     let mut rows = vec![row(["#", "name", "type", "axis", "lower", "upper", "velocity", "effort"])];
+    if model.has_mimic() {
+        rows[0].push("follows (mimic: q = multiplier·q_master + offset)".into());
+    }
     for (i, b) in model.bodies.iter().enumerate() {
         let j = &b.joint;
         let (pos_unit, vel_unit, eff_unit) = if j.is_revolute() { ("rad", "rad/s", "N·m") } else { ("m", "m/s", "N") };
@@ -75,16 +83,19 @@ fn report(model: &Model, source: &str) -> String {
             }
             None => ("-".into(), "-".into(), "-".into(), "-".into()),
         };
-        rows.push(vec![
-            i.to_string(),
-            j.name.clone(),
-            kind(j.kind).into(),
-            vec3(&j.axis),
-            lower,
-            upper,
-            velocity,
-            effort,
-        ]);
+        let index = if model.mimic(i).is_some() { "-".to_string() } else { model.column(i).to_string() };
+        let mut cells = vec![index, j.name.clone(), kind(j.kind).into(), vec3(&j.axis), lower, upper, velocity, effort];
+        if model.has_mimic() {
+            cells.push(model.mimic(i).map_or("-".into(), |m| {
+                let offset = match m.offset {
+                    0.0 => String::new(),
+                    o if o < 0.0 => format!(" − {}", num(-o)),
+                    o => format!(" + {}", num(o)),
+                };
+                format!("{} × {}{offset}", num(m.multiplier), model.bodies[m.master].joint.name)
+            }));
+        }
+        rows.push(cells);
     }
     table(&rows, &mut o);
 
@@ -157,16 +168,21 @@ fn tree(model: &Model, children: &[usize], prefix: &str, o: &mut String) {
         let last = k + 1 == children.len();
         let b = &model.bodies[i];
         let merged = fixed_links(model, Some(i));
+        // a mimic joint has no index: it follows its master's
+        let index = match model.mimic(i) {
+            Some(m) => format!("follows {}", model.bodies[m.master].joint.name),
+            None => model.column(i).to_string(),
+        };
         let _ = writeln!(
             o,
-            "{prefix}{} [{i}] {} ({}) -> {}{}",
+            "{prefix}{} [{index}] {} ({}) -> {}{}",
             if last { "└─" } else { "├─" },
             b.joint.name,
             kind(b.joint.kind),
             b.name,
             plus_fixed(&merged)
         );
-        let below: Vec<usize> = (i + 1..model.dof()).filter(|&c| model.bodies[c].parent == Some(i)).collect();
+        let below: Vec<usize> = (i + 1..model.bodies.len()).filter(|&c| model.bodies[c].parent == Some(i)).collect();
         let deeper = format!("{prefix}{}", if last { "   " } else { "│  " });
         tree(model, &below, &deeper, o);
     }

@@ -2,7 +2,7 @@
 //! bundled UR5, compiled into the binary so that it works from any directory.
 
 use crate::error::CliError;
-use dynagen::model::BuildOptions;
+use dynagen::model::{BuildOptions, MimicJoints};
 use dynagen::Model;
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -27,12 +27,22 @@ pub struct LoadArgs {
     /// anyway.
     #[arg(long)]
     pub floating_base: bool,
+    /// What a joint with a <mimic> element is: `follow` (the default), it
+    /// follows its master (q = multiplier·q_master + offset) and has no entry
+    /// of its own in q, q̇, τ; `independent`, a joint of its own, as if the
+    /// element were not there.
+    #[arg(long, value_name = "follow|independent", default_value = "follow", value_parser = parse_mimic)]
+    pub mimic: MimicJoints,
+}
+
+fn parse_mimic(s: &str) -> Result<MimicJoints, String> {
+    s.parse()
 }
 
 impl LoadArgs {
     /// The model options these arguments ask for.
     pub fn options(&self) -> BuildOptions {
-        BuildOptions::default().allow_nonphysical_inertia(self.allow_nonphysical_inertia)
+        BuildOptions::default().allow_nonphysical_inertia(self.allow_nonphysical_inertia).mimic_joints(self.mimic)
     }
 }
 

@@ -143,6 +143,9 @@ pub(crate) fn header(facts: &HeaderFacts) -> String {
         if model.is_floating() { "always (the base's position and quaternion)" } else { "only if a joint is prismatic" },
         if options.scalar == crate::codegen::ScalarType::F32 { " (computed in f64, rounded to f32)" } else { "" }
     );
+    if model.has_mimic() {
+        mimic_section(&mut h, model, functions);
+    }
     let mut left_out: Vec<&str> =
         Function::DEFAULT.iter().filter(|k| !functions.iter().any(|f| f.function == **k)).map(|k| k.name()).collect();
     left_out.sort_unstable();
@@ -164,6 +167,35 @@ pub(crate) fn header(facts: &HeaderFacts) -> String {
         scene_section(&mut h, scene, functions);
     }
     h
+}
+
+/// The couplings of the mimic joints, and the extra angles the bodies read.
+fn mimic_section(h: &mut String, model: &crate::model::Model, functions: &[GeneratedFunction]) {
+    let _ = writeln!(
+        h,
+        "// Mimic joints (each follows its master, q = multiplier*q_master + offset; not in JOINT_NAMES, their torques \
+         in the master's entry):"
+    );
+    for i in 0..model.bodies.len() {
+        if let Some(m) = model.mimic(i) {
+            let _ = writeln!(
+                h,
+                "//   \"{}\" = {:?} * \"{}\" + {:?}",
+                esc(&model.bodies[i].joint.name),
+                m.multiplier,
+                esc(&model.bodies[m.master].joint.name),
+                m.offset
+            );
+        }
+    }
+    let extra = functions.iter().map(|f| f.sin_cos_inputs.extra_angles.len()).max().unwrap_or(0);
+    if extra > 0 {
+        let _ = writeln!(
+            h,
+            "//   s and c of NAME_sc hold, past the joints' entries, the mimic joints' own angles (a multiplier other \
+             than +-1, or an offset): {extra} at most"
+        );
+    }
 }
 
 fn list(items: &[String]) -> String {

@@ -124,7 +124,19 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
         let (sc, name) = (&f.sin_cos_inputs, &f.name);
         let ldlt = f.method == Some(super::ForwardDynamicsMethod::Ldlt);
         let ps = f.function.params(prepared);
-        let mut sc_params = vec![Param::dof("s"), Param::dof("c")];
+        // one sine and cosine per joint, then the mimic joints' own angles
+        let angles = |name| match sc.extra_angles.len() {
+            0 => Param::dof(name),
+            _ => Param::fixed(name, sc.angles()),
+        };
+        if options.trig == Trig::Inputs && !sc.extra_angles.is_empty() {
+            return Err(CodegenError::Unsupported(format!(
+                "{name}: a mimic joint turns by an angle of its own (a multiplier other than ±1 or an offset), \
+                 which sines and cosines given by the caller (trig inputs) have no entry for: use another trig \
+                 option, or mimic joints as independent joints"
+            )));
+        }
+        let mut sc_params = vec![angles("s"), angles("c")];
         if has_prismatic {
             sc_params.push(q_param.clone());
         }

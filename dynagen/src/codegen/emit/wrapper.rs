@@ -4,7 +4,7 @@
 
 use super::{literal, Param};
 use crate::codegen::sin_cos;
-use crate::codegen::trace::SinCosTrace;
+use crate::codegen::trace::{Angle, SinCosTrace};
 use crate::codegen::{CodegenError, CodegenOptions, ScalarType, Trig};
 use quote::quote;
 
@@ -63,26 +63,44 @@ pub(super) fn wrapper(
     let typed: Vec<proc_macro2::TokenStream> = params.iter().map(|p| p.tokens(options.scalar)).collect();
     let rest: Vec<proc_macro2::Ident> = params[1..].iter().map(|p| quote::format_ident!("{}", p.name)).collect();
     let q_arg = if has_prismatic { quote!(q,) } else { quote!() };
-    // Joint i's angle is q[i], or q[7 + i] after a floating base's position and quaternion.
-    let angle = |i: usize, k: f64| {
-        let i = proc_macro2::Literal::usize_unsuffixed(sc.q_offset + i);
-        if k == 1.0 {
+    // Joint i's angle is q[i], or q[7 + i] after a floating base's position and quaternion; a mimic
+    // joint's own angle k·q[i] + o (the generic solver's order of operations).
+    let literal = |x: f64| -> proc_macro2::TokenStream {
+        let x = literal::float_literal_text(x, options.scalar).unwrap_or_else(|| "1.0".into());
+        x.parse().expect("a float literal")
+    };
+    let angle = |a: &Angle| {
+        let i = proc_macro2::Literal::usize_unsuffixed(sc.q_offset + a.joint);
+        let scaled = if a.scale == 1.0 {
             quote!(q[#i])
         } else {
-            let k = literal::float_literal_text(k, options.scalar).unwrap_or_else(|| "1.0".into());
-            let k: proc_macro2::TokenStream = k.parse().expect("a float literal");
+            let k = literal(a.scale);
             quote!(q[#i] * #k)
+        };
+        if a.offset == 0.0 {
+            scaled
+        } else {
+            let o = literal(a.offset);
+            quote!(#scaled + #o)
         }
     };
+    // Every entry of s and c with the angle it holds, if the body reads it.
+    let slots: Vec<Option<Angle>> = sc
+        .angle_scale
+        .iter()
+        .enumerate()
+        .map(|(joint, k)| k.map(|scale| Angle { joint, scale, offset: 0.0 }))
+        .chain(sc.extra_angles.iter().map(|a| Some(*a)))
+        .collect();
     // The batched trigonometry, then `NAME_sc`: `all` computes every sine and cosine, `some` those
     // of the angles it is given, `sc` calls the body.
     let batched = |all: proc_macro2::TokenStream,
                    some: &dyn Fn(usize) -> proc_macro2::TokenStream,
                    sc_call: &dyn Fn(proc_macro2::TokenStream) -> proc_macro2::TokenStream| {
         // Only the angles NAME_sc reads (the UR5's g reads 3 of 6, the Panda's functions 7 of 9).
-        let read: Vec<(usize, f64)> =
-            sc.angle_scale.iter().enumerate().filter_map(|(i, k)| k.map(|k| (i, k))).collect();
-        if sc.q_offset == 0 && read.len() == sc.angle_scale.len() && read.iter().all(|&(_, k)| k == 1.0) {
+        let read: Vec<Angle> = slots.iter().flatten().copied().collect();
+        let every_joint_once = read.len() == sc.angle_scale.len() && sc.extra_angles.is_empty();
+        if sc.q_offset == 0 && every_joint_once && read.iter().all(|a| a.scale == 1.0) {
             let call = sc_call(quote!(&s, &c, #q_arg #(#rest),*));
             quote! {
                 let (s, c) = #all;
@@ -90,11 +108,11 @@ pub(super) fn wrapper(
             }
         } else {
             let batch = some(read.len());
-            let angles = read.iter().map(|&(i, k)| angle(i, k));
+            let angles = read.iter().map(angle);
             let mut s_entries = Vec::new();
             let mut c_entries = Vec::new();
             let mut j = 0;
-            for k in &sc.angle_scale {
+            for k in &slots {
                 if k.is_some() {
                     let lit = proc_macro2::Literal::usize_unsuffixed(j);
                     s_entries.push(quote!(s[#lit]));
@@ -120,15 +138,16 @@ pub(super) fn wrapper(
         let mut stmts = Vec::new();
         let mut s_entries = Vec::new();
         let mut c_entries = Vec::new();
-        for (i, k) in sc.angle_scale.iter().enumerate() {
-            match k {
-                Some(k) => {
+        for (i, slot) in slots.iter().enumerate() {
+            match slot {
+                Some(a) => {
                     let (si, ci) = (quote::format_ident!("s{i}"), quote::format_ident!("c{i}"));
-                    let a = angle(i, *k);
+                    let plain = a.scale == 1.0 && a.offset == 0.0;
+                    let a = angle(a);
                     let call = match (options.trig, options.scalar) {
                         (Trig::Libm, ScalarType::F64) => quote!(libm::sincos(#a)),
                         (Trig::Libm, ScalarType::F32) => quote!(libm::sincosf(#a)),
-                        _ if *k == 1.0 => quote!(#a.sin_cos()),
+                        _ if plain => quote!(#a.sin_cos()),
                         _ => quote!((#a).sin_cos()),
                     };
                     stmts.push(quote!(let (#si, #ci) = #call;));

@@ -35,6 +35,10 @@ pub fn canonical_text(model: &Model) -> String {
             b.inertia.h.0,
             b.inertia.ibar.0
         );
+        // (only for a mimic joint: the text of other models is as it was)
+        if let Some(m) = model.mimic(i) {
+            let _ = writeln!(s, "mimic {i} master {} multiplier {:?} offset {:?}", m.master, m.multiplier, m.offset);
+        }
     }
     for f in &model.frames {
         let _ = writeln!(

@@ -3,11 +3,13 @@
 //! position, quaternion (x, y, z, w), joints), the velocity-side vectors
 //! NV = n + 6 (the base's body twist, angular first, then the joints).
 //! The base's orientation enters as a polynomial in the quaternion, so the
-//! only sines and cosines are the joints' (`q[7 + i]`).
+//! only sines and cosines are the joints' (`q[7 + i]`). The algorithms are
+//! called through their dispatching forms, which send a floating model to
+//! `algorithms/floating/` (and expand and project mimic joints first).
 
 use super::{CodegenError, SceneLoads};
 use crate::algorithms::derivatives::{self, DerivativeWorkspace, Dynamics, Formulation};
-use crate::algorithms::floating::{crba, rnea};
+use crate::algorithms::{crba, rnea};
 use crate::algorithms::{Loads, Workspace};
 use crate::codegen::emit::Sizes;
 use crate::codegen::{ForwardDynamicsMethod, Function};

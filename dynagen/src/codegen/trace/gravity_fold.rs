@@ -57,6 +57,12 @@ fn is_point_mass_leaf(model: &Model, i: usize) -> bool {
 /// regrouped again (what was regrouped already moves nothing more), and
 /// the leaves folded; `None` if there are none.
 pub(crate) fn fold_for_gravity(model: &Model) -> Option<(Model, Vec<FoldedLeaf>)> {
+    // A leaf's torque is its own joint's: with mimic joints it would belong
+    // in its master's column. Folded and projected, the mimic Panda's g took
+    // 184 operations against 169 unfolded (the recursion projects it).
+    if model.has_mimic() {
+        return None;
+    }
     let leaves: Vec<FoldedLeaf> = (0..model.dof())
         .filter(|&i| is_point_mass_leaf(model, i))
         .map(|i| {

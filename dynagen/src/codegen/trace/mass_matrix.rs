@@ -30,7 +30,7 @@ use crate::algorithms::joint::{
     force_to_parent, inertia_times_subspace, inertia_to_parent, motion, motion_to_child, project,
 };
 use crate::algorithms::rnea::update_joint_transforms;
-use crate::algorithms::{BodyInertia, Workspace};
+use crate::algorithms::{mimic, BodyInertia, Workspace};
 use crate::model::Model;
 use crate::spatial::{Force, Inertia, Motion, Transform, Vec3};
 use crate::symbolic::{Expr, Node, Rewrites, TraceActive, Traced, Tracer};
@@ -82,8 +82,8 @@ fn candidates<S: Scalar>(
     payloads: &[BodyInertia<S>],
     reach: usize,
 ) -> Vec<Vec<S>> {
-    let n = model.dof();
-    assert!(q.len() == n && ws.dof() == n, "mass_matrix: q must have the model's {n} joints");
+    let n = model.bodies.len();
+    assert!(q.len() == n && ws.dof() == n, "mass_matrix: q must have the model's {n} bodies");
     update_joint_transforms(model, ws, q);
     let mut own: Vec<Inertia<S>> = model.bodies.iter().map(|b| Inertia::from_f64(&b.inertia)).collect();
     for p in payloads {
@@ -216,7 +216,9 @@ fn mirrored_column(model: &Model, payloads: &[BodyInertia<impl Scalar>], j: usiz
 /// M(q), row-major into `m` (n×n, both triangles), each entry computed as
 /// `plan` says, with extra body inertias `payloads` added to their bodies'
 /// as [`crba`](crate::algorithms::crba::crba)
-/// does (every plan is exact whatever the inertias).
+/// does (every plan is exact whatever the inertias). With mimic joints the
+/// plan is the bodies' (M_tree), projected: `Gᵀ M_tree G`
+/// ([`mimic`](crate::algorithms::mimic)).
 ///
 /// # Panics
 /// If the slices do not fit the model, or `plan` is not one of its.
@@ -228,7 +230,25 @@ pub(crate) fn mass_matrix<S: Scalar>(
     plan: &Plan,
     m: &mut [S],
 ) {
-    let n = model.dof();
+    if model.has_mimic() {
+        let nt = model.bodies.len();
+        let (mut tq, mut mt) = (vec![S::zero(); nt], vec![S::zero(); nt * nt]);
+        mimic::tree_positions(model, q, &mut tq);
+        tree_mass_matrix(model, ws, &tq, (payloads, plan), &mut mt);
+        return mimic::project_matrix(model, &mt, m);
+    }
+    tree_mass_matrix(model, ws, q, (payloads, plan), m)
+}
+
+/// [`mass_matrix`] of the bodies' coordinates: M_tree.
+fn tree_mass_matrix<S: Scalar>(
+    model: &Model,
+    ws: &mut Workspace<S>,
+    q: &[S],
+    (payloads, plan): (&[BodyInertia<S>], &Plan),
+    m: &mut [S],
+) {
+    let n = model.bodies.len();
     assert!(m.len() == n * n && plan.choice.len() == n * n, "mass_matrix: m and the plan must be {n}×{n}");
     assert!(payloads.iter().all(|p| p.body < n), "mass_matrix: a payload's body is not one of the model's {n}");
     let all = candidates(model, ws, q, payloads, plan.reach());
@@ -249,7 +269,7 @@ pub(crate) fn mass_matrix<S: Scalar>(
 /// (operations shared between entries counted once), until none does.
 /// Models of more than [`MAX_PLANNED_DOF`] joints keep the generic choices.
 pub(crate) fn plan(model: &Model, rewrites: Rewrites) -> Result<Plan, TraceActive> {
-    let n = model.dof();
+    let n = model.bodies.len();
     if n > MAX_PLANNED_DOF {
         return Ok(Plan::crba(n));
     }

@@ -20,7 +20,7 @@ mod mass_matrix;
 mod sin_cos;
 
 pub use generic_count::generic_op_count;
-pub use sin_cos::{sin_cos_from_q, sin_cos_inputs, SinCosTrace};
+pub use sin_cos::{sin_cos_from_q, sin_cos_inputs, Angle, SinCosTrace};
 
 use super::emit::{payload_argument, Sizes};
 use super::{counted, CodegenError, CodegenOptions, ForwardDynamicsMethod, Function, GeneratedFunction};
@@ -42,7 +42,7 @@ pub fn trace(
     rewrites: Rewrites,
 ) -> Result<Traced, CodegenError> {
     let mut best: Option<(usize, Traced)> = None;
-    for &formulation in formulations(f) {
+    for &formulation in formulations(f, &scene.model) {
         let traced = trace_unfactored(scene, f, method, formulation, rewrites)?;
         let cost = body_cost(&traced, scene, rewrites, true)?.fp_ops();
         if best.as_ref().is_none_or(|(c, _)| cost < *c) {
@@ -53,9 +53,14 @@ pub fn trace(
 }
 
 /// The formulations `f` is traced in: both for the derivatives of the
-/// dynamics (the one with fewer operations is emitted), else one.
-fn formulations(f: &Function) -> &'static [Formulation] {
+/// dynamics (the one with fewer operations is emitted), else one; a model
+/// with mimic joints has the dual numbers alone (the analytical recursion
+/// runs over the bodies, [`derivatives::inverse_dynamics_derivatives`]).
+fn formulations(f: &Function, model: &crate::model::Model) -> &'static [Formulation] {
     match f {
+        Function::InverseDynamicsDerivatives | Function::ForwardDynamicsDerivatives if model.has_mimic() => {
+            &[Formulation::DualNumbers]
+        }
         Function::InverseDynamicsDerivatives | Function::ForwardDynamicsDerivatives => &Formulation::ALL,
         _ => &[Formulation::Analytical],
     }
@@ -82,9 +87,21 @@ pub(crate) fn trace_module(
     // Where joint i's angle is in q: q[i], or q[7 + i] after a floating base's position and quaternion.
     let offset = if scene.model.is_floating() { floating::JOINTS_IN_Q } else { 0 };
     let payloads = !scene.input_payloads.is_empty();
+    // The articulated-body recursion cannot take mimic joints (see algorithms::mimic).
+    let mimic = scene.model.has_mimic();
+    if mimic
+        && options.forward_dynamics == ForwardDynamicsMethod::Aba
+        && options.functions.contains(&Function::ForwardDynamics)
+    {
+        return Err(CodegenError::Unsupported(format!(
+            "forward dynamics by the articulated-body algorithm (aba): {}; its q̈ comes from M by LTDL (ldlt, or \
+             the default)",
+            mimic_note(&scene.model)
+        )));
+    }
     // Both forward dynamics are traced and counted, whichever is emitted.
     let methods: &[ForwardDynamicsMethod] = match options.forward_dynamics {
-        _ if payloads => &[ForwardDynamicsMethod::Ldlt],
+        _ if payloads || mimic => &[ForwardDynamicsMethod::Ldlt],
         _ => &[ForwardDynamicsMethod::Aba, ForwardDynamicsMethod::Ldlt],
     };
     let mut functions = Vec::new();
@@ -95,7 +112,7 @@ pub(crate) fn trace_module(
             if *f == Function::ForwardDynamics { methods.iter().map(|&m| Some(m)).collect() } else { vec![None] };
         let first = functions.len();
         for method in variants {
-            for &formulation in formulations(f) {
+            for &formulation in formulations(f, &scene.model) {
                 let m = method.unwrap_or(ForwardDynamicsMethod::Aba);
                 let traced = trace_unfactored(scene, f, m, formulation, options.rewrites)?;
                 let sc = sin_cos_inputs(&traced, n, offset, options.rewrites).map_err(CodegenError::Internal)?;
@@ -104,7 +121,7 @@ pub(crate) fn trace_module(
                 functions.push(GeneratedFunction {
                     function: f.clone(),
                     method,
-                    formulation: (formulations(f).len() > 1).then_some(formulation),
+                    formulation: (formulations(f, &scene.model).len() > 1).then_some(formulation),
                     name: f.rust_name(),
                     emitted: true,
                     inputs: inputs.clone(),
@@ -115,7 +132,7 @@ pub(crate) fn trace_module(
             }
         }
         // Of the derivatives traced both ways, the one with fewer operations.
-        if formulations(f).len() > 1 {
+        if formulations(f, &scene.model).len() > 1 {
             let traced = &mut functions[first..];
             let best = (0..traced.len()).min_by_key(|&k| traced[k].op_count.fp_ops()).expect("traced");
             for (k, g) in traced.iter_mut().enumerate() {
@@ -139,6 +156,12 @@ pub(crate) fn trace_module(
                   LTDL solve"
                 .to_string(),
         },
+        _ if mimic => fd_choice::FdChoice {
+            method: ForwardDynamicsMethod::Ldlt,
+            why: "CRBA projected on the independent joints (mimic joints follow their masters), RNEA, and a sparse \
+                  LTDL solve: the articulated-body recursion cannot take mimic joints"
+                .to_string(),
+        },
         _ if options.forward_dynamics == ForwardDynamicsMethod::Ldlt => fd(ForwardDynamicsMethod::Ldlt),
         _ => fd(ForwardDynamicsMethod::Aba),
     };
@@ -148,6 +171,17 @@ pub(crate) fn trace_module(
         }
     }
     Ok((functions, choice))
+}
+
+/// `joint "a" follows "b"` for the first mimic joint of `model` (which has one).
+fn mimic_note(model: &crate::model::Model) -> String {
+    let follower = (0..model.bodies.len()).find_map(|i| model.mimic(i).map(|m| (i, m.master)));
+    match follower {
+        Some((i, master)) => {
+            format!("joint \"{}\" follows \"{}\" (mimic)", model.bodies[i].joint.name, model.bodies[master].joint.name)
+        }
+        None => "the model has mimic joints".to_string(),
+    }
 }
 
 /// The run-time loads a function of a scene reads, as symbolic inputs (or
@@ -222,8 +256,8 @@ pub(crate) fn trace_unfactored(
     let model = &scene.model;
     let n = model.dof();
     let sizes = Sizes::of(model);
-    let use_ldlt =
-        *f == Function::ForwardDynamics && (method == ForwardDynamicsMethod::Ldlt || !scene.input_payloads.is_empty());
+    let use_ldlt = *f == Function::ForwardDynamics
+        && (method == ForwardDynamicsMethod::Ldlt || !scene.input_payloads.is_empty() || model.has_mimic());
     // The mass-matrix plan is made (traced) before this trace starts.
     let needs_plan =
         matches!(f, Function::MassMatrix | Function::ForwardDynamicsDerivatives | Function::MassMatrixInverse)

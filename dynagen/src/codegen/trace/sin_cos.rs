@@ -8,6 +8,10 @@ use crate::symbolic::{balance, factor, Graph, Latency, Node, NodeId, Rewrites, T
 /// θᵢ = `angle_scale[i]`·`q[q_offset + i]` (the scale is `|axis|`, 1 for a
 /// unit axis; `None` for a joint whose angle the function does not read;
 /// the offset 7 past a floating base's position and quaternion, else 0).
+/// Past the joints', `s[n + e]` and `c[n + e]` are those of
+/// `extra_angles[e]`: the angles of mimic joints that are not their
+/// master's (a mimic joint at the master's angle reads the master's entry,
+/// and one at its negation too, `sin(−θ) = −sin θ`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SinCosTrace {
     /// The function, reading `s` and `c` instead of computing sines and
@@ -15,8 +19,57 @@ pub struct SinCosTrace {
     pub function: Traced,
     /// For each joint, the factor of `q[i]` in its angle, if it is read.
     pub angle_scale: Vec<Option<f64>>,
+    /// The angles read past the joints' own.
+    pub extra_angles: Vec<Angle>,
     /// Where joint 0's angle is in `q`.
     pub q_offset: usize,
+}
+
+/// An angle of one joint's coordinate: `scale·q[q_offset + joint] + offset`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Angle {
+    /// The joint (its index in the joint vectors).
+    pub joint: usize,
+    /// The factor of its coordinate.
+    pub scale: f64,
+    /// The constant added.
+    pub offset: f64,
+}
+
+impl SinCosTrace {
+    /// The number of angles `s` and `c` hold: one per joint, then the extra ones.
+    pub fn angles(&self) -> usize {
+        self.angle_scale.len() + self.extra_angles.len()
+    }
+}
+
+/// The angle `id` as `scale·q[joint] + offset`, when it is one: a joint's
+/// coordinate times and plus constants (`joint_of` finds the coordinates).
+fn affine(nodes: &[Node], id: NodeId, joint_of: &dyn Fn(NodeId) -> Option<usize>) -> Option<Angle> {
+    let constant = |x: NodeId| nodes[x as usize].constant();
+    let scaled = |a: Angle, k: f64, o: f64| Angle { joint: a.joint, scale: k * a.scale, offset: k * a.offset + o };
+    if let Some(joint) = joint_of(id) {
+        return Some(Angle { joint, scale: 1.0, offset: 0.0 });
+    }
+    match nodes[id as usize] {
+        Node::Neg(a) => Some(scaled(affine(nodes, a, joint_of)?, -1.0, 0.0)),
+        Node::Mul(a, b) => match (constant(a), constant(b)) {
+            (Some(k), None) => Some(scaled(affine(nodes, b, joint_of)?, k, 0.0)),
+            (None, Some(k)) => Some(scaled(affine(nodes, a, joint_of)?, k, 0.0)),
+            _ => None,
+        },
+        Node::Add(a, b) => match (constant(a), constant(b)) {
+            (Some(o), None) => Some(scaled(affine(nodes, b, joint_of)?, 1.0, o)),
+            (None, Some(o)) => Some(scaled(affine(nodes, a, joint_of)?, 1.0, o)),
+            _ => None,
+        },
+        Node::Sub(a, b) => match (constant(a), constant(b)) {
+            (Some(o), None) => Some(scaled(affine(nodes, b, joint_of)?, -1.0, o)),
+            (None, Some(o)) => Some(scaled(affine(nodes, a, joint_of)?, 1.0, -o)),
+            _ => None,
+        },
+        _ => None,
+    }
 }
 
 /// A traced (unfactored) function of `q` with the sines and cosines of the
@@ -36,9 +89,11 @@ pub fn sin_cos_inputs(f: &Traced, n: usize, q_offset: usize, rewrites: Rewrites)
         g.input(name, 0);
     }
     let mut angle_scale: Vec<Option<f64>> = vec![None; n];
+    let mut extra_angles: Vec<Angle> = Vec::new();
     let mut new: Vec<NodeId> = Vec::with_capacity(nodes.len());
-    // For each SinCos node: its joint.
-    let mut sc_joint: Vec<usize> = vec![usize::MAX; nodes.len()];
+    // For each SinCos node: its entry of s and c, and whether the angle is
+    // that entry's negated.
+    let mut sc_joint: Vec<(usize, bool)> = vec![(usize::MAX, false); nodes.len()];
     for (id, node) in nodes.iter().enumerate() {
         if let Some(id) = g.arithmetic(node.map_operands(|x| new[x as usize])) {
             new.push(id);
@@ -48,27 +103,23 @@ pub fn sin_cos_inputs(f: &Traced, n: usize, q_offset: usize, rewrites: Rewrites)
             Node::Const(_) => g.constant(node.constant().unwrap_or_default()),
             Node::Input { name, index } => g.input(&f.input_names()[name as usize], index as usize),
             Node::SinCos(a) => {
-                let (joint, scale) = match (joint_of(a), nodes[a as usize]) {
-                    (Some(i), _) => (i, 1.0),
-                    (None, Node::Mul(x, y)) => match (joint_of(x), joint_of(y), nodes[x as usize], nodes[y as usize]) {
-                        (Some(i), None, _, k) | (None, Some(i), k, _) => match k.constant() {
-                            Some(k) => (i, k),
-                            None => return Err(format!("{}: the sine of a non-angle", f.name())),
-                        },
-                        _ => return Err(format!("{}: the sine of a non-angle", f.name())),
-                    },
-                    _ => return Err(format!("{}: the sine of a non-angle", f.name())),
+                let Some(angle) = affine(nodes, a, &joint_of) else {
+                    return Err(format!("{}: the sine of a non-angle", f.name()));
                 };
-                if angle_scale[joint].is_some_and(|k| k != scale) {
-                    return Err(format!("{}: joint {joint} turns by two different angles", f.name()));
-                }
-                angle_scale[joint] = Some(scale);
-                sc_joint[id] = joint;
+                sc_joint[id] = slot(angle, n, &mut angle_scale, &mut extra_angles);
                 // Not read by anything but Sin and Cos, which map to inputs.
                 g.constant(0.0)
             }
-            Node::Sin(sc) => g.input("s", sc_joint[sc as usize]),
-            Node::Cos(sc) => g.input("c", sc_joint[sc as usize]),
+            Node::Sin(sc) => {
+                let (k, negated) = sc_joint[sc as usize];
+                let s = g.input("s", k);
+                if negated {
+                    g.neg(s)
+                } else {
+                    s
+                }
+            }
+            Node::Cos(sc) => g.input("c", sc_joint[sc as usize].0),
             _ => unreachable!("arithmetic is mapped above"),
         };
         new.push(mapped);
@@ -86,7 +137,30 @@ pub fn sin_cos_inputs(f: &Traced, n: usize, q_offset: usize, rewrites: Rewrites)
     if rewrites.reassociate {
         function = balance(&function, &Latency::default(), rewrites);
     }
-    Ok(SinCosTrace { function, angle_scale, q_offset })
+    Ok(SinCosTrace { function, angle_scale, extra_angles, q_offset })
+}
+
+/// The entry of `s` and `c` that holds `angle`, and whether the angle is
+/// that entry's negated: a joint's own entry for its first angle without
+/// offset (and for that angle negated), else an extra one.
+fn slot(angle: Angle, n: usize, angle_scale: &mut [Option<f64>], extra: &mut Vec<Angle>) -> (usize, bool) {
+    let Angle { joint, scale, offset } = angle;
+    if offset == 0.0 {
+        match angle_scale[joint] {
+            None => {
+                angle_scale[joint] = Some(scale);
+                return (joint, false);
+            }
+            Some(k) if k == scale => return (joint, false),
+            Some(k) if k == -scale => return (joint, true),
+            Some(_) => {}
+        }
+    }
+    let e = extra.iter().position(|a| *a == angle).unwrap_or_else(|| {
+        extra.push(angle);
+        extra.len() - 1
+    });
+    (n + e, false)
 }
 
 /// The inverse of [`sin_cos_inputs`]: `s[i]` and `c[i]` replaced by the
@@ -112,14 +186,20 @@ pub fn sin_cos_from_q(sc: &SinCosTrace, rewrites: Rewrites) -> Traced {
                 let name = &f.input_names()[name as usize];
                 if name == "s" || name == "c" {
                     let i = index as usize;
-                    let q = g.input("q", sc.q_offset + i);
-                    let scale = sc.angle_scale[i].unwrap_or(1.0);
+                    let n = sc.angle_scale.len();
+                    let Angle { joint, scale, offset } = match sc.extra_angles.get(i.wrapping_sub(n)) {
+                        Some(a) if i >= n => *a,
+                        _ => Angle { joint: i, scale: sc.angle_scale[i].unwrap_or(1.0), offset: 0.0 },
+                    };
+                    let q = g.input("q", sc.q_offset + joint);
                     let angle = if scale == 1.0 {
                         q
                     } else {
                         let k = g.constant(scale);
                         g.mul(q, k)
                     };
+                    let o = g.constant(offset);
+                    let angle = g.add(angle, o);
                     let (s, c) = g.sin_cos(angle);
                     if name == "s" {
                         s
