@@ -96,9 +96,7 @@ macro_rules! bench {
                 }),
             ),
         ];
-        let dv = |x: &[f64]| DVector::from_column_slice(x);
-        let v: Vec<[DVector<f64>; 4]> =
-            st.iter().map(|s| [dv(&s.q), dv(&s.v[0]), dv(&s.v[1]), dv(&s.v[2])]).collect();
+        let v: Vec<[DVector<f64>; 4]> = st.iter().map(|s| s.vectors()).collect();
         let (mut a, mut b, mut c) = (DMatrix::zeros(N, N), DMatrix::zeros(N, N), DMatrix::zeros(N, N));
         let generic = [
             (

@@ -22,7 +22,7 @@ fn main() {
     let model = robot.model().clone();
     let prismatic: Vec<bool> = (0..N).map(|k| !model.bodies[model.joint_body(k)].joint.is_revolute()).collect();
     let st = pinocchio_states::<N, N>(&prismatic);
-    let v: Vec<[DVector<f64>; 4]> = st.iter().map(|s| s.map(|x| DVector::from_column_slice(&x))).collect();
+    let v: Vec<[DVector<f64>; 4]> = st.iter().map(|s| s.vectors()).collect();
     let (mut out, mut mm) = (DVector::zeros(N), DMatrix::zeros(N, N));
     // each call's inputs behind a black_box and its whole output behind one too
     let rows = [

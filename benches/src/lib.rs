@@ -91,6 +91,14 @@ pub struct State<const NQ: usize, const NV: usize> {
     pub v: [[f64; NV]; 3],
 }
 
+impl<const NQ: usize, const NV: usize> State<NQ, NV> {
+    /// q, q̇, q̈ and τ as vectors, for the generic solver.
+    pub fn vectors(&self) -> [nalgebra::DVector<f64>; 4] {
+        let v = |x: &[f64]| nalgebra::DVector::from_column_slice(x);
+        [v(&self.q), v(&self.v[0]), v(&self.v[1]), v(&self.v[2])]
+    }
+}
+
 /// Random states as the Pinocchio program draws them (its distribution, not
 /// its generator): q in [-π, π] (prismatic joints, flagged in `prismatic`,
 /// within 0..0.04 m; a floating base's position too, its quaternion made a
