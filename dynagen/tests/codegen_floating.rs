@@ -126,5 +126,6 @@ fn a_floating_module_has_the_derivatives_on_request() {
     let options = CodegenOptions::default().functions([Function::InverseDynamicsDerivatives]);
     let src = generate(&model, &options).unwrap().source;
     assert!(src.contains("pub fn inverse_dynamics_derivatives(\n    q: &[f64; NQ],"), "NQ-long q");
-    assert!(src.contains("[[f64; NV]; NV]"), "NV × NV matrices");
+    assert!(src.contains("pub type NvMatrix = [[f64; NV]; NV];"), "NV × NV matrices");
+    assert!(src.contains("-> (NvMatrix, NvMatrix)"), "returned as the module's alias");
 }

@@ -476,9 +476,8 @@ fn a_floating_scene_enters_its_derivatives() {
         // The scene as the last call left it: the run-time payload in its model.
         let scene = robot.scene().clone();
         let mut ws = Workspace::<Dd>::new(&scene.model);
-        let mut id = |a: &[Dd], b: &[Dd], c: &[Dd], y: &mut [Dd]| {
-            dynamics::inverse_dynamics(&scene, &mut ws, a, b, c, loads, y)
-        };
+        let mut id =
+            |a: &[Dd], b: &[Dd], c: &[Dd], y: &mut [Dd]| dynamics::inverse_dynamics(&scene, &mut ws, a, b, c, loads, y);
         let at = (&q[..], &qd[..], &qdd[..]);
         let (e_dq, e_dqd, e_m) = (
             err(&dq, &central_floating(&scene.model, at, Wrt::Q, &mut id)),
@@ -486,9 +485,8 @@ fn a_floating_scene_enters_its_derivatives() {
             err(&m, &central_floating(&scene.model, at, Wrt::Third, &mut id)),
         );
         let mut ws = Workspace::<Dd>::new(&scene.model);
-        let mut fd = |a: &[Dd], b: &[Dd], c: &[Dd], y: &mut [Dd]| {
-            dynamics::forward_dynamics(&scene, &mut ws, a, b, c, loads, y)
-        };
+        let mut fd =
+            |a: &[Dd], b: &[Dd], c: &[Dd], y: &mut [Dd]| dynamics::forward_dynamics(&scene, &mut ws, a, b, c, loads, y);
         let at = (&q[..], &qd[..], &tau[..]);
         let (e_fq, e_fqd, e_minv) = (
             err(&fq, &central_floating(&scene.model, at, Wrt::Q, &mut fd)),

@@ -148,7 +148,10 @@ pub fn rnea_derivatives<S: Scalar>(
         dtau_dq.len() == nv * nv && dtau_dqd.len() == nv * nv && mass.as_ref().is_none_or(|m| m.len() == nv * nv),
         "rnea_derivatives: the matrices must be NV×NV ({nv}×{nv})"
     );
-    assert!(!model.has_mimic(), "rnea_derivatives: a model with mimic joints (derivatives::inverse_dynamics_derivatives takes them)");
+    assert!(
+        !model.has_mimic(),
+        "rnea_derivatives: a model with mimic joints (derivatives::inverse_dynamics_derivatives takes them)"
+    );
     loads.check(n, "rnea_derivatives");
     let bodies = &model.bodies[..n];
     // Gravity in the root's frame, and the root's motion: a fixed base at

@@ -110,9 +110,15 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
     let mut items = wrapper::parse_items(consts)?;
     if functions.iter().any(|f| f.emitted && matches!(f.function.shape(floating), Shape::Matrices(..))) {
         let ty = statements::scalar_type(options.scalar);
-        items.extend(wrapper::parse_items(quote! {
-            #[doc = " A DOF × DOF matrix `[row][col]`, as the derivatives return them (`[output][input]`)."]
-            pub type DofMatrix = [[#ty; DOF]; DOF];
+        items.extend(wrapper::parse_items(match floating {
+            false => quote! {
+                #[doc = " A DOF × DOF matrix `[row][col]`, as the derivatives return them (`[output][input]`)."]
+                pub type DofMatrix = [[#ty; DOF]; DOF];
+            },
+            true => quote! {
+                #[doc = " An NV × NV matrix `[row][col]`, as the derivatives return them (`[output][input]`)."]
+                pub type NvMatrix = [[#ty; NV]; NV];
+            },
         })?);
     }
     items.push(wrapper::parse_item(sin_cos::sin_cos_all_item(options.scalar))?);
