@@ -47,6 +47,26 @@ fn compare(
     worst
 }
 
+/// `robot`'s derivatives at (q, q̇, x), x taken as q̈ and as τ, with the
+/// inputs `si`: ∂τ/∂q, ∂τ/∂q̇, ∂q̈/∂q, ∂q̈/∂q̇, M⁻¹ of the forward dynamics'
+/// derivatives, and M⁻¹ alone.
+fn scene_derivatives(robot: &mut SceneRobot, [q, qd, x]: [&Vec<f64>; 3], si: &SceneInputs) -> [DMatrix<f64>; 6] {
+    let dv = |v: &Vec<f64>| DVector::from_vec(v.clone());
+    let (a, b) = robot.inverse_dynamics_derivatives_with(&dv(q), &dv(qd), &dv(x), si).unwrap();
+    let (c, d, e) = robot.forward_dynamics_derivatives_with(&dv(q), &dv(qd), &dv(x), si).unwrap();
+    [a, b, c, d, e, robot.mass_matrix_inverse_with(&dv(q), si).unwrap()]
+}
+
+/// What derivative function `f` returns, row-major, from the matrices of
+/// [`scene_derivatives`].
+fn rows_of(f: &Function, [a, b, c, d, e, minv]: &[DMatrix<f64>; 6]) -> Vec<f64> {
+    match f {
+        Function::InverseDynamicsDerivatives => [rows(a), rows(b)].concat(),
+        Function::ForwardDynamicsDerivatives => [rows(c), rows(d), rows(e)].concat(),
+        _ => rows(minv),
+    }
+}
+
 #[test]
 fn generated_derivatives_match_the_generic_ones_on_the_bundled_robots() {
     for name in ["ur5", "panda", "torso_two_arms", "planar_2link", "iiwa14", "quadruped12"] {
@@ -164,22 +184,10 @@ fn the_ur5_controller_scene_enters_its_derivatives() {
         let (q, qd, x) = (rng.vec(n, 2.0), rng.vec(n, 0.5), rng.vec(n, 5.0));
         let f_tip = rng.vec(6, 10.0);
         let inputs: [(&str, &[f64]); 5] = [("q", &q), ("qd", &qd), ("qdd", &x), ("tau", &x), ("f_tip", &f_tip)];
-        let dv = |v: &Vec<f64>| DVector::from_vec(v.clone());
         let si = SceneInputs { tip_wrench: Some(Vector6::from_column_slice(&f_tip)), ..Default::default() };
-        let (a, b) = robot.inverse_dynamics_derivatives_with(&dv(&q), &dv(&qd), &dv(&x), &si).unwrap();
-        let (c, d, e) = robot.forward_dynamics_derivatives_with(&dv(&q), &dv(&qd), &dv(&x), &si).unwrap();
-        let minv = robot.mass_matrix_inverse_with(&dv(&q), &si).unwrap();
-        compare(
-            &module,
-            ScalarType::F64,
-            &inputs,
-            |f| match f {
-                Function::InverseDynamicsDerivatives => [rows(&a), rows(&b)].concat(),
-                Function::ForwardDynamicsDerivatives => [rows(&c), rows(&d), rows(&e)].concat(),
-                _ => rows(&minv),
-            },
-            1e-12,
-        );
+        let generic = scene_derivatives(&mut robot, [&q, &qd, &x], &si);
+        compare(&module, ScalarType::F64, &inputs, |f| rows_of(f, &generic), 1e-12);
+        let [a, b, c, d, ..] = generic;
         // Double-double central differences of the scene's dynamics.
         type Dd = DoubleDouble;
         let g = Vec3(applied.model.gravity.0.map(Dd::from));
@@ -290,21 +298,8 @@ fn floating_base_derivatives_match_the_generic_ones() {
                     payloads: &hand,
                 },
             };
-            let dv = |v: &Vec<f64>| DVector::from_vec(v.clone());
-            let (a, b) = robot.inverse_dynamics_derivatives_with(&dv(&q), &dv(&qd), &dv(&x), &si).unwrap();
-            let (c, d, e) = robot.forward_dynamics_derivatives_with(&dv(&q), &dv(&qd), &dv(&x), &si).unwrap();
-            let minv = robot.mass_matrix_inverse_with(&dv(&q), &si).unwrap();
-            let worst = compare(
-                &module,
-                ScalarType::F64,
-                &inputs,
-                |f| match f {
-                    Function::InverseDynamicsDerivatives => [rows(&a), rows(&b)].concat(),
-                    Function::ForwardDynamicsDerivatives => [rows(&c), rows(&d), rows(&e)].concat(),
-                    _ => rows(&minv),
-                },
-                1e-12,
-            );
+            let generic = scene_derivatives(&mut robot, [&q, &qd, &x], &si);
+            let worst = compare(&module, ScalarType::F64, &inputs, |f| rows_of(f, &generic), 1e-12);
             println!("torso_two_arms (floating, {what}): worst relative error {worst:.1e}");
         }
     }
