@@ -346,7 +346,8 @@ fn central_floating(
     out
 }
 
-/// A floating base (the quadruped12, the two-armed torso, a random tree
+/// A floating base (the quadruped12, the two-armed torso, the legged
+/// manipulator, the humanoid32, a random tree
 /// with prismatic joints and non-aligned axes, with a tip wrench): every
 /// derivative against double-double central differences on the manifold,
 /// ∂τ/∂q̈ = M, M·M⁻¹ = 1 and the chain rule; and both formulations agree.
@@ -358,6 +359,8 @@ fn a_floating_base_matches_double_double_differences_on_the_manifold() {
     for (name, model) in [
         ("quadruped12", support::model("quadruped12")),
         ("torso_two_arms", support::model("torso_two_arms")),
+        ("legged_manipulator", support::model("legged_manipulator")),
+        ("humanoid32", support::model("humanoid32")),
         ("random tree", tree),
     ] {
         let model = model.with_floating_base();
