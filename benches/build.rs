@@ -1,48 +1,49 @@
 //! Generates the benchmarked modules into OUT_DIR: the UR5 and the Panda,
-//! each with std's sin_cos and with the batched `sin_cos_all` (both have the
-//! `NAME_sc` bodies, which take the sines and cosines as inputs), and each
-//! with the same bodies without fused multiply-adds and run-time dispatch (`*_base`),
-//! and each with the derivatives of the dynamics (`*_derivatives`); and the
-//! quadruped12 and the humanoid32 with a floating base, default options
+//! each with std's sin_cos (`*_std`) and with the same bodies without fused
+//! multiply-adds and run-time dispatch (`*_base`); the UR5, the Panda, the
+//! KUKA iiwa 14 and the quadruped12 with its trunk fixed, each with the
+//! batched `sin_cos_all` (`*_batched`, every module has the `NAME_sc`
+//! bodies, which take the sines and cosines as inputs) and with the
+//! derivatives of the dynamics (`*_derivatives`); and the quadruped12 and
+//! the humanoid32 with a floating base, default options
 //! (`quadruped12_floating`, `humanoid32_floating`, as `dynagen generate
-//! dynagen/robots/ROBOT.urdf --floating-base`); the Panda with its mimic
-//! finger, default options (`panda_mimic`).
+//! dynagen/robots/ROBOT.urdf --floating-base`), and the floating
+//! quadruped12's derivatives (`quadruped12_floating_derivatives`); the
+//! Panda with its mimic finger, default options (`panda_mimic`).
 
 use dynagen::codegen::{generate, CodegenOptions, Function, Trig};
 use dynagen::{Builder, Model};
 use std::path::Path;
 
+/// The derivative functions of the `*_derivatives` modules.
+const DERIVATIVES: [Function; 3] =
+    [Function::InverseDynamicsDerivatives, Function::ForwardDynamicsDerivatives, Function::MassMatrixInverse];
+
 fn main() {
     let robots = Path::new(env!("CARGO_MANIFEST_DIR")).join("../dynagen/robots");
     println!("cargo:rerun-if-changed=build.rs");
     let out = std::env::var("OUT_DIR").expect("OUT_DIR");
-    for robot in ["ur5", "panda"] {
+    for robot in ["ur5", "panda", "iiwa14", "quadruped12"] {
         let urdf = robots.join(format!("{robot}.urdf"));
         println!("cargo:rerun-if-changed={}", urdf.display());
         let model = Model::from_urdf_file(&urdf).unwrap_or_else(|e| panic!("{}: {e}", urdf.display()));
-        for (suffix, trig) in [("std", Trig::Std), ("batched", Trig::Batched)] {
-            let opts = CodegenOptions::default().trig(trig).source(format!("dynagen/robots/{robot}.urdf"));
-            let module = generate(&model, &opts).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
+        let write = |suffix: &str, opts: CodegenOptions| {
+            let module = generate(&model, &opts.source(format!("dynagen/robots/{robot}.urdf")))
+                .unwrap_or_else(|e| panic!("generating {robot}: {e}"));
             std::fs::write(Path::new(&out).join(format!("{robot}_{suffix}.rs")), module.source).expect("writing");
-        }
-        // The same bodies without fused multiply-adds and without run-time
-        // dispatch, for with/without in one run: on a default build, what
-        // the bodies ran before either (SSE2, unfused); on a build with the
-        // `fma` and `avx2` target features (RUSTFLAGS="-C target-cpu=native"),
-        // where dispatch compiles out, the unfused body alone.
+        };
+        write("batched", CodegenOptions::default().trig(Trig::Batched));
         // The derivatives (examples/derivatives.rs), default options.
-        let derivatives = CodegenOptions::default()
-            .functions([
-                Function::InverseDynamicsDerivatives,
-                Function::ForwardDynamicsDerivatives,
-                Function::MassMatrixInverse,
-            ])
-            .source(format!("dynagen/robots/{robot}.urdf"));
-        let module = generate(&model, &derivatives).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
-        std::fs::write(Path::new(&out).join(format!("{robot}_derivatives.rs")), module.source).expect("writing");
-        let base = CodegenOptions::default().trig(Trig::Inputs).fma(false).runtime_dispatch(false);
-        let module = generate(&model, &base).unwrap_or_else(|e| panic!("generating {robot}: {e}"));
-        std::fs::write(Path::new(&out).join(format!("{robot}_base.rs")), module.source).expect("writing");
+        write("derivatives", CodegenOptions::default().functions(DERIVATIVES));
+        if robot == "ur5" || robot == "panda" {
+            write("std", CodegenOptions::default().trig(Trig::Std));
+            // The same bodies without fused multiply-adds and without run-time
+            // dispatch, for with/without in one run: on a default build, what
+            // the bodies ran before either (SSE2, unfused); on a build with the
+            // `fma` and `avx2` target features (RUSTFLAGS="-C target-cpu=native"),
+            // where dispatch compiles out, the unfused body alone.
+            write("base", CodegenOptions::default().trig(Trig::Inputs).fma(false).runtime_dispatch(false));
+        }
     }
     // The Panda with its mimic finger (examples/mimic.rs), default options.
     let urdf = Path::new(env!("CARGO_MANIFEST_DIR")).join("../dynagen/tests/data/panda_mimic.urdf");
@@ -66,4 +67,10 @@ fn main() {
             .unwrap_or_else(|e| panic!("generating {robot} (floating): {e}"));
         std::fs::write(Path::new(&out).join(format!("{robot}_floating.rs")), module.source).expect("writing");
     }
+    // The floating quadruped's derivatives (examples/derivatives.rs).
+    let model = Model::from_urdf_file(robots.join("quadruped12.urdf")).expect("quadruped12.urdf");
+    let opts = CodegenOptions::default().functions(DERIVATIVES).source("dynagen/robots/quadruped12.urdf");
+    let module = generate(&model.with_floating_base(), &opts)
+        .unwrap_or_else(|e| panic!("generating quadruped12's floating derivatives: {e}"));
+    std::fs::write(Path::new(&out).join("quadruped12_floating_derivatives.rs"), module.source).expect("writing");
 }

@@ -14,7 +14,11 @@
 //! and `generated.rs`, which `include!`s them in one module per robot, with
 //! adapters `sc::*` that give every robot's `NAME_sc` the same arguments
 //! (`s, c, q, …`: the Panda's take `q` for its prismatic fingers, the
-//! others do not). It also records the rustc version for the report.
+//! others do not); and `derivatives.rs`, the derivatives of the dynamics
+//! (`inverse_dynamics_derivatives`, `forward_dynamics_derivatives`,
+//! `mass_matrix_inverse`, default options) of the robots of
+//! [`DERIVATIVE_ROBOTS`] in f64 and f32. It also records the rustc version
+//! for the report.
 
 use dynagen::codegen::{generate, CodegenOptions, ForwardDynamicsMethod, Function, ScalarType, Trig};
 use dynagen::model::JointKind;
@@ -23,6 +27,10 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 const ROBOTS: [&str; 4] = ["ur5", "panda", "torso_two_arms", "planar_2link"];
+
+/// The robots of the derivatives' section: the benchmark's (a 6- and two
+/// 7-joint arms, a 12-joint leg set with its trunk fixed).
+const DERIVATIVE_ROBOTS: [&str; 4] = ["ur5", "panda", "iiwa14", "quadruped12"];
 
 fn main() {
     let robots = Path::new(env!("CARGO_MANIFEST_DIR")).join("../dynagen/robots");
@@ -108,6 +116,30 @@ fn main() {
         let _ = writeln!(glue, "    }}\n}}");
     }
     write_if_changed(&out.join("generated.rs"), &glue);
+
+    // The derivatives, default options, f64 and f32.
+    let derivatives =
+        [Function::InverseDynamicsDerivatives, Function::ForwardDynamicsDerivatives, Function::MassMatrixInverse];
+    let mut glue = String::from("// The derivatives of the dynamics (written by build.rs).\n\n");
+    for robot in DERIVATIVE_ROBOTS {
+        let rel = format!("dynagen/robots/{robot}.urdf");
+        let urdf = robots.join(format!("{robot}.urdf"));
+        println!("cargo:rerun-if-changed={}", urdf.display());
+        let model = Model::from_urdf_file(&urdf).unwrap_or_else(|e| panic!("{}: {e}", urdf.display()));
+        let _ = writeln!(glue, "/// `{rel}`.\n#[allow(dead_code)]\npub mod {robot} {{");
+        for (suffix, scalar) in [("f64", ScalarType::F64), ("f32", ScalarType::F32)] {
+            let opts = CodegenOptions::default().source(rel.clone()).functions(derivatives.clone()).scalar(scalar);
+            let module = generate(&model, &opts).unwrap_or_else(|e| panic!("generating {robot} {suffix}: {e}"));
+            let file = format!("{robot}_derivatives_{suffix}.rs");
+            write_if_changed(&out.join(&file), &module.source);
+            let _ = writeln!(
+                glue,
+                "    pub mod {suffix} {{\n        include!(concat!(env!(\"OUT_DIR\"), \"/{file}\"));\n    }}"
+            );
+        }
+        let _ = writeln!(glue, "}}");
+    }
+    write_if_changed(&out.join("derivatives.rs"), &glue);
 
     // The compiler that built the report, for its "machine" paragraph.
     let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());

@@ -62,7 +62,10 @@ fn main() {
         (ur5, "ur5_derivatives", ScalarType::F64),
         ("../dynagen/robots/panda.urdf", "panda_derivatives", ScalarType::F64),
         ("../dynagen/robots/torso_two_arms.urdf", "torso_two_arms_derivatives", ScalarType::F64),
+        ("../dynagen/robots/iiwa14.urdf", "iiwa14_derivatives", ScalarType::F64),
+        ("../dynagen/robots/quadruped12.urdf", "quadruped12_derivatives", ScalarType::F64),
         (ur5, "ur5_derivatives_f32", ScalarType::F32),
+        ("../dynagen/robots/panda.urdf", "panda_derivatives_f32", ScalarType::F32),
     ] {
         dynagen::Builder::new()
             .urdf(robot)
@@ -88,6 +91,14 @@ fn main() {
         .file_name("quadruped12_floating.rs")
         .generate()
         .expect("generating the floating quadruped");
+    // Its derivatives (tests/generated_derivatives.rs).
+    dynagen::Builder::new()
+        .urdf("../dynagen/robots/quadruped12.urdf")
+        .floating_base(true)
+        .name("quadruped12_floating_derivatives")
+        .functions(&derivatives)
+        .generate()
+        .expect("generating the floating quadruped's derivatives");
     dynagen::Builder::new()
         .urdf("../dynagen/robots/legged_manipulator.urdf")
         .floating_base(true)

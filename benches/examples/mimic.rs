@@ -21,27 +21,27 @@ fn main() {
     let mut robot = Robot::from_urdf_file(&urdf).unwrap();
     let model = robot.model().clone();
     let prismatic: Vec<bool> = (0..N).map(|k| !model.bodies[model.joint_body(k)].joint.is_revolute()).collect();
-    let st = pinocchio_states::<N>(&prismatic);
-    let v: Vec<[DVector<f64>; 4]> = st.iter().map(|s| s.map(|x| DVector::from_column_slice(&x))).collect();
+    let st = pinocchio_states::<N, N>(&prismatic);
+    let v: Vec<[DVector<f64>; 4]> = st.iter().map(|s| s.vectors()).collect();
     let (mut out, mut mm) = (DVector::zeros(N), DMatrix::zeros(N, N));
     // each call's inputs behind a black_box and its whole output behind one too
     let rows = [
         (
             "generated inverse_dynamics",
             time(|i| {
-                black_box(&m::inverse_dynamics(black_box(&st[i][0]), &st[i][1], &st[i][2]));
+                black_box(&m::inverse_dynamics(black_box(&st[i].q), &st[i].v[0], &st[i].v[1]));
             }),
         ),
         (
             "generated mass_matrix",
             time(|i| {
-                black_box(&m::mass_matrix(black_box(&st[i][0])));
+                black_box(&m::mass_matrix(black_box(&st[i].q)));
             }),
         ),
         (
             "generated forward_dynamics",
             time(|i| {
-                black_box(&m::forward_dynamics(black_box(&st[i][0]), &st[i][1], &st[i][3]));
+                black_box(&m::forward_dynamics(black_box(&st[i].q), &st[i].v[0], &st[i].v[2]));
             }),
         ),
         (

@@ -83,23 +83,41 @@ pub fn uniform(seed: u64) -> impl FnMut() -> f64 {
     }
 }
 
+/// One state: q, and q̇, q̈, τ.
+pub struct State<const NQ: usize, const NV: usize> {
+    /// The configuration (NQ).
+    pub q: [f64; NQ],
+    /// q̇, q̈ and τ (NV each).
+    pub v: [[f64; NV]; 3],
+}
+
+impl<const NQ: usize, const NV: usize> State<NQ, NV> {
+    /// q, q̇, q̈ and τ as vectors, for the generic solver.
+    pub fn vectors(&self) -> [nalgebra::DVector<f64>; 4] {
+        let v = |x: &[f64]| nalgebra::DVector::from_column_slice(x);
+        [v(&self.q), v(&self.v[0]), v(&self.v[1]), v(&self.v[2])]
+    }
+}
+
 /// Random states as the Pinocchio program draws them (its distribution, not
-/// its generator): q in [-π, π] (prismatic joints within 0..0.04 m), q̇ in
-/// [-2, 2], q̈ in [-5, 5], τ in [-10, 10].
-pub fn pinocchio_states<const N: usize>(prismatic: &[bool]) -> Vec<[[f64; N]; 4]> {
+/// its generator): q in [-π, π] (prismatic joints, flagged in `prismatic`,
+/// within 0..0.04 m; a floating base's position too, its quaternion made a
+/// unit one), q̇ in [-2, 2], q̈ in [-5, 5], τ in [-10, 10].
+pub fn pinocchio_states<const NQ: usize, const NV: usize>(prismatic: &[bool]) -> Vec<State<NQ, NV>> {
     let mut unit = uniform(0x2024_0611);
+    let base = NQ - prismatic.len();
     (0..STATES)
         .map(|_| {
-            let q =
-                core::array::from_fn(
-                    |j| if prismatic[j] { 0.02 * (unit() + 1.0) } else { std::f64::consts::PI * unit() },
-                );
-            [
-                q,
-                core::array::from_fn(|_| 2.0 * unit()),
-                core::array::from_fn(|_| 5.0 * unit()),
-                core::array::from_fn(|_| 10.0 * unit()),
-            ]
+            let mut q: [f64; NQ] = core::array::from_fn(|j| match j.checked_sub(base) {
+                Some(j) if prismatic[j] => 0.02 * (unit() + 1.0),
+                _ => std::f64::consts::PI * unit(),
+            });
+            if base == 7 {
+                let n = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+                q[3..7].iter_mut().for_each(|x| *x /= n);
+            }
+            let v = [2.0, 5.0, 10.0].map(|scale| core::array::from_fn(|_| scale * unit()));
+            State { q, v }
         })
         .collect()
 }

@@ -19,6 +19,9 @@
 //! - `--split N|none`: [`CodegenOptions::split_lets`] (default
 //!   [`DEFAULT_SPLIT_LETS`]);
 //! - `--max-joints N`: the longest chain (64);
+//! - `--derivatives`: the derivatives of the dynamics instead
+//!   (`inverse_dynamics_derivatives`, `forward_dynamics_derivatives`,
+//!   `mass_matrix_inverse`; the counts of the formulation each keeps);
 //! - `--runtime N`: instead of the table, the run time of the functions of
 //!   the `N`-joint chain emitted whole and split (a harness compiled with
 //!   `rustc -O` that includes both modules; best of 31 rounds alternating
@@ -48,6 +51,7 @@ struct Args {
     per_function: bool,
     split: Option<usize>,
     max_joints: usize,
+    derivatives: bool,
     runtime: Option<usize>,
     out: PathBuf,
 }
@@ -59,6 +63,7 @@ fn args() -> Args {
         per_function: false,
         split: Some(DEFAULT_SPLIT_LETS),
         max_joints: 64,
+        derivatives: false,
         runtime: None,
         out: std::env::temp_dir().join("dynagen_codegen_scaling"),
     };
@@ -68,6 +73,7 @@ fn args() -> Args {
             "--compile" => a.compile = true,
             "--debug" => a.debug = true,
             "--per-function" => a.per_function = true,
+            "--derivatives" => a.derivatives = true,
             "--split" => {
                 let v = it.next().expect("--split N|none");
                 a.split = if v == "none" { None } else { Some(v.parse().expect("--split N|none")) };
@@ -225,15 +231,21 @@ fn main() {
     for n in [2usize, 4, 8, 16, 30, 32, 64].into_iter().filter(|&n| n <= a.max_joints) {
         models.push((format!("chain{n}"), skewed_chain::skewed_chain(n)));
     }
-    let options = CodegenOptions::default().split_lets(a.split);
+    let derivatives =
+        [Function::InverseDynamicsDerivatives, Function::ForwardDynamicsDerivatives, Function::MassMatrixInverse];
+    let mut options = CodegenOptions::default().split_lets(a.split);
+    if a.derivatives {
+        options = options.functions(derivatives.clone());
+    }
     println!(
         "split_lets {:?}; operation counts; generation ms, best of 5 runs (1 from 30 joints), wall-clock and \
          CPU time of the thread; KB of source; lets: the longest function's; parts: private parts of split functions",
         a.split
     );
+    let heads = if a.derivatives { ["dtau", "dqdd", "Minv", "", ""] } else { ["tau", "M", "h", "g", "FD"] };
     println!(
         "{:>8} {:>6} {:>6} {:>6} {:>6} {:>7} {:>9} {:>9} {:>7} {:>6} {:>5}",
-        "model", "tau", "M", "h", "g", "FD", "gen wall", "gen cpu", "KB", "lets", "parts"
+        "model", heads[0], heads[1], heads[2], heads[3], heads[4], "gen wall", "gen cpu", "KB", "lets", "parts"
     );
     for (name, model) in &models {
         let runs = if model.dof() >= 30 { 1 } else { 5 };
@@ -248,23 +260,45 @@ fn main() {
         }
         let module = module.expect("one run");
         let count = |k: Function, method: Option<ForwardDynamicsMethod>| {
-            module.functions.iter().find(|f| f.function == k && f.method == method).map_or(0, |f| f.op_count.total())
+            let f = module.functions.iter().find(|f| f.function == k && f.method == method && f.emitted);
+            f.map_or(0, |f| f.op_count.total())
+        };
+        let counts = if a.derivatives {
+            [
+                count(derivatives[0].clone(), None),
+                count(derivatives[1].clone(), None),
+                count(derivatives[2].clone(), None),
+                0,
+                0,
+            ]
+        } else {
+            [
+                count(Function::InverseDynamics, None),
+                count(Function::MassMatrix, None),
+                count(Function::BiasForces, None),
+                count(Function::GravityTorques, None),
+                module
+                    .functions
+                    .iter()
+                    .find(|f| f.method == Some(ForwardDynamicsMethod::Aba))
+                    .map_or(0, |f| f.op_count.total()),
+            ]
         };
         let (lets, parts) = longest_and_parts(&module.source);
         println!(
             "{name:>8} {:>6} {:>6} {:>6} {:>6} {:>7} {best:>9.1} {best_cpu:>9.1} {:>7} {lets:>6} {parts:>5}",
-            count(Function::InverseDynamics, None),
-            count(Function::MassMatrix, None),
-            count(Function::BiasForces, None),
-            count(Function::GravityTorques, None),
-            count(Function::ForwardDynamics, Some(ForwardDynamicsMethod::Aba)),
+            counts[0],
+            counts[1],
+            counts[2],
+            counts[3],
+            counts[4],
             module.source.len() / 1024,
         );
         if !a.compile {
             continue;
         }
         let mut modules = Vec::new();
-        if a.per_function {
+        if a.per_function && !a.derivatives {
             for (label, function) in [
                 ("tau", Function::InverseDynamics),
                 ("M", Function::MassMatrix),

@@ -10,7 +10,7 @@ mod support;
 
 use dynagen::algorithms::{Loads, TipWrench, Workspace};
 use dynagen::codegen::{generate, generate_scene, CodegenOptions, Function, GeneratedModule, ScalarType};
-use dynagen::scene::{dynamics, SceneFile, SceneInputs, SceneRobot};
+use dynagen::scene::{dynamics, Gravity, PayloadInertia, Scene, SceneFile, SceneInputs, SceneRobot};
 use dynagen::spatial::{Force, Vec3};
 use dynagen::symbolic::Node;
 use dynagen::{DoubleDouble, Robot};
@@ -47,16 +47,43 @@ fn compare(
     worst
 }
 
+/// `robot`'s derivatives at (q, q̇, x), x taken as q̈ and as τ, with the
+/// inputs `si`: ∂τ/∂q, ∂τ/∂q̇, ∂q̈/∂q, ∂q̈/∂q̇, M⁻¹ of the forward dynamics'
+/// derivatives, and M⁻¹ alone.
+fn scene_derivatives(robot: &mut SceneRobot, [q, qd, x]: [&Vec<f64>; 3], si: &SceneInputs) -> [DMatrix<f64>; 6] {
+    let dv = |v: &Vec<f64>| DVector::from_vec(v.clone());
+    let (a, b) = robot.inverse_dynamics_derivatives_with(&dv(q), &dv(qd), &dv(x), si).unwrap();
+    let (c, d, e) = robot.forward_dynamics_derivatives_with(&dv(q), &dv(qd), &dv(x), si).unwrap();
+    [a, b, c, d, e, robot.mass_matrix_inverse_with(&dv(q), si).unwrap()]
+}
+
+/// What derivative function `f` returns, row-major, from the matrices of
+/// [`scene_derivatives`].
+fn rows_of(f: &Function, [a, b, c, d, e, minv]: &[DMatrix<f64>; 6]) -> Vec<f64> {
+    match f {
+        Function::InverseDynamicsDerivatives => [rows(a), rows(b)].concat(),
+        Function::ForwardDynamicsDerivatives => [rows(c), rows(d), rows(e)].concat(),
+        _ => rows(minv),
+    }
+}
+
 #[test]
 fn generated_derivatives_match_the_generic_ones_on_the_bundled_robots() {
-    for name in ["ur5", "panda", "torso_two_arms", "planar_2link"] {
+    for name in ["ur5", "panda", "torso_two_arms", "planar_2link", "iiwa14", "quadruped12"] {
         let model = support::model(name);
         let robot = Robot::new(model.clone());
         let n = model.dof();
-        for (scalar, tol) in [(ScalarType::F64, 1e-12), (ScalarType::F32, 1e-4)] {
+        // f32 on two robots (generation in a debug build is what takes time)
+        let scalars: &[(ScalarType, f64)] = match name {
+            "ur5" | "panda" => &[(ScalarType::F64, 1e-12), (ScalarType::F32, 1e-4)],
+            _ => &[(ScalarType::F64, 1e-12)],
+        };
+        for &(scalar, tol) in scalars {
             let options = CodegenOptions::default().functions(DERIVATIVES).scalar(scalar);
             let module = generate(&model, &options).unwrap();
-            assert_eq!(module.functions.len(), 3);
+            // the two ∂τ-based functions traced both ways, each compared below
+            assert_eq!(module.functions.len(), 5);
+            assert_eq!(module.functions.iter().filter(|f| f.emitted).count(), 3);
             let mut rng = Rng::new(0xd0d0 + n as u64);
             for _ in 0..3 {
                 let (q, qd, x) = (rng.vec(n, 2.0), rng.vec(n, 1.5), rng.vec(n, 5.0));
@@ -105,22 +132,24 @@ fn structural_zeros_are_constants_and_the_inverse_is_symmetric() {
         }
     };
     let related = |i: usize, j: usize| ancestor(i, j) || ancestor(j, i);
-    let f = module.functions.iter().find(|f| f.function == Function::InverseDynamicsDerivatives).unwrap();
-    let (nodes, outs) = (f.traced.nodes(), f.traced.outputs());
-    let mut zeros = 0;
-    for m in 0..2 {
-        for i in 0..n {
-            for j in 0..n {
-                let node = &nodes[outs[m * n * n + i * n + j] as usize];
-                let is_zero = *node == Node::Const(0f64.to_bits());
-                if !related(i, j) {
-                    assert!(is_zero, "dtau[{i}]/d{}[{j}] is {node:?}", ["q", "qd"][m]);
-                    zeros += 1;
+    // in both formulations
+    for f in module.functions.iter().filter(|f| f.function == Function::InverseDynamicsDerivatives) {
+        let (nodes, outs) = (f.traced.nodes(), f.traced.outputs());
+        let mut zeros = 0;
+        for m in 0..2 {
+            for i in 0..n {
+                for j in 0..n {
+                    let node = &nodes[outs[m * n * n + i * n + j] as usize];
+                    let is_zero = *node == Node::Const(0f64.to_bits());
+                    if !related(i, j) {
+                        assert!(is_zero, "{}: dtau[{i}]/d{}[{j}] is {node:?}", f.label(), ["q", "qd"][m]);
+                        zeros += 1;
+                    }
                 }
             }
         }
+        assert!(zeros > n * n / 2, "{}: {zeros} structural zeros", f.label());
     }
-    assert!(zeros > n * n / 2, "{zeros} structural zeros");
     let f = module.functions.iter().find(|f| f.function == Function::MassMatrixInverse).unwrap();
     let outs = f.traced.outputs();
     for i in 0..n {
@@ -155,22 +184,10 @@ fn the_ur5_controller_scene_enters_its_derivatives() {
         let (q, qd, x) = (rng.vec(n, 2.0), rng.vec(n, 0.5), rng.vec(n, 5.0));
         let f_tip = rng.vec(6, 10.0);
         let inputs: [(&str, &[f64]); 5] = [("q", &q), ("qd", &qd), ("qdd", &x), ("tau", &x), ("f_tip", &f_tip)];
-        let dv = |v: &Vec<f64>| DVector::from_vec(v.clone());
         let si = SceneInputs { tip_wrench: Some(Vector6::from_column_slice(&f_tip)), ..Default::default() };
-        let (a, b) = robot.inverse_dynamics_derivatives_with(&dv(&q), &dv(&qd), &dv(&x), &si).unwrap();
-        let (c, d, e) = robot.forward_dynamics_derivatives_with(&dv(&q), &dv(&qd), &dv(&x), &si).unwrap();
-        let minv = robot.mass_matrix_inverse_with(&dv(&q), &si).unwrap();
-        compare(
-            &module,
-            ScalarType::F64,
-            &inputs,
-            |f| match f {
-                Function::InverseDynamicsDerivatives => [rows(&a), rows(&b)].concat(),
-                Function::ForwardDynamicsDerivatives => [rows(&c), rows(&d), rows(&e)].concat(),
-                _ => rows(&minv),
-            },
-            1e-12,
-        );
+        let generic = scene_derivatives(&mut robot, [&q, &qd, &x], &si);
+        compare(&module, ScalarType::F64, &inputs, |f| rows_of(f, &generic), 1e-12);
+        let [a, b, c, d, ..] = generic;
         // Double-double central differences of the scene's dynamics.
         type Dd = DoubleDouble;
         let g = Vec3(applied.model.gravity.0.map(Dd::from));
@@ -223,4 +240,67 @@ fn derivatives_only_on_request() {
     let f: Function = "forward_dynamics_derivatives".parse().unwrap();
     assert_eq!(f, Function::ForwardDynamicsDerivatives);
     assert!("mass_matrix_inverse".parse::<Function>().is_ok());
+}
+
+/// A floating base's generated derivatives (NV × NV, the tangent of the
+/// base's body twist), both formulations, evaluated as traced against the
+/// generic ones (themselves checked against differences on the manifold and
+/// Pinocchio's free flyer): the two-armed torso plain, and in a scene with
+/// armature, viscous and Coulomb friction, a constant payload on the
+/// floating base, a run-time payload on a hand, gravity and a tip wrench as
+/// inputs (held constant). The quadruped12's module is compiled and checked
+/// in `tests/tests/generated_derivatives.rs`.
+#[test]
+fn floating_base_derivatives_match_the_generic_ones() {
+    let model = support::model("torso_two_arms").with_floating_base();
+    let payload = PayloadInertia::new(2.5, [0.05, -0.02, 0.1], [0.02, 0.03, 0.04, 0.002, -0.001, 0.0005]);
+    let scene = Scene::new()
+        .gravity(Gravity::Input)
+        .tip_wrench("right_ee")
+        .payload("base", payload)
+        .payload_input("left_hand")
+        .armature("left_shoulder_joint", 0.05)
+        .armature("torso_yaw_joint", 0.1)
+        .viscous("right_elbow_joint", 0.4)
+        .coulomb("left_elbow_joint", 1.5)
+        .coulomb_velocity(0.05);
+    for (what, applied) in [("plain", Scene::new()), ("scene", scene)].map(|(w, s)| (w, s.apply(&model).unwrap())) {
+        let (nq, nv) = (model.nq(), model.nv());
+        let module = generate_scene(&applied, &CodegenOptions::default().functions(DERIVATIVES)).unwrap();
+        assert_eq!(module.functions.len(), 5, "both formulations of the two ∂τ-based functions");
+        assert!(module.source.contains("pub fn forward_dynamics_derivatives(\n    q: &[f64; NQ],"), "NQ-long q");
+        assert!(module.source.contains("[[f64; NV]; NV]"), "NV × NV matrices");
+        let mut robot = SceneRobot::new(applied.clone());
+        let mut rng = Rng::new(0xf1 + nv as u64);
+        for _ in 0..2 {
+            let mut q = rng.vec(nq, 2.0);
+            let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+            q[3..7].iter_mut().for_each(|x| *x /= norm);
+            let (qd, x) = (rng.vec(nv, 1.5), rng.vec(nv, 5.0));
+            let (gravity, f_tip) = ([0.8, -0.4, -9.7], rng.vec(6, 10.0));
+            let hand = [PayloadInertia::new(0.7, [0.02, 0.01, -0.03], [0.001, 0.002, 0.0015, 0.0, 0.0001, 0.0])];
+            let p = &hand[0];
+            let payload_arg: Vec<f64> = [p.mass].into_iter().chain(p.com).chain(p.inertia).collect();
+            let inputs: [(&str, &[f64]); 7] = [
+                ("q", &q),
+                ("qd", &qd),
+                ("qdd", &x),
+                ("tau", &x),
+                ("gravity", &gravity),
+                ("f_tip", &f_tip),
+                ("payload_left_hand", &payload_arg),
+            ];
+            let si = match what {
+                "plain" => SceneInputs::default(),
+                _ => SceneInputs {
+                    gravity: Some(gravity.into()),
+                    tip_wrench: Some(Vector6::from_column_slice(&f_tip)),
+                    payloads: &hand,
+                },
+            };
+            let generic = scene_derivatives(&mut robot, [&q, &qd, &x], &si);
+            let worst = compare(&module, ScalarType::F64, &inputs, |f| rows_of(f, &generic), 1e-12);
+            println!("torso_two_arms (floating, {what}): worst relative error {worst:.1e}");
+        }
+    }
 }

@@ -689,21 +689,32 @@ fn a_singular_floating_base_is_warned_about() {
     assert!(w.to_string().contains("\"ball\" floats"), "{w}");
 }
 
-/// The derivatives are not computed for a floating base yet: an error,
-/// not a panic.
+/// The derivatives of a floating base are NV×NV in the tangent space (the
+/// base's body twist): moving the base changes nothing in its frame, so
+/// ∂τ/∂q's three translation columns are zero, and without gravity so are
+/// its three rotation columns. (Their values: `tests/derivatives.rs`
+/// against double-double differences on the manifold, `tests/pinocchio.rs`
+/// against Pinocchio's free-flyer.)
 #[test]
-fn derivatives_of_a_floating_base_are_an_error_not_a_panic() {
+fn derivatives_of_a_floating_base_live_in_the_tangent_space() {
     use nalgebra::DVector;
     let model = support::model("quadruped12").with_floating_base();
     let (nq, nv) = (model.nq(), model.nv());
-    let mut robot = dynagen::Robot::new(model);
-    let mut q = DVector::zeros(nq);
-    q[6] = 1.0;
-    let v = DVector::zeros(nv);
-    let e = robot.inverse_dynamics_derivatives(&q, &v, &v).unwrap_err();
-    assert!(e.to_string().contains("fixed-base"), "{e}");
-    assert!(robot.forward_dynamics_derivatives(&q, &v, &v).is_err());
-    assert!(robot.mass_matrix_inverse(&q).is_err());
+    let mut robot = dynagen::Robot::new(model.clone());
+    let mut q = DVector::from_fn(nq, |i, _| 0.1 * i as f64 - 0.4);
+    let norm = q.rows(3, 4).norm();
+    q.rows_mut(3, 4).iter_mut().for_each(|x| *x /= norm);
+    let v = DVector::from_fn(nv, |i, _| 0.2 * (i as f64).sin());
+    let (dq, dqd) = robot.inverse_dynamics_derivatives(&q, &v, &v).unwrap();
+    assert_eq!((dq.nrows(), dq.ncols(), dqd.ncols()), (nv, nv, nv));
+    assert!((3..6).all(|c| dq.column(c).iter().all(|x| *x == 0.0)), "translation columns");
+    assert!((0..3).all(|c| dq.column(c).norm() > 0.0), "gravity turns with the base");
+    let (fq, _, minv) = robot.forward_dynamics_derivatives(&q, &v, &v).unwrap();
+    assert_eq!((fq.nrows(), minv.ncols()), (nv, nv));
+    let mut free = dynagen::Robot::new(model.with_gravity([0.0; 3]));
+    let (dq, _) = free.inverse_dynamics_derivatives(&q, &v, &v).unwrap();
+    assert!((0..6).all(|c| dq.column(c).iter().all(|x| *x == 0.0)), "no gravity: the base's columns vanish");
+    assert!(robot.inverse_dynamics_derivatives(&DVector::zeros(nq), &v, &v).is_err(), "a zero quaternion");
 }
 
 /// The energies of a floating model: kinetic ½ q̇ᵀ M q̇, and the potential's

@@ -349,7 +349,7 @@ fn a_floating_scene_file_reads_and_applies() {
 }
 
 /// The numeric API of a floating scene checks NQ/NV lengths and the
-/// quaternion as [`Robot`] does, naming them.
+/// quaternion as [`Robot`] does, naming them (the derivatives too).
 #[test]
 fn a_floating_scene_robot_checks_its_inputs() {
     let model = legged_manipulator();
@@ -365,6 +365,9 @@ fn a_floating_scene_robot_checks_its_inputs() {
     let e = sr.forward_dynamics(&q, &v, &v).unwrap_err().to_string();
     assert!(e.contains("quaternion") && e.contains("norm 0"), "{e}");
     q[6] = 1.0;
-    let e = sr.inverse_dynamics_derivatives_with(&q, &v, &v, &SceneInputs::default()).unwrap_err().to_string();
-    assert!(e.contains("fixed-base"), "{e}");
+    let e = sr.inverse_dynamics_derivatives_with(&q, &v, &DVector::zeros(18), &SceneInputs::default());
+    let e = e.unwrap_err().to_string();
+    assert!(e.contains("qdd") && e.contains("NV = n + 6"), "{e}");
+    let (dq, _) = sr.inverse_dynamics_derivatives_with(&q, &v, &v, &SceneInputs::default()).unwrap();
+    assert_eq!(dq.shape(), (24, 24), "NV × NV derivatives (tests/derivatives.rs checks their values)");
 }

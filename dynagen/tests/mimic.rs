@@ -380,8 +380,10 @@ fn every_generic_function_is_the_full_trees_projected() {
                     );
                     let c = ours.center_of_mass(&q).unwrap() - full.center_of_mass(&qf).unwrap();
                     assert!(c.norm() <= 1e-14, "{tag}: centre of mass");
-                } else {
-                    // the derivatives, by the chain rule
+                }
+                {
+                    // the derivatives, by the chain rule (a floating base's
+                    // columns in the tangent space of its body twist on both)
                     let (dq, dqd) = ours.inverse_dynamics_derivatives(&q, &qd, &qdd).unwrap();
                     let (fq, fqd) = full.inverse_dynamics_derivatives(&qf, &qdf, &qddf).unwrap();
                     assert!(max_diff(&dq, &(gv.transpose() * fq * &gv)) <= 1e-12, "{tag}: dtau/dq");

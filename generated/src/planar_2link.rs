@@ -528,24 +528,56 @@ const RUNTIME_DISPATCH: bool = true;
 // bit the unfused expression (plain x86-64 builds give the same results as
 // code without `fma`).
 
+// The instructions are written in `fma_x86` and `fma_neon` (`fmaf_x86`,
+// `fmaf_neon`): `unsafe` functions compiled with the feature that has them,
+// so that rustc inlines `core::arch`'s vector helpers into them before LLVM
+// sees the code. Called from a function without the feature, the helpers
+// pass their 128-bit vectors through the stack (Rust's ABI for vectors),
+// and a body of a few thousand fused multiply-adds gave LLVM's SROA pass
+// tens of thousands of stack slots to take apart: its compile time grew
+// superlinearly (the 30-joint chain's module: minutes). Written this way
+// the machine code is the same and the compile time grows linearly
+// (`docs/performance.md`, "Fused multiply-adds and run-time dispatch").
+
 /// `a·b + c` with one rounding (x86-64 with the `fma` feature).
 #[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
 #[inline(always)]
-#[allow(dead_code, unused_unsafe)]
+#[allow(dead_code)]
 fn fma(a: f64, b: f64, c: f64) -> f64 {
-    use core::arch::x86_64::{_mm_cvtsd_f64, _mm_fmadd_sd, _mm_set_sd};
     // SAFETY: the cfg above compiles this only where the `fma` target
     // feature is enabled, so the instruction exists.
+    unsafe { fma_x86(a, b, c) }
+}
+
+/// The fused multiply-add instruction (`vfmadd…sd`). Only called where
+/// the `fma` feature is known: see `fma` and `Avx2Fma`.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "fma")]
+#[inline]
+#[allow(dead_code, unused_unsafe)]
+unsafe fn fma_x86(a: f64, b: f64, c: f64) -> f64 {
+    use core::arch::x86_64::{_mm_cvtsd_f64, _mm_fmadd_sd, _mm_set_sd};
+    // SAFETY: compiled with the `fma` feature, called only where it is present.
     unsafe { _mm_cvtsd_f64(_mm_fmadd_sd(_mm_set_sd(a), _mm_set_sd(b), _mm_set_sd(c))) }
 }
 
 /// `a·b + c` with one rounding (aarch64).
 #[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
 #[inline(always)]
-#[allow(dead_code, unused_unsafe)]
+#[allow(dead_code)]
 fn fma(a: f64, b: f64, c: f64) -> f64 {
-    use core::arch::aarch64::{vdup_n_f64, vfma_f64, vget_lane_f64};
     // SAFETY: the cfg above compiles this only where NEON is enabled.
+    unsafe { fma_neon(a, b, c) }
+}
+
+/// NEON's fused multiply-add (`fmadd`), for `fma`.
+#[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
+#[target_feature(enable = "neon")]
+#[inline]
+#[allow(dead_code, unused_unsafe)]
+unsafe fn fma_neon(a: f64, b: f64, c: f64) -> f64 {
+    use core::arch::aarch64::{vdup_n_f64, vfma_f64, vget_lane_f64};
+    // SAFETY: compiled only where NEON is enabled.
     unsafe { vget_lane_f64::<0>(vfma_f64(vdup_n_f64(c), vdup_n_f64(a), vdup_n_f64(b))) }
 }
 
@@ -564,21 +596,41 @@ fn fma(a: f64, b: f64, c: f64) -> f64 {
 /// see `fma`.
 #[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
 #[inline(always)]
-#[allow(dead_code, unused_unsafe)]
+#[allow(dead_code)]
 fn fmaf(a: f32, b: f32, c: f32) -> f32 {
-    use core::arch::x86_64::{_mm_cvtss_f32, _mm_fmadd_ss, _mm_set_ss};
     // SAFETY: the cfg above compiles this only where the `fma` target
     // feature is enabled, so the instruction exists.
+    unsafe { fmaf_x86(a, b, c) }
+}
+
+/// `fma_x86` in `f32` (`vfmadd…ss`).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "fma")]
+#[inline]
+#[allow(dead_code, unused_unsafe)]
+unsafe fn fmaf_x86(a: f32, b: f32, c: f32) -> f32 {
+    use core::arch::x86_64::{_mm_cvtss_f32, _mm_fmadd_ss, _mm_set_ss};
+    // SAFETY: compiled with the `fma` feature, called only where it is present.
     unsafe { _mm_cvtss_f32(_mm_fmadd_ss(_mm_set_ss(a), _mm_set_ss(b), _mm_set_ss(c))) }
 }
 
 /// `a·b + c` in `f32` with one rounding (aarch64).
 #[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
 #[inline(always)]
-#[allow(dead_code, unused_unsafe)]
+#[allow(dead_code)]
 fn fmaf(a: f32, b: f32, c: f32) -> f32 {
-    use core::arch::aarch64::{vdup_n_f32, vfma_f32, vget_lane_f32};
     // SAFETY: the cfg above compiles this only where NEON is enabled.
+    unsafe { fmaf_neon(a, b, c) }
+}
+
+/// `fma_neon` in `f32`.
+#[cfg(all(target_arch = "aarch64", target_feature = "neon"))]
+#[target_feature(enable = "neon")]
+#[inline]
+#[allow(dead_code, unused_unsafe)]
+unsafe fn fmaf_neon(a: f32, b: f32, c: f32) -> f32 {
+    use core::arch::aarch64::{vdup_n_f32, vfma_f32, vget_lane_f32};
+    // SAFETY: compiled only where NEON is enabled.
     unsafe { vget_lane_f32::<0>(vfma_f32(vdup_n_f32(c), vdup_n_f32(a), vdup_n_f32(b))) }
 }
 
@@ -750,18 +802,14 @@ impl Isa for Avx2Fma {
     const FUSED: bool = true;
     const QUADS: bool = true;
     #[inline(always)]
-    #[allow(unused_unsafe)]
     fn fma(a: f64, b: f64, c: f64) -> f64 {
-        use core::arch::x86_64::{_mm_cvtsd_f64, _mm_fmadd_sd, _mm_set_sd};
         // SAFETY: `Avx2Fma` code runs only on processors with FMA (see above).
-        unsafe { _mm_cvtsd_f64(_mm_fmadd_sd(_mm_set_sd(a), _mm_set_sd(b), _mm_set_sd(c))) }
+        unsafe { fma_x86(a, b, c) }
     }
     #[inline(always)]
-    #[allow(unused_unsafe)]
     fn fmaf(a: f32, b: f32, c: f32) -> f32 {
-        use core::arch::x86_64::{_mm_cvtss_f32, _mm_fmadd_ss, _mm_set_ss};
         // SAFETY: `Avx2Fma` code runs only on processors with FMA (see above).
-        unsafe { _mm_cvtss_f32(_mm_fmadd_ss(_mm_set_ss(a), _mm_set_ss(b), _mm_set_ss(c))) }
+        unsafe { fmaf_x86(a, b, c) }
     }
 }
 

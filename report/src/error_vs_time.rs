@@ -255,17 +255,17 @@ fn generic<'a, S: Scalar>(name: &'static str, model: &'a Model, f: Func, timing:
 
 /// A state as the arrays a generated function takes, with the sines and
 /// cosines of the joint angles (computed in f64 by std).
-struct Arrays<T, const N: usize> {
-    q: [T; N],
-    qd: [T; N],
-    qdd: [T; N],
-    tau: [T; N],
-    s: [T; N],
-    c: [T; N],
+pub(crate) struct Arrays<T, const N: usize> {
+    pub q: [T; N],
+    pub qd: [T; N],
+    pub qdd: [T; N],
+    pub tau: [T; N],
+    pub s: [T; N],
+    pub c: [T; N],
 }
 
 impl<T: Scalar, const N: usize> Arrays<T, N> {
-    fn new(state: &State, model: &Model) -> Self {
+    pub(crate) fn new(state: &State, model: &Model) -> Self {
         let arr = |v: &[f64]| -> [T; N] { core::array::from_fn(|i| T::from_f64(v[i])) };
         let angle = |i: usize| {
             let j = &model.bodies[i].joint;
@@ -287,7 +287,7 @@ impl<T: Scalar, const N: usize> Arrays<T, N> {
 }
 
 /// A generated function's result, flattened to f64.
-trait Flatten {
+pub(crate) trait Flatten {
     fn flat(&self) -> Vec<f64>;
 }
 impl<const N: usize> Flatten for [f64; N] {
@@ -334,6 +334,7 @@ macro_rules! generated_variant {
         }
     }};
 }
+pub(crate) use generated_variant;
 
 /// `fn $robot(f, model, timing) -> Vec<Variant>`: the generated variants of
 /// one robot's function `f`.
@@ -589,7 +590,7 @@ pub fn measure(report: &Report, robot: &str, model: &Model, quick: bool) -> Vec<
     rows
 }
 
-fn fmt_time(s: f64) -> String {
+pub(crate) fn fmt_time(s: f64) -> String {
     let ns = s * 1e9;
     if !ns.is_finite() {
         "–".into()
@@ -602,7 +603,7 @@ fn fmt_time(s: f64) -> String {
     }
 }
 
-fn fmt_err(e: f64) -> String {
+pub(crate) fn fmt_err(e: f64) -> String {
     if e.is_nan() {
         "NaN".into()
     } else if e == 0.0 {
@@ -612,7 +613,7 @@ fn fmt_err(e: f64) -> String {
     }
 }
 
-fn fmt_stats(v: &[f64]) -> (String, String) {
+pub(crate) fn fmt_stats(v: &[f64]) -> (String, String) {
     median_max(v).map_or(("–".into(), "–".into()), |(m, x)| (fmt_err(m), fmt_err(x)))
 }
 

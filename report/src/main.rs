@@ -14,6 +14,7 @@ mod plot;
 mod report;
 mod work_precision;
 
+mod derivatives;
 mod error_vs_time;
 
 use report::Report;
@@ -44,6 +45,7 @@ fn main() {
     };
     // The sections, in the order the report shows them.
     error_vs_time::run(&mut report);
+    derivatives::run(&mut report);
     work_precision::run(&mut report);
     if let Err(e) = report.finish() {
         fail(&e);

@@ -2,7 +2,8 @@
 # The derivatives of the dynamics in one run: Pinocchio's C++ analytical
 # derivatives (pinocchio_derivatives_bench.cpp: computeRNEADerivatives,
 # computeABADerivatives, computeMinverse, rnea) and dynagen's generated ones
-# (benches/examples/derivatives.rs), on ur5.urdf and panda.urdf, in
+# (benches/examples/derivatives.rs), on ur5.urdf, panda.urdf, iiwa14.urdf and
+# quadruped12.urdf (its trunk fixed, then floating: a free flyer), in
 # alternation for ROUNDS rounds (default 3), the same states' distribution and
 # statistic (median of 300 batches of 1000 calls).
 # Needs: pip install pin cmeel-eigen cmeel-urdfdom-headers ; g++ ; cargo.
@@ -19,11 +20,14 @@ rounds="${1:-3}"
 out="${TMPDIR:-/tmp}/pinocchio_derivatives_bench"
 # shellcheck source=pinocchio_build.sh
 . "$here/pinocchio_build.sh"
-pinocchio_build "$here/pinocchio_derivatives_bench.cpp" "$out" "$repo/dynagen/robots/ur5.urdf" "$repo/dynagen/robots/panda.urdf"
+robots=()
+for r in ur5 panda iiwa14 quadruped12; do robots+=("$repo/dynagen/robots/$r.urdf"); done
+robots+=("$repo/dynagen/robots/quadruped12.urdf:floating")
+pinocchio_build "$here/pinocchio_derivatives_bench.cpp" "$out" "${robots[@]}"
 (cd "$repo" && cargo build --release -q -p dynagen-bench --example derivatives)
 target="${CARGO_TARGET_DIR:-$repo/target}"
 for r in $(seq "$rounds"); do
   echo "== round $r"
-  "$out" "$repo/dynagen/robots/ur5.urdf" "$repo/dynagen/robots/panda.urdf"
+  "$out" "${robots[@]}"
   "$target/release/examples/derivatives"
 done

@@ -20,13 +20,13 @@ import sys
 import numpy as np
 import pinocchio as pin
 
-from refcommon import DATA, REPO, dump_json
+from refcommon import DATA, REPO, dump_json, file_order
 
 SCRIPT = "scripts/reference/make_pinocchio_derivatives.py"
 SEED = 20261125
 N_RANDOM = 4
 GRAVITY = np.array([0.0, 0.0, -9.81])
-ROBOTS = ["ur5", "panda", "torso_two_arms", "planar_2link"]
+ROBOTS = ["ur5", "panda", "torso_two_arms", "planar_2link", "iiwa14", "quadruped12"]
 
 
 def mirror_upper(m):
@@ -40,7 +40,12 @@ def run(robot, rng):
     data = model.createData()
     assert model.nq == model.nv
     assert np.allclose(model.gravity.linear, GRAVITY)
-    names = list(model.names)[1:]
+    # dynagen's joint k is Pinocchio's perm[k] (Pinocchio may visit a link's
+    # children in another order than the file's: the quadruped12's legs)
+    pin_names = list(model.names)[1:]
+    names = file_order(REPO / rel)
+    assert sorted(names) == sorted(pin_names)
+    perm = [pin_names.index(name) for name in names]
     n = model.nv
     lower, upper = model.lowerPositionLimit, model.upperPositionLimit
     states = [dict(q=np.zeros(n), qd=np.zeros(n), qdd=np.zeros(n), tau=np.zeros(n))]
@@ -77,11 +82,13 @@ def run(robot, rng):
         worst["dqdd_dq_vs_minus_minv_dtau_dq"] = max(
             worst["dqdd_dq_vs_minus_minv_dtau_dq"],
             float(np.max(np.abs(fq + minv @ dq_at.copy()))))
+        vec = lambda v: v[perm].tolist()  # noqa: E731 (to dynagen's joint order)
+        mat = lambda m: m[np.ix_(perm, perm)].tolist()  # noqa: E731
         out.append({
-            "q": q.tolist(), "qd": qd.tolist(), "qdd": qdd.tolist(), "tau_in": tau.tolist(),
-            "dtau_dq": dq.tolist(), "dtau_dqd": dv.tolist(), "dtau_dqdd": M.tolist(),
-            "dqdd_dq": fq.tolist(), "dqdd_dqd": fv.tolist(), "minv": minv.tolist(),
-            "minv_alone": alone.tolist(),
+            "q": vec(q), "qd": vec(qd), "qdd": vec(qdd), "tau_in": vec(tau),
+            "dtau_dq": mat(dq), "dtau_dqd": mat(dv), "dtau_dqdd": mat(M),
+            "dqdd_dq": mat(fq), "dqdd_dqd": mat(fv), "minv": mat(minv),
+            "minv_alone": mat(alone),
         })
     print(f"{robot}: {names}; consistency {worst}")
     if max(worst.values()) > 1e-8:
@@ -110,7 +117,9 @@ def main():
             "(seed), robot by robot in the order of 'robots': q uniform in [-pi, pi] for revolute "
             "joints and within the limits for prismatic ones, qd in [-2, 2], qdd in [-5, 5], "
             "tau_in in [-10, 10].",
-            "joint_names is Pinocchio's joint order (the test checks it equals dynagen's).",
+            "States are drawn in Pinocchio's joint order, then every vector and matrix is "
+            "permuted to dynagen's (depth first over the URDF tree, children in file order), "
+            "which joint_names gives (the test checks it equals dynagen's).",
         ],
         "robots": {r: run(r, rng) for r in ROBOTS},
     }

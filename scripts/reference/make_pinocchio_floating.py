@@ -35,13 +35,12 @@ Conventions are converted to dynagen's (shared/DESIGN.md):
 Not run in CI.  See README.md in this folder.
 """
 
-import xml.etree.ElementTree as ET
 from importlib import metadata
 
 import numpy as np
 import pinocchio as pin
 
-from refcommon import DATA, REPO, dump_json
+from refcommon import DATA, REPO, dump_json, file_order
 
 SCRIPT = "scripts/reference/make_pinocchio_floating.py"
 SEED = 20261125
@@ -57,28 +56,6 @@ PAYLOADS = [("trunk", 1.5, [0.05, -0.02, 0.04], [0.004, 0.006, 0.007, 0.0005, -0
             ("arm_link06", 0.4, [0.03, 0.01, -0.01], [0.0004, 0.0005, 0.0003, 0.0, 0.00002, 0.0])]
 TIP = ("FL_foot", [0.3, -0.2, 0.1, 5.0, -3.0, 40.0])
 ANG_LIN = [3, 4, 5, 0, 1, 2]
-
-
-def file_order(path):
-    """dynagen's joint order: moving joints depth first over the URDF tree,
-    children in file order (Pinocchio may visit children in another)."""
-    root = ET.parse(path).getroot()
-    children, child_links = {}, set()
-    for j in root.findall("joint"):
-        children.setdefault(j.find("parent").get("link"), []).append(j)
-        child_links.add(j.find("child").get("link"))
-    roots = [l.get("name") for l in root.findall("link") if l.get("name") not in child_links]
-    assert len(roots) == 1, roots
-    order = []
-
-    def visit(link):
-        for j in children.get(link, []):
-            if j.get("type") != "fixed":
-                order.append(j.get("name"))
-            visit(j.find("child").get("link"))
-
-    visit(roots[0])
-    return order
 
 
 def random_tree(rng, n):

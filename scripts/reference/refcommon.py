@@ -1,6 +1,7 @@
 """Shared helpers of the reference-data scripts (not run in CI)."""
 
 import json
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
@@ -76,3 +77,25 @@ UR5_SLIST = np.array([
     [0, 0, 0, 0, 0.81725, 0],
     [0, 0, 0.425, 0.81725, 0, 0.81725],
 ], dtype=float)
+
+
+def file_order(path):
+    """dynagen's joint order: moving joints depth first over the URDF tree,
+    children in file order (Pinocchio may visit children in another)."""
+    root = ET.parse(path).getroot()
+    children, child_links = {}, set()
+    for j in root.findall("joint"):
+        children.setdefault(j.find("parent").get("link"), []).append(j)
+        child_links.add(j.find("child").get("link"))
+    roots = [l.get("name") for l in root.findall("link") if l.get("name") not in child_links]
+    assert len(roots) == 1, roots
+    order = []
+
+    def visit(link):
+        for j in children.get(link, []):
+            if j.get("type") != "fixed":
+                order.append(j.get("name"))
+            visit(j.find("child").get("link"))
+
+    visit(roots[0])
+    return order

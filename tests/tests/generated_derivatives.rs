@@ -1,6 +1,7 @@
 //! The generated derivatives, compiled: the modules `build.rs` writes with
 //! `functions = [inverse_dynamics_derivatives, forward_dynamics_derivatives,
-//! mass_matrix_inverse]` (UR5, Panda, the two-armed torso, an f32 UR5, the
+//! mass_matrix_inverse]` (UR5, Panda, the two-armed torso, the KUKA iiwa 14,
+//! the quadruped12 with its trunk fixed, an f32 UR5 and Panda, the
 //! `ur5_controller` scene) against the generic derivatives (`Robot`,
 //! `SceneRobot`, themselves checked against double-double finite
 //! differences in `dynagen/tests/derivatives.rs`): ≤ 1e-12 of each matrix's
@@ -21,7 +22,11 @@ macro_rules! module {
 module!(ur5_derivatives);
 module!(panda_derivatives);
 module!(torso_two_arms_derivatives);
+module!(iiwa14_derivatives);
+module!(quadruped12_derivatives);
 module!(ur5_derivatives_f32);
+module!(panda_derivatives_f32);
+module!(quadruped12_floating_derivatives);
 module!(ur5_controller_derivatives);
 
 /// Row-major entries.
@@ -63,46 +68,91 @@ macro_rules! check {
     }};
 }
 
+/// The five fixed-base modules (states: 200 on the arms of 6 and 9 joints,
+/// 100 on the others).
 #[test]
-fn ur5_derivatives_match_the_generic_ones() {
+fn fixed_base_derivatives_match_the_generic_ones() {
     check!(ur5_derivatives, "ur5", 200);
-}
-
-#[test]
-fn panda_derivatives_match_the_generic_ones() {
     check!(panda_derivatives, "panda", 200);
-}
-
-#[test]
-fn torso_two_arms_derivatives_match_the_generic_ones() {
     check!(torso_two_arms_derivatives, "torso_two_arms", 100);
+    check!(iiwa14_derivatives, "iiwa14", 100);
+    check!(quadruped12_derivatives, "quadruped12", 100);
 }
 
+/// The floating quadruped's derivatives (NQ-long q, NV × NV matrices in the
+/// tangent of the base's body twist) against the generic ones.
 #[test]
-fn ur5_f32_derivatives_are_close() {
-    let mut robot = bundled_robot("ur5");
-    let mut rng = Rng::new(0xf32);
-    for _ in 0..100 {
-        let mut arr = |a: f64| -> [f64; 6] { core::array::from_fn(|_| rng.range(-a, a)) };
-        let (q, qd, x) = (arr(3.0), arr(2.0), arr(10.0));
-        let f = |a: &[f64; 6]| a.map(|x| x as f32);
-        let v = |a: &[f64; 6]| DVector::from_column_slice(a);
-        let wide = |m: [[f32; 6]; 6]| m.concat().into_iter().map(f64::from).collect::<Vec<_>>();
-        let (a, b) = ur5_derivatives_f32::inverse_dynamics_derivatives(&f(&q), &f(&qd), &f(&x));
+fn floating_quadruped12_derivatives_match_the_generic_ones() {
+    use quadruped12_floating_derivatives as m;
+    let mut robot = dynagen::Robot::new(bundled_model("quadruped12").with_floating_base());
+    assert_eq!(m::JOINT_NAMES.to_vec(), robot.joint_names());
+    let mut rng = Rng::new(0xf10a7);
+    let mut worst = 0.0_f64;
+    for _ in 0..50 {
+        let mut q: [f64; m::NQ] = core::array::from_fn(|_| rng.range(-2.0, 2.0));
+        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        let mut arr = |a: f64| -> [f64; m::NV] { core::array::from_fn(|_| rng.range(-a, a)) };
+        let (qd, x) = (arr(2.0), arr(10.0));
+        let v = |a: &[f64]| DVector::from_column_slice(a);
+        let (a, b) = m::inverse_dynamics_derivatives(&q, &qd, &x);
         let (wa, wb) = robot.inverse_dynamics_derivatives(&v(&q), &v(&qd), &v(&x)).unwrap();
-        let (c, d, e) = ur5_derivatives_f32::forward_dynamics_derivatives(&f(&q), &f(&qd), &f(&x));
+        let (c, d, e) = m::forward_dynamics_derivatives(&q, &qd, &x);
         let (wc, wd, we) = robot.forward_dynamics_derivatives(&v(&q), &v(&qd), &v(&x)).unwrap();
+        let minv = m::mass_matrix_inverse(&q);
         for (what, got, want) in [
-            ("dtau/dq", wide(a), rows(&wa)),
-            ("dtau/dqd", wide(b), rows(&wb)),
-            ("dqdd/dq", wide(c), rows(&wc)),
-            ("dqdd/dqd", wide(d), rows(&wd)),
-            ("Minv", wide(e), rows(&we)),
+            ("dtau/dq", a.concat(), rows(&wa)),
+            ("dtau/dqd", b.concat(), rows(&wb)),
+            ("dqdd/dq", c.concat(), rows(&wc)),
+            ("dqdd/dqd", d.concat(), rows(&wd)),
+            ("Minv", e.concat(), rows(&we)),
+            ("mass_matrix_inverse", minv.concat(), rows(&we)),
         ] {
             let err = norm_rel_err(&got, &want, 1e-300);
-            assert!(err <= 1e-4, "f32 {what}: {err:e}");
+            assert!(err <= 1e-12, "floating quadruped12 {what}: {err:e}");
+            worst = worst.max(err);
         }
     }
+    println!("floating quadruped12: worst relative error {worst:.1e}");
+}
+
+/// An f32 module against the generic f64 derivatives, ≤ 1e-4 of each
+/// matrix's norm.
+macro_rules! check_f32 {
+    ($m:ident, $robot:expr) => {{
+        const N: usize = $m::DOF;
+        let mut robot = bundled_robot($robot);
+        let mut rng = Rng::new(0xf32);
+        for _ in 0..100 {
+            let mut arr = |a: f64| -> [f64; N] { core::array::from_fn(|_| rng.range(-a, a)) };
+            let (q, qd, x) = (arr(3.0), arr(2.0), arr(10.0));
+            let f = |a: &[f64; N]| a.map(|x| x as f32);
+            let v = |a: &[f64; N]| DVector::from_column_slice(a);
+            let wide = |m: [[f32; N]; N]| m.concat().into_iter().map(f64::from).collect::<Vec<_>>();
+            let (a, b) = $m::inverse_dynamics_derivatives(&f(&q), &f(&qd), &f(&x));
+            let (wa, wb) = robot.inverse_dynamics_derivatives(&v(&q), &v(&qd), &v(&x)).unwrap();
+            let (c, d, e) = $m::forward_dynamics_derivatives(&f(&q), &f(&qd), &f(&x));
+            let (wc, wd, we) = robot.forward_dynamics_derivatives(&v(&q), &v(&qd), &v(&x)).unwrap();
+            let minv = $m::mass_matrix_inverse(&f(&q));
+            for (what, got, want) in [
+                ("dtau/dq", wide(a), rows(&wa)),
+                ("dtau/dqd", wide(b), rows(&wb)),
+                ("dqdd/dq", wide(c), rows(&wc)),
+                ("dqdd/dqd", wide(d), rows(&wd)),
+                ("Minv", wide(e), rows(&we)),
+                ("mass_matrix_inverse", wide(minv), rows(&we)),
+            ] {
+                let err = norm_rel_err(&got, &want, 1e-300);
+                assert!(err <= 1e-4, "{} f32 {what}: {err:e}", stringify!($m));
+            }
+        }
+    }};
+}
+
+#[test]
+fn f32_derivatives_are_close() {
+    check_f32!(ur5_derivatives_f32, "ur5");
+    check_f32!(panda_derivatives_f32, "panda");
 }
 
 /// The scene's armature, friction and constant payload enter; its tip

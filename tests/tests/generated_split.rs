@@ -84,6 +84,16 @@ fn the_split_modules_are_cut_into_parts_within_the_budget() {
     let traced = dynagen::codegen::generate(&skewed_chain::skewed_chain(12), &Default::default()).unwrap();
     let longest = traced.functions.iter().map(|f| f.sin_cos_inputs.function.nodes().len()).max().unwrap();
     assert!(longest > 4000, "the 12-joint chain's longest body has {longest} nodes");
+    // Bodies this long have their parts inlined (whole in optimised builds;
+    // this debug build compiling them is the check that inlined parts do not
+    // overflow rustc's stack either), and no AVX2 + FMA copy of a part.
+    for source in [CHAIN4_SPLIT, CHAIN12] {
+        assert!(source.contains("#[inline(always)]\n#[allow(clippy::too_many_arguments)]\n#[allow(dead_code)]\nfn forward_dynamics_sc_part1("));
+        assert!(
+            !source.contains("#[inline(never)]\n#[allow(clippy::too_many_arguments)]")
+                && !source.contains("_part1_avx2_fma(")
+        );
+    }
 }
 
 #[test]

@@ -28,6 +28,7 @@ mod loads;
 mod lu;
 pub mod mimic;
 pub mod rnea;
+pub mod rnea_derivatives;
 mod workspace;
 
 pub(crate) use loads::add_tip_wrenches;

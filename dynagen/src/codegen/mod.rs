@@ -46,7 +46,7 @@ pub use builder::{module_name, BuildError, Builder, GeneratedFile};
 pub use emit::{float_literal_text, payload_argument};
 pub use function::Function;
 pub use module::{GeneratedFunction, GeneratedModule};
-pub use options::{CodegenOptions, ForwardDynamicsMethod, ScalarType, Trig, DEFAULT_SPLIT_LETS, DISPATCH_MAX_OPS};
+pub use options::{CodegenOptions, ForwardDynamicsMethod, ScalarType, Trig, DEFAULT_SPLIT_LETS};
 pub use prepare::{
     canonical_text, center_prismatic_leaves, fnv1a64, model_hash, regroup_inertia, slide_origins_along_axes,
     snap_rounding, SnappedConstant, ROUNDING_TOLERANCE,
@@ -177,18 +177,15 @@ pub fn generate_scene(scene: &SceneModel, options: &CodegenOptions) -> Result<Ge
     }
     let (prepared, snapped) = prepare::prepare(scene, options);
     let (functions, fd) = trace::trace_module(&prepared, options)?;
-    let emitted_ops = functions.iter().filter(|f| f.emitted).map(|f| f.op_count.total()).sum();
-    let (effective, dispatch_note) = options::within_dispatch_limit(options, emitted_ops);
     let hash = model_hash(&scene.model);
     let parts = emit::ModuleParts {
         scene,
         prepared: &prepared,
-        options: &effective,
+        options,
         functions: &functions,
         fd: &fd,
         snapped: &snapped,
         hash,
-        dispatch_note: &dispatch_note,
     };
     let source = emit::module_source(&parts)?;
     Ok(GeneratedModule { source, functions, snapped, model_hash: hash })

@@ -1,6 +1,7 @@
 //! What generation gives: the module's source and its traced functions.
 
 use super::{ForwardDynamicsMethod, Function, SinCosTrace, SnappedConstant};
+use crate::algorithms::derivatives::Formulation;
 use crate::symbolic::{OpCount, Traced};
 
 /// One traced function of a module.
@@ -11,6 +12,10 @@ pub struct GeneratedFunction {
     /// For forward dynamics, the algorithm it was traced from (ABA or
     /// LᵀDL); `None` for the others.
     pub method: Option<ForwardDynamicsMethod>,
+    /// For the derivatives of the dynamics, the formulation of ∂τ/∂(q, q̇)
+    /// it was traced in (both are traced, the one with fewer operations is
+    /// emitted); `None` for the others.
+    pub formulation: Option<Formulation>,
     /// Its Rust name (`frame_pose_ee_link` for a frame function).
     pub name: String,
     /// Whether it is in the source (the forward dynamics not chosen is
@@ -32,10 +37,11 @@ impl GeneratedFunction {
     /// The name, with the forward dynamics' algorithm: `forward_dynamics
     /// (ABA)`, `forward_dynamics (CRBA + LTDL)`.
     pub fn label(&self) -> String {
-        match self.method {
-            Some(ForwardDynamicsMethod::Ldlt) => format!("{} (CRBA + LTDL)", self.name),
-            Some(_) => format!("{} (ABA)", self.name),
-            None => self.name.clone(),
+        match (self.method, self.formulation) {
+            (Some(ForwardDynamicsMethod::Ldlt), _) => format!("{} (CRBA + LTDL)", self.name),
+            (Some(_), _) => format!("{} (ABA)", self.name),
+            (None, Some(f)) => format!("{} ({})", self.name, f.name()),
+            (None, None) => self.name.clone(),
         }
     }
 }

@@ -150,20 +150,9 @@ pub struct CodegenOptions {
     /// between machines with and without FMA (on both they are within the
     /// accuracy the tests check, 1e-12 of the generic solver), and the
     /// bodies are compiled twice. Off, a build gives the same bits on every
-    /// x86-64 machine. [`generate`](super::generate) leaves it out of modules of more than
-    /// [`DISPATCH_MAX_OPS`] operations (slow to compile), and says so in
-    /// the header.
+    /// x86-64 machine.
     pub runtime_dispatch: bool,
 }
-
-/// [`generate`](super::generate) leaves the run-time dispatch out of a
-/// module whose emitted functions take more operations than this (their
-/// sum, as the header counts them), and says so in the header: rustc
-/// compiles the AVX2 and FMA copies of long bodies (written with
-/// `core::arch`'s `_mm_fmadd_sd`, as `f64::mul_add` is not in `core`) far
-/// more slowly than the body grows; the compile times behind the limit are
-/// in `docs/performance.md`. The bundled robots are under it.
-pub const DISPATCH_MAX_OPS: usize = 5_000;
 
 /// The default [`CodegenOptions::split_lets`]: 2,500 `let`s. rustc with
 /// debug information overflows its stack at somewhat more `let`s in one
@@ -263,20 +252,6 @@ impl CodegenOptions {
         self.source = Some(source.into());
         self
     }
-}
-
-/// `options` with the run-time dispatch left out if the module's functions
-/// take `ops` operations, over [`DISPATCH_MAX_OPS`], and the header's line
-/// that says so (empty when nothing was left out).
-pub(super) fn within_dispatch_limit(options: &CodegenOptions, ops: usize) -> (CodegenOptions, String) {
-    if !options.runtime_dispatch || ops <= DISPATCH_MAX_OPS {
-        return (options.clone(), String::new());
-    }
-    let note = format!(
-        "// Run-time dispatch was asked for but left out: the functions take {ops} operations, over\n\
-         //   the {DISPATCH_MAX_OPS} up to which it is emitted (rustc compiles the fused copies of long bodies slowly).\n"
-    );
-    (CodegenOptions { runtime_dispatch: false, ..options.clone() }, note)
 }
 
 /// An option enum's spellings, one table per enum: what [`FromStr`] reads

@@ -165,14 +165,6 @@ impl Check<'_> {
         }
         Ok(self)
     }
-    /// The model has a fixed base: what the derivatives are computed for
-    /// so far.
-    pub(crate) fn fixed_base(self, what: &'static str) -> Result<Self, InputError> {
-        if self.0.is_floating() {
-            return Err(InputError::Unsupported(what));
-        }
-        Ok(self)
-    }
     /// The model has a forward dynamics: no dependent joints.
     pub(crate) fn forward_dynamics(self) -> Result<Self, InputError> {
         match self.0.dependent_joints().first() {

@@ -1,11 +1,16 @@
 //! The derivatives of the dynamics on [`Robot`]: ∂τ/∂(q, q̇), ∂q̈/∂(q, q̇)
-//! and M⁻¹, by [`algorithms::derivatives`](crate::algorithms::derivatives),
-//! checked and allocation-free in their `_into` forms. Matrices are
-//! `[output][input]`: entry (i, j) is ∂yᵢ/∂xⱼ.
+//! and M⁻¹, by [`algorithms::derivatives`](crate::algorithms::derivatives)
+//! (the analytical recursion), checked and allocation-free in their `_into`
+//! forms. Matrices are `[output][input]`: entry (i, j) is ∂yᵢ/∂xⱼ, NV × NV.
+//! On a floating base the configuration's columns are in its tangent space:
+//! column k < 6 moves the base by exp of the body twist eₖ (angular first),
+//! as [`integrate`](crate::algorithms::floating::integrate) does; the
+//! translation columns are zero (`docs/architecture.md`, "Derivatives:
+//! conventions").
 
 use super::{matrix, Robot};
-use crate::algorithms::derivatives::{self as d, DerivativeWorkspace, DualLoads};
-use crate::algorithms::{crba, rnea, Loads};
+use crate::algorithms::derivatives::{self as d, DerivativeWorkspace, Dynamics, Formulation, RigidBodyOnly};
+use crate::algorithms::{crba, Loads};
 use crate::model::Model;
 use crate::InputError;
 use nalgebra::{DMatrix, DVector};
@@ -14,26 +19,21 @@ use nalgebra::{DMatrix, DVector};
 #[derive(Clone, Debug)]
 pub(crate) struct DerivativeScratch {
     pub(super) dw: DerivativeWorkspace<f64>,
-    pub(super) loads: DualLoads<f64>,
     /// Three row-major n×n results.
     pub(super) rows: [Vec<f64>; 3],
 }
 
 impl DerivativeScratch {
     pub(crate) fn new(model: &Model) -> Self {
-        let n = model.dof();
+        let n = model.nv();
         DerivativeScratch {
             dw: DerivativeWorkspace::new(model),
-            loads: DualLoads::with_capacity(model.frames.len(), n),
             rows: [vec![0.0; n * n], vec![0.0; n * n], vec![0.0; n * n]],
         }
     }
 }
 
 /// Copies the row-major `rows` into `m`.
-/// The error of a derivative asked of a floating-base robot.
-pub(super) const FIXED_BASE_ONLY: &str = "the derivatives are computed for fixed-base robots only (yet)";
-
 pub(super) fn copy_rows(rows: &[f64], m: &mut DMatrix<f64>) {
     let n = m.nrows();
     for i in 0..n {
@@ -53,8 +53,9 @@ impl Robot {
         qd: &DVector<f64>,
         qdd: &DVector<f64>,
     ) -> Result<(DMatrix<f64>, DMatrix<f64>), InputError> {
-        let mut dqd = DMatrix::zeros(self.dof(), self.dof());
-        let dq = matrix(self.dof(), |dq| self.inverse_dynamics_derivatives_into(q, qd, qdd, dq, &mut dqd))?;
+        let nv = self.model.nv();
+        let mut dqd = DMatrix::zeros(nv, nv);
+        let dq = matrix(nv, |dq| self.inverse_dynamics_derivatives_into(q, qd, qdd, dq, &mut dqd))?;
         Ok((dq, dqd))
     }
     /// [`inverse_dynamics_derivatives`](Self::inverse_dynamics_derivatives)
@@ -68,19 +69,16 @@ impl Robot {
         dtau_dqd: &mut DMatrix<f64>,
     ) -> Result<(), InputError> {
         self.check()
-            .fixed_base(FIXED_BASE_ONLY)?
             .joints(&[("q", q), ("qd", qd), ("qdd", qdd)])?
             .square("dtau_dq", dtau_dq)?
             .square("dtau_dqd", dtau_dqd)?;
         let g = self.model.gravity;
-        let DerivativeScratch { dw, loads, rows } = &mut self.deriv;
-        loads.set(&Loads::gravity(&g).with_tips(&self.tips));
-        let model = &self.model;
+        let DerivativeScratch { dw, rows } = &mut self.deriv;
+        let loads = Loads::gravity(&g).with_tips(&self.tips);
+        let d = Dynamics { model: &self.model, loads, torques: &RigidBodyOnly, mass: None };
         let [a, b, _] = rows;
-        let tau = |ws: &mut _, q: &[_], qd: &[_], qdd: &[_], out: &mut [_]| {
-            rnea::rnea(model, ws, q, Some(qd), Some(qdd), loads.loads(), out)
-        };
-        d::inverse_dynamics_derivatives(dw, [q.as_slice(), qd.as_slice(), qdd.as_slice()], tau, a, b);
+        let state = [q.as_slice(), qd.as_slice(), qdd.as_slice()];
+        d::inverse_dynamics_derivatives(&d, dw, state, Formulation::Analytical, [a, b], None);
         copy_rows(a, dtau_dq);
         copy_rows(b, dtau_dqd);
         Ok(())
@@ -96,7 +94,7 @@ impl Robot {
         qd: &DVector<f64>,
         tau: &DVector<f64>,
     ) -> Result<(DMatrix<f64>, DMatrix<f64>, DMatrix<f64>), InputError> {
-        let n = self.dof();
+        let n = self.model.nv();
         let (mut dqd, mut minv) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n));
         let dq = matrix(n, |dq| self.forward_dynamics_derivatives_into(q, qd, tau, dq, &mut dqd, &mut minv))?;
         Ok((dq, dqd, minv))
@@ -113,22 +111,18 @@ impl Robot {
         minv: &mut DMatrix<f64>,
     ) -> Result<(), InputError> {
         self.check()
-            .fixed_base(FIXED_BASE_ONLY)?
             .joints(&[("q", q), ("qd", qd), ("tau", tau)])?
+            .forward_dynamics()?
             .square("dqdd_dq", dqdd_dq)?
             .square("dqdd_dqd", dqdd_dqd)?
             .square("minv", minv)?;
         let g = self.model.gravity;
-        let DerivativeScratch { dw, loads, rows } = &mut self.deriv;
-        loads.set(&Loads::gravity(&g).with_tips(&self.tips));
-        let model = &self.model;
+        let DerivativeScratch { dw, rows } = &mut self.deriv;
+        let loads = Loads::gravity(&g).with_tips(&self.tips);
+        let d = Dynamics { model: &self.model, loads, torques: &RigidBodyOnly, mass: None };
         let [a, b, c] = rows;
-        let tau_fn = |ws: &mut _, q: &[_], qd: &[_], qdd: &[_], out: &mut [_]| {
-            rnea::rnea(model, ws, q, Some(qd), Some(qdd), loads.loads(), out)
-        };
-        let mass = |ws: &mut _, q: &[f64], m: &mut [f64]| crba::crba(model, ws, q, Loads::none(), m);
-        let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());
-        d::forward_dynamics_derivatives(model, dw, [q, qd, tau], tau_fn, mass, [a, b, c]);
+        let state = [q.as_slice(), qd.as_slice(), tau.as_slice()];
+        d::forward_dynamics_derivatives(&d, dw, state, Formulation::Analytical, [a, b, c]);
         copy_rows(a, dqdd_dq);
         copy_rows(b, dqdd_dqd);
         copy_rows(c, minv);
@@ -138,12 +132,12 @@ impl Robot {
     /// M(q)⁻¹, from the sparse LᵀDL factors of the mass matrix (no dense
     /// inversion).
     pub fn mass_matrix_inverse(&mut self, q: &DVector<f64>) -> Result<DMatrix<f64>, InputError> {
-        matrix(self.dof(), |m| self.mass_matrix_inverse_into(q, m))
+        matrix(self.model.nv(), |m| self.mass_matrix_inverse_into(q, m))
     }
     /// [`mass_matrix_inverse`](Self::mass_matrix_inverse) into `minv` (n×n),
     /// allocating nothing.
     pub fn mass_matrix_inverse_into(&mut self, q: &DVector<f64>, minv: &mut DMatrix<f64>) -> Result<(), InputError> {
-        self.check().fixed_base(FIXED_BASE_ONLY)?.joints(&[("q", q)])?.square("minv", minv)?;
+        self.check().joints(&[("q", q)])?.forward_dynamics()?.square("minv", minv)?;
         let [m, linv, _] = &mut self.deriv.rows;
         crba::crba(&self.model, &mut self.ws, q.as_slice(), Loads::none(), m);
         // M⁻¹ is symmetric: row-major and column-major agree.

@@ -8,6 +8,7 @@
 //! state.
 
 use super::SceneModel;
+use crate::algorithms::derivatives::JointTorques;
 use crate::algorithms::{aba, bias, crba, forward_dynamics, rnea, Loads, Workspace};
 use crate::spatial::Vec3;
 use crate::Scalar;
@@ -54,6 +55,14 @@ pub fn sub_friction<S: Scalar>(scene: &SceneModel, qd: &[S], tau: &mut [S]) {
     }
 }
 
+/// The scene's friction, for the derivatives of its dynamics (velocity-side
+/// vectors: n long, or NV on a floating base).
+impl JointTorques for SceneModel {
+    fn add_to<S: Scalar>(&self, qd: &[S], tau: &mut [S]) {
+        add_friction(self, qd, tau);
+    }
+}
+
 /// Adds the armature to the joints' diagonal of the row-major `m` (n×n, or
 /// NV×NV on a floating base).
 pub fn add_armature_diagonal<S: Scalar>(scene: &SceneModel, m: &mut [S]) {
@@ -66,7 +75,7 @@ pub fn add_armature_diagonal<S: Scalar>(scene: &SceneModel, m: &mut [S]) {
 }
 
 /// The scene's armature (`None` when it has none) added to `loads`.
-fn with_armature<'a, S>(scene: &'a SceneModel, loads: Loads<'a, S>) -> Loads<'a, S> {
+pub(crate) fn with_armature<'a, S>(scene: &'a SceneModel, loads: Loads<'a, S>) -> Loads<'a, S> {
     loads.with_armature(scene.has_armature().then_some(scene.armature.as_slice()))
 }
 

@@ -119,6 +119,14 @@ pub(crate) fn header(facts: &HeaderFacts) -> String {
     if functions.iter().any(|f| f.function == Function::ForwardDynamics) {
         let _ = writeln!(h, "// Forward dynamics: {why}.");
     }
+    if functions.iter().any(|f| f.formulation.is_some()) {
+        let _ = writeln!(
+            h,
+            "// Derivatives: dtau/dq and dtau/dqd traced twice, by the analytical recursion and by dual numbers through\n\
+             //   the inverse dynamics; each function keeps the one with fewer FP operations (both counted below);\n\
+             //   dqdd/dx = -Minv dtau/dx at qdd = FD(q, qd, tau), Minv from the sparse LTDL factors of M."
+        );
+    }
     let _ = writeln!(
         h,
         "{}// Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[{}i]\n\

@@ -67,8 +67,6 @@ pub(crate) struct ModuleParts<'a> {
     pub fd: &'a FdChoice,
     pub snapped: &'a [SnappedConstant],
     pub hash: u64,
-    /// The header's line on a run-time dispatch left out (or empty).
-    pub dispatch_note: &'a str,
 }
 
 /// The module's source: header, constants, the emitted functions, kernel.
@@ -112,9 +110,15 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
     let mut items = wrapper::parse_items(consts)?;
     if functions.iter().any(|f| f.emitted && matches!(f.function.shape(floating), Shape::Matrices(..))) {
         let ty = statements::scalar_type(options.scalar);
-        items.extend(wrapper::parse_items(quote! {
-            #[doc = " A DOF × DOF matrix `[row][col]`, as the derivatives return them (`[output][input]`)."]
-            pub type DofMatrix = [[#ty; DOF]; DOF];
+        items.extend(wrapper::parse_items(match floating {
+            false => quote! {
+                #[doc = " A DOF × DOF matrix `[row][col]`, as the derivatives return them (`[output][input]`)."]
+                pub type DofMatrix = [[#ty; DOF]; DOF];
+            },
+            true => quote! {
+                #[doc = " An NV × NV matrix `[row][col]`, as the derivatives return them (`[output][input]`)."]
+                pub type NvMatrix = [[#ty; NV]; NV];
+            },
         })?);
     }
     items.push(wrapper::parse_item(sin_cos::sin_cos_all_item(options.scalar))?);
@@ -172,8 +176,7 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
     let body = tidy_dispatch(&prettyplease::unparse(&file));
     let facts =
         header::HeaderFacts { scene, options, fd: parts.fd, functions, snapped: parts.snapped, hash: parts.hash };
-    let header =
-        header::header(&facts) + &split::header_note(options.split_lets, &split_functions) + parts.dispatch_note;
+    let header = header::header(&facts) + &split::header_note(options.split_lets, &split_functions);
     let kernel = sin_cos::kernel_source(options.scalar, options.runtime_dispatch);
     let source = format!("{header}\n{body}\n{kernel}");
     text::check_source(&header, &source)?;

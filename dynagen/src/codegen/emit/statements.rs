@@ -105,10 +105,12 @@ impl Shape {
                 let (r, c) = (r.tokens(), c.tokens());
                 quote!([[#ty; #c]; #r])
             }
-            // The module's alias `DofMatrix` = `[[T; DOF]; DOF]` (a tuple of
-            // the full types is too complex a type for clippy's taste).
-            Shape::Matrices(k, Dim::Dof, Dim::Dof) => {
-                let each = (0..k).map(|_| quote!(DofMatrix));
+            // The module's alias `DofMatrix` = `[[T; DOF]; DOF]`, or on a
+            // floating base `NvMatrix` = `[[T; NV]; NV]` (a tuple of the full
+            // types is too complex a type for clippy's taste).
+            Shape::Matrices(k, d @ (Dim::Dof | Dim::Nv), c) if c == d => {
+                let alias = if d == Dim::Dof { quote!(DofMatrix) } else { quote!(NvMatrix) };
+                let each = (0..k).map(|_| alias.clone());
                 quote!((#(#each),*))
             }
             Shape::Matrices(k, r, c) => {

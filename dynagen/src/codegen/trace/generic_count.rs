@@ -1,7 +1,7 @@
 //! The operation count of the generic recursion, for comparison with the
 //! generated code's: the generic algorithm run on the [`Counting`] scalar.
 
-use crate::algorithms::derivatives::{self as d, DerivativeWorkspace, DualLoads};
+use crate::algorithms::derivatives::{self as d, DerivativeWorkspace, Dynamics, Formulation, RigidBodyOnly};
 use crate::algorithms::{aba, bias, crba, forward_dynamics, rnea, Loads, Workspace};
 use crate::codegen::{ForwardDynamicsMethod, Function};
 use crate::model::Model;
@@ -15,13 +15,8 @@ use crate::symbolic::OpCount;
 /// beforehand and not counted; `method` picks the forward dynamics'). The
 /// state is a fixed non-trivial one; the count does not depend on it, as
 /// the algorithms never branch on the state. `None` for a frame the model
-/// does not have, and for what a floating-base module does not have.
+/// does not have.
 pub fn generic_op_count(model: &Model, f: &Function, method: ForwardDynamicsMethod) -> Option<OpCount> {
-    let n = model.dof();
-    if model.is_floating() && f.is_derivative() {
-        // A floating base's derivatives are not generated (nor counted) yet.
-        return None;
-    }
     // q has NQ entries, the velocity-side vectors NV (both n on a fixed base);
     // rnea, crba, aba and the LᵀDL forward dynamics take a floating model to
     // its own algorithms.
@@ -42,15 +37,12 @@ pub fn generic_op_count(model: &Model, f: &Function, method: ForwardDynamicsMeth
         None => None,
     };
     let mut dw = DerivativeWorkspace::<Counting>::new(model);
-    let mut dl = DualLoads::with_capacity(0, n);
-    dl.set(&Loads::gravity(&g));
-    let mut linv = vec![Counting::zero(); n * n];
+    let mut linv = vec![Counting::zero(); model.nv() * model.nv()];
     let (ws, out, a, g) = (&mut ws, &mut out, &args, Some(&g));
     let loads = Loads::new(g, &[], &[]);
-    let tau = |ws: &mut _, q: &[_], qd: &[_], qdd: &[_], o: &mut [_]| {
-        rnea::rnea(model, ws, q, Some(qd), Some(qdd), dl.loads(), o)
-    };
-    let mass = |ws: &mut _, q: &[Counting], m: &mut [Counting]| crba::crba(model, ws, q, Loads::none(), m);
+    // The generic solver's derivatives: the analytical recursion.
+    let dynamics = Dynamics { model, loads, torques: &RigidBodyOnly, mass: None };
+    let analytical = Formulation::Analytical;
     let ((), ops) = Counting::count(|| match f {
         Function::InverseDynamics => rnea::rnea(model, ws, &a[0], Some(&a[1]), Some(&a[2]), loads, out),
         Function::MassMatrix => crba::crba(model, ws, &a[0], Loads::none(), out),
@@ -62,13 +54,14 @@ pub fn generic_op_count(model: &Model, f: &Function, method: ForwardDynamicsMeth
         }
         Function::ForwardDynamics => aba::aba(model, ws, &a[0], &a[1], &a[2], loads, out),
         Function::InverseDynamicsDerivatives => {
-            let (x, y) = out.split_at_mut(n * n);
-            d::inverse_dynamics_derivatives(&mut dw, [&a[0], &a[1], &a[2]], tau, x, y)
+            let (x, y) = out.split_at_mut(model.nv() * model.nv());
+            d::inverse_dynamics_derivatives(&dynamics, &mut dw, [&a[0], &a[1], &a[2]], analytical, [x, y], None)
         }
         Function::ForwardDynamicsDerivatives => {
-            let (x, rest) = out.split_at_mut(n * n);
-            let (y, z) = rest.split_at_mut(n * n);
-            d::forward_dynamics_derivatives(model, &mut dw, [&a[0], &a[1], &a[2]], tau, mass, [x, y, z])
+            let nv = model.nv();
+            let (x, rest) = out.split_at_mut(nv * nv);
+            let (y, z) = rest.split_at_mut(nv * nv);
+            d::forward_dynamics_derivatives(&dynamics, &mut dw, [&a[0], &a[1], &a[2]], analytical, [x, y, z])
         }
         Function::MassMatrixInverse => {
             let mut m = std::mem::take(&mut ws.mat);

@@ -23,11 +23,11 @@ pub use sin_cos::{sin_cos_from_q, sin_cos_inputs, Angle, SinCosTrace};
 
 use super::emit::{payload_argument, Sizes};
 use super::{counted, CodegenError, CodegenOptions, ForwardDynamicsMethod, Function, GeneratedFunction};
-use crate::algorithms::derivatives::{self, DerivativeWorkspace, DualLoads};
+use crate::algorithms::derivatives::{self, DerivativeWorkspace, Dynamics, Formulation, MassMatrixFn};
 use crate::algorithms::{crba, ldlt, rnea, BodyInertia, Loads, TipWrench, Workspace};
 use crate::scene::{dynamics, ResolvedGravity, SceneModel};
 use crate::spatial::{Force, Inertia, Sym3, Transform, Vec3};
-use crate::symbolic::{factor, Expr, Rewrites, Traced, Tracer};
+use crate::symbolic::{factor, Expr, OpCount, Rewrites, Traced, Tracer};
 
 /// Traces `f` of `scene` as the generated module computes it, factored (on
 /// `scene.model` as it is: [`generate`](super::generate) prepares the model
@@ -40,7 +40,36 @@ pub fn trace(
     method: ForwardDynamicsMethod,
     rewrites: Rewrites,
 ) -> Result<Traced, CodegenError> {
-    Ok(factor(&trace_unfactored(scene, f, method, rewrites)?, rewrites))
+    let mut best: Option<(usize, Traced)> = None;
+    for &formulation in formulations(f, &scene.model) {
+        let traced = trace_unfactored(scene, f, method, formulation, rewrites)?;
+        let cost = body_cost(&traced, scene, rewrites, true)?.fp_ops();
+        if best.as_ref().is_none_or(|(c, _)| cost < *c) {
+            best = Some((cost, traced));
+        }
+    }
+    Ok(factor(&best.expect("one formulation at least").1, rewrites))
+}
+
+/// The formulations `f` is traced in: both for the derivatives of the
+/// dynamics (the one with fewer operations is emitted), else one; a model
+/// with mimic joints has the dual numbers alone (the analytical recursion
+/// runs over the bodies, [`derivatives::inverse_dynamics_derivatives`]).
+fn formulations(f: &Function, model: &crate::model::Model) -> &'static [Formulation] {
+    match f {
+        Function::InverseDynamicsDerivatives | Function::ForwardDynamicsDerivatives if model.has_mimic() => {
+            &[Formulation::DualNumbers]
+        }
+        Function::InverseDynamicsDerivatives | Function::ForwardDynamicsDerivatives => &Formulation::ALL,
+        _ => &[Formulation::Analytical],
+    }
+}
+
+/// The operation count of the `NAME_sc` body of a traced function.
+fn body_cost(traced: &Traced, scene: &SceneModel, rewrites: Rewrites, fma: bool) -> Result<OpCount, CodegenError> {
+    let offset = scene.model.nq() - scene.dof();
+    let sc = sin_cos_inputs(traced, scene.dof(), offset, rewrites).map_err(CodegenError::Internal)?;
+    Ok(counted(&sin_cos_from_q(&sc, rewrites), fma))
 }
 
 /// Every function `options` ask for, traced on the prepared `scene`, each
@@ -80,21 +109,34 @@ pub(crate) fn trace_module(
             f.params(scene).iter().map(|p| (p.name.clone(), p.len_value(sizes))).collect();
         let variants: Vec<Option<ForwardDynamicsMethod>> =
             if *f == Function::ForwardDynamics { methods.iter().map(|&m| Some(m)).collect() } else { vec![None] };
+        let first = functions.len();
         for method in variants {
-            let traced = trace_unfactored(scene, f, method.unwrap_or(ForwardDynamicsMethod::Aba), options.rewrites)?;
-            let sc = sin_cos_inputs(&traced, n, offset, options.rewrites).map_err(CodegenError::Internal)?;
-            let traced = sin_cos_from_q(&sc, options.rewrites);
-            let op_count = counted(&traced, options.fma);
-            functions.push(GeneratedFunction {
-                function: f.clone(),
-                method,
-                name: f.rust_name(),
-                emitted: true,
-                inputs: inputs.clone(),
-                traced,
-                sin_cos_inputs: sc,
-                op_count,
-            });
+            for &formulation in formulations(f, &scene.model) {
+                let m = method.unwrap_or(ForwardDynamicsMethod::Aba);
+                let traced = trace_unfactored(scene, f, m, formulation, options.rewrites)?;
+                let sc = sin_cos_inputs(&traced, n, offset, options.rewrites).map_err(CodegenError::Internal)?;
+                let traced = sin_cos_from_q(&sc, options.rewrites);
+                let op_count = counted(&traced, options.fma);
+                functions.push(GeneratedFunction {
+                    function: f.clone(),
+                    method,
+                    formulation: (formulations(f, &scene.model).len() > 1).then_some(formulation),
+                    name: f.rust_name(),
+                    emitted: true,
+                    inputs: inputs.clone(),
+                    traced,
+                    sin_cos_inputs: sc,
+                    op_count,
+                });
+            }
+        }
+        // Of the derivatives traced both ways, the one with fewer operations.
+        if formulations(f, &scene.model).len() > 1 {
+            let traced = &mut functions[first..];
+            let best = (0..traced.len()).min_by_key(|&k| traced[k].op_count.fp_ops()).expect("traced");
+            for (k, g) in traced.iter_mut().enumerate() {
+                g.emitted = k == best;
+            }
         }
     }
     let fd = |method| fd_choice::FdChoice { method, why: String::new() };
@@ -208,6 +250,7 @@ pub(crate) fn trace_unfactored(
     scene: &SceneModel,
     f: &Function,
     method: ForwardDynamicsMethod,
+    formulation: Formulation,
     rewrites: Rewrites,
 ) -> Result<Traced, CodegenError> {
     if let Some(name) = f.frame() {
@@ -215,10 +258,6 @@ pub(crate) fn trace_unfactored(
     }
     let model = &scene.model;
     let floating = model.is_floating();
-    if floating && f.is_derivative() {
-        let what = format!("`{}` is not generated yet for a floating base", f.rust_name());
-        return Err(CodegenError::Unsupported(format!("floating-base robot \"{}\": {what}", model.name)));
-    }
     let n = model.dof();
     let sizes = Sizes::of(model);
     let use_ldlt = *f == Function::ForwardDynamics
@@ -291,40 +330,38 @@ pub(crate) fn trace_unfactored(
             dynamics::forward_dynamics(scene, &mut ws, q, &args[1], &args[2], Loads::new(g, tips, &[]), &mut out)
         }
         Function::InverseDynamicsDerivatives | Function::ForwardDynamicsDerivatives | Function::MassMatrixInverse => {
-            // The scene's inverse dynamics (armature, friction) run on dual
-            // numbers, its run-time loads held constant; M by the planned
-            // CRBA with the armature on its diagonal.
+            // The scene's inverse dynamics (armature, friction), its
+            // run-time loads held constant; M by the planned CRBA with the
+            // armature on its diagonal where the formulation asks for M (a
+            // floating base: the generic CRBA, in the tangent space of the
+            // base's body twist).
             let plan = plan.as_ref();
-            let mut dw = DerivativeWorkspace::<Expr>::new(model);
-            let mut dl = DualLoads::with_capacity(tips.len() + pl.len(), n);
-            dl.set(&Loads::new(g, tips, pl));
-            let tau = |ws: &mut _, q: &[_], qd: &[_], qdd: &[_], o: &mut [_]| {
-                dynamics::inverse_dynamics(scene, ws, q, qd, qdd, dl.loads(), o)
-            };
             let mass = |ws: &mut Workspace<Expr>, q: &[Expr], m: &mut [Expr]| {
                 mass_matrix::mass_matrix(model, ws, q, pl, plan.expect("planned above"), m);
                 dynamics::add_armature_diagonal(scene, m);
             };
-            let (a, rest) = out.split_at_mut(n * n);
+            let loads = dynamics::with_armature(scene, Loads::new(g, tips, pl));
+            let d = Dynamics { model, loads, torques: scene, mass: plan.map(|_| &mass as MassMatrixFn<Expr>) };
+            let mut dw = DerivativeWorkspace::<Expr>::new(model);
+            let nv = sizes.nv;
+            let (a, rest) = out.split_at_mut(nv * nv);
+            // (q, q̇, q̈ or τ; the mass matrix's inverse has q alone)
+            let state = || [q.as_slice(), &args[1], &args[2]];
             match f {
                 Function::InverseDynamicsDerivatives => {
-                    derivatives::inverse_dynamics_derivatives(&mut dw, [q, &args[1], &args[2]], tau, a, rest)
+                    derivatives::inverse_dynamics_derivatives(&d, &mut dw, state(), formulation, [a, rest], None)
                 }
                 Function::ForwardDynamicsDerivatives => {
-                    let (b, c) = rest.split_at_mut(n * n);
-                    derivatives::forward_dynamics_derivatives(
-                        model,
-                        &mut dw,
-                        [q, &args[1], &args[2]],
-                        tau,
-                        mass,
-                        [a, b, c],
-                    )
+                    let (b, c) = rest.split_at_mut(nv * nv);
+                    derivatives::forward_dynamics_derivatives(&d, &mut dw, state(), formulation, [a, b, c])
                 }
                 _ => {
-                    let mut m = vec![zero; n * n];
-                    let mut linv = vec![zero; n * n];
-                    mass(&mut dw.ws, q, &mut m);
+                    let mut m = vec![zero; nv * nv];
+                    let mut linv = vec![zero; nv * nv];
+                    match plan {
+                        Some(_) => mass(&mut dw.ws, q, &mut m),
+                        None => crba::crba(model, &mut ws, q, loads.inertias(), &mut m),
+                    }
                     derivatives::mass_matrix_inverse(model, &mut m, &mut linv, a);
                 }
             }
@@ -382,7 +419,10 @@ mod tests {
             };
             for f in [Function::MassMatrix, Function::ForwardDynamics] {
                 let generic = generic(&f);
-                let planned = count(trace_unfactored(&scene, &f, ForwardDynamicsMethod::Ldlt, opts.rewrites).unwrap());
+                let planned = count(
+                    trace_unfactored(&scene, &f, ForwardDynamicsMethod::Ldlt, Formulation::Analytical, opts.rewrites)
+                        .unwrap(),
+                );
                 println!("{name} {f:?}: generic CRBA {generic}, planned {planned}");
                 assert!(planned.total() <= generic.total(), "{name} {f:?}: {planned} vs {generic}");
             }

@@ -2,12 +2,14 @@
 //! friction, constant payloads and gravity enter them; its run-time inputs
 //! (gravity, tip wrench, payloads) are held constant. The same algorithm
 //! ([`algorithms::derivatives`](crate::algorithms::derivatives)) on the
-//! scene's dynamics as the generated functions are traced from.
+//! scene's dynamics as the generated functions are traced from. On a
+//! floating base the matrices are NV × NV, the configuration's columns in
+//! the tangent space of the base's body twist (as [`Robot`](crate::Robot)'s).
 
 use super::{SceneInputError, SceneInputs, SceneRobot, Uses};
-use crate::algorithms::derivatives as d;
+use crate::algorithms::derivatives::{self as d, Dynamics, Formulation};
 use crate::algorithms::Loads;
-use crate::robot::derivatives::{copy_rows, DerivativeScratch, FIXED_BASE_ONLY};
+use crate::robot::derivatives::{copy_rows, DerivativeScratch};
 use crate::scene::dynamics;
 use nalgebra::{DMatrix, DVector};
 
@@ -21,17 +23,16 @@ impl SceneRobot {
         qdd: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<(DMatrix<f64>, DMatrix<f64>), SceneInputError> {
-        self.check().fixed_base(FIXED_BASE_ONLY)?.joints(&[("q", q), ("qd", qd), ("qdd", qdd)])?;
-        let n = self.dof();
+        self.check().joints(&[("q", q), ("qd", qd), ("qdd", qdd)])?;
+        let n = self.nv();
         let g = self.prepare(inputs, Uses { gravity: true, tip: true })?;
-        let DerivativeScratch { dw, loads, rows } = &mut self.deriv;
-        loads.set(&Loads::new(g.as_ref(), &self.tips, &[]));
+        let DerivativeScratch { dw, rows } = &mut self.deriv;
         let scene = &self.scene;
+        let loads = dynamics::with_armature(scene, Loads::new(g.as_ref(), &self.tips, &[]));
+        let d = Dynamics { model: &scene.model, loads, torques: scene, mass: None };
         let [a, b, _] = rows;
-        let tau = |ws: &mut _, q: &[_], qd: &[_], qdd: &[_], out: &mut [_]| {
-            dynamics::inverse_dynamics(scene, ws, q, qd, qdd, loads.loads(), out)
-        };
-        d::inverse_dynamics_derivatives(dw, [q.as_slice(), qd.as_slice(), qdd.as_slice()], tau, a, b);
+        let state = [q.as_slice(), qd.as_slice(), qdd.as_slice()];
+        d::inverse_dynamics_derivatives(&d, dw, state, Formulation::Analytical, [a, b], None);
         let (mut x, mut y) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n));
         copy_rows(a, &mut x);
         copy_rows(b, &mut y);
@@ -48,19 +49,16 @@ impl SceneRobot {
         tau: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<(DMatrix<f64>, DMatrix<f64>, DMatrix<f64>), SceneInputError> {
-        self.check().fixed_base(FIXED_BASE_ONLY)?.joints(&[("q", q), ("qd", qd), ("tau", tau)])?;
-        let n = self.dof();
+        self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?;
+        let n = self.nv();
         let g = self.prepare(inputs, Uses { gravity: true, tip: true })?;
-        let DerivativeScratch { dw, loads, rows } = &mut self.deriv;
-        loads.set(&Loads::new(g.as_ref(), &self.tips, &[]));
+        let DerivativeScratch { dw, rows } = &mut self.deriv;
         let scene = &self.scene;
+        let loads = dynamics::with_armature(scene, Loads::new(g.as_ref(), &self.tips, &[]));
+        let d = Dynamics { model: &scene.model, loads, torques: scene, mass: None };
         let [a, b, c] = rows;
-        let tau_fn = |ws: &mut _, q: &[_], qd: &[_], qdd: &[_], out: &mut [_]| {
-            dynamics::inverse_dynamics(scene, ws, q, qd, qdd, loads.loads(), out)
-        };
-        let mass = |ws: &mut _, q: &[f64], m: &mut [f64]| dynamics::mass_matrix(scene, ws, q, m);
-        let (q, qd, tau) = (q.as_slice(), qd.as_slice(), tau.as_slice());
-        d::forward_dynamics_derivatives(&scene.model, dw, [q, qd, tau], tau_fn, mass, [a, b, c]);
+        let state = [q.as_slice(), qd.as_slice(), tau.as_slice()];
+        d::forward_dynamics_derivatives(&d, dw, state, Formulation::Analytical, [a, b, c]);
         let (mut x, mut y, mut z) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n), DMatrix::zeros(n, n));
         copy_rows(a, &mut x);
         copy_rows(b, &mut y);
@@ -75,8 +73,8 @@ impl SceneRobot {
         q: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<DMatrix<f64>, SceneInputError> {
-        self.check().fixed_base(FIXED_BASE_ONLY)?.joints(&[("q", q)])?;
-        let n = self.dof();
+        self.check().joints(&[("q", q)])?;
+        let n = self.nv();
         self.prepare(inputs, Uses { gravity: false, tip: false })?;
         let [m, linv, _] = &mut self.deriv.rows;
         dynamics::mass_matrix(&self.scene, &mut self.ws, q.as_slice(), m);
