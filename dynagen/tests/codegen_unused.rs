@@ -68,9 +68,17 @@ fn a_module_of_which_one_function_is_called_compiles_without_a_warning() {
         "robot::gravity_torques(&[0.1; robot::DOF])[2]",
         &[],
     );
+    // floating, with a base of 1 kg (the file's base link has no mass, which
+    // would make the base and the first joint dependent: no forward dynamics)
+    let mut model = dynagen::Model::from_urdf_file(&gripper).unwrap();
+    model.base_inertia = dynagen::spatial::Inertia::from_mass_com_inertia(
+        1.0,
+        dynagen::spatial::Vec3([0.0; 3]),
+        dynagen::spatial::Sym3([0.01, 0.01, 0.01, 0.0, 0.0, 0.0]),
+    );
     compiles_without_warnings(
         "mimic_floating",
-        &module(Builder::new().urdf(&gripper).floating_base(true)),
+        &module(Builder::new().model(model).floating_base(true)),
         "robot::gravity_torques(&[0.1; robot::NQ])[2]",
         &[],
     );

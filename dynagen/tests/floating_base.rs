@@ -689,6 +689,42 @@ fn a_singular_floating_base_is_warned_about() {
     assert!(w.to_string().contains("\"ball\" floats"), "{w}");
 }
 
+/// A massless root link set floating moves against its first joint without
+/// moving any mass (the UR5's base_link and shoulder_pan_joint): M(q) is
+/// singular at every q. The load names both, the checked forward dynamics
+/// and code generation refuse with that message, and `singular_joints_at`
+/// (NQ-long q) finds the same set; the quadruped's trunk has mass, no
+/// warning.
+#[test]
+fn a_massless_floating_root_makes_its_first_joint_dependent() {
+    use dynagen::codegen::{generate, CodegenOptions};
+    use dynagen::ModelWarning;
+    let quadruped = support::model("quadruped12").with_floating_base();
+    assert!(quadruped.dependent_joints().is_empty());
+    let ur5 = support::model("ur5").with_floating_base();
+    let expected = ["base_link (the floating base)".to_string(), "shoulder_pan_joint".to_string()];
+    assert_eq!(ur5.dependent_joints(), [&expected[..]]);
+    let w = ur5.warnings.iter().find(|w| matches!(w, ModelWarning::DependentJoints { .. })).expect("a warning");
+    assert!(
+        w.to_string().contains("\"base_link (the floating base)\" and \"shoulder_pan_joint\" are dependent"),
+        "{w}"
+    );
+    let mut q = vec![0.0; ur5.nq()];
+    q[6] = 1.0;
+    q[7..].copy_from_slice(&[0.3, -0.7, 1.1, 0.2, -0.4, 0.9]);
+    assert_eq!(ur5.singular_joints_at(&q), [expected.to_vec()]);
+    let mut robot = dynagen::Robot::new(ur5.clone());
+    let (v, nv) = (DVector::from_vec(q), ur5.nv());
+    let e = robot.forward_dynamics(&v, &DVector::zeros(nv), &DVector::zeros(nv)).unwrap_err();
+    assert!(
+        e.to_string().contains("\"base_link (the floating base)\" and \"shoulder_pan_joint\" are dependent"),
+        "{e}"
+    );
+    let e = generate(&ur5, &CodegenOptions::default()).unwrap_err();
+    assert!(e.to_string().contains("forward_dynamics cannot be generated"), "{e}");
+    assert!(e.to_string().contains("\"shoulder_pan_joint\""), "{e}");
+}
+
 /// The derivatives of a floating base are NV×NV in the tangent space (the
 /// base's body twist): moving the base changes nothing in its frame, so
 /// ∂τ/∂q's three translation columns are zero, and without gravity so are

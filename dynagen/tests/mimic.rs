@@ -261,12 +261,12 @@ impl FullTree {
 /// `model` with a floating base of 5 kg (the files' base links have no
 /// mass, which would make the base's yaw and a first joint about z
 /// dependent).
-fn floating(model: Model) -> Model {
+fn floating(mut model: Model) -> Model {
     use dynagen::spatial::{Inertia, Sym3, Vec3};
-    let mut m = model.with_floating_base();
-    m.base_inertia =
+    // before floating it, so that the load's checks see the base's mass
+    model.base_inertia =
         Inertia::from_mass_com_inertia(5.0, Vec3([0.0, 0.0, 0.05]), Sym3([0.1, 0.12, 0.08, 0.0, 0.0, 0.0]));
-    m
+    model.with_floating_base()
 }
 
 /// max |a − b| / max(max |b|, 1e-9).

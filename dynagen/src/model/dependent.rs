@@ -12,7 +12,7 @@
 //! configuration tried is dependent.
 
 use super::{JointKind, Model};
-use crate::algorithms::{crba, Loads, Workspace};
+use crate::algorithms::{crba, ldlt, Loads, Workspace};
 
 /// A pivot this small relative to its joint's diagonal entry of M vanishes
 /// (rounding leaves about 1e-16 of it when joints coincide).
@@ -27,9 +27,10 @@ const MAX_DOF: usize = 1000;
 /// Each set of joints (indices, ascending) that moves without moving any
 /// mass at configuration `q`: one per vanishing pivot of M(q).
 pub(crate) fn singular_sets_at(model: &Model, q: &[f64]) -> Vec<Vec<usize>> {
-    let n = model.dof();
-    // the tree of the factorisation (the kinematic tree without mimic joints)
-    let parent = |k: usize| model.coupling.parent[k];
+    let n = model.nv();
+    // the tree of the factorisation (the kinematic tree without mimic
+    // joints; a floating base's six coordinates as a chain ahead of them)
+    let parent = |k: usize| ldlt::parent(model, k);
     let mut m = vec![0.0; n * n];
     let mut ws = Workspace::<f64>::new(model);
     crba::crba(model, &mut ws, q, Loads::none(), &mut m);
@@ -90,7 +91,7 @@ pub(crate) fn singular_sets_at(model: &Model, q: &[f64]) -> Vec<Vec<usize>> {
 /// at every one of a few pseudo-random configurations (joint names).
 pub(super) fn dependent_joints(model: &Model) -> Vec<Vec<String>> {
     let n = model.dof();
-    if n == 0 || n > MAX_DOF {
+    if model.nv() == 0 || model.nv() > MAX_DOF {
         return Vec::new();
     }
     let mut state = 0x9e37_79b9_7f4a_7c15u64;
@@ -103,15 +104,21 @@ pub(super) fn dependent_joints(model: &Model) -> Vec<Vec<String>> {
     };
     let mut common: Option<Vec<Vec<usize>>> = None;
     for _ in 0..CONFIGURATIONS {
-        let q: Vec<f64> = (0..n)
-            .map(|k| &model.bodies[model.joint_body(k)])
-            .map(|b| match (b.joint.kind, &b.joint.limits) {
+        // a floating base: a position and a unit quaternion ahead of the joints
+        let mut pose: Vec<f64> = (0..7 * usize::from(model.is_floating())).map(|_| next()).collect();
+        if let Some(quat) = pose.get_mut(3..7) {
+            let norm = quat.iter().map(|x| x * x).sum::<f64>().sqrt().max(1e-3);
+            quat.iter_mut().for_each(|x| *x /= norm);
+        }
+        let q: Vec<f64> = pose
+            .into_iter()
+            .chain((0..n).map(|k| &model.bodies[model.joint_body(k)]).map(|b| match (b.joint.kind, &b.joint.limits) {
                 (JointKind::Prismatic, Some(l)) if l.lower.is_finite() && l.upper.is_finite() => {
                     0.5 * (l.lower + l.upper) + 0.5 * (l.upper - l.lower) * next()
                 }
                 (JointKind::Prismatic, _) => 0.3 * next(),
                 _ => std::f64::consts::PI * next(),
-            })
+            }))
             .collect();
         let sets = singular_sets_at(model, &q);
         common = Some(match common {
@@ -119,21 +126,35 @@ pub(super) fn dependent_joints(model: &Model) -> Vec<Vec<String>> {
             Some(c) => c.into_iter().filter(|s| sets.contains(s)).collect(),
         });
     }
-    let names = |s: &Vec<usize>| s.iter().map(|&k| model.bodies[model.joint_body(k)].joint.name.clone()).collect();
-    common.unwrap_or_default().iter().map(names).collect()
+    common.unwrap_or_default().iter().map(|s| names(model, s)).collect()
+}
+
+/// The names of a set of velocity coordinates: the joints', and a floating
+/// base's six coordinates as one entry naming its link.
+fn names(model: &Model, set: &[usize]) -> Vec<String> {
+    let base = model.nv() - model.dof();
+    let mut out = Vec::new();
+    if set.iter().any(|&k| k < base) {
+        out.push(format!("{} (the floating base)", model.root));
+    }
+    out.extend(
+        set.iter().filter(|&&k| k >= base).map(|&k| model.bodies[model.joint_body(k - base)].joint.name.clone()),
+    );
+    out
 }
 
 impl Model {
     /// The joints whose motion together moves no mass at configuration `q`
-    /// (M(q) singular there), one list of names per vanishing pivot of
-    /// M(q); empty where M(q) is regular. Forward dynamics is undefined at
-    /// such a q.
+    /// (NQ entries: on a floating base, the base's pose first), M(q)
+    /// singular there: one list of names per vanishing pivot of M(q), a
+    /// floating base named by its link; empty where M(q) is regular.
+    /// Forward dynamics is undefined at such a q.
+    ///
+    /// # Panics
+    /// If `q` does not have NQ entries.
     pub fn singular_joints_at(&self, q: &[f64]) -> Vec<Vec<String>> {
-        assert_eq!(q.len(), self.dof(), "singular_joints_at: q must have one entry per joint");
-        singular_sets_at(self, q)
-            .iter()
-            .map(|s| s.iter().map(|&k| self.bodies[self.joint_body(k)].joint.name.clone()).collect())
-            .collect()
+        assert_eq!(q.len(), self.nq(), "singular_joints_at: q must have NQ entries");
+        singular_sets_at(self, q).iter().map(|s| names(self, s)).collect()
     }
     /// The sets of joints found dependent at load time (a
     /// [`ModelWarning::DependentJoints`](super::ModelWarning::DependentJoints)

@@ -345,7 +345,10 @@ impl Model {
     /// frame. A model that already floats is returned unchanged.
     /// A whole robot that cannot be accelerated in every direction at q = 0
     /// (no mass, or all of it on a line) gets a
-    /// [`ModelWarning::FloatingBaseSingular`].
+    /// [`ModelWarning::FloatingBaseSingular`]; joints that can move with
+    /// the base without moving any mass (a massless root link and its
+    /// first joint, say) get a [`ModelWarning::DependentJoints`] that names
+    /// the root link, and forward dynamics is refused.
     pub fn with_floating_base(mut self) -> Self {
         if self.root_joint == RootJoint::Floating {
             return self;
@@ -365,6 +368,11 @@ impl Model {
         if !(whole.mass > 0.0 && hi > 0.0 && lo > 1e-12 * hi) {
             self.warnings.push(ModelWarning::FloatingBaseSingular { root: self.root.clone() });
         }
+        // Joints dependent on the fixed base stay so; the base can add its
+        // own (a massless root link moving against its first joint).
+        self.warnings.retain(|w| !matches!(w, ModelWarning::DependentJoints { .. }));
+        let dependent = dependent::dependent_joints(&self);
+        self.warnings.extend(dependent.into_iter().map(|joints| ModelWarning::DependentJoints { joints }));
         self
     }
     /// The names of the joints with a coordinate of their own, in joint

@@ -222,8 +222,7 @@ fn evaluate(
         .map_err(err)?;
         if let Some(k) = qdd.iter().position(|v| !v.is_finite()) {
             // singular here (not at every q: dependent joints are refused above)
-            let joints_q = &s.q.as_slice()[s.q.len() - robot.dof()..];
-            if let Some(set) = robot.model().singular_joints_at(joints_q).first() {
+            if let Some(set) = robot.model().singular_joints_at(s.q.as_slice()).first() {
                 let names: Vec<String> = set.iter().map(|n| format!("\"{n}\"")).collect();
                 return Err(format!(
                     "output \"qdd\"[{k}] ({}) is {}: the mass matrix is singular at this q (joints {} move without moving any mass in this configuration)",
