@@ -26,6 +26,7 @@ generated!(
     "The Panda's `NAME_sc` bodies without fused multiply-adds and run-time dispatch."
 );
 generated!(panda_batched, "panda_batched.rs", "The Panda, `NAME(q, …)` by `sin_cos_all`.");
+generated!(iiwa14_batched, "iiwa14_batched.rs", "The KUKA iiwa 14, `NAME(q, …)` by `sin_cos_all`.");
 generated!(
     panda_mimic,
     "panda_mimic.rs",
