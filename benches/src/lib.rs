@@ -4,6 +4,8 @@
 //! Pinocchio's statistic ([`time`], [`pinocchio_states`]) is shared by the
 //! examples that run beside a Pinocchio program.
 
+use nalgebra::{DMatrix, DVector};
+use std::hint::black_box;
 use std::time::Instant;
 
 macro_rules! generated {
@@ -26,6 +28,7 @@ generated!(
     "The Panda's `NAME_sc` bodies without fused multiply-adds and run-time dispatch."
 );
 generated!(panda_batched, "panda_batched.rs", "The Panda, `NAME(q, …)` by `sin_cos_all`.");
+generated!(iiwa14_batched, "iiwa14_batched.rs", "The KUKA iiwa 14, `NAME(q, …)` by `sin_cos_all`.");
 generated!(
     panda_mimic,
     "panda_mimic.rs",
@@ -131,4 +134,89 @@ pub fn urdf(robot: &str) -> String {
 #[inline(never)]
 pub fn sin_cos_9(q: &[f64; 9]) -> ([f64; 9], [f64; 9]) {
     panda_batched::sin_cos_all(q)
+}
+
+/// The generic solver of the fixed-base robot in the URDF file `path`, and
+/// [`pinocchio_states`] for it (its prismatic joints flagged), with the same
+/// states as vectors ([`State::vectors`]).
+pub fn fixed_base_states<const N: usize>(path: &str) -> (dynagen::Robot, Vec<State<N, N>>, Vec<[DVector<f64>; 4]>) {
+    let robot = dynagen::Robot::from_urdf_file(path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let model = robot.model();
+    let prismatic: Vec<bool> = (0..N).map(|k| !model.bodies[model.joint_body(k)].joint.is_revolute()).collect();
+    let st = pinocchio_states::<N, N>(&prismatic);
+    let v = st.iter().map(State::vectors).collect();
+    (robot, st, v)
+}
+
+/// The generic solver's `inverse_dynamics_into`, `mass_matrix_into`,
+/// `bias_forces_into` and `forward_dynamics_into` on the states `v` of
+/// [`fixed_base_states`], each [`time`]d.
+pub fn time_generic(robot: &mut dynagen::Robot, v: &[[DVector<f64>; 4]]) -> Vec<(&'static str, (f64, f64))> {
+    let n = v[0][0].len();
+    let (mut out, mut mm) = (DVector::zeros(n), DMatrix::zeros(n, n));
+    let rows = vec![
+        (
+            "generic inverse_dynamics_into",
+            time(|i| robot.inverse_dynamics_into(black_box(&v[i][0]), &v[i][1], &v[i][2], &mut out).unwrap()),
+        ),
+        ("generic mass_matrix_into", time(|i| robot.mass_matrix_into(black_box(&v[i][0]), &mut mm).unwrap())),
+        (
+            "generic bias_forces_into",
+            time(|i| robot.bias_forces_into(black_box(&v[i][0]), &v[i][1], &mut out).unwrap()),
+        ),
+        (
+            "generic forward_dynamics_into",
+            time(|i| robot.forward_dynamics_into(black_box(&v[i][0]), &v[i][1], &v[i][3], &mut out).unwrap()),
+        ),
+    ];
+    black_box((&out, &mm));
+    rows
+}
+
+/// The generated module `$m`'s `inverse_dynamics`, `mass_matrix`,
+/// `bias_forces` and `forward_dynamics` on the states `$st` of
+/// [`fixed_base_states`], each [`time`]d (each call's input behind a
+/// `black_box` and its whole output behind one too).
+#[macro_export]
+macro_rules! time_generated {
+    ($m:path, $st:expr) => {{
+        use std::hint::black_box;
+        use $m as m;
+        let st = $st;
+        vec![
+            (
+                "generated inverse_dynamics",
+                $crate::time(|i| {
+                    black_box(&m::inverse_dynamics(black_box(&st[i].q), &st[i].v[0], &st[i].v[1]));
+                }),
+            ),
+            (
+                "generated mass_matrix",
+                $crate::time(|i| {
+                    black_box(&m::mass_matrix(black_box(&st[i].q)));
+                }),
+            ),
+            (
+                "generated bias_forces",
+                $crate::time(|i| {
+                    black_box(&m::bias_forces(black_box(&st[i].q), &st[i].v[0]));
+                }),
+            ),
+            (
+                "generated forward_dynamics",
+                $crate::time(|i| {
+                    black_box(&m::forward_dynamics(black_box(&st[i].q), &st[i].v[0], &st[i].v[2]));
+                }),
+            ),
+        ]
+    }};
+}
+
+/// Prints the rows of [`time_generated!`] and [`time_generic`] for `robot`
+/// (its file name) with `n` joints.
+pub fn print_rows(robot: &str, n: usize, rows: &[(&str, (f64, f64))]) {
+    println!("dynagen, {robot} nv={n}, ns per call (median and minimum of {BATCHES} batches of {BATCH} calls)");
+    for (name, (median, min)) in rows {
+        println!("  {name:<32} median {median:8.1} ns  min {min:8.1} ns");
+    }
 }

@@ -27,12 +27,6 @@ done
 # shellcheck source=pinocchio_build.sh
 . "$here/pinocchio_build.sh"
 pinocchio_build "$here/pinocchio_bench.cpp" "$out" "${robots[@]}"
-(cd "$repo" && cargo build --release -q -p dynagen-bench --example compensated)
-target="${CARGO_TARGET_DIR:-$repo/target}"
-for r in $(seq "$rounds"); do
-  echo "== round $r"
-  "$out" "${robots[@]}"
-  "$target/release/examples/compensated" 100
-done
+alternate "$rounds" compensated 100 "$out" "${robots[@]}"
 echo "== last"
 "$out" "${robots[@]}"

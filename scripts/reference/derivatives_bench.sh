@@ -24,10 +24,4 @@ robots=()
 for r in ur5 panda iiwa14 quadruped12; do robots+=("$repo/dynagen/robots/$r.urdf"); done
 robots+=("$repo/dynagen/robots/quadruped12.urdf:floating")
 pinocchio_build "$here/pinocchio_derivatives_bench.cpp" "$out" "${robots[@]}"
-(cd "$repo" && cargo build --release -q -p dynagen-bench --example derivatives)
-target="${CARGO_TARGET_DIR:-$repo/target}"
-for r in $(seq "$rounds"); do
-  echo "== round $r"
-  "$out" "${robots[@]}"
-  "$target/release/examples/derivatives"
-done
+alternate "$rounds" derivatives "" "$out" "${robots[@]}"

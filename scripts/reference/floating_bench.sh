@@ -27,15 +27,10 @@ out="${TMPDIR:-/tmp}/pinocchio_floating_bench"
 . "$here/pinocchio_build.sh"
 pinocchio_build "$here/pinocchio_floating_bench.cpp" "$out" \
   "$repo/dynagen/robots/quadruped12.urdf:floating" "$repo/dynagen/robots/humanoid32.urdf:floating"
-(cd "$repo" && cargo build --release -q -p dynagen-bench --example floating)
-target="${CARGO_TARGET_DIR:-$repo/target}"
 for robot in "${robots[@]}"; do
   urdf="$repo/dynagen/robots/$robot.urdf"
-  for r in $(seq "$rounds"); do
-    echo "== $robot round $r"
-    "$out" "$urdf"
-    "$target/release/examples/floating" 200 "$robot"
-  done
+  echo "=== $robot"
+  alternate "$rounds" floating "200 $robot" "$out" "$urdf"
   echo "== $robot last"
   "$out" "$urdf"
 done

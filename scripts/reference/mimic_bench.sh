@@ -26,10 +26,4 @@ mimic="$repo/dynagen/tests/data/panda_mimic.urdf"
 # shellcheck source=pinocchio_build.sh
 . "$here/pinocchio_build.sh"
 pinocchio_build "$here/pinocchio_bench.cpp" "$out" "$panda" "$mimic:mimic"
-(cd "$repo" && cargo build --release -q -p dynagen-bench --example mimic)
-target="${CARGO_TARGET_DIR:-$repo/target}"
-for r in $(seq "$rounds"); do
-  echo "== round $r"
-  "$out" "$panda" --mimic "$mimic"
-  "$target/release/examples/mimic"
-done
+alternate "$rounds" mimic "" "$out" "$panda" --mimic "$mimic"

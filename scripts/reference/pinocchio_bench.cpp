@@ -1,4 +1,5 @@
-// Times Pinocchio's C++ rnea, crba and aba on a URDF robot (fixed base).
+// Times Pinocchio's C++ rnea, crba, nonLinearEffects and aba on a URDF robot
+// (fixed base).
 //
 // Usage: pinocchio_bench [--mimic] ROBOT.urdf [ROBOT.urdf ...]
 //
@@ -13,7 +14,7 @@
 // [-5, 5], tau in [-10, 10]); each algorithm is called in batches of 1000
 // calls cycling through the states, after a warm-up; the per-call time of a
 // batch is the batch time / 1000, and the median over 300 batches is
-// printed, in ns per call.  The algorithm templates are compiled into this
+// printed, in ns per call, and on a second line the minimum.  The algorithm templates are compiled into this
 // file (no PINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION), with the flags of the
 // build script.  Not run in CI; see README.md in this folder.
 
@@ -46,24 +47,29 @@ void bench(const std::string& path, bool mimic) {
   const States states = random_states(model);
   const auto &q = states.q, &v = states.v, &a = states.a, &tau = states.tau;
 
-  const double t_rnea = median_ns_per_call([&](int s) {
+  const auto t_rnea = median_and_min_ns_per_call([&](int s) {
     g_sink += pinocchio::rnea(model, data, q[s], v[s], a[s])[0];
   });
-  const double t_crba = median_ns_per_call([&](int s) {
+  const auto t_crba = median_and_min_ns_per_call([&](int s) {
     g_sink += pinocchio::crba(model, data, q[s])(0, 0);
   });
+  const auto t_nle = median_and_min_ns_per_call([&](int s) {
+    g_sink += pinocchio::nonLinearEffects(model, data, q[s], v[s])[0];
+  });
   const bool has_mimic = !model.mimicking_joints.empty();
-  const double t_aba = has_mimic ? median_ns_per_call([&](int s) {
+  const auto t_aba = has_mimic ? median_and_min_ns_per_call([&](int s) {
     pinocchio::crba(model, data, q[s]);
     data.M.triangularView<Eigen::StrictlyLower>() = data.M.transpose().triangularView<Eigen::StrictlyLower>();
     const Eigen::VectorXd h = pinocchio::nonLinearEffects(model, data, q[s], v[s]);
     g_sink += data.M.ldlt().solve(tau[s] - h)[0];
-  }) : median_ns_per_call([&](int s) {
+  }) : median_and_min_ns_per_call([&](int s) {
     g_sink += pinocchio::aba(model, data, q[s], v[s], tau[s])[0];
   });
-  std::printf("%-28s nv=%d  rnea %8.1f ns  crba %8.1f ns  %s %8.1f ns\n",
-              file.c_str(), nv, t_rnea,
-              t_crba, has_mimic ? "crba+nle+ldlt" : "aba", t_aba);
+  const char* fd = has_mimic ? "crba+nle+ldlt" : "aba";
+  std::printf("%-28s nv=%d  rnea %8.1f ns  crba %8.1f ns  nle %8.1f ns  %s %8.1f ns\n",
+              file.c_str(), nv, t_rnea.first, t_crba.first, t_nle.first, fd, t_aba.first);
+  std::printf("%-28s   min   rnea %8.1f ns  crba %8.1f ns  nle %8.1f ns  %s %8.1f ns\n",
+              "", t_rnea.second, t_crba.second, t_nle.second, fd, t_aba.second);
 }
 
 }  // namespace
@@ -73,8 +79,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: %s [--mimic] ROBOT.urdf [ROBOT.urdf ...]\n", argv[0]);
     return 2;
   }
-  std::printf("Pinocchio %s, median ns per call (batches of %d calls)\n",
-              PINOCCHIO_VERSION, kBatch);
+  std::printf("Pinocchio %s, median (and minimum) ns per call over %d batches of %d calls\n",
+              PINOCCHIO_VERSION, kBatches, kBatch);
   bool mimic = false;
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "--mimic") {

@@ -1,4 +1,5 @@
-# Sourced by the benchmark scripts of this folder:
+# Sourced by the benchmark scripts of this folder (pinocchio_build, and
+# alternate below):
 #   pinocchio_build SRC OUT ROBOT.urdf[:floating] ...
 # compiles SRC (a C++ program of this folder) into OUT against the C++
 # headers that the `pin` wheel installs (cmeel prefix), with the robots'
@@ -33,4 +34,24 @@ pinocchio_build() {
     -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS -DBOOST_FUSION_INVOKE_MAX_ARITY=12 \
     -I"$out.models" -I"$here" -I"$prefix/include" -I"$prefix/include/eigen3" \
     "$src" -o "$out"
+}
+
+# Sourced likewise:
+#   alternate ROUNDS EXAMPLE "EXAMPLE ARGS" PROGRAM [ARGS ...]
+# builds dynagen-bench's EXAMPLE (cargo build --release, the caller's
+# RUSTFLAGS and CARGO_TARGET_DIR) and runs PROGRAM ARGS (a Pinocchio program
+# pinocchio_build compiled) and the example with EXAMPLE ARGS (split on
+# spaces) in alternation, ROUNDS times, each round headed "== round R".
+alternate() {
+  local rounds="$1" example="$2" example_args="$3" repo target r
+  shift 3
+  repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+  (cd "$repo" && cargo build --release -q -p dynagen-bench --example "$example")
+  target="${CARGO_TARGET_DIR:-$repo/target}"
+  for r in $(seq "$rounds"); do
+    echo "== round $r"
+    "$@"
+    # shellcheck disable=SC2086
+    "$target/release/examples/$example" $example_args
+  done
 }
