@@ -34,6 +34,24 @@ fn rows(m: &DMatrix<f64>) -> Vec<f64> {
     m.transpose().as_slice().to_vec()
 }
 
+/// What a derivatives module returns, in the order [`compare`] takes it.
+const MATRICES: [&str; 6] =
+    ["dtau/dq", "dtau/dqd", "dqdd/dq", "dqdd/dqd", "Minv (forward_dynamics_derivatives)", "mass_matrix_inverse"];
+
+/// A module's six matrices (row-major: ∂τ/∂q, ∂τ/∂q̇, ∂q̈/∂q, ∂q̈/∂q̇, M⁻¹
+/// of forward_dynamics_derivatives, mass_matrix_inverse) against the
+/// generic ones (∂τ/∂q, ∂τ/∂q̇, ∂q̈/∂q, ∂q̈/∂q̇, M⁻¹): each within `tol` of
+/// the matrix's norm; returns the largest error.
+fn compare(tag: &str, got: [Vec<f64>; 6], [wa, wb, wc, wd, we]: [&DMatrix<f64>; 5], tol: f64) -> f64 {
+    let mut worst = 0.0_f64;
+    for ((what, got), want) in MATRICES.iter().zip(got).zip([wa, wb, wc, wd, we, we]) {
+        let err = norm_rel_err(&got, &rows(want), 1e-300);
+        assert!(err <= tol, "{tag} {what}: {err:e}");
+        worst = worst.max(err);
+    }
+    worst
+}
+
 /// Checks a derivatives module against `Robot` on `cases` random states.
 macro_rules! check {
     ($m:ident, $robot:expr, $cases:expr) => {{
@@ -51,18 +69,9 @@ macro_rules! check {
             let (c, d, e) = $m::forward_dynamics_derivatives(&q, &qd, &x);
             let (wc, wd, we) = robot.forward_dynamics_derivatives(&v(&q), &v(&qd), &v(&x)).unwrap();
             let minv = $m::mass_matrix_inverse(&q);
-            for (what, got, want) in [
-                ("dtau/dq", a.concat(), rows(&wa)),
-                ("dtau/dqd", b.concat(), rows(&wb)),
-                ("dqdd/dq", c.concat(), rows(&wc)),
-                ("dqdd/dqd", d.concat(), rows(&wd)),
-                ("Minv (forward_dynamics_derivatives)", e.concat(), rows(&we)),
-                ("mass_matrix_inverse", minv.concat(), rows(&we)),
-            ] {
-                let err = norm_rel_err(&got, &want, 1e-300);
-                assert!(err <= 1e-12, "{}::{what} at q = {q:?}: {err:e}", stringify!($m));
-                worst = worst.max(err);
-            }
+            let got = [a.concat(), b.concat(), c.concat(), d.concat(), e.concat(), minv.concat()];
+            let tag = format!("{} at q = {q:?}:", stringify!($m));
+            worst = worst.max(compare(&tag, got, [&wa, &wb, &wc, &wd, &we], 1e-12));
         }
         println!("{}: worst relative error {worst:.1e}", stringify!($m));
     }};
@@ -100,18 +109,8 @@ fn floating_quadruped12_derivatives_match_the_generic_ones() {
         let (c, d, e) = m::forward_dynamics_derivatives(&q, &qd, &x);
         let (wc, wd, we) = robot.forward_dynamics_derivatives(&v(&q), &v(&qd), &v(&x)).unwrap();
         let minv = m::mass_matrix_inverse(&q);
-        for (what, got, want) in [
-            ("dtau/dq", a.concat(), rows(&wa)),
-            ("dtau/dqd", b.concat(), rows(&wb)),
-            ("dqdd/dq", c.concat(), rows(&wc)),
-            ("dqdd/dqd", d.concat(), rows(&wd)),
-            ("Minv", e.concat(), rows(&we)),
-            ("mass_matrix_inverse", minv.concat(), rows(&we)),
-        ] {
-            let err = norm_rel_err(&got, &want, 1e-300);
-            assert!(err <= 1e-12, "floating quadruped12 {what}: {err:e}");
-            worst = worst.max(err);
-        }
+        let got = [a.concat(), b.concat(), c.concat(), d.concat(), e.concat(), minv.concat()];
+        worst = worst.max(compare("floating quadruped12", got, [&wa, &wb, &wc, &wd, &we], 1e-12));
     }
     println!("floating quadruped12: worst relative error {worst:.1e}");
 }
@@ -134,17 +133,8 @@ macro_rules! check_f32 {
             let (c, d, e) = $m::forward_dynamics_derivatives(&f(&q), &f(&qd), &f(&x));
             let (wc, wd, we) = robot.forward_dynamics_derivatives(&v(&q), &v(&qd), &v(&x)).unwrap();
             let minv = $m::mass_matrix_inverse(&f(&q));
-            for (what, got, want) in [
-                ("dtau/dq", wide(a), rows(&wa)),
-                ("dtau/dqd", wide(b), rows(&wb)),
-                ("dqdd/dq", wide(c), rows(&wc)),
-                ("dqdd/dqd", wide(d), rows(&wd)),
-                ("Minv", wide(e), rows(&we)),
-                ("mass_matrix_inverse", wide(minv), rows(&we)),
-            ] {
-                let err = norm_rel_err(&got, &want, 1e-300);
-                assert!(err <= 1e-4, "{} f32 {what}: {err:e}", stringify!($m));
-            }
+            let got = [wide(a), wide(b), wide(c), wide(d), wide(e), wide(minv)];
+            compare(&format!("{} f32", stringify!($m)), got, [&wa, &wb, &wc, &wd, &we], 1e-4);
         }
     }};
 }
@@ -173,16 +163,7 @@ fn ur5_controller_scene_derivatives_match_the_generic_ones() {
         let (c, d, e) = m::forward_dynamics_derivatives(&q, &qd, &x, &f_tip);
         let (wc, wd, we) = robot.forward_dynamics_derivatives_with(&v(&q), &v(&qd), &v(&x), &inputs).unwrap();
         let minv = m::mass_matrix_inverse(&q);
-        for (what, got, want) in [
-            ("dtau/dq", a.concat(), rows(&wa)),
-            ("dtau/dqd", b.concat(), rows(&wb)),
-            ("dqdd/dq", c.concat(), rows(&wc)),
-            ("dqdd/dqd", d.concat(), rows(&wd)),
-            ("Minv", e.concat(), rows(&we)),
-            ("mass_matrix_inverse", minv.concat(), rows(&we)),
-        ] {
-            let err = norm_rel_err(&got, &want, 1e-300);
-            assert!(err <= 1e-12, "ur5_controller {what}: {err:e}");
-        }
+        let got = [a.concat(), b.concat(), c.concat(), d.concat(), e.concat(), minv.concat()];
+        compare("ur5_controller", got, [&wa, &wb, &wc, &wd, &we], 1e-12);
     }
 }
