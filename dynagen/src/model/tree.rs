@@ -138,10 +138,14 @@ impl Model {
         let nonphysical = model.warnings.iter().any(|w| matches!(w, ModelWarning::NonPhysicalInertia { .. }));
         let more = check_every_joint_moves_mass(&model, nonphysical)?;
         model.warnings.extend(more);
+        // a floating joint at the root floats the model, which checks its
+        // inertia and its dependent joints with the base moving
+        if world.is_some() {
+            return Ok(model.with_floating_base());
+        }
         let dependent = super::dependent::dependent_joints(&model);
         model.warnings.extend(dependent.into_iter().map(|joints| ModelWarning::DependentJoints { joints }));
-        // a floating joint at the root floats the model (and checks its inertia)
-        Ok(if world.is_some() { model.with_floating_base() } else { model })
+        Ok(model)
     }
 }
 
