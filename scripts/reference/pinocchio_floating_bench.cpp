@@ -10,8 +10,8 @@
 //
 // States: base position in [-1, 1]^3, a uniformly random unit quaternion,
 // joints in [-pi, pi], velocities in [-2, 2], accelerations in [-5, 5],
-// torques in [-20, 20].  aba is timed with both of Pinocchio's conventions
-// (LOCAL, its default, and WORLD).  The algorithm templates are compiled
+// torques in [-20, 20].  aba and crba are timed with both of Pinocchio's
+// conventions (LOCAL, their default, and WORLD).  The algorithm templates are compiled
 // into this file, with the flags of floating_bench.sh.  Not run in CI; see
 // README.md in this folder.
 
@@ -71,13 +71,15 @@ int main(int argc, char** argv) {
   }
 
   using pinocchio::Convention;
-  const char* names[] = {"rnea", "crba", "nonLinearEffects", "aba (LOCAL)", "aba (WORLD)"};
+  const char* names[] = {"rnea",        "crba (LOCAL)", "nonLinearEffects",
+                         "aba (LOCAL)", "aba (WORLD)",  "crba (WORLD)"};
   std::vector<std::function<double(int)>> fs = {
       [&](int s) { return pinocchio::rnea(model, data, q[s], v[s], a[s])[0]; },
       [&](int s) { return pinocchio::crba(model, data, q[s])(0, 0); },
       [&](int s) { return pinocchio::nonLinearEffects(model, data, q[s], v[s])[0]; },
       [&](int s) { return pinocchio::aba(model, data, q[s], v[s], tau[s], Convention::LOCAL)[0]; },
       [&](int s) { return pinocchio::aba(model, data, q[s], v[s], tau[s], Convention::WORLD)[0]; },
+      [&](int s) { return pinocchio::crba(model, data, q[s], Convention::WORLD)(0, 0); },
   };
   const int n = static_cast<int>(fs.size());
   // Warm-up.
@@ -113,11 +115,14 @@ int main(int argc, char** argv) {
             acc += pinocchio::aba(model, data, q[s], v[s], tau[s], Convention::LOCAL)[0];
           }
           break;
-        default:
+        case 4:
           for (int i = 0; i < kCalls; ++i) {
             const int s = i & (kStates - 1);
             acc += pinocchio::aba(model, data, q[s], v[s], tau[s], Convention::WORLD)[0];
           }
+          break;
+        default:
+          for (int i = 0; i < kCalls; ++i) acc += pinocchio::crba(model, data, q[i & (kStates - 1)], Convention::WORLD)(0, 0);
           break;
       }
       const auto t1 = Clock::now();

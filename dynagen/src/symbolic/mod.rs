@@ -73,6 +73,7 @@ mod factor;
 mod fuse;
 mod graph;
 mod node;
+mod schedule;
 mod traced;
 mod tracer;
 
@@ -84,5 +85,6 @@ pub use factor::factor;
 pub use fuse::{Fused, Fusion};
 pub use graph::{Graph, Rewrites};
 pub use node::{Node, NodeId};
+pub(crate) use schedule::order as statement_order;
 pub use traced::Traced;
 pub use tracer::{TraceActive, Tracer};

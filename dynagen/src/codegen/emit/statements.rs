@@ -8,7 +8,7 @@
 use super::split::{self, Body, Line, PartParam};
 use super::syntax::{array, binary, call, float, ident, index, let_stmt, method, pat, path, unary};
 use crate::codegen::{CodegenError, CodegenOptions, ScalarType, Trig};
-use crate::symbolic::{Fusion, Node, Traced};
+use crate::symbolic::{statement_order, Fusion, Node, Traced};
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 use syn::{BinOp, Expr, Pat, Stmt, UnOp};
@@ -417,13 +417,13 @@ fn body_of(f: &Traced, scalar: ScalarType, trig: Trig, style: BodyStyle, fma: &[
     let nodes = f.nodes();
     // How each node is referred to by its users (for a SinCos node: its
     // sine; the cosine's name is kept in `cos_ref`).
-    let mut refs: Vec<Expr> = Vec::with_capacity(nodes.len());
+    let mut refs: Vec<Option<Expr>> = vec![None; nodes.len()];
     let mut cos_ref: Vec<Option<Expr>> = vec![None; nodes.len()];
     // For the split: the value each node is (its sine for a SinCos node;
     // the cosine's in `cos_value`), or the input array it reads.
-    let mut value: Vec<Option<u32>> = Vec::with_capacity(nodes.len());
+    let mut value: Vec<Option<u32>> = vec![None; nodes.len()];
     let mut cos_value: Vec<Option<u32>> = vec![None; nodes.len()];
-    let mut input: Vec<Option<u32>> = Vec::with_capacity(nodes.len());
+    let mut input: Vec<Option<u32>> = vec![None; nodes.len()];
     let mut names: Vec<Ident> = Vec::new();
     let mut lines: Vec<Line> = Vec::new();
     // For each SinCos node: whether its sine and cosine are read.
@@ -437,8 +437,11 @@ fn body_of(f: &Traced, scalar: ScalarType, trig: Trig, style: BodyStyle, fma: &[
         }
     }
     let mut k = 0usize;
-    for (id, node) in nodes.iter().enumerate() {
-        let r = |i: u32| &refs[i as usize];
+    // The statements in the order of `symbolic/schedule.rs`: operands
+    // before users, traced or reordered for a shorter live set.
+    for id in statement_order(f, &fusion) {
+        let (id, node) = (id as usize, &nodes[id as usize]);
+        let r = |i: u32| refs[i as usize].as_ref().expect("operands are written first");
         let fused = fusion.sum(id as u32);
         let operands: Vec<u32> = match fused {
             Some(fu) => vec![fu.a, fu.b, fu.c],
@@ -491,7 +494,7 @@ fn body_of(f: &Traced, scalar: ScalarType, trig: Trig, style: BodyStyle, fma: &[
             }
             Node::Sin(sc) => {
                 this_value = value[sc as usize];
-                refs[sc as usize].clone()
+                r(sc).clone()
             }
             Node::Cos(sc) => {
                 this_value = cos_value[sc as usize];
@@ -525,11 +528,14 @@ fn body_of(f: &Traced, scalar: ScalarType, trig: Trig, style: BodyStyle, fma: &[
                 path(t)
             }
         };
-        refs.push(reference);
-        value.push(this_value);
-        input.push(this_input);
+        refs[id] = Some(reference);
+        value[id] = this_value;
+        input[id] = this_input;
     }
-    let outputs: Vec<(Expr, Option<u32>)> =
-        f.outputs().iter().map(|&o| (refs[o as usize].clone(), value[o as usize])).collect();
+    let outputs: Vec<(Expr, Option<u32>)> = f
+        .outputs()
+        .iter()
+        .map(|&o| (refs[o as usize].clone().expect("every node is written"), value[o as usize]))
+        .collect();
     Ok(Body { lines, names, outputs })
 }
