@@ -77,6 +77,20 @@ pub mod gripper {
     }
 }
 
+/// The same gripper with its mimic joint a joint of its own (the `mimic`
+/// option of `robot!`): two slides.
+pub mod gripper_independent {
+    dynagen_macros::robot! {
+        name: gripper,
+        mimic: independent,
+        link palm {},
+        link left { mass: 0.1, com: [0, 0.01, 0.02], inertia: [1e-5, 1e-5, 1e-5, 0, 0, 0] },
+        link right { mass: 0.1, com: [0, -0.01, 0.02], inertia: [1e-5, 1e-5, 1e-5, 0, 0, 0] },
+        joint slide: prismatic(palm -> left) { axis: [0, 1, 0] },
+        joint mirror: prismatic(palm -> right) { axis: [0, -1, 0], mimic: slide, multiplier: 1, offset: 0.001 },
+    }
+}
+
 use panda::DOF;
 
 /// τ = M(q)(q̈_des + Kp e + Kd ė) + h(q, q̇), e = q_des − q.
@@ -137,6 +151,9 @@ mod tests {
         assert!((gripper::mass_matrix(&[0.01])[0][0] - 0.2).abs() < 1e-15);
         assert_eq!(gripper::gravity_torques(&[0.01]), [0.0]);
         assert!((gripper::forward_dynamics(&[0.01], &[0.0], &[1.0])[0] - 5.0).abs() < 1e-13);
+        // `mimic: independent` in robot!: both slides are joints, each finger its own 0.1 kg.
+        assert_eq!(gripper_independent::JOINT_NAMES, ["slide", "mirror"]);
+        assert_eq!(gripper_independent::mass_matrix(&[0.01, 0.011]), [[0.1, 0.0], [0.0, 0.1]]);
     }
 
     #[test]
