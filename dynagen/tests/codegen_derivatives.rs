@@ -301,6 +301,34 @@ fn floating_base_derivatives_match_the_generic_ones() {
             let generic = scene_derivatives(&mut robot, [&q, &qd, &x], &si);
             let worst = compare(&module, ScalarType::F64, &inputs, |f| rows_of(f, &generic), 1e-12);
             println!("torso_two_arms (floating, {what}): worst relative error {worst:.1e}");
+            let worst = compare_factors(&module, &inputs, &generic);
+            println!("torso_two_arms (floating, {what}), factors and products: worst relative error {worst:.1e}");
         }
     }
+}
+
+/// The forward dynamics' derivatives of `module` as emitted with their
+/// products in a loop (`codegen/emit/products.rs`): the factors' body (∂τ/∂q,
+/// ∂τ/∂q̇ at q̈ = FD, M⁻¹) evaluated at `inputs` (its sines and cosines from
+/// `q`), then −M⁻¹∂τ, against the generic derivatives (≤ 1e-12); the worst
+/// relative error. Panics if the module does not emit them so.
+fn compare_factors(module: &GeneratedModule, inputs: &[(&str, &[f64])], generic: &[DMatrix<f64>; 6]) -> f64 {
+    let f = module.functions.iter().find(|f| f.emitted && f.function == Function::ForwardDynamicsDerivatives);
+    let (sc, _) = f.and_then(|f| f.factors.as_ref()).expect("the forward dynamics' derivatives as factors");
+    assert!(module.source.contains("fn derivative_products_on<I: Isa>"), "the products' loop is emitted");
+    let q = inputs.iter().find(|(name, _)| *name == "q").expect("q").1;
+    let angle = |i: usize| sc.angle_scale[i].map(|k| k * q[sc.q_offset + i]);
+    let s: Vec<f64> = (0..sc.angle_scale.len()).map(|i| angle(i).map_or(0.0, f64::sin)).collect();
+    let c: Vec<f64> = (0..sc.angle_scale.len()).map(|i| angle(i).map_or(1.0, f64::cos)).collect();
+    assert!(sc.extra_angles.is_empty(), "no mimic joint here");
+    let all: Vec<(&str, &[f64])> = inputs.iter().copied().chain([("s", &s[..]), ("c", &c[..])]).collect();
+    let out = sc.function.eval(&all).unwrap();
+    let n = generic[4].nrows();
+    let m = |k: usize| DMatrix::from_row_slice(n, n, &out[k * n * n..(k + 1) * n * n]);
+    let minv = m(2);
+    let got = [-&minv * m(0), -&minv * m(1), minv];
+    let want = [&generic[2], &generic[3], &generic[4]];
+    let worst = got.iter().zip(want).map(|(g, w)| norm_rel_err(&rows(g), &rows(w), 1e-300)).fold(0.0, f64::max);
+    assert!(worst <= 1e-12, "factors and products: {worst:e}");
+    worst
 }

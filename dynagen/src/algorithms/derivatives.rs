@@ -372,16 +372,43 @@ pub fn mass_matrix_inverse<S: Scalar>(model: &Model, factor: &mut [S], linv: &mu
 pub fn forward_dynamics_derivatives<S: Scalar, J: JointTorques>(
     d: &Dynamics<'_, S, J>,
     dw: &mut DerivativeWorkspace<S>,
-    [q, qd, tau]: [&[S]; 3],
+    state: [&[S]; 3],
     formulation: Formulation,
     [dqdd_dq, dqdd_dqd, minv]: [&mut [S]; 3],
 ) {
-    let (model, n) = (d.model, d.model.nv());
+    let n = d.model.nv();
     assert!(
-        tau.len() == n && dqdd_dq.len() == n * n && dqdd_dqd.len() == n * n,
-        "forward_dynamics_derivatives: τ must have NV entries and the matrices NV×NV ({n}×{n})"
+        dqdd_dq.len() == n * n && dqdd_dqd.len() == n * n,
+        "forward_dynamics_derivatives: the matrices must be NV×NV ({n}×{n})"
     );
     let (mut dq, mut dqd) = (std::mem::take(&mut dw.dtau_dq), std::mem::take(&mut dw.dtau_dqd));
+    forward_dynamics_derivative_factors(d, dw, state, formulation, [&mut dq, &mut dqd, minv]);
+    for (dtau, out) in [(&dq, &mut *dqdd_dq), (&dqd, &mut *dqdd_dqd)] {
+        for i in 0..n {
+            for j in 0..n {
+                out[i * n + j] = -dot(&minv[i * n..(i + 1) * n], &dtau[j..], n);
+            }
+        }
+    }
+    (dw.dtau_dq, dw.dtau_dqd) = (dq, dqd);
+}
+
+/// The factors of [`forward_dynamics_derivatives`]: ∂τ/∂q and ∂τ/∂q̇ at
+/// q̈ = FD(q, q̇, τ), and M⁻¹ (row-major n×n each), whose products
+/// −M⁻¹ ∂τ/∂x are ∂q̈/∂x. Code generation emits those products as a loop
+/// where that is cheaper than unrolling them (`codegen/emit/products.rs`).
+pub fn forward_dynamics_derivative_factors<S: Scalar, J: JointTorques>(
+    d: &Dynamics<'_, S, J>,
+    dw: &mut DerivativeWorkspace<S>,
+    [q, qd, tau]: [&[S]; 3],
+    formulation: Formulation,
+    [dtau_dq, dtau_dqd, minv]: [&mut [S]; 3],
+) {
+    let (model, n) = (d.model, d.model.nv());
+    assert!(
+        tau.len() == n && dtau_dq.len() == n * n && dtau_dqd.len() == n * n && minv.len() == n * n,
+        "forward_dynamics_derivatives: τ must have NV entries and the matrices NV×NV ({n}×{n})"
+    );
     let (mut factor, mut qdd) = (std::mem::take(&mut dw.factor), std::mem::take(&mut dw.qdd_value));
     // τ − h(q, q̇), M, M⁻¹, q̈ = M⁻¹(τ − h), then ∂τ at q̈.
     d.tau(&mut dw.ws, q, qd, None, &mut dw.rhs);
@@ -393,15 +420,8 @@ pub fn forward_dynamics_derivatives<S: Scalar, J: JointTorques>(
     for i in 0..n {
         qdd[i] = dot(&minv[i * n..(i + 1) * n], &dw.rhs, 1);
     }
-    inverse_dynamics_derivatives(d, dw, [q, qd, &qdd], formulation, [&mut dq, &mut dqd], None);
-    for (dtau, out) in [(&dq, &mut *dqdd_dq), (&dqd, &mut *dqdd_dqd)] {
-        for i in 0..n {
-            for j in 0..n {
-                out[i * n + j] = -dot(&minv[i * n..(i + 1) * n], &dtau[j..], n);
-            }
-        }
-    }
-    (dw.dtau_dq, dw.dtau_dqd, dw.factor, dw.qdd_value) = (dq, dqd, factor, qdd);
+    inverse_dynamics_derivatives(d, dw, [q, qd, &qdd], formulation, [dtau_dq, dtau_dqd], None);
+    (dw.factor, dw.qdd_value) = (factor, qdd);
 }
 
 /// Σₖ a[k]·b[k·stride], k < a.len().

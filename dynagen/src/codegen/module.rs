@@ -31,6 +31,11 @@ pub struct GeneratedFunction {
     pub sin_cos_inputs: SinCosTrace,
     /// Its operation count.
     pub op_count: OpCount,
+    /// For the forward dynamics' derivatives emitted as their factors and a
+    /// loop (`codegen/emit/products.rs`): the factors' body (∂τ/∂q, ∂τ/∂q̇
+    /// at q̈ = FD(q, q̇, τ), and M⁻¹; `NAME_factors_sc`) and its count;
+    /// `None` where the whole trace is emitted.
+    pub factors: Option<(SinCosTrace, OpCount)>,
 }
 
 impl GeneratedFunction {

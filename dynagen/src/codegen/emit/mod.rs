@@ -6,6 +6,7 @@
 
 mod header;
 mod literal;
+mod products;
 mod split;
 mod statements;
 mod syntax;
@@ -13,6 +14,7 @@ mod text;
 mod wrapper;
 
 pub use literal::float_literal_text;
+pub(crate) use products::loop_ops;
 pub(crate) use statements::{tidy_dispatch, BodyStyle, Dim, Param, Shape, Signature, Sizes};
 pub(crate) use text::{doc_code, identifier};
 
@@ -126,8 +128,16 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
     let has_prismatic = floating || model.bodies.iter().any(|b| b.joint.kind == JointKind::Prismatic);
     let q_param = Param::sized("q", if floating { Dim::Nq } else { Dim::Dof });
     let mut split_functions = Vec::new();
+    let mut products = false;
     for f in functions.iter().filter(|f| f.emitted) {
-        let (sc, name) = (&f.sin_cos_inputs, &f.name);
+        // The forward dynamics' derivatives as their factors and a loop
+        // (products.rs): the factors' body is emitted as `NAME_factors`.
+        let factors_name = format!("{}_factors", f.name);
+        let (sc, name) = match &f.factors {
+            Some((factors, _)) => (factors, &factors_name),
+            None => (&f.sin_cos_inputs, &f.name),
+        };
+        let first_item = items.len();
         let ldlt = f.method == Some(super::ForwardDynamicsMethod::Ldlt);
         let ps = f.function.params(prepared);
         // one sine and cosine per joint, then the mimic joints' own angles
@@ -148,10 +158,19 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
         }
         sc_params.extend(ps[1..].iter().cloned());
         let sc_name = format!("{name}_sc");
-        let signature = Signature { name: sc_name.clone(), params: sc_params, output: f.function.shape(floating) };
+        let signature =
+            Signature { name: sc_name.clone(), params: sc_params.clone(), output: f.function.shape(floating) };
         let sc_count = super::counted(&sc.function, options.fma);
-        let doc =
-            format!("{}\n\n{}", f.function.doc(prepared, ldlt, &sc_count), wrapper::sc_doc(has_prismatic, floating));
+        let doc = match f.factors {
+            Some(_) => format!(
+                " The factors of [`{}_sc`]: ∂τ/∂q and ∂τ/∂q̇ at its q̈ = FD(q, q̇, τ), and M⁻¹ ({} FP ops).",
+                f.name,
+                sc_count.fp_ops()
+            ),
+            None => {
+                format!("{}\n\n{}", f.function.doc(prepared, ldlt, &sc_count), wrapper::sc_doc(has_prismatic, floating))
+            }
+        };
         let style = BodyStyle::of(options);
         let emitted =
             statements::emit_function(&sc.function, &signature, options.scalar, options.trig, sizes, &doc, style)?;
@@ -160,16 +179,44 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
             split_functions.push((sc_name.clone(), parts));
         }
         items.extend(emitted);
+        let ret = f.function.shape(floating).tokens(options.scalar);
         if options.trig != Trig::Inputs {
-            let doc = format!(
-                "{}\n\n The sines and cosines of the joint angles by {}, then [`{sc_name}`].",
-                f.function.doc(prepared, ldlt, &f.op_count),
-                wrapper::trig_source(options.trig, options.scalar)
-            );
-            let ret = f.function.shape(floating).tokens(options.scalar);
+            let doc = match f.factors {
+                Some(_) => format!(" The factors of [`{}`]: the sines and cosines, then [`{sc_name}`].", f.name),
+                None => format!(
+                    "{}\n\n The sines and cosines of the joint angles by {}, then [`{sc_name}`].",
+                    f.function.doc(prepared, ldlt, &f.op_count),
+                    wrapper::trig_source(options.trig, options.scalar)
+                ),
+            };
             let body = wrapper::ScBody { trace: sc, has_prismatic, split: sc_split.is_some() };
-            items.extend(wrapper::parse_items(wrapper::wrapper(name, &ps, ret, body, options, &doc))?);
+            items.extend(wrapper::parse_items(wrapper::wrapper(name, &ps, ret.clone(), body, options, &doc))?);
         }
+        if let Some((_, count)) = &f.factors {
+            // The factors stay private; `NAME` and `NAME_sc` multiply them.
+            for item in &mut items[first_item..] {
+                if let syn::Item::Fn(func) = item {
+                    func.vis = syn::Visibility::Inherited;
+                }
+            }
+            let how = format!(
+                "\n\n Emitted as `{factors_name}` ({} FP ops) and the products −M⁻¹∂τ in a loop \
+                 (`derivative_products`), which counts fewer operations than the whole trace.",
+                count.fp_ops()
+            );
+            let doc = format!("{}{how}", f.function.doc(prepared, ldlt, &f.op_count));
+            let sc_doc = format!(
+                "{}{how}\n\n{}",
+                f.function.doc(prepared, ldlt, &f.sin_cos_inputs.function.op_count()),
+                wrapper::sc_doc(has_prismatic, floating)
+            );
+            let tokens = products::wrappers(&f.name, &ps, &sc_params, ret, options, [&doc, &sc_doc]);
+            items.extend(wrapper::parse_items(tokens)?);
+            products = true;
+        }
+    }
+    if products {
+        items.extend(wrapper::parse_items(products::helper(options))?);
     }
     allow_unused(&mut items);
     let file = syn::File { shebang: None, frontmatter: None, attrs: vec![], items };

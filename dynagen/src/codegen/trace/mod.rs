@@ -21,7 +21,7 @@ mod sin_cos;
 pub use generic_count::generic_op_count;
 pub use sin_cos::{sin_cos_from_q, sin_cos_inputs, Angle, SinCosTrace};
 
-use super::emit::{payload_argument, Sizes};
+use super::emit::{loop_ops, payload_argument, Sizes};
 use super::{counted, CodegenError, CodegenOptions, ForwardDynamicsMethod, Function, GeneratedFunction};
 use crate::algorithms::derivatives::{self, DerivativeWorkspace, Dynamics, Formulation, MassMatrixFn};
 use crate::algorithms::{crba, ldlt, rnea, BodyInertia, Loads, TipWrench, Workspace};
@@ -127,6 +127,7 @@ pub(crate) fn trace_module(
                     traced,
                     sin_cos_inputs: sc,
                     op_count,
+                    factors: None,
                 });
             }
         }
@@ -136,6 +137,20 @@ pub(crate) fn trace_module(
             let best = (0..traced.len()).min_by_key(|&k| traced[k].op_count.fp_ops()).expect("traced");
             for (k, g) in traced.iter_mut().enumerate() {
                 g.emitted = k == best;
+            }
+        }
+        // The forward dynamics' derivatives as their factors and a loop, where
+        // that counts fewer operations (codegen/emit/products.rs).
+        if *f == Function::ForwardDynamicsDerivatives {
+            if let Some(g) = functions[first..].iter_mut().find(|g| g.emitted) {
+                let formulation = g.formulation.unwrap_or(formulations(f, &scene.model)[0]);
+                let m = ForwardDynamicsMethod::Aba;
+                let traced = trace_unfactored_as(scene, f, m, formulation, Products::Factors, options.rewrites)?;
+                let sc = sin_cos_inputs(&traced, n, offset, options.rewrites).map_err(CodegenError::Internal)?;
+                let count = counted(&sin_cos_from_q(&sc, options.rewrites), options.fma);
+                if count.fp_ops() + loop_ops(sizes.nv) < g.op_count.fp_ops() {
+                    g.factors = Some((sc, count));
+                }
             }
         }
     }
@@ -253,6 +268,29 @@ pub(crate) fn trace_unfactored(
     formulation: Formulation,
     rewrites: Rewrites,
 ) -> Result<Traced, CodegenError> {
+    trace_unfactored_as(scene, f, method, formulation, Products::Traced, rewrites)
+}
+
+/// Whether the forward dynamics' derivatives are traced whole, or as their
+/// factors ∂τ/∂q, ∂τ/∂q̇ (at q̈ = FD) and M⁻¹, the products −M⁻¹∂τ left to
+/// a loop in the emitted code (`codegen/emit/products.rs`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Products {
+    /// ∂q̈/∂q, ∂q̈/∂q̇, M⁻¹, every product traced.
+    Traced,
+    /// ∂τ/∂q, ∂τ/∂q̇ at q̈ = FD(q, q̇, τ), and M⁻¹.
+    Factors,
+}
+
+/// [`trace_unfactored`], the forward dynamics' derivatives as `products` says.
+pub(crate) fn trace_unfactored_as(
+    scene: &SceneModel,
+    f: &Function,
+    method: ForwardDynamicsMethod,
+    formulation: Formulation,
+    products: Products,
+    rewrites: Rewrites,
+) -> Result<Traced, CodegenError> {
     if let Some(name) = f.frame() {
         return frames::trace_unfactored(scene, f, name, rewrites);
     }
@@ -353,7 +391,18 @@ pub(crate) fn trace_unfactored(
                 }
                 Function::ForwardDynamicsDerivatives => {
                     let (b, c) = rest.split_at_mut(nv * nv);
-                    derivatives::forward_dynamics_derivatives(&d, &mut dw, state(), formulation, [a, b, c])
+                    match products {
+                        Products::Traced => {
+                            derivatives::forward_dynamics_derivatives(&d, &mut dw, state(), formulation, [a, b, c])
+                        }
+                        Products::Factors => derivatives::forward_dynamics_derivative_factors(
+                            &d,
+                            &mut dw,
+                            state(),
+                            formulation,
+                            [a, b, c],
+                        ),
+                    }
                 }
                 _ => {
                     let mut m = vec![zero; nv * nv];
