@@ -23,6 +23,22 @@ fn main() {
     let robots = Path::new(env!("CARGO_MANIFEST_DIR")).join("../dynagen/robots");
     println!("cargo:rerun-if-changed=build.rs");
     let out = std::env::var("OUT_DIR").expect("OUT_DIR");
+    // A function ahead of the modules, its size set by DYNAGEN_BENCH_LAYOUT
+    // (0 by default): another value moves the modules' code, so that a
+    // timing can be repeated over several code layouts
+    // (scripts/reference/layouts.sh; docs/performance.md, "The same body,
+    // different binaries").
+    println!("cargo:rerun-if-env-changed=DYNAGEN_BENCH_LAYOUT");
+    let layout: usize = std::env::var("DYNAGEN_BENCH_LAYOUT").ok().and_then(|v| v.parse().ok()).unwrap_or(0);
+    let terms: Vec<String> = (0..=97 * layout).map(|i| format!("x * {i}.5")).collect();
+    let pad = format!(
+        "/// The code layout this library was built with (`DYNAGEN_BENCH_LAYOUT`).\n\
+         pub const LAYOUT: usize = {layout};\n\
+         #[inline(never)]\n\
+         fn layout_pad(x: f64) -> f64 {{\n    {}\n}}\n",
+        terms.join(" + ")
+    );
+    std::fs::write(Path::new(&out).join("layout_pad.rs"), pad).expect("writing");
     for robot in ["ur5", "panda", "iiwa14", "quadruped12"] {
         let urdf = robots.join(format!("{robot}.urdf"));
         println!("cargo:rerun-if-changed={}", urdf.display());

@@ -123,7 +123,11 @@ macro_rules! bench {
 }
 
 fn main() {
-    println!("dynagen generated (default options) and generic, ns per call (median and minimum of {BATCHES} batches of {BATCH} calls)");
+    println!(
+        "dynagen generated (default options) and generic, ns per call (median and minimum of {BATCHES} batches of \
+         {BATCH} calls), code layout {}",
+        dynagen_bench::layout()
+    );
     let fixed = |name: &str| Robot::from_urdf_file(urdf(name)).unwrap();
     bench!(ur5, ur5_tau, "ur5", fixed("ur5"));
     bench!(panda, panda_tau, "panda", fixed("panda"));

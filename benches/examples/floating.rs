@@ -115,7 +115,10 @@ fn run<const NQ: usize, const NV: usize>(robot: &str, fs: [(&str, Timed<NQ, NV>)
             times[k].push(t.elapsed().as_nanos() as f64 / CALLS as f64);
         }
     }
-    println!("dynagen generated, {robot} floating (NQ = {NQ}, NV = {NV}), {rounds} rounds of {CALLS} calls");
+    let layout = dynagen_bench::layout();
+    println!(
+        "dynagen generated, {robot} floating (NQ = {NQ}, NV = {NV}), {rounds} rounds of {CALLS} calls, code layout {layout}"
+    );
     for ((name, _), t) in fs.iter().zip(&mut times) {
         t.sort_by(f64::total_cmp);
         println!("dynagen   {name:<18} min {:8.1} ns  median {:8.1} ns", t[0], t[t.len() / 2]);

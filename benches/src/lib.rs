@@ -8,6 +8,20 @@ use nalgebra::{DMatrix, DVector};
 use std::hint::black_box;
 use std::time::Instant;
 
+// `LAYOUT` and a function whose size it sets, ahead of the generated
+// modules (build.rs): see [`layout`].
+include!(concat!(env!("OUT_DIR"), "/layout_pad.rs"));
+
+/// The code layout of this build (`DYNAGEN_BENCH_LAYOUT`, 0 by default),
+/// for the timing's header. Calling it keeps the padding function that
+/// sets it in the binary, ahead of the modules, so that builds with other
+/// values time the same code at other addresses
+/// (`scripts/reference/layouts.sh`).
+pub fn layout() -> usize {
+    black_box(layout_pad(black_box(1.0)));
+    LAYOUT
+}
+
 macro_rules! generated {
     ($name:ident, $file:literal, $what:literal) => {
         #[doc = $what]
@@ -215,7 +229,10 @@ macro_rules! time_generated {
 /// Prints the rows of [`time_generated!`] and [`time_generic`] for `robot`
 /// (its file name) with `n` joints.
 pub fn print_rows(robot: &str, n: usize, rows: &[(&str, (f64, f64))]) {
-    println!("dynagen, {robot} nv={n}, ns per call (median and minimum of {BATCHES} batches of {BATCH} calls)");
+    println!(
+        "dynagen, {robot} nv={n}, ns per call (median and minimum of {BATCHES} batches of {BATCH} calls), code layout {}",
+        layout()
+    );
     for (name, (median, min)) in rows {
         println!("  {name:<32} median {median:8.1} ns  min {min:8.1} ns");
     }
