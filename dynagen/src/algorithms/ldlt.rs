@@ -39,17 +39,32 @@ pub fn factorise_tree<S: Scalar>(n: usize, parent: impl Fn(usize) -> Option<usiz
     assert!(m.len() == n * n, "ldlt: m must be {n}×{n}");
     for k in (0..n).rev() {
         let inv = S::one() / m[k * n + k];
-        let mut i = parent(k);
-        while let Some(ii) = i {
-            let a = m[k * n + ii] * inv;
-            let mut j = Some(ii);
-            while let Some(jj) = j {
-                m[ii * n + jj] -= a * m[k * n + jj];
-                j = parent(jj);
-            }
-            m[k * n + ii] = a;
-            i = parent(ii);
+        eliminate(n, &parent, m, k, |x| x * inv);
+    }
+}
+
+/// Pivot `k`'s step of the elimination from the tips up: for each ancestor
+/// i of k, L's entry a = `ratio(m[k][i])` (the entry over the pivot), then
+/// m[i][j] −= a·m[k][j] for the ancestors-or-self j of i, and m[k][i] = a.
+/// [`factorise_tree`] multiplies by the pivot's inverse; the dependent-joint
+/// check of `model/dependent.rs` divides by it, after testing it.
+pub(crate) fn eliminate<S: Scalar>(
+    n: usize,
+    parent: &impl Fn(usize) -> Option<usize>,
+    m: &mut [S],
+    k: usize,
+    ratio: impl Fn(S) -> S,
+) {
+    let mut i = parent(k);
+    while let Some(ii) = i {
+        let a = ratio(m[k * n + ii]);
+        let mut j = Some(ii);
+        while let Some(jj) = j {
+            m[ii * n + jj] -= a * m[k * n + jj];
+            j = parent(jj);
         }
+        m[k * n + ii] = a;
+        i = parent(ii);
     }
 }
 

@@ -49,17 +49,7 @@ pub(crate) fn singular_sets_at(model: &Model, q: &[f64]) -> Vec<Vec<usize>> {
             }
             continue;
         }
-        let mut i = parent(k);
-        while let Some(ii) = i {
-            let a = m[k * n + ii] / d;
-            let mut j = Some(ii);
-            while let Some(jj) = j {
-                m[ii * n + jj] -= a * m[k * n + jj];
-                j = parent(jj);
-            }
-            m[k * n + ii] = a;
-            i = parent(ii);
-        }
+        ldlt::eliminate(n, &parent, &mut m, k, |x| x / d);
     }
     // For each vanishing pivot k, x with L·x = e_k (from the base down:
     // x_i = [i = k] − Σ over ancestors j of L[i][j]·x_j) is a motion of

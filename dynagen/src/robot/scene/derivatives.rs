@@ -7,10 +7,10 @@
 //! the tangent space of the base's body twist (as [`Robot`](crate::Robot)'s).
 
 use super::{SceneInputError, SceneInputs, SceneRobot, Uses};
-use crate::algorithms::derivatives::{self as d, Dynamics, Formulation};
+use crate::algorithms::derivatives::{self as d, DerivativeWorkspace, Dynamics, Formulation};
 use crate::algorithms::Loads;
 use crate::robot::derivatives::{copy_rows, DerivativeScratch};
-use crate::scene::dynamics;
+use crate::scene::{dynamics, SceneModel};
 use nalgebra::{DMatrix, DVector};
 
 impl SceneRobot {
@@ -23,19 +23,9 @@ impl SceneRobot {
         qdd: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<(DMatrix<f64>, DMatrix<f64>), SceneInputError> {
-        self.check().joints(&[("q", q), ("qd", qd), ("qdd", qdd)])?;
-        let n = self.nv();
-        let g = self.prepare(inputs, Uses { gravity: true, tip: true })?;
-        let DerivativeScratch { dw, rows } = &mut self.deriv;
-        let scene = &self.scene;
-        let loads = dynamics::with_armature(scene, Loads::new(g.as_ref(), &self.tips, &[]));
-        let d = Dynamics { model: &scene.model, loads, torques: scene, mass: None };
-        let [a, b, _] = rows;
-        let state = [q.as_slice(), qd.as_slice(), qdd.as_slice()];
-        d::inverse_dynamics_derivatives(&d, dw, state, Formulation::Analytical, [a, b], None);
-        let (mut x, mut y) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n));
-        copy_rows(a, &mut x);
-        copy_rows(b, &mut y);
+        let [x, y, _] = self.derivatives([("q", q), ("qd", qd), ("qdd", qdd)], inputs, |d, dw, state, [a, b, _]| {
+            d::inverse_dynamics_derivatives(d, dw, state, Formulation::Analytical, [a, b], None)
+        })?;
         Ok((x, y))
     }
 
@@ -49,21 +39,37 @@ impl SceneRobot {
         tau: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<(DMatrix<f64>, DMatrix<f64>, DMatrix<f64>), SceneInputError> {
-        self.check().joints(&[("q", q), ("qd", qd), ("tau", tau)])?;
+        let [x, y, z] = self.derivatives([("q", q), ("qd", qd), ("tau", tau)], inputs, |d, dw, state, [a, b, c]| {
+            d::forward_dynamics_derivatives(d, dw, state, Formulation::Analytical, [a, b, c])
+        })?;
+        Ok((x, y, z))
+    }
+
+    /// The three n×n matrices `run` writes (row-major) from the scene's
+    /// dynamics (armature, friction, the gravity and tip wrench of `inputs`
+    /// held constant) at the checked state `named`; those it leaves alone
+    /// are zero.
+    fn derivatives(
+        &mut self,
+        named: [(&'static str, &DVector<f64>); 3],
+        inputs: &SceneInputs<'_>,
+        run: impl FnOnce(&Dynamics<'_, f64, SceneModel>, &mut DerivativeWorkspace<f64>, [&[f64]; 3], [&mut [f64]; 3]),
+    ) -> Result<[DMatrix<f64>; 3], SceneInputError> {
+        self.check().joints(&named)?;
         let n = self.nv();
         let g = self.prepare(inputs, Uses { gravity: true, tip: true })?;
         let DerivativeScratch { dw, rows } = &mut self.deriv;
         let scene = &self.scene;
         let loads = dynamics::with_armature(scene, Loads::new(g.as_ref(), &self.tips, &[]));
         let d = Dynamics { model: &scene.model, loads, torques: scene, mass: None };
+        rows.iter_mut().for_each(|r| r.fill(0.0));
         let [a, b, c] = rows;
-        let state = [q.as_slice(), qd.as_slice(), tau.as_slice()];
-        d::forward_dynamics_derivatives(&d, dw, state, Formulation::Analytical, [a, b, c]);
-        let (mut x, mut y, mut z) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n), DMatrix::zeros(n, n));
-        copy_rows(a, &mut x);
-        copy_rows(b, &mut y);
-        copy_rows(c, &mut z);
-        Ok((x, y, z))
+        run(&d, dw, named.map(|(_, v)| v.as_slice()), [a, b, c]);
+        Ok([&*a, &*b, &*c].map(|r| {
+            let mut m = DMatrix::zeros(n, n);
+            copy_rows(r, &mut m);
+            m
+        }))
     }
 
     /// (M(q) + diag(armature))⁻¹ with the input payloads of `inputs`, from
