@@ -154,6 +154,14 @@ impl Fusion {
     pub fn sum(&self, id: NodeId) -> Option<Fused> {
         self.sums.get(id as usize).copied().flatten()
     }
+    /// The nodes the code computing node `id` (of `f`) reads: a fused
+    /// sum's product factors and addend, any other node's operands.
+    pub fn operands(&self, f: &Traced, id: NodeId) -> Vec<NodeId> {
+        match self.sum(id) {
+            Some(fu) => vec![fu.a, fu.b, fu.c],
+            None => f.nodes()[id as usize].operands().collect(),
+        }
+    }
     /// Whether node `id` is a product that is not computed on its own
     /// (every use of it is fused).
     pub fn is_folded(&self, id: NodeId) -> bool {

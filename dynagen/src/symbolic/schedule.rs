@@ -72,12 +72,7 @@ impl Lets {
                 _ => true,
             })
             .collect();
-        let mut operands: Vec<Vec<NodeId>> = (0..n)
-            .map(|id| match fusion.sum(id as NodeId) {
-                Some(fu) => vec![fu.a, fu.b, fu.c],
-                None => nodes[id].operands().collect(),
-            })
-            .collect();
+        let mut operands: Vec<Vec<NodeId>> = (0..n).map(|id| fusion.operands(f, id as NodeId)).collect();
         for ops in &mut operands {
             ops.sort_unstable();
             ops.dedup();

@@ -443,10 +443,7 @@ fn body_of(f: &Traced, scalar: ScalarType, trig: Trig, style: BodyStyle, fma: &[
         let (id, node) = (id as usize, &nodes[id as usize]);
         let r = |i: u32| refs[i as usize].as_ref().expect("operands are written first");
         let fused = fusion.sum(id as u32);
-        let operands: Vec<u32> = match fused {
-            Some(fu) => vec![fu.a, fu.b, fu.c],
-            None => node.operands().collect(),
-        };
+        let operands = fusion.operands(f, id as u32);
         let mut uses: Vec<u32> = operands.iter().filter_map(|&a| value[a as usize]).collect();
         uses.sort_unstable();
         uses.dedup();
