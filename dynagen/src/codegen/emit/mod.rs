@@ -210,7 +210,7 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
                 f.function.doc(prepared, ldlt, &f.sin_cos_inputs.function.op_count()),
                 wrapper::sc_doc(has_prismatic, floating)
             );
-            let tokens = products::wrappers(&f.name, &ps, &sc_params, ret, options, [&doc, &sc_doc]);
+            let tokens = products::wrappers(&f.name, &factors_name, &ps, &sc_params, ret, options, [&doc, &sc_doc]);
             items.extend(wrapper::parse_items(tokens)?);
             products = true;
         }

@@ -15,7 +15,7 @@
 //! fuses; the traced products sum in the trace's order. The two differ in
 //! the last bits, both within the generic solver's 1e-12.
 
-use super::statements::{scalar_type, Param};
+use super::statements::{dispatch_cfg, scalar_type, Param};
 use crate::codegen::{CodegenOptions, ScalarType, Trig};
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
@@ -44,11 +44,11 @@ pub(crate) fn helper(options: &CodegenOptions) -> TokenStream {
         ScalarType::F64 => quote!(fma),
         ScalarType::F32 => quote!(fmaf),
     };
-    let step = |isa: TokenStream, acc: TokenStream, a: TokenStream| match options.fma {
-        true => quote!(#acc = #isa::#fma(m, #a, #acc);),
+    let step = |acc: TokenStream, a: TokenStream| match options.fma {
+        true => quote!(#acc = I::#fma(m, #a, #acc);),
         false => quote!(#acc = m * #a + #acc;),
     };
-    let (x, y) = (step(quote!(I), quote!(x[i][j]), quote!(a[k][j])), step(quote!(I), quote!(y[i][j]), quote!(b[k][j])));
+    let (x, y) = (step(quote!(x[i][j]), quote!(a[k][j])), step(quote!(y[i][j]), quote!(b[k][j])));
     let doc = " −M⁻¹A and −M⁻¹B: the derivatives of q̈ from those of τ (`forward_dynamics_derivatives`), row by row.";
     let on = quote! {
         #[doc = " The body of [`derivative_products`], in the instructions of `I`."]
@@ -78,18 +78,19 @@ pub(crate) fn helper(options: &CodegenOptions) -> TokenStream {
             #on
         };
     }
+    let cfg = dispatch_cfg();
     quote! {
         #[doc = #doc]
         #[inline]
         fn derivative_products(minv: &#m, a: &#m, b: &#m) -> (#m, #m) {
-            #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+            #cfg
             if has_avx2_and_fma() {
                 return unsafe { derivative_products_avx2_fma(minv, a, b) };
             }
             derivative_products_on::<Baseline>(minv, a, b)
         }
         #[doc = " [`derivative_products`] compiled for processors with AVX2 and FMA."]
-        #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+        #cfg
         #[target_feature(enable = "avx2,fma")]
         unsafe fn derivative_products_avx2_fma(minv: &#m, a: &#m, b: &#m) -> (#m, #m) {
             derivative_products_on::<Avx2Fma>(minv, a, b)
@@ -98,19 +99,19 @@ pub(crate) fn helper(options: &CodegenOptions) -> TokenStream {
     }
 }
 
-/// `name` (and `name_sc`) as its factors `name_factors` (`name_factors_sc`)
-/// and the products: `params` are `name`'s, `sc_params` `name_sc`'s.
+/// `name` (and `name_sc`) as its factors `factors` (`factors_sc`) and the
+/// products: `params` are `name`'s, `sc_params` `name_sc`'s.
 pub(crate) fn wrappers(
     name: &str,
+    factors: &str,
     params: &[Param],
     sc_params: &[Param],
     ret: TokenStream,
     options: &CodegenOptions,
     [doc, sc_doc]: [&str; 2],
 ) -> TokenStream {
-    let one = |fn_name: String, params: &[Param], doc: &str| {
-        let (f, factors) =
-            (format_ident!("{fn_name}"), format_ident!("{}", fn_name.replacen(name, &format!("{name}_factors"), 1)));
+    let one = |fn_name: String, factors: String, params: &[Param], doc: &str| {
+        let (f, factors) = (format_ident!("{fn_name}"), format_ident!("{factors}"));
         let typed = params.iter().map(|p| p.tokens(options.scalar));
         let args = params.iter().map(|p| format_ident!("{}", p.name));
         let doc = doc.lines();
@@ -124,11 +125,11 @@ pub(crate) fn wrappers(
             }
         }
     };
-    let sc = one(format!("{name}_sc"), sc_params, sc_doc);
+    let sc = one(format!("{name}_sc"), format!("{factors}_sc"), sc_params, sc_doc);
     match options.trig {
         Trig::Inputs => sc,
         _ => {
-            let full = one(name.to_string(), params, doc);
+            let full = one(name.to_string(), factors.to_string(), params, doc);
             quote!(#sc #full)
         }
     }

@@ -187,7 +187,7 @@ impl BodyStyle {
 }
 
 /// The `cfg` of the run-time dispatch: x86-64 builds without AVX2 and FMA.
-fn dispatch_cfg() -> TokenStream {
+pub(super) fn dispatch_cfg() -> TokenStream {
     quote!(#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))])
 }
 
