@@ -9,7 +9,7 @@
 use super::{SceneInputError, SceneInputs, SceneRobot, Uses};
 use crate::algorithms::derivatives::{self as d, DerivativeWorkspace, Dynamics, Formulation};
 use crate::algorithms::Loads;
-use crate::robot::derivatives::{copy_rows, DerivativeScratch};
+use crate::robot::derivatives::DerivativeScratch;
 use crate::scene::{dynamics, SceneModel};
 use nalgebra::{DMatrix, DVector};
 
@@ -23,10 +23,11 @@ impl SceneRobot {
         qdd: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<(DMatrix<f64>, DMatrix<f64>), SceneInputError> {
-        let [x, y, _] = self.derivatives([("q", q), ("qd", qd), ("qdd", qdd)], inputs, |d, dw, state, [a, b, _]| {
+        self.derivatives([("q", q), ("qd", qd), ("qdd", qdd)], inputs, |d, dw, state, [a, b, _]| {
             d::inverse_dynamics_derivatives(d, dw, state, Formulation::Analytical, [a, b], None)
         })?;
-        Ok((x, y))
+        let (n, [a, b, _]) = (self.nv(), &self.deriv.rows);
+        Ok((DMatrix::from_row_slice(n, n, a), DMatrix::from_row_slice(n, n, b)))
     }
 
     /// (∂q̈/∂q, ∂q̈/∂q̇, M⁻¹) of [`forward_dynamics_with`](Self::forward_dynamics_with)
@@ -39,37 +40,31 @@ impl SceneRobot {
         tau: &DVector<f64>,
         inputs: &SceneInputs<'_>,
     ) -> Result<(DMatrix<f64>, DMatrix<f64>, DMatrix<f64>), SceneInputError> {
-        let [x, y, z] = self.derivatives([("q", q), ("qd", qd), ("tau", tau)], inputs, |d, dw, state, [a, b, c]| {
+        self.derivatives([("q", q), ("qd", qd), ("tau", tau)], inputs, |d, dw, state, [a, b, c]| {
             d::forward_dynamics_derivatives(d, dw, state, Formulation::Analytical, [a, b, c])
         })?;
-        Ok((x, y, z))
+        let (n, [a, b, c]) = (self.nv(), &self.deriv.rows);
+        Ok((DMatrix::from_row_slice(n, n, a), DMatrix::from_row_slice(n, n, b), DMatrix::from_row_slice(n, n, c)))
     }
 
-    /// The three n×n matrices `run` writes (row-major) from the scene's
-    /// dynamics (armature, friction, the gravity and tip wrench of `inputs`
-    /// held constant) at the checked state `named`; those it leaves alone
-    /// are zero.
+    /// Runs `run` on the scene's dynamics (armature, friction, the gravity
+    /// and tip wrench of `inputs` held constant) at the checked state
+    /// `named`, into the three row-major n×n scratch matrices.
     fn derivatives(
         &mut self,
         named: [(&'static str, &DVector<f64>); 3],
         inputs: &SceneInputs<'_>,
         run: impl FnOnce(&Dynamics<'_, f64, SceneModel>, &mut DerivativeWorkspace<f64>, [&[f64]; 3], [&mut [f64]; 3]),
-    ) -> Result<[DMatrix<f64>; 3], SceneInputError> {
+    ) -> Result<(), SceneInputError> {
         self.check().joints(&named)?;
-        let n = self.nv();
         let g = self.prepare(inputs, Uses { gravity: true, tip: true })?;
         let DerivativeScratch { dw, rows } = &mut self.deriv;
         let scene = &self.scene;
         let loads = dynamics::with_armature(scene, Loads::new(g.as_ref(), &self.tips, &[]));
         let d = Dynamics { model: &scene.model, loads, torques: scene, mass: None };
-        rows.iter_mut().for_each(|r| r.fill(0.0));
         let [a, b, c] = rows;
         run(&d, dw, named.map(|(_, v)| v.as_slice()), [a, b, c]);
-        Ok([&*a, &*b, &*c].map(|r| {
-            let mut m = DMatrix::zeros(n, n);
-            copy_rows(r, &mut m);
-            m
-        }))
+        Ok(())
     }
 
     /// (M(q) + diag(armature))⁻¹ with the input payloads of `inputs`, from
