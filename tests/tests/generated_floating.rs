@@ -57,6 +57,34 @@ fn the_compiled_floating_quadruped_matches_the_generic_solver() {
 }
 
 #[allow(dead_code)] // the module's helpers this test does not call
+mod humanoid {
+    include!(concat!(env!("OUT_DIR"), "/humanoid32_floating_mass_matrix.rs"));
+}
+
+/// The floating humanoid's M, whose body stores each entry where it is
+/// computed (a body of more than `EARLY_STORES_MIN_LETS` statements), not as
+/// one array literal at the end.
+#[test]
+fn the_compiled_floating_humanoid_mass_matrix_matches_the_generic_solver() {
+    let source = std::fs::read_to_string(concat!(env!("OUT_DIR"), "/humanoid32_floating_mass_matrix.rs")).unwrap();
+    assert!(source.contains("let mut out = [[0.0; NV]; NV];"), "the humanoid's M is written entry by entry");
+    let model =
+        Model::from_urdf_file(workspace_root().join("dynagen/robots/humanoid32.urdf")).unwrap().with_floating_base();
+    let mut ws = Workspace::<f64>::new(&model);
+    let mut rng = Rng::new(7);
+    let nv = humanoid::NV;
+    for k in 0..20 {
+        let mut q: [f64; humanoid::NQ] = core::array::from_fn(|_| rng.range(-3.0, 3.0));
+        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        let mut want = vec![0.0; nv * nv];
+        crba::crba(&model, &mut ws, &q, Loads::none(), &mut want);
+        let e = norm_rel_err(humanoid::mass_matrix(&q).as_flattened(), &want, 1e-300);
+        assert!(e < 1e-12, "M at state {k}: relative error {e:e}");
+    }
+}
+
+#[allow(dead_code)] // the module's helpers this test does not call
 mod controller {
     include!(concat!(env!("OUT_DIR"), "/legged_manipulator_controller.rs"));
 }

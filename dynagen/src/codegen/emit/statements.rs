@@ -281,9 +281,14 @@ pub(crate) fn emit_function(
         ScalarType::F32 => "fmaf",
     };
     let fma_path: &[&str] = if style.dispatch { &["I", fma] } else { &[fma] };
-    let body = body_of(f, scalar, trig, style, fma_path)?;
-    if style.dispatch && style.split_lets.is_none_or(|max| body.lines.len() <= max) {
-        return dispatched(f, signature, scalar, n, doc, body);
+    let mut body = body_of(f, scalar, trig, style, fma_path)?;
+    let whole = style.split_lets.is_none_or(|max| body.lines.len() <= max);
+    // A long body returning a matrix stores each entry where it is computed.
+    let early = (whole && body.lines.len() >= EARLY_STORES_MIN_LETS)
+        .then(|| store_early(f, &mut body, signature.output, n, scalar))
+        .flatten();
+    if style.dispatch && whole {
+        return dispatched(f, signature, scalar, n, doc, body, early);
     }
     let shell = quote! {
         #[allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal, clippy::too_many_lines)]
@@ -304,7 +309,105 @@ pub(crate) fn emit_function(
         })
         .collect();
     let result = result_of(signature.output, n);
-    split::assemble(item, body, &part_params, &scalar_type(scalar), style.split_lets, result, style.dispatch)
+    match early {
+        Some(out) => {
+            split::assemble(item, body, &part_params, &scalar_type(scalar), None, |_| out.clone(), style.dispatch)
+        }
+        None => {
+            split::assemble(item, body, &part_params, &scalar_type(scalar), style.split_lets, result, style.dispatch)
+        }
+    }
+}
+
+/// From this many statements on, a body that returns matrices and is not
+/// split stores each entry into the returned array right after the
+/// statement that computes it, instead of returning one array literal at
+/// the end. A body that long does not fit in the processor's micro-op cache
+/// and runs at the rate its decoders take bytes, and the literal makes every
+/// entry's value live to the end: spilled, reloaded and stored, three
+/// instructions of eight or nine bytes where one store does. Shorter bodies
+/// run from the micro-op cache, where the literal measured faster
+/// (`docs/performance.md`, "What bounds the bodies").
+pub(crate) const EARLY_STORES_MIN_LETS: usize = 2400;
+
+/// Rewrites `body` to store its matrix outputs where they are computed:
+/// first `let mut out = [[0.0; C]; R];` (a tuple of such for several
+/// matrices) and the entries that are inputs or nonzero constants, then
+/// after each statement `out[i][j] = t;` for every entry that is its value.
+/// Returns the expression that ends the body (`out`), or `None` (and leaves
+/// `body` as it was) for a vector output.
+fn store_early(f: &Traced, body: &mut Body, output: Shape, n: Sizes, scalar: ScalarType) -> Option<Expr> {
+    let (k, rows, cols) = match output {
+        Shape::Vector(_) => return None,
+        Shape::Matrix(r, c) => (None, r, c),
+        Shape::Matrices(k, r, c) => (Some(k), r, c),
+    };
+    let (r, c) = (rows.value(n), cols.value(n));
+    let zero = float(0.0, scalar).expect("0 is finite");
+    let (rt, ct) = (rows.tokens(), cols.tokens());
+    let one = quote!([[#zero; #ct]; #rt]);
+    let init = match k {
+        None => one,
+        Some(k) => {
+            let each = (0..k).map(|_| one.clone());
+            quote!((#(#each),*))
+        }
+    };
+    let out = format_ident!("out");
+    // `out[i][j]`, or `out.m[i][j]` for the m-th matrix.
+    let entry = |o: usize| -> Expr {
+        let (m, rc) = (o / (r * c), o % (r * c));
+        let mut e = path(out.clone());
+        if k.is_some() {
+            e = Expr::Field(syn::ExprField {
+                attrs: vec![],
+                base: Box::new(e),
+                dot_token: Default::default(),
+                member: syn::Member::Unnamed(syn::Index::from(m)),
+            });
+        }
+        for i in [rc / c, rc % c] {
+            let i = proc_macro2::Literal::usize_unsuffixed(i);
+            e = Expr::Index(syn::ExprIndex {
+                attrs: vec![],
+                expr: Box::new(e),
+                bracket_token: Default::default(),
+                index: Box::new(syn::parse_quote!(#i)),
+            });
+        }
+        e
+    };
+    let store = |o: usize, value: &Expr| -> Stmt {
+        let assign = syn::ExprAssign {
+            attrs: vec![],
+            left: Box::new(entry(o)),
+            eq_token: Default::default(),
+            right: Box::new(value.clone()),
+        };
+        Stmt::Expr(Expr::Assign(assign), Some(Default::default()))
+    };
+    let line = |stmt: Stmt| Line { stmt, defs: vec![], uses: vec![], inputs: vec![] };
+    let mut lines = vec![line(syn::parse_quote!(let mut #out = #init;))];
+    // The entries each value is, by the value's index.
+    let mut entries: Vec<Vec<usize>> = vec![Vec::new(); body.names.len()];
+    for (o, ((e, value), &node)) in body.outputs.iter().zip(f.outputs()).enumerate() {
+        match value {
+            Some(v) => entries[*v as usize].push(o),
+            None if f.nodes()[node as usize].constant().is_some_and(|x| x.to_bits() == 0) => {}
+            None => lines.push(line(store(o, e))),
+        }
+    }
+    for l in std::mem::take(&mut body.lines) {
+        let mut stores = Vec::new();
+        for &v in &l.defs {
+            let value = path(body.names[v as usize].clone());
+            stores.extend(entries[v as usize].iter().map(|&o| line(store(o, &value))));
+        }
+        lines.push(l);
+        lines.extend(stores);
+    }
+    body.lines = lines;
+    Some(path(out))
 }
 
 /// How the outputs are arranged into the returned array.
@@ -364,6 +467,7 @@ fn dispatched(
     n: Sizes,
     doc: &str,
     body: Body,
+    early: Option<Expr>,
 ) -> Result<Vec<syn::Item>, CodegenError> {
     let name = ident(&signature.name);
     let (on, fast) = (format_ident!("{}_on", signature.name), format_ident!("{}_avx2_fma", signature.name));
@@ -401,8 +505,11 @@ fn dispatched(
     };
     body_fn.block.stmts = unused_params(f, signature)?;
     body_fn.block.stmts.extend(body.lines.into_iter().map(|l| l.stmt));
-    let outputs = body.outputs.into_iter().map(|(e, _)| e).collect();
-    body_fn.block.stmts.push(Stmt::Expr(result_of(signature.output, n)(outputs), None));
+    let result = match early {
+        Some(out) => out,
+        None => result_of(signature.output, n)(body.outputs.into_iter().map(|(e, _)| e).collect()),
+    };
+    body_fn.block.stmts.push(Stmt::Expr(result, None));
     Ok(items)
 }
 
