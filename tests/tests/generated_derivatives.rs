@@ -77,6 +77,15 @@ macro_rules! check {
     }};
 }
 
+/// The torso's ∂τ, a whole body of more than `EARLY_STORES_MIN_LETS`
+/// statements, stores its matrices' entries where they are computed
+/// (`statements::store_early`); the comparisons below check its values.
+#[test]
+fn the_torsos_derivatives_store_their_entries_early() {
+    let torso = std::fs::read_to_string(concat!(env!("OUT_DIR"), "/torso_two_arms_derivatives.rs")).unwrap();
+    assert!(torso.contains("let mut out = ([[0.0; DOF]; DOF], [[0.0; DOF]; DOF]);"));
+}
+
 /// The five fixed-base modules (states: 200 on the arms of 6 and 9 joints,
 /// 100 on the others).
 #[test]
