@@ -257,7 +257,10 @@ fn negated(x: &Expr) -> Expr {
 /// `x.sqrt()` with [`Trig::Std`], `libm::sqrt(x)` with [`Trig::Libm`], and
 /// otherwise the module's own `sqrt(x)` (`sqrtf`; no std, correctly
 /// rounded, see [`super::sin_cos`]). A body of more than
-/// `style.split_lets` `let`s is cut into private parts ([`split`]).
+/// `style.split_lets` `let`s is cut into private parts ([`split`]). A body
+/// that is not cut and has at least [`EARLY_STORES_MIN_LETS`] statements
+/// returning matrices stores each entry where it is computed
+/// ([`store_early`]) and returns `out`.
 ///
 /// With `style.dispatch`, a body that is not split is written once as a
 /// generic `NAME_on<I: Isa>` (`#[inline(always)]`, its sums `I::fma(a, b,
@@ -326,8 +329,9 @@ pub(crate) fn emit_function(
 /// and runs at the rate its decoders take bytes, and the literal makes every
 /// entry's value live to the end: spilled, reloaded and stored, three
 /// instructions of eight or nine bytes where one store does. Shorter bodies
-/// run from the micro-op cache, where the literal measured faster
-/// (`docs/performance.md`, "What bounds the bodies").
+/// run from the micro-op cache, where the literal measured faster; split
+/// bodies measured slower with their parts storing into the output
+/// (`docs/performance.md`, "Long bodies: the front end").
 pub(crate) const EARLY_STORES_MIN_LETS: usize = 2400;
 
 /// Rewrites `body` to store its matrix outputs where they are computed:
