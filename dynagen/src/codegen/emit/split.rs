@@ -34,7 +34,7 @@
 //! Longer bodies keep `#[inline(never)]` parts: optimised with debug
 //! information, the inlined 30-joint chain took 40 s against 23 s.
 
-use super::syntax::{index, let_stmt, pat, path};
+use super::syntax::{assign, index, let_stmt, pat, path};
 use crate::codegen::CodegenError;
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
@@ -141,13 +141,7 @@ pub(crate) fn assemble(
         }
         stmts.extend(own.map(|l| l.stmt));
         for &v in &part.stores {
-            let store = syn::ExprAssign {
-                attrs: vec![],
-                left: Box::new(index("carry", plan.slot[v as usize])),
-                eq_token: Default::default(),
-                right: Box::new(path(body.names[v as usize].clone())),
-            };
-            stmts.push(Stmt::Expr(Expr::Assign(store), Some(Default::default())));
+            stmts.push(assign(index("carry", plan.slot[v as usize]), path(body.names[v as usize].clone())));
         }
         chain.push(syn::parse_quote!(#part_name(#(#args,)* &mut carry);));
         let mut f = if dispatch {

@@ -6,7 +6,7 @@
 //! generator's run time).
 
 use super::split::{self, Body, Line, PartParam};
-use super::syntax::{array, binary, call, float, ident, index, let_stmt, method, pat, path, unary};
+use super::syntax::{array, assign, binary, call, float, ident, index, let_stmt, method, pat, path, subscript, unary};
 use crate::codegen::{CodegenError, CodegenOptions, ScalarType, Trig};
 use crate::symbolic::{statement_order, Fusion, Node, Traced};
 use proc_macro2::{Ident, TokenStream};
@@ -286,6 +286,9 @@ pub(crate) fn emit_function(
     let fma_path: &[&str] = if style.dispatch { &["I", fma] } else { &[fma] };
     let mut body = body_of(f, scalar, trig, style, fma_path)?;
     let whole = style.split_lets.is_none_or(|max| body.lines.len() <= max);
+    // Whether to cut is decided on the statements alone: the stores of an
+    // early output do not make a whole body a split one.
+    let max_lets = if whole { None } else { style.split_lets };
     // A long body returning a matrix stores each entry where it is computed.
     let early = (whole && body.lines.len() >= EARLY_STORES_MIN_LETS)
         .then(|| store_early(f, &mut body, signature.output, n, scalar))
@@ -311,15 +314,9 @@ pub(crate) fn emit_function(
             input: f.input_names().iter().position(|x| *x == p.name).map(|i| i as u32),
         })
         .collect();
-    let result = result_of(signature.output, n);
-    match early {
-        Some(out) => {
-            split::assemble(item, body, &part_params, &scalar_type(scalar), None, |_| out.clone(), style.dispatch)
-        }
-        None => {
-            split::assemble(item, body, &part_params, &scalar_type(scalar), style.split_lets, result, style.dispatch)
-        }
-    }
+    let literal = result_of(signature.output, n);
+    let result = |outputs| early.clone().unwrap_or_else(|| literal(outputs));
+    split::assemble(item, body, &part_params, &scalar_type(scalar), max_lets, result, style.dispatch)
 }
 
 /// From this many statements on, a body that returns matrices and is not
@@ -358,8 +355,8 @@ fn store_early(f: &Traced, body: &mut Body, output: Shape, n: Sizes, scalar: Sca
         }
     };
     let out = format_ident!("out");
-    // `out[i][j]`, or `out.m[i][j]` for the m-th matrix.
-    let entry = |o: usize| -> Expr {
+    // `out[i][j] = value;`, or `out.m[i][j] = value;` for the m-th matrix.
+    let store = |o: usize, value: &Expr| -> Stmt {
         let (m, rc) = (o / (r * c), o % (r * c));
         let mut e = path(out.clone());
         if k.is_some() {
@@ -370,25 +367,7 @@ fn store_early(f: &Traced, body: &mut Body, output: Shape, n: Sizes, scalar: Sca
                 member: syn::Member::Unnamed(syn::Index::from(m)),
             });
         }
-        for i in [rc / c, rc % c] {
-            let i = proc_macro2::Literal::usize_unsuffixed(i);
-            e = Expr::Index(syn::ExprIndex {
-                attrs: vec![],
-                expr: Box::new(e),
-                bracket_token: Default::default(),
-                index: Box::new(syn::parse_quote!(#i)),
-            });
-        }
-        e
-    };
-    let store = |o: usize, value: &Expr| -> Stmt {
-        let assign = syn::ExprAssign {
-            attrs: vec![],
-            left: Box::new(entry(o)),
-            eq_token: Default::default(),
-            right: Box::new(value.clone()),
-        };
-        Stmt::Expr(Expr::Assign(assign), Some(Default::default()))
+        assign(subscript(subscript(e, rc / c), rc % c), value.clone())
     };
     let line = |stmt: Stmt| Line { stmt, defs: vec![], uses: vec![], inputs: vec![] };
     let mut lines = vec![line(syn::parse_quote!(let mut #out = #init;))];
@@ -509,10 +488,8 @@ fn dispatched(
     };
     body_fn.block.stmts = unused_params(f, signature)?;
     body_fn.block.stmts.extend(body.lines.into_iter().map(|l| l.stmt));
-    let result = match early {
-        Some(out) => out,
-        None => result_of(signature.output, n)(body.outputs.into_iter().map(|(e, _)| e).collect()),
-    };
+    let result =
+        early.unwrap_or_else(|| result_of(signature.output, n)(body.outputs.into_iter().map(|(e, _)| e).collect()));
     body_fn.block.stmts.push(Stmt::Expr(result, None));
     Ok(items)
 }

@@ -24,15 +24,25 @@ pub(crate) fn float(x: f64, scalar: ScalarType) -> Option<Expr> {
     Some(if neg { unary(UnOp::Neg(Default::default()), lit) } else { lit })
 }
 pub(crate) fn index(array: &str, i: usize) -> Expr {
+    subscript(path(ident(array)), i)
+}
+/// `base[i]`.
+pub(crate) fn subscript(base: Expr, i: usize) -> Expr {
     Expr::Index(syn::ExprIndex {
         attrs: vec![],
-        expr: Box::new(path(ident(array))),
+        expr: Box::new(base),
         bracket_token: Default::default(),
         index: Box::new(Expr::Lit(syn::ExprLit {
             attrs: vec![],
             lit: syn::Lit::Int(syn::LitInt::new(&i.to_string(), Span::call_site())),
         })),
     })
+}
+/// The statement `left = right;`.
+pub(crate) fn assign(left: Expr, right: Expr) -> Stmt {
+    let assign =
+        syn::ExprAssign { attrs: vec![], left: Box::new(left), eq_token: Default::default(), right: Box::new(right) };
+    Stmt::Expr(Expr::Assign(assign), Some(Default::default()))
 }
 pub(crate) fn binary(a: &Expr, op: BinOp, b: &Expr) -> Expr {
     Expr::Binary(syn::ExprBinary { attrs: vec![], left: Box::new(a.clone()), op, right: Box::new(b.clone()) })
