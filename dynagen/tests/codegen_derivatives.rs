@@ -274,8 +274,7 @@ fn floating_base_derivatives_match_the_generic_ones() {
         let mut rng = Rng::new(0xf1 + nv as u64);
         for _ in 0..2 {
             let mut q = rng.vec(nq, 2.0);
-            let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
-            q[3..7].iter_mut().for_each(|x| *x /= norm);
+            support::normalize_quaternion(&mut q);
             let (qd, x) = (rng.vec(nv, 1.5), rng.vec(nv, 5.0));
             let (gravity, f_tip) = ([0.8, -0.4, -9.7], rng.vec(6, 10.0));
             let hand = [PayloadInertia::new(0.7, [0.02, 0.01, -0.03], [0.001, 0.002, 0.0015, 0.0, 0.0001, 0.0])];

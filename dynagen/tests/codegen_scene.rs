@@ -60,8 +60,7 @@ fn check_with(
     for _ in 0..states {
         let (mut q, qd, qdd, tau) = (rng.vec(nq, 3.0), rng.vec(nv, 2.0), rng.vec(nv, 5.0), rng.vec(nv, 20.0));
         if applied.model.is_floating() {
-            let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
-            q[3..7].iter_mut().for_each(|x| *x /= norm);
+            support::normalize_quaternion(&mut q);
         }
         let gravity = [rng.signed(), rng.signed(), -9.81 + rng.signed()];
         let f_tip = rng.vec(6, 10.0);

@@ -374,8 +374,7 @@ fn a_floating_base_matches_double_double_differences_on_the_manifold() {
         let loads = Loads::gravity(&g).with_tips(&tips);
         for k in 0..2 {
             let mut q = rng.vec(nq, 2.0);
-            let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
-            q[3..7].iter_mut().for_each(|x| *x /= norm);
+            support::normalize_quaternion(&mut q);
             let (qd, qdd, tau) = (rng.vec(nv, 1.5), rng.vec(nv, 3.0), rng.vec(nv, 10.0));
             let v = |x: &Vec<f64>| DVector::from_vec(x.clone());
             let (dq, dqd) = robot.inverse_dynamics_derivatives(&v(&q), &v(&qd), &v(&qdd)).unwrap();
@@ -466,8 +465,7 @@ fn a_floating_scene_enters_its_derivatives() {
     let mut rng = Rng::new(0x5ce4e);
     for k in 0..2 {
         let mut q = rng.vec(nq, 2.0);
-        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
-        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        support::normalize_quaternion(&mut q);
         // the arm's Coulomb joint well inside its smooth sign's slope
         let (mut qd, qdd, tau) = (rng.vec(nv, 1.5), rng.vec(nv, 3.0), rng.vec(nv, 10.0));
         qd[6 + model.bodies.iter().position(|b| b.joint.name == "arm_joint1").unwrap()] = 0.03;

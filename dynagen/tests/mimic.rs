@@ -608,8 +608,7 @@ fn every_generated_function_of_a_mimic_model_is_the_generic_one() {
         let mut generic = Robot::new(model.clone());
         let mut rng = support::Rng::new(0xf10a);
         let mut q = rng.vec(model.nq(), 1.0);
-        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
-        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        support::normalize_quaternion(&mut q);
         let state = [q, rng.vec(model.nv(), 1.5), rng.vec(model.nv(), 5.0)];
         traced_five(&module, &state, &format!("floating {robot}"), |f, [q, qd, x]| five!(generic, f, q, qd, x));
     }

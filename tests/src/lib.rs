@@ -102,6 +102,13 @@ pub const BUNDLED: [&str; 4] = ["ur5", "panda", "torso_two_arms", "planar_2link"
 /// The command that rewrites `generated/src/*.rs` from the bundled robots.
 pub const REGENERATE_COMMAND: &str = "cargo run -p dynagen-tests --bin regenerate";
 
+/// Scales a floating-base configuration's quaternion, `q[3..7]`, to unit
+/// norm.
+pub fn normalize_quaternion(q: &mut [f64]) {
+    let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+    q[3..7].iter_mut().for_each(|x| *x /= norm);
+}
+
 /// The workspace's root folder.
 pub fn workspace_root() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("tests/ is in the workspace").to_path_buf()

@@ -8,7 +8,7 @@
 //! norm in f64, ≤ 1e-4 in f32.
 
 use dynagen::scene::{SceneFile, SceneInputs, SceneRobot};
-use dynagen_tests::{bundled_model, bundled_robot, bundled_scene, norm_rel_err, Rng};
+use dynagen_tests::{bundled_model, bundled_robot, bundled_scene, norm_rel_err, normalize_quaternion, Rng};
 use nalgebra::{DMatrix, DVector, Vector6};
 
 macro_rules! module {
@@ -108,8 +108,7 @@ fn floating_quadruped12_derivatives_match_the_generic_ones() {
     let mut worst = 0.0_f64;
     for _ in 0..50 {
         let mut q: [f64; m::NQ] = core::array::from_fn(|_| rng.range(-2.0, 2.0));
-        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
-        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        normalize_quaternion(&mut q);
         let mut arr = |a: f64| -> [f64; m::NV] { core::array::from_fn(|_| rng.range(-a, a)) };
         let (qd, x) = (arr(2.0), arr(10.0));
         let v = |a: &[f64]| DVector::from_column_slice(a);

@@ -9,7 +9,7 @@ use dynagen::algorithms::floating::{aba, crba, rnea};
 use dynagen::algorithms::{Loads, Workspace};
 use dynagen::spatial::Vec3;
 use dynagen::Model;
-use dynagen_tests::{norm_rel_err, workspace_root, Rng};
+use dynagen_tests::{norm_rel_err, normalize_quaternion, workspace_root, Rng};
 
 #[allow(dead_code)] // the module's helpers this test does not call
 mod quad {
@@ -30,8 +30,7 @@ fn the_compiled_floating_quadruped_matches_the_generic_solver() {
     for k in 0..50 {
         let speed = if k % 2 == 0 { 2.0 } else { 50.0 };
         let mut q: [f64; quad::NQ] = core::array::from_fn(|_| rng.range(-1.0, 1.0));
-        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
-        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        normalize_quaternion(&mut q);
         let mut v = |s: f64| -> [f64; quad::NV] { core::array::from_fn(|_| rng.range(-s, s)) };
         let (qd, qdd, tau) = (v(speed), v(5.0), v(20.0));
         let nv = quad::NV;
@@ -75,8 +74,7 @@ fn the_compiled_floating_humanoid_mass_matrix_matches_the_generic_solver() {
     let nv = humanoid::NV;
     for k in 0..20 {
         let mut q: [f64; humanoid::NQ] = core::array::from_fn(|_| rng.range(-3.0, 3.0));
-        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
-        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        normalize_quaternion(&mut q);
         let mut want = vec![0.0; nv * nv];
         crba::crba(&model, &mut ws, &q, Loads::none(), &mut want);
         let e = norm_rel_err(humanoid::mass_matrix(&q).as_flattened(), &want, 1e-300);
@@ -108,8 +106,7 @@ fn the_compiled_legged_manipulator_controller_matches_the_scene_robot() {
     let mut worst = 0.0f64;
     for k in 0..20 {
         let mut q: [f64; controller::NQ] = core::array::from_fn(|_| rng.range(-1.5, 1.5));
-        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
-        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        normalize_quaternion(&mut q);
         let speed = if k % 2 == 0 { 2.0 } else { 30.0 };
         let mut v = |s: f64| -> [f64; controller::NV] { core::array::from_fn(|_| rng.range(-s, s)) };
         let (qd, qdd, tau) = (v(speed), v(5.0), v(20.0));

@@ -16,6 +16,13 @@ pub use measure::{norm_rel_err, rel_err, scale};
 use dynagen::{Model, Robot};
 use std::path::PathBuf;
 
+/// Scales a floating-base configuration's quaternion, `q[3..7]`, to unit
+/// norm.
+pub fn normalize_quaternion(q: &mut [f64]) {
+    let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+    q[3..7].iter_mut().for_each(|x| *x /= norm);
+}
+
 /// A small deterministic generator (xorshift64*), so that every run sees
 /// the same states without a dependency.
 #[derive(Clone, Debug)]
