@@ -2,7 +2,8 @@
 //! humanoid32 (the modules of `dynagen generate dynagen/robots/ROBOT.urdf
 //! --floating-base`, written by build.rs): `inverse_dynamics`,
 //! `mass_matrix`, `bias_forces` and `forward_dynamics`, each from q (its
-//! sines and cosines computed inside), timed as `examples/interleaved.rs`
+//! sines and cosines computed inside), and τ and h of the modules made with
+//! `--branch-loops` too (the legs run as one body in a loop), timed as `examples/interleaved.rs`
 //! times the fixed-base ones and as
 //! `scripts/reference/pinocchio_floating_bench.cpp` times Pinocchio: 8
 //! states, alternating rounds of 2,000 calls (each call's output left where
@@ -70,9 +71,11 @@ fn first<T: Copy, const K: usize>(out: &[T; K]) -> T {
     out[0]
 }
 
-/// The four timed functions of a generated floating-base module `$m`.
+/// The four timed functions of a generated floating-base module `$m`, and
+/// τ and h of `$loops` (the same robot with `--branch-loops`).
 macro_rules! timed {
-    ($m:path) => {{
+    ($m:path, $loops:path) => {{
+        use $loops as loops;
         use $m as m;
         fn tau(s: &State<{ m::NQ }, { m::NV }>) -> f64 {
             first(&m::inverse_dynamics(&s.q, &s.qd, &s.qdd))
@@ -86,15 +89,27 @@ macro_rules! timed {
         fn fd(s: &State<{ m::NQ }, { m::NV }>) -> f64 {
             first(&m::forward_dynamics(&s.q, &s.qd, &s.tau))
         }
-        let fs: [(&str, Timed<{ m::NQ }, { m::NV }>); 4] =
-            [("inverse_dynamics", tau), ("mass_matrix", mass), ("bias_forces", h), ("forward_dynamics", fd)];
+        fn tau_loops(s: &State<{ m::NQ }, { m::NV }>) -> f64 {
+            first(&loops::inverse_dynamics(&s.q, &s.qd, &s.qdd))
+        }
+        fn h_loops(s: &State<{ m::NQ }, { m::NV }>) -> f64 {
+            first(&loops::bias_forces(&s.q, &s.qd))
+        }
+        let fs: [(&str, Timed<{ m::NQ }, { m::NV }>); 6] = [
+            ("inverse_dynamics", tau),
+            ("mass_matrix", mass),
+            ("bias_forces", h),
+            ("forward_dynamics", fd),
+            ("inverse_dyn. loops", tau_loops),
+            ("bias_forces loops", h_loops),
+        ];
         fs
     }};
 }
 
 /// Times `fs` on `robot`'s states in alternating rounds and prints the
 /// minimum and median per call.
-fn run<const NQ: usize, const NV: usize>(robot: &str, fs: [(&str, Timed<NQ, NV>); 4], rounds: usize) {
+fn run<const NQ: usize, const NV: usize>(robot: &str, fs: [(&str, Timed<NQ, NV>); 6], rounds: usize) {
     let st = states::<NQ, NV>(0x5eed);
     let n = fs.len();
     let mut times = vec![Vec::with_capacity(rounds); n];
@@ -131,9 +146,13 @@ fn main() {
     let robot = args.next();
     let wants = |name: &str| robot.as_deref().is_none_or(|r| r == name);
     if wants("quadruped12") {
-        run("quadruped12", timed!(dynagen_bench::quadruped12_floating), rounds);
+        run(
+            "quadruped12",
+            timed!(dynagen_bench::quadruped12_floating, dynagen_bench::quadruped12_floating_loops),
+            rounds,
+        );
     }
     if wants("humanoid32") {
-        run("humanoid32", timed!(dynagen_bench::humanoid32_floating), rounds);
+        run("humanoid32", timed!(dynagen_bench::humanoid32_floating, dynagen_bench::humanoid32_floating_loops), rounds);
     }
 }

@@ -58,6 +58,16 @@ generated!(
     "humanoid32_floating.rs",
     "The humanoid32 with a floating base (`--floating-base`), default options."
 );
+generated!(
+    quadruped12_floating_loops,
+    "quadruped12_floating_loops.rs",
+    "The quadruped12's floating τ and h with its legs run in a loop (`--floating-base --branch-loops`)."
+);
+generated!(
+    humanoid32_floating_loops,
+    "humanoid32_floating_loops.rs",
+    "The humanoid32's floating τ and h with its legs run in a loop (`--floating-base --branch-loops`)."
+);
 
 /// The states, calls per batch, batches and warm-up batches of the
 /// timings with Pinocchio's statistic (`scripts/reference/bench_common.hpp`).

@@ -83,6 +83,57 @@ fn the_compiled_floating_humanoid_mass_matrix_matches_the_generic_solver() {
 }
 
 #[allow(dead_code)] // the module's helpers this test does not call
+mod humanoid_loops {
+    include!(concat!(env!("OUT_DIR"), "/humanoid32_branch_loops.rs"));
+}
+
+#[allow(dead_code)] // the module's helpers this test does not call
+mod quadruped_loops {
+    include!(concat!(env!("OUT_DIR"), "/quadruped12_branch_loops.rs"));
+}
+
+/// τ and h with the legs run as one body in a loop over a table of their
+/// constants (`branch_loops`), compiled, against the generic RNEA on random
+/// states (|q̇| up to about 50): the humanoid's two legs (with the run-time
+/// dispatch) and the quadruped's four (without).
+#[test]
+fn the_compiled_branch_loops_match_the_generic_solver() {
+    macro_rules! check {
+        ($module:ident, $file:literal, $robot:literal, $lanes:literal) => {{
+            let file = concat!(env!("OUT_DIR"), "/", $file);
+            let source = std::fs::read_to_string(file).unwrap();
+            for name in ["inverse_dynamics", "bias_forces"] {
+                let table = format!("const {}_BRANCH0: [[f64; ", name.to_uppercase());
+                assert!(source.contains(&table), "{}: {name} has a table of its legs' constants", $robot);
+                assert!(source.contains(&format!("; {}] = [", $lanes)), "{}: one row per leg", $robot);
+            }
+            assert!(source.contains("for (l, out) in r0.chunks_exact_mut("), "{}: the legs run in a loop", $robot);
+            let path = workspace_root().join(concat!("dynagen/robots/", $robot, ".urdf"));
+            let model = Model::from_urdf_file(path).unwrap().with_floating_base();
+            let mut ws = Workspace::<f64>::new(&model);
+            let mut rng = Rng::new(11);
+            let g = model.gravity;
+            for k in 0..20 {
+                let mut q: [f64; $module::NQ] = core::array::from_fn(|_| rng.range(-3.0, 3.0));
+                normalize_quaternion(&mut q);
+                let speed = if k % 2 == 0 { 50.0 } else { 2.0 };
+                let qd: [f64; $module::NV] = core::array::from_fn(|_| rng.range(-speed, speed) / 4.0);
+                let qdd: [f64; $module::NV] = core::array::from_fn(|_| rng.range(-10.0, 10.0));
+                let mut want = vec![0.0; $module::NV];
+                rnea::rnea(&model, &mut ws, &q, Some(&qd), Some(&qdd), Loads::gravity(&g), &mut want);
+                let e = norm_rel_err(&$module::inverse_dynamics(&q, &qd, &qdd), &want, 1e-300);
+                assert!(e < 1e-12, "{} τ at state {k}: relative error {e:e}", $robot);
+                rnea::rnea(&model, &mut ws, &q, Some(&qd), None, Loads::gravity(&g), &mut want);
+                let e = norm_rel_err(&$module::bias_forces(&q, &qd), &want, 1e-300);
+                assert!(e < 1e-12, "{} h at state {k}: relative error {e:e}", $robot);
+            }
+        }};
+    }
+    check!(humanoid_loops, "humanoid32_branch_loops.rs", "humanoid32", 2);
+    check!(quadruped_loops, "quadruped12_branch_loops.rs", "quadruped12", 4);
+}
+
+#[allow(dead_code)] // the module's helpers this test does not call
 mod controller {
     include!(concat!(env!("OUT_DIR"), "/legged_manipulator_controller.rs"));
 }

@@ -58,6 +58,7 @@ enum Setting {
     SplitLets(Option<usize>),
     Fma(bool),
     RuntimeDispatch(bool),
+    BranchLoops(bool),
     Source(String),
 }
 
@@ -86,6 +87,7 @@ impl Setting {
             Setting::SplitLets(x) => o.split_lets = x,
             Setting::Fma(x) => o.fma = x,
             Setting::RuntimeDispatch(x) => o.runtime_dispatch = x,
+            Setting::BranchLoops(x) => o.branch_loops = x,
             Setting::Source(x) => o.source = Some(x),
         }
         Ok(o)
@@ -422,6 +424,11 @@ impl Builder {
     /// ([`CodegenOptions::runtime_dispatch`], on).
     pub fn runtime_dispatch(self, on: bool) -> Self {
         self.set(Setting::RuntimeDispatch(on))
+    }
+    /// Emit branches of one shape as a loop over one body
+    /// ([`CodegenOptions::branch_loops`], off).
+    pub fn branch_loops(self, on: bool) -> Self {
+        self.set(Setting::BranchLoops(on))
     }
     /// The model's source for the header ([`CodegenOptions::source`];
     /// default: the URDF's path).

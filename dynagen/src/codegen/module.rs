@@ -1,5 +1,6 @@
 //! What generation gives: the module's source and its traced functions.
 
+use super::trace::branches::Branched;
 use super::{ForwardDynamicsMethod, Function, SinCosTrace, SnappedConstant};
 use crate::algorithms::derivatives::Formulation;
 use crate::symbolic::{OpCount, Traced};
@@ -36,6 +37,9 @@ pub struct GeneratedFunction {
     /// at q̈ = FD(q, q̇, τ), and M⁻¹; `NAME_factors_sc`) and its count;
     /// `None` where the whole trace is emitted.
     pub factors: Option<(SinCosTrace, OpCount)>,
+    /// With [`CodegenOptions::branch_loops`](super::CodegenOptions::branch_loops):
+    /// the body emitted instead of `sin_cos_inputs`, its branches in a loop.
+    pub branched: Option<Branched>,
 }
 
 impl GeneratedFunction {

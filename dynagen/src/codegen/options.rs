@@ -152,6 +152,13 @@ pub struct CodegenOptions {
     /// bodies are compiled twice. Off, a build gives the same bits on every
     /// x86-64 machine.
     pub runtime_dispatch: bool,
+    /// Emit sibling subtrees of one shape (a humanoid's legs and arms, a
+    /// quadruped's legs) as one body that a loop runs for each, reading its
+    /// constants from a table, in τ and h (off). A robot's unrolled body
+    /// that no longer fits in the processor's micro-op cache runs at the
+    /// rate its bytes are decoded; the loop runs one branch's bytes as many
+    /// times as there are branches (see `codegen/trace/branches.rs`).
+    pub branch_loops: bool,
 }
 
 /// The default [`CodegenOptions::split_lets`]: 2,500 `let`s. rustc with
@@ -175,6 +182,7 @@ impl Default for CodegenOptions {
             split_lets: Some(DEFAULT_SPLIT_LETS),
             fma: true,
             runtime_dispatch: true,
+            branch_loops: false,
         }
     }
 }
@@ -240,6 +248,11 @@ impl CodegenOptions {
     /// Turns fused multiply-adds on or off.
     pub fn fma(mut self, on: bool) -> Self {
         self.fma = on;
+        self
+    }
+    /// Turns the loops over branches of one shape on or off ([`CodegenOptions::branch_loops`]).
+    pub fn branch_loops(mut self, on: bool) -> Self {
+        self.branch_loops = on;
         self
     }
     /// Turns the run-time choice of AVX2 and FMA copies on or off.

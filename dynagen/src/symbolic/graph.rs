@@ -47,7 +47,13 @@ pub struct Graph {
     index: HashMap<Node, NodeId>,
     input_names: Vec<String>,
     rewrites: Rewrites,
+    /// In a lane trace ([`Graph::with_lane_constants`]): the values of the
+    /// constants made inputs `k[i]`, and each value's `i`.
+    lanes: Option<(Vec<f64>, HashMap<u64, u32>)>,
 }
+
+/// The input vector that a lane trace's constants are read from.
+pub const LANE_CONSTANTS: &str = "k";
 
 impl Graph {
     /// An empty graph with the default rewrites.
@@ -57,6 +63,20 @@ impl Graph {
     /// An empty graph with the given rewrites.
     pub fn with_rewrites(rewrites: Rewrites) -> Self {
         Graph { rewrites, ..Self::default() }
+    }
+    /// An empty graph in which every constant other than 0 and ±1 is an
+    /// input `k[i]`, one entry per distinct value, in the order they are
+    /// first met ([`LANE_CONSTANTS`]; [`Graph::lane_constants`] has their
+    /// values). Traced this way, two branches of a robot that differ only in
+    /// the values of their constants give the same graph; what the rewrites
+    /// do with 0 and ±1 still shows in it, so two branches alike up to
+    /// those give different graphs.
+    pub fn with_lane_constants(rewrites: Rewrites) -> Self {
+        Graph { rewrites, lanes: Some((Vec::new(), HashMap::new())), ..Self::default() }
+    }
+    /// The values of a lane trace's `k[i]`, in order (`None` for another graph).
+    pub fn lane_constants(&self) -> Option<&[f64]> {
+        self.lanes.as_ref().map(|(v, _)| v.as_slice())
     }
     /// The rewrites this graph makes.
     pub fn rewrites(&self) -> Rewrites {
@@ -143,6 +163,14 @@ impl Graph {
     /// promise signed zeros.
     pub fn constant(&mut self, x: f64) -> NodeId {
         let x = if x == 0.0 { 0.0 } else { x };
+        if let Some((values, index)) = self.lanes.as_mut().filter(|_| x != 0.0 && x.abs() != 1.0) {
+            let next = values.len() as u32;
+            let i = *index.entry(x.to_bits()).or_insert(next);
+            if i == next {
+                values.push(x);
+            }
+            return self.input(LANE_CONSTANTS, i as usize);
+        }
         self.intern(Node::from_constant(x))
     }
     /// Entry `index` of the input vector `name`.

@@ -83,7 +83,7 @@ pub use eval::MissingInput;
 pub use expr::Expr;
 pub use factor::factor;
 pub use fuse::{Fused, Fusion};
-pub use graph::{Graph, Rewrites};
+pub use graph::{Graph, Rewrites, LANE_CONSTANTS};
 pub use node::{Node, NodeId};
 pub(crate) use schedule::order as statement_order;
 pub use traced::Traced;

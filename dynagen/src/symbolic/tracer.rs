@@ -46,13 +46,20 @@ impl Tracer {
     }
     /// Starts a trace with the given rewrites.
     pub fn start_with(rewrites: Rewrites) -> Result<Tracer, TraceActive> {
+        Self::start_on(Graph::with_rewrites(rewrites))
+    }
+    /// Starts a trace whose constants are inputs ([`Graph::with_lane_constants`]).
+    pub fn start_lanes(rewrites: Rewrites) -> Result<Tracer, TraceActive> {
+        Self::start_on(Graph::with_lane_constants(rewrites))
+    }
+    fn start_on(graph: Graph) -> Result<Tracer, TraceActive> {
         ACTIVE.with(|a| {
             let mut a = a.borrow_mut();
             if a.is_some() {
                 return Err(TraceActive);
             }
             let trace = NEXT_TRACE.fetch_add(1, Ordering::Relaxed);
-            *a = Some((trace, Graph::with_rewrites(rewrites)));
+            *a = Some((trace, graph));
             Ok(Tracer { trace, _not_send: PhantomData })
         })
     }

@@ -44,6 +44,26 @@ pub fn rnea<S: Scalar>(
         &[tau.len(), qd.map_or(nv, <[S]>::len), qdd.map_or(nv, <[S]>::len)],
     );
     loads.check(n, "floating rnea");
+    let (own, root) = base_motion(model, q, qd, qdd, loads);
+    let (qd_joints, qdd_joints) = (qd.map(|x| &x[6..]), qdd.map(|x| &x[6..]));
+    let children = rnea_tree(model, ws, &q[7..], (qd_joints, qdd_joints), Root::Moving(&root), loads, &mut tau[6..]);
+    let mut f0 = own + children;
+    add_tip_wrenches(model, loads.tips, None, Some(&mut f0));
+    write_force(&f0, tau);
+    add_armature(loads.armature, qdd_joints, &mut tau[6..]);
+}
+
+/// The base's own wrench and the motion it hands its children in
+/// [`rnea`]: ω, ω̇, the ordinary acceleration of its origin `v̇ + ω × v`
+/// with gravity as the fictitious acceleration `−Rᵀg`, and its `U`.
+#[inline(always)]
+pub(crate) fn base_motion<S: Scalar>(
+    model: &Model,
+    q: &[S],
+    qd: Option<&[S]>,
+    qdd: Option<&[S]>,
+    loads: Loads<'_, S>,
+) -> (Force<S>, RootMotion<S>) {
     let vec3 = |x: &[S]| Vec3([x[0], x[1], x[2]]);
     let zero = Vec3::zero();
     // The base's ω, ω̇ and the ordinary acceleration of its origin
@@ -63,13 +83,7 @@ pub fn rnea<S: Scalar>(
     // is chosen by the model's own base inertia)
     let gyro = use_products_for_gyroscopic(&model.base_inertia.ibar);
     let (own, u) = body_wrench(&base_inertia(model, loads.payloads), [&w, &wd, &a], (qd.is_some(), moving), gyro);
-    let root = RootMotion { w, wd, a, u: u.unwrap_or(Mat3::zero()) };
-    let (qd_joints, qdd_joints) = (qd.map(|x| &x[6..]), qdd.map(|x| &x[6..]));
-    let children = rnea_tree(model, ws, &q[7..], (qd_joints, qdd_joints), Root::Moving(&root), loads, &mut tau[6..]);
-    let mut f0 = own + children;
-    add_tip_wrenches(model, loads.tips, None, Some(&mut f0));
-    write_force(&f0, tau);
-    add_armature(loads.armature, qdd_joints, &mut tau[6..]);
+    (own, RootMotion { w, wd, a, u: u.unwrap_or(Mat3::zero()) })
 }
 
 /// The wrench of the robot's weight on its base (base frame, moment about

@@ -61,6 +61,10 @@ pub struct Args {
     /// in the last bits from the baseline's).
     #[arg(long)]
     pub no_dispatch: bool,
+    /// Emit sibling subtrees of one shape (legs, arms) in τ and h as one
+    /// body run in a loop over a table of their constants.
+    #[arg(long)]
+    pub branch_loops: bool,
     /// Cut a function body of more than N `let`s into private parts of at
     /// most N (default 2500; 0: never cut). Long bodies overflow rustc's
     /// stack in debug builds and compile slowly in release builds.
@@ -128,6 +132,9 @@ fn builder(args: &Args, source: &RobotSource) -> Result<(Builder, dynagen::Model
     }
     if args.no_dispatch {
         b = b.runtime_dispatch(false);
+    }
+    if args.branch_loops {
+        b = b.branch_loops(true);
     }
     if let Some(t) = trig {
         b = b.trig(t);

@@ -4,6 +4,7 @@
 //! cosines, its public `NAME` (`wrapper.rs`); `header.rs` writes what the
 //! module was made from; the sine and cosine kernel's text is appended.
 
+mod branches;
 mod header;
 mod literal;
 mod products;
@@ -133,9 +134,10 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
         // The forward dynamics' derivatives as their factors and a loop
         // (products.rs): the factors' body is emitted as `NAME_factors`.
         let factors_name = format!("{}_factors", f.name);
-        let (sc, name) = match &f.factors {
-            Some((factors, _)) => (factors, &factors_name),
-            None => (&f.sin_cos_inputs, &f.name),
+        let (sc, name) = match (&f.factors, &f.branched) {
+            (Some((factors, _)), _) => (factors, &factors_name),
+            (None, Some(b)) => (&b.body, &f.name),
+            (None, None) => (&f.sin_cos_inputs, &f.name),
         };
         let first_item = items.len();
         let ldlt = f.method == Some(super::ForwardDynamicsMethod::Ldlt);
@@ -158,8 +160,12 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
         }
         sc_params.extend(ps[1..].iter().cloned());
         let sc_name = format!("{name}_sc");
-        let signature =
-            Signature { name: sc_name.clone(), params: sc_params.clone(), output: f.function.shape(floating) };
+        let signature = Signature {
+            name: sc_name.clone(),
+            params: sc_params.clone(),
+            output: f.function.shape(floating),
+            calls: None,
+        };
         let sc_count = super::counted(&sc.function, options.fma);
         let doc = match f.factors {
             Some(_) => format!(
@@ -172,6 +178,17 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
             }
         };
         let style = BodyStyle::of(options);
+        let glue = |args: &[syn::Expr]| match &f.branched {
+            Some(b) => branches::glue(name, b, floating, style.dispatch, args),
+            None => Ok(Vec::new()),
+        };
+        if let Some(b) = &f.branched {
+            items.extend(branches::items(name, b, model, options, sizes)?);
+        }
+        let signature = Signature {
+            calls: f.branched.as_ref().map(|b| statements::Calls { outputs: b.outputs, glue: &glue }),
+            ..signature
+        };
         let emitted =
             statements::emit_function(&sc.function, &signature, options.scalar, options.trig, sizes, &doc, style)?;
         let sc_split = split::parts_of(&emitted);

@@ -157,14 +157,30 @@ impl Param {
     }
 }
 
+/// Calls made in the middle of a body: the traced function's outputs past
+/// `outputs` are their arguments, computed first; `glue` writes the
+/// statements that make the calls from those arguments' expressions, and
+/// the rest of the body (which reads the calls' results as inputs) follows.
+pub(crate) struct Calls<'a> {
+    /// The function's own outputs.
+    pub outputs: usize,
+    /// The statements of the calls, from the arguments.
+    pub glue: Glue<'a>,
+}
+
+/// What writes the statements of [`Calls`].
+pub(crate) type Glue<'a> = &'a dyn Fn(&[Expr]) -> Result<Vec<Stmt>, CodegenError>;
+
 /// The name, parameters and output of an emitted function.
-pub(crate) struct Signature {
+pub(crate) struct Signature<'a> {
     /// Its Rust name.
     pub name: String,
     /// Its parameters, in order.
     pub params: Vec<Param>,
     /// Its output.
     pub output: Shape,
+    /// Calls its body makes in the middle, if any.
+    pub calls: Option<Calls<'a>>,
 }
 
 /// How bodies are written: split into parts, fused multiply-adds, copies
@@ -272,7 +288,7 @@ fn negated(x: &Expr) -> Expr {
 /// ([`split::assemble`]).
 pub(crate) fn emit_function(
     f: &Traced,
-    signature: &Signature,
+    signature: &Signature<'_>,
     scalar: ScalarType,
     trig: Trig,
     n: Sizes,
@@ -285,7 +301,11 @@ pub(crate) fn emit_function(
     };
     let fma_path: &[&str] = if style.dispatch { &["I", fma] } else { &[fma] };
     let mut body = body_of(f, scalar, trig, style, fma_path)?;
-    let whole = style.split_lets.is_none_or(|max| body.lines.len() <= max);
+    if let Some(calls) = &signature.calls {
+        insert_calls(&mut body, calls)?;
+    }
+    // (a body with calls is never split: its parts would have to carry the results)
+    let whole = signature.calls.is_some() || style.split_lets.is_none_or(|max| body.lines.len() <= max);
     // Whether to cut is decided on the statements alone: the stores of an
     // early output do not make a whole body a split one.
     let max_lets = if whole { None } else { style.split_lets };
@@ -317,6 +337,33 @@ pub(crate) fn emit_function(
     let literal = result_of(signature.output, n);
     let result = |outputs| early.clone().unwrap_or_else(|| literal(outputs));
     split::assemble(item, body, &part_params, &scalar_type(scalar), max_lets, result, style.dispatch)
+}
+
+/// Moves the statements the calls' arguments need first, then the calls,
+/// then the rest, and drops the arguments from the outputs.
+fn insert_calls(body: &mut Body, calls: &Calls) -> Result<(), CodegenError> {
+    let mut needed = vec![false; body.names.len()];
+    for (_, v) in &body.outputs[calls.outputs..] {
+        if let Some(v) = v {
+            needed[*v as usize] = true;
+        }
+    }
+    let lines = std::mem::take(&mut body.lines);
+    let mut first = vec![false; lines.len()];
+    for (k, l) in lines.iter().enumerate().rev() {
+        if l.defs.iter().any(|&d| needed[d as usize]) {
+            first[k] = true;
+            for &u in &l.uses {
+                needed[u as usize] = true;
+            }
+        }
+    }
+    let args: Vec<Expr> = body.outputs[calls.outputs..].iter().map(|(e, _)| e.clone()).collect();
+    let glue = (calls.glue)(&args)?.into_iter().map(|stmt| Line { stmt, defs: vec![], uses: vec![], inputs: vec![] });
+    let (before, after): (Vec<_>, Vec<_>) = lines.into_iter().zip(first).partition(|(_, f)| *f);
+    body.lines = before.into_iter().map(|(l, _)| l).chain(glue).chain(after.into_iter().map(|(l, _)| l)).collect();
+    body.outputs.truncate(calls.outputs);
+    Ok(())
 }
 
 /// From this many statements on, a body that returns matrices and is not
@@ -410,7 +457,7 @@ fn result_of(output: Shape, n: Sizes) -> impl Fn(Vec<Expr>) -> Expr {
 
 /// The documentation attributes and the signature `fn name(params) -> ret`.
 fn signature_of(
-    signature: &Signature,
+    signature: &Signature<'_>,
     scalar: ScalarType,
     doc: &str,
 ) -> Result<(Vec<syn::Attribute>, syn::Signature), CodegenError> {
@@ -445,7 +492,7 @@ fn unused_params(f: &Traced, signature: &Signature) -> Result<Vec<Stmt>, Codegen
 /// body `NAME_on`.
 fn dispatched(
     f: &Traced,
-    signature: &Signature,
+    signature: &Signature<'_>,
     scalar: ScalarType,
     n: Sizes,
     doc: &str,

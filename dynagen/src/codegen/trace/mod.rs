@@ -11,6 +11,7 @@
 //! [`fd_choice`] keeps one. [`sin_cos`] then turns the sines and cosines of
 //! the joint angles into inputs: the body every emitted function has.
 
+pub(crate) mod branches;
 pub mod fd_choice;
 mod frames;
 mod generic_count;
@@ -128,6 +129,7 @@ pub(crate) fn trace_module(
                     sin_cos_inputs: sc,
                     op_count,
                     factors: None,
+                    branched: None,
                 });
             }
         }
@@ -137,6 +139,11 @@ pub(crate) fn trace_module(
             let best = (0..traced.len()).min_by_key(|&k| traced[k].op_count.fp_ops()).expect("traced");
             for (k, g) in traced.iter_mut().enumerate() {
                 g.emitted = k == best;
+            }
+        }
+        if options.branch_loops {
+            for g in &mut functions[first..] {
+                g.branched = branches::branched(scene, f, options.rewrites)?;
             }
         }
         // The forward dynamics' derivatives as their factors and a loop, where

@@ -1,0 +1,558 @@
+//! Branches: sibling subtrees of one shape (a humanoid's two legs and two
+//! arms, a quadruped's four legs), traced once and emitted as one body that
+//! a loop runs for each of them, reading its constants from a table.
+//!
+//! A body unrolled for the whole robot is as long as the robot is big; past
+//! a few thousand instructions it no longer fits in the processor's
+//! micro-op cache and runs at the rate the decoders take its bytes
+//! (`docs/performance.md`, "Long bodies: the front end"). A loop over the
+//! branches runs the bytes of one branch as many times as there are
+//! branches.
+//!
+//! Each branch is traced with its constants as inputs `k[i]` (one per
+//! distinct value, see [`Graph::with_lane_constants`]), so that branches
+//! that differ only in their numbers give the same graph, and any
+//! difference of structure (a zero in one branch where the other has a
+//! number) shows as a different graph: such branches are left in the
+//! unrolled body. The constants every branch shares are then folded back
+//! in; the others are the table. For the recursive Newton-Euler functions
+//! (τ, h), the branch takes its parent's motion (ω, ω̇, the origin's
+//! acceleration and `U`, 18 numbers in the parent's frame) and its joints'
+//! state, and returns its joints' τ and the wrench it puts on its parent
+//! (parent frame). The rest of the robot is traced with the branches'
+//! wrenches as inputs, acting on their parents as tip wrenches do, and the
+//! parents' motions as extra outputs, which the emitted body computes
+//! before the loop (`codegen/emit/statements.rs`).
+
+use super::sin_cos::{sin_cos_inputs, SinCosTrace};
+use super::SceneLoads;
+use crate::algorithms::floating::rnea::base_motion;
+use crate::algorithms::rnea::{add_armature, rnea_tree, Root, RootMotion};
+use crate::algorithms::{rnea, Loads, TipWrench, Workspace};
+use crate::codegen::{CodegenError, Function};
+use crate::model::{Body, Coupling, Frame, Model, RootJoint};
+use crate::scene::{dynamics, SceneModel};
+use crate::spatial::{Force, Mat3, Transform, Vec3};
+use crate::symbolic::{Expr, Graph, Node, NodeId, Rewrites, Traced, Tracer, LANE_CONSTANTS};
+use crate::Scalar;
+
+/// The numbers of a parent's motion a branch reads: ω, ω̇, the acceleration
+/// of the parent's origin, and `U` row by row (parent frame).
+pub const MOTION: usize = 18;
+
+/// The fewest bodies a branch has for a loop to be worth its call.
+pub const MIN_BODIES: usize = 3;
+
+/// Branches of one parent alike in shape: one lane per branch, each its
+/// bodies in the same order (a body's parent before it).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BranchGroup {
+    /// The parent body; `None` for a floating base.
+    pub parent: Option<usize>,
+    /// Each branch's bodies; the k-th of every lane correspond.
+    pub lanes: Vec<Vec<usize>>,
+}
+
+/// One group's body, traced once.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BranchBody {
+    /// The branches.
+    pub group: BranchGroup,
+    /// Inputs `k` (the lane's constants), `m` (the parent's motion,
+    /// [`MOTION`]), `s`, `c`, `q`, `qd`, `qdd` of the branch's joints in
+    /// lane order; outputs the joints' τ, then the wrench on the parent
+    /// (moment, force; parent frame).
+    pub body: SinCosTrace,
+    /// The values of `k`, lane by lane.
+    pub table: Vec<Vec<f64>>,
+}
+
+impl BranchBody {
+    /// The number of the branch's outputs: its joints' τ and a wrench.
+    pub fn outputs(&self) -> usize {
+        self.group.lanes[0].len() + 6
+    }
+}
+
+/// A function emitted with its branches in a loop.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Branched {
+    /// The rest of the robot: inputs those of `NAME_sc` and, for group g,
+    /// `r{g}` (the branches' outputs, lane after lane); outputs the
+    /// function's, then each group's parent motion ([`MOTION`]).
+    pub body: SinCosTrace,
+    /// The function's own outputs (the first of `body`'s).
+    pub outputs: usize,
+    /// The groups.
+    pub branches: Vec<BranchBody>,
+}
+
+/// The name of group `g`'s results in the emitted body.
+pub fn results_name(g: usize) -> String {
+    format!("r{g}")
+}
+
+/// The groups of branches of `model`: for each parent (a floating base,
+/// then the bodies in order, none inside a branch already taken), its
+/// children whose subtrees have the same shape (joint kinds, children),
+/// at least two of them with at least `min_bodies` bodies each.
+pub fn groups(model: &Model, min_bodies: usize) -> Vec<BranchGroup> {
+    let n = model.bodies.len();
+    let children = |p: Option<usize>| (0..n).filter(move |&b| model.bodies[b].parent == p);
+    let mut taken = vec![false; n];
+    let mut found = Vec::new();
+    let parents = model.is_floating().then_some(None).into_iter().chain((0..n).map(Some));
+    for parent in parents {
+        if parent.is_some_and(|p| taken[p]) {
+            continue;
+        }
+        let mut shapes: Vec<(String, Vec<usize>)> = Vec::new();
+        for child in children(parent) {
+            let s = shape(model, child);
+            match shapes.iter_mut().find(|(t, _)| *t == s) {
+                Some((_, list)) => list.push(child),
+                None => shapes.push((s, vec![child])),
+            }
+        }
+        for (_, roots) in shapes.into_iter().filter(|(_, r)| r.len() > 1) {
+            let lanes: Vec<Vec<usize>> = roots.iter().map(|&r| subtree(model, r)).collect();
+            if lanes[0].len() < min_bodies {
+                continue;
+            }
+            for &b in lanes.iter().flatten() {
+                taken[b] = true;
+            }
+            found.push(BranchGroup { parent, lanes });
+        }
+    }
+    found
+}
+
+/// The shape of the subtree of `b`: its joint's kind, then its children's.
+fn shape(model: &Model, b: usize) -> String {
+    let kids: Vec<String> =
+        (0..model.bodies.len()).filter(|&c| model.bodies[c].parent == Some(b)).map(|c| shape(model, c)).collect();
+    format!("{:?}({})", model.bodies[b].joint.kind, kids.join(","))
+}
+
+/// The bodies of the subtree of `b`, depth first, children in order.
+fn subtree(model: &Model, b: usize) -> Vec<usize> {
+    let mut out = vec![b];
+    for c in (0..model.bodies.len()).filter(|&c| model.bodies[c].parent == Some(b)) {
+        out.extend(subtree(model, c));
+    }
+    out
+}
+
+/// The model of `model`'s `bodies` alone (a body whose parent is not among
+/// them hangs from the root), with `frames` at the origins of the bodies
+/// given (by their index in `model`; `None` the base), on a fixed or a
+/// floating root.
+fn part(model: &Model, bodies: &[usize], frames: &[(String, Option<usize>)], root: RootJoint) -> Model {
+    let at = |b: usize| bodies.iter().position(|&x| x == b);
+    let list: Vec<Body> = bodies
+        .iter()
+        .map(|&b| {
+            let mut body = model.bodies[b].clone();
+            body.parent = body.parent.and_then(at);
+            body
+        })
+        .collect();
+    let frames = frames
+        .iter()
+        .map(|(name, body)| Frame {
+            name: name.clone(),
+            body: body.and_then(at),
+            placement: Transform::identity(),
+            file_placement: None,
+        })
+        .collect();
+    let coupling = Coupling::new(&list, vec![None; list.len()]);
+    Model {
+        name: model.name.clone(),
+        root: model.root.clone(),
+        bodies: list,
+        frames,
+        gravity: model.gravity,
+        warnings: Vec::new(),
+        base_mass: model.base_mass,
+        root_joint: root,
+        base_inertia: model.base_inertia,
+        coupling,
+        file_base_inertia: None,
+    }
+}
+
+/// One branch traced with its constants as inputs: the graph and the
+/// constants' values. `accelerations`: whether q̈ is an input (τ) or zero (h).
+fn trace_lane(model: &Model, rewrites: Rewrites, accelerations: bool) -> Result<(Traced, Vec<f64>), CodegenError> {
+    let tracer = Tracer::start_lanes(rewrites)?;
+    // The constants' vector first, so that every lane names its inputs alike.
+    let _ = tracer.input(LANE_CONSTANTS, 0);
+    let nb = model.bodies.len();
+    let m = tracer.inputs("m", MOTION);
+    let q = tracer.inputs("q", nb);
+    let qd = tracer.inputs("qd", nb);
+    let qdd = accelerations.then(|| tracer.inputs("qdd", nb));
+    let v = |k: usize| Vec3([m[k], m[k + 1], m[k + 2]]);
+    let u = Mat3([[m[9], m[10], m[11]], [m[12], m[13], m[14]], [m[15], m[16], m[17]]]);
+    let root = RootMotion { w: v(0), wd: v(3), a: v(6), u };
+    let mut ws = Workspace::<Expr>::new(model);
+    let mut out = vec![Expr::zero(); nb];
+    let f = rnea_tree(model, &mut ws, &q, (Some(&qd), qdd.as_deref()), Root::Moving(&root), Loads::none(), &mut out);
+    out.extend(f.ang.0);
+    out.extend(f.lin.0);
+    drop(ws);
+    let graph = tracer.finish();
+    let values = graph.lane_constants().map(<[f64]>::to_vec).unwrap_or_default();
+    Ok((Traced::new("branch", &graph, &out), values))
+}
+
+/// `t` with the constants all lanes share folded in (and simplified with
+/// the rest), the others renumbered; the lanes' values of those.
+fn fold_shared(t: &Traced, tables: &[Vec<f64>], rewrites: Rewrites) -> (Traced, Vec<Vec<f64>>) {
+    let p = tables[0].len();
+    let shared: Vec<bool> = (0..p).map(|i| tables.iter().all(|l| l[i].to_bits() == tables[0][i].to_bits())).collect();
+    let mut slot = vec![usize::MAX; p];
+    let mut kept = Vec::new();
+    for i in (0..p).filter(|&i| !shared[i]) {
+        slot[i] = kept.len();
+        kept.push(i);
+    }
+    let k = t.input_names().iter().position(|s| s == LANE_CONSTANTS).map(|i| i as u32);
+    let mut g = Graph::with_rewrites(rewrites);
+    for name in t.input_names() {
+        g.input(name, 0);
+    }
+    let nodes = t.nodes();
+    let mut new: Vec<NodeId> = Vec::with_capacity(nodes.len());
+    let mut cos: Vec<NodeId> = vec![0; nodes.len()];
+    for (id, node) in nodes.iter().enumerate() {
+        if let Some(x) = g.arithmetic(node.map_operands(|x| new[x as usize])) {
+            new.push(x);
+            continue;
+        }
+        let x = match *node {
+            Node::Const(_) => g.constant(node.constant().unwrap_or_default()),
+            Node::Input { name, index } if Some(name) == k => match shared[index as usize] {
+                true => g.constant(tables[0][index as usize]),
+                false => g.input(LANE_CONSTANTS, slot[index as usize]),
+            },
+            Node::Input { name, index } => g.input(&t.input_names()[name as usize], index as usize),
+            Node::SinCos(a) => {
+                let (s, c) = g.sin_cos(new[a as usize]);
+                cos[id] = c;
+                s
+            }
+            Node::Sin(sc) => new[sc as usize],
+            Node::Cos(sc) => cos[sc as usize],
+            _ => unreachable!("arithmetic is mapped above"),
+        };
+        new.push(x);
+    }
+    let outputs: Vec<NodeId> = t.outputs().iter().map(|&o| new[o as usize]).collect();
+    let table = tables.iter().map(|l| kept.iter().map(|&i| l[i]).collect()).collect();
+    (Traced::from_ids(t.name(), &g, &outputs), table)
+}
+
+/// The group's body, if its lanes trace alike.
+fn branch_body(
+    model: &Model,
+    group: BranchGroup,
+    rewrites: Rewrites,
+    accelerations: bool,
+) -> Result<Option<BranchBody>, CodegenError> {
+    let mut traces = Vec::new();
+    let mut tables: Vec<Vec<f64>> = Vec::new();
+    for lane in &group.lanes {
+        let (t, values) = trace_lane(&part(model, lane, &[], RootJoint::Fixed), rewrites, accelerations)?;
+        if traces.first().is_some_and(|first| *first != t) {
+            return Ok(None);
+        }
+        traces.push(t);
+        tables.push(values);
+    }
+    let (folded, table) = fold_shared(&traces[0], &tables, rewrites);
+    match sin_cos_inputs(&folded, group.lanes[0].len(), 0, rewrites) {
+        Ok(body) => Ok(Some(BranchBody { group, body, table })),
+        // an angle scaled by a lane's constant (a screw axis of a lane's own length)
+        Err(_) => Ok(None),
+    }
+}
+
+/// `f` of `scene` with its branches in a loop, where it has branches that
+/// trace alike: the recursive Newton-Euler functions (τ, h) of a model
+/// without mimic joints, payload inputs or a tip wrench. `None` where there
+/// is nothing to gain.
+pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> Result<Option<Branched>, CodegenError> {
+    let model = &scene.model;
+    let accelerations = match f {
+        Function::InverseDynamics => true,
+        Function::BiasForces => false,
+        _ => return Ok(None),
+    };
+    if model.has_mimic() || !scene.input_payloads.is_empty() || scene.tip_wrench_frame.is_some() {
+        return Ok(None);
+    }
+    let mut branches = Vec::new();
+    for group in groups(model, MIN_BODIES) {
+        branches.extend(branch_body(model, group, rewrites, accelerations)?);
+    }
+    if branches.is_empty() {
+        return Ok(None);
+    }
+    let n = model.bodies.len();
+    let in_branch = |b: usize| branches.iter().any(|x| x.group.lanes.iter().flatten().any(|&y| y == b));
+    let keep: Vec<usize> = (0..n).filter(|&b| !in_branch(b)).collect();
+    let tips: Vec<(String, Option<usize>)> = branches
+        .iter()
+        .enumerate()
+        .flat_map(|(g, x)| (0..x.group.lanes.len()).map(move |l| (format!("branch {g}.{l}"), x.group.parent)))
+        .collect();
+    let rest = part(model, &keep, &tips, model.root_joint);
+    let (nq, nv) = (model.nq(), model.nv());
+    let (qo, vo) = (nq - n, nv - n);
+
+    let tracer = Tracer::start_with(rewrites)?;
+    let q = tracer.inputs("q", nq);
+    let qd = tracer.inputs("qd", nv);
+    let qdd = accelerations.then(|| tracer.inputs("qdd", nv));
+    let loads = SceneLoads::of(scene, f, &tracer);
+    let results: Vec<Vec<Expr>> = branches
+        .iter()
+        .enumerate()
+        .map(|(g, x)| tracer.inputs(&results_name(g), x.group.lanes.len() * x.outputs()))
+        .collect();
+    // The rest's state: the base's entries, then the kept joints'.
+    let gather =
+        |x: &[Expr], o: usize| -> Vec<Expr> { x[..o].iter().chain(keep.iter().map(|&b| &x[o + b])).copied().collect() };
+    let (q_rest, qd_rest) = (gather(&q, qo), gather(&qd, vo));
+    let qdd_rest = qdd.as_ref().map(|x| gather(x, vo));
+    // Each branch's wrench on its parent, as a tip wrench at the parent's origin.
+    let mut wrenches = Vec::new();
+    for (x, r) in branches.iter().zip(&results) {
+        let (nb, len) = (x.group.lanes[0].len(), x.outputs());
+        for l in 0..x.group.lanes.len() {
+            let w = &r[l * len + nb..(l + 1) * len];
+            let frame = wrenches.len();
+            wrenches.push(TipWrench { frame, wrench: Force::new(Vec3([w[0], w[1], w[2]]), Vec3([w[3], w[4], w[5]])) });
+        }
+    }
+    let gravity = loads.gravity.as_ref();
+    let mut ws = Workspace::<Expr>::new(&rest);
+    let mut tau = vec![Expr::zero(); rest.nv()];
+    rnea::rnea(
+        &rest,
+        &mut ws,
+        &q_rest,
+        Some(&qd_rest),
+        qdd_rest.as_deref(),
+        Loads::new(gravity, &wrenches, &[]),
+        &mut tau,
+    );
+    let mut out = vec![Expr::zero(); nv];
+    out[..vo].copy_from_slice(&tau[..vo]);
+    for (k, &b) in keep.iter().enumerate() {
+        out[vo + b] = tau[vo + k];
+    }
+    for (x, r) in branches.iter().zip(&results) {
+        for (l, lane) in x.group.lanes.iter().enumerate() {
+            for (j, &b) in lane.iter().enumerate() {
+                out[vo + b] = r[l * x.outputs() + j];
+            }
+        }
+    }
+    // The scene's armature and friction, on every joint, as the unbranched trace adds them.
+    if let Some(qdd) = &qdd {
+        add_armature(scene.has_armature().then_some(scene.armature.as_slice()), Some(&qdd[vo..]), &mut out[vo..]);
+    }
+    dynamics::add_friction(scene, &qd, &mut out);
+    let outputs = out.len();
+    // The parents' motions, for the calls.
+    for x in &branches {
+        let motion = match x.group.parent.and_then(|p| keep.iter().position(|&b| b == p)) {
+            Some(p) => RootMotion { w: ws.v[p].ang, wd: ws.a[p].ang, a: ws.a[p].lin, u: ws.u[p] },
+            None => base_motion(&rest, &q_rest, Some(&qd_rest), qdd_rest.as_deref(), Loads::new(gravity, &[], &[])).1,
+        };
+        out.extend(motion.w.0.into_iter().chain(motion.wd.0).chain(motion.a.0).chain(motion.u.0.into_iter().flatten()));
+    }
+    drop(ws);
+    let graph = tracer.finish();
+    let traced = Traced::new(&f.rust_name(), &graph, &out);
+    let mut body = sin_cos_inputs(&traced, n, qo, rewrites).map_err(CodegenError::Internal)?;
+    // The branches read their joints' sines and cosines from `s` and `c`.
+    for x in &branches {
+        for lane in &x.group.lanes {
+            for (j, &b) in lane.iter().enumerate() {
+                body.angle_scale[b] = x.body.angle_scale[j];
+            }
+        }
+    }
+    Ok(Some(Branched { body, outputs, branches }))
+}
+
+impl Branched {
+    /// The function's outputs on numbers, as the emitted body computes them
+    /// (unfused): the rest's motions, each branch on its lane's constants,
+    /// then the rest with the branches' results. `inputs` are `NAME_sc`'s
+    /// (`s`, `c`, `q`, `qd`, …; a floating base's `q` is NQ long).
+    pub fn eval(&self, inputs: &[(&str, &[f64])]) -> Result<Vec<f64>, crate::symbolic::MissingInput> {
+        let vector = |name: &str| inputs.iter().find(|(n, _)| *n == name).map(|(_, v)| *v);
+        let mut all: Vec<(String, Vec<f64>)> = inputs.iter().map(|(n, v)| (n.to_string(), v.to_vec())).collect();
+        for (g, x) in self.branches.iter().enumerate() {
+            all.push((results_name(g), vec![0.0; x.group.lanes.len() * x.outputs()]));
+        }
+        let view = |all: &[(String, Vec<f64>)]| all.iter().map(|(n, v)| (n.clone(), v.clone())).collect::<Vec<_>>();
+        let run = |t: &Traced, all: &[(String, Vec<f64>)]| {
+            let list = view(all);
+            let refs: Vec<(&str, &[f64])> = list.iter().map(|(n, v)| (n.as_str(), v.as_slice())).collect();
+            t.eval(&refs)
+        };
+        let first = run(&self.body.function, &all)?;
+        let nq = vector("q").map_or(0, <[f64]>::len);
+        let offset = self.body.q_offset;
+        for (g, x) in self.branches.iter().enumerate() {
+            let motion = &first[self.outputs + g * MOTION..self.outputs + (g + 1) * MOTION];
+            let mut results = Vec::new();
+            for (l, lane) in x.group.lanes.iter().enumerate() {
+                // The lane's joints' entries of a joint-indexed vector, or
+                // of a velocity-side one (past the base's six).
+                let pick = |name: &str, skip: usize| -> Vec<f64> {
+                    vector(name).map_or(Vec::new(), |v| lane.iter().map(|&b| v[skip + b]).collect())
+                };
+                let v_off = if offset > 0 { 6 } else { 0 };
+                let q_off = if nq > offset { offset } else { 0 };
+                let lane_inputs: Vec<(String, Vec<f64>)> = vec![
+                    (LANE_CONSTANTS.to_string(), x.table[l].clone()),
+                    ("m".to_string(), motion.to_vec()),
+                    ("s".to_string(), pick("s", 0)),
+                    ("c".to_string(), pick("c", 0)),
+                    ("q".to_string(), pick("q", q_off)),
+                    ("qd".to_string(), pick("qd", v_off)),
+                    ("qdd".to_string(), pick("qdd", v_off)),
+                ];
+                results.extend(run(&x.body.function, &lane_inputs)?);
+            }
+            let name = results_name(g);
+            all.iter_mut().find(|(n, _)| *n == name).expect("pushed above").1 = results;
+        }
+        let mut out = run(&self.body.function, &all)?;
+        out.truncate(self.outputs);
+        Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::codegen::{prepare, CodegenOptions};
+    use crate::scene::Scene;
+    use approx::assert_relative_eq;
+
+    /// In a lane trace every constant but 0 and ±1 is an entry of `k`, one
+    /// per distinct value; 0 and ±1 still fold.
+    #[test]
+    fn lane_constants_are_inputs() {
+        let t = Tracer::start_lanes(Rewrites::default()).unwrap();
+        let x = t.input("x", 0);
+        let y = x * Expr::from_f64(2.5) + Expr::from_f64(2.5) * x * x + Expr::from_f64(-0.5) * Expr::one() * x;
+        let zero = Expr::zero() * x + x * Expr::from_f64(-1.0);
+        let g = t.finish();
+        assert_eq!(g.lane_constants(), Some(&[2.5, -0.5][..]));
+        let f = Traced::new("f", &g, &[y, zero]);
+        assert!(f.nodes().iter().all(|n| n.constant().is_none_or(|c| c == 0.0 || c.abs() == 1.0)));
+        assert_eq!(f.eval(&[("x", &[2.0]), (LANE_CONSTANTS, &[2.5, -0.5])]).unwrap(), vec![14.0, -2.0]);
+        assert_eq!(f.eval(&[("x", &[2.0]), (LANE_CONSTANTS, &[1.5, 3.0])]).unwrap(), vec![15.0, -2.0]);
+    }
+
+    /// A bundled robot; `humanoid32_alike_wrists` is the humanoid with its
+    /// right wrist turned as its left one is (−270° for −90°), so that its
+    /// arms, which hang from a body, trace alike too.
+    fn robot(name: &str, floating: bool) -> Model {
+        let file = name.strip_suffix("_alike_wrists").unwrap_or(name);
+        let path = format!("{}/robots/{file}.urdf", env!("CARGO_MANIFEST_DIR"));
+        let xml = std::fs::read_to_string(path).unwrap();
+        let xml = match file == name {
+            true => xml,
+            false => xml.replace(r#"rpy="0.0 0 -1.57079632679""#, r#"rpy="0.0 0 -4.71238898038""#),
+        };
+        let model = Model::from_urdf_str(&xml).unwrap();
+        if floating {
+            model.with_floating_base()
+        } else {
+            model
+        }
+    }
+
+    /// The humanoid's legs and arms, the quadruped's four legs and the
+    /// torso's two arms are found. The humanoid's arms do not trace alike
+    /// (its wrists are turned by −90° and −270°: a rotation's ±1 differ),
+    /// nor do the torso's (each turned its own way at the shoulder); the
+    /// others do, and the functions with their branches in a loop give the
+    /// generic solver's τ and h (the quadruped's with armature and friction
+    /// on its joints).
+    #[test]
+    fn branches_trace_alike_and_give_the_generic_values() {
+        let opts = CodegenOptions::default();
+        for (name, floating, lanes, alike) in [
+            ("humanoid32", true, vec![2, 2], 1),
+            ("quadruped12", true, vec![4], 1),
+            ("torso_two_arms", false, vec![2], 0),
+        ] {
+            let model = robot(name, floating);
+            let mut plain = Scene::default().apply(&model).unwrap();
+            if name == "quadruped12" {
+                // armature and friction, which the rest adds on every joint
+                let n = model.dof();
+                plain.armature = (0..n).map(|i| 0.01 * (i + 1) as f64).collect();
+                plain.viscous_friction = (0..n).map(|i| 0.2 + 0.1 * i as f64).collect();
+                plain.coulomb_friction = vec![0.5; n];
+            }
+            let (scene, _) = prepare::prepare(&plain, &opts);
+            let found: Vec<usize> = groups(&scene.model, MIN_BODIES).iter().map(|g| g.lanes.len()).collect();
+            assert_eq!(found, lanes, "{name}: groups");
+            let (n, nq, nv) = (model.dof(), model.nq(), model.nv());
+            let mut rng = 0x2545_f491_4f6c_dd1du64;
+            let mut next = || {
+                rng ^= rng << 13;
+                rng ^= rng >> 7;
+                rng ^= rng << 17;
+                (rng >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+            };
+            let mut q: Vec<f64> = (0..nq).map(|_| 2.0 * next()).collect();
+            if floating {
+                let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+                q[3..7].iter_mut().for_each(|x| *x /= norm);
+            }
+            let qd: Vec<f64> = (0..nv).map(|_| 3.0 * next()).collect();
+            let qdd: Vec<f64> = (0..nv).map(|_| 5.0 * next()).collect();
+            let angles = &q[nq - n..];
+            let (s, c): (Vec<f64>, Vec<f64>) = angles.iter().map(|a| a.sin_cos()).unzip();
+            for f in [Function::InverseDynamics, Function::BiasForces] {
+                let b = branched(&scene, &f, opts.rewrites).unwrap();
+                let Some(b) = b else {
+                    assert_eq!(alike, 0, "{name} {f:?}: no branches trace alike");
+                    continue;
+                };
+                assert_eq!(b.branches.len(), alike, "{name} {f:?}");
+                let mut inputs: Vec<(&str, &[f64])> = vec![("s", &s), ("c", &c), ("q", &q), ("qd", &qd)];
+                if f == Function::InverseDynamics {
+                    inputs.push(("qdd", &qdd));
+                }
+                let got = b.eval(&inputs).unwrap();
+                let mut ws = crate::algorithms::Workspace::<f64>::new(&model);
+                let mut want = vec![0.0; nv];
+                let g = model.gravity;
+                match f {
+                    Function::InverseDynamics => {
+                        dynamics::inverse_dynamics(&plain, &mut ws, &q, &qd, &qdd, Loads::gravity(&g), &mut want)
+                    }
+                    _ => dynamics::bias_forces(&plain, &mut ws, &q, &qd, Some(&g), &mut want),
+                }
+                for i in 0..nv {
+                    assert_relative_eq!(got[i], want[i], epsilon = 1e-11, max_relative = 1e-11);
+                }
+            }
+        }
+    }
+}
