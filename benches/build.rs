@@ -82,11 +82,11 @@ fn main() {
             .generate_module()
             .unwrap_or_else(|e| panic!("generating {robot} (floating): {e}"));
         std::fs::write(Path::new(&out).join(format!("{robot}_floating.rs")), module.source).expect("writing");
-        // τ and h with the branches of one shape run in a loop (`--branch-loops`).
+        // τ, M and h with the branches of one shape run in a loop (`--branch-loops`).
         let module = Builder::new()
             .urdf(&urdf)
             .floating_base(true)
-            .functions(&["inverse_dynamics", "bias_forces"])
+            .functions(&["inverse_dynamics", "mass_matrix", "bias_forces"])
             .branch_loops(true)
             .source(&format!("dynagen/robots/{robot}.urdf"))
             .generate_module()

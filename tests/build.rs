@@ -108,13 +108,13 @@ fn main() {
         .functions(&["mass_matrix"])
         .generate()
         .expect("generating the floating humanoid's mass matrix");
-    // τ and h with the legs run as one body in a loop (codegen/trace/branches.rs):
+    // τ, M and h with the legs run as one body in a loop (codegen/trace/branches.rs):
     // the humanoid with the run-time dispatch, the quadruped without.
     dynagen::Builder::new()
         .urdf("../dynagen/robots/humanoid32.urdf")
         .floating_base(true)
         .name("humanoid32_branch_loops")
-        .functions(&["inverse_dynamics", "bias_forces"])
+        .functions(&["inverse_dynamics", "mass_matrix", "bias_forces"])
         .branch_loops(true)
         .generate()
         .expect("generating the floating humanoid with branch loops");
@@ -122,7 +122,7 @@ fn main() {
         .urdf("../dynagen/robots/quadruped12.urdf")
         .floating_base(true)
         .name("quadruped12_branch_loops")
-        .functions(&["inverse_dynamics", "bias_forces"])
+        .functions(&["inverse_dynamics", "mass_matrix", "bias_forces"])
         .branch_loops(true)
         .runtime_dispatch(false)
         .generate()

@@ -2,7 +2,7 @@
 //! humanoid32 (the modules of `dynagen generate dynagen/robots/ROBOT.urdf
 //! --floating-base`, written by build.rs): `inverse_dynamics`,
 //! `mass_matrix`, `bias_forces` and `forward_dynamics`, each from q (its
-//! sines and cosines computed inside), and τ and h of the modules made with
+//! sines and cosines computed inside), and τ, h and M of the modules made with
 //! `--branch-loops` too (the legs run as one body in a loop), timed as `examples/interleaved.rs`
 //! times the fixed-base ones and as
 //! `scripts/reference/pinocchio_floating_bench.cpp` times Pinocchio: 8
@@ -72,7 +72,7 @@ fn first<T: Copy, const K: usize>(out: &[T; K]) -> T {
 }
 
 /// The four timed functions of a generated floating-base module `$m`, and
-/// τ and h of `$loops` (the same robot with `--branch-loops`).
+/// τ, h and M of `$loops` (the same robot with `--branch-loops`).
 macro_rules! timed {
     ($m:path, $loops:path) => {{
         use $loops as loops;
@@ -95,13 +95,17 @@ macro_rules! timed {
         fn h_loops(s: &State<{ m::NQ }, { m::NV }>) -> f64 {
             first(&loops::bias_forces(&s.q, &s.qd))
         }
-        let fs: [(&str, Timed<{ m::NQ }, { m::NV }>); 6] = [
+        fn mass_loops(s: &State<{ m::NQ }, { m::NV }>) -> f64 {
+            first(&loops::mass_matrix(&s.q))[0]
+        }
+        let fs: [(&str, Timed<{ m::NQ }, { m::NV }>); 7] = [
             ("inverse_dynamics", tau),
             ("mass_matrix", mass),
             ("bias_forces", h),
             ("forward_dynamics", fd),
             ("inverse_dyn. loops", tau_loops),
             ("bias_forces loops", h_loops),
+            ("mass_matrix loops", mass_loops),
         ];
         fs
     }};
@@ -109,7 +113,7 @@ macro_rules! timed {
 
 /// Times `fs` on `robot`'s states in alternating rounds and prints the
 /// minimum and median per call.
-fn run<const NQ: usize, const NV: usize>(robot: &str, fs: [(&str, Timed<NQ, NV>); 6], rounds: usize) {
+fn run<const NQ: usize, const NV: usize>(robot: &str, fs: [(&str, Timed<NQ, NV>); 7], rounds: usize) {
     let st = states::<NQ, NV>(0x5eed);
     let n = fs.len();
     let mut times = vec![Vec::with_capacity(rounds); n];

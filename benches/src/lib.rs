@@ -61,12 +61,12 @@ generated!(
 generated!(
     quadruped12_floating_loops,
     "quadruped12_floating_loops.rs",
-    "The quadruped12's floating τ and h with its legs run in a loop (`--floating-base --branch-loops`)."
+    "The quadruped12's floating τ, M and h with its legs run in a loop (`--floating-base --branch-loops`)."
 );
 generated!(
     humanoid32_floating_loops,
     "humanoid32_floating_loops.rs",
-    "The humanoid32's floating τ and h with its legs run in a loop (`--floating-base --branch-loops`)."
+    "The humanoid32's floating τ, M and h with its legs run in a loop (`--floating-base --branch-loops`)."
 );
 
 /// The states, calls per batch, batches and warm-up batches of the

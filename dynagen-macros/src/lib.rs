@@ -46,6 +46,7 @@
 //! | `fma` | `true`, `false`: `a*b + c` as `fma(a, b, c)`, one rounding where the target has a fused multiply-add | `true` |
 //! | `allow_nonphysical_inertia` | `true`, `false`: accept links whose rotational inertia is not positive semi-definite, with a warning (the mass matrix may be indefinite) | `false` (refused) |
 //! | `dispatch` | `true`, `false`: on x86-64 builds without the `avx2` and `fma` target features, also compile each function for AVX2 and FMA and run that copy where the processor has both (results differ in the last bits between machines) | `true` |
+//! | `branch_loops` | `true`, `false`: in τ and h, sibling subtrees of one shape (legs, arms) as one body run in a loop over a table of their constants | `false` |
 //! | `floating_base` | `true`, `false`: the robot's root link moves freely (`NQ = DOF + 7`, `NV = DOF + 6`; every scene key, frame function and derivative too) | `false` (a URDF `floating` root joint: `true`) |
 //! | `mimic` | `follow`: a joint with a `<mimic>` (in `robot!`, a `mimic` field) follows its master, `q = multiplier·q_master + offset`, and is not in `DOF` and `JOINT_NAMES`; `independent`: it is a joint of its own | `follow` |
 //!
@@ -167,6 +168,7 @@ pub(crate) struct MacroOptions {
     split_lets: Option<Option<usize>>,
     fma: Option<bool>,
     floating_base: Option<bool>,
+    branch_loops: Option<bool>,
     dispatch: Option<bool>,
     allow_nonphysical_inertia: Option<bool>,
     mimic: Option<dynagen::model::MimicJoints>,
@@ -222,6 +224,7 @@ impl MacroOptions {
             }
             "fma" => self.fma = Some(input.parse::<LitBool>()?.value),
             "floating_base" => self.floating_base = Some(input.parse::<LitBool>()?.value),
+            "branch_loops" => self.branch_loops = Some(input.parse::<LitBool>()?.value),
             "dispatch" => self.dispatch = Some(input.parse::<LitBool>()?.value),
             "allow_nonphysical_inertia" => self.allow_nonphysical_inertia = Some(input.parse::<LitBool>()?.value),
             "mimic" => self.mimic = Some(parse_ident(input)?),
@@ -254,6 +257,9 @@ impl MacroOptions {
         }
         if let Some(d) = self.dispatch {
             b = b.runtime_dispatch(d);
+        }
+        if let Some(f) = self.branch_loops {
+            b = b.branch_loops(f);
         }
         if let Some(f) = self.floating_base {
             b = b.floating_base(f);
@@ -295,7 +301,7 @@ fn parse_ident<T: std::str::FromStr<Err = String>>(input: ParseStream) -> syn::R
 }
 
 /// The options every macro accepts, for error messages.
-pub(crate) const OPTION_NAMES: &str = "functions, scalar, forward_dynamics, snap_rounding, trig, split_lets, fma, floating_base, \
+pub(crate) const OPTION_NAMES: &str = "functions, scalar, forward_dynamics, snap_rounding, trig, split_lets, fma, floating_base, branch_loops, \
                                        dispatch, allow_nonphysical_inertia, mimic, scene, gravity, tip_wrench, subtree, lock, armature, viscous, coulomb, \
                                        coulomb_velocity, payload, payload_input, frame_pose, frame_jacobian, frame_world_jacobian, \
                                        frame_acceleration_bias, target";

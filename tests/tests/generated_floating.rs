@@ -92,8 +92,8 @@ mod quadruped_loops {
     include!(concat!(env!("OUT_DIR"), "/quadruped12_branch_loops.rs"));
 }
 
-/// τ and h with the legs run as one body in a loop over a table of their
-/// constants (`branch_loops`), compiled, against the generic RNEA on random
+/// τ, M and h with the legs run as one body in a loop over a table of their
+/// constants (`branch_loops`), compiled, against the generic RNEA and CRBA on random
 /// states (|q̇| up to about 50): the humanoid's two legs (with the run-time
 /// dispatch) and the quadruped's four (without).
 #[test]
@@ -102,7 +102,7 @@ fn the_compiled_branch_loops_match_the_generic_solver() {
         ($module:ident, $file:literal, $robot:literal, $lanes:literal) => {{
             let file = concat!(env!("OUT_DIR"), "/", $file);
             let source = std::fs::read_to_string(file).unwrap();
-            for name in ["inverse_dynamics", "bias_forces"] {
+            for name in ["inverse_dynamics", "mass_matrix", "bias_forces"] {
                 let table = format!("const {}_BRANCH0: [[f64; ", name.to_uppercase());
                 assert!(source.contains(&table), "{}: {name} has a table of its legs' constants", $robot);
                 assert!(source.contains(&format!("; {}] = [", $lanes)), "{}: one row per leg", $robot);
@@ -126,6 +126,10 @@ fn the_compiled_branch_loops_match_the_generic_solver() {
                 rnea::rnea(&model, &mut ws, &q, Some(&qd), None, Loads::gravity(&g), &mut want);
                 let e = norm_rel_err(&$module::bias_forces(&q, &qd), &want, 1e-300);
                 assert!(e < 1e-12, "{} h at state {k}: relative error {e:e}", $robot);
+                let mut want = vec![0.0; $module::NV * $module::NV];
+                crba::crba(&model, &mut ws, &q, Loads::none(), &mut want);
+                let e = norm_rel_err($module::mass_matrix(&q).as_flattened(), &want, 1e-300);
+                assert!(e < 1e-12, "{} M at state {k}: relative error {e:e}", $robot);
             }
         }};
     }

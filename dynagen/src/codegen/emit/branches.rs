@@ -5,7 +5,7 @@
 
 use super::statements::{self, BodyStyle, Dim, Param, Shape, Signature, Sizes};
 use super::syntax::ident;
-use crate::codegen::trace::branches::{results_name, BranchBody, Branched, MOTION};
+use crate::codegen::trace::branches::{results_name, BranchBody, Branched, Kind, MOTION};
 use crate::codegen::{CodegenError, CodegenOptions};
 use crate::model::Model;
 use quote::{format_ident, quote};
@@ -26,7 +26,10 @@ fn table_name(name: &str, g: usize) -> String {
 /// and accelerations (τ).
 fn params(x: &BranchBody) -> Vec<Param> {
     let nb = x.group.lanes[0].len();
-    let mut list = vec![Param::fixed("k", x.table[0].len()), Param::fixed("m", MOTION)];
+    let mut list = vec![Param::fixed("k", x.table[0].len())];
+    if x.motion() {
+        list.push(Param::fixed("m", MOTION));
+    }
     for name in ["s", "c", "q", "qd", "qdd"] {
         let read = x.body.function.input_names().iter().any(|n| n == name);
         if read && (name != "q" || x.body.function.uses_input("q")) {
@@ -55,18 +58,28 @@ pub(super) fn items(
             Some(p) => format!("`{}`", model.bodies[p].name),
             None => "the base".to_string(),
         };
+        let what = match x.kind {
+            Kind::Rnea { .. } => {
+                "its parent's motion `m` (ω, ω̇, the origin's acceleration and U = [ω̇×] + [ω×][ω×] row by row, \
+                 in the parent's frame) and its joints' state; returns their τ, then the wrench it puts on its \
+                 parent (moment, force; parent frame)"
+            }
+            Kind::Crba => {
+                "its joints' sines and cosines; returns its own block of M (row after row), each joint's Iᶜ·S in \
+                 its parent's frame (moment, force), and its composite inertia there (mass, m·c, Ī as xx, yy, zz, \
+                 xy, xz, yz)"
+            }
+        };
         let doc = format!(
             " One branch of [`{name}_sc`] ({nb} joints), run for each of those that hang alike from {parent}, from \
-             {} on. Takes its constants `k` (a row of [`{}`]), its parent's motion `m` (ω, ω̇, the origin's \
-             acceleration and U = [ω̇×] + [ω×][ω×] row by row, in the parent's frame) and its joints' state; \
-             returns their τ, then the wrench it puts on its parent (moment, force; parent frame).",
+             {} on. Takes its constants `k` (a row of [`{}`]) and {what}.",
             starts.join(", "),
             table_name(name, g)
         );
         let signature = Signature {
             name: body_name(name, g),
             params: params(x),
-            output: Shape::Vector(Dim::Fixed(nb + 6)),
+            output: Shape::Vector(Dim::Fixed(x.outputs())),
             calls: None,
         };
         let body =
@@ -121,9 +134,8 @@ pub(super) fn glue(
 ) -> Result<Vec<Stmt>, CodegenError> {
     let (q_off, v_off) = if floating { (7, 6) } else { (0, 0) };
     let mut stmts = Vec::new();
+    let mut motions = args.chunks(MOTION);
     for (g, x) in b.branches.iter().enumerate() {
-        let nb = x.group.lanes[0].len();
-        let motion = &args[g * MOTION..(g + 1) * MOTION];
         let m = format_ident!("m_b{g}");
         let r = ident(&results_name(g));
         let call = match dispatch {
@@ -138,8 +150,13 @@ pub(super) fn glue(
         };
         let table = format_ident!("{}", table_name(name, g));
         let mut locals = Vec::new();
-        let mut call_args = vec![quote!(&#table[l]), quote!(&#m)];
-        for p in params(x).iter().skip(2) {
+        let mut call_args = vec![quote!(&#table[l])];
+        if x.motion() {
+            let motion = motions.next().expect("a motion per group that reads it");
+            locals.push(quote!(let #m = [#(#motion),*];));
+            call_args.push(quote!(&#m));
+        }
+        for p in params(x).iter().skip(call_args.len()) {
             let local = format_ident!("{}_b{g}", p.name);
             let source = ident(&p.name);
             let skip = match p.name.as_str() {
@@ -154,10 +171,9 @@ pub(super) fn glue(
             locals.push(quote!(let #local = [#(#rows),*];));
             call_args.push(quote!(&#local[l]));
         }
-        let len = proc_macro2::Literal::usize_unsuffixed(nb + 6);
-        let total = proc_macro2::Literal::usize_unsuffixed(x.group.lanes.len() * (nb + 6));
+        let len = proc_macro2::Literal::usize_unsuffixed(x.outputs());
+        let total = proc_macro2::Literal::usize_unsuffixed(x.group.lanes.len() * x.outputs());
         let block: syn::Block = syn::parse2(quote! {{
-            let #m = [#(#motion),*];
             #(#locals)*
             let mut #r = [0.0; #total];
             for (l, out) in #r.chunks_exact_mut(#len).enumerate() {

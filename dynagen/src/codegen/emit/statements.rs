@@ -301,9 +301,11 @@ pub(crate) fn emit_function(
     };
     let fma_path: &[&str] = if style.dispatch { &["I", fma] } else { &[fma] };
     let mut body = body_of(f, scalar, trig, style, fma_path)?;
-    if let Some(calls) = &signature.calls {
-        insert_calls(&mut body, calls)?;
-    }
+    // The statements before the calls' results can be read.
+    let ready = match &signature.calls {
+        Some(calls) => insert_calls(&mut body, calls)?,
+        None => 0,
+    };
     // (a body with calls is never split: its parts would have to carry the results)
     let whole = signature.calls.is_some() || style.split_lets.is_none_or(|max| body.lines.len() <= max);
     // Whether to cut is decided on the statements alone: the stores of an
@@ -311,7 +313,7 @@ pub(crate) fn emit_function(
     let max_lets = if whole { None } else { style.split_lets };
     // A long body returning a matrix stores each entry where it is computed.
     let early = (whole && body.lines.len() >= EARLY_STORES_MIN_LETS)
-        .then(|| store_early(f, &mut body, signature.output, n, scalar))
+        .then(|| store_early(f, &mut body, signature.output, n, scalar, ready))
         .flatten();
     if style.dispatch && whole {
         return dispatched(f, signature, scalar, n, doc, body, early);
@@ -340,8 +342,9 @@ pub(crate) fn emit_function(
 }
 
 /// Moves the statements the calls' arguments need first, then the calls,
-/// then the rest, and drops the arguments from the outputs.
-fn insert_calls(body: &mut Body, calls: &Calls) -> Result<(), CodegenError> {
+/// then the rest, and drops the arguments from the outputs. Returns the
+/// number of statements up to the calls' last.
+fn insert_calls(body: &mut Body, calls: &Calls) -> Result<usize, CodegenError> {
     let mut needed = vec![false; body.names.len()];
     for (_, v) in &body.outputs[calls.outputs..] {
         if let Some(v) = v {
@@ -361,9 +364,11 @@ fn insert_calls(body: &mut Body, calls: &Calls) -> Result<(), CodegenError> {
     let args: Vec<Expr> = body.outputs[calls.outputs..].iter().map(|(e, _)| e.clone()).collect();
     let glue = (calls.glue)(&args)?.into_iter().map(|stmt| Line { stmt, defs: vec![], uses: vec![], inputs: vec![] });
     let (before, after): (Vec<_>, Vec<_>) = lines.into_iter().zip(first).partition(|(_, f)| *f);
-    body.lines = before.into_iter().map(|(l, _)| l).chain(glue).chain(after.into_iter().map(|(l, _)| l)).collect();
+    body.lines = before.into_iter().map(|(l, _)| l).chain(glue).collect();
+    let ready = body.lines.len();
+    body.lines.extend(after.into_iter().map(|(l, _)| l));
     body.outputs.truncate(calls.outputs);
-    Ok(())
+    Ok(ready)
 }
 
 /// From this many statements on, a body that returns matrices and is not
@@ -383,8 +388,9 @@ pub(crate) const EARLY_STORES_MIN_LETS: usize = 2400;
 /// matrices) and the entries that are inputs or nonzero constants, then
 /// after each statement `out[i][j] = t;` for every entry that is its value.
 /// Returns the expression that ends the body (`out`), or `None` (and leaves
-/// `body` as it was) for a vector output.
-fn store_early(f: &Traced, body: &mut Body, output: Shape, n: Sizes, scalar: ScalarType) -> Option<Expr> {
+/// `body` as it was) for a vector output. The stores of inputs come after
+/// the first `ready` statements (those that make the calls' results).
+fn store_early(f: &Traced, body: &mut Body, output: Shape, n: Sizes, scalar: ScalarType, ready: usize) -> Option<Expr> {
     let (k, rows, cols) = match output {
         Shape::Vector(_) => return None,
         Shape::Matrix(r, c) => (None, r, c),
@@ -420,14 +426,19 @@ fn store_early(f: &Traced, body: &mut Body, output: Shape, n: Sizes, scalar: Sca
     let mut lines = vec![line(syn::parse_quote!(let mut #out = #init;))];
     // The entries each value is, by the value's index.
     let mut entries: Vec<Vec<usize>> = vec![Vec::new(); body.names.len()];
+    let mut inputs = Vec::new();
     for (o, ((e, value), &node)) in body.outputs.iter().zip(f.outputs()).enumerate() {
         match value {
             Some(v) => entries[*v as usize].push(o),
             None if f.nodes()[node as usize].constant().is_some_and(|x| x.to_bits() == 0) => {}
-            None => lines.push(line(store(o, e))),
+            None => inputs.push(line(store(o, e))),
         }
     }
-    for l in std::mem::take(&mut body.lines) {
+    let mut inputs = Some(inputs);
+    for (k, l) in std::mem::take(&mut body.lines).into_iter().enumerate() {
+        if k == ready {
+            lines.extend(inputs.take().into_iter().flatten());
+        }
         let mut stores = Vec::new();
         for &v in &l.defs {
             let value = path(body.names[v as usize].clone());
@@ -436,6 +447,7 @@ fn store_early(f: &Traced, body: &mut Body, output: Shape, n: Sizes, scalar: Sca
         lines.push(l);
         lines.extend(stores);
     }
+    lines.extend(inputs.into_iter().flatten());
     body.lines = lines;
     Some(path(out))
 }

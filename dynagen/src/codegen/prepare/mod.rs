@@ -26,7 +26,16 @@ pub(crate) fn prepare_model(model: &Model, options: &CodegenOptions) -> (Model, 
     // The regrouping gives the inertia a joint cannot move to its parent (a
     // fixed base drops it, a floating base carries it).
     let prepared = if options.regroup_inertia {
-        regroup_inertia(&slide_origins_along_axes(&center_prismatic_leaves(&snapped_model)))
+        let centred = center_prismatic_leaves(&snapped_model);
+        // With branch loops, the parents of branches keep their origins.
+        let keep: Vec<usize> = match options.branch_loops {
+            true => super::trace::branches::groups(&centred, super::trace::branches::MIN_BODIES)
+                .iter()
+                .filter_map(|g| g.parent)
+                .collect(),
+            false => Vec::new(),
+        };
+        regroup_inertia(&regroup::slide_origins_except(&centred, &keep))
     } else {
         snapped_model
     };

@@ -115,8 +115,15 @@ pub fn regroup_inertia(model: &Model) -> Model {
 /// the original model (the joint axes are the same lines); the frames keep
 /// their poses.
 pub fn slide_origins_along_axes(model: &Model) -> Model {
+    slide_origins_except(model, &[])
+}
+
+/// [`slide_origins_along_axes`], leaving the bodies `keep` where they are
+/// (the parents of branches run in a loop: sliding one to its first child
+/// would make that child's placement differ in shape from its siblings').
+pub(crate) fn slide_origins_except(model: &Model, keep: &[usize]) -> Model {
     let mut m = model.clone();
-    for i in (0..m.bodies.len()).rev() {
+    for i in (0..m.bodies.len()).rev().filter(|i| !keep.contains(i)) {
         let joint = &m.bodies[i].joint;
         let k = match (joint.kind, indices(joint.alignment)) {
             (JointKind::Revolute | JointKind::Continuous, Some((k, _, _))) => k,

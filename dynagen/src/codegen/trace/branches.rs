@@ -27,12 +27,13 @@
 use super::sin_cos::{sin_cos_inputs, SinCosTrace};
 use super::SceneLoads;
 use crate::algorithms::floating::rnea::base_motion;
+use crate::algorithms::joint::{force_to_parent, inertia_times_subspace, inertia_to_parent, project};
 use crate::algorithms::rnea::{add_armature, rnea_tree, Root, RootMotion};
-use crate::algorithms::{rnea, Loads, TipWrench, Workspace};
+use crate::algorithms::{crba, rnea, BodyInertia, Loads, TipWrench, Workspace, BASE_BODY};
 use crate::codegen::{CodegenError, Function};
 use crate::model::{Body, Coupling, Frame, Model, RootJoint};
 use crate::scene::{dynamics, SceneModel};
-use crate::spatial::{Force, Mat3, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Mat3, Sym3, Transform, Vec3};
 use crate::symbolic::{Expr, Graph, Node, NodeId, Rewrites, Traced, Tracer, LANE_CONSTANTS};
 use crate::Scalar;
 
@@ -53,24 +54,49 @@ pub struct BranchGroup {
     pub lanes: Vec<Vec<usize>>,
 }
 
+/// What a branch's body computes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// The recursive Newton-Euler algorithm (τ, or h without q̈): from its
+    /// parent's motion, its joints' τ and its wrench on the parent.
+    Rnea {
+        /// Whether q̈ is an input (τ) or zero (h).
+        accelerations: bool,
+    },
+    /// The composite-rigid-body algorithm (M): its own block of M (row
+    /// after row), each joint's `Iᶜ·S` carried to the parent's frame (six
+    /// entries each, moment first), and its composite inertia in the
+    /// parent's frame (mass, `m·c`, `Ī` as xx, yy, zz, xy, xz, yz).
+    Crba,
+}
+
 /// One group's body, traced once.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BranchBody {
     /// The branches.
     pub group: BranchGroup,
+    /// What it computes.
+    pub kind: Kind,
     /// Inputs `k` (the lane's constants), `m` (the parent's motion,
-    /// [`MOTION`]), `s`, `c`, `q`, `qd`, `qdd` of the branch's joints in
-    /// lane order; outputs the joints' τ, then the wrench on the parent
-    /// (moment, force; parent frame).
+    /// [`MOTION`]; RNEA only), `s`, `c`, `q`, `qd`, `qdd` of the branch's
+    /// joints in lane order; outputs as [`Kind`] says.
     pub body: SinCosTrace,
     /// The values of `k`, lane by lane.
     pub table: Vec<Vec<f64>>,
 }
 
 impl BranchBody {
-    /// The number of the branch's outputs: its joints' τ and a wrench.
+    /// The number of the branch's outputs.
     pub fn outputs(&self) -> usize {
-        self.group.lanes[0].len() + 6
+        let nb = self.group.lanes[0].len();
+        match self.kind {
+            Kind::Rnea { .. } => nb + 6,
+            Kind::Crba => nb * nb + 6 * nb + 10,
+        }
+    }
+    /// Whether it reads its parent's motion.
+    pub fn motion(&self) -> bool {
+        matches!(self.kind, Kind::Rnea { .. })
     }
 }
 
@@ -79,7 +105,8 @@ impl BranchBody {
 pub struct Branched {
     /// The rest of the robot: inputs those of `NAME_sc` and, for group g,
     /// `r{g}` (the branches' outputs, lane after lane); outputs the
-    /// function's, then each group's parent motion ([`MOTION`]).
+    /// function's, then the parent motion ([`MOTION`]) of each group that
+    /// reads it.
     pub body: SinCosTrace,
     /// The function's own outputs (the first of `body`'s).
     pub outputs: usize,
@@ -184,24 +211,53 @@ fn part(model: &Model, bodies: &[usize], frames: &[(String, Option<usize>)], roo
 }
 
 /// One branch traced with its constants as inputs: the graph and the
-/// constants' values. `accelerations`: whether q̈ is an input (τ) or zero (h).
-fn trace_lane(model: &Model, rewrites: Rewrites, accelerations: bool) -> Result<(Traced, Vec<f64>), CodegenError> {
+/// constants' values.
+fn trace_lane(model: &Model, rewrites: Rewrites, kind: Kind) -> Result<(Traced, Vec<f64>), CodegenError> {
     let tracer = Tracer::start_lanes(rewrites)?;
     // The constants' vector first, so that every lane names its inputs alike.
     let _ = tracer.input(LANE_CONSTANTS, 0);
     let nb = model.bodies.len();
-    let m = tracer.inputs("m", MOTION);
-    let q = tracer.inputs("q", nb);
-    let qd = tracer.inputs("qd", nb);
-    let qdd = accelerations.then(|| tracer.inputs("qdd", nb));
-    let v = |k: usize| Vec3([m[k], m[k + 1], m[k + 2]]);
-    let u = Mat3([[m[9], m[10], m[11]], [m[12], m[13], m[14]], [m[15], m[16], m[17]]]);
-    let root = RootMotion { w: v(0), wd: v(3), a: v(6), u };
     let mut ws = Workspace::<Expr>::new(model);
-    let mut out = vec![Expr::zero(); nb];
-    let f = rnea_tree(model, &mut ws, &q, (Some(&qd), qdd.as_deref()), Root::Moving(&root), Loads::none(), &mut out);
-    out.extend(f.ang.0);
-    out.extend(f.lin.0);
+    let out = match kind {
+        Kind::Rnea { accelerations } => {
+            let m = tracer.inputs("m", MOTION);
+            let q = tracer.inputs("q", nb);
+            let qd = tracer.inputs("qd", nb);
+            let qdd = accelerations.then(|| tracer.inputs("qdd", nb));
+            let v = |k: usize| Vec3([m[k], m[k + 1], m[k + 2]]);
+            let u = Mat3([[m[9], m[10], m[11]], [m[12], m[13], m[14]], [m[15], m[16], m[17]]]);
+            let root = RootMotion { w: v(0), wd: v(3), a: v(6), u };
+            let mut out = vec![Expr::zero(); nb];
+            let state = (Some(qd.as_slice()), qdd.as_deref());
+            let f = rnea_tree(model, &mut ws, &q, state, Root::Moving(&root), Loads::none(), &mut out);
+            out.extend(f.ang.0);
+            out.extend(f.lin.0);
+            out
+        }
+        Kind::Crba => {
+            let q = tracer.inputs("q", nb);
+            let mut out = vec![Expr::zero(); nb * nb];
+            crba::crba(model, &mut ws, &q, Loads::none(), &mut out);
+            // Each joint's Iᶜ·S carried to the root body, then across its joint.
+            for j in 0..nb {
+                let mut f = inertia_times_subspace(&model.bodies[j].joint, &ws.inertia[j]);
+                let mut b = j;
+                loop {
+                    f = force_to_parent(&model.bodies[b].joint, &ws.x[b], &f);
+                    match model.bodies[b].parent {
+                        Some(p) => b = p,
+                        None => break,
+                    }
+                }
+                out.extend(f.to_array());
+            }
+            let Inertia { mass, h, ibar } = inertia_to_parent(&model.bodies[0].joint, &ws.x[0], &ws.inertia[0]);
+            out.push(mass);
+            out.extend(h.0);
+            out.extend(ibar.0);
+            out
+        }
+    };
     drop(ws);
     let graph = tracer.finish();
     let values = graph.lane_constants().map(<[f64]>::to_vec).unwrap_or_default();
@@ -260,12 +316,12 @@ fn branch_body(
     model: &Model,
     group: BranchGroup,
     rewrites: Rewrites,
-    accelerations: bool,
+    kind: Kind,
 ) -> Result<Option<BranchBody>, CodegenError> {
     let mut traces = Vec::new();
     let mut tables: Vec<Vec<f64>> = Vec::new();
     for lane in &group.lanes {
-        let (t, values) = trace_lane(&part(model, lane, &[], RootJoint::Fixed), rewrites, accelerations)?;
+        let (t, values) = trace_lane(&part(model, lane, &[], RootJoint::Fixed), rewrites, kind)?;
         if traces.first().is_some_and(|first| *first != t) {
             return Ok(None);
         }
@@ -274,21 +330,21 @@ fn branch_body(
     }
     let (folded, table) = fold_shared(&traces[0], &tables, rewrites);
     match sin_cos_inputs(&folded, group.lanes[0].len(), 0, rewrites) {
-        Ok(body) => Ok(Some(BranchBody { group, body, table })),
+        Ok(body) => Ok(Some(BranchBody { group, kind, body, table })),
         // an angle scaled by a lane's constant (a screw axis of a lane's own length)
         Err(_) => Ok(None),
     }
 }
 
 /// `f` of `scene` with its branches in a loop, where it has branches that
-/// trace alike: the recursive Newton-Euler functions (τ, h) of a model
-/// without mimic joints, payload inputs or a tip wrench. `None` where there
-/// is nothing to gain.
+/// trace alike: τ, h and M of a model without mimic joints, payload inputs
+/// or a tip wrench. `None` where there is nothing to gain.
 pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> Result<Option<Branched>, CodegenError> {
     let model = &scene.model;
-    let accelerations = match f {
-        Function::InverseDynamics => true,
-        Function::BiasForces => false,
+    let kind = match f {
+        Function::InverseDynamics => Kind::Rnea { accelerations: true },
+        Function::BiasForces => Kind::Rnea { accelerations: false },
+        Function::MassMatrix => Kind::Crba,
         _ => return Ok(None),
     };
     if model.has_mimic() || !scene.input_payloads.is_empty() || scene.tip_wrench_frame.is_some() {
@@ -296,7 +352,7 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
     }
     let mut branches = Vec::new();
     for group in groups(model, MIN_BODIES) {
-        branches.extend(branch_body(model, group, rewrites, accelerations)?);
+        branches.extend(branch_body(model, group, rewrites, kind)?);
     }
     if branches.is_empty() {
         return Ok(None);
@@ -310,13 +366,18 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
         .flat_map(|(g, x)| (0..x.group.lanes.len()).map(move |l| (format!("branch {g}.{l}"), x.group.parent)))
         .collect();
     let rest = part(model, &keep, &tips, model.root_joint);
+    // A body's index in the rest.
+    let kept = |b: usize| keep.iter().position(|&k| k == b);
     let (nq, nv) = (model.nq(), model.nv());
     let (qo, vo) = (nq - n, nv - n);
 
     let tracer = Tracer::start_with(rewrites)?;
     let q = tracer.inputs("q", nq);
-    let qd = tracer.inputs("qd", nv);
-    let qdd = accelerations.then(|| tracer.inputs("qdd", nv));
+    let qd = match kind {
+        Kind::Rnea { .. } => tracer.inputs("qd", nv),
+        Kind::Crba => Vec::new(),
+    };
+    let qdd = matches!(kind, Kind::Rnea { accelerations: true }).then(|| tracer.inputs("qdd", nv));
     let loads = SceneLoads::of(scene, f, &tracer);
     let results: Vec<Vec<Expr>> = branches
         .iter()
@@ -326,56 +387,116 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
     // The rest's state: the base's entries, then the kept joints'.
     let gather =
         |x: &[Expr], o: usize| -> Vec<Expr> { x[..o].iter().chain(keep.iter().map(|&b| &x[o + b])).copied().collect() };
-    let (q_rest, qd_rest) = (gather(&q, qo), gather(&qd, vo));
-    let qdd_rest = qdd.as_ref().map(|x| gather(x, vo));
-    // Each branch's wrench on its parent, as a tip wrench at the parent's origin.
-    let mut wrenches = Vec::new();
-    for (x, r) in branches.iter().zip(&results) {
-        let (nb, len) = (x.group.lanes[0].len(), x.outputs());
-        for l in 0..x.group.lanes.len() {
-            let w = &r[l * len + nb..(l + 1) * len];
-            let frame = wrenches.len();
-            wrenches.push(TipWrench { frame, wrench: Force::new(Vec3([w[0], w[1], w[2]]), Vec3([w[3], w[4], w[5]])) });
-        }
-    }
-    let gravity = loads.gravity.as_ref();
+    let q_rest = gather(&q, qo);
     let mut ws = Workspace::<Expr>::new(&rest);
-    let mut tau = vec![Expr::zero(); rest.nv()];
-    rnea::rnea(
-        &rest,
-        &mut ws,
-        &q_rest,
-        Some(&qd_rest),
-        qdd_rest.as_deref(),
-        Loads::new(gravity, &wrenches, &[]),
-        &mut tau,
-    );
-    let mut out = vec![Expr::zero(); nv];
-    out[..vo].copy_from_slice(&tau[..vo]);
-    for (k, &b) in keep.iter().enumerate() {
-        out[vo + b] = tau[vo + k];
-    }
-    for (x, r) in branches.iter().zip(&results) {
-        for (l, lane) in x.group.lanes.iter().enumerate() {
-            for (j, &b) in lane.iter().enumerate() {
-                out[vo + b] = r[l * x.outputs() + j];
+    let mut out = vec![Expr::zero(); if kind == Kind::Crba { nv * nv } else { nv }];
+    match kind {
+        Kind::Rnea { .. } => {
+            let qd_rest = gather(&qd, vo);
+            let qdd_rest = qdd.as_ref().map(|x| gather(x, vo));
+            // Each branch's wrench on its parent, as a tip wrench at the parent's origin.
+            let mut wrenches = Vec::new();
+            for (x, r) in branches.iter().zip(&results) {
+                let (nb, len) = (x.group.lanes[0].len(), x.outputs());
+                for l in 0..x.group.lanes.len() {
+                    let w = &r[l * len + nb..(l + 1) * len];
+                    let wrench = Force::new(Vec3([w[0], w[1], w[2]]), Vec3([w[3], w[4], w[5]]));
+                    wrenches.push(TipWrench { frame: wrenches.len(), wrench });
+                }
+            }
+            let gravity = loads.gravity.as_ref();
+            let mut tau = vec![Expr::zero(); rest.nv()];
+            let state = (Some(qd_rest.as_slice()), qdd_rest.as_deref());
+            rnea::rnea(&rest, &mut ws, &q_rest, state.0, state.1, Loads::new(gravity, &wrenches, &[]), &mut tau);
+            out[..vo].copy_from_slice(&tau[..vo]);
+            for (k, &b) in keep.iter().enumerate() {
+                out[vo + b] = tau[vo + k];
+            }
+            for (x, r) in branches.iter().zip(&results) {
+                for (l, lane) in x.group.lanes.iter().enumerate() {
+                    for (j, &b) in lane.iter().enumerate() {
+                        out[vo + b] = r[l * x.outputs() + j];
+                    }
+                }
+            }
+            // The scene's armature and friction, on every joint, as the unbranched trace adds them.
+            if let Some(qdd) = &qdd {
+                let armature = scene.has_armature().then_some(scene.armature.as_slice());
+                add_armature(armature, Some(&qdd[vo..]), &mut out[vo..]);
+            }
+            dynamics::add_friction(scene, &qd, &mut out);
+            // The parents' motions, for the calls.
+            for x in &branches {
+                let motion = match x.group.parent.and_then(kept) {
+                    Some(p) => RootMotion { w: ws.v[p].ang, wd: ws.a[p].ang, a: ws.a[p].lin, u: ws.u[p] },
+                    None => base_motion(&rest, &q_rest, state.0, state.1, Loads::new(gravity, &[], &[])).1,
+                };
+                let (w, wd, a, u) = (motion.w.0, motion.wd.0, motion.a.0, motion.u.0);
+                out.extend(w.into_iter().chain(wd).chain(a).chain(u.into_iter().flatten()));
             }
         }
+        Kind::Crba => {
+            // The branches' composite inertias carried by their parents, as payloads.
+            let mut carried = Vec::new();
+            for (x, r) in branches.iter().zip(&results) {
+                let (nb, len) = (x.group.lanes[0].len(), x.outputs());
+                let body = x.group.parent.and_then(kept).unwrap_or(BASE_BODY);
+                for l in 0..x.group.lanes.len() {
+                    let c = &r[l * len + nb * nb + 6 * nb..(l + 1) * len];
+                    let inertia = Inertia {
+                        mass: c[0],
+                        h: Vec3([c[1], c[2], c[3]]),
+                        ibar: Sym3([c[4], c[5], c[6], c[7], c[8], c[9]]),
+                    };
+                    carried.push(BodyInertia { body, inertia });
+                }
+            }
+            let mut m = vec![Expr::zero(); rest.nv() * rest.nv()];
+            crba::crba(&rest, &mut ws, &q_rest, Loads::new(None, &[], &carried), &mut m);
+            let (nr, at) = (rest.nv(), |b: usize| vo + b);
+            // The rest's entries.
+            let index = |k: usize| if k < vo { k } else { at(keep[k - vo]) };
+            for i in 0..nr {
+                for j in 0..nr {
+                    out[index(i) * nv + index(j)] = m[i * nr + j];
+                }
+            }
+            for (x, r) in branches.iter().zip(&results) {
+                let (nb, len) = (x.group.lanes[0].len(), x.outputs());
+                for (l, lane) in x.group.lanes.iter().enumerate() {
+                    let r = &r[l * len..(l + 1) * len];
+                    // The branch's own block.
+                    for (a, &i) in lane.iter().enumerate() {
+                        for (b, &j) in lane.iter().enumerate() {
+                            out[at(i) * nv + at(j)] = r[a * nb + b];
+                        }
+                    }
+                    // Its joints against their ancestors': Iᶜ·S carried up the rest.
+                    for (a, &i) in lane.iter().enumerate() {
+                        let e = &r[nb * nb + 6 * a..nb * nb + 6 * a + 6];
+                        let mut f = Force::new(Vec3([e[0], e[1], e[2]]), Vec3([e[3], e[4], e[5]]));
+                        let mut above = x.group.parent.and_then(kept);
+                        while let Some(p) = above {
+                            let body = &rest.bodies[p];
+                            let mij = project(&body.joint, &f);
+                            out[at(i) * nv + at(keep[p])] = mij;
+                            out[at(keep[p]) * nv + at(i)] = mij;
+                            f = force_to_parent(&body.joint, &ws.x[p], &f);
+                            above = body.parent;
+                        }
+                        if vo > 0 {
+                            for (k, v) in f.to_array().into_iter().enumerate() {
+                                out[at(i) * nv + k] = v;
+                                out[k * nv + at(i)] = v;
+                            }
+                        }
+                    }
+                }
+            }
+            dynamics::add_armature_diagonal(scene, &mut out);
+        }
     }
-    // The scene's armature and friction, on every joint, as the unbranched trace adds them.
-    if let Some(qdd) = &qdd {
-        add_armature(scene.has_armature().then_some(scene.armature.as_slice()), Some(&qdd[vo..]), &mut out[vo..]);
-    }
-    dynamics::add_friction(scene, &qd, &mut out);
-    let outputs = out.len();
-    // The parents' motions, for the calls.
-    for x in &branches {
-        let motion = match x.group.parent.and_then(|p| keep.iter().position(|&b| b == p)) {
-            Some(p) => RootMotion { w: ws.v[p].ang, wd: ws.a[p].ang, a: ws.a[p].lin, u: ws.u[p] },
-            None => base_motion(&rest, &q_rest, Some(&qd_rest), qdd_rest.as_deref(), Loads::new(gravity, &[], &[])).1,
-        };
-        out.extend(motion.w.0.into_iter().chain(motion.wd.0).chain(motion.a.0).chain(motion.u.0.into_iter().flatten()));
-    }
+    let outputs = if kind == Kind::Crba { nv * nv } else { nv };
     drop(ws);
     let graph = tracer.finish();
     let traced = Traced::new(&f.rust_name(), &graph, &out);
@@ -411,8 +532,9 @@ impl Branched {
         let first = run(&self.body.function, &all)?;
         let nq = vector("q").map_or(0, <[f64]>::len);
         let offset = self.body.q_offset;
+        let mut args = first[self.outputs..].chunks(MOTION);
         for (g, x) in self.branches.iter().enumerate() {
-            let motion = &first[self.outputs + g * MOTION..self.outputs + (g + 1) * MOTION];
+            let motion = if x.motion() { args.next().expect("a motion per group that reads it") } else { &[] };
             let mut results = Vec::new();
             for (l, lane) in x.group.lanes.iter().enumerate() {
                 // The lane's joints' entries of a joint-indexed vector, or
@@ -421,7 +543,7 @@ impl Branched {
                     vector(name).map_or(Vec::new(), |v| lane.iter().map(|&b| v[skip + b]).collect())
                 };
                 let v_off = if offset > 0 { 6 } else { 0 };
-                let q_off = if nq > offset { offset } else { 0 };
+                let q_off = if nq > 0 { offset } else { 0 };
                 let lane_inputs: Vec<(String, Vec<f64>)> = vec![
                     (LANE_CONSTANTS.to_string(), x.table[l].clone()),
                     ("m".to_string(), motion.to_vec()),
@@ -528,7 +650,7 @@ mod tests {
             let qdd: Vec<f64> = (0..nv).map(|_| 5.0 * next()).collect();
             let angles = &q[nq - n..];
             let (s, c): (Vec<f64>, Vec<f64>) = angles.iter().map(|a| a.sin_cos()).unzip();
-            for f in [Function::InverseDynamics, Function::BiasForces] {
+            for f in [Function::InverseDynamics, Function::BiasForces, Function::MassMatrix] {
                 let b = branched(&scene, &f, opts.rewrites).unwrap();
                 let Some(b) = b else {
                     assert_eq!(alike, 0, "{name} {f:?}: no branches trace alike");
@@ -541,16 +663,18 @@ mod tests {
                 }
                 let got = b.eval(&inputs).unwrap();
                 let mut ws = crate::algorithms::Workspace::<f64>::new(&model);
-                let mut want = vec![0.0; nv];
+                let mut want = vec![0.0; if f == Function::MassMatrix { nv * nv } else { nv }];
                 let g = model.gravity;
                 match f {
                     Function::InverseDynamics => {
                         dynamics::inverse_dynamics(&plain, &mut ws, &q, &qd, &qdd, Loads::gravity(&g), &mut want)
                     }
-                    _ => dynamics::bias_forces(&plain, &mut ws, &q, &qd, Some(&g), &mut want),
+                    Function::BiasForces => dynamics::bias_forces(&plain, &mut ws, &q, &qd, Some(&g), &mut want),
+                    _ => dynamics::mass_matrix(&plain, &mut ws, &q, &mut want),
                 }
-                for i in 0..nv {
-                    assert_relative_eq!(got[i], want[i], epsilon = 1e-11, max_relative = 1e-11);
+                assert_eq!(got.len(), want.len());
+                for (a, b) in got.iter().zip(&want) {
+                    assert_relative_eq!(*a, *b, epsilon = 1e-11, max_relative = 1e-11);
                 }
             }
         }
