@@ -162,6 +162,15 @@ pub(crate) fn header(facts: &HeaderFacts) -> String {
         let body = &f.sin_cos_inputs.function;
         let path = if options.fma { body.fusion().critical_path() } else { body.critical_path() };
         let _ = writeln!(h, "//   {}{note}: {}; body NAME_sc {path}", f.label(), f.op_count);
+        if let Some(b) = f.branched.as_ref().filter(|_| f.emitted) {
+            let (run, written) = b.fp_ops(options.fma);
+            let groups: Vec<String> = b.branches.iter().map(|x| x.group.lanes.len().to_string()).collect();
+            let _ = writeln!(
+                h,
+                "//     emitted with branches in loops ({} branches): {run} FP ops a call, {written} written",
+                groups.join(" + ")
+            );
+        }
     }
     if !default {
         scene_section(&mut h, scene, functions);

@@ -513,6 +513,17 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
 }
 
 impl Branched {
+    /// The FP operations (a fused multiply-add counted once with `fma`) a
+    /// call runs, and those written in the module: the rest's, and each
+    /// group's body once per branch, or once.
+    pub fn fp_ops(&self, fma: bool) -> (usize, usize) {
+        let rest = crate::codegen::counted(&self.body.function, fma).fp_ops();
+        self.branches.iter().fold((rest, rest), |(run, written), x| {
+            let b = crate::codegen::counted(&x.body.function, fma).fp_ops();
+            (run + x.group.lanes.len() * b, written + b)
+        })
+    }
+
     /// The function's outputs on numbers, as the emitted body computes them
     /// (unfused): the rest's motions, each branch on its lane's constants,
     /// then the rest with the branches' results. `inputs` are `NAME_sc`'s
