@@ -598,16 +598,60 @@ mod tests {
         assert_eq!(f.eval(&[("x", &[2.0]), (LANE_CONSTANTS, &[1.5, 3.0])]).unwrap(), vec![15.0, -2.0]);
     }
 
-    /// A bundled robot; `humanoid32_alike_wrists` is the humanoid with its
-    /// right wrist turned as its left one is (−270° for −90°), so that its
-    /// arms, which hang from a body, trace alike too.
+    /// A fixed-base torso turning about z, with two mirrored arms on it
+    /// (two revolute joints and a prismatic one each).
+    const TWIN_ARMS: &str = r#"<robot name="twin_arms">
+      <link name="base"/>
+      <joint name="torso" type="revolute"><parent link="base"/><child link="torso_link"/>
+        <origin xyz="0 0 0.4"/><axis xyz="0 0 1"/></joint>
+      <link name="torso_link"><inertial><origin xyz="0.01 0 0.2"/><mass value="8"/>
+        <inertia ixx="0.3" ixy="0.001" ixz="0.02" iyy="0.25" iyz="0" izz="0.1"/></inertial></link>
+      ARM(left, 1)
+      ARM(right, -1)
+    </robot>"#;
+
+    fn arm(side: &str, y: f64) -> String {
+        format!(
+            r#"<joint name="{side}_1" type="revolute"><parent link="torso_link"/><child link="{side}_1_link"/>
+                <origin xyz="0.02 {a} 0.5" rpy="{r} 0 0"/><axis xyz="0 1 0"/></joint>
+              <link name="{side}_1_link"><inertial><origin xyz="0.01 {b} -0.1"/><mass value="2"/>
+                <inertia ixx="0.02" ixy="{c}" ixz="0.001" iyy="0.018" iyz="{d}" izz="0.01"/></inertial></link>
+              <joint name="{side}_2" type="revolute"><parent link="{side}_1_link"/><child link="{side}_2_link"/>
+                <origin xyz="0.1 {e} -0.3"/><axis xyz="1 0 0"/></joint>
+              <link name="{side}_2_link"><inertial><origin xyz="0 {b} -0.15"/><mass value="1.5"/>
+                <inertia ixx="0.012" ixy="{c}" ixz="0" iyy="0.011" iyz="{d}" izz="0.004"/></inertial></link>
+              <joint name="{side}_slide" type="prismatic"><parent link="{side}_2_link"/><child link="{side}_3_link"/>
+                <origin xyz="0 0 -0.2"/><axis xyz="0 0 1"/><limit lower="-0.1" upper="0.1" effort="50" velocity="1"/></joint>
+              <link name="{side}_3_link"><inertial><origin xyz="0.005 {b} -0.05"/><mass value="0.7"/>
+                <inertia ixx="0.002" ixy="{c}" ixz="0" iyy="0.002" iyz="0" izz="0.001"/></inertial></link>"#,
+            a = 0.25 * y,
+            b = 0.02 * y,
+            c = 0.0004 * y,
+            d = -0.0003 * y,
+            e = 0.05 * y,
+            r = 0.3 * y,
+        )
+    }
+
+    /// A bundled robot (or `twin_arms`); `humanoid32_alike_wrists` is the
+    /// humanoid with its right wrist and force sensor turned as its left
+    /// ones are (−270° and 270° for −90° and −90°), so that its arms, which
+    /// hang from a body, trace alike too.
     fn robot(name: &str, floating: bool) -> Model {
+        if name == "twin_arms" {
+            let xml =
+                TWIN_ARMS.replace("ARM(left, 1)", &arm("left", 1.0)).replace("ARM(right, -1)", &arm("right", -1.0));
+            return Model::from_urdf_str(&xml).unwrap();
+        }
         let file = name.strip_suffix("_alike_wrists").unwrap_or(name);
         let path = format!("{}/robots/{file}.urdf", env!("CARGO_MANIFEST_DIR"));
         let xml = std::fs::read_to_string(path).unwrap();
         let xml = match file == name {
             true => xml,
-            false => xml.replace(r#"rpy="0.0 0 -1.57079632679""#, r#"rpy="0.0 0 -4.71238898038""#),
+            false => xml.replace(r#"rpy="0.0 0 -1.57079632679""#, r#"rpy="0.0 0 -4.71238898038""#).replace(
+                r#"rpy="0 0 -1.57079632679" xyz="0 0 -0.012725""#,
+                r#"rpy="0 0 4.71238898038" xyz="0 0 -0.012725""#,
+            ),
         };
         let model = Model::from_urdf_str(&xml).unwrap();
         if floating {
@@ -619,18 +663,22 @@ mod tests {
 
     /// The humanoid's legs and arms, the quadruped's four legs and the
     /// torso's two arms are found. The humanoid's arms do not trace alike
-    /// (its wrists are turned by −90° and −270°: a rotation's ±1 differ),
-    /// nor do the torso's (each turned its own way at the shoulder); the
-    /// others do, and the functions with their branches in a loop give the
+    /// (its wrists are turned by −90° and −270°: its grippers' placements
+    /// differ by a rotation of π), nor do the torso's (each turned its own
+    /// way at the shoulder); the others do (the humanoid's arms too with its
+    /// wrists turned alike, and two mirrored arms with a prismatic joint on
+    /// a fixed base's torso: branches that hang from a body), and the functions with their branches in a loop give the
     /// generic solver's τ and h (the quadruped's with armature and friction
     /// on its joints).
     #[test]
     fn branches_trace_alike_and_give_the_generic_values() {
-        let opts = CodegenOptions::default();
+        let opts = CodegenOptions::default().branch_loops(true);
         for (name, floating, lanes, alike) in [
             ("humanoid32", true, vec![2, 2], 1),
             ("quadruped12", true, vec![4], 1),
             ("torso_two_arms", false, vec![2], 0),
+            ("humanoid32_alike_wrists", true, vec![2, 2], 2),
+            ("twin_arms", false, vec![2], 1),
         ] {
             let model = robot(name, floating);
             let mut plain = Scene::default().apply(&model).unwrap();
