@@ -108,6 +108,8 @@ fn the_compiled_branch_loops_match_the_generic_solver() {
                 assert!(source.contains(&format!("; {}] = [", $lanes)), "{}: one row per leg", $robot);
             }
             assert!(source.contains("for (l, out) in r0.chunks_exact_mut("), "{}: the legs run in a loop", $robot);
+            let counted = format!("emitted with branches in loops ({} × ", $lanes);
+            assert!(source.contains(&counted), "{}: the header counts the loop's operations", $robot);
             let path = workspace_root().join(concat!("dynagen/robots/", $robot, ".urdf"));
             let model = Model::from_urdf_file(path).unwrap().with_floating_base();
             let mut ws = Workspace::<f64>::new(&model);

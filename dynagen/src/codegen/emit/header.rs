@@ -164,11 +164,23 @@ pub(crate) fn header(facts: &HeaderFacts) -> String {
         let _ = writeln!(h, "//   {}{note}: {}; body NAME_sc {path}", f.label(), f.op_count);
         if let Some(b) = f.branched.as_ref().filter(|_| f.emitted) {
             let (run, written) = b.fp_ops(options.fma);
-            let groups: Vec<String> = b.branches.iter().map(|x| x.group.lanes.len().to_string()).collect();
+            let groups: Vec<String> = b
+                .branches
+                .iter()
+                .map(|x| {
+                    let f = &x.body.function;
+                    let path = if options.fma { f.fusion().critical_path() } else { f.critical_path() };
+                    format!(
+                        "{} × {} FP ops, {path}",
+                        x.group.lanes.len(),
+                        crate::codegen::counted(f, options.fma).fp_ops()
+                    )
+                })
+                .collect();
             let _ = writeln!(
                 h,
-                "//     emitted with branches in loops ({} branches): {run} FP ops a call, {written} written",
-                groups.join(" + ")
+                "//     emitted with branches in loops ({}): {run} FP ops a call, {written} written",
+                groups.join("; ")
             );
         }
     }
