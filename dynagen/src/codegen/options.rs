@@ -157,7 +157,9 @@ pub struct CodegenOptions {
     /// constants from a table, in τ and h (off). A robot's unrolled body
     /// that no longer fits in the processor's micro-op cache runs at the
     /// rate its bytes are decoded; the loop runs one branch's bytes as many
-    /// times as there are branches (see `codegen/trace/branches.rs`).
+    /// times as there are branches (see `codegen/trace/branches.rs`). A
+    /// function whose body with loops would be longer than
+    /// [`split_lets`](Self::split_lets) stays unrolled.
     pub branch_loops: bool,
 }
 

@@ -598,6 +598,23 @@ mod tests {
         assert_eq!(f.eval(&[("x", &[2.0]), (LANE_CONSTANTS, &[1.5, 3.0])]).unwrap(), vec![15.0, -2.0]);
     }
 
+    /// A body with loops is never split, so a function whose body with
+    /// loops is longer than `split_lets` allows stays unrolled; the default
+    /// allows the quadruped's.
+    #[test]
+    fn a_body_longer_than_the_split_allows_stays_unrolled() {
+        let model = robot("quadruped12", true);
+        let functions = [Function::InverseDynamics, Function::MassMatrix, Function::BiasForces];
+        for (split, looped) in [(None, true), (Some(2500), true), (Some(30), false)] {
+            let opts = CodegenOptions::default().functions(functions.clone()).branch_loops(true).split_lets(split);
+            let module = crate::codegen::generate(&model, &opts).unwrap();
+            for f in &module.functions {
+                assert_eq!(f.branched.is_some(), looped, "{:?} with split_lets {split:?}", f.function);
+            }
+            assert_eq!(module.source.contains("emitted with branches in loops"), looped);
+        }
+    }
+
     /// A fixed-base torso turning about z, with two mirrored arms on it
     /// (two revolute joints and a prismatic one each).
     const TWIN_ARMS: &str = r#"<robot name="twin_arms">

@@ -143,7 +143,11 @@ pub(crate) fn trace_module(
         }
         if options.branch_loops {
             for g in &mut functions[first..] {
-                g.branched = branches::branched(scene, f, options.rewrites)?;
+                // A body with loops is never split (its parts would carry the
+                // loops' results): one longer than the split allows stays unrolled.
+                let lets = |b: &branches::Branched| counted(&b.body.function, options.fma).fp_ops();
+                let fits = |b: &branches::Branched| options.split_lets.is_none_or(|max| lets(b) <= max);
+                g.branched = branches::branched(scene, f, options.rewrites)?.filter(fits);
             }
         }
         // The forward dynamics' derivatives as their factors and a loop, where
