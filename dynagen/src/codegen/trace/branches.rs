@@ -22,7 +22,11 @@
 //! (parent frame). The rest of the robot is traced with the branches'
 //! wrenches as inputs, acting on their parents as tip wrenches do, and the
 //! parents' motions as extra outputs, which the emitted body computes
-//! before the loop (`codegen/emit/statements.rs`).
+//! before the loop (`codegen/emit/statements.rs`). For the mass matrix, the
+//! branch takes its joints' angles alone and returns its own block, each
+//! joint's `Iᶜ·S` at its parent and its composite inertia there; the rest's
+//! CRBA carries the composite inertias as payloads on the parents and the
+//! `Iᶜ·S` up to the base.
 
 use super::sin_cos::{sin_cos_inputs, SinCosTrace};
 use super::SceneLoads;
