@@ -57,6 +57,28 @@ impl Traced {
             outputs: outputs.iter().map(|&o| new_id[o as usize]).collect(),
         }
     }
+    /// Copies the nodes into `g` in order, arithmetic through its
+    /// simplifying constructors and constants as constants; every other node
+    /// (an input, a sine or cosine) is `leaf(g, id, node, copied)`, with the
+    /// ids of the nodes copied before it. Returns every node's id in `g`.
+    pub fn copy_into<E>(
+        &self,
+        g: &mut Graph,
+        mut leaf: impl FnMut(&mut Graph, usize, Node, &[NodeId]) -> Result<NodeId, E>,
+    ) -> Result<Vec<NodeId>, E> {
+        let mut new: Vec<NodeId> = Vec::with_capacity(self.nodes.len());
+        for (id, node) in self.nodes.iter().enumerate() {
+            let x = match g.arithmetic(node.map_operands(|x| new[x as usize])) {
+                Some(x) => x,
+                None => match node.constant() {
+                    Some(c) => g.constant(c),
+                    None => leaf(g, id, *node, &new)?,
+                },
+            };
+            new.push(x);
+        }
+        Ok(new)
+    }
     /// The function's name.
     pub fn name(&self) -> &str {
         &self.name

@@ -9,6 +9,7 @@ use crate::codegen::{
     CodegenOptions, ForwardDynamicsMethod, Function, GeneratedFunction, SnappedConstant, Trig, GENERATOR_VERSION,
 };
 use crate::scene::{PayloadValue, ResolvedGravity, Scene, SceneModel};
+use crate::symbolic::Traced;
 use std::fmt::Write;
 
 /// What the header is written from.
@@ -157,10 +158,11 @@ pub(crate) fn header(facts: &HeaderFacts) -> String {
         "// Operation counts; critical path = the longest chain of dependent operations, weighted by latency\n\
          //   (add, sub, mul, fma 4 cycles, div 14, sqrt 18, neg 1), of the body with the sines and cosines given:"
     );
+    // A body's critical path as emitted (its sums fused where the options fuse them).
+    let path_of = |body: &Traced| if options.fma { body.fusion().critical_path() } else { body.critical_path() };
     for f in functions {
         let note = if f.emitted { "" } else { " [not emitted]" };
-        let body = &f.sin_cos_inputs.function;
-        let path = if options.fma { body.fusion().critical_path() } else { body.critical_path() };
+        let path = path_of(&f.sin_cos_inputs.function);
         let _ = writeln!(h, "//   {}{note}: {}; body NAME_sc {path}", f.label(), f.op_count);
         if let Some(b) = f.branched.as_ref().filter(|_| f.emitted) {
             let (run, written) = b.fp_ops(options.fma);
@@ -169,7 +171,7 @@ pub(crate) fn header(facts: &HeaderFacts) -> String {
                 .iter()
                 .map(|x| {
                     let f = &x.body.function;
-                    let path = if options.fma { f.fusion().critical_path() } else { f.critical_path() };
+                    let path = path_of(f);
                     format!(
                         "{} × {} FP ops, {path}",
                         x.group.lanes.len(),

@@ -30,8 +30,9 @@
 
 use super::sin_cos::{sin_cos_inputs, SinCosTrace};
 use super::SceneLoads;
+use crate::algorithms::floating::crba::carry_to_base;
 use crate::algorithms::floating::rnea::base_motion;
-use crate::algorithms::joint::{force_to_parent, inertia_times_subspace, inertia_to_parent, project};
+use crate::algorithms::joint::{force_to_parent, inertia_to_parent, project};
 use crate::algorithms::rnea::{add_armature, rnea_tree, Root, RootMotion};
 use crate::algorithms::{crba, rnea, BodyInertia, Loads, TipWrench, Workspace, BASE_BODY};
 use crate::codegen::{CodegenError, Function};
@@ -242,18 +243,10 @@ fn trace_lane(model: &Model, rewrites: Rewrites, kind: Kind) -> Result<(Traced, 
             let q = tracer.inputs("q", nb);
             let mut out = vec![Expr::zero(); nb * nb];
             crba::crba(model, &mut ws, &q, Loads::none(), &mut out);
-            // Each joint's Iᶜ·S carried to the root body, then across its joint.
+            // Each joint's Iᶜ·S carried to the root body, then across its
+            // joint to the parent (as to a floating base).
             for j in 0..nb {
-                let mut f = inertia_times_subspace(&model.bodies[j].joint, &ws.inertia[j]);
-                let mut b = j;
-                loop {
-                    f = force_to_parent(&model.bodies[b].joint, &ws.x[b], &f);
-                    match model.bodies[b].parent {
-                        Some(p) => b = p,
-                        None => break,
-                    }
-                }
-                out.extend(f.to_array());
+                out.extend(carry_to_base(model, &ws, j, |_, _| {}).to_array());
             }
             let Inertia { mass, h, ibar } = inertia_to_parent(&model.bodies[0].joint, &ws.x[0], &ws.inertia[0]);
             out.push(mass);
@@ -284,16 +277,10 @@ fn fold_shared(t: &Traced, tables: &[Vec<f64>], rewrites: Rewrites) -> (Traced, 
     for name in t.input_names() {
         g.input(name, 0);
     }
-    let nodes = t.nodes();
-    let mut new: Vec<NodeId> = Vec::with_capacity(nodes.len());
-    let mut cos: Vec<NodeId> = vec![0; nodes.len()];
-    for (id, node) in nodes.iter().enumerate() {
-        if let Some(x) = g.arithmetic(node.map_operands(|x| new[x as usize])) {
-            new.push(x);
-            continue;
-        }
-        let x = match *node {
-            Node::Const(_) => g.constant(node.constant().unwrap_or_default()),
+    // Each SinCos node's cosine in `g` (its sine is its own id there).
+    let mut cos: Vec<NodeId> = vec![0; t.nodes().len()];
+    let copied: Result<Vec<NodeId>, std::convert::Infallible> = t.copy_into(&mut g, |g, id, node, new| {
+        Ok(match node {
             Node::Input { name, index } if Some(name) == k => match shared[index as usize] {
                 true => g.constant(tables[0][index as usize]),
                 false => g.input(LANE_CONSTANTS, slot[index as usize]),
@@ -306,10 +293,10 @@ fn fold_shared(t: &Traced, tables: &[Vec<f64>], rewrites: Rewrites) -> (Traced, 
             }
             Node::Sin(sc) => new[sc as usize],
             Node::Cos(sc) => cos[sc as usize],
-            _ => unreachable!("arithmetic is mapped above"),
-        };
-        new.push(x);
-    }
+            _ => unreachable!("arithmetic and constants are copied by copy_into"),
+        })
+    });
+    let Ok(new) = copied;
     let outputs: Vec<NodeId> = t.outputs().iter().map(|&o| new[o as usize]).collect();
     let table = tables.iter().map(|l| kept.iter().map(|&i| l[i]).collect()).collect();
     (Traced::from_ids(t.name(), &g, &outputs), table)
@@ -538,15 +525,13 @@ impl Branched {
         for (g, x) in self.branches.iter().enumerate() {
             all.push((results_name(g), vec![0.0; x.group.lanes.len() * x.outputs()]));
         }
-        let view = |all: &[(String, Vec<f64>)]| all.iter().map(|(n, v)| (n.clone(), v.clone())).collect::<Vec<_>>();
         let run = |t: &Traced, all: &[(String, Vec<f64>)]| {
-            let list = view(all);
-            let refs: Vec<(&str, &[f64])> = list.iter().map(|(n, v)| (n.as_str(), v.as_slice())).collect();
+            let refs: Vec<(&str, &[f64])> = all.iter().map(|(n, v)| (n.as_str(), v.as_slice())).collect();
             t.eval(&refs)
         };
         let first = run(&self.body.function, &all)?;
-        let nq = vector("q").map_or(0, <[f64]>::len);
-        let offset = self.body.q_offset;
+        // Where the joints' entries start in `q` and in the velocity-side vectors.
+        let (q_off, v_off) = (self.body.q_offset, if self.body.q_offset > 0 { 6 } else { 0 });
         let mut args = first[self.outputs..].chunks(MOTION);
         for (g, x) in self.branches.iter().enumerate() {
             let motion = if x.motion() { args.next().expect("a motion per group that reads it") } else { &[] };
@@ -557,8 +542,6 @@ impl Branched {
                 let pick = |name: &str, skip: usize| -> Vec<f64> {
                     vector(name).map_or(Vec::new(), |v| lane.iter().map(|&b| v[skip + b]).collect())
                 };
-                let v_off = if offset > 0 { 6 } else { 0 };
-                let q_off = if nq > 0 { offset } else { 0 };
                 let lane_inputs: Vec<(String, Vec<f64>)> = vec![
                     (LANE_CONSTANTS.to_string(), x.table[l].clone()),
                     ("m".to_string(), motion.to_vec()),

@@ -90,17 +90,11 @@ pub fn sin_cos_inputs(f: &Traced, n: usize, q_offset: usize, rewrites: Rewrites)
     }
     let mut angle_scale: Vec<Option<f64>> = vec![None; n];
     let mut extra_angles: Vec<Angle> = Vec::new();
-    let mut new: Vec<NodeId> = Vec::with_capacity(nodes.len());
     // For each SinCos node: its entry of s and c, and whether the angle is
     // that entry's negated.
     let mut sc_joint: Vec<(usize, bool)> = vec![(usize::MAX, false); nodes.len()];
-    for (id, node) in nodes.iter().enumerate() {
-        if let Some(id) = g.arithmetic(node.map_operands(|x| new[x as usize])) {
-            new.push(id);
-            continue;
-        }
-        let mapped = match *node {
-            Node::Const(_) => g.constant(node.constant().unwrap_or_default()),
+    let new = f.copy_into(&mut g, |g, id, node, _| {
+        Ok(match node {
             Node::Input { name, index } => g.input(&f.input_names()[name as usize], index as usize),
             Node::SinCos(a) => {
                 let Some(angle) = affine(nodes, a, &joint_of) else {
@@ -120,10 +114,9 @@ pub fn sin_cos_inputs(f: &Traced, n: usize, q_offset: usize, rewrites: Rewrites)
                 }
             }
             Node::Cos(sc) => g.input("c", sc_joint[sc as usize].0),
-            _ => unreachable!("arithmetic is mapped above"),
-        };
-        new.push(mapped);
-    }
+            _ => unreachable!("arithmetic and constants are copied by copy_into"),
+        })
+    })?;
     let outputs: Vec<NodeId> = f.outputs().iter().map(|&o| new[o as usize]).collect();
     let mut names = f.input_names().to_vec();
     for extra in ["s", "c"] {
@@ -174,14 +167,8 @@ pub fn sin_cos_from_q(sc: &SinCosTrace, rewrites: Rewrites) -> Traced {
             g.input(name, 0);
         }
     }
-    let mut new: Vec<NodeId> = Vec::with_capacity(f.nodes().len());
-    for node in f.nodes() {
-        if let Some(id) = g.arithmetic(node.map_operands(|x| new[x as usize])) {
-            new.push(id);
-            continue;
-        }
-        let mapped = match *node {
-            Node::Const(_) => g.constant(node.constant().unwrap_or_default()),
+    let copied: Result<Vec<NodeId>, std::convert::Infallible> = f.copy_into(&mut g, |g, _, node, _| {
+        Ok(match node {
             Node::Input { name, index } => {
                 let name = &f.input_names()[name as usize];
                 if name == "s" || name == "c" {
@@ -211,10 +198,10 @@ pub fn sin_cos_from_q(sc: &SinCosTrace, rewrites: Rewrites) -> Traced {
                 }
             }
             Node::SinCos(_) | Node::Sin(_) | Node::Cos(_) => unreachable!("an _sc function has no sines"),
-            _ => unreachable!("arithmetic is mapped above"),
-        };
-        new.push(mapped);
-    }
+            _ => unreachable!("arithmetic and constants are copied by copy_into"),
+        })
+    });
+    let Ok(new) = copied;
     let outputs: Vec<NodeId> = f.outputs().iter().map(|&o| new[o as usize]).collect();
     let mut out = Traced::from_ids(f.name(), &g, &outputs);
     let names: Vec<String> = f.input_names().iter().filter(|n| *n != "s" && *n != "c").cloned().collect();
