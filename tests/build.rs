@@ -108,25 +108,29 @@ fn main() {
         .functions(&["mass_matrix"])
         .generate()
         .expect("generating the floating humanoid's mass matrix");
-    // τ, M and h with the legs run as one body in a loop (codegen/trace/branches.rs):
-    // the humanoid with the run-time dispatch, the quadruped without.
-    dynagen::Builder::new()
-        .urdf("../dynagen/robots/humanoid32.urdf")
-        .floating_base(true)
-        .name("humanoid32_branch_loops")
-        .functions(&["inverse_dynamics", "mass_matrix", "bias_forces"])
-        .branch_loops(true)
-        .generate()
-        .expect("generating the floating humanoid with branch loops");
-    dynagen::Builder::new()
-        .urdf("../dynagen/robots/quadruped12.urdf")
-        .floating_base(true)
-        .name("quadruped12_branch_loops")
-        .functions(&["inverse_dynamics", "mass_matrix", "bias_forces"])
-        .branch_loops(true)
-        .runtime_dispatch(false)
-        .generate()
-        .expect("generating the floating quadruped with branch loops");
+    // τ, M and h with the legs run as one body in vector lanes or a loop
+    // (codegen/trace/branches.rs): the humanoid's two legs with the run-time
+    // dispatch (two to a register); the quadruped's four with it (four to a
+    // register on a processor with AVX2), without it (two to a register in
+    // a default build), and in f32 (a scalar loop).
+    let loops = [
+        ("humanoid32", "humanoid32_branch_loops", true, ScalarType::F64),
+        ("quadruped12", "quadruped12_branch_loops", true, ScalarType::F64),
+        ("quadruped12", "quadruped12_branch_loops_no_dispatch", false, ScalarType::F64),
+        ("quadruped12", "quadruped12_branch_loops_f32", false, ScalarType::F32),
+    ];
+    for (robot, name, dispatch, scalar) in loops {
+        dynagen::Builder::new()
+            .urdf(format!("../dynagen/robots/{robot}.urdf"))
+            .floating_base(true)
+            .name(name)
+            .functions(&["inverse_dynamics", "mass_matrix", "bias_forces"])
+            .branch_loops(true)
+            .runtime_dispatch(dispatch)
+            .scalar(scalar)
+            .generate()
+            .unwrap_or_else(|e| panic!("generating {name}: {e}"));
+    }
     dynagen::Builder::new()
         .urdf("../dynagen/robots/legged_manipulator.urdf")
         .floating_base(true)

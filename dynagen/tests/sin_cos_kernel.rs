@@ -604,3 +604,20 @@ fn main() {
     eprintln!("{ran} of 4 builds checked");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The branch loops' moves in and out of vector lanes: each row's entries
+/// land at `i·L + l`, also for the last register of an odd number of rows,
+/// half of whose lanes are copies.
+#[test]
+fn branch_rows_go_through_lanes_to_their_places() {
+    let rows: [[f64; 5]; 3] = core::array::from_fn(|l| core::array::from_fn(|i| (10 * l + i) as f64 + 0.5));
+    let out: [f64; 15] = internals::branch_rows_in_pairs(&rows);
+    for (l, row) in rows.iter().enumerate() {
+        for (i, &v) in row.iter().enumerate() {
+            assert_eq!(out[i * 3 + l], v, "row {l}, entry {i}");
+        }
+    }
+    let rows: [[f64; 2]; 4] = core::array::from_fn(|l| [l as f64, -(l as f64)]);
+    let out: [f64; 8] = internals::branch_rows_in_pairs(&rows);
+    assert_eq!(out, [0.0, 1.0, 2.0, 3.0, 0.0, -1.0, -2.0, -3.0]);
+}

@@ -1007,6 +1007,9 @@ trait Lanes: Copy {
     fn splat(a: f64) -> Self;
     /// Lane `l`.
     fn lane(self, l: usize) -> f64;
+    /// The lanes to `out[0]`, `out[1]`, … (as many as there are lanes;
+    /// `out` has at least that many).
+    fn store(self, out: &mut [f64]);
     /// `self + b`.
     fn add(self, b: Self) -> Self;
     /// `self − b`.
@@ -1044,6 +1047,10 @@ impl Lanes for f64 {
     #[inline(always)]
     fn lane(self, _: usize) -> f64 {
         self
+    }
+    #[inline(always)]
+    fn store(self, out: &mut [f64]) {
+        out[0] = self;
     }
     #[inline(always)]
     fn add(self, b: f64) -> f64 {
@@ -1120,6 +1127,11 @@ macro_rules! vector_lanes {
                 let mut a = [0.0; $w];
                 unsafe { core::arch::x86_64::$storeu(a.as_mut_ptr(), self) };
                 a[l]
+            }
+            #[inline(always)]
+            fn store(self, out: &mut [f64]) {
+                let out = &mut out[..$w];
+                unsafe { core::arch::x86_64::$storeu(out.as_mut_ptr(), self) };
             }
             #[inline(always)]
             fn add(self, b: Self) -> Self {
@@ -1212,6 +1224,10 @@ impl<const W: usize> Lanes for [f64; W] {
         self[l]
     }
     #[inline(always)]
+    fn store(self, out: &mut [f64]) {
+        out[..W].copy_from_slice(&self);
+    }
+    #[inline(always)]
     fn add(self, b: Self) -> Self {
         core::array::from_fn(|l| self[l] + b[l])
     }
@@ -1243,6 +1259,79 @@ impl<const W: usize> Lanes for [f64; W] {
     fn quadrant(sin_r: Self, signed: Self, cos_r: Self, quadrant: Self) -> (Self, Self) {
         let r: [(f64, f64); W] = core::array::from_fn(|l| f64::quadrant(sin_r[l], signed[l], cos_r[l], quadrant[l]));
         (r.map(|r| r.0), r.map(|r| r.1))
+    }
+}
+
+// Branch loops in vector lanes (`--branch-loops`): a module's branch body
+// `NAME_branchG::<I, V>` runs `W` alike branches at once, lane l of each
+// register one branch, over the operations of `Lanes` (the bits of the
+// scalar code in every lane). `branch_lanes` loads `W` rows of the
+// branches' constants or inputs as registers, `branch_splat` a row shared
+// by all, `branch_rows` writes each lane's results to the branch's entries.
+
+/// Rows `from..from + W` of `rows`, entry by entry, as registers of `W`
+/// lanes; past the last row, the first ones again (as in `angles`).
+#[inline(always)]
+#[allow(dead_code)]
+fn branch_lanes<const W: usize, const A: usize, const L: usize>(
+    rows: &[[f64; A]; L],
+    from: usize,
+) -> [<[f64; W] as ToLanes>::V; A]
+where
+    [f64; W]: ToLanes,
+{
+    let mut entries = [[0.0; W]; A];
+    let mut l = 0;
+    while l < W {
+        let row = &rows[(from + l) % L];
+        let mut i = 0;
+        while i < A {
+            entries[i][l] = row[i];
+            i += 1;
+        }
+        l += 1;
+    }
+    let mut out = [<<[f64; W] as ToLanes>::V as Lanes>::splat(0.0); A];
+    let mut i = 0;
+    while i < A {
+        out[i] = entries[i].to_lanes();
+        i += 1;
+    }
+    out
+}
+
+/// `x` in every lane, entry by entry.
+#[inline(always)]
+#[allow(dead_code)]
+fn branch_splat<V: Lanes, const A: usize>(x: &[f64; A]) -> [V; A] {
+    let mut out = [V::splat(0.0); A];
+    let mut i = 0;
+    while i < A {
+        out[i] = V::splat(x[i]);
+        i += 1;
+    }
+    out
+}
+
+/// Lane l of `v` to the results of branch `from + l` in `out`, where
+/// entry i of branch b is `out[i·L + b]` (L = N / R branches): one store a
+/// register where all `W` branches exist, else lane by lane.
+#[inline(always)]
+#[allow(dead_code)]
+fn branch_rows<V: Lanes, const W: usize, const R: usize, const N: usize>(v: &[V; R], out: &mut [f64; N], from: usize) {
+    let branches = N / R;
+    let mut i = 0;
+    while i < R {
+        if from + W <= branches {
+            v[i].store(&mut out[i * branches + from..]);
+        } else {
+            let mut l = 0;
+            while from + l < branches {
+                out[i * branches + from + l] = v[i].lane(l);
+                l += 1;
+            }
+        }
+        i += 1;
     }
 }
 

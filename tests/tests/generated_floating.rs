@@ -82,61 +82,88 @@ fn the_compiled_floating_humanoid_mass_matrix_matches_the_generic_solver() {
     }
 }
 
-#[allow(dead_code)] // the module's helpers this test does not call
-mod humanoid_loops {
-    include!(concat!(env!("OUT_DIR"), "/humanoid32_branch_loops.rs"));
+#[allow(dead_code)] // the modules' helpers this test does not call
+mod loops {
+    pub mod humanoid {
+        include!(concat!(env!("OUT_DIR"), "/humanoid32_branch_loops.rs"));
+    }
+    pub mod quadruped {
+        include!(concat!(env!("OUT_DIR"), "/quadruped12_branch_loops.rs"));
+    }
+    pub mod quadruped_no_dispatch {
+        include!(concat!(env!("OUT_DIR"), "/quadruped12_branch_loops_no_dispatch.rs"));
+    }
+    pub mod quadruped_f32 {
+        include!(concat!(env!("OUT_DIR"), "/quadruped12_branch_loops_f32.rs"));
+    }
 }
 
-#[allow(dead_code)] // the module's helpers this test does not call
-mod quadruped_loops {
-    include!(concat!(env!("OUT_DIR"), "/quadruped12_branch_loops.rs"));
-}
-
-/// τ, M and h with the legs run as one body in a loop over a table of their
-/// constants (`branch_loops`), compiled, against the generic RNEA and CRBA on random
-/// states (|q̇| up to about 50): the humanoid's two legs (with the run-time
-/// dispatch) and the quadruped's four (without).
+/// τ, M and h with the legs run as one body over a table of their constants
+/// (`branch_loops`), compiled, against the generic RNEA and CRBA on random
+/// states (|q̇| up to about 50), in each form the body takes: in vector
+/// lanes, two legs to a register (the humanoid's; the quadruped's without
+/// the run-time dispatch in a default build) or four (the quadruped's with
+/// it, on a processor with AVX2), and a scalar loop (f32, ≤ 1e-4).
 #[test]
 fn the_compiled_branch_loops_match_the_generic_solver() {
     macro_rules! check {
-        ($module:ident, $file:literal, $robot:literal, $lanes:literal) => {{
+        ($module:ident, $file:literal, $robot:literal, $lanes:literal, $t:ty, $form:expr, $also:literal, $tol:expr) => {{
+            use loops::$module as module;
             let file = concat!(env!("OUT_DIR"), "/", $file);
             let source = std::fs::read_to_string(file).unwrap();
             for name in ["inverse_dynamics", "mass_matrix", "bias_forces"] {
-                let table = format!("const {}_BRANCH0: [[f64; ", name.to_uppercase());
-                assert!(source.contains(&table), "{}: {name} has a table of its legs' constants", $robot);
-                assert!(source.contains(&format!("; {}] = [", $lanes)), "{}: one row per leg", $robot);
+                let table = format!("const {}_BRANCH0: [[{}; ", name.to_uppercase(), stringify!($t));
+                assert!(source.contains(&table), "{}: {name} has a table of its legs' constants", $file);
+                assert!(source.contains(&format!("; {}] = [", $lanes)), "{}: one row per leg", $file);
+                let form = $form.replace("{}", name);
+                assert!(source.contains(&form), "{}: {name}'s legs run as {form}", $file);
             }
-            assert!(source.contains("for (l, out) in r0.chunks_exact_mut("), "{}: the legs run in a loop", $robot);
+            assert!(source.contains($also), "{}: {}", $file, $also);
             let counted = format!("emitted with branches in loops ({} × ", $lanes);
-            assert!(source.contains(&counted), "{}: the header counts the loop's operations", $robot);
+            assert!(source.contains(&counted), "{}: the header counts the loop's operations", $file);
             let path = workspace_root().join(concat!("dynagen/robots/", $robot, ".urdf"));
             let model = Model::from_urdf_file(path).unwrap().with_floating_base();
             let mut ws = Workspace::<f64>::new(&model);
             let mut rng = Rng::new(11);
             let g = model.gravity;
+            let wide = |x: &[$t]| x.iter().map(|&v| v as f64).collect::<Vec<f64>>();
             for k in 0..20 {
-                let mut q: [f64; $module::NQ] = core::array::from_fn(|_| rng.range(-3.0, 3.0));
+                let mut q: [f64; module::NQ] = core::array::from_fn(|_| rng.range(-3.0, 3.0));
                 normalize_quaternion(&mut q);
                 let speed = if k % 2 == 0 { 50.0 } else { 2.0 };
-                let qd: [f64; $module::NV] = core::array::from_fn(|_| rng.range(-speed, speed));
-                let qdd: [f64; $module::NV] = core::array::from_fn(|_| rng.range(-10.0, 10.0));
-                let mut want = vec![0.0; $module::NV];
-                rnea::rnea(&model, &mut ws, &q, Some(&qd), Some(&qdd), Loads::gravity(&g), &mut want);
-                let e = norm_rel_err(&$module::inverse_dynamics(&q, &qd, &qdd), &want, 1e-300);
-                assert!(e < 1e-12, "{} τ at state {k}: relative error {e:e}", $robot);
-                rnea::rnea(&model, &mut ws, &q, Some(&qd), None, Loads::gravity(&g), &mut want);
-                let e = norm_rel_err(&$module::bias_forces(&q, &qd), &want, 1e-300);
-                assert!(e < 1e-12, "{} h at state {k}: relative error {e:e}", $robot);
-                let mut want = vec![0.0; $module::NV * $module::NV];
-                crba::crba(&model, &mut ws, &q, Loads::none(), &mut want);
-                let e = norm_rel_err($module::mass_matrix(&q).as_flattened(), &want, 1e-300);
-                assert!(e < 1e-12, "{} M at state {k}: relative error {e:e}", $robot);
+                let qd: [f64; module::NV] = core::array::from_fn(|_| rng.range(-speed, speed));
+                let qdd: [f64; module::NV] = core::array::from_fn(|_| rng.range(-10.0, 10.0));
+                // The state as the module's scalar holds it, and back.
+                let (q, qd, qdd) = (q.map(|v| v as $t), qd.map(|v| v as $t), qdd.map(|v| v as $t));
+                let (q64, qd64, qdd64) = (wide(&q), wide(&qd), wide(&qdd));
+                let mut want = vec![0.0; module::NV];
+                rnea::rnea(&model, &mut ws, &q64, Some(&qd64), Some(&qdd64), Loads::gravity(&g), &mut want);
+                let e = norm_rel_err(&wide(&module::inverse_dynamics(&q, &qd, &qdd)), &want, 1e-300);
+                assert!(e < $tol, "{} τ at state {k}: relative error {e:e}", $file);
+                rnea::rnea(&model, &mut ws, &q64, Some(&qd64), None, Loads::gravity(&g), &mut want);
+                let e = norm_rel_err(&wide(&module::bias_forces(&q, &qd)), &want, 1e-300);
+                assert!(e < $tol, "{} h at state {k}: relative error {e:e}", $file);
+                let mut want = vec![0.0; module::NV * module::NV];
+                crba::crba(&model, &mut ws, &q64, Loads::none(), &mut want);
+                let e = norm_rel_err(&wide(module::mass_matrix(&q).as_flattened()), &want, 1e-300);
+                assert!(e < $tol, "{} M at state {k}: relative error {e:e}", $file);
             }
         }};
     }
-    check!(humanoid_loops, "humanoid32_branch_loops.rs", "humanoid32", 2);
-    check!(quadruped_loops, "quadruped12_branch_loops.rs", "quadruped12", 4);
+    let (lanes, looped) = ("{}_branch0_run::<", "{}_branch0(");
+    check!(humanoid, "humanoid32_branch_loops.rs", "humanoid32", 2, f64, lanes, "_run::<I, 2>(", 1e-12);
+    check!(quadruped, "quadruped12_branch_loops.rs", "quadruped12", 4, f64, lanes, "if I::QUADS {", 1e-12);
+    check!(
+        quadruped_no_dispatch,
+        "quadruped12_branch_loops_no_dispatch.rs",
+        "quadruped12",
+        4,
+        f64,
+        lanes,
+        "if Baseline::QUADS {",
+        1e-12
+    );
+    check!(quadruped_f32, "quadruped12_branch_loops_f32.rs", "quadruped12", 4, f32, looped, "for l in 0..4 {", 1e-4);
 }
 
 #[allow(dead_code)] // the module's helpers this test does not call

@@ -6,7 +6,7 @@
 use super::statements::{self, BodyStyle, Dim, Param, Shape, Signature, Sizes};
 use super::syntax::ident;
 use crate::codegen::trace::branches::{results_name, BranchBody, Branched, Kind, MOTION};
-use crate::codegen::{CodegenError, CodegenOptions};
+use crate::codegen::{CodegenError, CodegenOptions, ScalarType};
 use crate::model::Model;
 use quote::{format_ident, quote};
 use syn::{Expr, Stmt};
@@ -14,6 +14,11 @@ use syn::{Expr, Stmt};
 /// The name of group `g`'s body.
 fn body_name(name: &str, g: usize) -> String {
     format!("{name}_branch{g}")
+}
+
+/// The name of the function that runs group `g`'s body in lanes.
+fn run_name(name: &str, g: usize) -> String {
+    format!("{name}_branch{g}_run")
 }
 
 /// The name of group `g`'s table.
@@ -47,8 +52,9 @@ pub(super) fn items(
     model: &Model,
     options: &CodegenOptions,
     sizes: Sizes,
-) -> Result<Vec<syn::Item>, CodegenError> {
+) -> Result<(Vec<syn::Item>, Vec<bool>), CodegenError> {
     let mut items = Vec::new();
+    let mut in_lanes = Vec::new();
     let style = BodyStyle { split_lets: None, ..BodyStyle::of(options) };
     for (g, x) in b.branches.iter().enumerate() {
         let nb = x.group.lanes[0].len();
@@ -89,6 +95,7 @@ pub(super) fn items(
         // itself, made private and inlined.
         let on = format!("{}_on", signature.name);
         let emitted = if style.dispatch { on.clone() } else { signature.name.clone() };
+        let mut lanes = false;
         for item in body {
             let syn::Item::Fn(mut func) = item else { continue };
             if func.sig.ident != emitted {
@@ -96,11 +103,32 @@ pub(super) fn items(
             }
             func.vis = syn::Visibility::Inherited;
             func.attrs.retain(|a| !a.path().is_ident("doc") && !a.path().is_ident("inline"));
-            let doc = doc.lines();
-            func.attrs.splice(0..0, doc.map(|line| -> syn::Attribute { syn::parse_quote!(#[doc = #line]) }));
+            // In f64, the body over registers of branches (see `in_lanes`),
+            // and the function that runs it on every branch.
+            let vector = match options.scalar {
+                ScalarType::F64 => in_lanes_body(&func, &signature.name),
+                ScalarType::F32 => None,
+            };
+            let doc = match vector {
+                Some(_) => format!(
+                    "{doc}\n\n Written over registers `V` of branches (lane l of each register one branch, the \
+                     operations of `Lanes`, the bits of scalar code in every lane); run by [`{}`].",
+                    run_name(name, g)
+                ),
+                None => doc.clone(),
+            };
+            if let Some(vector) = vector {
+                func = vector;
+                lanes = true;
+            }
+            func.attrs.splice(0..0, doc.lines().map(|line| -> syn::Attribute { syn::parse_quote!(#[doc = #line]) }));
             func.attrs.push(syn::parse_quote!(#[inline(always)]));
             items.push(syn::Item::Fn(func));
         }
+        if lanes {
+            items.push(runner(name, g, x)?);
+        }
+        in_lanes.push(lanes);
         let ty = statements::scalar_type(options.scalar);
         let p = proc_macro2::Literal::usize_unsuffixed(x.table[0].len());
         let l = proc_macro2::Literal::usize_unsuffixed(x.table.len());
@@ -109,7 +137,8 @@ pub(super) fn items(
             quote!([#(#entries),*])
         });
         let table = format_ident!("{}", table_name(name, g));
-        let doc = format!(" The constants of [`{emitted}`], one row per branch: {}.", starts.join(", "));
+        let body = if lanes { signature.name.clone() } else { emitted.clone() };
+        let doc = format!(" The constants of [`{body}`], one row per branch: {}.", starts.join(", "));
         items.push(
             syn::parse2(quote! {
                 #[doc = #doc]
@@ -119,17 +148,19 @@ pub(super) fn items(
             .map_err(|e| CodegenError::Internal(e.to_string()))?,
         );
     }
-    Ok(items)
+    Ok((items, in_lanes))
 }
 
 /// The statements of `NAME_sc` that run each group's body for each branch,
 /// from the parents' motions (`args`, [`MOTION`] a group): the results go
-/// to `r0`, `r1`, … (branch after branch), which the rest of the body reads.
+/// to `r0`, `r1`, … (entry by entry, the branches' values of an entry
+/// together, `trace::branches::result_index`), which the rest of the body reads.
 pub(super) fn glue(
     name: &str,
     b: &Branched,
     floating: bool,
     dispatch: bool,
+    lanes: &[bool],
     args: &[Expr],
 ) -> Result<Vec<Stmt>, CodegenError> {
     let (q_off, v_off) = if floating { (7, 6) } else { (0, 0) };
@@ -171,17 +202,182 @@ pub(super) fn glue(
             locals.push(quote!(let #local = [#(#rows),*];));
             call_args.push(quote!(&#local[l]));
         }
-        let len = proc_macro2::Literal::usize_unsuffixed(x.outputs());
         let total = proc_macro2::Literal::usize_unsuffixed(x.group.lanes.len() * x.outputs());
-        let block: syn::Block = syn::parse2(quote! {{
-            #(#locals)*
-            let mut #r = [0.0; #total];
-            for (l, out) in #r.chunks_exact_mut(#len).enumerate() {
-                out.copy_from_slice(&#call(#(#call_args),*));
-            }
-        }})
+        let block: syn::Block = if lanes.get(g).copied().unwrap_or(false) {
+            // Four branches to a register where there are more than two and
+            // the instructions (`Isa::QUADS`: AVX2) have them, else two.
+            let run = format_ident!("{}", run_name(name, g));
+            let isa = if dispatch { quote!(I) } else { quote!(Baseline) };
+            let args: Vec<_> = call_args[1..].iter().map(|a| quote!(#a)).collect();
+            let args: Vec<_> = args
+                .iter()
+                .map(|a| syn::parse2::<Expr>(a.clone()))
+                .collect::<Result<_, _>>()
+                .map_err(|e| CodegenError::Internal(e.to_string()))?;
+            let whole: Vec<Expr> = args.iter().map(strip_row).collect();
+            let run_all = |w: usize| {
+                let w = proc_macro2::Literal::usize_unsuffixed(w);
+                quote!(#run::<#isa, #w>(#(#whole,)* &mut #r);)
+            };
+            let (four, two) = (run_all(4), run_all(2));
+            let runs = match x.group.lanes.len() > 2 {
+                true => quote!(if #isa::QUADS { #four } else { #two }),
+                false => two,
+            };
+            syn::parse2(quote! {{
+                #(#locals)*
+                let mut #r = [0.0; #total];
+                #runs
+            }})
+        } else {
+            let branches = proc_macro2::Literal::usize_unsuffixed(x.group.lanes.len());
+            syn::parse2(quote! {{
+                #(#locals)*
+                let mut #r = [0.0; #total];
+                for l in 0..#branches {
+                    for (i, v) in #call(#(#call_args),*).into_iter().enumerate() {
+                        #r[i * #branches + l] = v;
+                    }
+                }
+            }})
+        }
         .map_err(|e| CodegenError::Internal(e.to_string()))?;
         stmts.extend(block.stmts);
     }
     Ok(stmts)
+}
+
+/// `&x` for the argument `&x[l]` (a branch's row), as a runner takes them.
+fn strip_row(a: &Expr) -> Expr {
+    if let Expr::Reference(r) = a {
+        if let Expr::Index(i) = &*r.expr {
+            let whole = &i.expr;
+            return syn::parse_quote!(&#whole);
+        }
+    }
+    a.clone()
+}
+
+/// A branch body over `f64` (`func`, named `name`) over registers `V` of
+/// `Lanes`: the same operations in the same order, each on every lane, so
+/// each lane gets the scalar body's bits. `None` where the body has an
+/// operation `Lanes` lacks (a division, a square root): it then stays scalar.
+fn in_lanes_body(func: &syn::ItemFn, name: &str) -> Option<syn::ItemFn> {
+    let mut f = func.clone();
+    f.sig.ident = format_ident!("{name}");
+    f.sig.generics = syn::parse_quote!(<I: Isa, V: Lanes>);
+    let registers = |ty: &mut syn::Type| match ty {
+        syn::Type::Array(a) => {
+            *a.elem = syn::parse_quote!(V);
+            Some(())
+        }
+        _ => None,
+    };
+    for input in &mut f.sig.inputs {
+        let syn::FnArg::Typed(arg) = input else { return None };
+        let syn::Type::Reference(r) = &mut *arg.ty else { return None };
+        registers(&mut r.elem)?;
+    }
+    let syn::ReturnType::Type(_, ty) = &mut f.sig.output else { return None };
+    registers(ty)?;
+    for stmt in &mut f.block.stmts {
+        match stmt {
+            syn::Stmt::Local(syn::Local { init: Some(init), .. }) if init.diverge.is_none() => {
+                *init.expr = lanes_expr(&init.expr)?;
+            }
+            syn::Stmt::Expr(e, _) => *e = lanes_expr(e)?,
+            _ => return None,
+        }
+    }
+    Some(f)
+}
+
+/// `e` over registers: literals splat, `a + b` as `a.add(b)` (and `sub`,
+/// `mul`, `neg`), `fma(a, b, c)` as `a.mul_add::<I>(b, c)`.
+fn lanes_expr(e: &Expr) -> Option<Expr> {
+    use syn::{BinOp, UnOp};
+    Some(match e {
+        Expr::Lit(_) => syn::parse_quote!(V::splat(#e)),
+        Expr::Path(_) | Expr::Index(_) => e.clone(),
+        Expr::Paren(p) => lanes_expr(&p.expr)?,
+        Expr::Array(a) => {
+            let items = a.elems.iter().map(lanes_expr).collect::<Option<Vec<_>>>()?;
+            syn::parse_quote!([#(#items),*])
+        }
+        Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => match &*u.expr {
+            Expr::Lit(_) => syn::parse_quote!(V::splat(#e)),
+            inner => {
+                let x = lanes_expr(inner)?;
+                syn::parse_quote!(#x.neg())
+            }
+        },
+        Expr::Binary(b) => {
+            let (l, r) = (lanes_expr(&b.left)?, lanes_expr(&b.right)?);
+            match b.op {
+                BinOp::Add(_) => syn::parse_quote!(#l.add(#r)),
+                BinOp::Sub(_) => syn::parse_quote!(#l.sub(#r)),
+                BinOp::Mul(_) => syn::parse_quote!(#l.mul(#r)),
+                _ => return None,
+            }
+        }
+        Expr::Call(call) => {
+            let Expr::Path(f) = &*call.func else { return None };
+            let fused = f.path.segments.last().is_some_and(|s| s.ident == "fma");
+            let args = call.args.iter().map(lanes_expr).collect::<Option<Vec<_>>>()?;
+            let [a, b, c] = <[Expr; 3]>::try_from(args).ok()?;
+            if !fused {
+                return None;
+            }
+            syn::parse_quote!(#a.mul_add::<I>(#b, #c))
+        }
+        _ => return None,
+    })
+}
+
+/// `NAME_branchG_run::<I, W>`: group `g`'s body in lanes on its branches,
+/// `W` at a time, each lane's results to its row of `r`.
+fn runner(name: &str, g: usize, x: &BranchBody) -> Result<syn::Item, CodegenError> {
+    let lit = proc_macro2::Literal::usize_unsuffixed;
+    let (nb, l, r) = (x.group.lanes[0].len(), x.group.lanes.len(), x.outputs());
+    let (nb_, l_, r_, p_, total) = (lit(nb), lit(l), lit(r), lit(x.table[0].len()), lit(l * r));
+    let body = format_ident!("{}", body_name(name, g));
+    let table = format_ident!("{}", table_name(name, g));
+    let run = format_ident!("{}", run_name(name, g));
+    let mut ps = Vec::new();
+    let mut args = vec![quote!(&branch_lanes::<W, #p_, #l_>(&#table, l))];
+    let mut splat = quote!();
+    for p in params(x).iter().skip(1) {
+        let id = ident(&p.name);
+        if p.name == "m" {
+            let m = lit(MOTION);
+            ps.push(quote!(#id: &[f64; #m]));
+            splat = quote!(let #id = branch_splat::<<[f64; W] as ToLanes>::V, #m>(#id););
+            args.push(quote!(&#id));
+        } else {
+            ps.push(quote!(#id: &[[f64; #nb_]; #l_]));
+            args.push(quote!(&branch_lanes::<W, #nb_, #l_>(#id, l)));
+        }
+    }
+    let doc = format!(
+        " Runs [`{body}`] on the {l} branches of [`{}`], `W` to a register: each lane's results to its row of `r` \
+         ({r} a branch). Takes the rows of each branch's inputs.",
+        table_name(name, g)
+    );
+    syn::parse2(quote! {
+        #[doc = #doc]
+        #[inline(always)]
+        fn #run<I: Isa, const W: usize>(#(#ps,)* r: &mut [f64; #total])
+        where
+            [f64; W]: ToLanes,
+        {
+            #splat
+            let mut l = 0;
+            while l < #l_ {
+                let out = #body::<I, <[f64; W] as ToLanes>::V>(#(#args),*);
+                branch_rows::<_, W, #r_, #total>(&out, r, l);
+                l += W;
+            }
+        }
+    })
+    .map_err(|e| CodegenError::Internal(e.to_string()))
 }

@@ -178,13 +178,16 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
             }
         };
         let style = BodyStyle::of(options);
+        let mut lanes = Vec::new();
+        if let Some(b) = &f.branched {
+            let (branch_items, in_lanes) = branches::items(name, b, model, options, sizes)?;
+            items.extend(branch_items);
+            lanes = in_lanes;
+        }
         let glue = |args: &[syn::Expr]| match &f.branched {
-            Some(b) => branches::glue(name, b, floating, style.dispatch, args),
+            Some(b) => branches::glue(name, b, floating, style.dispatch, &lanes, args),
             None => Ok(Vec::new()),
         };
-        if let Some(b) = &f.branched {
-            items.extend(branches::items(name, b, model, options, sizes)?);
-        }
         let signature = Signature {
             calls: f.branched.as_ref().map(|b| statements::Calls { outputs: b.outputs, glue: &glue }),
             ..signature

@@ -168,6 +168,21 @@ pub mod kernel_internals {
         registers(x.map(ToLanes::to_lanes))
     }
 
+    /// `L` branches' rows of `A` inputs into registers of two lanes
+    /// (`branch_lanes`) and out again to their results (`branch_rows`), two
+    /// branches at a time as a branch loop moves them: entry i of row l at
+    /// `i·L + l` of the `N = A·L` results.
+    pub fn branch_rows_in_pairs<const A: usize, const L: usize, const N: usize>(rows: &[[f64; A]; L]) -> [f64; N] {
+        let mut out = [0.0; N];
+        let mut l = 0;
+        while l < L {
+            let v = super::branch_lanes::<2, A, L>(rows, l);
+            super::branch_rows::<_, 2, A, N>(&v, &mut out, l);
+            l += 2;
+        }
+        out
+    }
+
     fn registers<V: Lanes, const W: usize>(x: [V; 3]) -> [([f64; W], [f64; W], bool); 3] {
         super::sin_cos_lanes::<Baseline, V, 3>(x)
             .map(|(s, c, holds)| (core::array::from_fn(|l| s.lane(l)), core::array::from_fn(|l| c.lane(l)), holds))

@@ -124,6 +124,13 @@ pub fn results_name(g: usize) -> String {
     format!("r{g}")
 }
 
+/// Where entry `i` of branch `l` is among the results of a group of
+/// `branches`: entry by entry, so that the branches' values of one entry are
+/// next to each other (one vector store when they are computed in lanes).
+pub fn result_index(branches: usize, l: usize, i: usize) -> usize {
+    i * branches + l
+}
+
 /// The groups of branches of `model`: for each parent (a floating base,
 /// then the bodies in order, none inside a branch already taken), its
 /// children whose subtrees have the same shape (joint kinds, children),
@@ -389,8 +396,9 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
             let mut wrenches = Vec::new();
             for (x, r) in branches.iter().zip(&results) {
                 let (nb, len) = (x.group.lanes[0].len(), x.outputs());
+                let at = |l: usize, i: usize| r[result_index(x.group.lanes.len(), l, i)];
                 for l in 0..x.group.lanes.len() {
-                    let w = &r[l * len + nb..(l + 1) * len];
+                    let w: Vec<Expr> = (nb..len).map(|i| at(l, i)).collect();
                     let wrench = Force::new(Vec3([w[0], w[1], w[2]]), Vec3([w[3], w[4], w[5]]));
                     wrenches.push(TipWrench { frame: wrenches.len(), wrench });
                 }
@@ -406,7 +414,7 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
             for (x, r) in branches.iter().zip(&results) {
                 for (l, lane) in x.group.lanes.iter().enumerate() {
                     for (j, &b) in lane.iter().enumerate() {
-                        out[vo + b] = r[l * x.outputs() + j];
+                        out[vo + b] = r[result_index(x.group.lanes.len(), l, j)];
                     }
                 }
             }
@@ -433,7 +441,8 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
                 let (nb, len) = (x.group.lanes[0].len(), x.outputs());
                 let body = x.group.parent.and_then(kept).unwrap_or(BASE_BODY);
                 for l in 0..x.group.lanes.len() {
-                    let c = &r[l * len + nb * nb + 6 * nb..(l + 1) * len];
+                    let c: Vec<Expr> =
+                        (nb * nb + 6 * nb..len).map(|i| r[result_index(x.group.lanes.len(), l, i)]).collect();
                     let inertia = Inertia {
                         mass: c[0],
                         h: Vec3([c[1], c[2], c[3]]),
@@ -455,7 +464,7 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
             for (x, r) in branches.iter().zip(&results) {
                 let (nb, len) = (x.group.lanes[0].len(), x.outputs());
                 for (l, lane) in x.group.lanes.iter().enumerate() {
-                    let r = &r[l * len..(l + 1) * len];
+                    let r: Vec<Expr> = (0..len).map(|i| r[result_index(x.group.lanes.len(), l, i)]).collect();
                     // The branch's own block.
                     for (a, &i) in lane.iter().enumerate() {
                         for (b, &j) in lane.iter().enumerate() {
@@ -535,7 +544,7 @@ impl Branched {
         let mut args = first[self.outputs..].chunks(MOTION);
         for (g, x) in self.branches.iter().enumerate() {
             let motion = if x.motion() { args.next().expect("a motion per group that reads it") } else { &[] };
-            let mut results = Vec::new();
+            let mut results = vec![0.0; x.group.lanes.len() * x.outputs()];
             for (l, lane) in x.group.lanes.iter().enumerate() {
                 // The lane's joints' entries of a joint-indexed vector, or
                 // of a velocity-side one (past the base's six).
@@ -551,7 +560,9 @@ impl Branched {
                     ("qd".to_string(), pick("qd", v_off)),
                     ("qdd".to_string(), pick("qdd", v_off)),
                 ];
-                results.extend(run(&x.body.function, &lane_inputs)?);
+                for (i, v) in run(&x.body.function, &lane_inputs)?.into_iter().enumerate() {
+                    results[result_index(x.group.lanes.len(), l, i)] = v;
+                }
             }
             let name = results_name(g);
             all.iter_mut().find(|(n, _)| *n == name).expect("pushed above").1 = results;
