@@ -48,8 +48,8 @@ pub struct Graph {
     input_names: Vec<String>,
     rewrites: Rewrites,
     /// In a lane trace ([`Graph::with_lane_constants`]): the values of the
-    /// constants made inputs `k[i]`, and each value's `i`.
-    lanes: Option<(Vec<f64>, HashMap<u64, u32>)>,
+    /// constants made inputs `k[i]`, in the order they were made.
+    lanes: Option<Vec<f64>>,
 }
 
 /// The input vector that a lane trace's constants are read from.
@@ -64,19 +64,18 @@ impl Graph {
     pub fn with_rewrites(rewrites: Rewrites) -> Self {
         Graph { rewrites, ..Self::default() }
     }
-    /// An empty graph in which every constant other than 0 and ±1 is an
-    /// input `k[i]`, one entry per distinct value, in the order they are
-    /// first met ([`LANE_CONSTANTS`]; [`Graph::lane_constants`] has their
-    /// values). Traced this way, two branches of a robot that differ only in
-    /// the values of their constants give the same graph; what the rewrites
-    /// do with 0 and ±1 still shows in it, so two branches alike up to
-    /// those give different graphs.
+    /// An empty graph in which every constant, 0 and ±1 included, is an
+    /// input `k[i]` of its own, in the order they are made
+    /// ([`LANE_CONSTANTS`]; [`Graph::lane_constants`] has their values).
+    /// Nothing folds: traced this way, two branches of a robot that take the
+    /// same code paths give the same graph, whatever their numbers, and the
+    /// constants all lanes share are folded afterwards.
     pub fn with_lane_constants(rewrites: Rewrites) -> Self {
-        Graph { rewrites, lanes: Some((Vec::new(), HashMap::new())), ..Self::default() }
+        Graph { rewrites, lanes: Some(Vec::new()), ..Self::default() }
     }
     /// The values of a lane trace's `k[i]`, in order (`None` for another graph).
     pub fn lane_constants(&self) -> Option<&[f64]> {
-        self.lanes.as_ref().map(|(v, _)| v.as_slice())
+        self.lanes.as_deref()
     }
     /// The rewrites this graph makes.
     pub fn rewrites(&self) -> Rewrites {
@@ -163,13 +162,10 @@ impl Graph {
     /// promise signed zeros.
     pub fn constant(&mut self, x: f64) -> NodeId {
         let x = if x == 0.0 { 0.0 } else { x };
-        if let Some((values, index)) = self.lanes.as_mut().filter(|_| x != 0.0 && x.abs() != 1.0) {
-            let next = values.len() as u32;
-            let i = *index.entry(x.to_bits()).or_insert(next);
-            if i == next {
-                values.push(x);
-            }
-            return self.input(LANE_CONSTANTS, i as usize);
+        if let Some(values) = self.lanes.as_mut() {
+            values.push(x);
+            let i = values.len() - 1;
+            return self.input(LANE_CONSTANTS, i);
         }
         self.intern(Node::from_constant(x))
     }

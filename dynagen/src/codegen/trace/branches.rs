@@ -41,6 +41,7 @@ use crate::scene::{dynamics, SceneModel};
 use crate::spatial::{Force, Inertia, Mat3, Sym3, Transform, Vec3};
 use crate::symbolic::{Expr, Graph, Node, NodeId, Rewrites, Traced, Tracer, LANE_CONSTANTS};
 use crate::Scalar;
+use std::collections::HashMap;
 
 /// The numbers of a parent's motion a branch reads: ω, ω̇, the acceleration
 /// of the parent's origin, and `U` row by row (parent frame).
@@ -269,15 +270,20 @@ fn trace_lane(model: &Model, rewrites: Rewrites, kind: Kind) -> Result<(Traced, 
 }
 
 /// `t` with the constants all lanes share folded in (and simplified with
-/// the rest), the others renumbered; the lanes' values of those.
+/// the rest), the others renumbered, one entry for each distinct column of
+/// the lanes' values; the lanes' values of those.
 fn fold_shared(t: &Traced, tables: &[Vec<f64>], rewrites: Rewrites) -> (Traced, Vec<Vec<f64>>) {
     let p = tables[0].len();
+    let column = |i: usize| -> Vec<u64> { tables.iter().map(|l| l[i].to_bits()).collect() };
     let shared: Vec<bool> = (0..p).map(|i| tables.iter().all(|l| l[i].to_bits() == tables[0][i].to_bits())).collect();
     let mut slot = vec![usize::MAX; p];
     let mut kept = Vec::new();
+    let mut slots: HashMap<Vec<u64>, usize> = HashMap::new();
     for i in (0..p).filter(|&i| !shared[i]) {
-        slot[i] = kept.len();
-        kept.push(i);
+        slot[i] = *slots.entry(column(i)).or_insert_with(|| {
+            kept.push(i);
+            kept.len() - 1
+        });
     }
     let k = t.input_names().iter().position(|s| s == LANE_CONSTANTS).map(|i| i as u32);
     let mut g = Graph::with_rewrites(rewrites);
@@ -309,6 +315,33 @@ fn fold_shared(t: &Traced, tables: &[Vec<f64>], rewrites: Rewrites) -> (Traced, 
     (Traced::from_ids(t.name(), &g, &outputs), table)
 }
 
+/// Makes the lanes' models (of the same shape) take the same code paths: a
+/// joint whose lanes differ in what the algorithms branch on (a placement
+/// whose rotation is the identity or a quarter turn, an axis along a
+/// coordinate axis and its sign there) takes the general path in every
+/// lane, where its numbers are constants like any other. (The humanoid's
+/// grippers: one placed by the identity, the other turned by π less 1e-11.)
+fn harmonise(models: &mut [Model]) {
+    use crate::algorithms::joint::SignedPermutation;
+    use crate::model::{AxisAlignment, Joint};
+    let paths = |j: &Joint| {
+        let sign = j.unit_axis.0.map(|a| a < 0.0);
+        let turn = SignedPermutation::of(&j.placement.rot).map(|p| format!("{p:?}"));
+        (j.placement_rotation_is_identity, j.alignment, sign, turn)
+    };
+    for b in 0..models[0].bodies.len() {
+        let first = paths(&models[0].bodies[b].joint);
+        if models.iter().all(|m| paths(&m.bodies[b].joint) == first) {
+            continue;
+        }
+        for m in models.iter_mut() {
+            let joint = &mut m.bodies[b].joint;
+            joint.alignment = AxisAlignment::General;
+            joint.placement_rotation_is_identity = false;
+        }
+    }
+}
+
 /// The group's body, if its lanes trace alike.
 fn branch_body(
     model: &Model,
@@ -318,8 +351,10 @@ fn branch_body(
 ) -> Result<Option<BranchBody>, CodegenError> {
     let mut traces = Vec::new();
     let mut tables: Vec<Vec<f64>> = Vec::new();
-    for lane in &group.lanes {
-        let (t, values) = trace_lane(&part(model, lane, &[], RootJoint::Fixed), rewrites, kind)?;
+    let mut models: Vec<Model> = group.lanes.iter().map(|lane| part(model, lane, &[], RootJoint::Fixed)).collect();
+    harmonise(&mut models);
+    for lane in &models {
+        let (t, values) = trace_lane(lane, rewrites, kind)?;
         if traces.first().is_some_and(|first| *first != t) {
             return Ok(None);
         }
@@ -580,20 +615,21 @@ mod tests {
     use crate::scene::Scene;
     use approx::assert_relative_eq;
 
-    /// In a lane trace every constant but 0 and ±1 is an entry of `k`, one
-    /// per distinct value; 0 and ±1 still fold.
+    /// In a lane trace every constant, 0 and ±1 included, is an entry of
+    /// `k` of its own, in the order made, and nothing folds: the graph is
+    /// the code path, whatever the numbers.
     #[test]
     fn lane_constants_are_inputs() {
         let t = Tracer::start_lanes(Rewrites::default()).unwrap();
         let x = t.input("x", 0);
-        let y = x * Expr::from_f64(2.5) + Expr::from_f64(2.5) * x * x + Expr::from_f64(-0.5) * Expr::one() * x;
-        let zero = Expr::zero() * x + x * Expr::from_f64(-1.0);
+        let y = x * Expr::from_f64(2.5) + Expr::from_f64(2.5) * x;
+        let zero = Expr::from_f64(0.0) * x + x * Expr::from_f64(-1.0);
         let g = t.finish();
-        assert_eq!(g.lane_constants(), Some(&[2.5, -0.5][..]));
+        assert_eq!(g.lane_constants(), Some(&[2.5, 2.5, 0.0, -1.0][..]));
         let f = Traced::new("f", &g, &[y, zero]);
-        assert!(f.nodes().iter().all(|n| n.constant().is_none_or(|c| c == 0.0 || c.abs() == 1.0)));
-        assert_eq!(f.eval(&[("x", &[2.0]), (LANE_CONSTANTS, &[2.5, -0.5])]).unwrap(), vec![14.0, -2.0]);
-        assert_eq!(f.eval(&[("x", &[2.0]), (LANE_CONSTANTS, &[1.5, 3.0])]).unwrap(), vec![15.0, -2.0]);
+        assert!(f.nodes().iter().all(|n| n.constant().is_none()));
+        assert_eq!(f.eval(&[("x", &[2.0]), (LANE_CONSTANTS, &[2.5, 2.5, 0.0, -1.0])]).unwrap(), vec![10.0, -2.0]);
+        assert_eq!(f.eval(&[("x", &[2.0]), (LANE_CONSTANTS, &[1.5, 3.0, 1.0, 2.0])]).unwrap(), vec![9.0, 6.0]);
     }
 
     /// A body with loops is never split, so a function whose body with
@@ -648,15 +684,22 @@ mod tests {
         )
     }
 
-    /// A bundled robot (or `twin_arms`); `humanoid32_alike_wrists` is the
+    /// A bundled robot (or `twin_arms`, `twin_arms_screw`); `humanoid32_alike_wrists` is the
     /// humanoid with its right wrist and force sensor turned as its left
     /// ones are (−270° and 270° for −90° and −90°), so that its arms, which
     /// hang from a body, trace alike too.
     fn robot(name: &str, floating: bool) -> Model {
-        if name == "twin_arms" {
+        if let Some(kind) = name.strip_prefix("twin_arms") {
             let xml =
                 TWIN_ARMS.replace("ARM(left, 1)", &arm("left", 1.0)).replace("ARM(right, -1)", &arm("right", -1.0));
-            return Model::from_urdf_str(&xml).unwrap();
+            let mut model = Model::from_urdf_str(&xml).unwrap();
+            if kind == "_screw" {
+                // The right shoulder a screw axis of length 2: its angle is 2q.
+                let joint = &mut model.bodies.iter_mut().find(|b| b.joint.name == "right_1").unwrap().joint;
+                joint.axis = joint.unit_axis.scale(2.0);
+                joint.axis_norm = 2.0;
+            }
+            return model;
         }
         let file = name.strip_suffix("_alike_wrists").unwrap_or(name);
         let path = format!("{}/robots/{file}.urdf", env!("CARGO_MANIFEST_DIR"));
@@ -677,23 +720,26 @@ mod tests {
     }
 
     /// The humanoid's legs and arms, the quadruped's four legs and the
-    /// torso's two arms are found. The humanoid's arms do not trace alike
-    /// (its wrists are turned by −90° and −270°: its grippers' placements
-    /// differ by a rotation of π), nor do the torso's (each turned its own
-    /// way at the shoulder); the others do (the humanoid's arms too with its
-    /// wrists turned alike, and two mirrored arms with a prismatic joint on
-    /// a fixed base's torso: branches that hang from a body), and the functions with their branches in a loop give the
-    /// generic solver's τ and h (the quadruped's with armature and friction
-    /// on its joints).
+    /// torso's two arms are found, and they trace alike: the
+    /// humanoid's arms though its wrists are turned by −90° and −270° (its
+    /// grippers' placements differ by a rotation of π, so their joints take
+    /// the general path: `harmonise`), and with its wrists turned alike;
+    /// two mirrored arms with a prismatic joint on a fixed base's torso
+    /// (branches that hang from a body), but not when one arm's shoulder
+    /// turns by twice its coordinate (a screw axis of length 2, which the
+    /// lanes do not make alike). The functions with their branches
+    /// in a loop give the generic solver's τ, h and M (the quadruped's with
+    /// armature and friction on its joints).
     #[test]
     fn branches_trace_alike_and_give_the_generic_values() {
         let opts = CodegenOptions::default().branch_loops(true);
         for (name, floating, lanes, alike) in [
-            ("humanoid32", true, vec![2, 2], 1),
+            ("humanoid32", true, vec![2, 2], 2),
             ("quadruped12", true, vec![4], 1),
-            ("torso_two_arms", false, vec![2], 0),
+            ("torso_two_arms", false, vec![2], 1),
             ("humanoid32_alike_wrists", true, vec![2, 2], 2),
             ("twin_arms", false, vec![2], 1),
+            ("twin_arms_screw", false, vec![2], 0),
         ] {
             let model = robot(name, floating);
             let mut plain = Scene::default().apply(&model).unwrap();
