@@ -82,16 +82,16 @@ fn main() {
             .generate_module()
             .unwrap_or_else(|e| panic!("generating {robot} (floating): {e}"));
         std::fs::write(Path::new(&out).join(format!("{robot}_floating.rs")), module.source).expect("writing");
-        // τ, M and h with the branches of one shape run in a loop (`--branch-loops`).
+        // τ, M and h with every branch unrolled (`--no-branch-loops`).
         let module = Builder::new()
             .urdf(&urdf)
             .floating_base(true)
             .functions(&["inverse_dynamics", "mass_matrix", "bias_forces"])
-            .branch_loops(true)
+            .branch_loops(false)
             .source(&format!("dynagen/robots/{robot}.urdf"))
             .generate_module()
-            .unwrap_or_else(|e| panic!("generating {robot} (floating, branch loops): {e}"));
-        std::fs::write(Path::new(&out).join(format!("{robot}_floating_loops.rs")), module.source).expect("writing");
+            .unwrap_or_else(|e| panic!("generating {robot} (floating, unrolled): {e}"));
+        std::fs::write(Path::new(&out).join(format!("{robot}_floating_unrolled.rs")), module.source).expect("writing");
     }
     // The floating quadruped's derivatives (examples/derivatives.rs).
     let model = Model::from_urdf_file(robots.join("quadruped12.urdf")).expect("quadruped12.urdf");

@@ -99,13 +99,14 @@ fn main() {
         .functions(&derivatives)
         .generate()
         .expect("generating the floating quadruped's derivatives");
-    // The floating humanoid's M: a body long enough to store its entries
-    // where they are computed (statements::EARLY_STORES_MIN_LETS).
+    // The floating humanoid's M unrolled: a body long enough to store its
+    // entries where they are computed (statements::EARLY_STORES_MIN_LETS).
     dynagen::Builder::new()
         .urdf("../dynagen/robots/humanoid32.urdf")
         .floating_base(true)
         .name("humanoid32_floating_mass_matrix")
         .functions(&["mass_matrix"])
+        .branch_loops(false)
         .generate()
         .expect("generating the floating humanoid's mass matrix");
     // τ, M and h with the legs run as one body in vector lanes or a loop

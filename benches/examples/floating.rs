@@ -2,8 +2,9 @@
 //! humanoid32 (the modules of `dynagen generate dynagen/robots/ROBOT.urdf
 //! --floating-base`, written by build.rs): `inverse_dynamics`,
 //! `mass_matrix`, `bias_forces` and `forward_dynamics`, each from q (its
-//! sines and cosines computed inside), and τ, h and M of the modules made with
-//! `--branch-loops` too (the legs run as one body in a loop), timed as `examples/interleaved.rs`
+//! sines and cosines computed inside; the legs and arms in vector lanes, as by
+//! default), and τ, h and M of the modules made with `--no-branch-loops` too
+//! (every branch unrolled), timed as `examples/interleaved.rs`
 //! times the fixed-base ones and as
 //! `scripts/reference/pinocchio_floating_bench.cpp` times Pinocchio: 8
 //! states, alternating rounds of 2,000 calls (each call's output left where
@@ -72,11 +73,11 @@ fn first<T: Copy, const K: usize>(out: &[T; K]) -> T {
 }
 
 /// The four timed functions of a generated floating-base module `$m`, and
-/// τ, h and M of `$loops` (the same robot with `--branch-loops`).
+/// τ, h and M of `$unrolled` (the same robot with `--no-branch-loops`).
 macro_rules! timed {
-    ($m:path, $loops:path) => {{
-        use $loops as loops;
+    ($m:path, $unrolled:path) => {{
         use $m as m;
+        use $unrolled as unrolled;
         fn tau(s: &State<{ m::NQ }, { m::NV }>) -> f64 {
             first(&m::inverse_dynamics(&s.q, &s.qd, &s.qdd))
         }
@@ -89,23 +90,23 @@ macro_rules! timed {
         fn fd(s: &State<{ m::NQ }, { m::NV }>) -> f64 {
             first(&m::forward_dynamics(&s.q, &s.qd, &s.tau))
         }
-        fn tau_loops(s: &State<{ m::NQ }, { m::NV }>) -> f64 {
-            first(&loops::inverse_dynamics(&s.q, &s.qd, &s.qdd))
+        fn tau_unrolled(s: &State<{ m::NQ }, { m::NV }>) -> f64 {
+            first(&unrolled::inverse_dynamics(&s.q, &s.qd, &s.qdd))
         }
-        fn h_loops(s: &State<{ m::NQ }, { m::NV }>) -> f64 {
-            first(&loops::bias_forces(&s.q, &s.qd))
+        fn h_unrolled(s: &State<{ m::NQ }, { m::NV }>) -> f64 {
+            first(&unrolled::bias_forces(&s.q, &s.qd))
         }
-        fn mass_loops(s: &State<{ m::NQ }, { m::NV }>) -> f64 {
-            first(&loops::mass_matrix(&s.q))[0]
+        fn mass_unrolled(s: &State<{ m::NQ }, { m::NV }>) -> f64 {
+            first(&unrolled::mass_matrix(&s.q))[0]
         }
         let fs: [(&str, Timed<{ m::NQ }, { m::NV }>); 7] = [
             ("inverse_dynamics", tau),
             ("mass_matrix", mass),
             ("bias_forces", h),
             ("forward_dynamics", fd),
-            ("inverse_dyn. loops", tau_loops),
-            ("bias_forces loops", h_loops),
-            ("mass_matrix loops", mass_loops),
+            ("inverse_dyn. unrolled", tau_unrolled),
+            ("bias_forces unrolled", h_unrolled),
+            ("mass_matrix unrolled", mass_unrolled),
         ];
         fs
     }};
@@ -140,7 +141,7 @@ fn run<const NQ: usize, const NV: usize>(robot: &str, fs: [(&str, Timed<NQ, NV>)
     );
     for ((name, _), t) in fs.iter().zip(&mut times) {
         t.sort_by(f64::total_cmp);
-        println!("dynagen   {name:<18} min {:8.1} ns  median {:8.1} ns", t[0], t[t.len() / 2]);
+        println!("dynagen   {name:<20} min {:8.1} ns  median {:8.1} ns", t[0], t[t.len() / 2]);
     }
 }
 
@@ -152,11 +153,15 @@ fn main() {
     if wants("quadruped12") {
         run(
             "quadruped12",
-            timed!(dynagen_bench::quadruped12_floating, dynagen_bench::quadruped12_floating_loops),
+            timed!(dynagen_bench::quadruped12_floating, dynagen_bench::quadruped12_floating_unrolled),
             rounds,
         );
     }
     if wants("humanoid32") {
-        run("humanoid32", timed!(dynagen_bench::humanoid32_floating, dynagen_bench::humanoid32_floating_loops), rounds);
+        run(
+            "humanoid32",
+            timed!(dynagen_bench::humanoid32_floating, dynagen_bench::humanoid32_floating_unrolled),
+            rounds,
+        );
     }
 }

@@ -59,14 +59,14 @@ generated!(
     "The humanoid32 with a floating base (`--floating-base`), default options."
 );
 generated!(
-    quadruped12_floating_loops,
-    "quadruped12_floating_loops.rs",
-    "The quadruped12's floating τ, M and h with its legs run in a loop (`--floating-base --branch-loops`)."
+    quadruped12_floating_unrolled,
+    "quadruped12_floating_unrolled.rs",
+    "The quadruped12's floating τ, M and h with every branch unrolled (`--floating-base --no-branch-loops`)."
 );
 generated!(
-    humanoid32_floating_loops,
-    "humanoid32_floating_loops.rs",
-    "The humanoid32's floating τ, M and h with its legs run in a loop (`--floating-base --branch-loops`)."
+    humanoid32_floating_unrolled,
+    "humanoid32_floating_unrolled.rs",
+    "The humanoid32's floating τ, M and h with every branch unrolled (`--floating-base --no-branch-loops`)."
 );
 
 /// The states, calls per batch, batches and warm-up batches of the

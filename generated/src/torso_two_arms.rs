@@ -21,8 +21,11 @@
 // Operation counts; critical path = the longest chain of dependent operations, weighted by latency
 //   (add, sub, mul, fma 4 cycles, div 14, sqrt 18, neg 1), of the body with the sines and cosines given:
 //   inverse_dynamics: 760 ops: 204 add, 137 sub, 413 mul, 0 div, 0 neg, 0 sqrt, 6 sin_cos; 248 fused multiply-adds, 528 FP ops with each fused = 1; body NAME_sc critical path 96 cycles (24 ops)
+//     emitted with branches in loops (2 × 399 FP ops, critical path 116 cycles (29 ops)): 801 FP ops a call, 402 written
 //   mass_matrix: 606 ops: 166 add, 87 sub, 347 mul, 0 div, 0 neg, 0 sqrt, 6 sin_cos; 215 fused multiply-adds, 396 FP ops with each fused = 1; body NAME_sc critical path 56 cycles (14 ops)
+//     emitted with branches in loops (2 × 411 FP ops, critical path 80 cycles (20 ops)): 824 FP ops a call, 413 written
 //   bias_forces: 707 ops: 183 add, 128 sub, 390 mul, 0 div, 0 neg, 0 sqrt, 6 sin_cos; 229 fused multiply-adds, 492 FP ops with each fused = 1; body NAME_sc critical path 96 cycles (24 ops)
+//     emitted with branches in loops (2 × 390 FP ops, critical path 116 cycles (29 ops)): 782 FP ops a call, 392 written
 //   gravity_torques: 231 ops: 50 add, 37 sub, 138 mul, 0 div, 0 neg, 0 sqrt, 6 sin_cos; 74 fused multiply-adds, 158 FP ops with each fused = 1; body NAME_sc critical path 56 cycles (14 ops)
 //   forward_dynamics (ABA) [not emitted]: 2054 ops: 505 add, 387 sub, 1151 mul, 5 div, 0 neg, 0 sqrt, 6 sin_cos; 715 fused multiply-adds, 1363 FP ops with each fused = 1; body NAME_sc critical path 156 cycles (34 ops)
 //   forward_dynamics (CRBA + LTDL): 1383 ops: 344 add, 257 sub, 765 mul, 11 div, 0 neg, 0 sqrt, 6 sin_cos; 477 fused multiply-adds, 925 FP ops with each fused = 1; body NAME_sc critical path 126 cycles (29 ops)
@@ -53,10 +56,573 @@ pub const JOINT_NAMES: [&str; DOF] = [
 pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
     sin_cos_array(q)
 }
+/// One branch of [`inverse_dynamics_sc`] (3 joints), run for each of those that hang alike from `torso`, from `left_shoulder_joint`, `right_shoulder_joint` on. Takes its constants `k` (a row of [`INVERSE_DYNAMICS_BRANCH0`]) and its parent's motion `m` (ω, ω̇, the origin's acceleration and U = [ω̇×] + [ω×][ω×] row by row, in the parent's frame) and its joints' state; returns their τ, then the wrench it puts on its parent (moment, force; parent frame).
+///
+/// Written over registers `V` of branches (lane l of each register one branch, the operations of `Lanes`, the bits of scalar code in every lane); run by [`inverse_dynamics_branch0_run`].
+#[allow(
+    clippy::approx_constant,
+    clippy::excessive_precision,
+    clippy::unreadable_literal,
+    clippy::too_many_lines
+)]
+#[inline(always)]
+#[allow(dead_code)]
+fn inverse_dynamics_branch0<I: Isa, V: Lanes>(
+    k: &[V; 49],
+    m: &[V; 18],
+    s: &[V; 3],
+    c: &[V; 3],
+    qd: &[V; 3],
+    qdd: &[V; 3],
+) -> [V; 9] {
+    let t0 = c[0].mul(k[3]);
+    let t1 = s[0].mul_add::<I>(k[1], t0);
+    let t2 = c[0].mul(k[1]);
+    let t3 = s[0].neg().mul_add::<I>(k[3], t2);
+    let t4 = c[0].mul(k[6]);
+    let t5 = s[0].mul_add::<I>(k[4], t4);
+    let t6 = c[0].mul(k[4]);
+    let t7 = s[0].neg().mul_add::<I>(k[6], t6);
+    let t8 = V::splat(0.9800665778412416).mul(c[0]);
+    let t9 = V::splat(0.9800665778412416).mul(s[0]);
+    let t10 = k[0].mul(m[10]);
+    let t11 = V::splat(0.45).mul_add::<I>(m[11], t10);
+    let t12 = k[0].mul(m[13]);
+    let t13 = V::splat(0.45).mul_add::<I>(m[14], t12);
+    let t14 = k[0].mul(m[16]);
+    let t15 = V::splat(0.45).mul_add::<I>(m[17], t14);
+    let t16 = m[6].add(t11);
+    let t17 = m[7].add(t13);
+    let t18 = m[8].add(t15);
+    let t19 = m[3].mul(t3);
+    let t20 = m[4].mul_add::<I>(t7, t19);
+    let t21 = m[5].neg().mul_add::<I>(t9, t20);
+    let t22 = m[4].mul(k[5]);
+    let t23 = m[3].mul(t1);
+    let t24 = m[4].mul_add::<I>(t5, t23);
+    let t25 = m[5].mul_add::<I>(t8, t24);
+    let t26 = m[0].mul(t3);
+    let t27 = m[1].mul_add::<I>(t7, t26);
+    let t28 = m[2].neg().mul_add::<I>(t9, t27);
+    let t29 = m[1].mul(k[5]);
+    let t30 = m[0].mul(t1);
+    let t31 = m[1].mul_add::<I>(t5, t30);
+    let t32 = m[2].mul_add::<I>(t8, t31);
+    let t33 = t3.mul(t16);
+    let t34 = t7.mul_add::<I>(t17, t33);
+    let t35 = t9.neg().mul_add::<I>(t18, t34);
+    let t36 = k[2].mul(t16);
+    let t37 = k[5].mul_add::<I>(t17, t36);
+    let t38 = k[7].mul_add::<I>(t18, t37);
+    let t39 = t1.mul(t16);
+    let t40 = t5.mul_add::<I>(t17, t39);
+    let t41 = t8.mul_add::<I>(t18, t40);
+    let t42 = m[0].mul_add::<I>(k[2], qd[0]);
+    let t43 = m[2].mul_add::<I>(k[7], t29);
+    let t44 = t42.add(t43);
+    let t45 = qd[0].neg().mul_add::<I>(t32, t21);
+    let t46 = qd[0].mul_add::<I>(t28, t25);
+    let t47 = m[3].mul_add::<I>(k[2], qdd[0]);
+    let t48 = m[5].mul_add::<I>(k[7], t22);
+    let t49 = t47.add(t48);
+    let t50 = t41.mul(k[8]);
+    let t51 = t38.mul(k[8]);
+    let t52 = t44.mul(t44);
+    let t53 = t32.mul(t32);
+    let t54 = t28.mul(t44);
+    let t55 = t28.mul(t32);
+    let t56 = t32.mul(t44);
+    let t57 = qd[0].mul_add::<I>(t32, t21.neg());
+    let t58 = t52.add(t53);
+    let t59 = t28.mul_add::<I>(t28, t52);
+    let t60 = t54.sub(t46);
+    let t61 = t46.add(t54);
+    let t62 = t49.add(t55);
+    let t63 = t55.sub(t49);
+    let t64 = t56.add(t57);
+    let t65 = t45.add(t56);
+    let t66 = k[8].mul(t58);
+    let t67 = k[9].mul_add::<I>(t62, t66.neg());
+    let t68 = k[8].mul(t61);
+    let t69 = k[9].mul_add::<I>(t64, t68);
+    let t70 = k[9].mul(t59);
+    let t71 = k[8].mul_add::<I>(t63, t70.neg());
+    let t72 = t52.sub(t53);
+    let t73 = k[14].mul(t72);
+    let t74 = k[11].sub(k[10]);
+    let t75 = t56.mul(t74);
+    let t76 = t49.mul(k[10]);
+    let t77 = t28.neg().mul_add::<I>(t28, t53);
+    let t78 = t46.mul(k[11]);
+    let t79 = k[14].mul_add::<I>(t62, t78);
+    let t80 = k[13].neg().mul_add::<I>(t64, t79);
+    let t81 = t28.mul_add::<I>(t28, t52.neg());
+    let t82 = V::splat(1.0).sub(c[1]);
+    let t83 = t82.mul(k[16]);
+    let t84 = s[1].mul(k[17]);
+    let t85 = s[1].mul(k[18]);
+    let t86 = t82.mul_add::<I>(k[19], c[1]);
+    let t87 = t82.mul_add::<I>(k[20], c[1]);
+    let t88 = t58.mul(k[15]);
+    let t89 = V::splat(0.3).mul_add::<I>(t62, t88);
+    let t90 = t61.mul(k[15]);
+    let t91 = V::splat(-0.3).mul_add::<I>(t64, t90);
+    let t92 = V::splat(0.3).mul(t59);
+    let t93 = t63.mul_add::<I>(k[15], t92);
+    let t94 = t35.sub(t89);
+    let t95 = t38.add(t91);
+    let t96 = t41.add(t93);
+    let t97 = t49.mul(t85);
+    let t98 = t45.mul_add::<I>(c[1], t97);
+    let t99 = t46.neg().mul_add::<I>(t84, t98);
+    let t100 = t46.mul(t83);
+    let t101 = t46.mul(t87);
+    let t102 = t44.mul(t85);
+    let t103 = t28.mul_add::<I>(c[1], t102);
+    let t104 = t32.neg().mul_add::<I>(t84, t103);
+    let t105 = t44.mul(t86);
+    let t106 = t28.neg().mul_add::<I>(t85, t105);
+    let t107 = t32.mul_add::<I>(t83, t106);
+    let t108 = t44.mul(t83);
+    let t109 = t28.mul_add::<I>(t84, t108);
+    let t110 = t32.mul_add::<I>(t87, t109);
+    let t111 = c[1].mul(t94);
+    let t112 = t84.neg().mul_add::<I>(t96, t111);
+    let t113 = t85.mul_add::<I>(t95, t112);
+    let t114 = t83.mul(t96);
+    let t115 = t85.neg().mul_add::<I>(t94, t114);
+    let t116 = t86.mul_add::<I>(t95, t115);
+    let t117 = t84.mul(t94);
+    let t118 = t87.mul_add::<I>(t96, t117);
+    let t119 = t83.mul_add::<I>(t95, t118);
+    let t120 = qd[1].mul(k[17]);
+    let t121 = qd[1].mul(k[18]);
+    let t122 = t107.add(t120);
+    let t123 = t110.add(t121);
+    let t124 = t107.mul(t121);
+    let t125 = t110.neg().mul_add::<I>(t120, t124);
+    let t126 = t99.add(t125);
+    let t127 = qdd[1].mul(k[17]);
+    let t128 = qdd[1].mul(k[18]);
+    let t129 = t49.mul_add::<I>(t86, t127);
+    let t130 = t45.neg().mul_add::<I>(t85, t129);
+    let t131 = t104.neg().mul_add::<I>(t121, t100);
+    let t132 = t130.add(t131);
+    let t133 = t49.mul_add::<I>(t83, t128);
+    let t134 = t45.mul_add::<I>(t84, t133);
+    let t135 = t104.mul_add::<I>(t120, t101);
+    let t136 = t134.add(t135);
+    let t137 = t119.mul(k[23]);
+    let t138 = t116.neg().mul_add::<I>(k[24], t137);
+    let t139 = t113.mul(k[24]);
+    let t140 = t119.neg().mul_add::<I>(k[22], t139);
+    let t141 = t116.mul(k[22]);
+    let t142 = t113.neg().mul_add::<I>(k[23], t141);
+    let t143 = t104.mul(t104);
+    let t144 = t122.mul(t122);
+    let t145 = t104.mul(t122);
+    let t146 = t104.mul(t123);
+    let t147 = t122.mul(t123);
+    let t148 = t123.mul_add::<I>(t123, t144);
+    let t149 = t123.mul_add::<I>(t123, t143);
+    let t150 = t143.add(t144);
+    let t151 = t145.sub(t136);
+    let t152 = t136.add(t145);
+    let t153 = t132.add(t146);
+    let t154 = t146.sub(t132);
+    let t155 = t147.sub(t126);
+    let t156 = t126.add(t147);
+    let t157 = k[23].mul(t151);
+    let t158 = k[22].neg().mul_add::<I>(t148, t157);
+    let t159 = k[24].mul_add::<I>(t153, t158);
+    let t160 = k[23].mul(t149);
+    let t161 = k[22].mul_add::<I>(t152, t160.neg());
+    let t162 = k[24].mul_add::<I>(t155, t161);
+    let t163 = k[23].mul(t156);
+    let t164 = k[24].mul(t150);
+    let t165 = t113.mul_add::<I>(k[21], t159);
+    let t166 = t116.mul_add::<I>(k[21], t162);
+    let t167 = k[29].mul(t152);
+    let t168 = t123.neg().mul_add::<I>(t123, t144);
+    let t169 = k[27].sub(k[26]);
+    let t170 = t147.mul(t169);
+    let t171 = t132.mul(k[26]);
+    let t172 = t123.mul_add::<I>(t123, t143.neg());
+    let t173 = k[29].mul(t172);
+    let t174 = k[25].sub(k[27]);
+    let t175 = t136.mul(k[27]);
+    let t176 = t143.sub(t144);
+    let t177 = k[28].mul(t176);
+    let t178 = k[26].sub(k[25]);
+    let t179 = V::splat(1.0).sub(c[2]);
+    let t180 = s[2].mul(k[40]);
+    let t181 = s[2].mul(k[41]);
+    let t182 = t179.mul_add::<I>(k[40], c[2]);
+    let t183 = t179.mul_add::<I>(k[41], c[2]);
+    let t184 = k[32].mul(t181);
+    let t185 = k[31].mul_add::<I>(t182, t184);
+    let t186 = k[32].mul(c[2]);
+    let t187 = k[31].neg().mul_add::<I>(t181, t186);
+    let t188 = k[33].mul_add::<I>(t180, t187);
+    let t189 = k[32].mul(t180);
+    let t190 = k[33].mul_add::<I>(t183, t189.neg());
+    let t191 = k[35].mul(t181);
+    let t192 = k[34].mul_add::<I>(t182, t191);
+    let t193 = k[35].mul(c[2]);
+    let t194 = k[34].neg().mul_add::<I>(t181, t193);
+    let t195 = k[36].mul_add::<I>(t180, t194);
+    let t196 = k[35].mul(t180);
+    let t197 = k[36].mul_add::<I>(t183, t196.neg());
+    let t198 = k[37].mul(t182);
+    let t199 = k[38].mul(t180);
+    let t200 = k[37].neg().mul_add::<I>(t181, t199);
+    let t201 = k[38].mul(t183);
+    let t202 = t153.mul_add::<I>(k[39], t113);
+    let t203 = t155.mul_add::<I>(k[39], t116);
+    let t204 = t150.neg().mul_add::<I>(k[39], t119);
+    let t205 = t132.mul(t192);
+    let t206 = t132.mul(t195);
+    let t207 = t126.mul_add::<I>(t188, t206);
+    let t208 = t136.mul_add::<I>(t200, t207);
+    let t209 = t132.mul(t197);
+    let t210 = t104.mul(t185);
+    let t211 = t122.mul_add::<I>(t192, t210);
+    let t212 = t123.mul_add::<I>(t198, t211);
+    let t213 = t104.mul(t188);
+    let t214 = t122.mul_add::<I>(t195, t213);
+    let t215 = t123.mul_add::<I>(t200, t214);
+    let t216 = t104.mul(t190);
+    let t217 = t122.mul_add::<I>(t197, t216);
+    let t218 = t123.mul_add::<I>(t201, t217);
+    let t219 = t185.mul(t202);
+    let t220 = t192.mul_add::<I>(t203, t219);
+    let t221 = t198.mul_add::<I>(t204, t220);
+    let t222 = t188.mul(t202);
+    let t223 = t195.mul_add::<I>(t203, t222);
+    let t224 = t200.mul_add::<I>(t204, t223);
+    let t225 = t190.mul(t202);
+    let t226 = t197.mul_add::<I>(t203, t225);
+    let t227 = t201.mul_add::<I>(t204, t226);
+    let t228 = qd[2].mul(k[40]);
+    let t229 = qd[2].mul(k[41]);
+    let t230 = t212.add(t228);
+    let t231 = t218.add(t229);
+    let t232 = t218.mul(t228);
+    let t233 = t212.neg().mul_add::<I>(t229, t232);
+    let t234 = t208.add(t233);
+    let t235 = qdd[2].mul(k[40]);
+    let t236 = qdd[2].mul(k[41]);
+    let t237 = t126.mul_add::<I>(t185, t235);
+    let t238 = t136.mul_add::<I>(t198, t205);
+    let t239 = t215.mul_add::<I>(t229, t237);
+    let t240 = t238.add(t239);
+    let t241 = t126.mul_add::<I>(t190, t236);
+    let t242 = t136.mul_add::<I>(t201, t209);
+    let t243 = t215.neg().mul_add::<I>(t228, t241);
+    let t244 = t242.add(t243);
+    let t245 = t215.mul(t215);
+    let t246 = t231.mul(t231);
+    let t247 = t215.mul(t230);
+    let t248 = t230.mul(t231);
+    let t249 = t215.mul(t231);
+    let t250 = t245.add(t246);
+    let t251 = t230.mul_add::<I>(t230, t245);
+    let t252 = t244.add(t247);
+    let t253 = t234.add(t248);
+    let t254 = t248.sub(t234);
+    let t255 = t249.sub(t240);
+    let t256 = t240.add(t249);
+    let t257 = k[42].mul(t250);
+    let t258 = k[43].mul_add::<I>(t253, t257.neg());
+    let t259 = k[42].mul(t252);
+    let t260 = k[43].mul_add::<I>(t255, t259);
+    let t261 = k[43].mul(t251);
+    let t262 = k[42].mul_add::<I>(t254, t261.neg());
+    let t263 = k[48].mul(t252);
+    let t264 = k[46].sub(k[45]);
+    let t265 = t249.mul(t264);
+    let t266 = t230.neg().mul_add::<I>(t230, t246);
+    let t267 = k[48].mul(t266);
+    let t268 = k[44].sub(k[46]);
+    let t269 = t248.mul(t268);
+    let t270 = t230.mul_add::<I>(t230, t245.neg());
+    let t271 = k[47].mul(t270);
+    let t272 = k[45].sub(k[44]);
+    let t273 = t247.mul(t272);
+    let t274 = t240.mul_add::<I>(k[44], t265);
+    let t275 = k[47].neg().mul_add::<I>(t254, t263);
+    let t276 = t224.neg().mul_add::<I>(k[43], t274);
+    let t277 = t275.add(t276);
+    let t278 = t234.mul_add::<I>(k[45], t269);
+    let t279 = k[47].mul_add::<I>(t256, t267);
+    let t280 = t221.mul_add::<I>(k[43], t278);
+    let t281 = t227.neg().mul_add::<I>(k[42], t279);
+    let t282 = t280.add(t281);
+    let t283 = t244.mul_add::<I>(k[46], t273);
+    let t284 = k[48].neg().mul_add::<I>(t255, t271);
+    let t285 = t224.mul_add::<I>(k[42], t283);
+    let t286 = t284.add(t285);
+    let t287 = k[40].mul(t277);
+    let t288 = k[41].mul_add::<I>(t286, t287);
+    let t289 = t185.mul(t258);
+    let t290 = t188.mul_add::<I>(t260, t289);
+    let t291 = t190.mul_add::<I>(t262, t290);
+    let t292 = t192.mul(t258);
+    let t293 = t195.mul_add::<I>(t260, t292);
+    let t294 = t197.mul_add::<I>(t262, t293);
+    let t295 = t201.mul(t262);
+    let t296 = t188.mul(t282);
+    let t297 = t195.mul(t282);
+    let t298 = t200.mul(t282);
+    let t299 = t126.mul_add::<I>(k[25], t170);
+    let t300 = k[30].mul_add::<I>(t168, t167);
+    let t301 = k[28].neg().mul_add::<I>(t154, t299);
+    let t302 = t300.add(t301);
+    let t303 = t138.add(t302);
+    let t304 = t185.mul_add::<I>(t277, t303);
+    let t305 = t190.mul_add::<I>(t286, t296);
+    let t306 = k[39].neg().mul_add::<I>(t294, t304);
+    let t307 = t305.add(t306);
+    let t308 = t146.mul_add::<I>(t174, t171);
+    let t309 = k[28].mul_add::<I>(t156, t173);
+    let t310 = k[30].neg().mul_add::<I>(t151, t308);
+    let t311 = t309.add(t310);
+    let t312 = t140.add(t311);
+    let t313 = t192.mul_add::<I>(t277, t312);
+    let t314 = t197.mul_add::<I>(t286, t297);
+    let t315 = k[39].mul_add::<I>(t291, t313);
+    let t316 = t314.add(t315);
+    let t317 = t145.mul_add::<I>(t178, t175);
+    let t318 = k[30].mul_add::<I>(t153, t177);
+    let t319 = k[29].neg().mul_add::<I>(t155, t317);
+    let t320 = t318.add(t319);
+    let t321 = t142.add(t320);
+    let t322 = t198.mul_add::<I>(t277, t321);
+    let t323 = t201.mul_add::<I>(t286, t298);
+    let t324 = t322.add(t323);
+    let t325 = t165.add(t291);
+    let t326 = t166.add(t294);
+    let t327 = k[22].mul_add::<I>(t154, t164.neg());
+    let t328 = t119.mul_add::<I>(k[21], t163);
+    let t329 = t327.add(t328);
+    let t330 = t198.mul_add::<I>(t258, t329);
+    let t331 = t200.mul_add::<I>(t260, t295);
+    let t332 = t330.add(t331);
+    let t333 = k[17].mul(t316);
+    let t334 = k[18].mul_add::<I>(t324, t333);
+    let t335 = c[1].mul(t325);
+    let t336 = t85.neg().mul_add::<I>(t326, t335);
+    let t337 = t84.mul_add::<I>(t332, t336);
+    let t338 = t85.mul(t325);
+    let t339 = t86.mul_add::<I>(t326, t338);
+    let t340 = t83.mul_add::<I>(t332, t339);
+    let t341 = t83.mul(t326);
+    let t342 = t84.neg().mul_add::<I>(t325, t341);
+    let t343 = t87.mul_add::<I>(t332, t342);
+    let t344 = c[1].mul(t307);
+    let t345 = t85.neg().mul_add::<I>(t316, t344);
+    let t346 = t85.mul(t307);
+    let t347 = t86.mul_add::<I>(t316, t346);
+    let t348 = t83.mul(t316);
+    let t349 = t84.neg().mul_add::<I>(t307, t348);
+    let t350 = t38.neg().mul_add::<I>(k[9], t75);
+    let t351 = k[12].neg().mul_add::<I>(t63, t73);
+    let t352 = k[13].mul_add::<I>(t61, t350);
+    let t353 = t351.add(t352);
+    let t354 = t84.mul_add::<I>(t324, t353);
+    let t355 = V::splat(0.3).mul_add::<I>(t340, t354);
+    let t356 = t345.add(t355);
+    let t357 = t35.mul_add::<I>(k[9], t76);
+    let t358 = k[11].mul_add::<I>(t55, t50);
+    let t359 = k[13].mul_add::<I>(t77, t357);
+    let t360 = k[12].mul_add::<I>(t65, t358.neg());
+    let t361 = k[14].neg().mul_add::<I>(t60, t359);
+    let t362 = t360.add(t361);
+    let t363 = t83.mul_add::<I>(t324, t362);
+    let t364 = V::splat(-0.3).mul_add::<I>(t337, t363);
+    let t365 = k[15].neg().mul_add::<I>(t343, t347);
+    let t366 = t364.add(t365);
+    let t367 = k[10].mul_add::<I>(t54, t51);
+    let t368 = k[12].mul_add::<I>(t81, t367);
+    let t369 = t80.add(t368);
+    let t370 = t87.mul_add::<I>(t324, t369);
+    let t371 = k[15].mul_add::<I>(t340, t370);
+    let t372 = t349.add(t371);
+    let t373 = t67.add(t337);
+    let t374 = t69.add(t340);
+    let t375 = t71.add(t343);
+    let t376 = t3.mul(t373);
+    let t377 = k[2].mul_add::<I>(t374, t376);
+    let t378 = t1.mul_add::<I>(t375, t377);
+    let t379 = t7.mul(t373);
+    let t380 = k[5].mul_add::<I>(t374, t379);
+    let t381 = t5.mul_add::<I>(t375, t380);
+    let t382 = k[7].mul(t374);
+    let t383 = t9.neg().mul_add::<I>(t373, t382);
+    let t384 = t8.mul_add::<I>(t375, t383);
+    let t385 = t3.mul(t356);
+    let t386 = k[2].mul_add::<I>(t366, t385);
+    let t387 = t1.mul_add::<I>(t372, t386);
+    let t388 = t7.mul(t356);
+    let t389 = k[5].mul_add::<I>(t366, t388);
+    let t390 = t5.mul_add::<I>(t372, t389);
+    let t391 = t9.mul(t356);
+    let t392 = k[7].mul_add::<I>(t366, t391.neg());
+    let t393 = t8.mul_add::<I>(t372, t392);
+    let t394 = k[0].mul(t384);
+    let t395 = V::splat(-0.45).mul_add::<I>(t381, t394);
+    let t396 = t387.add(t395);
+    let t397 = V::splat(0.45).mul_add::<I>(t378, t390);
+    let t398 = k[0].neg().mul_add::<I>(t378, t393);
+    [t366, t334, t288, t396, t397, t398, t378, t381, t384]
+}
+/// Runs [`inverse_dynamics_branch0`] on the 2 branches of [`INVERSE_DYNAMICS_BRANCH0`], `W` to a register: each lane's results to its row of `r` (9 a branch). Takes the rows of each branch's inputs.
+#[inline(always)]
+#[allow(dead_code)]
+fn inverse_dynamics_branch0_run<I: Isa, const W: usize>(
+    m: &[f64; 18],
+    s: &[[f64; 3]; 2],
+    c: &[[f64; 3]; 2],
+    qd: &[[f64; 3]; 2],
+    qdd: &[[f64; 3]; 2],
+    r: &mut [f64; 18],
+)
+where
+    [f64; W]: ToLanes,
+{
+    let m = branch_splat::<<[f64; W] as ToLanes>::V, 18>(m);
+    let mut l = 0;
+    while l < 2 {
+        let out = inverse_dynamics_branch0::<
+            I,
+            <[f64; W] as ToLanes>::V,
+        >(
+            &branch_lanes::<W, 49, 2>(&INVERSE_DYNAMICS_BRANCH0, l),
+            &m,
+            &branch_lanes::<W, 3, 2>(s, l),
+            &branch_lanes::<W, 3, 2>(c, l),
+            &branch_lanes::<W, 3, 2>(qd, l),
+            &branch_lanes::<W, 3, 2>(qdd, l),
+        );
+        branch_rows::<_, W, 9, 18>(&out, r, l);
+        l += W;
+    }
+}
+/// The constants of [`inverse_dynamics_branch0`], one row per branch: `left_shoulder_joint`, `right_shoulder_joint`.
+#[allow(
+    clippy::approx_constant,
+    clippy::excessive_precision,
+    clippy::unreadable_literal
+)]
+#[allow(dead_code)]
+const INVERSE_DYNAMICS_BRANCH0: [[f64; 49]; 2] = [
+    [
+        0.18,
+        1.0,
+        0.0,
+        0.0,
+        0.0,
+        0.9800665778412416,
+        -0.19866933079506122,
+        0.19866933079506122,
+        0.018000000000000002,
+        -0.25200000000000006,
+        0.051460000000000006,
+        -0.048100000000000004,
+        0.0,
+        0.0030200000000000005,
+        0.0,
+        0.0,
+        0.5000000000000001,
+        0.7071067811865476,
+        0.7071067811865476,
+        0.5000000000000001,
+        0.5000000000000001,
+        2.3,
+        0.0026327476856711184,
+        0.001438276615812609,
+        -0.45599999999999996,
+        0.11248370112100659,
+        0.11237803875603204,
+        0.0013082601229613597,
+        5.72628672892178e-6,
+        0.0007227573213207296,
+        0.00021714363512649699,
+        0.8383866435942036,
+        -0.479425538604203,
+        0.2593433800522308,
+        0.45801271084729195,
+        0.8775825618903728,
+        0.1416799342470381,
+        -0.29552020666133955,
+        0.955336489125606,
+        -0.3,
+        1.0,
+        0.0,
+        0.0,
+        -0.02,
+        0.001,
+        0.0009,
+        0.0,
+        0.0,
+        1e-5,
+    ],
+    [
+        -0.18,
+        0.9950041652780258,
+        -0.09784339500725571,
+        -0.019833838076209875,
+        0.09983341664682815,
+        0.975170327201816,
+        0.19767681165408388,
+        -0.19866933079506122,
+        0.0,
+        -0.3,
+        0.062,
+        -0.06049999999999999,
+        0.0003,
+        0.0,
+        -0.0026,
+        0.02,
+        0.48,
+        0.8,
+        0.6,
+        0.6400000000000001,
+        0.36,
+        1.7,
+        0.0,
+        0.0,
+        -0.347,
+        0.09009,
+        0.09019,
+        0.0008,
+        0.0,
+        0.0002,
+        0.0,
+        0.9210609940028851,
+        0.3894183423086505,
+        0.0,
+        -0.3894183423086505,
+        0.9210609940028851,
+        0.0,
+        0.0,
+        1.0,
+        -0.28,
+        0.0,
+        1.0,
+        0.006999999999999999,
+        0.0,
+        -0.0001200000000000001,
+        0.0,
+        0.00022,
+        -2e-5,
+        0.00020999999999999998,
+    ],
+];
 /// Inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton-Euler algorithm.
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 754 ops: 204 add, 137 sub, 413 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 248 fused multiply-adds, 522 FP ops with each fused = 1.
+/// 6 ops: 2 add, 0 sub, 2 mul, 0 div, 2 neg, 0 sqrt, 0 sin_cos; 1 fused multiply-adds, 3 FP ops with each fused = 1.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(dead_code)]
@@ -100,529 +666,40 @@ fn inverse_dynamics_sc_on<I: Isa>(
     qd: &[f64; DOF],
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
+    let _ = s;
+    let _ = c;
     let t0 = qd[0] * qd[0];
-    let t1 = 0.26954222715557674 * qdd[0];
-    let t2 = 0.19866933079506122 * c[1];
-    let t3 = 0.19866933079506122 * s[1];
-    let t4 = 0.9800665778412416 * c[1];
-    let t5 = 0.9800665778412416 * s[1];
-    let t6 = 0.18 * qdd[0];
-    let t7 = 0.18 * t0;
-    let t8 = qdd[0] * t5;
-    let t9 = qdd[0] * t4;
-    let t10 = qd[0] * t5;
-    let t11 = qd[0] * t4;
-    let t12 = 9.61445312862258 * s[1];
-    let t13 = I::fma(c[1], t6, t12);
-    let t14 = I::fma(t3, t7, t13);
-    let t15 = I::fma(-0.1764119840114235, t0, 1.9489461350995507);
-    let t16 = 9.61445312862258 * c[1];
-    let t17 = I::fma(-s[1], t6, t16);
-    let t18 = I::fma(t2, t7, t17);
-    let t19 = I::fma(0.19866933079506122, qd[0], qd[1]);
-    let t20 = I::fma(qd[1], t11, t8);
-    let t21 = I::fma(-qd[1], t10, t9);
-    let t22 = I::fma(0.19866933079506122, qdd[0], qdd[1]);
-    let t23 = 0.25200000000000006 * t15;
-    let t24 = 0.018000000000000002 * t18;
-    let t25 = 0.018000000000000002 * t15;
-    let t26 = t19 * t19;
-    let t27 = t11 * t11;
-    let t28 = t10 * t19;
-    let t29 = t10 * t11;
-    let t30 = t11 * t19;
-    let t31 = t26 + t27;
-    let t32 = I::fma(t10, t10, t26);
-    let t33 = t21 - t28;
-    let t34 = t22 - t29;
-    let t35 = t22 + t29;
-    let t36 = t20 + t30;
-    let t37 = 0.018000000000000002 * t31;
-    let t38 = I::fma(0.25200000000000006, t34, t37);
-    let t39 = 0.25200000000000006 * t32;
-    let t40 = I::fma(-0.018000000000000002, t35, t39);
-    let t41 = 0.051460000000000006 * t22;
-    let t42 = I::fma(-t10, t10, t27);
-    let t43 = 1.0 - c[2];
-    let t44 = 0.5000000000000001 * t43;
-    let t45 = 0.7071067811865476 * s[2];
-    let t46 = c[2] + t44;
-    let t47 = I::fma(0.3, t34, t14);
-    let t48 = I::fma(-0.3, t36, t15);
-    let t49 = I::fma(0.3, t32, t18);
-    let t50 = t22 * t45;
-    let t51 = I::fma(-t20, c[2], t50);
-    let t52 = I::fma(-t21, t45, t51);
-    let t53 = t20 * t45;
-    let t54 = t21 * t46;
-    let t55 = t19 * t45;
-    let t56 = I::fma(-t10, c[2], t55);
-    let t57 = I::fma(-t11, t45, t56);
-    let t58 = t10 * t45;
-    let t59 = I::fma(t11, t44, t58);
-    let t60 = I::fma(t19, t46, t59);
-    let t61 = t19 * t44;
-    let t62 = t61 - t58;
-    let t63 = I::fma(t11, t46, t62);
-    let t64 = t45 * t49;
-    let t65 = I::fma(c[2], t47, t64);
-    let t66 = I::fma(t45, t48, -t65);
-    let t67 = t44 * t49;
-    let t68 = I::fma(t45, t47, t67);
-    let t69 = I::fma(t46, t48, t68);
-    let t70 = t46 * t49;
-    let t71 = I::fma(-t45, t47, t70);
-    let t72 = I::fma(t44, t48, t71);
-    let t73 = 0.7071067811865476 * qd[2];
-    let t74 = t60 + t73;
-    let t75 = t63 + t73;
-    let t76 = t60 - t63;
-    let t77 = I::fma(t73, t76, t52);
-    let t78 = 0.7071067811865476 * qdd[2];
-    let t79 = I::fma(t22, t46, t78);
-    let t80 = I::fma(t21, t44, t53);
-    let t81 = I::fma(-t57, t73, t79);
-    let t82 = t80 + t81;
-    let t83 = I::fma(t22, t44, t78);
-    let t84 = t83 - t53;
-    let t85 = I::fma(t57, t73, t54);
-    let t86 = t84 + t85;
-    let t87 = 2.3 * t72;
-    let t88 = 0.001438276615812609 * t72;
-    let t89 = 0.45599999999999996 * t69;
-    let t90 = 0.45599999999999996 * t66;
-    let t91 = 0.0026327476856711184 * t69;
-    let t92 = 0.001438276615812609 * t66;
-    let t93 = t57 * t57;
-    let t94 = t74 * t74;
-    let t95 = t57 * t74;
-    let t96 = t57 * t75;
-    let t97 = t74 * t75;
-    let t98 = I::fma(t75, t75, t94);
-    let t99 = I::fma(t75, t75, t93);
-    let t100 = t93 + t94;
-    let t101 = t95 - t86;
-    let t102 = t86 + t95;
-    let t103 = t82 + t96;
-    let t104 = t96 - t82;
-    let t105 = t97 - t77;
-    let t106 = t77 + t97;
-    let t107 = 0.001438276615812609 * t101;
-    let t108 = I::fma(-0.0026327476856711184, t98, t107);
-    let t109 = I::fma(-0.45599999999999996, t103, t108);
-    let t110 = 0.001438276615812609 * t99;
-    let t111 = I::fma(0.0026327476856711184, t102, -t110);
-    let t112 = I::fma(-0.45599999999999996, t105, t111);
-    let t113 = 0.0026327476856711184 * t104;
-    let t114 = I::fma(0.001438276615812609, t106, t113);
-    let t115 = I::fma(2.3, t66, t109);
-    let t116 = I::fma(2.3, t69, t112);
-    let t117 = 0.11248370112100659 * t77;
-    let t118 = I::fma(-t75, t75, t94);
-    let t119 = 0.11237803875603204 * t82;
-    let t120 = I::fma(t75, t75, -t93);
-    let t121 = 0.0007227573213207296 * t120;
-    let t122 = 0.0013082601229613597 * t86;
-    let t123 = t93 - t94;
-    let t124 = 0.2593433800522308 * s[3];
-    let t125 = I::fma(-0.479425538604203, c[3], t124);
-    let t126 = 0.2593433800522308 * c[3];
-    let t127 = I::fma(0.479425538604203, s[3], t126);
-    let t128 = 0.8775825618903728 * c[3];
-    let t129 = I::fma(0.1416799342470381, s[3], t128);
-    let t130 = 0.1416799342470381 * c[3];
-    let t131 = I::fma(-0.8775825618903728, s[3], t130);
-    let t132 = 0.955336489125606 * s[3];
-    let t133 = 0.955336489125606 * c[3];
-    let t134 = I::fma(-0.3, t103, t66);
-    let t135 = I::fma(-0.3, t105, t69);
-    let t136 = I::fma(0.3, t100, t72);
-    let t137 = 0.45801271084729195 * t82;
-    let t138 = t82 * t129;
-    let t139 = I::fma(t77, t125, t138);
-    let t140 = I::fma(t86, t132, t139);
-    let t141 = t82 * t131;
-    let t142 = I::fma(t77, t127, t141);
-    let t143 = t86 * t133;
-    let t144 = 0.45801271084729195 * t74;
-    let t145 = t57 * t125;
-    let t146 = I::fma(t74, t129, t145);
-    let t147 = I::fma(t75, t132, t146);
-    let t148 = t57 * t127;
-    let t149 = I::fma(t74, t131, t148);
-    let t150 = I::fma(t75, t133, t149);
-    let t151 = 0.8383866435942036 * t134;
-    let t152 = I::fma(0.45801271084729195, t135, t151);
-    let t153 = I::fma(-0.29552020666133955, t136, t152);
-    let t154 = t125 * t134;
-    let t155 = I::fma(t129, t135, t154);
-    let t156 = I::fma(t132, t136, t155);
-    let t157 = I::fma(0.8383866435942036, t57, qd[3]);
-    let t158 = I::fma(-0.29552020666133955, t75, t144);
-    let t159 = t157 + t158;
-    let t160 = I::fma(qd[3], t150, t140);
-    let t161 = I::fma(0.8383866435942036, t77, qdd[3]);
-    let t162 = I::fma(-0.29552020666133955, t86, t137);
-    let t163 = t161 + t162;
-    let t164 = t147 * t147;
-    let t165 = t150 * t150;
-    let t166 = t147 * t159;
-    let t167 = t150 * t159;
-    let t168 = t147 * t150;
-    let t169 = I::fma(t159, t159, t164);
-    let t170 = I::fma(-qd[3], t147, t143);
-    let t171 = t142 + t166;
-    let t172 = t170 + t171;
-    let t173 = t160 + t167;
-    let t174 = t168 - t163;
-    let t175 = 0.02 * t174;
-    let t176 = 0.02 * t169;
-    let t177 = 0.001 * t163;
-    let t178 = I::fma(1e-5, t172, t177);
-    let t179 = I::fma(-0.0009, t168, t178);
-    let t180 = 0.0009 * t160;
-    let t181 = I::fma(-t159, t159, t165);
-    let t182 = I::fma(1e-5, t181, t180);
-    let t183 = I::fma(0.001, t167, t182);
-    let t184 = 1e-5 * t174;
-    let t185 = I::fma(0.00010000000000000005, t166, t184);
-    let t186 = I::fma(0.02, t156, t179);
-    let t187 = I::fma(-0.02, t153, t183);
-    let t188 = 0.9950041652780258 * s[4];
-    let t189 = I::fma(-0.019833838076209875, c[4], t188);
-    let t190 = 0.9950041652780258 * c[4];
-    let t191 = I::fma(0.019833838076209875, s[4], t190);
-    let t192 = 0.19767681165408388 * c[4];
-    let t193 = I::fma(0.09983341664682815, s[4], t192);
-    let t194 = 0.09983341664682815 * c[4];
-    let t195 = I::fma(-0.19767681165408388, s[4], t194);
-    let t196 = 0.9800665778412416 * c[4];
-    let t197 = 0.9800665778412416 * s[4];
-    let t198 = qdd[0] * t197;
-    let t199 = qdd[0] * t196;
-    let t200 = qd[0] * t197;
-    let t201 = qd[0] * t196;
-    let t202 = t6 * t191;
-    let t203 = I::fma(t7, t195, t202);
-    let t204 = I::fma(-9.61445312862258, s[4], t203);
-    let t205 = I::fma(0.017611811101306028, qdd[0], 1.9489461350995507);
-    let t206 = I::fma(0.17553065889632685, t0, -t205);
-    let t207 = t6 * t189;
-    let t208 = I::fma(t7, t193, t207);
-    let t209 = I::fma(9.61445312862258, c[4], t208);
-    let t210 = I::fma(-0.19866933079506122, qd[0], qd[4]);
-    let t211 = I::fma(qd[4], t201, t198);
-    let t212 = I::fma(-qd[4], t200, t199);
-    let t213 = I::fma(-0.19866933079506122, qdd[0], qdd[4]);
-    let t214 = 0.3 * t206;
-    let t215 = t210 * t210;
-    let t216 = t200 * t210;
-    let t217 = t200 * t201;
-    let t218 = t201 * t210;
-    let t219 = I::fma(qd[4], t200, -t199);
-    let t220 = I::fma(0.19866933079506122, qdd[0], -qdd[4]);
-    let t221 = I::fma(t201, t201, t215);
-    let t222 = I::fma(t200, t200, t215);
-    let t223 = t219 - t216;
-    let t224 = t212 - t216;
-    let t225 = t213 - t217;
-    let t226 = t220 - t217;
-    let t227 = t211 + t218;
-    let t228 = t218 - t211;
-    let t229 = 0.3 * t222;
-    let t230 = I::fma(-t201, t201, t215);
-    let t231 = 0.0026 * t230;
-    let t232 = I::fma(0.0003, t226, t231);
-    let t233 = 0.062 * t213;
-    let t234 = 0.0026 * t223;
-    let t235 = 0.06049999999999999 * t212;
-    let t236 = I::fma(0.0026, t225, t235);
-    let t237 = I::fma(t200, t200, -t215);
-    let t238 = 0.0003 * t237;
-    let t239 = 1.0 - c[5];
-    let t240 = 0.48 * t239;
-    let t241 = 0.8 * s[5];
-    let t242 = 0.6 * s[5];
-    let t243 = I::fma(0.6400000000000001, t239, c[5]);
-    let t244 = I::fma(0.36, t239, c[5]);
-    let t245 = 0.02 * t221;
-    let t246 = I::fma(0.3, t225, t245);
-    let t247 = 0.02 * t224;
-    let t248 = I::fma(-0.3, t227, t247);
-    let t249 = I::fma(0.02, t226, t229);
-    let t250 = t204 - t246;
-    let t251 = t206 + t248;
-    let t252 = t209 + t249;
-    let t253 = t213 * t242;
-    let t254 = I::fma(-t211, c[5], t253);
-    let t255 = I::fma(-t212, t241, t254);
-    let t256 = t211 * t242;
-    let t257 = t212 * t244;
-    let t258 = t210 * t242;
-    let t259 = I::fma(-t200, c[5], t258);
-    let t260 = I::fma(-t201, t241, t259);
-    let t261 = t200 * t242;
-    let t262 = I::fma(t201, t240, t261);
-    let t263 = I::fma(t210, t243, t262);
-    let t264 = t210 * t240;
-    let t265 = I::fma(-t200, t241, t264);
-    let t266 = I::fma(t201, t244, t265);
-    let t267 = c[5] * t250;
-    let t268 = I::fma(-t241, t252, t267);
-    let t269 = I::fma(t242, t251, t268);
-    let t270 = t240 * t252;
-    let t271 = I::fma(-t242, t250, t270);
-    let t272 = I::fma(t243, t251, t271);
-    let t273 = t241 * t250;
-    let t274 = I::fma(t244, t252, t273);
-    let t275 = I::fma(t240, t251, t274);
-    let t276 = 0.8 * qd[5];
-    let t277 = 0.6 * qd[5];
-    let t278 = t263 + t276;
-    let t279 = t266 + t277;
-    let t280 = t263 * t277;
-    let t281 = I::fma(-t266, t276, t280);
-    let t282 = t255 + t281;
-    let t283 = 0.8 * qdd[5];
-    let t284 = 0.6 * qdd[5];
-    let t285 = I::fma(t213, t243, t283);
-    let t286 = I::fma(t212, t240, t256);
-    let t287 = I::fma(-t260, t277, t285);
-    let t288 = t286 + t287;
-    let t289 = I::fma(t213, t240, t284);
-    let t290 = I::fma(-t211, t241, t289);
-    let t291 = I::fma(t260, t276, t257);
-    let t292 = t290 + t291;
-    let t293 = 1.7 * t272;
-    let t294 = t260 * t260;
-    let t295 = t260 * t278;
-    let t296 = t260 * t279;
-    let t297 = t278 * t279;
-    let t298 = I::fma(t278, t278, t294);
-    let t299 = t292 + t295;
-    let t300 = t288 + t296;
-    let t301 = t297 - t282;
-    let t302 = 0.347 * t300;
-    let t303 = 0.347 * t298;
-    let t304 = I::fma(1.7, t269, -t302);
-    let t305 = I::fma(-0.347, t301, t293);
-    let t306 = I::fma(1.7, t275, t303);
-    let t307 = 0.08939000000000001 * t297;
-    let t308 = 0.09019 * t288;
-    let t309 = I::fma(t279, t279, -t294);
-    let t310 = 0.0008 * t292;
-    let t311 = I::fma(-0.0002, t301, t310);
-    let t312 = I::fma(0.00010000000000000286, t295, t311);
-    let t313 = 0.9210609940028851 * c[6];
-    let t314 = I::fma(0.3894183423086505, s[6], t313);
-    let t315 = 0.3894183423086505 * c[6];
-    let t316 = 0.9210609940028851 * s[6];
-    let t317 = t315 - t316;
-    let t318 = t316 - t315;
-    let t319 = I::fma(-0.28, t300, t269);
-    let t320 = I::fma(-0.28, t301, t272);
-    let t321 = I::fma(0.28, t298, t275);
-    let t322 = t288 * t318;
-    let t323 = I::fma(t282, t314, t322);
-    let t324 = t288 * t314;
-    let t325 = I::fma(t282, t317, t324);
-    let t326 = t260 * t314;
-    let t327 = I::fma(t278, t318, t326);
-    let t328 = t260 * t317;
-    let t329 = I::fma(t278, t314, t328);
-    let t330 = t317 * t319;
-    let t331 = I::fma(t314, t320, t330);
-    let t332 = qd[6] + t279;
-    let t333 = I::fma(qd[6], t329, t323);
-    let t334 = qdd[6] + t292;
-    let t335 = t327 * t327;
-    let t336 = t329 * t329;
-    let t337 = t332 * t332;
-    let t338 = t327 * t329;
-    let t339 = t327 * t332;
-    let t340 = t329 * t332;
-    let t341 = t336 + t337;
-    let t342 = t334 + t338;
-    let t343 = I::fma(qd[6], t327, t339);
-    let t344 = t343 - t325;
-    let t345 = t340 - t333;
-    let t346 = t333 + t340;
-    let t347 = 0.006999999999999999 * t341;
-    let t348 = 0.006999999999999999 * t342;
-    let t349 = 2e-5 * t344;
-    let t350 = 0.00022 * t340;
-    let t351 = I::fma(0.00020999999999999998, t342, t350);
-    let t352 = I::fma(-0.0001200000000000001, t333, t349);
-    let t353 = t351 + t352;
-    let t354 = t337 - t335;
-    let t355 = 0.00034000000000000013 * t339;
-    let t356 = 0.00022 * t334;
-    let t357 = t335 - t336;
-    let t358 = I::fma(0.00020999999999999998, t354, -t355);
-    let t359 = I::fma(-0.006999999999999999, t321, t358);
-    let t360 = I::fma(-2e-5, t346, t359);
-    let t361 = I::fma(0.0001200000000000001, t338, t356);
-    let t362 = I::fma(-2e-5, t357, t361);
-    let t363 = I::fma(-0.00020999999999999998, t345, t362);
-    let t364 = I::fma(0.006999999999999999, t331, t363);
-    let t365 = t317 * t348;
-    let t366 = I::fma(-t314, t347, t365);
-    let t367 = t314 * t348;
-    let t368 = I::fma(-t318, t347, t367);
-    let t369 = t317 * t360;
-    let t370 = I::fma(t314, t353, t369);
-    let t371 = t314 * t360;
-    let t372 = I::fma(t318, t353, t371);
-    let t373 = I::fma(0.09009, t282, -t307);
-    let t374 = I::fma(0.0002, t299, t373);
-    let t375 = I::fma(0.347, t272, t374);
-    let t376 = I::fma(0.28, t368, t375);
-    let t377 = t370 + t376;
-    let t378 = I::fma(0.08929000000000001, t296, t308);
-    let t379 = I::fma(0.0002, t309, t378);
-    let t380 = I::fma(-0.347, t269, t379);
-    let t381 = I::fma(-0.28, t366, t380);
-    let t382 = t372 + t381;
-    let t383 = t312 + t364;
-    let t384 = t304 + t366;
-    let t385 = t305 + t368;
-    let t386 = I::fma(0.006999999999999999, t344, t306);
-    let t387 = 0.6 * t383;
-    let t388 = I::fma(0.8, t382, t387);
-    let t389 = c[5] * t384;
-    let t390 = I::fma(-t242, t385, t389);
-    let t391 = I::fma(t241, t386, t390);
-    let t392 = t242 * t384;
-    let t393 = I::fma(t243, t385, t392);
-    let t394 = I::fma(t240, t386, t393);
-    let t395 = t240 * t385;
-    let t396 = I::fma(-t241, t384, t395);
-    let t397 = I::fma(t244, t386, t396);
-    let t398 = c[5] * t377;
-    let t399 = I::fma(-t242, t382, t398);
-    let t400 = t242 * t377;
-    let t401 = I::fma(t243, t382, t400);
-    let t402 = t240 * t382;
-    let t403 = I::fma(-t241, t377, t402);
-    let t404 = 0.3 * t391;
-    let t405 = I::fma(0.02, t397, t404);
-    let t406 = I::fma(-0.1225, t218, t214);
-    let t407 = t406 - t232;
-    let t408 = I::fma(t241, t383, t407);
-    let t409 = I::fma(0.3, t394, t408);
-    let t410 = t399 + t409;
-    let t411 = I::fma(-0.06049999999999999, t217, t233);
-    let t412 = I::fma(0.0003, t228, t411);
-    let t413 = I::fma(-0.3, t204, t234);
-    let t414 = t412 + t413;
-    let t415 = I::fma(t240, t383, t414);
-    let t416 = t401 + t415;
-    let t417 = t416 - t405;
-    let t418 = I::fma(-0.062, t216, t238);
-    let t419 = t418 - t236;
-    let t420 = I::fma(t244, t383, t419);
-    let t421 = I::fma(0.02, t394, t420);
-    let t422 = t403 + t421;
-    let t423 = I::fma(-0.3, t225, t391);
-    let t424 = I::fma(-0.3, t227, t394);
-    let t425 = t229 + t397;
-    let t426 = t191 * t423;
-    let t427 = I::fma(-0.09784339500725571, t424, t426);
-    let t428 = I::fma(t189, t425, t427);
-    let t429 = t197 * t410;
-    let t430 = I::fma(0.19866933079506122, t417, t429);
-    let t431 = 0.016767732871884072 * t173;
-    let t432 = I::fma(t125, t175, t431);
-    let t433 = I::fma(t127, t176, -t432);
-    let t434 = 0.00916025421694584 * t173;
-    let t435 = I::fma(t129, t175, t434);
-    let t436 = I::fma(t131, t176, -t435);
-    let t437 = 0.005910404133226791 * t173;
-    let t438 = I::fma(-t132, t175, t437);
-    let t439 = t125 * t187;
-    let t440 = t129 * t187;
-    let t441 = I::fma(-0.11106977863307069, t97, t117);
-    let t442 = I::fma(0.00021714363512649699, t118, t88);
-    let t443 = I::fma(0.0007227573213207296, t102, t89);
-    let t444 = I::fma(-5.72628672892178e-6, t104, t441);
-    let t445 = t442 + t443;
-    let t446 = t444 + t445;
-    let t447 = I::fma(-t127, t185, t446);
-    let t448 = I::fma(0.8383866435942036, t186, t447);
-    let t449 = I::fma(0.3, t436, t439);
-    let t450 = t448 + t449;
-    let t451 = I::fma(0.11117544099804523, t96, t119);
-    let t452 = I::fma(5.72628672892178e-6, t106, t121);
-    let t453 = I::fma(0.00021714363512649699, t101, t90);
-    let t454 = I::fma(-0.0026327476856711184, t72, t451);
-    let t455 = t452 - t453;
-    let t456 = t454 + t455;
-    let t457 = I::fma(-t131, t185, t456);
-    let t458 = I::fma(0.45801271084729195, t186, t457);
-    let t459 = I::fma(-0.3, t433, t440);
-    let t460 = t458 + t459;
-    let t461 = I::fma(-0.00010566236497454307, t95, t122);
-    let t462 = I::fma(5.72628672892178e-6, t123, t91);
-    let t463 = I::fma(0.00021714363512649699, t103, -t92);
-    let t464 = I::fma(-0.0007227573213207296, t105, t461);
-    let t465 = t462 + t463;
-    let t466 = t464 + t465;
-    let t467 = I::fma(-t133, t185, t466);
-    let t468 = I::fma(t132, t187, t467);
-    let t469 = I::fma(-0.29552020666133955, t186, t468);
-    let t470 = t115 + t433;
-    let t471 = t116 + t436;
-    let t472 = I::fma(0.45599999999999996, t100, t87);
-    let t473 = t114 + t472;
-    let t474 = I::fma(t133, t176, t473);
-    let t475 = t438 + t474;
-    let t476 = t460 + t469;
-    let t477 = 0.7071067811865476 * t476;
-    let t478 = c[2] * t470;
-    let t479 = I::fma(-t45, t471, t478);
-    let t480 = I::fma(t45, t475, t479);
-    let t481 = t45 * t470;
-    let t482 = I::fma(t46, t471, t481);
-    let t483 = I::fma(t44, t475, t482);
-    let t484 = t44 * t471;
-    let t485 = t484 - t481;
-    let t486 = t45 * t469;
-    let t487 = t44 * t469;
-    let t488 = t46 * t469;
-    let t489 = I::fma(-0.09956000000000001, t30, t23);
-    let t490 = I::fma(0.0030200000000000005, t33, t489);
-    let t491 = I::fma(c[2], t450, t490);
-    let t492 = I::fma(-t45, t460, t486);
-    let t493 = I::fma(0.3, t483, t491);
-    let t494 = t492 + t493;
-    let t495 = I::fma(-0.048100000000000004, t29, t41);
-    let t496 = I::fma(0.0030200000000000005, t42, -t24);
-    let t497 = I::fma(0.25200000000000006, t14, t495);
-    let t498 = t496 + t497;
-    let t499 = I::fma(t45, t450, t498);
-    let t500 = I::fma(t46, t460, t487);
-    let t501 = I::fma(-0.3, t480, t499);
-    let t502 = t500 + t501;
-    let t503 = I::fma(-0.051460000000000006, t28, t25);
-    let t504 = I::fma(-0.048100000000000004, t21, t503);
-    let t505 = I::fma(-0.0030200000000000005, t36, t504);
-    let t506 = I::fma(t44, t460, t505);
-    let t507 = I::fma(-t45, t450, t488);
-    let t508 = t506 + t507;
-    let t509 = t480 - t38;
-    let t510 = I::fma(t46, t475, t40);
-    let t511 = t485 + t510;
-    let t512 = s[1] * t511;
-    let t513 = I::fma(c[1], t509, t512);
-    let t514 = t5 * t494;
-    let t515 = I::fma(t196, t422, t1);
-    let t516 = I::fma(0.18, t428, t515);
-    let t517 = I::fma(t4, t508, -t430);
-    let t518 = I::fma(0.19866933079506122, t502, t516);
-    let t519 = I::fma(0.18, t513, t514);
-    let t520 = t517 + t518;
-    let t521 = t520 - t519;
-    [t521, t502, t477, t186, t417, t388, t364]
+    let t1 = -qdd[0];
+    let t2 = -t0;
+    let m_b0 = [
+        0.0,
+        0.0,
+        qd[0],
+        0.0,
+        0.0,
+        qdd[0],
+        0.0,
+        0.0,
+        9.81,
+        t2,
+        t1,
+        0.0,
+        qdd[0],
+        t2,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+    ];
+    let s_b0 = [[s[1], s[2], s[3]], [s[4], s[5], s[6]]];
+    let c_b0 = [[c[1], c[2], c[3]], [c[4], c[5], c[6]]];
+    let qd_b0 = [[qd[1], qd[2], qd[3]], [qd[4], qd[5], qd[6]]];
+    let qdd_b0 = [[qdd[1], qdd[2], qdd[3]], [qdd[4], qdd[5], qdd[6]]];
+    let mut r0 = [0.0; 18];
+    inverse_dynamics_branch0_run::<I, 2>(&m_b0, &s_b0, &c_b0, &qd_b0, &qdd_b0, &mut r0);
+    let t3 = r0[10] + r0[11];
+    let t4 = I::fma(0.26954222715557674, qdd[0], t3);
+    [t4, r0[0], r0[2], r0[4], r0[1], r0[3], r0[5]]
 }
 /// Inverse dynamics τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton-Euler algorithm.
 ///
@@ -669,10 +746,614 @@ unsafe fn inverse_dynamics_avx2_fma(
         qdd,
     )
 }
+/// One branch of [`mass_matrix_sc`] (3 joints), run for each of those that hang alike from `torso`, from `left_shoulder_joint`, `right_shoulder_joint` on. Takes its constants `k` (a row of [`MASS_MATRIX_BRANCH0`]) and its joints' sines and cosines; returns its own block of M (row after row), each joint's Iᶜ·S in its parent's frame (moment, force), and its composite inertia there (mass, m·c, Ī as xx, yy, zz, xy, xz, yz).
+///
+/// Written over registers `V` of branches (lane l of each register one branch, the operations of `Lanes`, the bits of scalar code in every lane); run by [`mass_matrix_branch0_run`].
+#[allow(
+    clippy::approx_constant,
+    clippy::excessive_precision,
+    clippy::unreadable_literal,
+    clippy::too_many_lines
+)]
+#[inline(always)]
+#[allow(dead_code)]
+fn mass_matrix_branch0<I: Isa, V: Lanes>(
+    k: &[V; 49],
+    s: &[V; 3],
+    c: &[V; 3],
+) -> [V; 37] {
+    let t0 = c[0].mul(k[3]);
+    let t1 = s[0].mul_add::<I>(k[1], t0);
+    let t2 = c[0].mul(k[1]);
+    let t3 = s[0].neg().mul_add::<I>(k[3], t2);
+    let t4 = c[0].mul(k[6]);
+    let t5 = s[0].mul_add::<I>(k[4], t4);
+    let t6 = c[0].mul(k[4]);
+    let t7 = s[0].neg().mul_add::<I>(k[6], t6);
+    let t8 = V::splat(0.9800665778412416).mul(c[0]);
+    let t9 = V::splat(0.9800665778412416).mul(s[0]);
+    let t10 = V::splat(1.0).sub(c[1]);
+    let t11 = t10.mul(k[9]);
+    let t12 = s[1].mul(k[10]);
+    let t13 = s[1].mul(k[11]);
+    let t14 = t10.mul_add::<I>(k[12], c[1]);
+    let t15 = t10.mul_add::<I>(k[13], c[1]);
+    let t16 = V::splat(1.0).sub(c[2]);
+    let t17 = s[2].mul(k[23]);
+    let t18 = s[2].mul(k[24]);
+    let t19 = t16.mul_add::<I>(k[23], c[2]);
+    let t20 = t16.mul_add::<I>(k[24], c[2]);
+    let t21 = k[15].mul(t18);
+    let t22 = k[14].mul_add::<I>(t19, t21);
+    let t23 = k[15].mul(c[2]);
+    let t24 = k[14].neg().mul_add::<I>(t18, t23);
+    let t25 = k[16].mul_add::<I>(t17, t24);
+    let t26 = k[15].mul(t17);
+    let t27 = k[16].mul_add::<I>(t20, t26.neg());
+    let t28 = k[18].mul(t18);
+    let t29 = k[17].mul_add::<I>(t19, t28);
+    let t30 = k[18].mul(c[2]);
+    let t31 = k[17].neg().mul_add::<I>(t18, t30);
+    let t32 = k[19].mul_add::<I>(t17, t31);
+    let t33 = k[18].mul(t17);
+    let t34 = k[19].mul_add::<I>(t20, t33.neg());
+    let t35 = k[20].mul(t19);
+    let t36 = k[21].mul(t17);
+    let t37 = k[20].neg().mul_add::<I>(t18, t36);
+    let t38 = k[21].mul(t20);
+    let t39 = k[23].mul(k[44]);
+    let t40 = k[24].mul_add::<I>(k[48], t39);
+    let t41 = k[23].mul(k[47]);
+    let t42 = k[23].mul(k[48]);
+    let t43 = k[24].mul_add::<I>(k[46], t42);
+    let t44 = k[24].mul(k[42]);
+    let t45 = k[23].neg().mul_add::<I>(k[43], t44);
+    let t46 = k[23].mul(t40);
+    let t47 = k[24].mul_add::<I>(t43, t46);
+    let t48 = t25.mul(t45);
+    let t49 = t32.mul(t45);
+    let t50 = t37.mul(t45);
+    let t51 = t22.mul(t40);
+    let t52 = t25.mul_add::<I>(t41, t51);
+    let t53 = t27.mul(t43);
+    let t54 = t29.mul(t40);
+    let t55 = t32.mul_add::<I>(t41, t54);
+    let t56 = t34.mul(t43);
+    let t57 = t35.mul(t40);
+    let t58 = t37.mul_add::<I>(t41, t57);
+    let t59 = t38.mul_add::<I>(t43, t58);
+    let t60 = k[22].neg().mul_add::<I>(t49, t53);
+    let t61 = t52.add(t60);
+    let t62 = k[22].mul_add::<I>(t48, t56);
+    let t63 = t55.add(t62);
+    let t64 = k[10].mul(t63);
+    let t65 = k[11].mul_add::<I>(t59, t64);
+    let t66 = c[1].mul(t48);
+    let t67 = t13.neg().mul_add::<I>(t49, t66);
+    let t68 = t12.mul_add::<I>(t50, t67);
+    let t69 = t11.mul(t49);
+    let t70 = t12.neg().mul_add::<I>(t48, t69);
+    let t71 = t15.mul_add::<I>(t50, t70);
+    let t72 = t13.mul(t61);
+    let t73 = t14.mul_add::<I>(t63, t72);
+    let t74 = t11.mul_add::<I>(t59, t73);
+    let t75 = V::splat(0.3).mul(t68);
+    let t76 = k[8].mul_add::<I>(t71, t75);
+    let t77 = t74.sub(t76);
+    let t78 = t22.mul(k[42]);
+    let t79 = t27.mul_add::<I>(k[43], t78);
+    let t80 = t29.mul(k[42]);
+    let t81 = t34.mul_add::<I>(k[43], t80);
+    let t82 = t35.mul(k[42]);
+    let t83 = t38.mul_add::<I>(k[43], t82);
+    let t84 = t22.mul(k[44]);
+    let t85 = t25.mul_add::<I>(k[47], t84);
+    let t86 = t27.mul_add::<I>(k[48], t85);
+    let t87 = t22.mul(k[47]);
+    let t88 = t25.mul_add::<I>(k[45], t87);
+    let t89 = t22.mul(k[48]);
+    let t90 = t27.mul_add::<I>(k[46], t89);
+    let t91 = t29.mul(k[44]);
+    let t92 = t32.mul_add::<I>(k[47], t91);
+    let t93 = t34.mul_add::<I>(k[48], t92);
+    let t94 = t29.mul(k[47]);
+    let t95 = t32.mul_add::<I>(k[45], t94);
+    let t96 = t29.mul(k[48]);
+    let t97 = t34.mul_add::<I>(k[46], t96);
+    let t98 = t35.mul(k[44]);
+    let t99 = t37.mul_add::<I>(k[47], t98);
+    let t100 = t38.mul_add::<I>(k[48], t99);
+    let t101 = t35.mul(k[47]);
+    let t102 = t37.mul_add::<I>(k[45], t101);
+    let t103 = t35.mul(k[48]);
+    let t104 = t38.mul_add::<I>(k[46], t103);
+    let t105 = t27.mul(t90);
+    let t106 = t34.mul(t97);
+    let t107 = t38.mul(t104);
+    let t108 = t34.mul(t90);
+    let t109 = t38.mul(t90);
+    let t110 = t38.mul(t97);
+    let t111 = k[22].mul(t83);
+    let t112 = k[33].add(t79);
+    let t113 = k[34].add(t81);
+    let t114 = k[35].add(t83);
+    let t115 = t25.mul_add::<I>(t88, k[36]);
+    let t116 = V::splat(2.0).mul_add::<I>(t111, t105);
+    let t117 = t22.mul_add::<I>(t86, t115);
+    let t118 = t116.add(t117);
+    let t119 = t32.mul_add::<I>(t95, k[37]);
+    let t120 = V::splat(2.0).mul_add::<I>(t111, t106);
+    let t121 = t29.mul_add::<I>(t93, t119);
+    let t122 = t120.add(t121);
+    let t123 = t37.mul_add::<I>(t102, k[38]);
+    let t124 = t35.mul_add::<I>(t100, t107);
+    let t125 = t123.add(t124);
+    let t126 = t32.mul_add::<I>(t88, k[39]);
+    let t127 = t29.mul_add::<I>(t86, t108);
+    let t128 = t126.add(t127);
+    let t129 = t37.mul_add::<I>(t88, k[40]);
+    let t130 = k[22].neg().mul_add::<I>(t79, t109);
+    let t131 = t35.mul_add::<I>(t86, t129);
+    let t132 = t130.add(t131);
+    let t133 = t37.mul_add::<I>(t95, k[41]);
+    let t134 = k[22].neg().mul_add::<I>(t81, t110);
+    let t135 = t35.mul_add::<I>(t93, t133);
+    let t136 = t134.add(t135);
+    let t137 = k[10].mul(t128);
+    let t138 = k[11].mul_add::<I>(t132, t137);
+    let t139 = k[10].mul(t122);
+    let t140 = k[11].mul_add::<I>(t136, t139);
+    let t141 = k[10].mul(t136);
+    let t142 = k[11].mul_add::<I>(t125, t141);
+    let t143 = k[10].mul(t114);
+    let t144 = k[11].mul(t112);
+    let t145 = k[10].mul(t112);
+    let t146 = k[11].neg().mul_add::<I>(t113, t143);
+    let t147 = k[10].mul(t140);
+    let t148 = k[11].mul_add::<I>(t142, t147);
+    let t149 = t13.mul(t144);
+    let t150 = t12.mul_add::<I>(t145, t149);
+    let t151 = c[1].mul_add::<I>(t146, t150.neg());
+    let t152 = t11.mul(t144);
+    let t153 = t15.neg().mul_add::<I>(t145, t152);
+    let t154 = t12.neg().mul_add::<I>(t146, t153);
+    let t155 = t13.mul(t138);
+    let t156 = t14.mul_add::<I>(t140, t155);
+    let t157 = V::splat(0.3).mul(t151);
+    let t158 = k[8].mul_add::<I>(t154, t157);
+    let t159 = t11.mul_add::<I>(t142, t158.neg());
+    let t160 = t156.add(t159);
+    let t161 = c[1].mul(t112);
+    let t162 = t13.neg().mul_add::<I>(t113, t161);
+    let t163 = t12.mul_add::<I>(t114, t162);
+    let t164 = t13.mul(t112);
+    let t165 = t14.mul_add::<I>(t113, t164);
+    let t166 = t11.mul_add::<I>(t114, t165);
+    let t167 = t11.mul(t113);
+    let t168 = t12.neg().mul_add::<I>(t112, t167);
+    let t169 = t15.mul_add::<I>(t114, t168);
+    let t170 = c[1].mul(t118);
+    let t171 = t13.mul(t128);
+    let t172 = t170.sub(t171);
+    let t173 = t12.mul_add::<I>(t132, t172);
+    let t174 = c[1].mul(t128);
+    let t175 = t13.neg().mul_add::<I>(t122, t174);
+    let t176 = t12.mul_add::<I>(t136, t175);
+    let t177 = c[1].mul(t132);
+    let t178 = t13.neg().mul_add::<I>(t136, t177);
+    let t179 = t12.mul_add::<I>(t125, t178);
+    let t180 = t13.mul(t118);
+    let t181 = t14.mul_add::<I>(t128, t180);
+    let t182 = t11.mul_add::<I>(t132, t181);
+    let t183 = t14.mul_add::<I>(t122, t171);
+    let t184 = t11.mul(t136);
+    let t185 = t183.add(t184);
+    let t186 = t13.mul(t132);
+    let t187 = t14.mul_add::<I>(t136, t186);
+    let t188 = t11.mul_add::<I>(t125, t187);
+    let t189 = t11.mul(t128);
+    let t190 = t12.neg().mul_add::<I>(t118, t189);
+    let t191 = t15.mul_add::<I>(t132, t190);
+    let t192 = t11.mul(t122);
+    let t193 = t12.neg().mul_add::<I>(t128, t192);
+    let t194 = t15.mul_add::<I>(t136, t193);
+    let t195 = t12.neg().mul_add::<I>(t132, t184);
+    let t196 = t15.mul_add::<I>(t125, t195);
+    let t197 = t12.mul(t179);
+    let t198 = t13.mul(t182);
+    let t199 = t14.mul_add::<I>(t185, t198);
+    let t200 = t15.mul(t196);
+    let t201 = t14.mul(t176);
+    let t202 = t15.mul(t179);
+    let t203 = t15.mul(t188);
+    let t204 = k[8].mul(t163);
+    let t205 = V::splat(-0.3).mul_add::<I>(t169, t204);
+    let t206 = k[8].mul(k[8]);
+    let t207 = t206.add(V::splat(0.09));
+    let t208 = V::splat(2.0).mul(t207);
+    let t209 = V::splat(2.0).mul(t206);
+    let t210 = V::splat(0.6).mul(k[8]);
+    let t211 = V::splat(0.5).mul(k[32]);
+    let t212 = V::splat(0.09).mul(k[32]);
+    let t213 = V::splat(-0.6).mul_add::<I>(t169, t212);
+    let t214 = c[1].mul_add::<I>(t173, t213);
+    let t215 = t13.neg().mul_add::<I>(t176, t197);
+    let t216 = t214.add(t215);
+    let t217 = k[8].mul_add::<I>(k[32], k[25]);
+    let t218 = t163.add(t217);
+    let t219 = V::splat(-0.3).mul_add::<I>(k[32], k[26]);
+    let t220 = t169.add(t219);
+    let t221 = t208.mul_add::<I>(t211, k[27]);
+    let t222 = V::splat(2.0).mul_add::<I>(t205, t221);
+    let t223 = t11.mul_add::<I>(t188, t222);
+    let t224 = t199.add(t223);
+    let t225 = t209.mul_add::<I>(t211, k[28]);
+    let t226 = V::splat(2.0).mul_add::<I>(t204, t225);
+    let t227 = t11.mul_add::<I>(t194, t226);
+    let t228 = t12.neg().mul_add::<I>(t191, t200);
+    let t229 = t227.add(t228);
+    let t230 = k[8].neg().mul_add::<I>(t166, k[29]);
+    let t231 = t13.mul_add::<I>(t173, t230);
+    let t232 = t11.mul_add::<I>(t179, t201);
+    let t233 = t231.add(t232);
+    let t234 = t210.mul_add::<I>(t211, k[30]);
+    let t235 = k[8].neg().mul_add::<I>(t169, t234);
+    let t236 = V::splat(0.3).mul_add::<I>(t163, t235);
+    let t237 = t11.mul_add::<I>(t176, t236);
+    let t238 = t12.neg().mul_add::<I>(t173, t202);
+    let t239 = t237.add(t238);
+    let t240 = V::splat(0.3).mul_add::<I>(t166, k[31]);
+    let t241 = t11.mul_add::<I>(t185, t240);
+    let t242 = t12.neg().mul_add::<I>(t182, t203);
+    let t243 = t241.add(t242);
+    let t244 = t3.mul(t220);
+    let t245 = t1.neg().mul_add::<I>(t218, t244);
+    let t246 = t7.mul(t220);
+    let t247 = t5.neg().mul_add::<I>(t218, t246);
+    let t248 = t9.mul(t220);
+    let t249 = t8.mul_add::<I>(t218, t248);
+    let t250 = t249.neg();
+    let t251 = t3.mul(t233);
+    let t252 = k[2].mul_add::<I>(t224, t251);
+    let t253 = t1.mul_add::<I>(t243, t252);
+    let t254 = t7.mul(t233);
+    let t255 = k[5].mul_add::<I>(t224, t254);
+    let t256 = t5.mul_add::<I>(t243, t255);
+    let t257 = k[7].mul(t224);
+    let t258 = t9.neg().mul_add::<I>(t233, t257);
+    let t259 = t8.mul_add::<I>(t243, t258);
+    let t260 = k[0].mul(t249);
+    let t261 = V::splat(0.45).mul_add::<I>(t247, t260);
+    let t262 = t253.sub(t261);
+    let t263 = V::splat(0.45).mul_add::<I>(t245, t256);
+    let t264 = k[0].neg().mul_add::<I>(t245, t259);
+    let t265 = t14.mul(t144);
+    let t266 = t11.neg().mul_add::<I>(t145, t265);
+    let t267 = t13.mul_add::<I>(t146, t266);
+    let t268 = c[1].mul(t138);
+    let t269 = t12.mul(t142);
+    let t270 = t11.mul(t140);
+    let t271 = t15.mul(t142);
+    let t272 = V::splat(0.3).mul_add::<I>(t267, t268);
+    let t273 = t13.neg().mul_add::<I>(t140, t269);
+    let t274 = t272.add(t273);
+    let t275 = k[8].mul_add::<I>(t267, t270);
+    let t276 = t12.neg().mul_add::<I>(t138, t271);
+    let t277 = t275.add(t276);
+    let t278 = t3.mul(t151);
+    let t279 = k[2].mul_add::<I>(t267, t278);
+    let t280 = t1.mul_add::<I>(t154, t279);
+    let t281 = t7.mul(t151);
+    let t282 = k[5].mul_add::<I>(t267, t281);
+    let t283 = t5.mul_add::<I>(t154, t282);
+    let t284 = k[7].mul(t267);
+    let t285 = t9.neg().mul_add::<I>(t151, t284);
+    let t286 = t8.mul_add::<I>(t154, t285);
+    let t287 = t3.mul(t274);
+    let t288 = k[2].mul_add::<I>(t160, t287);
+    let t289 = t7.mul(t274);
+    let t290 = t5.mul(t277);
+    let t291 = t8.mul(t277);
+    let t292 = k[0].mul(t286);
+    let t293 = V::splat(-0.45).mul_add::<I>(t283, t292);
+    let t294 = k[0].mul(t280);
+    let t295 = t1.mul_add::<I>(t277, t293);
+    let t296 = t288.add(t295);
+    let t297 = V::splat(0.45).mul_add::<I>(t280, t289);
+    let t298 = k[5].mul_add::<I>(t160, t290);
+    let t299 = t297.add(t298);
+    let t300 = k[7].mul_add::<I>(t160, t294.neg());
+    let t301 = t9.neg().mul_add::<I>(t274, t291);
+    let t302 = t300.add(t301);
+    let t303 = t13.mul(t48);
+    let t304 = t14.mul_add::<I>(t49, t303);
+    let t305 = t11.mul_add::<I>(t50, t304);
+    let t306 = c[1].mul(t61);
+    let t307 = t13.mul(t63);
+    let t308 = t12.mul(t61);
+    let t309 = t11.mul(t63);
+    let t310 = t12.mul_add::<I>(t59, t306);
+    let t311 = V::splat(0.3).mul_add::<I>(t305, t307.neg());
+    let t312 = t310.add(t311);
+    let t313 = t15.mul_add::<I>(t59, t309);
+    let t314 = k[8].mul_add::<I>(t305, t308.neg());
+    let t315 = t313.add(t314);
+    let t316 = t3.mul(t68);
+    let t317 = k[2].mul_add::<I>(t305, t316);
+    let t318 = t1.mul_add::<I>(t71, t317);
+    let t319 = t7.mul(t68);
+    let t320 = k[5].mul_add::<I>(t305, t319);
+    let t321 = t5.mul_add::<I>(t71, t320);
+    let t322 = k[7].mul(t305);
+    let t323 = t9.neg().mul_add::<I>(t68, t322);
+    let t324 = t8.mul_add::<I>(t71, t323);
+    let t325 = t3.mul(t312);
+    let t326 = t7.mul(t312);
+    let t327 = k[5].mul(t77);
+    let t328 = k[7].mul(t77);
+    let t329 = t8.mul(t315);
+    let t330 = k[0].mul(t324);
+    let t331 = V::splat(-0.45).mul_add::<I>(t321, t330);
+    let t332 = t1.mul_add::<I>(t315, t325);
+    let t333 = k[2].mul_add::<I>(t77, t332);
+    let t334 = t331.add(t333);
+    let t335 = t5.mul_add::<I>(t315, t326);
+    let t336 = V::splat(0.45).mul_add::<I>(t318, t327);
+    let t337 = t335.add(t336);
+    let t338 = t9.neg().mul_add::<I>(t312, t329);
+    let t339 = k[0].neg().mul_add::<I>(t318, t328);
+    let t340 = t338.add(t339);
+    let t341 = k[2].mul(t166);
+    let t342 = t3.mul_add::<I>(t218, t341);
+    let t343 = t1.mul_add::<I>(t220, t342);
+    let t344 = k[5].mul(t166);
+    let t345 = t7.mul_add::<I>(t218, t344);
+    let t346 = t5.mul_add::<I>(t220, t345);
+    let t347 = k[7].mul(t166);
+    let t348 = t9.neg().mul_add::<I>(t218, t347);
+    let t349 = t8.mul_add::<I>(t220, t348);
+    let t350 = t3.mul(t216);
+    let t351 = k[2].mul_add::<I>(t233, t350);
+    let t352 = t1.mul_add::<I>(t239, t351);
+    let t353 = t3.mul(t239);
+    let t354 = k[2].mul_add::<I>(t243, t353);
+    let t355 = t1.mul_add::<I>(t229, t354);
+    let t356 = t7.mul(t216);
+    let t357 = k[5].mul_add::<I>(t233, t356);
+    let t358 = t5.mul_add::<I>(t239, t357);
+    let t359 = t7.mul(t239);
+    let t360 = k[5].mul_add::<I>(t243, t359);
+    let t361 = t5.mul_add::<I>(t229, t360);
+    let t362 = k[7].mul(t233);
+    let t363 = t9.neg().mul_add::<I>(t216, t362);
+    let t364 = t8.mul_add::<I>(t239, t363);
+    let t365 = k[7].mul(t243);
+    let t366 = t9.neg().mul_add::<I>(t239, t365);
+    let t367 = t8.mul_add::<I>(t229, t366);
+    let t368 = k[2].mul(t253);
+    let t369 = k[5].mul(t256);
+    let t370 = t8.mul(t367);
+    let t371 = k[5].mul(t253);
+    let t372 = t8.mul(t355);
+    let t373 = t8.mul(t361);
+    let t374 = k[0].mul(t346);
+    let t375 = V::splat(0.45).mul_add::<I>(t349, t374);
+    let t376 = k[0].mul(t343);
+    let t377 = V::splat(0.45).mul(t343);
+    let t378 = t7.mul_add::<I>(t352, t376.neg());
+    let t379 = t5.mul_add::<I>(t355, t371);
+    let t380 = t378.add(t379);
+    let t381 = k[7].mul_add::<I>(t253, t377.neg());
+    let t382 = t9.neg().mul_add::<I>(t352, t372);
+    let t383 = t381.add(t382);
+    let t384 = k[0].mul(k[0]);
+    let t385 = t384.add(V::splat(0.2025));
+    let t386 = V::splat(2.0).mul(t385);
+    let t387 = V::splat(2.0).mul(t384);
+    let t388 = V::splat(0.9).mul(k[0]);
+    let t389 = t211.mul(t386);
+    let t390 = V::splat(0.2025).mul(k[32]);
+    let t391 = t211.mul(t387);
+    let t392 = t211.mul(t388);
+    let t393 = V::splat(2.0).mul_add::<I>(t375, t389);
+    let t394 = t3.mul_add::<I>(t352, t393);
+    let t395 = t1.mul_add::<I>(t355, t368);
+    let t396 = t394.add(t395);
+    let t397 = V::splat(0.9).mul_add::<I>(t349, t390);
+    let t398 = t7.mul_add::<I>(t358, t397);
+    let t399 = t5.mul_add::<I>(t361, t369);
+    let t400 = t398.add(t399);
+    let t401 = V::splat(2.0).mul_add::<I>(t374, t391);
+    let t402 = k[7].mul_add::<I>(t259, t401);
+    let t403 = t9.neg().mul_add::<I>(t364, t370);
+    let t404 = t402.add(t403);
+    let t405 = V::splat(0.45).mul_add::<I>(t346, t392);
+    let t406 = k[0].mul_add::<I>(t349, t405);
+    let t407 = k[7].mul_add::<I>(t256, t406.neg());
+    let t408 = t9.neg().mul_add::<I>(t358, t373);
+    let t409 = t407.add(t408);
+    let t410 = k[0].mul_add::<I>(k[32], t346);
+    let t411 = V::splat(0.45).mul_add::<I>(k[32], t349);
+    [
+        t224,
+        t160,
+        t77,
+        t160,
+        t148,
+        t65,
+        t77,
+        t65,
+        t47,
+        t262,
+        t263,
+        t264,
+        t245,
+        t247,
+        t250,
+        t296,
+        t299,
+        t302,
+        t280,
+        t283,
+        t286,
+        t334,
+        t337,
+        t340,
+        t318,
+        t321,
+        t324,
+        k[32],
+        t343,
+        t410,
+        t411,
+        t396,
+        t400,
+        t404,
+        t380,
+        t383,
+        t409,
+    ]
+}
+/// Runs [`mass_matrix_branch0`] on the 2 branches of [`MASS_MATRIX_BRANCH0`], `W` to a register: each lane's results to its row of `r` (37 a branch). Takes the rows of each branch's inputs.
+#[inline(always)]
+#[allow(dead_code)]
+fn mass_matrix_branch0_run<I: Isa, const W: usize>(
+    s: &[[f64; 3]; 2],
+    c: &[[f64; 3]; 2],
+    r: &mut [f64; 74],
+)
+where
+    [f64; W]: ToLanes,
+{
+    let mut l = 0;
+    while l < 2 {
+        let out = mass_matrix_branch0::<
+            I,
+            <[f64; W] as ToLanes>::V,
+        >(
+            &branch_lanes::<W, 49, 2>(&MASS_MATRIX_BRANCH0, l),
+            &branch_lanes::<W, 3, 2>(s, l),
+            &branch_lanes::<W, 3, 2>(c, l),
+        );
+        branch_rows::<_, W, 37, 74>(&out, r, l);
+        l += W;
+    }
+}
+/// The constants of [`mass_matrix_branch0`], one row per branch: `left_shoulder_joint`, `right_shoulder_joint`.
+#[allow(
+    clippy::approx_constant,
+    clippy::excessive_precision,
+    clippy::unreadable_literal
+)]
+#[allow(dead_code)]
+const MASS_MATRIX_BRANCH0: [[f64; 49]; 2] = [
+    [
+        0.18,
+        1.0,
+        0.0,
+        0.0,
+        0.0,
+        0.9800665778412416,
+        -0.19866933079506122,
+        0.19866933079506122,
+        0.0,
+        0.5000000000000001,
+        0.7071067811865476,
+        0.7071067811865476,
+        0.5000000000000001,
+        0.5000000000000001,
+        0.8383866435942036,
+        -0.479425538604203,
+        0.2593433800522308,
+        0.45801271084729195,
+        0.8775825618903728,
+        0.1416799342470381,
+        -0.29552020666133955,
+        0.955336489125606,
+        -0.3,
+        1.0,
+        0.0,
+        0.018000000000000002,
+        -0.25200000000000006,
+        0.051460000000000006,
+        -0.048100000000000004,
+        0.0,
+        0.0030200000000000005,
+        0.0,
+        2.3,
+        0.0026327476856711184,
+        0.001438276615812609,
+        -0.45599999999999996,
+        0.11248370112100659,
+        0.11237803875603204,
+        0.0013082601229613597,
+        5.72628672892178e-6,
+        0.0007227573213207296,
+        0.00021714363512649699,
+        0.0,
+        -0.02,
+        0.001,
+        0.0009,
+        0.0,
+        0.0,
+        1e-5,
+    ],
+    [
+        -0.18,
+        0.9950041652780258,
+        -0.09784339500725571,
+        -0.019833838076209875,
+        0.09983341664682815,
+        0.975170327201816,
+        0.19767681165408388,
+        -0.19866933079506122,
+        0.02,
+        0.48,
+        0.8,
+        0.6,
+        0.6400000000000001,
+        0.36,
+        0.9210609940028851,
+        0.3894183423086505,
+        0.0,
+        -0.3894183423086505,
+        0.9210609940028851,
+        0.0,
+        0.0,
+        1.0,
+        -0.28,
+        0.0,
+        1.0,
+        0.0,
+        -0.3,
+        0.062,
+        -0.06049999999999999,
+        0.0003,
+        0.0,
+        -0.0026,
+        1.7,
+        0.0,
+        0.0,
+        -0.347,
+        0.09009,
+        0.09019,
+        0.0008,
+        0.0,
+        0.0002,
+        0.0,
+        0.006999999999999999,
+        0.0,
+        -0.0001200000000000001,
+        0.0,
+        0.00022,
+        -2e-5,
+        0.00020999999999999998,
+    ],
+];
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 600 ops: 166 add, 87 sub, 347 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 215 fused multiply-adds, 390 FP ops with each fused = 1.
+/// 2 ops: 2 add, 0 sub, 0 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(dead_code)]
@@ -701,404 +1382,22 @@ unsafe fn mass_matrix_sc_avx2_fma(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]
 )]
 #[allow(dead_code)]
 fn mass_matrix_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
-    let t0 = 0.9800665778412416 * c[1];
-    let t1 = 0.9800665778412416 * s[1];
-    let t2 = 1.0 - c[2];
-    let t3 = 0.5000000000000001 * t2;
-    let t4 = 0.7071067811865476 * s[2];
-    let t5 = c[2] + t3;
-    let t6 = 0.2593433800522308 * s[3];
-    let t7 = I::fma(-0.479425538604203, c[3], t6);
-    let t8 = 0.2593433800522308 * c[3];
-    let t9 = I::fma(0.479425538604203, s[3], t8);
-    let t10 = 0.8775825618903728 * c[3];
-    let t11 = I::fma(0.1416799342470381, s[3], t10);
-    let t12 = 0.1416799342470381 * c[3];
-    let t13 = I::fma(-0.8775825618903728, s[3], t12);
-    let t14 = 0.955336489125606 * s[3];
-    let t15 = 0.9950041652780258 * s[4];
-    let t16 = I::fma(-0.019833838076209875, c[4], t15);
-    let t17 = 0.9950041652780258 * c[4];
-    let t18 = I::fma(0.019833838076209875, s[4], t17);
-    let t19 = 0.9800665778412416 * c[4];
-    let t20 = 0.9800665778412416 * s[4];
-    let t21 = 1.0 - c[5];
-    let t22 = 0.48 * t21;
-    let t23 = 0.8 * s[5];
-    let t24 = 0.6 * s[5];
-    let t25 = I::fma(0.6400000000000001, t21, c[5]);
-    let t26 = I::fma(0.36, t21, c[5]);
-    let t27 = 0.9210609940028851 * c[6];
-    let t28 = I::fma(0.3894183423086505, s[6], t27);
-    let t29 = 0.3894183423086505 * c[6];
-    let t30 = 0.9210609940028851 * s[6];
-    let t31 = t29 - t30;
-    let t32 = t30 - t29;
-    let t33 = 0.006999999999999999 * t28;
-    let t34 = 0.006999999999999999 * t32;
-    let t35 = 0.0001200000000000001 * t28;
-    let t36 = I::fma(2e-5, t31, t35);
-    let t37 = 2e-5 * t28;
-    let t38 = I::fma(0.0001200000000000001, t32, t37);
-    let t39 = 2e-5 * t32;
-    let t40 = 0.00020999999999999998 * t32;
-    let t41 = t28 * t37;
-    let t42 = I::fma(t32, t36, t41);
-    let t43 = 0.00217 * t28;
-    let t44 = 0.00217 * t32;
-    let t45 = I::fma(-t31, t37, 0.09009);
-    let t46 = I::fma(-t28, t36, t45);
-    let t47 = I::fma(-t28, t39, 0.09019);
-    let t48 = I::fma(-t32, t38, t47);
-    let t49 = 0.0002 + t43;
-    let t50 = c[5] * t33;
-    let t51 = I::fma(-t24, t34, t50);
-    let t52 = I::fma(-0.2776, s[5], t51);
-    let t53 = t24 * t33;
-    let t54 = I::fma(t25, t34, t53);
-    let t55 = I::fma(-0.16655999999999999, t21, t54);
-    let t56 = t22 * t34;
-    let t57 = I::fma(-t23, t33, t56);
-    let t58 = I::fma(-0.347, t26, t57);
-    let t59 = c[5] * t46;
-    let t60 = I::fma(t24, t42, t59);
-    let t61 = I::fma(t23, t49, t60);
-    let t62 = c[5] * t42;
-    let t63 = I::fma(t24, t48, t62);
-    let t64 = I::fma(t23, t44, -t63);
-    let t65 = 0.0008160000000000001 * s[5];
-    let t66 = I::fma(-t24, t44, t65);
-    let t67 = I::fma(c[5], t49, t66);
-    let t68 = t24 * t46;
-    let t69 = I::fma(-t25, t42, t68);
-    let t70 = I::fma(t22, t49, t69);
-    let t71 = t25 * t48;
-    let t72 = I::fma(-t24, t42, t71);
-    let t73 = I::fma(t22, t44, t72);
-    let t74 = 0.0004896 * t21;
-    let t75 = I::fma(t25, t44, t74);
-    let t76 = I::fma(t24, t49, t75);
-    let t77 = t24 * t70;
-    let t78 = I::fma(t25, t73, t77);
-    let t79 = 0.02 * t52;
-    let t80 = I::fma(-0.3, t58, t79);
-    let t81 = t52 + 0.034;
-    let t82 = t58 - 0.81;
-    let t83 = I::fma(t22, t76, 0.21567999999999998);
-    let t84 = I::fma(2.0, t80, t83);
-    let t85 = t78 + t84;
-    let t86 = I::fma(t22, t67, 0.0003);
-    let t87 = I::fma(-0.02, t55, t86);
-    let t88 = I::fma(t24, t61, t87);
-    let t89 = I::fma(t25, t64, t88);
-    let t90 = I::fma(t26, t76, -0.0026);
-    let t91 = I::fma(0.3, t55, t90);
-    let t92 = I::fma(t22, t73, t91);
-    let t93 = I::fma(-t23, t70, t92);
-    let t94 = t20 * t89;
-    let t95 = I::fma(0.19866933079506122, t85, t94);
-    let t96 = I::fma(1e-5, t9, 0.0008383866435942035);
-    let t97 = 0.0009 * t7;
-    let t98 = I::fma(1e-5, t13, 0.00045801271084729194);
-    let t99 = 0.0009 * t11;
-    let t100 = I::fma(9.55336489125606e-6, c[3], -0.00029552020666133953);
-    let t101 = 0.0008598028402130454 * s[3];
-    let t102 = I::fma(-0.02, t9, 0.0026327476856711184);
-    let t103 = I::fma(-0.02, t13, 0.001438276615812609);
-    let t104 = I::fma(0.01910672978251212, c[3], 0.45599999999999996);
-    let t105 = I::fma(0.011464037869507272, c[3], 0.11248370112100659);
-    let t106 = I::fma(8.383866435942037e-6, t9, t105);
-    let t107 = I::fma(t7, t97, t106);
-    let t108 = I::fma(0.8383866435942036, t96, t107);
-    let t109 = I::fma(0.011464037869507272, c[3], 0.11237803875603204);
-    let t110 = I::fma(4.58012710847292e-6, t13, t109);
-    let t111 = I::fma(t11, t99, t110);
-    let t112 = I::fma(0.45801271084729195, t98, t111);
-    let t113 = I::fma(-2.8232123669751764e-6, c[3], 0.0013082601229613597);
-    let t114 = I::fma(t14, t101, t113);
-    let t115 = I::fma(-0.29552020666133955, t100, t114);
-    let t116 = I::fma(8.383866435942037e-6, t13, 5.72628672892178e-6);
-    let t117 = I::fma(t11, t97, t116);
-    let t118 = I::fma(0.45801271084729195, t96, t117);
-    let t119 = I::fma(8.009413526210872e-6, c[3], 0.0007227573213207296);
-    let t120 = I::fma(-0.006, t9, t119);
-    let t121 = I::fma(t14, t97, t120);
-    let t122 = I::fma(-0.29552020666133955, t96, t121);
-    let t123 = I::fma(4.375562551557533e-6, c[3], 0.00021714363512649699);
-    let t124 = I::fma(-0.006, t13, t123);
-    let t125 = I::fma(t14, t99, t124);
-    let t126 = I::fma(-0.29552020666133955, t98, t125);
-    let t127 = t4 * t102;
-    let t128 = I::fma(t5, t103, t127);
-    let t129 = I::fma(-t3, t104, t128);
-    let t130 = t3 * t103;
-    let t131 = t130 - t127;
-    let t132 = I::fma(-t5, t104, t131);
-    let t133 = c[2] * t108;
-    let t134 = t4 * t118;
-    let t135 = t133 - t134;
-    let t136 = t4 * t122;
-    let t137 = t135 + t136;
-    let t138 = c[2] * t118;
-    let t139 = I::fma(-t4, t112, t138);
-    let t140 = I::fma(t4, t126, t139);
-    let t141 = c[2] * t122;
-    let t142 = I::fma(-t4, t126, t141);
-    let t143 = I::fma(t4, t115, t142);
-    let t144 = t4 * t108;
-    let t145 = I::fma(t5, t118, t144);
-    let t146 = I::fma(t3, t122, t145);
-    let t147 = I::fma(t5, t112, t134);
-    let t148 = I::fma(t3, t126, t147);
-    let t149 = I::fma(t5, t126, t136);
-    let t150 = I::fma(t3, t115, t149);
-    let t151 = t5 * t148;
-    let t152 = t4 * t137;
-    let t153 = I::fma(t5, t140, t152);
-    let t154 = I::fma(t3, t143, t153);
-    let t155 = t5 * t150;
-    let t156 = 0.3 * t129;
-    let t157 = I::fma(t3, t148, t156);
-    let t158 = I::fma(-t4, t146, t155);
-    let t159 = t157 + t158;
-    let t160 = I::fma(-t4, t104, 0.018000000000000002);
-    let t161 = I::fma(c[2], t102, t160);
-    let t162 = I::fma(-t4, t103, t161);
-    let t163 = t132 - 0.942;
-    let t164 = I::fma(-0.6, t132, 0.25846);
-    let t165 = I::fma(t4, t146, t164);
-    let t166 = I::fma(t3, t150, t151);
-    let t167 = t165 + t166;
-    let t168 = t0 * t159;
-    let t169 = 0.18 * c[1];
-    let t170 = 0.18 * s[1];
-    let t171 = 0.1404804310189812 * s[2];
-    let t172 = I::fma(-t1, c[2], t171);
-    let t173 = I::fma(-t0, t4, t172);
-    let t174 = t1 * t4;
-    let t175 = I::fma(t0, t3, t174);
-    let t176 = I::fma(0.19866933079506122, t5, t175);
-    let t177 = 0.09933466539753064 * t2;
-    let t178 = t177 - t174;
-    let t179 = I::fma(t0, t5, t178);
-    let t180 = 0.29401997335237245 * s[1];
-    let t181 = t169 + 0.05960079923851836;
-    let t182 = t4 * t170;
-    let t183 = I::fma(-t4, t180, t182);
-    let t184 = I::fma(-c[2], t181, t183);
-    let t185 = t4 * t181;
-    let t186 = I::fma(-t3, t170, t185);
-    let t187 = I::fma(-t5, t180, t186);
-    let t188 = I::fma(t3, t180, t185);
-    let t189 = I::fma(t5, t170, t188);
-    let t190 = 0.18 * t18;
-    let t191 = 0.18 * t16;
-    let t192 = 0.11920159847703672 * s[5];
-    let t193 = I::fma(t20, c[5], t192);
-    let t194 = I::fma(t19, t23, t193);
-    let t195 = t20 * t24;
-    let t196 = I::fma(t19, t22, t195);
-    let t197 = I::fma(-0.19866933079506122, t25, t196);
-    let t198 = t20 * t23;
-    let t199 = I::fma(0.09536127878162938, t21, t198);
-    let t200 = I::fma(t19, t26, -t199);
-    let t201 = 0.019601331556824832 * c[4];
-    let t202 = I::fma(-0.29401997335237245, s[4], t201);
-    let t203 = 0.05960079923851836 + t190;
-    let t204 = t202 - 0.017611811101306028;
-    let t205 = t191 + 0.003973386615901225;
-    let t206 = t24 * t204;
-    let t207 = I::fma(c[5], t203, t206);
-    let t208 = I::fma(-t23, t205, t207);
-    let t209 = t25 * t204;
-    let t210 = I::fma(-t24, t203, t209);
-    let t211 = I::fma(t22, t205, t210);
-    let t212 = t22 * t204;
-    let t213 = I::fma(t23, t203, t212);
-    let t214 = I::fma(t26, t205, t213);
-    let t215 = 0.016 * s[5];
-    let t216 = I::fma(-0.3, c[5], t215);
-    let t217 = 0.18 * s[5];
-    let t218 = I::fma(-0.0096, t21, t217);
-    let t219 = 0.24 * s[5];
-    let t220 = I::fma(0.02, t26, t219);
-    let t221 = 0.017260747435643386 * s[4];
-    let t222 = I::fma(0.03576047954311102, t18, t221);
-    let t223 = 0.00295980106508055 * c[1];
-    let t224 = 0.00295980106508055 * s[1];
-    let t225 = I::fma(0.04714120239416372, c[1], t224);
-    let t226 = 0.0006436886317759984 * s[1];
-    let t227 = I::fma(0.009011640844863979, c[1], t226);
-    let t228 = 2.0 * t227;
-    let t229 = I::fma(0.00029401997335237246, s[4], 0.012317498509293796);
-    let t230 = I::fma(0.002548173102387228, c[4], t229);
-    let t231 = I::fma(-0.05929402795939511, c[4], 0.0005165402600671591);
-    let t232 = t108 * t173;
-    let t233 = I::fma(t118, t176, t232);
-    let t234 = I::fma(t122, t179, t233);
-    let t235 = t118 * t173;
-    let t236 = I::fma(t112, t176, t235);
-    let t237 = I::fma(t126, t179, t236);
-    let t238 = t122 * t173;
-    let t239 = I::fma(t126, t176, t238);
-    let t240 = I::fma(t115, t179, t239);
-    let t241 = t176 * t237;
-    let t242 = t179 * t187;
-    let t243 = I::fma(t176, t189, t242);
-    let t244 = t179 * t184;
-    let t245 = I::fma(t173, t189, t244);
-    let t246 = t176 * t184;
-    let t247 = I::fma(-t173, t187, t246);
-    let t248 = t103 * t245;
-    let t249 = I::fma(t102, t243, -t248);
-    let t250 = I::fma(-t104, t247, t249);
-    let t251 = t184 * t184;
-    let t252 = I::fma(t187, t187, t251);
-    let t253 = I::fma(t189, t189, t252);
-    let t254 = t46 * t194;
-    let t255 = I::fma(t42, t197, t254);
-    let t256 = I::fma(t49, t200, -t255);
-    let t257 = t42 * t194;
-    let t258 = I::fma(t48, t197, t257);
-    let t259 = I::fma(t44, t200, t258);
-    let t260 = t44 * t197;
-    let t261 = I::fma(-t49, t194, t260);
-    let t262 = I::fma(0.00102, t200, t261);
-    let t263 = t197 * t259;
-    let t264 = I::fma(-t194, t256, t263);
-    let t265 = t200 * t262;
-    let t266 = t200 * t211;
-    let t267 = I::fma(-t197, t214, t266);
-    let t268 = t194 * t214;
-    let t269 = I::fma(t200, t208, t268);
-    let t270 = t197 * t208;
-    let t271 = I::fma(t194, t211, t270);
-    let t272 = t33 * t267;
-    let t273 = I::fma(-t34, t269, t272);
-    let t274 = I::fma(-0.347, t271, t273);
-    let t275 = t208 * t208;
-    let t276 = I::fma(t211, t211, t275);
-    let t277 = I::fma(t214, t214, t276);
-    let t278 = I::fma(5.8412751346297566e-5, s[4], 0.2715733277798825);
-    let t279 = I::fma(-t1, t223, t278);
-    let t280 = I::fma(-t0, t225, t228);
-    let t281 = I::fma(t19, t231, t279);
-    let t282 = I::fma(0.19866933079506122, t230, t280);
-    let t283 = I::fma(0.6, t222, t281);
-    let t284 = t282 + t283;
-    let t285 = I::fma(2.3, t253, t284);
-    let t286 = I::fma(t173, t234, t265);
-    let t287 = I::fma(t179, t240, t241);
-    let t288 = I::fma(2.0, t250, t285);
-    let t289 = I::fma(1.7, t277, t286);
-    let t290 = t264 + t287;
-    let t291 = t288 + t289;
-    let t292 = I::fma(2.0, t274, t290);
-    let t293 = t291 + t292;
-    let t294 = t162 * t170;
-    let t295 = I::fma(-t163, t169, t294);
-    let t296 = I::fma(0.19866933079506122, t167, t295);
-    let t297 = I::fma(-t1, t154, t168);
-    let t298 = t296 + t297;
-    let t299 = t118 + t122;
-    let t300 = 0.7071067811865476 * t299;
-    let t301 = 0.7071067811865476 * t112;
-    let t302 = I::fma(0.7071067811865476, t126, t301);
-    let t303 = 0.7071067811865476 * t115;
-    let t304 = I::fma(0.7071067811865476, t126, t303);
-    let t305 = 0.7071067811865476 * t102;
-    let t306 = t103 + t104;
-    let t307 = 0.7071067811865476 * t306;
-    let t308 = t302 + t304;
-    let t309 = 0.7071067811865476 * t308;
-    let t310 = c[2] * t307;
-    let t311 = t4 * t305;
-    let t312 = I::fma(2.0, t311, t310);
-    let t313 = t4 * t300;
-    let t314 = I::fma(t5, t302, t313);
-    let t315 = t3 * t304;
-    let t316 = I::fma(0.3, t312, t315);
-    let t317 = t314 + t316;
-    let t318 = t179 * t304;
-    let t319 = t187 * t305;
-    let t320 = I::fma(t189, t305, t319);
-    let t321 = I::fma(-t184, t307, t320);
-    let t322 = I::fma(t173, t300, t321);
-    let t323 = I::fma(t176, t302, t318);
-    let t324 = t322 + t323;
-    let t325 = 0.02 * t7;
-    let t326 = 0.02 * t11;
-    let t327 = 0.01910672978251212 * s[3];
-    let t328 = I::fma(0.006, t11, t96);
-    let t329 = I::fma(-0.006, t7, t98);
-    let t330 = t100 + t329;
-    let t331 = 0.7071067811865476 * t330;
-    let t332 = c[2] * t325;
-    let t333 = I::fma(-t4, t326, t332);
-    let t334 = I::fma(t4, t327, t333);
-    let t335 = t4 * t328;
-    let t336 = I::fma(t5, t329, t335);
-    let t337 = I::fma(t3, t100, t336);
-    let t338 = I::fma(-0.3, t334, t337);
-    let t339 = t173 * t328;
-    let t340 = I::fma(t176, t329, t339);
-    let t341 = I::fma(t100, t179, t340);
-    let t342 = t184 * t325;
-    let t343 = I::fma(t187, t326, t342);
-    let t344 = I::fma(-t189, t327, t343);
-    let t345 = t341 + t344;
-    let t346 = 0.0001056 * t21;
-    let t347 = t82 * t190;
-    let t348 = I::fma(-t81, t191, t347);
-    let t349 = I::fma(t19, t93, t348);
-    let t350 = t349 - t95;
-    let t351 = 0.6 * t49;
-    let t352 = I::fma(-0.8, t42, t351);
-    let t353 = 0.001302 * t32;
-    let t354 = I::fma(0.8, t48, t353);
-    let t355 = I::fma(0.0017360000000000001, t32, 0.000612);
-    let t356 = I::fma(0.0042, t32, 0.2776);
-    let t357 = 0.0042 * t28;
-    let t358 = 0.0056 * t28;
-    let t359 = 0.6 * t355;
-    let t360 = I::fma(0.8, t354, t359);
-    let t361 = t22 * t355;
-    let t362 = t220 * t358;
-    let t363 = I::fma(t218, t357, t361);
-    let t364 = I::fma(-t216, t356, t362);
-    let t365 = t363 + t364;
-    let t366 = I::fma(t24, t352, t365);
-    let t367 = I::fma(t25, t354, t366);
-    let t368 = t197 * t354;
-    let t369 = I::fma(-t194, t352, t368);
-    let t370 = t200 * t355;
-    let t371 = t208 * t356;
-    let t372 = I::fma(t211, t357, t370);
-    let t373 = I::fma(t214, t358, t371);
-    let t374 = t372 - t373;
-    let t375 = t369 + t374;
-    let t376 = 0.006999999999999999 * t31;
-    let t377 = I::fma(-0.00196, t31, t40);
-    let t378 = I::fma(0.8, t377, 0.000132);
-    let t379 = t216 * t376;
-    let t380 = I::fma(t33, t218, t379);
-    let t381 = I::fma(t24, t43, t346);
-    let t382 = I::fma(t25, t377, t381);
-    let t383 = t380 + t382;
-    let t384 = t43 * t194;
-    let t385 = I::fma(t197, t377, -t384);
-    let t386 = I::fma(0.00022, t200, t385);
-    let t387 = t208 * t376;
-    let t388 = I::fma(t33, t211, t387);
-    let t389 = t386 + t388;
+    let _ = s;
+    let _ = c;
+    let s_b0 = [[s[1], s[2], s[3]], [s[4], s[5], s[6]]];
+    let c_b0 = [[c[1], c[2], c[3]], [c[4], c[5], c[6]]];
+    let mut r0 = [0.0; 74];
+    mass_matrix_branch0_run::<I, 2>(&s_b0, &c_b0, &mut r0);
+    let t0 = r0[66] + 0.26954222715557674;
+    let t1 = r0[67] + t0;
     [
-        [t293, t298, t324, t345, t350, t375, t389],
-        [t298, t167, t317, t338, 0.0, 0.0, 0.0],
-        [t324, t317, t309, t331, 0.0, 0.0, 0.0],
-        [t345, t338, t331, 0.001, 0.0, 0.0, 0.0],
-        [t350, 0.0, 0.0, 0.0, t85, t367, t383],
-        [t375, 0.0, 0.0, 0.0, t367, t360, t378],
-        [t389, 0.0, 0.0, 0.0, t383, t378, 0.00022],
+        [t1, r0[22], r0[34], r0[46], r0[23], r0[35], r0[47]],
+        [r0[22], r0[0], r0[2], r0[4], 0.0, 0.0, 0.0],
+        [r0[34], r0[6], r0[8], r0[10], 0.0, 0.0, 0.0],
+        [r0[46], r0[12], r0[14], r0[16], 0.0, 0.0, 0.0],
+        [r0[23], 0.0, 0.0, 0.0, r0[1], r0[3], r0[5]],
+        [r0[35], 0.0, 0.0, 0.0, r0[7], r0[9], r0[11]],
+        [r0[47], 0.0, 0.0, 0.0, r0[13], r0[15], r0[17]],
     ]
 }
 /// The mass matrix M(q) by the composite-rigid-body algorithm (symmetric, `[row][col]`).
@@ -1134,10 +1433,561 @@ unsafe fn mass_matrix_avx2_fma(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
         &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
     )
 }
+/// One branch of [`bias_forces_sc`] (3 joints), run for each of those that hang alike from `torso`, from `left_shoulder_joint`, `right_shoulder_joint` on. Takes its constants `k` (a row of [`BIAS_FORCES_BRANCH0`]) and its parent's motion `m` (ω, ω̇, the origin's acceleration and U = [ω̇×] + [ω×][ω×] row by row, in the parent's frame) and its joints' state; returns their τ, then the wrench it puts on its parent (moment, force; parent frame).
+///
+/// Written over registers `V` of branches (lane l of each register one branch, the operations of `Lanes`, the bits of scalar code in every lane); run by [`bias_forces_branch0_run`].
+#[allow(
+    clippy::approx_constant,
+    clippy::excessive_precision,
+    clippy::unreadable_literal,
+    clippy::too_many_lines
+)]
+#[inline(always)]
+#[allow(dead_code)]
+fn bias_forces_branch0<I: Isa, V: Lanes>(
+    k: &[V; 49],
+    m: &[V; 18],
+    s: &[V; 3],
+    c: &[V; 3],
+    qd: &[V; 3],
+) -> [V; 9] {
+    let t0 = c[0].mul(k[3]);
+    let t1 = s[0].mul_add::<I>(k[1], t0);
+    let t2 = c[0].mul(k[1]);
+    let t3 = s[0].neg().mul_add::<I>(k[3], t2);
+    let t4 = c[0].mul(k[6]);
+    let t5 = s[0].mul_add::<I>(k[4], t4);
+    let t6 = c[0].mul(k[4]);
+    let t7 = s[0].neg().mul_add::<I>(k[6], t6);
+    let t8 = V::splat(0.9800665778412416).mul(c[0]);
+    let t9 = V::splat(0.9800665778412416).mul(s[0]);
+    let t10 = k[0].mul(m[10]);
+    let t11 = V::splat(0.45).mul_add::<I>(m[11], t10);
+    let t12 = k[0].mul(m[13]);
+    let t13 = V::splat(0.45).mul_add::<I>(m[14], t12);
+    let t14 = k[0].mul(m[16]);
+    let t15 = V::splat(0.45).mul_add::<I>(m[17], t14);
+    let t16 = m[6].add(t11);
+    let t17 = m[7].add(t13);
+    let t18 = m[8].add(t15);
+    let t19 = m[3].mul(t3);
+    let t20 = m[4].mul_add::<I>(t7, t19);
+    let t21 = m[5].neg().mul_add::<I>(t9, t20);
+    let t22 = m[3].mul(k[2]);
+    let t23 = m[4].mul_add::<I>(k[5], t22);
+    let t24 = m[5].mul_add::<I>(k[7], t23);
+    let t25 = m[3].mul(t1);
+    let t26 = m[4].mul_add::<I>(t5, t25);
+    let t27 = m[5].mul_add::<I>(t8, t26);
+    let t28 = m[0].mul(t3);
+    let t29 = m[1].mul_add::<I>(t7, t28);
+    let t30 = m[2].neg().mul_add::<I>(t9, t29);
+    let t31 = m[1].mul(k[5]);
+    let t32 = m[0].mul(t1);
+    let t33 = m[1].mul_add::<I>(t5, t32);
+    let t34 = m[2].mul_add::<I>(t8, t33);
+    let t35 = t3.mul(t16);
+    let t36 = t7.mul_add::<I>(t17, t35);
+    let t37 = t9.neg().mul_add::<I>(t18, t36);
+    let t38 = k[2].mul(t16);
+    let t39 = k[5].mul_add::<I>(t17, t38);
+    let t40 = k[7].mul_add::<I>(t18, t39);
+    let t41 = t1.mul(t16);
+    let t42 = t5.mul_add::<I>(t17, t41);
+    let t43 = t8.mul_add::<I>(t18, t42);
+    let t44 = m[0].mul_add::<I>(k[2], qd[0]);
+    let t45 = m[2].mul_add::<I>(k[7], t31);
+    let t46 = t44.add(t45);
+    let t47 = qd[0].neg().mul_add::<I>(t34, t21);
+    let t48 = qd[0].mul_add::<I>(t30, t27);
+    let t49 = t43.mul(k[8]);
+    let t50 = t40.mul(k[8]);
+    let t51 = t46.mul(t46);
+    let t52 = t34.mul(t34);
+    let t53 = t30.mul(t46);
+    let t54 = t30.mul(t34);
+    let t55 = t34.mul(t46);
+    let t56 = qd[0].mul_add::<I>(t34, t21.neg());
+    let t57 = t51.add(t52);
+    let t58 = t30.mul_add::<I>(t30, t51);
+    let t59 = t53.sub(t48);
+    let t60 = t48.add(t53);
+    let t61 = t24.add(t54);
+    let t62 = t54.sub(t24);
+    let t63 = t55.add(t56);
+    let t64 = t47.add(t55);
+    let t65 = k[8].mul(t57);
+    let t66 = k[9].mul_add::<I>(t61, t65.neg());
+    let t67 = k[8].mul(t60);
+    let t68 = k[9].mul_add::<I>(t63, t67);
+    let t69 = k[9].mul(t58);
+    let t70 = k[8].mul_add::<I>(t62, t69.neg());
+    let t71 = t51.sub(t52);
+    let t72 = k[14].mul(t71);
+    let t73 = k[11].sub(k[10]);
+    let t74 = t55.mul(t73);
+    let t75 = t24.mul(k[10]);
+    let t76 = t30.neg().mul_add::<I>(t30, t52);
+    let t77 = t48.mul(k[11]);
+    let t78 = k[14].mul_add::<I>(t61, t77);
+    let t79 = k[13].neg().mul_add::<I>(t63, t78);
+    let t80 = t30.mul_add::<I>(t30, t51.neg());
+    let t81 = V::splat(1.0).sub(c[1]);
+    let t82 = t81.mul(k[16]);
+    let t83 = s[1].mul(k[17]);
+    let t84 = s[1].mul(k[18]);
+    let t85 = t81.mul_add::<I>(k[19], c[1]);
+    let t86 = t81.mul_add::<I>(k[20], c[1]);
+    let t87 = t57.mul(k[15]);
+    let t88 = V::splat(0.3).mul_add::<I>(t61, t87);
+    let t89 = t60.mul(k[15]);
+    let t90 = V::splat(-0.3).mul_add::<I>(t63, t89);
+    let t91 = V::splat(0.3).mul(t58);
+    let t92 = t62.mul_add::<I>(k[15], t91);
+    let t93 = t37.sub(t88);
+    let t94 = t40.add(t90);
+    let t95 = t43.add(t92);
+    let t96 = t24.mul(t84);
+    let t97 = t47.mul_add::<I>(c[1], t96);
+    let t98 = t48.neg().mul_add::<I>(t83, t97);
+    let t99 = t24.mul(t85);
+    let t100 = t47.neg().mul_add::<I>(t84, t99);
+    let t101 = t48.mul_add::<I>(t82, t100);
+    let t102 = t24.mul(t82);
+    let t103 = t47.mul_add::<I>(t83, t102);
+    let t104 = t48.mul_add::<I>(t86, t103);
+    let t105 = t46.mul(t84);
+    let t106 = t30.mul_add::<I>(c[1], t105);
+    let t107 = t34.neg().mul_add::<I>(t83, t106);
+    let t108 = t46.mul(t85);
+    let t109 = t30.neg().mul_add::<I>(t84, t108);
+    let t110 = t34.mul_add::<I>(t82, t109);
+    let t111 = t46.mul(t82);
+    let t112 = t30.mul_add::<I>(t83, t111);
+    let t113 = t34.mul_add::<I>(t86, t112);
+    let t114 = c[1].mul(t93);
+    let t115 = t83.neg().mul_add::<I>(t95, t114);
+    let t116 = t84.mul_add::<I>(t94, t115);
+    let t117 = t82.mul(t95);
+    let t118 = t84.neg().mul_add::<I>(t93, t117);
+    let t119 = t85.mul_add::<I>(t94, t118);
+    let t120 = t83.mul(t93);
+    let t121 = t86.mul_add::<I>(t95, t120);
+    let t122 = t82.mul_add::<I>(t94, t121);
+    let t123 = qd[1].mul(k[17]);
+    let t124 = qd[1].mul(k[18]);
+    let t125 = t110.add(t123);
+    let t126 = t113.add(t124);
+    let t127 = t110.mul(t124);
+    let t128 = t113.neg().mul_add::<I>(t123, t127);
+    let t129 = t98.add(t128);
+    let t130 = t107.neg().mul_add::<I>(t124, t101);
+    let t131 = t107.mul_add::<I>(t123, t104);
+    let t132 = t122.mul(k[23]);
+    let t133 = t119.neg().mul_add::<I>(k[24], t132);
+    let t134 = t116.mul(k[24]);
+    let t135 = t122.neg().mul_add::<I>(k[22], t134);
+    let t136 = t119.mul(k[22]);
+    let t137 = t116.neg().mul_add::<I>(k[23], t136);
+    let t138 = t107.mul(t107);
+    let t139 = t125.mul(t125);
+    let t140 = t107.mul(t125);
+    let t141 = t107.mul(t126);
+    let t142 = t125.mul(t126);
+    let t143 = t126.mul_add::<I>(t126, t139);
+    let t144 = t126.mul_add::<I>(t126, t138);
+    let t145 = t138.add(t139);
+    let t146 = t140.sub(t131);
+    let t147 = t131.add(t140);
+    let t148 = t130.add(t141);
+    let t149 = t141.sub(t130);
+    let t150 = t142.sub(t129);
+    let t151 = t129.add(t142);
+    let t152 = k[23].mul(t146);
+    let t153 = k[22].neg().mul_add::<I>(t143, t152);
+    let t154 = k[24].mul_add::<I>(t148, t153);
+    let t155 = k[23].mul(t144);
+    let t156 = k[22].mul_add::<I>(t147, t155.neg());
+    let t157 = k[24].mul_add::<I>(t150, t156);
+    let t158 = k[23].mul(t151);
+    let t159 = k[24].mul(t145);
+    let t160 = t116.mul_add::<I>(k[21], t154);
+    let t161 = t119.mul_add::<I>(k[21], t157);
+    let t162 = k[29].mul(t147);
+    let t163 = t126.neg().mul_add::<I>(t126, t139);
+    let t164 = k[27].sub(k[26]);
+    let t165 = t142.mul(t164);
+    let t166 = t130.mul(k[26]);
+    let t167 = t126.mul_add::<I>(t126, t138.neg());
+    let t168 = k[29].mul(t167);
+    let t169 = k[25].sub(k[27]);
+    let t170 = t131.mul(k[27]);
+    let t171 = t138.sub(t139);
+    let t172 = k[28].mul(t171);
+    let t173 = k[26].sub(k[25]);
+    let t174 = V::splat(1.0).sub(c[2]);
+    let t175 = s[2].mul(k[40]);
+    let t176 = s[2].mul(k[41]);
+    let t177 = t174.mul_add::<I>(k[40], c[2]);
+    let t178 = t174.mul_add::<I>(k[41], c[2]);
+    let t179 = k[32].mul(t176);
+    let t180 = k[31].mul_add::<I>(t177, t179);
+    let t181 = k[32].mul(c[2]);
+    let t182 = k[31].neg().mul_add::<I>(t176, t181);
+    let t183 = k[33].mul_add::<I>(t175, t182);
+    let t184 = k[32].mul(t175);
+    let t185 = k[33].mul_add::<I>(t178, t184.neg());
+    let t186 = k[35].mul(t176);
+    let t187 = k[34].mul_add::<I>(t177, t186);
+    let t188 = k[35].mul(c[2]);
+    let t189 = k[34].neg().mul_add::<I>(t176, t188);
+    let t190 = k[36].mul_add::<I>(t175, t189);
+    let t191 = k[35].mul(t175);
+    let t192 = k[36].mul_add::<I>(t178, t191.neg());
+    let t193 = k[37].mul(t177);
+    let t194 = k[38].mul(t175);
+    let t195 = k[37].neg().mul_add::<I>(t176, t194);
+    let t196 = k[38].mul(t178);
+    let t197 = t148.mul_add::<I>(k[39], t116);
+    let t198 = t150.mul_add::<I>(k[39], t119);
+    let t199 = t145.neg().mul_add::<I>(k[39], t122);
+    let t200 = t130.mul(t187);
+    let t201 = t129.mul_add::<I>(t180, t200);
+    let t202 = t131.mul_add::<I>(t193, t201);
+    let t203 = t130.mul(t190);
+    let t204 = t129.mul_add::<I>(t183, t203);
+    let t205 = t131.mul_add::<I>(t195, t204);
+    let t206 = t130.mul(t192);
+    let t207 = t129.mul_add::<I>(t185, t206);
+    let t208 = t131.mul_add::<I>(t196, t207);
+    let t209 = t107.mul(t180);
+    let t210 = t125.mul_add::<I>(t187, t209);
+    let t211 = t126.mul_add::<I>(t193, t210);
+    let t212 = t107.mul(t183);
+    let t213 = t125.mul_add::<I>(t190, t212);
+    let t214 = t126.mul_add::<I>(t195, t213);
+    let t215 = t107.mul(t185);
+    let t216 = t125.mul_add::<I>(t192, t215);
+    let t217 = t126.mul_add::<I>(t196, t216);
+    let t218 = t180.mul(t197);
+    let t219 = t187.mul_add::<I>(t198, t218);
+    let t220 = t193.mul_add::<I>(t199, t219);
+    let t221 = t183.mul(t197);
+    let t222 = t190.mul_add::<I>(t198, t221);
+    let t223 = t195.mul_add::<I>(t199, t222);
+    let t224 = t185.mul(t197);
+    let t225 = t192.mul_add::<I>(t198, t224);
+    let t226 = t196.mul_add::<I>(t199, t225);
+    let t227 = qd[2].mul(k[40]);
+    let t228 = qd[2].mul(k[41]);
+    let t229 = t211.add(t227);
+    let t230 = t217.add(t228);
+    let t231 = t217.mul(t227);
+    let t232 = t211.neg().mul_add::<I>(t228, t231);
+    let t233 = t214.mul_add::<I>(t228, t202);
+    let t234 = t205.add(t232);
+    let t235 = t214.neg().mul_add::<I>(t227, t208);
+    let t236 = t214.mul(t214);
+    let t237 = t230.mul(t230);
+    let t238 = t214.mul(t229);
+    let t239 = t229.mul(t230);
+    let t240 = t214.mul(t230);
+    let t241 = t236.add(t237);
+    let t242 = t229.mul_add::<I>(t229, t236);
+    let t243 = t235.add(t238);
+    let t244 = t234.add(t239);
+    let t245 = t239.sub(t234);
+    let t246 = t240.sub(t233);
+    let t247 = t233.add(t240);
+    let t248 = k[42].mul(t241);
+    let t249 = k[43].mul_add::<I>(t244, t248.neg());
+    let t250 = k[42].mul(t243);
+    let t251 = k[43].mul_add::<I>(t246, t250);
+    let t252 = k[43].mul(t242);
+    let t253 = k[42].mul_add::<I>(t245, t252.neg());
+    let t254 = k[48].mul(t243);
+    let t255 = k[46].sub(k[45]);
+    let t256 = t240.mul(t255);
+    let t257 = t229.neg().mul_add::<I>(t229, t237);
+    let t258 = k[48].mul(t257);
+    let t259 = k[44].sub(k[46]);
+    let t260 = t239.mul(t259);
+    let t261 = t229.mul_add::<I>(t229, t236.neg());
+    let t262 = k[47].mul(t261);
+    let t263 = k[45].sub(k[44]);
+    let t264 = t238.mul(t263);
+    let t265 = t233.mul_add::<I>(k[44], t256);
+    let t266 = k[47].neg().mul_add::<I>(t245, t254);
+    let t267 = t223.neg().mul_add::<I>(k[43], t265);
+    let t268 = t266.add(t267);
+    let t269 = t234.mul_add::<I>(k[45], t260);
+    let t270 = k[47].mul_add::<I>(t247, t258);
+    let t271 = t220.mul_add::<I>(k[43], t269);
+    let t272 = t226.neg().mul_add::<I>(k[42], t270);
+    let t273 = t271.add(t272);
+    let t274 = t235.mul_add::<I>(k[46], t264);
+    let t275 = k[48].neg().mul_add::<I>(t246, t262);
+    let t276 = t223.mul_add::<I>(k[42], t274);
+    let t277 = t275.add(t276);
+    let t278 = k[40].mul(t268);
+    let t279 = k[41].mul_add::<I>(t277, t278);
+    let t280 = t180.mul(t249);
+    let t281 = t183.mul_add::<I>(t251, t280);
+    let t282 = t185.mul_add::<I>(t253, t281);
+    let t283 = t187.mul(t249);
+    let t284 = t190.mul_add::<I>(t251, t283);
+    let t285 = t192.mul_add::<I>(t253, t284);
+    let t286 = t196.mul(t253);
+    let t287 = t183.mul(t273);
+    let t288 = t190.mul(t273);
+    let t289 = t195.mul(t273);
+    let t290 = t129.mul_add::<I>(k[25], t165);
+    let t291 = k[30].mul_add::<I>(t163, t162);
+    let t292 = k[28].neg().mul_add::<I>(t149, t290);
+    let t293 = t291.add(t292);
+    let t294 = t133.add(t293);
+    let t295 = t180.mul_add::<I>(t268, t294);
+    let t296 = t185.mul_add::<I>(t277, t287);
+    let t297 = k[39].neg().mul_add::<I>(t285, t295);
+    let t298 = t296.add(t297);
+    let t299 = t141.mul_add::<I>(t169, t166);
+    let t300 = k[28].mul_add::<I>(t151, t168);
+    let t301 = k[30].neg().mul_add::<I>(t146, t299);
+    let t302 = t300.add(t301);
+    let t303 = t135.add(t302);
+    let t304 = t187.mul_add::<I>(t268, t303);
+    let t305 = t192.mul_add::<I>(t277, t288);
+    let t306 = k[39].mul_add::<I>(t282, t304);
+    let t307 = t305.add(t306);
+    let t308 = t140.mul_add::<I>(t173, t170);
+    let t309 = k[30].mul_add::<I>(t148, t172);
+    let t310 = k[29].neg().mul_add::<I>(t150, t308);
+    let t311 = t309.add(t310);
+    let t312 = t137.add(t311);
+    let t313 = t193.mul_add::<I>(t268, t312);
+    let t314 = t196.mul_add::<I>(t277, t289);
+    let t315 = t313.add(t314);
+    let t316 = t160.add(t282);
+    let t317 = t161.add(t285);
+    let t318 = k[22].mul_add::<I>(t149, t159.neg());
+    let t319 = t122.mul_add::<I>(k[21], t158);
+    let t320 = t318.add(t319);
+    let t321 = t193.mul_add::<I>(t249, t320);
+    let t322 = t195.mul_add::<I>(t251, t286);
+    let t323 = t321.add(t322);
+    let t324 = k[17].mul(t307);
+    let t325 = k[18].mul_add::<I>(t315, t324);
+    let t326 = c[1].mul(t316);
+    let t327 = t84.neg().mul_add::<I>(t317, t326);
+    let t328 = t83.mul_add::<I>(t323, t327);
+    let t329 = t84.mul(t316);
+    let t330 = t85.mul_add::<I>(t317, t329);
+    let t331 = t82.mul_add::<I>(t323, t330);
+    let t332 = t82.mul(t317);
+    let t333 = t83.neg().mul_add::<I>(t316, t332);
+    let t334 = t86.mul_add::<I>(t323, t333);
+    let t335 = c[1].mul(t298);
+    let t336 = t84.neg().mul_add::<I>(t307, t335);
+    let t337 = t84.mul(t298);
+    let t338 = t85.mul_add::<I>(t307, t337);
+    let t339 = t82.mul(t307);
+    let t340 = t83.neg().mul_add::<I>(t298, t339);
+    let t341 = t40.neg().mul_add::<I>(k[9], t74);
+    let t342 = k[12].neg().mul_add::<I>(t62, t72);
+    let t343 = k[13].mul_add::<I>(t60, t341);
+    let t344 = t342.add(t343);
+    let t345 = t83.mul_add::<I>(t315, t344);
+    let t346 = V::splat(0.3).mul_add::<I>(t331, t345);
+    let t347 = t336.add(t346);
+    let t348 = t37.mul_add::<I>(k[9], t75);
+    let t349 = k[11].mul_add::<I>(t54, t49);
+    let t350 = k[13].mul_add::<I>(t76, t348);
+    let t351 = k[12].mul_add::<I>(t64, t349.neg());
+    let t352 = k[14].neg().mul_add::<I>(t59, t350);
+    let t353 = t351.add(t352);
+    let t354 = t82.mul_add::<I>(t315, t353);
+    let t355 = V::splat(-0.3).mul_add::<I>(t328, t354);
+    let t356 = k[15].neg().mul_add::<I>(t334, t338);
+    let t357 = t355.add(t356);
+    let t358 = k[10].mul_add::<I>(t53, t50);
+    let t359 = k[12].mul_add::<I>(t80, t358);
+    let t360 = t79.add(t359);
+    let t361 = t86.mul_add::<I>(t315, t360);
+    let t362 = k[15].mul_add::<I>(t331, t361);
+    let t363 = t340.add(t362);
+    let t364 = t66.add(t328);
+    let t365 = t68.add(t331);
+    let t366 = t70.add(t334);
+    let t367 = t3.mul(t364);
+    let t368 = k[2].mul_add::<I>(t365, t367);
+    let t369 = t1.mul_add::<I>(t366, t368);
+    let t370 = t7.mul(t364);
+    let t371 = k[5].mul_add::<I>(t365, t370);
+    let t372 = t5.mul_add::<I>(t366, t371);
+    let t373 = k[7].mul(t365);
+    let t374 = t9.neg().mul_add::<I>(t364, t373);
+    let t375 = t8.mul_add::<I>(t366, t374);
+    let t376 = t3.mul(t347);
+    let t377 = k[2].mul_add::<I>(t357, t376);
+    let t378 = t1.mul_add::<I>(t363, t377);
+    let t379 = t7.mul(t347);
+    let t380 = k[5].mul_add::<I>(t357, t379);
+    let t381 = t5.mul_add::<I>(t363, t380);
+    let t382 = t9.mul(t347);
+    let t383 = k[7].mul_add::<I>(t357, t382.neg());
+    let t384 = t8.mul_add::<I>(t363, t383);
+    let t385 = k[0].mul(t375);
+    let t386 = V::splat(-0.45).mul_add::<I>(t372, t385);
+    let t387 = t378.add(t386);
+    let t388 = V::splat(0.45).mul_add::<I>(t369, t381);
+    let t389 = k[0].neg().mul_add::<I>(t369, t384);
+    [t357, t325, t279, t387, t388, t389, t369, t372, t375]
+}
+/// Runs [`bias_forces_branch0`] on the 2 branches of [`BIAS_FORCES_BRANCH0`], `W` to a register: each lane's results to its row of `r` (9 a branch). Takes the rows of each branch's inputs.
+#[inline(always)]
+#[allow(dead_code)]
+fn bias_forces_branch0_run<I: Isa, const W: usize>(
+    m: &[f64; 18],
+    s: &[[f64; 3]; 2],
+    c: &[[f64; 3]; 2],
+    qd: &[[f64; 3]; 2],
+    r: &mut [f64; 18],
+)
+where
+    [f64; W]: ToLanes,
+{
+    let m = branch_splat::<<[f64; W] as ToLanes>::V, 18>(m);
+    let mut l = 0;
+    while l < 2 {
+        let out = bias_forces_branch0::<
+            I,
+            <[f64; W] as ToLanes>::V,
+        >(
+            &branch_lanes::<W, 49, 2>(&BIAS_FORCES_BRANCH0, l),
+            &m,
+            &branch_lanes::<W, 3, 2>(s, l),
+            &branch_lanes::<W, 3, 2>(c, l),
+            &branch_lanes::<W, 3, 2>(qd, l),
+        );
+        branch_rows::<_, W, 9, 18>(&out, r, l);
+        l += W;
+    }
+}
+/// The constants of [`bias_forces_branch0`], one row per branch: `left_shoulder_joint`, `right_shoulder_joint`.
+#[allow(
+    clippy::approx_constant,
+    clippy::excessive_precision,
+    clippy::unreadable_literal
+)]
+#[allow(dead_code)]
+const BIAS_FORCES_BRANCH0: [[f64; 49]; 2] = [
+    [
+        0.18,
+        1.0,
+        0.0,
+        0.0,
+        0.0,
+        0.9800665778412416,
+        -0.19866933079506122,
+        0.19866933079506122,
+        0.018000000000000002,
+        -0.25200000000000006,
+        0.051460000000000006,
+        -0.048100000000000004,
+        0.0,
+        0.0030200000000000005,
+        0.0,
+        0.0,
+        0.5000000000000001,
+        0.7071067811865476,
+        0.7071067811865476,
+        0.5000000000000001,
+        0.5000000000000001,
+        2.3,
+        0.0026327476856711184,
+        0.001438276615812609,
+        -0.45599999999999996,
+        0.11248370112100659,
+        0.11237803875603204,
+        0.0013082601229613597,
+        5.72628672892178e-6,
+        0.0007227573213207296,
+        0.00021714363512649699,
+        0.8383866435942036,
+        -0.479425538604203,
+        0.2593433800522308,
+        0.45801271084729195,
+        0.8775825618903728,
+        0.1416799342470381,
+        -0.29552020666133955,
+        0.955336489125606,
+        -0.3,
+        1.0,
+        0.0,
+        0.0,
+        -0.02,
+        0.001,
+        0.0009,
+        0.0,
+        0.0,
+        1e-5,
+    ],
+    [
+        -0.18,
+        0.9950041652780258,
+        -0.09784339500725571,
+        -0.019833838076209875,
+        0.09983341664682815,
+        0.975170327201816,
+        0.19767681165408388,
+        -0.19866933079506122,
+        0.0,
+        -0.3,
+        0.062,
+        -0.06049999999999999,
+        0.0003,
+        0.0,
+        -0.0026,
+        0.02,
+        0.48,
+        0.8,
+        0.6,
+        0.6400000000000001,
+        0.36,
+        1.7,
+        0.0,
+        0.0,
+        -0.347,
+        0.09009,
+        0.09019,
+        0.0008,
+        0.0,
+        0.0002,
+        0.0,
+        0.9210609940028851,
+        0.3894183423086505,
+        0.0,
+        -0.3894183423086505,
+        0.9210609940028851,
+        0.0,
+        0.0,
+        1.0,
+        -0.28,
+        0.0,
+        1.0,
+        0.006999999999999999,
+        0.0,
+        -0.0001200000000000001,
+        0.0,
+        0.00022,
+        -2e-5,
+        0.00020999999999999998,
+    ],
+];
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///
 /// Joint order: [`JOINT_NAMES`]; rad, m, s, N·m, N; gravity [0.0, 0.0, -9.81] m/s² in the base frame.
-/// 701 ops: 183 add, 128 sub, 390 mul, 0 div, 0 neg, 0 sqrt, 0 sin_cos; 229 fused multiply-adds, 486 FP ops with each fused = 1.
+/// 3 ops: 1 add, 0 sub, 1 mul, 0 div, 1 neg, 0 sqrt, 0 sin_cos.
 ///
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read.
 #[allow(dead_code)]
@@ -1174,493 +2024,37 @@ fn bias_forces_sc_on<I: Isa>(
     c: &[f64; DOF],
     qd: &[f64; DOF],
 ) -> [f64; DOF] {
+    let _ = s;
+    let _ = c;
     let t0 = qd[0] * qd[0];
-    let t1 = 0.19866933079506122 * c[1];
-    let t2 = 0.19866933079506122 * s[1];
-    let t3 = 0.9800665778412416 * c[1];
-    let t4 = 0.9800665778412416 * s[1];
-    let t5 = 0.18 * t0;
-    let t6 = qd[0] * t4;
-    let t7 = qd[0] * t3;
-    let t8 = 9.61445312862258 * s[1];
-    let t9 = I::fma(t2, t5, t8);
-    let t10 = I::fma(-0.1764119840114235, t0, 1.9489461350995507);
-    let t11 = 9.61445312862258 * c[1];
-    let t12 = I::fma(t1, t5, t11);
-    let t13 = I::fma(0.19866933079506122, qd[0], qd[1]);
-    let t14 = qd[1] * t6;
-    let t15 = qd[1] * t7;
-    let t16 = 0.25200000000000006 * t10;
-    let t17 = 0.25200000000000006 * t9;
-    let t18 = 0.018000000000000002 * t12;
-    let t19 = 0.018000000000000002 * t10;
-    let t20 = t13 * t13;
-    let t21 = t7 * t7;
-    let t22 = t6 * t13;
-    let t23 = t6 * t7;
-    let t24 = t7 * t13;
-    let t25 = t20 + t21;
-    let t26 = I::fma(t6, t6, t20);
-    let t27 = t14 + t22;
-    let t28 = t15 + t24;
-    let t29 = 0.25200000000000006 * t23;
-    let t30 = I::fma(-0.018000000000000002, t25, t29);
-    let t31 = 0.25200000000000006 * t26;
-    let t32 = I::fma(-0.018000000000000002, t23, t31);
-    let t33 = I::fma(-t6, t6, t21);
-    let t34 = 0.051460000000000006 * t22;
-    let t35 = 1.0 - c[2];
-    let t36 = 0.5000000000000001 * t35;
-    let t37 = 0.7071067811865476 * s[2];
-    let t38 = c[2] + t36;
-    let t39 = I::fma(0.3, t23, -t9);
-    let t40 = I::fma(-0.3, t28, t10);
-    let t41 = I::fma(0.3, t26, t12);
-    let t42 = t14 * t37;
-    let t43 = I::fma(-t15, c[2], t42);
-    let t44 = t15 * t37;
-    let t45 = I::fma(-t14, t36, t44);
-    let t46 = I::fma(t14, t38, t44);
-    let t47 = t13 * t37;
-    let t48 = I::fma(-t6, c[2], t47);
-    let t49 = I::fma(-t7, t37, t48);
-    let t50 = t6 * t37;
-    let t51 = I::fma(t7, t36, t50);
-    let t52 = I::fma(t13, t38, t51);
-    let t53 = t13 * t36;
-    let t54 = t53 - t50;
-    let t55 = I::fma(t7, t38, t54);
-    let t56 = c[2] * t39;
-    let t57 = I::fma(t37, t40, t56);
-    let t58 = I::fma(-t37, t41, t57);
-    let t59 = t37 * t39;
-    let t60 = I::fma(t38, t40, -t59);
-    let t61 = I::fma(t36, t41, t60);
-    let t62 = I::fma(t36, t40, t59);
-    let t63 = I::fma(t38, t41, t62);
-    let t64 = 0.7071067811865476 * qd[2];
-    let t65 = t52 + t64;
-    let t66 = t55 + t64;
-    let t67 = t52 - t55;
-    let t68 = I::fma(t64, t67, t43);
-    let t69 = I::fma(-t49, t64, t45);
-    let t70 = I::fma(t49, t64, -t46);
-    let t71 = 2.3 * t63;
-    let t72 = 0.001438276615812609 * t63;
-    let t73 = 0.45599999999999996 * t58;
-    let t74 = I::fma(0.0026327476856711184, t63, t73);
-    let t75 = 0.001438276615812609 * t58;
-    let t76 = t49 * t49;
-    let t77 = t65 * t65;
-    let t78 = t49 * t65;
-    let t79 = t49 * t66;
-    let t80 = t65 * t66;
-    let t81 = I::fma(t49, t64, -t45);
-    let t82 = I::fma(t66, t66, t77);
-    let t83 = I::fma(t66, t66, t76);
-    let t84 = t76 + t77;
-    let t85 = t78 - t70;
-    let t86 = t70 + t78;
-    let t87 = t69 + t79;
-    let t88 = t79 + t81;
-    let t89 = t80 - t68;
-    let t90 = t68 + t80;
-    let t91 = 0.001438276615812609 * t85;
-    let t92 = I::fma(-0.0026327476856711184, t82, t91);
-    let t93 = I::fma(-0.45599999999999996, t87, t92);
-    let t94 = 0.001438276615812609 * t83;
-    let t95 = I::fma(0.0026327476856711184, t86, -t94);
-    let t96 = I::fma(-0.45599999999999996, t89, t95);
-    let t97 = 0.45599999999999996 * t84;
-    let t98 = I::fma(2.3, t58, t93);
-    let t99 = I::fma(2.3, t61, t96);
-    let t100 = 0.11248370112100659 * t68;
-    let t101 = 0.0007227573213207296 * t86;
-    let t102 = I::fma(-t66, t66, t77);
-    let t103 = 0.11237803875603204 * t69;
-    let t104 = I::fma(t66, t66, -t76);
-    let t105 = 0.0007227573213207296 * t104;
-    let t106 = 0.0013082601229613597 * t70;
-    let t107 = t76 - t77;
-    let t108 = 5.72628672892178e-6 * t107;
-    let t109 = 0.2593433800522308 * s[3];
-    let t110 = I::fma(-0.479425538604203, c[3], t109);
-    let t111 = 0.2593433800522308 * c[3];
-    let t112 = I::fma(0.479425538604203, s[3], t111);
-    let t113 = 0.8775825618903728 * c[3];
-    let t114 = I::fma(0.1416799342470381, s[3], t113);
-    let t115 = 0.1416799342470381 * c[3];
-    let t116 = I::fma(-0.8775825618903728, s[3], t115);
-    let t117 = 0.955336489125606 * s[3];
-    let t118 = 0.955336489125606 * c[3];
-    let t119 = I::fma(-0.3, t87, t58);
-    let t120 = I::fma(-0.3, t89, t61);
-    let t121 = I::fma(0.3, t84, t63);
-    let t122 = 0.45801271084729195 * t69;
-    let t123 = I::fma(0.8383866435942036, t68, t122);
-    let t124 = I::fma(-0.29552020666133955, t70, t123);
-    let t125 = t69 * t114;
-    let t126 = t69 * t116;
-    let t127 = 0.45801271084729195 * t65;
-    let t128 = t49 * t110;
-    let t129 = I::fma(t65, t114, t128);
-    let t130 = I::fma(t66, t117, t129);
-    let t131 = t49 * t112;
-    let t132 = I::fma(t65, t116, t131);
-    let t133 = I::fma(t66, t118, t132);
-    let t134 = 0.29552020666133955 * t121;
-    let t135 = I::fma(0.8383866435942036, t119, -t134);
-    let t136 = I::fma(0.45801271084729195, t120, t135);
-    let t137 = t117 * t121;
-    let t138 = I::fma(t110, t119, t137);
-    let t139 = I::fma(t114, t120, t138);
-    let t140 = I::fma(0.8383866435942036, t49, qd[3]);
-    let t141 = I::fma(-0.29552020666133955, t66, t127);
-    let t142 = t140 + t141;
-    let t143 = I::fma(t70, t117, t125);
-    let t144 = I::fma(t68, t110, t143);
-    let t145 = I::fma(qd[3], t133, t144);
-    let t146 = t130 * t130;
-    let t147 = t133 * t133;
-    let t148 = t130 * t142;
-    let t149 = t133 * t142;
-    let t150 = t130 * t133;
-    let t151 = I::fma(0.29552020666133955, t70, -t123);
-    let t152 = I::fma(t142, t142, t146);
-    let t153 = I::fma(t70, t118, t126);
-    let t154 = I::fma(t68, t112, t153);
-    let t155 = I::fma(-qd[3], t130, t148);
-    let t156 = t154 + t155;
-    let t157 = t145 + t149;
-    let t158 = t150 + t151;
-    let t159 = 0.02 * t158;
-    let t160 = 0.02 * t152;
-    let t161 = 0.001 * t124;
-    let t162 = 0.0009 * t145;
-    let t163 = I::fma(-t142, t142, t147);
-    let t164 = I::fma(1e-5, t163, t162);
-    let t165 = I::fma(0.001, t149, t164);
-    let t166 = 1e-5 * t158;
-    let t167 = I::fma(0.00010000000000000005, t148, t166);
-    let t168 = I::fma(-0.0009, t150, t161);
-    let t169 = I::fma(1e-5, t156, t168);
-    let t170 = I::fma(0.02, t139, t169);
-    let t171 = I::fma(-0.02, t136, t165);
-    let t172 = 0.9950041652780258 * s[4];
-    let t173 = I::fma(-0.019833838076209875, c[4], t172);
-    let t174 = 0.9950041652780258 * c[4];
-    let t175 = I::fma(0.019833838076209875, s[4], t174);
-    let t176 = 0.19767681165408388 * c[4];
-    let t177 = I::fma(0.09983341664682815, s[4], t176);
-    let t178 = 0.09983341664682815 * c[4];
-    let t179 = I::fma(-0.19767681165408388, s[4], t178);
-    let t180 = 0.9800665778412416 * c[4];
-    let t181 = 0.9800665778412416 * s[4];
-    let t182 = qd[0] * t181;
-    let t183 = qd[0] * t180;
-    let t184 = 9.61445312862258 * s[4];
-    let t185 = I::fma(t5, t179, -t184);
-    let t186 = I::fma(0.17553065889632685, t0, -1.9489461350995507);
-    let t187 = 9.61445312862258 * c[4];
-    let t188 = I::fma(t5, t177, t187);
-    let t189 = I::fma(-0.19866933079506122, qd[0], qd[4]);
-    let t190 = qd[4] * t182;
-    let t191 = qd[4] * t183;
-    let t192 = 0.3 * t186;
-    let t193 = 0.3 * t185;
-    let t194 = t189 * t189;
-    let t195 = t182 * t189;
-    let t196 = t182 * t183;
-    let t197 = t183 * t189;
-    let t198 = I::fma(t183, t183, t194);
-    let t199 = I::fma(t182, t182, t194);
-    let t200 = t190 - t195;
-    let t201 = t190 + t195;
-    let t202 = t191 + t197;
-    let t203 = t197 - t191;
-    let t204 = 0.3 * t202;
-    let t205 = I::fma(-t183, t183, t194);
-    let t206 = 0.0026 * t205;
-    let t207 = 0.06049999999999999 * t196;
-    let t208 = 0.06049999999999999 * t190;
-    let t209 = I::fma(0.0026, t196, t208);
-    let t210 = I::fma(t182, t182, -t194);
-    let t211 = 0.0003 * t210;
-    let t212 = 1.0 - c[5];
-    let t213 = 0.48 * t212;
-    let t214 = 0.8 * s[5];
-    let t215 = 0.6 * s[5];
-    let t216 = I::fma(0.6400000000000001, t212, c[5]);
-    let t217 = I::fma(0.36, t212, c[5]);
-    let t218 = I::fma(0.02, t201, t204);
-    let t219 = I::fma(0.3, t196, t185);
-    let t220 = I::fma(-0.02, t198, t219);
-    let t221 = t186 - t218;
-    let t222 = I::fma(-0.02, t196, t188);
-    let t223 = I::fma(0.3, t199, t222);
-    let t224 = t190 * t214;
-    let t225 = I::fma(-t191, c[5], t224);
-    let t226 = t191 * t215;
-    let t227 = I::fma(-t190, t213, t226);
-    let t228 = t191 * t214;
-    let t229 = I::fma(t190, t217, t228);
-    let t230 = t189 * t215;
-    let t231 = I::fma(-t182, c[5], t230);
-    let t232 = I::fma(-t183, t214, t231);
-    let t233 = t182 * t215;
-    let t234 = I::fma(t183, t213, t233);
-    let t235 = I::fma(t189, t216, t234);
-    let t236 = t189 * t213;
-    let t237 = I::fma(-t182, t214, t236);
-    let t238 = I::fma(t183, t217, t237);
-    let t239 = c[5] * t220;
-    let t240 = I::fma(-t214, t223, t239);
-    let t241 = I::fma(t215, t221, t240);
-    let t242 = t213 * t223;
-    let t243 = I::fma(-t215, t220, t242);
-    let t244 = I::fma(t216, t221, t243);
-    let t245 = t214 * t220;
-    let t246 = I::fma(t217, t223, t245);
-    let t247 = I::fma(t213, t221, t246);
-    let t248 = 0.8 * qd[5];
-    let t249 = 0.6 * qd[5];
-    let t250 = t235 + t248;
-    let t251 = t238 + t249;
-    let t252 = t235 * t249;
-    let t253 = I::fma(-t238, t248, t252);
-    let t254 = t225 + t253;
-    let t255 = I::fma(-t232, t249, t227);
-    let t256 = I::fma(t232, t248, -t229);
-    let t257 = 1.7 * t241;
-    let t258 = 1.7 * t244;
-    let t259 = 0.347 * t244;
-    let t260 = t232 * t232;
-    let t261 = t232 * t250;
-    let t262 = t232 * t251;
-    let t263 = t250 * t251;
-    let t264 = I::fma(t250, t250, t260);
-    let t265 = t256 + t261;
-    let t266 = t255 + t262;
-    let t267 = t263 - t254;
-    let t268 = 0.347 * t264;
-    let t269 = I::fma(-0.347, t266, t257);
-    let t270 = I::fma(-0.347, t267, t258);
-    let t271 = I::fma(1.7, t247, t268);
-    let t272 = 0.08939000000000001 * t263;
-    let t273 = 0.09019 * t255;
-    let t274 = I::fma(t251, t251, -t260);
-    let t275 = 0.0008 * t256;
-    let t276 = I::fma(-0.0002, t267, t275);
-    let t277 = I::fma(0.00010000000000000286, t261, t276);
-    let t278 = 0.9210609940028851 * c[6];
-    let t279 = I::fma(0.3894183423086505, s[6], t278);
-    let t280 = 0.3894183423086505 * c[6];
-    let t281 = 0.9210609940028851 * s[6];
-    let t282 = t280 - t281;
-    let t283 = t281 - t280;
-    let t284 = I::fma(-0.28, t266, t241);
-    let t285 = I::fma(-0.28, t267, t244);
-    let t286 = I::fma(0.28, t264, t247);
-    let t287 = t255 * t283;
-    let t288 = I::fma(t254, t279, t287);
-    let t289 = t232 * t279;
-    let t290 = I::fma(t250, t283, t289);
-    let t291 = t232 * t282;
-    let t292 = I::fma(t250, t279, t291);
-    let t293 = t282 * t284;
-    let t294 = I::fma(t279, t285, t293);
-    let t295 = qd[6] + t251;
-    let t296 = qd[6] * t290;
-    let t297 = I::fma(qd[6], t292, t288);
-    let t298 = t290 * t290;
-    let t299 = t292 * t292;
-    let t300 = t295 * t295;
-    let t301 = t290 * t292;
-    let t302 = t290 * t295;
-    let t303 = t292 * t295;
-    let t304 = t299 + t300;
-    let t305 = t256 + t301;
-    let t306 = I::fma(-t255, t279, t302);
-    let t307 = I::fma(-t254, t282, t296);
-    let t308 = t306 + t307;
-    let t309 = t303 - t297;
-    let t310 = t297 + t303;
-    let t311 = 0.006999999999999999 * t304;
-    let t312 = 0.006999999999999999 * t305;
-    let t313 = 2e-5 * t308;
-    let t314 = 0.00022 * t303;
-    let t315 = I::fma(0.00020999999999999998, t305, t314);
-    let t316 = I::fma(-0.0001200000000000001, t297, t313);
-    let t317 = t315 + t316;
-    let t318 = t300 - t298;
-    let t319 = 0.00034000000000000013 * t302;
-    let t320 = 0.00022 * t256;
-    let t321 = t298 - t299;
-    let t322 = I::fma(0.00020999999999999998, t318, -t319);
-    let t323 = I::fma(-0.006999999999999999, t286, t322);
-    let t324 = I::fma(-2e-5, t310, t323);
-    let t325 = I::fma(0.0001200000000000001, t301, t320);
-    let t326 = I::fma(-2e-5, t321, t325);
-    let t327 = I::fma(-0.00020999999999999998, t309, t326);
-    let t328 = I::fma(0.006999999999999999, t294, t327);
-    let t329 = t282 * t312;
-    let t330 = I::fma(-t279, t311, t329);
-    let t331 = t279 * t312;
-    let t332 = I::fma(-t283, t311, t331);
-    let t333 = t282 * t324;
-    let t334 = I::fma(t279, t317, t333);
-    let t335 = t279 * t324;
-    let t336 = I::fma(t283, t317, t335);
-    let t337 = I::fma(0.09009, t254, -t272);
-    let t338 = I::fma(0.0002, t265, t259);
-    let t339 = t337 + t338;
-    let t340 = I::fma(0.28, t332, t339);
-    let t341 = t334 + t340;
-    let t342 = I::fma(0.08929000000000001, t262, t273);
-    let t343 = I::fma(0.0002, t274, t342);
-    let t344 = I::fma(-0.347, t241, t343);
-    let t345 = I::fma(-0.28, t330, t344);
-    let t346 = t336 + t345;
-    let t347 = t277 + t328;
-    let t348 = t269 + t330;
-    let t349 = t270 + t332;
-    let t350 = I::fma(0.006999999999999999, t308, t271);
-    let t351 = 0.6 * t347;
-    let t352 = I::fma(0.8, t346, t351);
-    let t353 = c[5] * t348;
-    let t354 = I::fma(-t215, t349, t353);
-    let t355 = I::fma(t214, t350, t354);
-    let t356 = t215 * t348;
-    let t357 = I::fma(t216, t349, t356);
-    let t358 = I::fma(t213, t350, t357);
-    let t359 = t213 * t349;
-    let t360 = I::fma(-t214, t348, t359);
-    let t361 = I::fma(t217, t350, t360);
-    let t362 = c[5] * t341;
-    let t363 = I::fma(-t215, t346, t362);
-    let t364 = t215 * t341;
-    let t365 = I::fma(t216, t346, t364);
-    let t366 = t213 * t346;
-    let t367 = I::fma(-t214, t341, t366);
-    let t368 = 0.3 * t355;
-    let t369 = I::fma(0.02, t361, t368);
-    let t370 = I::fma(0.0003, t196, t192);
-    let t371 = I::fma(0.1225, t197, t206);
-    let t372 = t370 - t371;
-    let t373 = I::fma(t214, t347, t372);
-    let t374 = I::fma(0.3, t358, t373);
-    let t375 = t363 + t374;
-    let t376 = I::fma(0.0003, t203, -t207);
-    let t377 = I::fma(0.0026, t200, -t193);
-    let t378 = t376 + t377;
-    let t379 = I::fma(t213, t347, t378);
-    let t380 = t365 + t379;
-    let t381 = t380 - t369;
-    let t382 = I::fma(-0.062, t195, t211);
-    let t383 = t209 + t382;
-    let t384 = I::fma(t217, t347, t383);
-    let t385 = I::fma(0.02, t358, t384);
-    let t386 = t367 + t385;
-    let t387 = I::fma(0.3, t196, t355);
-    let t388 = t358 - t204;
-    let t389 = I::fma(0.3, t199, t361);
-    let t390 = t175 * t387;
-    let t391 = I::fma(-0.09784339500725571, t388, t390);
-    let t392 = I::fma(t173, t389, t391);
-    let t393 = 0.19866933079506122 * t381;
-    let t394 = t180 * t386;
-    let t395 = t112 * t160;
-    let t396 = I::fma(-0.016767732871884072, t157, t395);
-    let t397 = I::fma(-t110, t159, t396);
-    let t398 = t116 * t160;
-    let t399 = I::fma(-0.00916025421694584, t157, t398);
-    let t400 = I::fma(-t114, t159, t399);
-    let t401 = t118 * t160;
-    let t402 = 0.8383866435942036 * t170;
-    let t403 = I::fma(t110, t171, t402);
-    let t404 = 0.45801271084729195 * t170;
-    let t405 = I::fma(t114, t171, t404);
-    let t406 = t117 * t171;
-    let t407 = I::fma(-0.29552020666133955, t170, t406);
-    let t408 = I::fma(-0.11106977863307069, t80, t100);
-    let t409 = I::fma(-5.72628672892178e-6, t88, t101);
-    let t410 = I::fma(0.00021714363512649699, t102, t72);
-    let t411 = I::fma(0.45599999999999996, t61, t408);
-    let t412 = t409 + t410;
-    let t413 = t411 + t412;
-    let t414 = I::fma(-t112, t167, t413);
-    let t415 = I::fma(0.3, t400, t414);
-    let t416 = t403 + t415;
-    let t417 = I::fma(0.11117544099804523, t79, t103);
-    let t418 = I::fma(-0.00021714363512649699, t85, t105);
-    let t419 = I::fma(5.72628672892178e-6, t90, t417);
-    let t420 = t418 + t419;
-    let t421 = t420 - t74;
-    let t422 = I::fma(-t116, t167, t421);
-    let t423 = I::fma(-0.3, t397, t422);
-    let t424 = t405 + t423;
-    let t425 = I::fma(-0.00010566236497454307, t78, t106);
-    let t426 = I::fma(0.00021714363512649699, t87, t108);
-    let t427 = I::fma(0.0026327476856711184, t61, t425);
-    let t428 = I::fma(0.0007227573213207296, t89, t75);
-    let t429 = t426 + t427;
-    let t430 = t429 - t428;
-    let t431 = I::fma(-t118, t167, t430);
-    let t432 = t407 + t431;
-    let t433 = t98 + t397;
-    let t434 = t99 + t400;
-    let t435 = I::fma(0.0026327476856711184, t88, t97);
-    let t436 = I::fma(0.001438276615812609, t90, t71);
-    let t437 = t435 + t436;
-    let t438 = I::fma(0.005910404133226791, t157, t437);
-    let t439 = I::fma(-t117, t159, t401);
-    let t440 = t438 + t439;
-    let t441 = t424 + t432;
-    let t442 = 0.7071067811865476 * t441;
-    let t443 = c[2] * t433;
-    let t444 = I::fma(-t37, t434, t443);
-    let t445 = I::fma(t37, t440, t444);
-    let t446 = t37 * t433;
-    let t447 = I::fma(t38, t434, t446);
-    let t448 = I::fma(t36, t440, t447);
-    let t449 = t38 * t440;
-    let t450 = t37 * t432;
-    let t451 = t38 * t424;
-    let t452 = t38 * t432;
-    let t453 = I::fma(-0.09956000000000001, t24, t16);
-    let t454 = I::fma(-0.0030200000000000005, t27, t453);
-    let t455 = I::fma(c[2], t416, t454);
-    let t456 = I::fma(-t37, t424, t450);
-    let t457 = I::fma(0.3, t448, t455);
-    let t458 = t456 + t457;
-    let t459 = I::fma(-0.048100000000000004, t23, t17);
-    let t460 = I::fma(0.0030200000000000005, t33, -t18);
-    let t461 = t459 + t460;
-    let t462 = I::fma(t37, t416, t461);
-    let t463 = I::fma(t36, t432, t451);
-    let t464 = I::fma(-0.3, t445, t462);
-    let t465 = t463 + t464;
-    let t466 = I::fma(0.048100000000000004, t14, t19);
-    let t467 = I::fma(0.0030200000000000005, t28, t34);
-    let t468 = t466 - t467;
-    let t469 = I::fma(t36, t424, t468);
-    let t470 = I::fma(-t37, t416, t452);
-    let t471 = t469 + t470;
-    let t472 = t30 + t445;
-    let t473 = I::fma(t36, t434, t32);
-    let t474 = t449 - t446;
-    let t475 = t473 + t474;
-    let t476 = s[1] * t475;
-    let t477 = I::fma(c[1], t472, t476);
-    let t478 = 0.19866933079506122 * t465;
-    let t479 = I::fma(-t4, t458, t478);
-    let t480 = I::fma(-t181, t375, t394);
-    let t481 = I::fma(0.18, t392, -t393);
-    let t482 = I::fma(t3, t471, t480);
-    let t483 = I::fma(-0.18, t477, t481);
-    let t484 = t479 + t482;
-    let t485 = t483 + t484;
-    [t485, t465, t442, t170, t381, t352, t328]
+    let t1 = -t0;
+    let m_b0 = [
+        0.0,
+        0.0,
+        qd[0],
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        9.81,
+        t1,
+        0.0,
+        0.0,
+        0.0,
+        t1,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+    ];
+    let s_b0 = [[s[1], s[2], s[3]], [s[4], s[5], s[6]]];
+    let c_b0 = [[c[1], c[2], c[3]], [c[4], c[5], c[6]]];
+    let qd_b0 = [[qd[1], qd[2], qd[3]], [qd[4], qd[5], qd[6]]];
+    let mut r0 = [0.0; 18];
+    bias_forces_branch0_run::<I, 2>(&m_b0, &s_b0, &c_b0, &qd_b0, &mut r0);
+    let t2 = r0[10] + r0[11];
+    [t2, r0[0], r0[2], r0[4], r0[1], r0[3], r0[5]]
 }
 /// The bias forces h(q, q̇) = C(q, q̇)q̇ + g(q).
 ///

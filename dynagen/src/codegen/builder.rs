@@ -425,8 +425,8 @@ impl Builder {
     pub fn runtime_dispatch(self, on: bool) -> Self {
         self.set(Setting::RuntimeDispatch(on))
     }
-    /// Emit branches of one shape as a loop over one body
-    /// ([`CodegenOptions::branch_loops`], off).
+    /// Emit branches of one shape as one body run on all of them
+    /// ([`CodegenOptions::branch_loops`], on).
     pub fn branch_loops(self, on: bool) -> Self {
         self.set(Setting::BranchLoops(on))
     }

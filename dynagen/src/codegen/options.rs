@@ -153,13 +153,15 @@ pub struct CodegenOptions {
     /// x86-64 machine.
     pub runtime_dispatch: bool,
     /// Emit sibling subtrees of one shape (a humanoid's legs and arms, a
-    /// quadruped's legs) as one body that a loop runs for each, reading its
-    /// constants from a table, in τ and h (off). A robot's unrolled body
-    /// that no longer fits in the processor's micro-op cache runs at the
-    /// rate its bytes are decoded; the loop runs one branch's bytes as many
-    /// times as there are branches (see `codegen/trace/branches.rs`). A
-    /// function whose body with loops would be longer than
-    /// [`split_lets`](Self::split_lets) stays unrolled.
+    /// quadruped's legs) as one body, reading its constants from a table,
+    /// in τ, h and M (on). In `f64` the body runs on two or four branches at
+    /// once, one to each lane of a vector register (four where the
+    /// processor has AVX2), with the scalar code's bits in every lane; in
+    /// `f32` it runs in a loop. It writes a third to a half of the unrolled
+    /// code, and runs each instruction on several branches (see
+    /// `codegen/trace/branches.rs`). Off, or for a function whose body with
+    /// branches would be longer than [`split_lets`](Self::split_lets), every
+    /// branch is unrolled.
     pub branch_loops: bool,
 }
 
@@ -184,7 +186,7 @@ impl Default for CodegenOptions {
             split_lets: Some(DEFAULT_SPLIT_LETS),
             fma: true,
             runtime_dispatch: true,
-            branch_loops: false,
+            branch_loops: true,
         }
     }
 }

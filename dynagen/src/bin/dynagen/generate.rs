@@ -61,9 +61,13 @@ pub struct Args {
     /// in the last bits from the baseline's).
     #[arg(long)]
     pub no_dispatch: bool,
-    /// Emit sibling subtrees of one shape (legs, arms) in τ and h as one
-    /// body run in a loop over a table of their constants.
-    #[arg(long)]
+    /// Unroll every branch: without it, sibling subtrees of one shape
+    /// (legs, arms) in τ, h and M are one body run on all of them, in
+    /// vector lanes, over a table of their constants.
+    #[arg(long, conflicts_with = "branch_loops")]
+    pub no_branch_loops: bool,
+    /// Sibling subtrees of one shape as one body (the default).
+    #[arg(long, hide = true)]
     pub branch_loops: bool,
     /// Cut a function body of more than N `let`s into private parts of at
     /// most N (default 2500; 0: never cut). Long bodies overflow rustc's
@@ -133,8 +137,8 @@ fn builder(args: &Args, source: &RobotSource) -> Result<(Builder, dynagen::Model
     if args.no_dispatch {
         b = b.runtime_dispatch(false);
     }
-    if args.branch_loops {
-        b = b.branch_loops(true);
+    if args.no_branch_loops {
+        b = b.branch_loops(false);
     }
     if let Some(t) = trig {
         b = b.trig(t);
