@@ -42,6 +42,22 @@ impl<S: Scalar> ArticulatedInertia<S> {
             lin: self.b.tr_mul_vec(&m.ang) + self.c.mul_vec(&m.lin),
         }
     }
+    /// Its 21 numbers: `A` (xx, yy, zz, xy, xz, yz), `B` row by row, `C`.
+    pub(crate) fn to_parts(self) -> [S; 21] {
+        let mut x = [S::zero(); 21];
+        x[..6].copy_from_slice(&self.a.0);
+        for (i, row) in self.b.0.iter().enumerate() {
+            x[6 + 3 * i..9 + 3 * i].copy_from_slice(row);
+        }
+        x[15..].copy_from_slice(&self.c.0);
+        x
+    }
+    /// The inverse of [`to_parts`](Self::to_parts).
+    pub(crate) fn from_parts(x: &[S]) -> Self {
+        let sym = |y: &[S]| Sym3([y[0], y[1], y[2], y[3], y[4], y[5]]);
+        let b = Mat3([[x[6], x[7], x[8]], [x[9], x[10], x[11]], [x[12], x[13], x[14]]]);
+        ArticulatedInertia { a: sym(&x[..6]), b, c: sym(&x[15..21]) }
+    }
     /// As a 6×6 matrix in (angular; linear) order.
     pub(crate) fn to_matrix(self) -> [[S; 6]; 6] {
         let (a, b, c) = (self.a.to_mat().0, self.b.0, self.c.to_mat().0);
@@ -278,9 +294,9 @@ fn aba_traced_or_compact<S: Scalar>(
     qdd: &mut [S],
 ) {
     if S::TRACED {
-        aba_impl::<S, true>(model, ws, q, qd, tau, loads, qdd)
+        aba_impl::<S, true>(model, ws, q, qd, tau, loads, &[], qdd)
     } else {
-        aba_impl::<S, false>(model, ws, q, qd, tau, loads, qdd)
+        aba_impl::<S, false>(model, ws, q, qd, tau, loads, &[], qdd)
     }
 }
 
@@ -303,14 +319,19 @@ fn aba_traced_or_compact<S: Scalar>(
 /// much shorter critical path of the generated ABA (`docs/performance.md`,
 /// "Design choices decided by a measurement"). On `f64` the compact arm is
 /// kept: there the operation count, not the chain, sets the speed.
+///
+/// `carried`: what branches computed apart pass to their parents (see
+/// [`Carried`]); empty but for `codegen/trace/branches.rs`.
 #[inline(always)]
-fn aba_impl<S: Scalar, const DISTRIBUTED: bool>(
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn aba_impl<S: Scalar, const DISTRIBUTED: bool>(
     model: &Model,
     ws: &mut Workspace<S>,
     q: &[S],
     qd: Option<&[S]>,
     tau: &[S],
     loads: Loads<'_, S>,
+    carried: &[Carried<S>],
     qdd: &mut [S],
 ) {
     let n = model.bodies.len();
@@ -320,10 +341,33 @@ fn aba_impl<S: Scalar, const DISTRIBUTED: bool>(
     );
     loads.check(n, "aba");
     velocities(model, ws, q, qd, None, loads);
+    add_carried(ws, None, carried);
     inward(model, ws, (tau, qd.is_some()), loads.armature, None, DISTRIBUTED);
     // A fixed base is at rest, accelerating at −g.
     let a0 = Motion::new(Vec3::zero(), loads.gravity.map_or(Vec3::zero(), |g| -*g));
     outward(model, ws, &a0, qdd, DISTRIBUTED);
+}
+
+/// What a branch computed on its own passes to its parent in [`inward`]
+/// (`codegen/trace/branches.rs`): its articulated inertia and bias force in
+/// the parent's frame; `parent` a body, or `None` for the moving root.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Carried<S> {
+    pub(crate) parent: Option<usize>,
+    pub(crate) inertia: ArticulatedInertia<S>,
+    pub(crate) bias: Force<S>,
+}
+
+/// Adds `carried` to their parents' articulated inertias and bias forces
+/// (after [`velocities`], before [`inward`]), as [`pass_on`] adds a child's.
+pub(crate) fn add_carried<S: Scalar>(
+    ws: &mut Workspace<S>,
+    mut root: Option<&mut RootArticulated<S>>,
+    carried: &[Carried<S>],
+) {
+    for c in carried {
+        pass_on(ws, root.as_deref_mut(), c.parent, &c.inertia, || c.bias);
+    }
 }
 
 /// The articulated inertia and bias force that a moving root (a floating
@@ -652,8 +696,8 @@ mod tests {
             for (case, (qd, arm, g, tips)) in cases.into_iter().enumerate() {
                 let loads = Loads::new(g, tips, &[]).with_armature(arm);
                 let (mut compact, mut distributed) = (vec![0.0; n], vec![0.0; n]);
-                aba_impl::<f64, false>(&model, &mut ws, &q, qd, &tau, loads, &mut compact);
-                aba_impl::<f64, true>(&model, &mut ws, &q, qd, &tau, loads, &mut distributed);
+                aba_impl::<f64, false>(&model, &mut ws, &q, qd, &tau, loads, &[], &mut compact);
+                aba_impl::<f64, true>(&model, &mut ws, &q, qd, &tau, loads, &[], &mut distributed);
                 let scale = compact.iter().fold(0.0f64, |m, x| m.max(x.abs()));
                 assert!(scale > 1e-3, "{} case {case}: q̈ is not trivial", model.name);
                 for k in 0..n {

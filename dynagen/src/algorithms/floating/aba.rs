@@ -6,7 +6,7 @@
 //! forming M.
 
 use super::{base_inertia, check_tree_sizes, quaternion_rotation, solve6};
-use crate::algorithms::aba::{inward, outward, velocities, ArticulatedInertia, RootArticulated};
+use crate::algorithms::aba::{add_carried, inward, outward, velocities, ArticulatedInertia, Carried, RootArticulated};
 use crate::algorithms::rnea::{gyroscopic, products, use_products_for_gyroscopic, velocity_product_matrix};
 use crate::algorithms::{add_tip_wrenches, Loads, Workspace};
 use crate::model::Model;
@@ -29,7 +29,7 @@ pub fn aba<S: Scalar>(
     loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
-    aba_impl(model, ws, q, Some(qd), tau, loads, qdd)
+    aba_impl(model, ws, q, Some(qd), tau, loads, &[], qdd);
 }
 
 /// M(q)⁻¹τ of a floating-base model: [`aba`] at rest (q̇ = 0) and of
@@ -46,7 +46,7 @@ pub fn aba_at_rest<S: Scalar>(
     loads: Loads<'_, S>,
     qdd: &mut [S],
 ) {
-    aba_impl(model, ws, q, None, tau, loads.inertias(), qdd)
+    aba_impl(model, ws, q, None, tau, loads.inertias(), &[], qdd);
 }
 
 /// [`aba`], or at rest for `qd: None` (every velocity term left out): the
@@ -56,16 +56,20 @@ pub fn aba_at_rest<S: Scalar>(
 /// `â₀ = (ω̇_b; v̇_b + ω_b × v_b − Rᵀg)`, gravity folded in as a fictitious
 /// acceleration, and its equation `Iᴬ₀ â₀ = τ_b − pᴬ₀` (pᴬ₀ with the base's
 /// own `(ω × Ī ω; ω × (ω × h))`) is a 6×6 symmetric positive-definite solve.
+/// `carried`: what branches computed apart pass to their parents (see
+/// [`Carried`]). Returns `â₀`.
 #[inline(always)]
-fn aba_impl<S: Scalar>(
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn aba_impl<S: Scalar>(
     model: &Model,
     ws: &mut Workspace<S>,
     q: &[S],
     qd: Option<&[S]>,
     tau: &[S],
     loads: Loads<'_, S>,
+    carried: &[Carried<S>],
     qdd: &mut [S],
-) {
+) -> Motion<S> {
     let n = model.bodies.len();
     let nv = model.tree_nv();
     check_tree_sizes(model, "floating aba", q.len(), &[qd.map_or(nv, <[S]>::len), tau.len(), qdd.len()]);
@@ -88,6 +92,7 @@ fn aba_impl<S: Scalar>(
         root.bias = Force::new(gyro, u.mul_vec(&i0.h));
     }
     add_tip_wrenches(model, loads.tips, None, Some(&mut root.bias));
+    add_carried(ws, Some(&mut root), carried);
     // The fixed-base passes' arm: distributed when traced (see aba.rs).
     let distributed = S::TRACED;
     inward(model, ws, (&tau[6..], qd.is_some()), loads.armature, Some(&mut root), distributed);
@@ -107,4 +112,5 @@ fn aba_impl<S: Scalar>(
     }
     qdd[..6].copy_from_slice(&base.to_array());
     outward(model, ws, &a0, &mut qdd[6..], distributed);
+    a0
 }

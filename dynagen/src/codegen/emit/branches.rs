@@ -5,7 +5,7 @@
 
 use super::statements::{self, BodyStyle, Dim, Param, Shape, Signature, Sizes};
 use super::syntax::ident;
-use crate::codegen::trace::branches::{results_name, BranchBody, Branched, Kind, MOTION};
+use crate::codegen::trace::branches::{result_index, results_name, BranchBody, Branched, Kind, ABA_UP};
 use crate::codegen::{CodegenError, CodegenOptions, ScalarType};
 use crate::model::Model;
 use quote::{format_ident, quote};
@@ -32,10 +32,13 @@ fn table_name(name: &str, g: usize) -> String {
 fn params(x: &BranchBody) -> Vec<Param> {
     let nb = x.group.lanes[0].len();
     let mut list = vec![Param::fixed("k", x.table[0].len())];
-    if x.motion() {
-        list.push(Param::fixed("m", MOTION));
+    if x.motion() > 0 {
+        list.push(Param::fixed("m", x.motion()));
     }
-    for name in ["s", "c", "q", "qd", "qdd"] {
+    if x.carried() > 0 {
+        list.push(Param::fixed("x", x.carried()));
+    }
+    for name in ["s", "c", "q", "qd", "qdd", "tau"] {
         let read = x.body.function.input_names().iter().any(|n| n == name);
         if read && (name != "q" || x.body.function.uses_input("q")) {
             list.push(Param::fixed(name, nb));
@@ -74,6 +77,16 @@ pub(super) fn items(
                 "its joints' sines and cosines; returns its own block of M (row after row), each joint's Iᶜ·S in \
                  its parent's frame (moment, force), and its composite inertia there (mass, m·c, Ī as xx, yy, zz, \
                  xy, xz, yz)"
+            }
+            Kind::AbaUp => {
+                "its parent's angular velocity `m` (parent frame) and its joints' state and τ; returns, for the \
+                 articulated-body algorithm's first passes, its articulated inertia in its parent's frame (A as xx, \
+                 yy, zz, xy, xz, yz, B row by row, C), its bias force there (moment, force), then what its second \
+                 part reads (`x`)"
+            }
+            Kind::AbaDown => {
+                "its parent's classic acceleration `m` (ω̇, the origin's acceleration with gravity folded in; parent \
+                 frame) and what its first part computed (`x`); returns its joints' q̈"
             }
         };
         let doc = format!(
@@ -151,8 +164,9 @@ pub(super) fn items(
     Ok((items, in_lanes))
 }
 
-/// The statements of `NAME_sc` that run each group's body for each branch,
-/// from the parents' motions (`args`, [`MOTION`] a group): the results go
+/// The statements of `NAME_sc` that run the bodies of phase `phase`
+/// (`BranchBody::phase`) for each branch, from the parents' motions (`args`,
+/// `BranchBody::motion` numbers a body, in order): the results go
 /// to `r0`, `r1`, … (entry by entry, the branches' values of an entry
 /// together, `trace::branches::result_index`), which the rest of the body reads.
 pub(super) fn glue(
@@ -161,12 +175,13 @@ pub(super) fn glue(
     floating: bool,
     dispatch: bool,
     lanes: &[bool],
+    phase: usize,
     args: &[Expr],
 ) -> Result<Vec<Stmt>, CodegenError> {
     let (q_off, v_off) = if floating { (7, 6) } else { (0, 0) };
     let mut stmts = Vec::new();
-    let mut motions = args.chunks(MOTION);
-    for (g, x) in b.branches.iter().enumerate() {
+    let mut args = args;
+    for (g, x) in b.branches.iter().enumerate().filter(|(_, x)| x.phase() == phase) {
         let m = format_ident!("m_b{g}");
         let r = ident(&results_name(g));
         let call = match dispatch {
@@ -182,23 +197,45 @@ pub(super) fn glue(
         let table = format_ident!("{}", table_name(name, g));
         let mut locals = Vec::new();
         let mut call_args = vec![quote!(&#table[l])];
-        if x.motion() {
-            let motion = motions.next().expect("a motion per group that reads it");
+        if x.motion() > 0 {
+            let (motion, more) = args.split_at(x.motion());
+            args = more;
             locals.push(quote!(let #m = [#(#motion),*];));
             call_args.push(quote!(&#m));
         }
+        let branches = x.group.lanes.len();
         for p in params(x).iter().skip(call_args.len()) {
             let local = format_ident!("{}_b{g}", p.name);
-            let source = ident(&p.name);
-            let skip = match p.name.as_str() {
-                "q" => q_off,
-                "qd" | "qdd" => v_off,
-                _ => 0,
+            let rows: Vec<proc_macro2::TokenStream> = match (p.name.as_str(), x.up) {
+                // The second part of an articulated-body branch reads what
+                // its first part returned past ABA_UP, entry by entry.
+                ("x", Some(up)) => {
+                    let from = ident(&results_name(up));
+                    (0..branches)
+                        .map(|l| {
+                            let entries = (0..x.carried())
+                                .map(|i| proc_macro2::Literal::usize_unsuffixed(result_index(branches, l, ABA_UP + i)));
+                            quote!([#(#from[#entries]),*])
+                        })
+                        .collect()
+                }
+                _ => {
+                    let source = ident(&p.name);
+                    let skip = match p.name.as_str() {
+                        "q" => q_off,
+                        "qd" | "qdd" | "tau" => v_off,
+                        _ => 0,
+                    };
+                    x.group
+                        .lanes
+                        .iter()
+                        .map(|lane| {
+                            let entries = lane.iter().map(|&j| proc_macro2::Literal::usize_unsuffixed(skip + j));
+                            quote!([#(#source[#entries]),*])
+                        })
+                        .collect()
+                }
             };
-            let rows = x.group.lanes.iter().map(|lane| {
-                let entries = lane.iter().map(|&j| proc_macro2::Literal::usize_unsuffixed(skip + j));
-                quote!([#(#source[#entries]),*])
-            });
             locals.push(quote!(let #local = [#(#rows),*];));
             call_args.push(quote!(&#local[l]));
         }
@@ -261,7 +298,7 @@ fn strip_row(a: &Expr) -> Expr {
 /// A branch body over `f64` (`func`, named `name`) over registers `V` of
 /// `Lanes`: the same operations in the same order, each on every lane, so
 /// each lane gets the scalar body's bits. `None` where the body has an
-/// operation `Lanes` lacks (a division, a square root): it then stays scalar.
+/// operation `Lanes` lacks (a square root): it then stays scalar.
 fn in_lanes_body(func: &syn::ItemFn, name: &str) -> Option<syn::ItemFn> {
     let mut f = func.clone();
     f.sig.ident = format_ident!("{name}");
@@ -293,7 +330,7 @@ fn in_lanes_body(func: &syn::ItemFn, name: &str) -> Option<syn::ItemFn> {
 }
 
 /// `e` over registers: literals splat, `a + b` as `a.add(b)` (and `sub`,
-/// `mul`, `neg`), `fma(a, b, c)` as `a.mul_add::<I>(b, c)`.
+/// `mul`, `div`, `neg`), `fma(a, b, c)` as `a.mul_add::<I>(b, c)`.
 fn lanes_expr(e: &Expr) -> Option<Expr> {
     use syn::{BinOp, UnOp};
     Some(match e {
@@ -317,6 +354,7 @@ fn lanes_expr(e: &Expr) -> Option<Expr> {
                 BinOp::Add(_) => syn::parse_quote!(#l.add(#r)),
                 BinOp::Sub(_) => syn::parse_quote!(#l.sub(#r)),
                 BinOp::Mul(_) => syn::parse_quote!(#l.mul(#r)),
+                BinOp::Div(_) => syn::parse_quote!(#l.div(#r)),
                 _ => return None,
             }
         }
@@ -349,13 +387,17 @@ fn runner(name: &str, g: usize, x: &BranchBody) -> Result<syn::Item, CodegenErro
     for p in params(x).iter().skip(1) {
         let id = ident(&p.name);
         if p.name == "m" {
-            let m = lit(MOTION);
+            let m = lit(x.motion());
             ps.push(quote!(#id: &[f64; #m]));
             splat = quote!(let #id = branch_splat::<<[f64; W] as ToLanes>::V, #m>(#id););
             args.push(quote!(&#id));
         } else {
-            ps.push(quote!(#id: &[[f64; #nb_]; #l_]));
-            args.push(quote!(&branch_lanes::<W, #nb_, #l_>(#id, l)));
+            let len = match p.len {
+                super::statements::Dim::Fixed(n) => lit(n),
+                _ => nb_.clone(),
+            };
+            ps.push(quote!(#id: &[[f64; #len]; #l_]));
+            args.push(quote!(&branch_lanes::<W, #len, #l_>(#id, l)));
         }
     }
     let doc = format!(

@@ -184,12 +184,16 @@ pub(crate) fn module_source(parts: &ModuleParts) -> Result<String, CodegenError>
             items.extend(branch_items);
             lanes = in_lanes;
         }
-        let glue = |args: &[syn::Expr]| match &f.branched {
-            Some(b) => branches::glue(name, b, floating, style.dispatch, &lanes, args),
+        let glue = |phase: usize, args: &[syn::Expr]| match &f.branched {
+            Some(b) => branches::glue(name, b, floating, style.dispatch, &lanes, phase, args),
             None => Ok(Vec::new()),
         };
         let signature = Signature {
-            calls: f.branched.as_ref().map(|b| statements::Calls { outputs: b.outputs, glue: &glue }),
+            calls: f.branched.as_ref().map(|b| statements::Calls {
+                outputs: b.outputs,
+                phases: (0..b.phases()).map(|p| b.args_before(p + 1) - b.args_before(p)).collect(),
+                glue: &glue,
+            }),
             ..signature
         };
         let emitted =

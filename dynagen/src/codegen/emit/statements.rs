@@ -164,12 +164,16 @@ impl Param {
 pub(crate) struct Calls<'a> {
     /// The function's own outputs.
     pub outputs: usize,
-    /// The statements of the calls, from the arguments.
+    /// How many of the other outputs (the calls' arguments) each phase of
+    /// calls takes, in order: a phase's calls come after what its
+    /// arguments need, and before what needs their results.
+    pub phases: Vec<usize>,
+    /// The statements of phase p's calls, from its arguments.
     pub glue: Glue<'a>,
 }
 
 /// What writes the statements of [`Calls`].
-pub(crate) type Glue<'a> = &'a dyn Fn(&[Expr]) -> Result<Vec<Stmt>, CodegenError>;
+pub(crate) type Glue<'a> = &'a dyn Fn(usize, &[Expr]) -> Result<Vec<Stmt>, CodegenError>;
 
 /// The name, parameters and output of an emitted function.
 pub(crate) struct Signature<'a> {
@@ -345,28 +349,41 @@ pub(crate) fn emit_function(
 /// then the rest, and drops the arguments from the outputs. Returns the
 /// number of statements up to the calls' last.
 fn insert_calls(body: &mut Body, calls: &Calls) -> Result<usize, CodegenError> {
-    let mut needed = vec![false; body.names.len()];
-    for (_, v) in &body.outputs[calls.outputs..] {
-        if let Some(v) = v {
-            needed[*v as usize] = true;
-        }
-    }
-    let lines = std::mem::take(&mut body.lines);
-    let mut first = vec![false; lines.len()];
-    for (k, l) in lines.iter().enumerate().rev() {
-        if l.defs.iter().any(|&d| needed[d as usize]) {
-            first[k] = true;
-            for &u in &l.uses {
-                needed[u as usize] = true;
+    let mut lines = std::mem::take(&mut body.lines);
+    let mut from = calls.outputs;
+    for (phase, &count) in calls.phases.iter().enumerate() {
+        // The statements this phase's arguments need, in order, first.
+        let mut needed = vec![false; body.names.len()];
+        for (_, v) in &body.outputs[from..from + count] {
+            if let Some(v) = v {
+                needed[*v as usize] = true;
             }
         }
+        let mut first = vec![false; lines.len()];
+        for (k, l) in lines.iter().enumerate().rev() {
+            if l.defs.iter().any(|&d| needed[d as usize]) {
+                first[k] = true;
+                for &u in &l.uses {
+                    needed[u as usize] = true;
+                }
+            }
+        }
+        let args: Vec<Expr> = body.outputs[from..from + count].iter().map(|(e, _)| e.clone()).collect();
+        from += count;
+        let glue = (calls.glue)(phase, &args)?.into_iter().map(|stmt| Line {
+            stmt,
+            defs: vec![],
+            uses: vec![],
+            inputs: vec![],
+        });
+        let (before, after): (Vec<_>, Vec<_>) =
+            std::mem::take(&mut lines).into_iter().zip(first).partition(|(_, f)| *f);
+        body.lines.extend(before.into_iter().map(|(l, _)| l));
+        body.lines.extend(glue);
+        lines = after.into_iter().map(|(l, _)| l).collect();
     }
-    let args: Vec<Expr> = body.outputs[calls.outputs..].iter().map(|(e, _)| e.clone()).collect();
-    let glue = (calls.glue)(&args)?.into_iter().map(|stmt| Line { stmt, defs: vec![], uses: vec![], inputs: vec![] });
-    let (before, after): (Vec<_>, Vec<_>) = lines.into_iter().zip(first).partition(|(_, f)| *f);
-    body.lines = before.into_iter().map(|(l, _)| l).chain(glue).collect();
     let ready = body.lines.len();
-    body.lines.extend(after.into_iter().map(|(l, _)| l));
+    body.lines.extend(lines);
     body.outputs.truncate(calls.outputs);
     Ok(ready)
 }

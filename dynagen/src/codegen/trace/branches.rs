@@ -30,6 +30,8 @@
 
 use super::sin_cos::{sin_cos_inputs, SinCosTrace};
 use super::SceneLoads;
+use crate::algorithms::aba::{aba_impl, inward, outward, velocities, ArticulatedInertia, Carried, RootArticulated};
+use crate::algorithms::floating;
 use crate::algorithms::floating::crba::carry_to_base;
 use crate::algorithms::floating::rnea::base_motion;
 use crate::algorithms::joint::{force_to_parent, inertia_to_parent, project};
@@ -38,7 +40,7 @@ use crate::algorithms::{crba, rnea, BodyInertia, Loads, TipWrench, Workspace, BA
 use crate::codegen::{CodegenError, Function};
 use crate::model::{Body, Coupling, Frame, Model, RootJoint};
 use crate::scene::{dynamics, SceneModel};
-use crate::spatial::{Force, Inertia, Mat3, Sym3, Transform, Vec3};
+use crate::spatial::{Force, Inertia, Mat3, Motion, Sym3, Transform, Vec3};
 use crate::symbolic::{Expr, Graph, Node, NodeId, Rewrites, Traced, Tracer, LANE_CONSTANTS};
 use crate::Scalar;
 use std::collections::HashMap;
@@ -74,7 +76,21 @@ pub enum Kind {
     /// entries each, moment first), and its composite inertia in the
     /// parent's frame (mass, `m·c`, `Ī` as xx, yy, zz, xy, xz, yz).
     Crba,
+    /// The articulated-body algorithm (q̈), its part before the rest's:
+    /// from its parent's ω (parent frame) and its joints' state and τ, its
+    /// articulated inertia and bias force in the parent's frame
+    /// ([`ABA_UP`] numbers: the inertia's parts, moment, force), then what
+    /// [`Kind::AbaDown`] reads of it (its input `x`).
+    AbaUp,
+    /// The articulated-body algorithm's part after the rest's: from its
+    /// parent's classic acceleration (ω̇ and the origin's acceleration,
+    /// gravity folded in; parent frame) and `x`, its joints' q̈.
+    AbaDown,
 }
+
+/// The numbers a branch's articulated-body part passes to its parent: the
+/// articulated inertia's 21, the bias force's 6.
+pub const ABA_UP: usize = 27;
 
 /// One group's body, traced once.
 #[derive(Clone, Debug, PartialEq)]
@@ -89,20 +105,47 @@ pub struct BranchBody {
     pub body: SinCosTrace,
     /// The values of `k`, lane by lane.
     pub table: Vec<Vec<f64>>,
+    /// For [`Kind::AbaDown`]: the index (among the function's branch
+    /// bodies) of the [`Kind::AbaUp`] body whose outputs past [`ABA_UP`]
+    /// are its input `x`.
+    pub up: Option<usize>,
 }
 
 impl BranchBody {
     /// The number of the branch's outputs.
     pub fn outputs(&self) -> usize {
-        let nb = self.group.lanes[0].len();
+        self.body.function.outputs().len()
+    }
+    /// How many numbers of its parent's motion it reads (`m`): [`MOTION`]
+    /// for the RNEA, ω for [`Kind::AbaUp`], the classic acceleration for
+    /// [`Kind::AbaDown`], none for the CRBA.
+    pub fn motion(&self) -> usize {
         match self.kind {
-            Kind::Rnea { .. } => nb + 6,
-            Kind::Crba => nb * nb + 6 * nb + 10,
+            Kind::Rnea { .. } => MOTION,
+            Kind::Crba => 0,
+            Kind::AbaUp => 3,
+            Kind::AbaDown => 6,
         }
     }
-    /// Whether it reads its parent's motion.
-    pub fn motion(&self) -> bool {
-        matches!(self.kind, Kind::Rnea { .. })
+    /// When its calls run: 0 before the rest, 1 after the rest's part that
+    /// computes what it reads ([`Kind::AbaDown`]).
+    pub fn phase(&self) -> usize {
+        usize::from(self.kind == Kind::AbaDown)
+    }
+    /// The length of its input `x` (the values [`Kind::AbaDown`] takes from
+    /// [`Kind::AbaUp`]), or 0.
+    pub fn carried(&self) -> usize {
+        if self.kind == Kind::AbaDown {
+            self.body.function.input_names().iter().position(|n| n == "x").map_or(0, |x| {
+                let max = self.body.function.nodes().iter().filter_map(|n| match *n {
+                    Node::Input { name, index } if name as usize == x => Some(index as usize + 1),
+                    _ => None,
+                });
+                max.max().unwrap_or(0)
+            })
+        } else {
+            0
+        }
     }
 }
 
@@ -116,7 +159,8 @@ pub struct Branched {
     pub body: SinCosTrace,
     /// The function's own outputs (the first of `body`'s).
     pub outputs: usize,
-    /// The groups.
+    /// The groups' bodies (two for each group of the articulated-body
+    /// algorithm: [`Kind::AbaUp`], then [`Kind::AbaDown`]).
     pub branches: Vec<BranchBody>,
 }
 
@@ -225,12 +269,20 @@ fn part(model: &Model, bodies: &[usize], frames: &[(String, Option<usize>)], roo
 
 /// One branch traced with its constants as inputs: the graph and the
 /// constants' values.
-fn trace_lane(model: &Model, rewrites: Rewrites, kind: Kind) -> Result<(Traced, Vec<f64>), CodegenError> {
+/// `gyro`: for each body, whether its gyroscopic moment takes the products
+/// of ω (`Workspace::gyro_products`, which the lanes must share).
+fn trace_lane(
+    model: &Model,
+    gyro: &[bool],
+    rewrites: Rewrites,
+    kind: Kind,
+) -> Result<(Traced, Vec<f64>), CodegenError> {
     let tracer = Tracer::start_lanes(rewrites)?;
     // The constants' vector first, so that every lane names its inputs alike.
     let _ = tracer.input(LANE_CONSTANTS, 0);
     let nb = model.bodies.len();
     let mut ws = Workspace::<Expr>::new(model);
+    ws.gyro_products = gyro.to_vec();
     let out = match kind {
         Kind::Rnea { accelerations } => {
             let m = tracer.inputs("m", MOTION);
@@ -260,6 +312,26 @@ fn trace_lane(model: &Model, rewrites: Rewrites, kind: Kind) -> Result<(Traced, 
             out.push(mass);
             out.extend(h.0);
             out.extend(ibar.0);
+            out
+        }
+        Kind::AbaUp | Kind::AbaDown => {
+            // The whole algorithm on the branch, its root moving with the
+            // parent's ω and accelerating with "ap"; `cut_at` splits it.
+            let m = tracer.inputs("m", 3);
+            let ap = tracer.inputs("ap", 6);
+            let q = tracer.inputs("q", nb);
+            let qd = tracer.inputs("qd", nb);
+            let tau = tracer.inputs("tau", nb);
+            let w = Vec3([m[0], m[1], m[2]]);
+            velocities(model, &mut ws, &q, Some(&qd), Some(&w), Loads::none());
+            let mut root = RootArticulated { inertia: ArticulatedInertia::zero(), bias: Force::zero() };
+            inward(model, &mut ws, (&tau, true), None, Some(&mut root), true);
+            let mut qdd = vec![Expr::zero(); nb];
+            let a = Motion::new(Vec3([ap[0], ap[1], ap[2]]), Vec3([ap[3], ap[4], ap[5]]));
+            outward(model, &mut ws, &a, &mut qdd, true);
+            let mut out = root.inertia.to_parts().to_vec();
+            out.extend(root.bias.to_array());
+            out.extend(qdd);
             out
         }
     };
@@ -342,31 +414,120 @@ fn harmonise(models: &mut [Model]) {
     }
 }
 
-/// The group's body, if its lanes trace alike.
+/// The group's body (for the articulated-body algorithm its two parts, the
+/// second's `up` counted from `first`, the index of the first), if its
+/// lanes trace alike.
 fn branch_body(
     model: &Model,
     group: BranchGroup,
     rewrites: Rewrites,
     kind: Kind,
-) -> Result<Option<BranchBody>, CodegenError> {
+    first: usize,
+) -> Result<Vec<BranchBody>, CodegenError> {
     let mut traces = Vec::new();
     let mut tables: Vec<Vec<f64>> = Vec::new();
     let mut models: Vec<Model> = group.lanes.iter().map(|lane| part(model, lane, &[], RootJoint::Fixed)).collect();
     harmonise(&mut models);
+    // The gyroscopic moments by the products of ω where every lane's
+    // inertia has them cheaper, else directly (a choice made on the values).
+    let gyro: Vec<bool> = (0..models[0].bodies.len())
+        .map(|b| models.iter().all(|m| crate::algorithms::rnea::use_products_for_gyroscopic(&m.bodies[b].inertia.ibar)))
+        .collect();
     for lane in &models {
-        let (t, values) = trace_lane(lane, rewrites, kind)?;
+        let (t, values) = trace_lane(lane, &gyro, rewrites, kind)?;
         if traces.first().is_some_and(|first| *first != t) {
-            return Ok(None);
+            return Ok(Vec::new());
         }
         traces.push(t);
         tables.push(values);
     }
     let (folded, table) = fold_shared(&traces[0], &tables, rewrites);
-    match sin_cos_inputs(&folded, group.lanes[0].len(), 0, rewrites) {
-        Ok(body) => Ok(Some(BranchBody { group, kind, body, table })),
+    let body = match sin_cos_inputs(&folded, group.lanes[0].len(), 0, rewrites) {
+        Ok(body) => body,
         // an angle scaled by a lane's constant (a screw axis of a lane's own length)
-        Err(_) => Ok(None),
+        Err(_) => return Ok(Vec::new()),
+    };
+    if kind != Kind::AbaUp {
+        return Ok(vec![BranchBody { group, kind, body, table, up: None }]);
     }
+    let Some((up, down)) = cut_at(&body.function, ABA_UP, rewrites) else { return Ok(Vec::new()) };
+    let part = |function: Traced| SinCosTrace { function, ..body.clone() };
+    Ok(vec![
+        BranchBody { group: group.clone(), kind: Kind::AbaUp, body: part(up), table: table.clone(), up: None },
+        BranchBody { group, kind: Kind::AbaDown, body: part(down), table, up: Some(first) },
+    ])
+}
+
+/// A branch's whole articulated-body trace `t` cut where its input `ap`
+/// (the parent's acceleration) enters: the part that does not read it (the
+/// first `first` outputs, then the values the other part reads), and the
+/// part that does (the other outputs, reading those values as its input
+/// `x` and `ap` as `m`). `None` if one of the first outputs reads `ap`.
+fn cut_at(t: &Traced, first: usize, rewrites: Rewrites) -> Option<(Traced, Traced)> {
+    let names = t.input_names();
+    let named = |n: &str| names.iter().position(|s| s == n).map(|i| i as u32);
+    let (ap, m) = (named("ap")?, named("m"));
+    let nodes = t.nodes();
+    let mut dep = vec![false; nodes.len()];
+    for (id, n) in nodes.iter().enumerate() {
+        dep[id] = match *n {
+            Node::Input { name, .. } => name == ap,
+            _ => n.operands().any(|o| dep[o as usize]),
+        };
+    }
+    let outputs = t.outputs();
+    if outputs[..first].iter().any(|&o| dep[o as usize]) {
+        return None;
+    }
+    // The values computed before `ap` that the second part reads (the
+    // parent's ω too, which only the first part's calls are given).
+    let carried = |o: usize| match nodes[o] {
+        Node::Input { name, .. } => Some(name) == m,
+        n => n.constant().is_none(),
+    };
+    let mut cut = vec![false; nodes.len()];
+    for (id, n) in nodes.iter().enumerate().filter(|(id, _)| dep[*id]) {
+        let _ = id;
+        for o in n.operands() {
+            let o = o as usize;
+            cut[o] |= !dep[o] && carried(o);
+        }
+    }
+    for &o in &outputs[first..] {
+        let o = o as usize;
+        cut[o] |= !dep[o] && carried(o);
+    }
+    let cuts: Vec<usize> = (0..nodes.len()).filter(|&i| cut[i]).collect();
+    let copy = |down: bool| {
+        let mut g = Graph::with_rewrites(rewrites);
+        let mut new: Vec<NodeId> = Vec::with_capacity(nodes.len());
+        for (id, node) in nodes.iter().enumerate() {
+            let x = if down && cut[id] {
+                g.input("x", cuts.iter().position(|&c| c == id).expect("a cut node"))
+            } else if dep[id] != down && node.constant().is_none() && !matches!(node, Node::Input { .. }) {
+                // not in this part
+                g.constant(0.0)
+            } else if let Some(x) = g.arithmetic(node.map_operands(|x| new[x as usize])) {
+                x
+            } else if let Some(c) = node.constant() {
+                g.constant(c)
+            } else if let Node::Input { name, index } = *node {
+                let name = if name == ap { "m" } else { names[name as usize].as_str() };
+                g.input(name, index as usize)
+            } else {
+                unreachable!("a branch body reads its sines and cosines as inputs")
+            };
+            new.push(x);
+        }
+        (g, new)
+    };
+    let (g, new) = copy(false);
+    let ids: Vec<NodeId> =
+        outputs[..first].iter().map(|&o| new[o as usize]).chain(cuts.iter().map(|&c| new[c])).collect();
+    let up = Traced::from_ids(t.name(), &g, &ids);
+    let (g, new) = copy(true);
+    let ids: Vec<NodeId> = outputs[first..].iter().map(|&o| new[o as usize]).collect();
+    Some((up, Traced::from_ids(t.name(), &g, &ids)))
 }
 
 /// `f` of `scene` with its branches in a loop, where it has branches that
@@ -378,6 +539,9 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
         Function::InverseDynamics => Kind::Rnea { accelerations: true },
         Function::BiasForces => Kind::Rnea { accelerations: false },
         Function::MassMatrix => Kind::Crba,
+        // By the articulated-body algorithm, without armature or friction
+        // (which the rest would have to pass to the branches' joints).
+        Function::ForwardDynamics if !scene.has_armature() && !scene.has_friction() => Kind::AbaUp,
         _ => return Ok(None),
     };
     if model.has_mimic() || !scene.input_payloads.is_empty() || scene.tip_wrench_frame.is_some() {
@@ -385,7 +549,8 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
     }
     let mut branches = Vec::new();
     for group in groups(model, MIN_BODIES) {
-        branches.extend(branch_body(model, group, rewrites, kind)?);
+        let first = branches.len();
+        branches.extend(branch_body(model, group, rewrites, kind, first)?);
     }
     if branches.is_empty() {
         return Ok(None);
@@ -407,10 +572,11 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
     let tracer = Tracer::start_with(rewrites)?;
     let q = tracer.inputs("q", nq);
     let qd = match kind {
-        Kind::Rnea { .. } => tracer.inputs("qd", nv),
+        Kind::Rnea { .. } | Kind::AbaUp | Kind::AbaDown => tracer.inputs("qd", nv),
         Kind::Crba => Vec::new(),
     };
     let qdd = matches!(kind, Kind::Rnea { accelerations: true }).then(|| tracer.inputs("qdd", nv));
+    let tau = matches!(kind, Kind::AbaUp).then(|| tracer.inputs("tau", nv));
     let loads = SceneLoads::of(scene, f, &tracer);
     let results: Vec<Vec<Expr>> = branches
         .iter()
@@ -530,6 +696,63 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
             }
             dynamics::add_armature_diagonal(scene, &mut out);
         }
+        Kind::AbaUp | Kind::AbaDown => {
+            let (qd_rest, tau_rest) = (gather(&qd, vo), gather(tau.as_deref().expect("traced with τ"), vo));
+            // What each branch passes to its parent.
+            let mut carried = Vec::new();
+            for (x, r) in branches.iter().zip(&results).filter(|(x, _)| x.kind == Kind::AbaUp) {
+                let lanes = x.group.lanes.len();
+                for l in 0..lanes {
+                    let p: Vec<Expr> = (0..ABA_UP).map(|i| r[result_index(lanes, l, i)]).collect();
+                    let bias = Force::new(Vec3([p[21], p[22], p[23]]), Vec3([p[24], p[25], p[26]]));
+                    let parent = x.group.parent.and_then(kept);
+                    carried.push(Carried { parent, inertia: ArticulatedInertia::from_parts(&p[..21]), bias });
+                }
+            }
+            let mut qdd_rest = vec![Expr::zero(); rest.nv()];
+            let l = Loads::new(loads.gravity.as_ref(), &[], &[]);
+            let a0 = match rest.is_floating() {
+                true => floating::aba::aba_impl(
+                    &rest,
+                    &mut ws,
+                    &q_rest,
+                    Some(&qd_rest),
+                    &tau_rest,
+                    l,
+                    &carried,
+                    &mut qdd_rest,
+                ),
+                false => {
+                    let state = (&q_rest[..], Some(&qd_rest[..]), &tau_rest[..]);
+                    aba_impl::<Expr, true>(&rest, &mut ws, state.0, state.1, state.2, l, &carried, &mut qdd_rest);
+                    Motion::new(Vec3::zero(), l.gravity.map_or(Vec3::zero(), |g| -*g))
+                }
+            };
+            out[..vo].copy_from_slice(&qdd_rest[..vo]);
+            for (k, &b) in keep.iter().enumerate() {
+                out[vo + b] = qdd_rest[vo + k];
+            }
+            for (x, r) in branches.iter().zip(&results).filter(|(x, _)| x.kind == Kind::AbaDown) {
+                for (l, lane) in x.group.lanes.iter().enumerate() {
+                    for (j, &b) in lane.iter().enumerate() {
+                        out[vo + b] = r[result_index(x.group.lanes.len(), l, j)];
+                    }
+                }
+            }
+            // The parents' ω for the first calls, then their accelerations for the second.
+            for x in branches.iter().filter(|x| x.kind == Kind::AbaUp) {
+                match x.group.parent.and_then(kept) {
+                    Some(p) => out.extend(ws.v[p].ang.0),
+                    None => out.extend(qd[..3].iter().copied()),
+                }
+            }
+            for x in branches.iter().filter(|x| x.kind == Kind::AbaDown) {
+                match x.group.parent.and_then(kept) {
+                    Some(p) => out.extend(ws.a[p].to_array()),
+                    None => out.extend(a0.to_array()),
+                }
+            }
+        }
     }
     let outputs = if kind == Kind::Crba { nv * nv } else { nv };
     drop(ws);
@@ -559,6 +782,19 @@ impl Branched {
         })
     }
 
+    /// How many times the calls stop the rest: once, or twice for the
+    /// articulated-body algorithm (its branches' first parts, then their
+    /// second).
+    pub fn phases(&self) -> usize {
+        self.branches.iter().map(|x| x.phase() + 1).max().unwrap_or(1)
+    }
+
+    /// Where the arguments of phase `phase`'s calls start among the rest's
+    /// extra outputs.
+    pub fn args_before(&self, phase: usize) -> usize {
+        self.branches.iter().filter(|x| x.phase() < phase).map(BranchBody::motion).sum()
+    }
+
     /// The function's outputs on numbers, as the emitted body computes them
     /// (unfused): the rest's motions, each branch on its lane's constants,
     /// then the rest with the branches' results. `inputs` are `NAME_sc`'s
@@ -573,34 +809,48 @@ impl Branched {
             let refs: Vec<(&str, &[f64])> = all.iter().map(|(n, v)| (n.as_str(), v.as_slice())).collect();
             t.eval(&refs)
         };
-        let first = run(&self.body.function, &all)?;
         // Where the joints' entries start in `q` and in the velocity-side vectors.
         let (q_off, v_off) = (self.body.q_offset, if self.body.q_offset > 0 { 6 } else { 0 });
-        let mut args = first[self.outputs..].chunks(MOTION);
-        for (g, x) in self.branches.iter().enumerate() {
-            let motion = if x.motion() { args.next().expect("a motion per group that reads it") } else { &[] };
-            let mut results = vec![0.0; x.group.lanes.len() * x.outputs()];
-            for (l, lane) in x.group.lanes.iter().enumerate() {
-                // The lane's joints' entries of a joint-indexed vector, or
-                // of a velocity-side one (past the base's six).
-                let pick = |name: &str, skip: usize| -> Vec<f64> {
-                    vector(name).map_or(Vec::new(), |v| lane.iter().map(|&b| v[skip + b]).collect())
-                };
-                let lane_inputs: Vec<(String, Vec<f64>)> = vec![
-                    (LANE_CONSTANTS.to_string(), x.table[l].clone()),
-                    ("m".to_string(), motion.to_vec()),
-                    ("s".to_string(), pick("s", 0)),
-                    ("c".to_string(), pick("c", 0)),
-                    ("q".to_string(), pick("q", q_off)),
-                    ("qd".to_string(), pick("qd", v_off)),
-                    ("qdd".to_string(), pick("qdd", v_off)),
-                ];
-                for (i, v) in run(&x.body.function, &lane_inputs)?.into_iter().enumerate() {
-                    results[result_index(x.group.lanes.len(), l, i)] = v;
+        for phase in 0..self.phases() {
+            let rest = run(&self.body.function, &all)?;
+            let mut args = &rest[self.outputs + self.args_before(phase)..];
+            for (g, x) in self.branches.iter().enumerate().filter(|(_, x)| x.phase() == phase) {
+                let (motion, more) = args.split_at(x.motion());
+                args = more;
+                let lanes = x.group.lanes.len();
+                let mut results = vec![0.0; lanes * x.outputs()];
+                for (l, lane) in x.group.lanes.iter().enumerate() {
+                    // The lane's joints' entries of a joint-indexed vector, or
+                    // of a velocity-side one (past the base's six).
+                    let pick = |name: &str, skip: usize| -> Vec<f64> {
+                        vector(name).map_or(Vec::new(), |v| lane.iter().map(|&b| v[skip + b]).collect())
+                    };
+                    // What an articulated-body branch's second part takes from its first.
+                    let carried: Vec<f64> = match x.up {
+                        Some(u) => {
+                            let from = &all.iter().find(|(n, _)| *n == results_name(u)).expect("pushed above").1;
+                            (0..x.carried()).map(|i| from[result_index(lanes, l, ABA_UP + i)]).collect()
+                        }
+                        None => Vec::new(),
+                    };
+                    let lane_inputs: Vec<(String, Vec<f64>)> = vec![
+                        (LANE_CONSTANTS.to_string(), x.table[l].clone()),
+                        ("m".to_string(), motion.to_vec()),
+                        ("x".to_string(), carried),
+                        ("s".to_string(), pick("s", 0)),
+                        ("c".to_string(), pick("c", 0)),
+                        ("q".to_string(), pick("q", q_off)),
+                        ("qd".to_string(), pick("qd", v_off)),
+                        ("qdd".to_string(), pick("qdd", v_off)),
+                        ("tau".to_string(), pick("tau", v_off)),
+                    ];
+                    for (i, v) in run(&x.body.function, &lane_inputs)?.into_iter().enumerate() {
+                        results[result_index(lanes, l, i)] = v;
+                    }
                 }
+                let name = results_name(g);
+                all.iter_mut().find(|(n, _)| *n == name).expect("pushed above").1 = results;
             }
-            let name = results_name(g);
-            all.iter_mut().find(|(n, _)| *n == name).expect("pushed above").1 = results;
         }
         let mut out = run(&self.body.function, &all)?;
         out.truncate(self.outputs);
@@ -768,18 +1018,25 @@ mod tests {
             }
             let qd: Vec<f64> = (0..nv).map(|_| 3.0 * next()).collect();
             let qdd: Vec<f64> = (0..nv).map(|_| 5.0 * next()).collect();
+            let tau: Vec<f64> = (0..nv).map(|_| 20.0 * next()).collect();
             let angles = &q[nq - n..];
             let (s, c): (Vec<f64>, Vec<f64>) = angles.iter().map(|a| a.sin_cos()).unzip();
-            for f in [Function::InverseDynamics, Function::BiasForces, Function::MassMatrix] {
+            for f in [Function::InverseDynamics, Function::BiasForces, Function::MassMatrix, Function::ForwardDynamics]
+            {
+                // (the forward dynamics has none with armature and friction: the quadruped's)
+                let alike = if f == Function::ForwardDynamics && name == "quadruped12" { 0 } else { alike };
                 let b = branched(&scene, &f, opts.rewrites).unwrap();
                 let Some(b) = b else {
                     assert_eq!(alike, 0, "{name} {f:?}: no branches trace alike");
                     continue;
                 };
-                assert_eq!(b.branches.len(), alike, "{name} {f:?}");
+                let groups = b.branches.iter().filter(|x| x.kind != Kind::AbaDown).count();
+                assert_eq!(groups, alike, "{name} {f:?}");
                 let mut inputs: Vec<(&str, &[f64])> = vec![("s", &s), ("c", &c), ("q", &q), ("qd", &qd)];
-                if f == Function::InverseDynamics {
-                    inputs.push(("qdd", &qdd));
+                match f {
+                    Function::InverseDynamics => inputs.push(("qdd", &qdd)),
+                    Function::ForwardDynamics => inputs.push(("tau", &tau)),
+                    _ => {}
                 }
                 let got = b.eval(&inputs).unwrap();
                 let mut ws = crate::algorithms::Workspace::<f64>::new(&model);
@@ -790,6 +1047,9 @@ mod tests {
                         dynamics::inverse_dynamics(&plain, &mut ws, &q, &qd, &qdd, Loads::gravity(&g), &mut want)
                     }
                     Function::BiasForces => dynamics::bias_forces(&plain, &mut ws, &q, &qd, Some(&g), &mut want),
+                    Function::ForwardDynamics => {
+                        dynamics::forward_dynamics(&plain, &mut ws, &q, &qd, &tau, Loads::gravity(&g), &mut want)
+                    }
                     _ => dynamics::mass_matrix(&plain, &mut ws, &q, &mut want),
                 }
                 assert_eq!(got.len(), want.len());

@@ -147,7 +147,10 @@ pub(crate) fn trace_module(
                 // loops' results): one longer than the split allows stays unrolled.
                 let lets = |b: &branches::Branched| counted(&b.body.function, options.fma).fp_ops();
                 let fits = |b: &branches::Branched| options.split_lets.is_none_or(|max| lets(b) <= max);
-                g.branched = branches::branched(scene, f, options.rewrites)?.filter(fits);
+                // (the forward dynamics' branches are the articulated-body algorithm's)
+                if g.method != Some(ForwardDynamicsMethod::Ldlt) {
+                    g.branched = branches::branched(scene, f, options.rewrites)?.filter(fits);
+                }
             }
         }
         // The forward dynamics' derivatives as their factors and a loop, where
