@@ -109,7 +109,7 @@ fn main() {
         .branch_loops(false)
         .generate()
         .expect("generating the floating humanoid's mass matrix");
-    // τ, M and h with the legs run as one body in vector lanes or a loop
+    // τ, M, h and q̈ with the legs and arms run as one body in vector lanes or a loop
     // (codegen/trace/branches.rs): the humanoid's two legs with the run-time
     // dispatch (two to a register); the quadruped's four with it (four to a
     // register on a processor with AVX2), without it (two to a register in
@@ -125,7 +125,7 @@ fn main() {
             .urdf(format!("../dynagen/robots/{robot}.urdf"))
             .floating_base(true)
             .name(name)
-            .functions(&["inverse_dynamics", "mass_matrix", "bias_forces"])
+            .functions(&["inverse_dynamics", "mass_matrix", "bias_forces", "forward_dynamics"])
             .branch_loops(true)
             .runtime_dispatch(dispatch)
             .scalar(scalar)

@@ -98,9 +98,10 @@ mod loops {
     }
 }
 
-/// τ, M and h with the legs run as one body over a table of their constants
-/// (`branch_loops`), compiled, against the generic RNEA and CRBA on random
-/// states (|q̇| up to about 50), in each form the body takes: in vector
+/// τ, M, h and q̈ with the legs (and the humanoid's arms) run as one body
+/// over a table of their constants (`branch_loops`), compiled, against the
+/// generic RNEA, CRBA and ABA on random states (|q̇| up to about 50), in each
+/// form the body takes: in vector
 /// lanes, two legs to a register (the humanoid's; the quadruped's without
 /// the run-time dispatch in a default build) or four (the quadruped's with
 /// it, on a processor with AVX2), and a scalar loop (f32, ≤ 1e-4).
@@ -111,7 +112,7 @@ fn the_compiled_branch_loops_match_the_generic_solver() {
             use loops::$module as module;
             let file = concat!(env!("OUT_DIR"), "/", $file);
             let source = std::fs::read_to_string(file).unwrap();
-            for name in ["inverse_dynamics", "mass_matrix", "bias_forces"] {
+            for name in ["inverse_dynamics", "mass_matrix", "bias_forces", "forward_dynamics"] {
                 let table = format!("const {}_BRANCH0: [[{}; ", name.to_uppercase(), stringify!($t));
                 assert!(source.contains(&table), "{}: {name} has a table of its legs' constants", $file);
                 assert!(source.contains(&format!("; {}] = [", $lanes)), "{}: one row per leg", $file);
@@ -143,6 +144,11 @@ fn the_compiled_branch_loops_match_the_generic_solver() {
                 rnea::rnea(&model, &mut ws, &q64, Some(&qd64), None, Loads::gravity(&g), &mut want);
                 let e = norm_rel_err(&wide(&module::bias_forces(&q, &qd)), &want, 1e-300);
                 assert!(e < $tol, "{} h at state {k}: relative error {e:e}", $file);
+                let tau: [f64; module::NV] = core::array::from_fn(|_| rng.range(-20.0, 20.0));
+                let tau = tau.map(|v| v as $t);
+                aba::aba(&model, &mut ws, &q64, &qd64, &wide(&tau), Loads::gravity(&g), &mut want);
+                let e = norm_rel_err(&wide(&module::forward_dynamics(&q, &qd, &tau)), &want, 1e-300);
+                assert!(e < $tol, "{} q̈ at state {k}: relative error {e:e}", $file);
                 let mut want = vec![0.0; module::NV * module::NV];
                 crba::crba(&model, &mut ws, &q64, Loads::none(), &mut want);
                 let e = norm_rel_err(&wide(module::mass_matrix(&q).as_flattened()), &want, 1e-300);
