@@ -3836,6 +3836,35 @@ where
     out
 }
 
+/// Entries `offset..offset + A` of the results `r` of `L` branches (entry i
+/// of branch b at `r[i·L + b]`, as `branch_rows` writes them) for branches
+/// `from..from + W` (past the last, the first ones again), as registers:
+/// what a branch's second part reads of its first part's results.
+#[inline(always)]
+#[allow(dead_code)]
+fn branch_entries<const W: usize, const A: usize, const L: usize, const N: usize>(
+    r: &[f64; N],
+    offset: usize,
+    from: usize,
+) -> [<[f64; W] as ToLanes>::V; A]
+where
+    [f64; W]: ToLanes,
+{
+    let mut out = [<<[f64; W] as ToLanes>::V as Lanes>::splat(0.0); A];
+    let mut i = 0;
+    while i < A {
+        let mut lanes = [0.0; W];
+        let mut l = 0;
+        while l < W {
+            lanes[l] = r[(offset + i) * L + (from + l) % L];
+            l += 1;
+        }
+        out[i] = lanes.to_lanes();
+        i += 1;
+    }
+    out
+}
+
 /// `x` in every lane, entry by entry.
 #[inline(always)]
 #[allow(dead_code)]

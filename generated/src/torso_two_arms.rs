@@ -56,7 +56,7 @@ pub const JOINT_NAMES: [&str; DOF] = [
 pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
     sin_cos_array(q)
 }
-/// One branch of [`inverse_dynamics_sc`] (3 joints), run for each of those that hang alike from `torso`, from `left_shoulder_joint`, `right_shoulder_joint` on. Takes its constants `k` (a row of [`INVERSE_DYNAMICS_BRANCH0`]) and its parent's motion `m` (ω, ω̇, the origin's acceleration and U = [ω̇×] + [ω×][ω×] row by row, in the parent's frame) and its joints' state; returns their τ, then the wrench it puts on its parent (moment, force; parent frame).
+/// One branch of [`inverse_dynamics_sc`] (3 joints), run for each of those that hang alike from `torso`, from `left_shoulder_joint`, `right_shoulder_joint` on. Takes its constants `k` (a row of [`INVERSE_DYNAMICS_BRANCH0`]) and its parent's motion `m` (ω, ω̇, the origin's acceleration and `U = [ω̇×] + [ω×][ω×]` row by row, in the parent's frame) and its joints' state; returns their τ, then the wrench it puts on its parent (moment, force; parent frame).
 ///
 /// Written over registers `V` of branches (lane l of each register one branch, the operations of `Lanes`, the bits of scalar code in every lane); run by [`inverse_dynamics_branch0_run`].
 #[allow(
@@ -1433,7 +1433,7 @@ unsafe fn mass_matrix_avx2_fma(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
         &[1.0, c[0], c[1], c[2], c[3], c[4], c[5]],
     )
 }
-/// One branch of [`bias_forces_sc`] (3 joints), run for each of those that hang alike from `torso`, from `left_shoulder_joint`, `right_shoulder_joint` on. Takes its constants `k` (a row of [`BIAS_FORCES_BRANCH0`]) and its parent's motion `m` (ω, ω̇, the origin's acceleration and U = [ω̇×] + [ω×][ω×] row by row, in the parent's frame) and its joints' state; returns their τ, then the wrench it puts on its parent (moment, force; parent frame).
+/// One branch of [`bias_forces_sc`] (3 joints), run for each of those that hang alike from `torso`, from `left_shoulder_joint`, `right_shoulder_joint` on. Takes its constants `k` (a row of [`BIAS_FORCES_BRANCH0`]) and its parent's motion `m` (ω, ω̇, the origin's acceleration and `U = [ω̇×] + [ω×][ω×]` row by row, in the parent's frame) and its joints' state; returns their τ, then the wrench it puts on its parent (moment, force; parent frame).
 ///
 /// Written over registers `V` of branches (lane l of each register one branch, the operations of `Lanes`, the bits of scalar code in every lane); run by [`bias_forces_branch0_run`].
 #[allow(
@@ -4167,6 +4167,35 @@ where
     let mut i = 0;
     while i < A {
         out[i] = entries[i].to_lanes();
+        i += 1;
+    }
+    out
+}
+
+/// Entries `offset..offset + A` of the results `r` of `L` branches (entry i
+/// of branch b at `r[i·L + b]`, as `branch_rows` writes them) for branches
+/// `from..from + W` (past the last, the first ones again), as registers:
+/// what a branch's second part reads of its first part's results.
+#[inline(always)]
+#[allow(dead_code)]
+fn branch_entries<const W: usize, const A: usize, const L: usize, const N: usize>(
+    r: &[f64; N],
+    offset: usize,
+    from: usize,
+) -> [<[f64; W] as ToLanes>::V; A]
+where
+    [f64; W]: ToLanes,
+{
+    let mut out = [<<[f64; W] as ToLanes>::V as Lanes>::splat(0.0); A];
+    let mut i = 0;
+    while i < A {
+        let mut lanes = [0.0; W];
+        let mut l = 0;
+        while l < W {
+            lanes[l] = r[(offset + i) * L + (from + l) % L];
+            l += 1;
+        }
+        out[i] = lanes.to_lanes();
         i += 1;
     }
     out

@@ -69,7 +69,7 @@ pub(super) fn items(
         };
         let what = match x.kind {
             Kind::Rnea { .. } => {
-                "its parent's motion `m` (ω, ω̇, the origin's acceleration and U = [ω̇×] + [ω×][ω×] row by row, \
+                "its parent's motion `m` (ω, ω̇, the origin's acceleration and `U = [ω̇×] + [ω×][ω×]` row by row, \
                  in the parent's frame) and its joints' state; returns their τ, then the wrench it puts on its \
                  parent (moment, force; parent frame)"
             }
@@ -139,7 +139,8 @@ pub(super) fn items(
             items.push(syn::Item::Fn(func));
         }
         if lanes {
-            items.push(runner(name, g, x)?);
+            let up = x.up.map(|u| b.branches[u].outputs());
+            items.push(runner(name, g, x, up)?);
         }
         in_lanes.push(lanes);
         let ty = statements::scalar_type(options.scalar);
@@ -204,6 +205,7 @@ pub(super) fn glue(
             call_args.push(quote!(&#m));
         }
         let branches = x.group.lanes.len();
+        let in_lanes = lanes.get(g).copied().unwrap_or(false);
         for p in params(x).iter().skip(call_args.len()) {
             let local = format_ident!("{}_b{g}", p.name);
             let rows: Vec<proc_macro2::TokenStream> = match (p.name.as_str(), x.up) {
@@ -236,11 +238,14 @@ pub(super) fn glue(
                         .collect()
                 }
             };
-            locals.push(quote!(let #local = [#(#rows),*];));
+            // (in lanes, the second part of an articulated-body branch reads its first's results as they are)
+            if p.name != "x" || !in_lanes {
+                locals.push(quote!(let #local = [#(#rows),*];));
+            }
             call_args.push(quote!(&#local[l]));
         }
         let total = proc_macro2::Literal::usize_unsuffixed(x.group.lanes.len() * x.outputs());
-        let block: syn::Block = if lanes.get(g).copied().unwrap_or(false) {
+        let block: syn::Block = if in_lanes {
             // Four branches to a register where there are more than two and
             // the instructions (`Isa::QUADS`: AVX2) have them, else two.
             let run = format_ident!("{}", run_name(name, g));
@@ -251,7 +256,14 @@ pub(super) fn glue(
                 .map(|a| syn::parse2::<Expr>(a.clone()))
                 .collect::<Result<_, _>>()
                 .map_err(|e| CodegenError::Internal(e.to_string()))?;
-            let whole: Vec<Expr> = args.iter().map(strip_row).collect();
+            let mut whole: Vec<Expr> = args.iter().map(strip_row).collect();
+            // The second part of an articulated-body branch reads its first
+            // part's results as they are.
+            if let Some(up) = x.up {
+                let at = params(x).iter().skip(1).position(|p| p.name == "x").expect("it reads x");
+                let from = ident(&results_name(up));
+                whole[at] = syn::parse_quote!(&#from);
+            }
             let run_all = |w: usize| {
                 let w = proc_macro2::Literal::usize_unsuffixed(w);
                 quote!(#run::<#isa, #w>(#(#whole,)* &mut #r);)
@@ -374,7 +386,9 @@ fn lanes_expr(e: &Expr) -> Option<Expr> {
 
 /// `NAME_branchG_run::<I, W>`: group `g`'s body in lanes on its branches,
 /// `W` at a time, each lane's results to its row of `r`.
-fn runner(name: &str, g: usize, x: &BranchBody) -> Result<syn::Item, CodegenError> {
+/// `up`: for the second part of an articulated-body branch, the number of
+/// its first part's outputs, whose results (`x`) it reads as they are.
+fn runner(name: &str, g: usize, x: &BranchBody, up: Option<usize>) -> Result<syn::Item, CodegenError> {
     let lit = proc_macro2::Literal::usize_unsuffixed;
     let (nb, l, r) = (x.group.lanes[0].len(), x.group.lanes.len(), x.outputs());
     let (nb_, l_, r_, p_, total) = (lit(nb), lit(l), lit(r), lit(x.table[0].len()), lit(l * r));
@@ -386,7 +400,11 @@ fn runner(name: &str, g: usize, x: &BranchBody) -> Result<syn::Item, CodegenErro
     let mut splat = quote!();
     for p in params(x).iter().skip(1) {
         let id = ident(&p.name);
-        if p.name == "m" {
+        if let ("x", Some(outputs)) = (p.name.as_str(), up) {
+            let (n, carried, first) = (lit(l * outputs), lit(x.carried()), lit(ABA_UP));
+            ps.push(quote!(#id: &[f64; #n]));
+            args.push(quote!(&branch_entries::<W, #carried, #l_, #n>(#id, #first, l)));
+        } else if p.name == "m" {
             let m = lit(x.motion());
             ps.push(quote!(#id: &[f64; #m]));
             splat = quote!(let #id = branch_splat::<<[f64; W] as ToLanes>::V, #m>(#id););
