@@ -1,7 +1,10 @@
-//! The branches of a function emitted as a loop (`trace/branches.rs`): for
-//! each group, the body `NAME_branchG` of one branch, the table
-//! `NAME_BRANCHG` of its constants (one row per branch), and the statements
-//! in `NAME_sc` that run the body for each row.
+//! The branches of a function (`trace/branches.rs`): for each group, the
+//! body `NAME_branchG` of one branch, written over vector registers of the
+//! kernel's `Lanes` in `f64` (each lane a branch) and the function
+//! `NAME_branchG_run` that runs it on the branches two or four at a time,
+//! or in `f32` a scalar body and a loop; the table `NAME_BRANCHG` of its
+//! constants (one row per branch); and the statements in `NAME_sc` that
+//! run them.
 
 use super::statements::{self, BodyStyle, Dim, Param, Shape, Signature, Sizes};
 use super::syntax::ident;

@@ -1,32 +1,43 @@
 //! Branches: sibling subtrees of one shape (a humanoid's two legs and two
 //! arms, a quadruped's four legs), traced once and emitted as one body that
-//! a loop runs for each of them, reading its constants from a table.
+//! runs on all of them: in vector lanes, two or four branches at once
+//! (`codegen/emit/branches.rs`), reading its constants from a table.
 //!
 //! A body unrolled for the whole robot is as long as the robot is big; past
 //! a few thousand instructions it no longer fits in the processor's
 //! micro-op cache and runs at the rate the decoders take its bytes
-//! (`docs/performance.md`, "Long bodies: the front end"). A loop over the
-//! branches runs the bytes of one branch as many times as there are
-//! branches.
+//! (`docs/performance.md`, "Long bodies: the front end"). One body for the
+//! branches runs the bytes of one branch, and each of its instructions on
+//! several branches.
 //!
-//! Each branch is traced with its constants as inputs `k[i]` (one per
-//! distinct value, see [`Graph::with_lane_constants`]), so that branches
-//! that differ only in their numbers give the same graph, and any
-//! difference of structure (a zero in one branch where the other has a
-//! number) shows as a different graph: such branches are left in the
-//! unrolled body. The constants every branch shares are then folded back
-//! in; the others are the table. For the recursive Newton-Euler functions
-//! (τ, h), the branch takes its parent's motion (ω, ω̇, the origin's
-//! acceleration and `U`, 18 numbers in the parent's frame) and its joints'
-//! state, and returns its joints' τ and the wrench it puts on its parent
-//! (parent frame). The rest of the robot is traced with the branches'
-//! wrenches as inputs, acting on their parents as tip wrenches do, and the
-//! parents' motions as extra outputs, which the emitted body computes
-//! before the loop (`codegen/emit/statements.rs`). For the mass matrix, the
-//! branch takes its joints' angles alone and returns its own block, each
-//! joint's `Iᶜ·S` at its parent and its composite inertia there; the rest's
-//! CRBA carries the composite inertias as payloads on the parents and the
-//! `Iᶜ·S` up to the base.
+//! Each branch is traced with every constant an input `k[i]` of its own
+//! (0 and ±1 too, see [`Graph::with_lane_constants`]), so that branches
+//! that take the same code paths give the same graph whatever their
+//! numbers. Where the algorithms choose a path from a joint's numbers (an
+//! identity or quarter-turn placement, an axis along a coordinate axis),
+//! `harmonise` sends every branch down the general path if they differ.
+//! The constants every branch shares are then folded back in (and
+//! simplified); the others are the table. Branches whose graphs still
+//! differ stay in the unrolled body.
+//!
+//! For the recursive Newton-Euler functions (τ, h), the branch takes its
+//! parent's motion (ω, ω̇, the origin's acceleration and `U`, 18 numbers in
+//! the parent's frame) and its joints' state, and returns its joints' τ and
+//! the wrench it puts on its parent (parent frame). The rest of the robot
+//! is traced with the branches' wrenches as inputs, acting on their parents
+//! as tip wrenches do, and the parents' motions as extra outputs, which the
+//! emitted body computes before the calls (`codegen/emit/statements.rs`).
+//! For the mass matrix, the branch takes its joints' angles alone and
+//! returns its own block, each joint's `Iᶜ·S` at its parent and its
+//! composite inertia there; the rest's CRBA carries the composite inertias
+//! as payloads on the parents and the `Iᶜ·S` up to the base. For the
+//! forward dynamics by the articulated-body algorithm, the branch's whole
+//! algorithm is traced and cut where its parent's acceleration enters
+//! (`cut_at`): its first part ([`Kind::AbaUp`]) takes the parent's ω and
+//! returns the articulated inertia and bias force it passes to the parent,
+//! the rest's ABA takes those and computes the parents' accelerations, and
+//! the second part ([`Kind::AbaDown`]) takes them and the values of the
+//! first part it needs, and returns the branch's q̈.
 
 use super::sin_cos::{sin_cos_inputs, SinCosTrace};
 use super::SceneLoads;
