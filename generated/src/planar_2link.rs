@@ -1022,11 +1022,9 @@ trait Lanes: Copy {
     const WIDTH: usize;
     /// `a` in every lane.
     fn splat(a: f64) -> Self;
-    /// `x[0]`, `x[1]`, … in the lanes (`WIDTH` ≤ 4 of them). By value: an
-    /// array in memory loaded whole right after its entries were stored
-    /// one by one stalls the load (no store forwarding).
+    /// `x[0]`, `x[1]`, … in the lanes (`x` has at least `WIDTH` entries).
     #[allow(dead_code)]
-    fn load(x: [f64; 4]) -> Self;
+    fn load(x: &[f64]) -> Self;
     /// Lane `l`.
     fn lane(self, l: usize) -> f64;
     /// The lanes to `out[0]`, `out[1]`, … (as many as there are lanes;
@@ -1071,7 +1069,7 @@ impl Lanes for f64 {
         a
     }
     #[inline(always)]
-    fn load(x: [f64; 4]) -> f64 {
+    fn load(x: &[f64]) -> f64 {
         x[0]
     }
     #[inline(always)]
@@ -1132,7 +1130,7 @@ impl Lanes for f64 {
 /// operations of `impl Lanes for f64`, lane by lane.
 #[cfg(target_arch = "x86_64")]
 macro_rules! vector_lanes {
-    ($w:literal, [$($i:literal),+], $v:ident, $all:literal, $add:ident, $sub:ident, $mul:ident, $div:ident, $fmadd:ident, $xor_pd:ident,
+    ($w:literal, $v:ident, $all:literal, $add:ident, $sub:ident, $mul:ident, $div:ident, $fmadd:ident, $xor_pd:ident,
      $set1:ident, $loadu:ident, $storeu:ident, $andnot:ident, $min:ident, $cmp_ge:expr, $movemask:ident,
      $to_int:ident, $to_float:ident, $and:ident, $or:ident, $xor:ident, $sub64:ident, $zero:ident, $set1_64:ident,
      $shl:ident) => {
@@ -1158,8 +1156,9 @@ macro_rules! vector_lanes {
                 unsafe { core::arch::x86_64::$set1(a) }
             }
             #[inline(always)]
-            fn load(x: [f64; 4]) -> Self {
-                [$(x[$i]),+].to_lanes()
+            fn load(x: &[f64]) -> Self {
+                let x = &x[..$w];
+                unsafe { core::arch::x86_64::$loadu(x.as_ptr()) }
             }
             #[inline(always)]
             fn lane(self, l: usize) -> f64 {
@@ -1227,11 +1226,11 @@ macro_rules! vector_lanes {
 }
 
 #[cfg(target_arch = "x86_64")]
-vector_lanes!(2, [0, 1], __m128d, 3, _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_div_pd, _mm_fmadd_pd, _mm_xor_pd, _mm_set1_pd, _mm_loadu_pd,
+vector_lanes!(2, __m128d, 3, _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_div_pd, _mm_fmadd_pd, _mm_xor_pd, _mm_set1_pd, _mm_loadu_pd,
     _mm_storeu_pd, _mm_andnot_pd, _mm_min_pd, _mm_cmpge_pd, _mm_movemask_pd, _mm_castpd_si128, _mm_castsi128_pd,
     _mm_and_si128, _mm_or_si128, _mm_xor_si128, _mm_sub_epi64, _mm_setzero_si128, _mm_set1_epi64x, _mm_slli_epi64);
 #[cfg(target_arch = "x86_64")]
-vector_lanes!(4, [0, 1, 2, 3], __m256d, 15, _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_div_pd, _mm256_fmadd_pd, _mm256_xor_pd, _mm256_set1_pd,
+vector_lanes!(4, __m256d, 15, _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_div_pd, _mm256_fmadd_pd, _mm256_xor_pd, _mm256_set1_pd,
     _mm256_loadu_pd, _mm256_storeu_pd, _mm256_andnot_pd, _mm256_min_pd, _mm256_cmp_pd::<_CMP_GE_OQ>,
     _mm256_movemask_pd, _mm256_castpd_si256, _mm256_castsi256_pd, _mm256_and_si256, _mm256_or_si256,
     _mm256_xor_si256, _mm256_sub_epi64, _mm256_setzero_si256, _mm256_set1_epi64x, _mm256_slli_epi64);
@@ -1264,13 +1263,9 @@ impl<const W: usize> Lanes for [f64; W] {
         [a; W]
     }
     #[inline(always)]
-    fn load(x: [f64; 4]) -> Self {
+    fn load(x: &[f64]) -> Self {
         let mut out = [0.0; W];
-        let mut l = 0;
-        while l < W {
-            out[l] = x[l];
-            l += 1;
-        }
+        out.copy_from_slice(&x[..W]);
         out
     }
     #[inline(always)]
@@ -1343,7 +1338,7 @@ fn branch_lanes<V: Lanes, const A: usize, const L: usize>(rows: &[[f64; A]; L], 
             lanes[l] = rows[(from + l) % L][i];
             l += 1;
         }
-        out[i] = V::load(lanes);
+        out[i] = V::load(&lanes);
         i += 1;
     }
     out
@@ -1370,7 +1365,7 @@ fn branch_entries<V: Lanes, const A: usize, const L: usize, const N: usize>(
             lanes[l] = r[(offset + i) * L + (from + l) % L];
             l += 1;
         }
-        out[i] = V::load(lanes);
+        out[i] = V::load(&lanes);
         i += 1;
     }
     out
