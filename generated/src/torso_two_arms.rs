@@ -476,33 +476,36 @@ fn inverse_dynamics_branch0<I: Isa, V: Lanes>(
     let t398 = k[0].neg().mul_add::<I>(t378, t393);
     [t366, t334, t288, t396, t397, t398, t378, t381, t384]
 }
-/// Runs [`inverse_dynamics_branch0`] on the 2 branches of [`INVERSE_DYNAMICS_BRANCH0`], `V::WIDTH` to a register: each lane's results to its branch's entries of `r` (9 a branch, entry by entry). Takes the rows of each branch's inputs.
+/// Runs [`inverse_dynamics_branch0`] on the 2 branches of [`INVERSE_DYNAMICS_BRANCH0`], `W` to a register: each lane's results to its row of `r` (9 a branch). Takes the rows of each branch's inputs.
 #[inline(always)]
 #[allow(dead_code)]
-fn inverse_dynamics_branch0_run<I: Isa, V: Lanes>(
+fn inverse_dynamics_branch0_run<I: Isa, const W: usize>(
     m: &[f64; 18],
     s: &[[f64; 3]; 2],
     c: &[[f64; 3]; 2],
     qd: &[[f64; 3]; 2],
     qdd: &[[f64; 3]; 2],
     r: &mut [f64; 18],
-) {
-    let m = branch_splat::<V, 18>(m);
+)
+where
+    [f64; W]: ToLanes,
+{
+    let m = branch_splat::<<[f64; W] as ToLanes>::V, 18>(m);
     let mut l = 0;
     while l < 2 {
         let out = inverse_dynamics_branch0::<
             I,
-            V,
+            <[f64; W] as ToLanes>::V,
         >(
-            &branch_lanes::<V, 49, 2>(&INVERSE_DYNAMICS_BRANCH0, l),
+            &branch_lanes::<W, 49, 2>(&INVERSE_DYNAMICS_BRANCH0, l),
             &m,
-            &branch_lanes::<V, 3, 2>(s, l),
-            &branch_lanes::<V, 3, 2>(c, l),
-            &branch_lanes::<V, 3, 2>(qd, l),
-            &branch_lanes::<V, 3, 2>(qdd, l),
+            &branch_lanes::<W, 3, 2>(s, l),
+            &branch_lanes::<W, 3, 2>(c, l),
+            &branch_lanes::<W, 3, 2>(qd, l),
+            &branch_lanes::<W, 3, 2>(qdd, l),
         );
-        branch_rows::<V, 9, 18>(&out, r, l);
-        l += V::WIDTH;
+        branch_rows::<_, W, 9, 18>(&out, r, l);
+        l += W;
     }
 }
 /// The constants of [`inverse_dynamics_branch0`], one row per branch: `left_shoulder_joint`, `right_shoulder_joint`.
@@ -693,10 +696,7 @@ fn inverse_dynamics_sc_on<I: Isa>(
     let qd_b0 = [[qd[1], qd[2], qd[3]], [qd[4], qd[5], qd[6]]];
     let qdd_b0 = [[qdd[1], qdd[2], qdd[3]], [qdd[4], qdd[5], qdd[6]]];
     let mut r0 = [0.0; 18];
-    inverse_dynamics_branch0_run::<
-        I,
-        <I as Isa>::Narrow,
-    >(&m_b0, &s_b0, &c_b0, &qd_b0, &qdd_b0, &mut r0);
+    inverse_dynamics_branch0_run::<I, 2>(&m_b0, &s_b0, &c_b0, &qd_b0, &qdd_b0, &mut r0);
     let t3 = r0[10] + r0[11];
     let t4 = I::fma(0.26954222715557674, qdd[0], t3);
     [t4, r0[0], r0[2], r0[4], r0[1], r0[3], r0[5]]
@@ -1214,26 +1214,29 @@ fn mass_matrix_branch0<I: Isa, V: Lanes>(
         t409,
     ]
 }
-/// Runs [`mass_matrix_branch0`] on the 2 branches of [`MASS_MATRIX_BRANCH0`], `V::WIDTH` to a register: each lane's results to its branch's entries of `r` (37 a branch, entry by entry). Takes the rows of each branch's inputs.
+/// Runs [`mass_matrix_branch0`] on the 2 branches of [`MASS_MATRIX_BRANCH0`], `W` to a register: each lane's results to its row of `r` (37 a branch). Takes the rows of each branch's inputs.
 #[inline(always)]
 #[allow(dead_code)]
-fn mass_matrix_branch0_run<I: Isa, V: Lanes>(
+fn mass_matrix_branch0_run<I: Isa, const W: usize>(
     s: &[[f64; 3]; 2],
     c: &[[f64; 3]; 2],
     r: &mut [f64; 74],
-) {
+)
+where
+    [f64; W]: ToLanes,
+{
     let mut l = 0;
     while l < 2 {
         let out = mass_matrix_branch0::<
             I,
-            V,
+            <[f64; W] as ToLanes>::V,
         >(
-            &branch_lanes::<V, 49, 2>(&MASS_MATRIX_BRANCH0, l),
-            &branch_lanes::<V, 3, 2>(s, l),
-            &branch_lanes::<V, 3, 2>(c, l),
+            &branch_lanes::<W, 49, 2>(&MASS_MATRIX_BRANCH0, l),
+            &branch_lanes::<W, 3, 2>(s, l),
+            &branch_lanes::<W, 3, 2>(c, l),
         );
-        branch_rows::<V, 37, 74>(&out, r, l);
-        l += V::WIDTH;
+        branch_rows::<_, W, 37, 74>(&out, r, l);
+        l += W;
     }
 }
 /// The constants of [`mass_matrix_branch0`], one row per branch: `left_shoulder_joint`, `right_shoulder_joint`.
@@ -1384,7 +1387,7 @@ fn mass_matrix_sc_on<I: Isa>(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF
     let s_b0 = [[s[1], s[2], s[3]], [s[4], s[5], s[6]]];
     let c_b0 = [[c[1], c[2], c[3]], [c[4], c[5], c[6]]];
     let mut r0 = [0.0; 74];
-    mass_matrix_branch0_run::<I, <I as Isa>::Narrow>(&s_b0, &c_b0, &mut r0);
+    mass_matrix_branch0_run::<I, 2>(&s_b0, &c_b0, &mut r0);
     let t0 = r0[66] + 0.26954222715557674;
     let t1 = r0[67] + t0;
     [
@@ -1840,31 +1843,34 @@ fn bias_forces_branch0<I: Isa, V: Lanes>(
     let t389 = k[0].neg().mul_add::<I>(t369, t384);
     [t357, t325, t279, t387, t388, t389, t369, t372, t375]
 }
-/// Runs [`bias_forces_branch0`] on the 2 branches of [`BIAS_FORCES_BRANCH0`], `V::WIDTH` to a register: each lane's results to its branch's entries of `r` (9 a branch, entry by entry). Takes the rows of each branch's inputs.
+/// Runs [`bias_forces_branch0`] on the 2 branches of [`BIAS_FORCES_BRANCH0`], `W` to a register: each lane's results to its row of `r` (9 a branch). Takes the rows of each branch's inputs.
 #[inline(always)]
 #[allow(dead_code)]
-fn bias_forces_branch0_run<I: Isa, V: Lanes>(
+fn bias_forces_branch0_run<I: Isa, const W: usize>(
     m: &[f64; 18],
     s: &[[f64; 3]; 2],
     c: &[[f64; 3]; 2],
     qd: &[[f64; 3]; 2],
     r: &mut [f64; 18],
-) {
-    let m = branch_splat::<V, 18>(m);
+)
+where
+    [f64; W]: ToLanes,
+{
+    let m = branch_splat::<<[f64; W] as ToLanes>::V, 18>(m);
     let mut l = 0;
     while l < 2 {
         let out = bias_forces_branch0::<
             I,
-            V,
+            <[f64; W] as ToLanes>::V,
         >(
-            &branch_lanes::<V, 49, 2>(&BIAS_FORCES_BRANCH0, l),
+            &branch_lanes::<W, 49, 2>(&BIAS_FORCES_BRANCH0, l),
             &m,
-            &branch_lanes::<V, 3, 2>(s, l),
-            &branch_lanes::<V, 3, 2>(c, l),
-            &branch_lanes::<V, 3, 2>(qd, l),
+            &branch_lanes::<W, 3, 2>(s, l),
+            &branch_lanes::<W, 3, 2>(c, l),
+            &branch_lanes::<W, 3, 2>(qd, l),
         );
-        branch_rows::<V, 9, 18>(&out, r, l);
-        l += V::WIDTH;
+        branch_rows::<_, W, 9, 18>(&out, r, l);
+        l += W;
     }
 }
 /// The constants of [`bias_forces_branch0`], one row per branch: `left_shoulder_joint`, `right_shoulder_joint`.
@@ -2046,10 +2052,7 @@ fn bias_forces_sc_on<I: Isa>(
     let c_b0 = [[c[1], c[2], c[3]], [c[4], c[5], c[6]]];
     let qd_b0 = [[qd[1], qd[2], qd[3]], [qd[4], qd[5], qd[6]]];
     let mut r0 = [0.0; 18];
-    bias_forces_branch0_run::<
-        I,
-        <I as Isa>::Narrow,
-    >(&m_b0, &s_b0, &c_b0, &qd_b0, &mut r0);
+    bias_forces_branch0_run::<I, 2>(&m_b0, &s_b0, &c_b0, &qd_b0, &mut r0);
     let t2 = r0[10] + r0[11];
     [t2, r0[0], r0[2], r0[4], r0[1], r0[3], r0[5]]
 }
@@ -3620,13 +3623,6 @@ trait Isa {
     fn fma(a: f64, b: f64, c: f64) -> f64;
     /// `a·b + c` in `f32`.
     fn fmaf(a: f32, b: f32, c: f32) -> f32;
-    /// The register of the branch bodies: four lanes where the
-    /// instructions have them (AVX2), else two.
-    #[allow(dead_code)]
-    type Wide: Lanes;
-    /// Two lanes.
-    #[allow(dead_code)]
-    type Narrow: Lanes;
 }
 
 /// What the build's target features give: fused multiply-adds where the
@@ -3649,11 +3645,6 @@ impl Isa for Baseline {
     fn fmaf(a: f32, b: f32, c: f32) -> f32 {
         fmaf(a, b, c)
     }
-    #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
-    type Wide = <[f64; 4] as ToLanes>::V;
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx2")))]
-    type Wide = <[f64; 2] as ToLanes>::V;
-    type Narrow = <[f64; 2] as ToLanes>::V;
 }
 
 /// AVX2 and FMA: named only in the bodies of `#[target_feature(enable =
@@ -3677,8 +3668,6 @@ impl Isa for Avx2Fma {
         // SAFETY: `Avx2Fma` code runs only on processors with FMA (see above).
         unsafe { fmaf_x86(a, b, c) }
     }
-    type Wide = core::arch::x86_64::__m256d;
-    type Narrow = core::arch::x86_64::__m128d;
 }
 
 /// Whether this processor has AVX2 and FMA and the operating system saves
@@ -3871,14 +3860,8 @@ trait ToLanes {
 
 /// What steps 1, 3 and 4 do to angles, lane by lane.
 trait Lanes: Copy {
-    /// The number of lanes.
-    #[allow(dead_code)]
-    const WIDTH: usize;
     /// `a` in every lane.
     fn splat(a: f64) -> Self;
-    /// `x[0]`, `x[1]`, … in the lanes (`x` has at least `WIDTH` entries).
-    #[allow(dead_code)]
-    fn load(x: &[f64]) -> Self;
     /// Lane `l`.
     fn lane(self, l: usize) -> f64;
     /// The lanes to `out[0]`, `out[1]`, … (as many as there are lanes;
@@ -3917,14 +3900,9 @@ impl ToLanes for [f64; 1] {
 }
 
 impl Lanes for f64 {
-    const WIDTH: usize = 1;
     #[inline(always)]
     fn splat(a: f64) -> f64 {
         a
-    }
-    #[inline(always)]
-    fn load(x: &[f64]) -> f64 {
-        x[0]
     }
     #[inline(always)]
     fn lane(self, _: usize) -> f64 {
@@ -4004,15 +3982,9 @@ macro_rules! vector_lanes {
         }
         #[allow(unused_unsafe)]
         impl Lanes for core::arch::x86_64::$v {
-            const WIDTH: usize = $w;
             #[inline(always)]
             fn splat(a: f64) -> Self {
                 unsafe { core::arch::x86_64::$set1(a) }
-            }
-            #[inline(always)]
-            fn load(x: &[f64]) -> Self {
-                let x = &x[..$w];
-                unsafe { core::arch::x86_64::$loadu(x.as_ptr()) }
             }
             #[inline(always)]
             fn lane(self, l: usize) -> f64 {
@@ -4111,16 +4083,9 @@ impl ToLanes for [f64; 4] {
 
 #[cfg(not(target_arch = "x86_64"))]
 impl<const W: usize> Lanes for [f64; W] {
-    const WIDTH: usize = W;
     #[inline(always)]
     fn splat(a: f64) -> Self {
         [a; W]
-    }
-    #[inline(always)]
-    fn load(x: &[f64]) -> Self {
-        let mut out = [0.0; W];
-        out.copy_from_slice(&x[..W]);
-        out
     }
     #[inline(always)]
     fn lane(self, l: usize) -> f64 {
@@ -4169,30 +4134,39 @@ impl<const W: usize> Lanes for [f64; W] {
     }
 }
 
-// Branches in vector lanes (`branch_loops`, on by default): a module's branch body
-// `NAME_branchG::<I, V>` runs `V::WIDTH` alike branches at once, lane l of each
+// Branch loops in vector lanes (`--branch-loops`): a module's branch body
+// `NAME_branchG::<I, V>` runs `W` alike branches at once, lane l of each
 // register one branch, over the operations of `Lanes` (the bits of the
-// scalar code in every lane), `V` of `Isa::Wide` (four lanes with AVX2)
-// or `Isa::Narrow` (two). `branch_lanes` loads rows of the branches'
-// constants or inputs as registers, `branch_entries` a part of their
-// results, `branch_splat` a row shared by all, `branch_rows` writes each
-// lane's results to the branch's entries.
+// scalar code in every lane). `branch_lanes` loads `W` rows of the
+// branches' constants or inputs as registers, `branch_splat` a row shared
+// by all, `branch_rows` writes each lane's results to the branch's entries.
 
-/// Rows `from..from + V::WIDTH` of `rows`, entry by entry, as registers;
-/// past the last row, the first ones again (as in `angles`).
+/// Rows `from..from + W` of `rows`, entry by entry, as registers of `W`
+/// lanes; past the last row, the first ones again (as in `angles`).
 #[inline(always)]
 #[allow(dead_code)]
-fn branch_lanes<V: Lanes, const A: usize, const L: usize>(rows: &[[f64; A]; L], from: usize) -> [V; A] {
-    let mut out = [V::splat(0.0); A];
+fn branch_lanes<const W: usize, const A: usize, const L: usize>(
+    rows: &[[f64; A]; L],
+    from: usize,
+) -> [<[f64; W] as ToLanes>::V; A]
+where
+    [f64; W]: ToLanes,
+{
+    let mut entries = [[0.0; W]; A];
+    let mut l = 0;
+    while l < W {
+        let row = &rows[(from + l) % L];
+        let mut i = 0;
+        while i < A {
+            entries[i][l] = row[i];
+            i += 1;
+        }
+        l += 1;
+    }
+    let mut out = [<<[f64; W] as ToLanes>::V as Lanes>::splat(0.0); A];
     let mut i = 0;
     while i < A {
-        let mut lanes = [0.0; 4];
-        let mut l = 0;
-        while l < V::WIDTH {
-            lanes[l] = rows[(from + l) % L][i];
-            l += 1;
-        }
-        out[i] = V::load(&lanes);
+        out[i] = entries[i].to_lanes();
         i += 1;
     }
     out
@@ -4200,26 +4174,28 @@ fn branch_lanes<V: Lanes, const A: usize, const L: usize>(rows: &[[f64; A]; L], 
 
 /// Entries `offset..offset + A` of the results `r` of `L` branches (entry i
 /// of branch b at `r[i·L + b]`, as `branch_rows` writes them) for branches
-/// `from..from + V::WIDTH` (past the last, the first ones again), as
-/// registers: what a branch's second part reads of its first part's
-/// results.
+/// `from..from + W` (past the last, the first ones again), as registers:
+/// what a branch's second part reads of its first part's results.
 #[inline(always)]
 #[allow(dead_code)]
-fn branch_entries<V: Lanes, const A: usize, const L: usize, const N: usize>(
+fn branch_entries<const W: usize, const A: usize, const L: usize, const N: usize>(
     r: &[f64; N],
     offset: usize,
     from: usize,
-) -> [V; A] {
-    let mut out = [V::splat(0.0); A];
+) -> [<[f64; W] as ToLanes>::V; A]
+where
+    [f64; W]: ToLanes,
+{
+    let mut out = [<<[f64; W] as ToLanes>::V as Lanes>::splat(0.0); A];
     let mut i = 0;
     while i < A {
-        let mut lanes = [0.0; 4];
+        let mut lanes = [0.0; W];
         let mut l = 0;
-        while l < V::WIDTH {
+        while l < W {
             lanes[l] = r[(offset + i) * L + (from + l) % L];
             l += 1;
         }
-        out[i] = V::load(&lanes);
+        out[i] = lanes.to_lanes();
         i += 1;
     }
     out
@@ -4240,14 +4216,14 @@ fn branch_splat<V: Lanes, const A: usize>(x: &[f64; A]) -> [V; A] {
 
 /// Lane l of `v` to the results of branch `from + l` in `out`, where
 /// entry i of branch b is `out[i·L + b]` (L = N / R branches): one store a
-/// register where all its branches exist, else lane by lane.
+/// register where all `W` branches exist, else lane by lane.
 #[inline(always)]
 #[allow(dead_code)]
-fn branch_rows<V: Lanes, const R: usize, const N: usize>(v: &[V; R], out: &mut [f64; N], from: usize) {
+fn branch_rows<V: Lanes, const W: usize, const R: usize, const N: usize>(v: &[V; R], out: &mut [f64; N], from: usize) {
     let branches = N / R;
     let mut i = 0;
     while i < R {
-        if from + V::WIDTH <= branches {
+        if from + W <= branches {
             v[i].store(&mut out[i * branches + from..]);
         } else {
             let mut l = 0;

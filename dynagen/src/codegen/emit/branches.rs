@@ -250,7 +250,7 @@ pub(super) fn glue(
         let total = proc_macro2::Literal::usize_unsuffixed(x.group.lanes.len() * x.outputs());
         let block: syn::Block = if in_lanes {
             // Four branches to a register where there are more than two and
-            // the instructions have them (`Isa::Wide`: AVX2), else two.
+            // the instructions (`Isa::QUADS`: AVX2) have them, else two.
             let run = format_ident!("{}", run_name(name, g));
             let isa = if dispatch { quote!(I) } else { quote!(Baseline) };
             let args: Vec<_> = call_args[1..].iter().map(|a| quote!(#a)).collect();
@@ -267,8 +267,15 @@ pub(super) fn glue(
                 let from = ident(&results_name(up));
                 whole[at] = syn::parse_quote!(&#from);
             }
-            let width = if x.group.lanes.len() > 2 { quote!(Wide) } else { quote!(Narrow) };
-            let runs = quote!(#run::<#isa, <#isa as Isa>::#width>(#(#whole,)* &mut #r););
+            let run_all = |w: usize| {
+                let w = proc_macro2::Literal::usize_unsuffixed(w);
+                quote!(#run::<#isa, #w>(#(#whole,)* &mut #r);)
+            };
+            let (four, two) = (run_all(4), run_all(2));
+            let runs = match x.group.lanes.len() > 2 {
+                true => quote!(if #isa::QUADS { #four } else { #two }),
+                false => two,
+            };
             syn::parse2(quote! {{
                 #(#locals)*
                 let mut #r = [0.0; #total];
@@ -392,18 +399,18 @@ fn runner(name: &str, g: usize, x: &BranchBody, up: Option<usize>) -> Result<syn
     let table = format_ident!("{}", table_name(name, g));
     let run = format_ident!("{}", run_name(name, g));
     let mut ps = Vec::new();
-    let mut args = vec![quote!(&branch_lanes::<V, #p_, #l_>(&#table, l))];
+    let mut args = vec![quote!(&branch_lanes::<W, #p_, #l_>(&#table, l))];
     let mut splat = quote!();
     for p in params(x).iter().skip(1) {
         let id = ident(&p.name);
         if let ("x", Some(outputs)) = (p.name.as_str(), up) {
             let (n, carried, first) = (lit(l * outputs), lit(x.carried()), lit(ABA_UP));
             ps.push(quote!(#id: &[f64; #n]));
-            args.push(quote!(&branch_entries::<V, #carried, #l_, #n>(#id, #first, l)));
+            args.push(quote!(&branch_entries::<W, #carried, #l_, #n>(#id, #first, l)));
         } else if p.name == "m" {
             let m = lit(x.motion());
             ps.push(quote!(#id: &[f64; #m]));
-            splat = quote!(let #id = branch_splat::<V, #m>(#id););
+            splat = quote!(let #id = branch_splat::<<[f64; W] as ToLanes>::V, #m>(#id););
             args.push(quote!(&#id));
         } else {
             let len = match p.len {
@@ -411,24 +418,27 @@ fn runner(name: &str, g: usize, x: &BranchBody, up: Option<usize>) -> Result<syn
                 _ => nb_.clone(),
             };
             ps.push(quote!(#id: &[[f64; #len]; #l_]));
-            args.push(quote!(&branch_lanes::<V, #len, #l_>(#id, l)));
+            args.push(quote!(&branch_lanes::<W, #len, #l_>(#id, l)));
         }
     }
     let doc = format!(
-        " Runs [`{body}`] on the {l} branches of [`{}`], `V::WIDTH` to a register: each lane's results to its \
-         branch's entries of `r` ({r} a branch, entry by entry). Takes the rows of each branch's inputs.",
+        " Runs [`{body}`] on the {l} branches of [`{}`], `W` to a register: each lane's results to its row of `r` \
+         ({r} a branch). Takes the rows of each branch's inputs.",
         table_name(name, g)
     );
     syn::parse2(quote! {
         #[doc = #doc]
         #[inline(always)]
-        fn #run<I: Isa, V: Lanes>(#(#ps,)* r: &mut [f64; #total]) {
+        fn #run<I: Isa, const W: usize>(#(#ps,)* r: &mut [f64; #total])
+        where
+            [f64; W]: ToLanes,
+        {
             #splat
             let mut l = 0;
             while l < #l_ {
-                let out = #body::<I, V>(#(#args),*);
-                branch_rows::<V, #r_, #total>(&out, r, l);
-                l += V::WIDTH;
+                let out = #body::<I, <[f64; W] as ToLanes>::V>(#(#args),*);
+                branch_rows::<_, W, #r_, #total>(&out, r, l);
+                l += W;
             }
         }
     })

@@ -291,13 +291,6 @@ trait Isa {
     fn fma(a: f64, b: f64, c: f64) -> f64;
     /// `a·b + c` in `f32`.
     fn fmaf(a: f32, b: f32, c: f32) -> f32;
-    /// The register of the branch bodies: four lanes where the
-    /// instructions have them (AVX2), else two.
-    #[allow(dead_code)]
-    type Wide: Lanes;
-    /// Two lanes.
-    #[allow(dead_code)]
-    type Narrow: Lanes;
 }
 
 /// What the build's target features give: fused multiply-adds where the
@@ -320,11 +313,6 @@ impl Isa for Baseline {
     fn fmaf(a: f32, b: f32, c: f32) -> f32 {
         fmaf(a, b, c)
     }
-    #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
-    type Wide = <[f64; 4] as ToLanes>::V;
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx2")))]
-    type Wide = <[f64; 2] as ToLanes>::V;
-    type Narrow = <[f64; 2] as ToLanes>::V;
 }
 
 /// AVX2 and FMA: named only in the bodies of `#[target_feature(enable =
@@ -348,8 +336,6 @@ impl Isa for Avx2Fma {
         // SAFETY: `Avx2Fma` code runs only on processors with FMA (see above).
         unsafe { fmaf_x86(a, b, c) }
     }
-    type Wide = core::arch::x86_64::__m256d;
-    type Narrow = core::arch::x86_64::__m128d;
 }
 
 /// Whether this processor has AVX2 and FMA and the operating system saves
@@ -542,14 +528,8 @@ trait ToLanes {
 
 /// What steps 1, 3 and 4 do to angles, lane by lane.
 trait Lanes: Copy {
-    /// The number of lanes.
-    #[allow(dead_code)]
-    const WIDTH: usize;
     /// `a` in every lane.
     fn splat(a: f64) -> Self;
-    /// `x[0]`, `x[1]`, … in the lanes (`x` has at least `WIDTH` entries).
-    #[allow(dead_code)]
-    fn load(x: &[f64]) -> Self;
     /// Lane `l`.
     fn lane(self, l: usize) -> f64;
     /// The lanes to `out[0]`, `out[1]`, … (as many as there are lanes;
@@ -588,14 +568,9 @@ impl ToLanes for [f64; 1] {
 }
 
 impl Lanes for f64 {
-    const WIDTH: usize = 1;
     #[inline(always)]
     fn splat(a: f64) -> f64 {
         a
-    }
-    #[inline(always)]
-    fn load(x: &[f64]) -> f64 {
-        x[0]
     }
     #[inline(always)]
     fn lane(self, _: usize) -> f64 {
@@ -675,15 +650,9 @@ macro_rules! vector_lanes {
         }
         #[allow(unused_unsafe)]
         impl Lanes for core::arch::x86_64::$v {
-            const WIDTH: usize = $w;
             #[inline(always)]
             fn splat(a: f64) -> Self {
                 unsafe { core::arch::x86_64::$set1(a) }
-            }
-            #[inline(always)]
-            fn load(x: &[f64]) -> Self {
-                let x = &x[..$w];
-                unsafe { core::arch::x86_64::$loadu(x.as_ptr()) }
             }
             #[inline(always)]
             fn lane(self, l: usize) -> f64 {
@@ -782,16 +751,9 @@ impl ToLanes for [f64; 4] {
 
 #[cfg(not(target_arch = "x86_64"))]
 impl<const W: usize> Lanes for [f64; W] {
-    const WIDTH: usize = W;
     #[inline(always)]
     fn splat(a: f64) -> Self {
         [a; W]
-    }
-    #[inline(always)]
-    fn load(x: &[f64]) -> Self {
-        let mut out = [0.0; W];
-        out.copy_from_slice(&x[..W]);
-        out
     }
     #[inline(always)]
     fn lane(self, l: usize) -> f64 {
@@ -840,30 +802,39 @@ impl<const W: usize> Lanes for [f64; W] {
     }
 }
 
-// Branches in vector lanes (`branch_loops`, on by default): a module's branch body
-// `NAME_branchG::<I, V>` runs `V::WIDTH` alike branches at once, lane l of each
+// Branch loops in vector lanes (`--branch-loops`): a module's branch body
+// `NAME_branchG::<I, V>` runs `W` alike branches at once, lane l of each
 // register one branch, over the operations of `Lanes` (the bits of the
-// scalar code in every lane), `V` of `Isa::Wide` (four lanes with AVX2)
-// or `Isa::Narrow` (two). `branch_lanes` loads rows of the branches'
-// constants or inputs as registers, `branch_entries` a part of their
-// results, `branch_splat` a row shared by all, `branch_rows` writes each
-// lane's results to the branch's entries.
+// scalar code in every lane). `branch_lanes` loads `W` rows of the
+// branches' constants or inputs as registers, `branch_splat` a row shared
+// by all, `branch_rows` writes each lane's results to the branch's entries.
 
-/// Rows `from..from + V::WIDTH` of `rows`, entry by entry, as registers;
-/// past the last row, the first ones again (as in `angles`).
+/// Rows `from..from + W` of `rows`, entry by entry, as registers of `W`
+/// lanes; past the last row, the first ones again (as in `angles`).
 #[inline(always)]
 #[allow(dead_code)]
-fn branch_lanes<V: Lanes, const A: usize, const L: usize>(rows: &[[f64; A]; L], from: usize) -> [V; A] {
-    let mut out = [V::splat(0.0); A];
+fn branch_lanes<const W: usize, const A: usize, const L: usize>(
+    rows: &[[f64; A]; L],
+    from: usize,
+) -> [<[f64; W] as ToLanes>::V; A]
+where
+    [f64; W]: ToLanes,
+{
+    let mut entries = [[0.0; W]; A];
+    let mut l = 0;
+    while l < W {
+        let row = &rows[(from + l) % L];
+        let mut i = 0;
+        while i < A {
+            entries[i][l] = row[i];
+            i += 1;
+        }
+        l += 1;
+    }
+    let mut out = [<<[f64; W] as ToLanes>::V as Lanes>::splat(0.0); A];
     let mut i = 0;
     while i < A {
-        let mut lanes = [0.0; 4];
-        let mut l = 0;
-        while l < V::WIDTH {
-            lanes[l] = rows[(from + l) % L][i];
-            l += 1;
-        }
-        out[i] = V::load(&lanes);
+        out[i] = entries[i].to_lanes();
         i += 1;
     }
     out
@@ -871,26 +842,28 @@ fn branch_lanes<V: Lanes, const A: usize, const L: usize>(rows: &[[f64; A]; L], 
 
 /// Entries `offset..offset + A` of the results `r` of `L` branches (entry i
 /// of branch b at `r[i·L + b]`, as `branch_rows` writes them) for branches
-/// `from..from + V::WIDTH` (past the last, the first ones again), as
-/// registers: what a branch's second part reads of its first part's
-/// results.
+/// `from..from + W` (past the last, the first ones again), as registers:
+/// what a branch's second part reads of its first part's results.
 #[inline(always)]
 #[allow(dead_code)]
-fn branch_entries<V: Lanes, const A: usize, const L: usize, const N: usize>(
+fn branch_entries<const W: usize, const A: usize, const L: usize, const N: usize>(
     r: &[f64; N],
     offset: usize,
     from: usize,
-) -> [V; A] {
-    let mut out = [V::splat(0.0); A];
+) -> [<[f64; W] as ToLanes>::V; A]
+where
+    [f64; W]: ToLanes,
+{
+    let mut out = [<<[f64; W] as ToLanes>::V as Lanes>::splat(0.0); A];
     let mut i = 0;
     while i < A {
-        let mut lanes = [0.0; 4];
+        let mut lanes = [0.0; W];
         let mut l = 0;
-        while l < V::WIDTH {
+        while l < W {
             lanes[l] = r[(offset + i) * L + (from + l) % L];
             l += 1;
         }
-        out[i] = V::load(&lanes);
+        out[i] = lanes.to_lanes();
         i += 1;
     }
     out
@@ -911,14 +884,14 @@ fn branch_splat<V: Lanes, const A: usize>(x: &[f64; A]) -> [V; A] {
 
 /// Lane l of `v` to the results of branch `from + l` in `out`, where
 /// entry i of branch b is `out[i·L + b]` (L = N / R branches): one store a
-/// register where all its branches exist, else lane by lane.
+/// register where all `W` branches exist, else lane by lane.
 #[inline(always)]
 #[allow(dead_code)]
-fn branch_rows<V: Lanes, const R: usize, const N: usize>(v: &[V; R], out: &mut [f64; N], from: usize) {
+fn branch_rows<V: Lanes, const W: usize, const R: usize, const N: usize>(v: &[V; R], out: &mut [f64; N], from: usize) {
     let branches = N / R;
     let mut i = 0;
     while i < R {
-        if from + V::WIDTH <= branches {
+        if from + W <= branches {
             v[i].store(&mut out[i * branches + from..]);
         } else {
             let mut l = 0;

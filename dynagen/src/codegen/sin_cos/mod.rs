@@ -176,8 +176,8 @@ pub mod kernel_internals {
         let mut out = [0.0; N];
         let mut l = 0;
         while l < L {
-            let v = super::branch_lanes::<<[f64; 2] as ToLanes>::V, A, L>(rows, l);
-            super::branch_rows::<_, A, N>(&v, &mut out, l);
+            let v = super::branch_lanes::<2, A, L>(rows, l);
+            super::branch_rows::<_, 2, A, N>(&v, &mut out, l);
             l += 2;
         }
         out
