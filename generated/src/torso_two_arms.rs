@@ -476,7 +476,7 @@ fn inverse_dynamics_branch0<I: Isa, V: Lanes>(
     let t398 = k[0].neg().mul_add::<I>(t378, t393);
     [t366, t334, t288, t396, t397, t398, t378, t381, t384]
 }
-/// Runs [`inverse_dynamics_branch0`] on the 2 branches of [`INVERSE_DYNAMICS_BRANCH0`], `W` to a register: each lane's results to its row of `r` (9 a branch). Takes the rows of each branch's inputs.
+/// Runs [`inverse_dynamics_branch0`] on the 2 branches of [`INVERSE_DYNAMICS_BRANCH0`], `W` to a register: each lane's results to its branch's entries of `r` (9 a branch, entry by entry). Takes the rows of each branch's inputs.
 #[inline(always)]
 #[allow(dead_code)]
 fn inverse_dynamics_branch0_run<I: Isa, const W: usize>(
@@ -1214,7 +1214,7 @@ fn mass_matrix_branch0<I: Isa, V: Lanes>(
         t409,
     ]
 }
-/// Runs [`mass_matrix_branch0`] on the 2 branches of [`MASS_MATRIX_BRANCH0`], `W` to a register: each lane's results to its row of `r` (37 a branch). Takes the rows of each branch's inputs.
+/// Runs [`mass_matrix_branch0`] on the 2 branches of [`MASS_MATRIX_BRANCH0`], `W` to a register: each lane's results to its branch's entries of `r` (37 a branch, entry by entry). Takes the rows of each branch's inputs.
 #[inline(always)]
 #[allow(dead_code)]
 fn mass_matrix_branch0_run<I: Isa, const W: usize>(
@@ -1843,7 +1843,7 @@ fn bias_forces_branch0<I: Isa, V: Lanes>(
     let t389 = k[0].neg().mul_add::<I>(t369, t384);
     [t357, t325, t279, t387, t388, t389, t369, t372, t375]
 }
-/// Runs [`bias_forces_branch0`] on the 2 branches of [`BIAS_FORCES_BRANCH0`], `W` to a register: each lane's results to its row of `r` (9 a branch). Takes the rows of each branch's inputs.
+/// Runs [`bias_forces_branch0`] on the 2 branches of [`BIAS_FORCES_BRANCH0`], `W` to a register: each lane's results to its branch's entries of `r` (9 a branch, entry by entry). Takes the rows of each branch's inputs.
 #[inline(always)]
 #[allow(dead_code)]
 fn bias_forces_branch0_run<I: Isa, const W: usize>(

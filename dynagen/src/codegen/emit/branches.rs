@@ -422,8 +422,8 @@ fn runner(name: &str, g: usize, x: &BranchBody, up: Option<usize>) -> Result<syn
         }
     }
     let doc = format!(
-        " Runs [`{body}`] on the {l} branches of [`{}`], `W` to a register: each lane's results to its row of `r` \
-         ({r} a branch). Takes the rows of each branch's inputs.",
+        " Runs [`{body}`] on the {l} branches of [`{}`], `W` to a register: each lane's results to its branch's \
+         entries of `r` ({r} a branch, entry by entry). Takes the rows of each branch's inputs.",
         table_name(name, g)
     );
     syn::parse2(quote! {
