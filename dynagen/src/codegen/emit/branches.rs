@@ -200,20 +200,31 @@ pub(super) fn glue(
         };
         let table = format_ident!("{}", table_name(name, g));
         let mut locals = Vec::new();
+        // The scalar body's arguments for branch `l`, and the runner's (all branches).
         let mut call_args = vec![quote!(&#table[l])];
+        let mut run_args = Vec::new();
         if x.motion() > 0 {
             let (motion, more) = args.split_at(x.motion());
             args = more;
             locals.push(quote!(let #m = [#(#motion),*];));
             call_args.push(quote!(&#m));
+            run_args.push(quote!(&#m));
         }
         let branches = x.group.lanes.len();
         let in_lanes = lanes.get(g).copied().unwrap_or(false);
         for p in params(x).iter().skip(call_args.len()) {
             let local = format_ident!("{}_b{g}", p.name);
+            call_args.push(quote!(&#local[l]));
             let rows: Vec<proc_macro2::TokenStream> = match (p.name.as_str(), x.up) {
-                // The second part of an articulated-body branch reads what
-                // its first part returned past ABA_UP, entry by entry.
+                // In lanes, the second part of an articulated-body branch
+                // reads its first part's results as they are.
+                ("x", Some(up)) if in_lanes => {
+                    let from = ident(&results_name(up));
+                    run_args.push(quote!(&#from));
+                    continue;
+                }
+                // Else it reads what its first part returned past ABA_UP,
+                // entry by entry.
                 ("x", Some(up)) => {
                     let from = ident(&results_name(up));
                     (0..branches)
@@ -241,11 +252,8 @@ pub(super) fn glue(
                         .collect()
                 }
             };
-            // (in lanes, the second part of an articulated-body branch reads its first's results as they are)
-            if p.name != "x" || !in_lanes {
-                locals.push(quote!(let #local = [#(#rows),*];));
-            }
-            call_args.push(quote!(&#local[l]));
+            locals.push(quote!(let #local = [#(#rows),*];));
+            run_args.push(quote!(&#local));
         }
         let total = proc_macro2::Literal::usize_unsuffixed(x.group.lanes.len() * x.outputs());
         let block: syn::Block = if in_lanes {
@@ -253,23 +261,9 @@ pub(super) fn glue(
             // the instructions (`Isa::QUADS`: AVX2) have them, else two.
             let run = format_ident!("{}", run_name(name, g));
             let isa = if dispatch { quote!(I) } else { quote!(Baseline) };
-            let args: Vec<_> = call_args[1..].iter().map(|a| quote!(#a)).collect();
-            let args: Vec<_> = args
-                .iter()
-                .map(|a| syn::parse2::<Expr>(a.clone()))
-                .collect::<Result<_, _>>()
-                .map_err(|e| CodegenError::Internal(e.to_string()))?;
-            let mut whole: Vec<Expr> = args.iter().map(strip_row).collect();
-            // The second part of an articulated-body branch reads its first
-            // part's results as they are.
-            if let Some(up) = x.up {
-                let at = params(x).iter().skip(1).position(|p| p.name == "x").expect("it reads x");
-                let from = ident(&results_name(up));
-                whole[at] = syn::parse_quote!(&#from);
-            }
             let run_all = |w: usize| {
                 let w = proc_macro2::Literal::usize_unsuffixed(w);
-                quote!(#run::<#isa, #w>(#(#whole,)* &mut #r);)
+                quote!(#run::<#isa, #w>(#(#run_args,)* &mut #r);)
             };
             let (four, two) = (run_all(4), run_all(2));
             let runs = match x.group.lanes.len() > 2 {
@@ -297,17 +291,6 @@ pub(super) fn glue(
         stmts.extend(block.stmts);
     }
     Ok(stmts)
-}
-
-/// `&x` for the argument `&x[l]` (a branch's row), as a runner takes them.
-fn strip_row(a: &Expr) -> Expr {
-    if let Expr::Reference(r) = a {
-        if let Expr::Index(i) = &*r.expr {
-            let whole = &i.expr;
-            return syn::parse_quote!(&#whole);
-        }
-    }
-    a.clone()
 }
 
 /// A branch body over `f64` (`func`, named `name`) over registers `V` of
@@ -375,12 +358,11 @@ fn lanes_expr(e: &Expr) -> Option<Expr> {
         }
         Expr::Call(call) => {
             let Expr::Path(f) = &*call.func else { return None };
-            let fused = f.path.segments.last().is_some_and(|s| s.ident == "fma");
-            let args = call.args.iter().map(lanes_expr).collect::<Option<Vec<_>>>()?;
-            let [a, b, c] = <[Expr; 3]>::try_from(args).ok()?;
-            if !fused {
+            if f.path.segments.last().is_none_or(|s| s.ident != "fma") {
                 return None;
             }
+            let args = call.args.iter().map(lanes_expr).collect::<Option<Vec<_>>>()?;
+            let [a, b, c] = <[Expr; 3]>::try_from(args).ok()?;
             syn::parse_quote!(#a.mul_add::<I>(#b, #c))
         }
         _ => return None,
@@ -388,7 +370,7 @@ fn lanes_expr(e: &Expr) -> Option<Expr> {
 }
 
 /// `NAME_branchG_run::<I, W>`: group `g`'s body in lanes on its branches,
-/// `W` at a time, each lane's results to its row of `r`.
+/// `W` at a time, each lane's results to its branch's entries of `r`.
 /// `up`: for the second part of an articulated-body branch, the number of
 /// its first part's outputs, whose results (`x`) it reads as they are.
 fn runner(name: &str, g: usize, x: &BranchBody, up: Option<usize>) -> Result<syn::Item, CodegenError> {

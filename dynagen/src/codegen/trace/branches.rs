@@ -497,8 +497,7 @@ fn cut_at(t: &Traced, first: usize, rewrites: Rewrites) -> Option<(Traced, Trace
         n => n.constant().is_none(),
     };
     let mut cut = vec![false; nodes.len()];
-    for (id, n) in nodes.iter().enumerate().filter(|(id, _)| dep[*id]) {
-        let _ = id;
+    for n in nodes.iter().zip(&dep).filter(|(_, &d)| d).map(|(n, _)| n) {
         for o in n.operands() {
             let o = o as usize;
             cut[o] |= !dep[o] && carried(o);
