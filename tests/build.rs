@@ -132,6 +132,16 @@ fn main() {
             .generate()
             .unwrap_or_else(|e| panic!("generating {name}: {e}"));
     }
+    // The quadruped with motors: armature (each leg its own) and viscous and
+    // Coulomb friction, which its forward dynamics' legs take in their lanes.
+    dynagen::Builder::new()
+        .urdf("../dynagen/robots/quadruped12.urdf")
+        .floating_base(true)
+        .scene(build_stiff::cases::quadruped_motors_scene())
+        .name("quadruped12_motors")
+        .functions(&["inverse_dynamics", "mass_matrix", "bias_forces", "forward_dynamics"])
+        .generate()
+        .expect("generating the quadruped with motors");
     dynagen::Builder::new()
         .urdf("../dynagen/robots/legged_manipulator.urdf")
         .floating_base(true)

@@ -6,7 +6,7 @@
 
 #[path = "src/lib.rs"]
 #[allow(dead_code, unused_imports)]
-mod cases;
+pub mod cases;
 
 /// Writes the modules.
 pub fn generate() {

@@ -621,3 +621,39 @@ fn branch_rows_go_through_lanes_to_their_places() {
     let out: [f64; 8] = internals::branch_rows_in_pairs(&rows);
     assert_eq!(out, [0.0, 1.0, 2.0, 3.0, 0.0, -1.0, -2.0, -3.0]);
 }
+
+/// The branch bodies' square root in lanes gives `f64::sqrt`'s bits in
+/// every lane: zeros, subnormals, ordinary and huge numbers, infinity, and
+/// NaN for a negative number or a NaN.
+#[test]
+fn lanes_take_square_roots_bit_for_bit() {
+    let mut values = vec![0.0, -0.0, f64::MIN_POSITIVE, 5e-324, 1.0, 2.0, 0.25, 1e300, f64::MAX, f64::INFINITY];
+    let mut x = 0x1234_5678_9abc_def1u64;
+    for _ in 0..2000 {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        // positive finite numbers of every exponent
+        values.push(f64::from_bits(x >> 1).min(f64::MAX));
+    }
+    let same = |got: f64, v: f64| {
+        let want = v.sqrt();
+        assert!(
+            got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
+            "sqrt({v:e}) = {got:e}, not {want:e}"
+        );
+    };
+    for pair in values.chunks(2).chain([[-1.0, f64::NAN].as_slice()]) {
+        let p = [pair[0], pair[pair.len() - 1]];
+        let got = internals::sqrt_pair(p);
+        same(got[0], p[0]);
+        same(got[1], p[1]);
+    }
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+    for quad in values.chunks_exact(4) {
+        let q = [quad[0], quad[1], quad[2], quad[3]];
+        for (got, v) in internals::sqrt_quad(q).into_iter().zip(q) {
+            same(got, v);
+        }
+    }
+}

@@ -14,7 +14,7 @@
 //   NAME_on) and runs it where the processor has both (cpuid, asked once): as fast as a native build, and
 //   with its bits, so results differ in the last bits between machines with and without FMA (within the
 //   accuracy the tests check). Off: runtime_dispatch(false), the same bits on every x86_64 machine.
-// Forward dynamics: CRBA + LTDL, chosen as faster and as accurate (estimated 689 cycles for CRBA + LTDL against 1024 for the articulated-body algorithm; worst relative error on 16 states against double-double 3.0e-16 against 3.4e-16).
+// Forward dynamics: CRBA + LTDL, chosen as faster and as accurate (estimated 689 cycles for CRBA + LTDL against 898 for the articulated-body algorithm (its branches in loops); worst relative error on 16 states against double-double 3.0e-16 against 3.4e-16).
 // Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]
 //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.
 // sin_cos_all(q): the batched sine and cosine, within 1 ulp for every finite angle, no std.
@@ -3876,6 +3876,10 @@ trait Lanes: Copy {
     /// `self / b` (the branch bodies' divisions; the sines and cosines have none).
     #[allow(dead_code)]
     fn div(self, b: Self) -> Self;
+    /// `√self`, correctly rounded (the branch bodies' square roots, of
+    /// Coulomb friction's smoothing; the sines and cosines have none).
+    #[allow(dead_code)]
+    fn sqrt(self) -> Self;
     /// `self · b + c`, rounded once if `I::FUSED`.
     fn mul_add<I: Isa>(self, b: Self, c: Self) -> Self;
     /// `−self`.
@@ -3929,6 +3933,10 @@ impl Lanes for f64 {
         self / b
     }
     #[inline(always)]
+    fn sqrt(self) -> f64 {
+        sqrt(self)
+    }
+    #[inline(always)]
     fn mul_add<I: Isa>(self, b: f64, c: f64) -> f64 {
         I::fma(self, b, c)
     }
@@ -3962,7 +3970,7 @@ impl Lanes for f64 {
 /// operations of `impl Lanes for f64`, lane by lane.
 #[cfg(target_arch = "x86_64")]
 macro_rules! vector_lanes {
-    ($w:literal, $v:ident, $all:literal, $add:ident, $sub:ident, $mul:ident, $div:ident, $fmadd:ident, $xor_pd:ident,
+    ($w:literal, $v:ident, $all:literal, $add:ident, $sub:ident, $mul:ident, $div:ident, $sqrt:ident, $fmadd:ident, $xor_pd:ident,
      $set1:ident, $loadu:ident, $storeu:ident, $andnot:ident, $min:ident, $cmp_ge:expr, $movemask:ident,
      $to_int:ident, $to_float:ident, $and:ident, $or:ident, $xor:ident, $sub64:ident, $zero:ident, $set1_64:ident,
      $shl:ident) => {
@@ -4014,6 +4022,10 @@ macro_rules! vector_lanes {
                 unsafe { core::arch::x86_64::$div(self, b) }
             }
             #[inline(always)]
+            fn sqrt(self) -> Self {
+                unsafe { core::arch::x86_64::$sqrt(self) }
+            }
+            #[inline(always)]
             fn mul_add<I: Isa>(self, b: Self, c: Self) -> Self {
                 if I::FUSED {
                     unsafe { core::arch::x86_64::$fmadd(self, b, c) }
@@ -4052,11 +4064,11 @@ macro_rules! vector_lanes {
 }
 
 #[cfg(target_arch = "x86_64")]
-vector_lanes!(2, __m128d, 3, _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_div_pd, _mm_fmadd_pd, _mm_xor_pd, _mm_set1_pd, _mm_loadu_pd,
+vector_lanes!(2, __m128d, 3, _mm_add_pd, _mm_sub_pd, _mm_mul_pd, _mm_div_pd, _mm_sqrt_pd, _mm_fmadd_pd, _mm_xor_pd, _mm_set1_pd, _mm_loadu_pd,
     _mm_storeu_pd, _mm_andnot_pd, _mm_min_pd, _mm_cmpge_pd, _mm_movemask_pd, _mm_castpd_si128, _mm_castsi128_pd,
     _mm_and_si128, _mm_or_si128, _mm_xor_si128, _mm_sub_epi64, _mm_setzero_si128, _mm_set1_epi64x, _mm_slli_epi64);
 #[cfg(target_arch = "x86_64")]
-vector_lanes!(4, __m256d, 15, _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_div_pd, _mm256_fmadd_pd, _mm256_xor_pd, _mm256_set1_pd,
+vector_lanes!(4, __m256d, 15, _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_div_pd, _mm256_sqrt_pd, _mm256_fmadd_pd, _mm256_xor_pd, _mm256_set1_pd,
     _mm256_loadu_pd, _mm256_storeu_pd, _mm256_andnot_pd, _mm256_min_pd, _mm256_cmp_pd::<_CMP_GE_OQ>,
     _mm256_movemask_pd, _mm256_castpd_si256, _mm256_castsi256_pd, _mm256_and_si256, _mm256_or_si256,
     _mm256_xor_si256, _mm256_sub_epi64, _mm256_setzero_si256, _mm256_set1_epi64x, _mm256_slli_epi64);
@@ -4110,6 +4122,10 @@ impl<const W: usize> Lanes for [f64; W] {
     #[inline(always)]
     fn div(self, b: Self) -> Self {
         core::array::from_fn(|l| self[l] / b[l])
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        self.map(sqrt)
     }
     #[inline(always)]
     fn mul_add<I: Isa>(self, b: Self, c: Self) -> Self {

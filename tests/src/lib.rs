@@ -4,6 +4,7 @@
 //! the error measures (`dynagen/tests/support/measure.rs`).
 
 use dynagen::model::{Inertial, JointDescription, RobotBuilder};
+use dynagen::scene::Scene;
 use dynagen::Model;
 
 pub mod suite;
@@ -320,4 +321,21 @@ pub fn stiff_case(name: &str) -> StiffCase {
         }
         other => panic!("no stiff case named {other}"),
     }
+}
+
+/// The quadruped's motors (`quadruped12.urdf`): the rotor's armature on
+/// every joint, a little different on each leg (so that the legs' lanes
+/// hold their own values), and viscous and Coulomb friction.
+pub fn quadruped_motors_scene() -> Scene {
+    let mut scene = Scene::new();
+    for (k, leg) in ["FR", "FL", "RR", "RL"].into_iter().enumerate() {
+        for (j, part) in ["hip", "thigh", "calf"].into_iter().enumerate() {
+            let joint = format!("{leg}_{part}_joint");
+            scene = scene
+                .armature(&joint, 0.01 + 0.004 * j as f64 + 0.001 * k as f64)
+                .viscous(&joint, 0.05 + 0.01 * j as f64)
+                .coulomb(&joint, 0.3 + 0.1 * k as f64);
+        }
+    }
+    scene
 }

@@ -5,6 +5,7 @@
 //! `SceneRobot`; the generated code computes what the generic solver
 //! computes, with the contract's NQ/NV signatures.
 
+use approx::assert_relative_eq;
 use dynagen::algorithms::floating::{aba, crba, rnea};
 use dynagen::algorithms::{Loads, Workspace};
 use dynagen::spatial::Vec3;
@@ -95,6 +96,51 @@ mod loops {
     }
     pub mod quadruped_f32 {
         include!(concat!(env!("OUT_DIR"), "/quadruped12_branch_loops_f32.rs"));
+    }
+    pub mod motors {
+        include!(concat!(env!("OUT_DIR"), "/quadruped12_motors.rs"));
+    }
+}
+
+/// The quadruped with motors (`dynagen_tests::quadruped_motors_scene`:
+/// armature, a little different on each leg, and viscous and Coulomb
+/// friction on every joint), compiled with its legs in lanes, against the
+/// generic solver under the same scene: the forward dynamics' legs subtract
+/// their friction (a square root in every lane) and add their armature
+/// themselves.
+#[test]
+fn the_compiled_legs_with_motors_match_the_scene_robot() {
+    use dynagen::scene::SceneRobot;
+    use dynagen_tests::quadruped_motors_scene;
+    use loops::motors as module;
+    use nalgebra::DVector;
+    let source = std::fs::read_to_string(concat!(env!("OUT_DIR"), "/quadruped12_motors.rs")).unwrap();
+    for name in ["inverse_dynamics", "mass_matrix", "bias_forces", "forward_dynamics"] {
+        assert!(source.contains(&format!("{name}_branch0_run::<")), "{name}'s legs run in lanes");
+    }
+    assert!(source.contains(".sqrt()"), "the legs' Coulomb friction, in lanes");
+    let model =
+        Model::from_urdf_file(workspace_root().join("dynagen/robots/quadruped12.urdf")).unwrap().with_floating_base();
+    let mut robot = SceneRobot::new(quadruped_motors_scene().apply(&model).unwrap());
+    let mut rng = Rng::new(5);
+    let d = |x: &[f64]| DVector::from_column_slice(x);
+    for k in 0..20 {
+        let mut q: [f64; module::NQ] = core::array::from_fn(|_| rng.range(-3.0, 3.0));
+        normalize_quaternion(&mut q);
+        let speed = if k % 2 == 0 { 50.0 } else { 0.5 };
+        let qd: [f64; module::NV] = core::array::from_fn(|_| rng.range(-speed, speed));
+        let qdd: [f64; module::NV] = core::array::from_fn(|_| rng.range(-10.0, 10.0));
+        let tau: [f64; module::NV] = core::array::from_fn(|_| rng.range(-20.0, 20.0));
+        let (qv, qdv) = (d(&q), d(&qd));
+        let want = robot.forward_dynamics(&qv, &qdv, &d(&tau)).unwrap();
+        assert_relative_eq!(d(&module::forward_dynamics(&q, &qd, &tau)), want, max_relative = 1e-12, epsilon = 1e-12);
+        let want = robot.inverse_dynamics(&qv, &qdv, &d(&qdd)).unwrap();
+        assert_relative_eq!(d(&module::inverse_dynamics(&q, &qd, &qdd)), want, max_relative = 1e-12, epsilon = 1e-11);
+        let want = robot.bias_forces(&qv, &qdv).unwrap();
+        assert_relative_eq!(d(&module::bias_forces(&q, &qd)), want, max_relative = 1e-12, epsilon = 1e-11);
+        let want = robot.mass_matrix(&qv).unwrap();
+        let got = nalgebra::DMatrix::from_row_slice(module::NV, module::NV, module::mass_matrix(&q).as_flattened());
+        assert_relative_eq!(got, want, max_relative = 1e-12, epsilon = 1e-13);
     }
 }
 

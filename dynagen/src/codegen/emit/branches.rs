@@ -295,8 +295,9 @@ pub(super) fn glue(
 
 /// A branch body over `f64` (`func`, named `name`) over registers `V` of
 /// `Lanes`: the same operations in the same order, each on every lane, so
-/// each lane gets the scalar body's bits. `None` where the body has an
-/// operation `Lanes` lacks (a square root): it then stays scalar.
+/// each lane gets the scalar body's bits (square roots included: IEEE
+/// rounds them correctly in every lane). `None` where the body has an
+/// operation `Lanes` lacks: it then stays scalar.
 fn in_lanes_body(func: &syn::ItemFn, name: &str) -> Option<syn::ItemFn> {
     let mut f = func.clone();
     f.sig.ident = format_ident!("{name}");
@@ -328,7 +329,8 @@ fn in_lanes_body(func: &syn::ItemFn, name: &str) -> Option<syn::ItemFn> {
 }
 
 /// `e` over registers: literals splat, `a + b` as `a.add(b)` (and `sub`,
-/// `mul`, `div`, `neg`), `fma(a, b, c)` as `a.mul_add::<I>(b, c)`.
+/// `mul`, `div`, `neg`), `fma(a, b, c)` as `a.mul_add::<I>(b, c)`, a square
+/// root as `a.sqrt()`.
 fn lanes_expr(e: &Expr) -> Option<Expr> {
     use syn::{BinOp, UnOp};
     Some(match e {
@@ -358,12 +360,24 @@ fn lanes_expr(e: &Expr) -> Option<Expr> {
         }
         Expr::Call(call) => {
             let Expr::Path(f) = &*call.func else { return None };
-            if f.path.segments.last().is_none_or(|s| s.ident != "fma") {
-                return None;
-            }
             let args = call.args.iter().map(lanes_expr).collect::<Option<Vec<_>>>()?;
-            let [a, b, c] = <[Expr; 3]>::try_from(args).ok()?;
-            syn::parse_quote!(#a.mul_add::<I>(#b, #c))
+            match f.path.segments.last()?.ident.to_string().as_str() {
+                "fma" => {
+                    let [a, b, c] = <[Expr; 3]>::try_from(args).ok()?;
+                    syn::parse_quote!(#a.mul_add::<I>(#b, #c))
+                }
+                // the module's `sqrt(x)` or `libm::sqrt(x)`
+                "sqrt" => {
+                    let [a] = <[Expr; 1]>::try_from(args).ok()?;
+                    syn::parse_quote!(#a.sqrt())
+                }
+                _ => return None,
+            }
+        }
+        // `x.sqrt()` (std)
+        Expr::MethodCall(m) if m.method == "sqrt" && m.args.is_empty() => {
+            let a = lanes_expr(&m.receiver)?;
+            syn::parse_quote!(#a.sqrt())
         }
         _ => return None,
     })

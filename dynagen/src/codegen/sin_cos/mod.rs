@@ -183,6 +183,19 @@ pub mod kernel_internals {
         out
     }
 
+    /// `Lanes::sqrt` on a register of two lanes (SSE2 on x86-64, an array
+    /// elsewhere), as a branch body with Coulomb friction runs it.
+    pub fn sqrt_pair(x: [f64; 2]) -> [f64; 2] {
+        let v = Lanes::sqrt(x.to_lanes());
+        [v.lane(0), v.lane(1)]
+    }
+    /// [`sqrt_pair`] with four lanes to a register (AVX2).
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+    pub fn sqrt_quad(x: [f64; 4]) -> [f64; 4] {
+        let v = Lanes::sqrt(x.to_lanes());
+        core::array::from_fn(|l| v.lane(l))
+    }
+
     fn registers<V: Lanes, const W: usize>(x: [V; 3]) -> [([f64; W], [f64; W], bool); 3] {
         super::sin_cos_lanes::<Baseline, V, 3>(x)
             .map(|(s, c, holds)| (core::array::from_fn(|l| s.lane(l)), core::array::from_fn(|l| c.lane(l)), holds))

@@ -278,13 +278,51 @@ fn part(model: &Model, bodies: &[usize], frames: &[(String, Option<usize>)], roo
     }
 }
 
+/// The scene's armature and friction on one branch's joints (the forward
+/// dynamics reads them; the other functions add them in the rest).
+struct JointTerms {
+    armature: Option<Vec<f64>>,
+    viscous: Vec<f64>,
+    coulomb: Vec<f64>,
+    coulomb_velocity: f64,
+}
+
+impl JointTerms {
+    /// Those of `scene` on the joints `lane`.
+    fn of(scene: &SceneModel, lane: &[usize]) -> JointTerms {
+        JointTerms {
+            armature: scene.has_armature().then(|| lane.iter().map(|&b| scene.armature[b]).collect()),
+            viscous: lane.iter().map(|&b| scene.viscous_friction[b]).collect(),
+            coulomb: lane.iter().map(|&b| scene.coulomb_friction[b]).collect(),
+            coulomb_velocity: scene.coulomb_velocity,
+        }
+    }
+
+    /// τ − friction(q̇) on these joints, as `dynamics::sub_friction` does.
+    fn sub_friction(&self, qd: &[Expr], tau: &[Expr]) -> Vec<Expr> {
+        let mut out = tau.to_vec();
+        for (i, t) in out.iter_mut().enumerate() {
+            let (b, f) = (self.viscous[i], self.coulomb[i]);
+            if b != 0.0 {
+                *t -= Expr::from_f64(b) * qd[i];
+            }
+            if f != 0.0 {
+                *t -= Expr::from_f64(f) * dynamics::smooth_sign(qd[i], self.coulomb_velocity);
+            }
+        }
+        out
+    }
+}
+
 /// One branch traced with its constants as inputs: the graph and the
 /// constants' values.
 /// `gyro`: for each body, whether its gyroscopic moment takes the products
 /// of ω (`Workspace::gyro_products`, which the lanes must share).
+/// `terms`: its joints' armature and friction, which its forward dynamics reads.
 fn trace_lane(
     model: &Model,
     gyro: &[bool],
+    terms: &JointTerms,
     rewrites: Rewrites,
     kind: Kind,
 ) -> Result<(Traced, Vec<f64>), CodegenError> {
@@ -332,11 +370,11 @@ fn trace_lane(
             let ap = tracer.inputs("ap", 6);
             let q = tracer.inputs("q", nb);
             let qd = tracer.inputs("qd", nb);
-            let tau = tracer.inputs("tau", nb);
+            let tau = terms.sub_friction(&qd, &tracer.inputs("tau", nb));
             let w = Vec3([m[0], m[1], m[2]]);
             velocities(model, &mut ws, &q, Some(&qd), Some(&w), Loads::none());
             let mut root = RootArticulated { inertia: ArticulatedInertia::zero(), bias: Force::zero() };
-            inward(model, &mut ws, (&tau, true), None, Some(&mut root), true);
+            inward(model, &mut ws, (&tau, true), terms.armature.as_deref(), Some(&mut root), true);
             let mut qdd = vec![Expr::zero(); nb];
             let a = Motion::new(Vec3([ap[0], ap[1], ap[2]]), Vec3([ap[3], ap[4], ap[5]]));
             outward(model, &mut ws, &a, &mut qdd, true);
@@ -429,12 +467,13 @@ fn harmonise(models: &mut [Model]) {
 /// second's `up` counted from `first`, the index of the first), if its
 /// lanes trace alike.
 fn branch_body(
-    model: &Model,
+    scene: &SceneModel,
     group: BranchGroup,
     rewrites: Rewrites,
     kind: Kind,
     first: usize,
 ) -> Result<Vec<BranchBody>, CodegenError> {
+    let model = &scene.model;
     let mut traces = Vec::new();
     let mut tables: Vec<Vec<f64>> = Vec::new();
     let mut models: Vec<Model> = group.lanes.iter().map(|lane| part(model, lane, &[], RootJoint::Fixed)).collect();
@@ -444,8 +483,8 @@ fn branch_body(
     let gyro: Vec<bool> = (0..models[0].bodies.len())
         .map(|b| models.iter().all(|m| crate::algorithms::rnea::use_products_for_gyroscopic(&m.bodies[b].inertia.ibar)))
         .collect();
-    for lane in &models {
-        let (t, values) = trace_lane(lane, &gyro, rewrites, kind)?;
+    for (lane, bodies) in models.iter().zip(&group.lanes) {
+        let (t, values) = trace_lane(lane, &gyro, &JointTerms::of(scene, bodies), rewrites, kind)?;
         if traces.first().is_some_and(|first| *first != t) {
             return Ok(Vec::new());
         }
@@ -549,9 +588,9 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
         Function::InverseDynamics => Kind::Rnea { accelerations: true },
         Function::BiasForces => Kind::Rnea { accelerations: false },
         Function::MassMatrix => Kind::Crba,
-        // By the articulated-body algorithm, without armature or friction
-        // (which the rest would have to pass to the branches' joints).
-        Function::ForwardDynamics if !scene.has_armature() && !scene.has_friction() => Kind::AbaUp,
+        // By the articulated-body algorithm (the branches subtract their
+        // joints' friction from τ and add their armature, the rest its own).
+        Function::ForwardDynamics => Kind::AbaUp,
         _ => return Ok(None),
     };
     if model.has_mimic() || !scene.input_payloads.is_empty() || scene.tip_wrench_frame.is_some() {
@@ -560,7 +599,7 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
     let mut branches = Vec::new();
     for group in groups(model, MIN_BODIES) {
         let first = branches.len();
-        branches.extend(branch_body(model, group, rewrites, kind, first)?);
+        branches.extend(branch_body(scene, group, rewrites, kind, first)?);
     }
     if branches.is_empty() {
         return Ok(None);
@@ -707,7 +746,12 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
             dynamics::add_armature_diagonal(scene, &mut out);
         }
         Kind::AbaUp | Kind::AbaDown => {
-            let (qd_rest, tau_rest) = (gather(&qd, vo), gather(tau.as_deref().expect("traced with τ"), vo));
+            let qd_rest = gather(&qd, vo);
+            // τ − friction on the rest's joints, and their armature (the branches do theirs).
+            let terms = JointTerms::of(scene, &keep);
+            let tau_rest = gather(tau.as_deref().expect("traced with τ"), vo);
+            let tau_rest: Vec<Expr> =
+                tau_rest[..vo].iter().copied().chain(terms.sub_friction(&qd_rest[vo..], &tau_rest[vo..])).collect();
             // What each branch passes to its parent.
             let mut carried = Vec::new();
             for (x, r) in branches.iter().zip(&results).filter(|(x, _)| x.kind == Kind::AbaUp) {
@@ -720,7 +764,7 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
                 }
             }
             let mut qdd_rest = vec![Expr::zero(); rest.nv()];
-            let l = Loads::new(loads.gravity.as_ref(), &[], &[]);
+            let l = Loads::new(loads.gravity.as_ref(), &[], &[]).with_armature(terms.armature.as_deref());
             let a0 = match rest.is_floating() {
                 true => floating::aba::aba_impl(
                     &rest,
@@ -988,8 +1032,8 @@ mod tests {
     /// (branches that hang from a body), but not when one arm's shoulder
     /// turns by twice its coordinate (a screw axis of length 2, which the
     /// lanes do not make alike). The functions with their branches
-    /// in a loop give the generic solver's τ, h and M (the quadruped's with
-    /// armature and friction on its joints).
+    /// in a loop give the generic solver's τ, h, M and q̈ (the quadruped's
+    /// with armature and friction on its joints).
     #[test]
     fn branches_trace_alike_and_give_the_generic_values() {
         let opts = CodegenOptions::default().branch_loops(true);
@@ -1004,7 +1048,10 @@ mod tests {
             let model = robot(name, floating);
             let mut plain = Scene::default().apply(&model).unwrap();
             if name == "quadruped12" {
-                // armature and friction, which the rest adds on every joint
+                // armature and friction of each joint's own: the rest adds
+                // them on every joint, but for the forward dynamics, where
+                // the branches take their joints' (lanes' constants) and the
+                // rest its own
                 let n = model.dof();
                 plain.armature = (0..n).map(|i| 0.01 * (i + 1) as f64).collect();
                 plain.viscous_friction = (0..n).map(|i| 0.2 + 0.1 * i as f64).collect();
@@ -1033,8 +1080,6 @@ mod tests {
             let (s, c): (Vec<f64>, Vec<f64>) = angles.iter().map(|a| a.sin_cos()).unzip();
             for f in [Function::InverseDynamics, Function::BiasForces, Function::MassMatrix, Function::ForwardDynamics]
             {
-                // (the forward dynamics has none with armature and friction: the quadruped's)
-                let alike = if f == Function::ForwardDynamics && name == "quadruped12" { 0 } else { alike };
                 let b = branched(&scene, &f, opts.rewrites).unwrap();
                 let Some(b) = b else {
                     assert_eq!(alike, 0, "{name} {f:?}: no branches trace alike");

@@ -15,7 +15,9 @@
 //! - **speed**: estimated cycles of the body, the larger of its
 //!   [`CriticalPath`](crate::symbolic::CriticalPath) and its operation
 //!   count over two (a core that issues two floating-point operations a
-//!   cycle).
+//!   cycle). Where the ABA's branches run in loops (`branch_loops`, which
+//!   LᵀDL does not have), its count is what a call issues: each group's
+//!   body once, in vector lanes (f64), or once a branch (f32).
 //!
 //! LᵀDL is chosen when it is estimated faster and its worst error is at
 //! most twice ABA's plus 2 ε (a difference of an ulp or two, the level of
@@ -92,15 +94,27 @@ fn errors(aba: &Traced, ldlt: &Traced, inputs: &[(String, usize)]) -> (f64, f64)
 /// Chooses between a traced ABA and LᵀDL, each given as (the function of
 /// `q`, its body with the sines and cosines as inputs), both taking
 /// `inputs` (a scene's forward dynamics may take a gravity vector and a tip
-/// wrench after q, q̇ and τ).
-pub(crate) fn choose_between(aba: [&Traced; 2], ldlt: [&Traced; 2], inputs: &[(String, usize)]) -> FdChoice {
-    let (ca, cl) = (estimated_cycles(aba[1]), estimated_cycles(ldlt[1]));
+/// wrench after q, q̇ and τ). `branched`: the FP operations a call of the
+/// ABA issues where its branches run in loops (each group's body once in
+/// vector lanes), which replace its operation count in the estimate.
+pub(crate) fn choose_between(
+    aba: [&Traced; 2],
+    ldlt: [&Traced; 2],
+    branched: Option<usize>,
+    inputs: &[(String, usize)],
+) -> FdChoice {
+    let ca = match branched {
+        Some(ops) => (aba[1].critical_path().cycles as usize).max(ops.div_ceil(2)),
+        None => estimated_cycles(aba[1]),
+    };
+    let cl = estimated_cycles(ldlt[1]);
     let (ea, el) = errors(aba[0], ldlt[0], inputs);
     let accurate = el <= 2.0 * ea + 2.0 * f64::EPSILON;
     let method = if cl < ca && accurate { ForwardDynamicsMethod::Ldlt } else { ForwardDynamicsMethod::Aba };
+    let loops = if branched.is_some() { " (its branches in loops)" } else { "" };
     let measured = format!(
-        "estimated {cl} cycles for CRBA + LTDL against {ca} for the articulated-body algorithm; worst relative \
-         error on {STATES} states against double-double {el:.1e} against {ea:.1e}"
+        "estimated {cl} cycles for CRBA + LTDL against {ca} for the articulated-body algorithm{loops}; worst \
+         relative error on {STATES} states against double-double {el:.1e} against {ea:.1e}"
     );
     let why = match method {
         ForwardDynamicsMethod::Ldlt => format!("CRBA + LTDL, chosen as faster and as accurate ({measured})"),

@@ -23,7 +23,7 @@ pub use generic_count::generic_op_count;
 pub use sin_cos::{sin_cos_from_q, sin_cos_inputs, Angle, SinCosTrace};
 
 use super::emit::{loop_ops, payload_argument, Sizes};
-use super::{counted, CodegenError, CodegenOptions, ForwardDynamicsMethod, Function, GeneratedFunction};
+use super::{counted, CodegenError, CodegenOptions, ForwardDynamicsMethod, Function, GeneratedFunction, ScalarType};
 use crate::algorithms::derivatives::{self, DerivativeWorkspace, Dynamics, Formulation, MassMatrixFn};
 use crate::algorithms::{crba, ldlt, rnea, BodyInertia, Loads, TipWrench, Workspace};
 use crate::scene::{dynamics, ResolvedGravity, SceneModel};
@@ -172,9 +172,21 @@ pub(crate) fn trace_module(
     let find = |m| functions.iter().find(|g| g.method == Some(m));
     let choice = match (find(ForwardDynamicsMethod::Aba), find(ForwardDynamicsMethod::Ldlt)) {
         (Some(aba), Some(ldlt)) if options.forward_dynamics == ForwardDynamicsMethod::Auto => {
+            // The ABA with branches runs each group's body once in vector
+            // lanes (f64) or once a branch (a scalar loop in f32); its
+            // operations counted as `estimated_cycles` counts them (unfused).
+            let branched = aba.branched.as_ref().map(|b| {
+                let (run, written) = b.fp_ops(false);
+                if options.scalar == ScalarType::F64 {
+                    written
+                } else {
+                    run
+                }
+            });
             fd_choice::choose_between(
                 [&aba.traced, &aba.sin_cos_inputs.function],
                 [&ldlt.traced, &ldlt.sin_cos_inputs.function],
+                branched,
                 &aba.inputs,
             )
         }
