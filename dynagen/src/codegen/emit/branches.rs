@@ -41,9 +41,10 @@ fn params(x: &BranchBody) -> Vec<Param> {
     if x.carried() > 0 {
         list.push(Param::fixed("x", x.carried()));
     }
+    // Only the rows the body reads (the second part of an articulated-body
+    // branch reads neither q̇ nor τ).
     for name in ["s", "c", "q", "qd", "qdd", "tau"] {
-        let read = x.body.function.input_names().iter().any(|n| n == name);
-        if read && (name != "q" || x.body.function.uses_input("q")) {
+        if x.body.function.uses_input(name) {
             list.push(Param::fixed(name, nb));
         }
     }
