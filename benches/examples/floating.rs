@@ -12,8 +12,19 @@
 //! rounds per call (and the median). Run alternately with Pinocchio by
 //! `scripts/reference/floating_bench.sh`.
 //!
-//! `cargo run --release -p dynagen-bench --example floating [ROUNDS] [ROBOT]`
-//! (ROBOT: quadruped12 or humanoid32; both without it)
+//! Then the same functions called cold, as
+//! `pinocchio_floating_bench.cpp` calls Pinocchio's: before each call a
+//! sweep writes one byte in every line of an 8 MiB buffer, which evicts the
+//! function's code and data from the core's caches (the L1s and the L2:
+//! 1 MiB on Zen 5, 2 MiB on recent Intel cores) but not from the shared L3,
+//! as when a controller does other work between two calls; each call is
+//! timed on its own (two `Instant::now`), and the median and tenth
+//! percentile over the samples printed, with those of an empty function
+//! (the timer's cost, not subtracted).
+//!
+//! `cargo run --release -p dynagen-bench --example floating [ROUNDS] [ROBOT] [COLD]`
+//! (ROBOT: quadruped12 or humanoid32; both without it or with `all`; COLD:
+//! cold samples a function, default 1000, 0 for none)
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -145,23 +156,67 @@ fn run<const NQ: usize, const NV: usize>(robot: &str, fs: [(&str, Timed<NQ, NV>)
     }
 }
 
+/// The cold sweep's buffer: 8 MiB, more than any core's L2.
+const SWEEP: usize = 8 << 20;
+
+/// Writes one byte in every 64-byte line of `buf`: evicts what the core's
+/// caches held (the shared L3 keeps it).
+#[inline(never)]
+fn sweep(buf: &mut [u8]) {
+    for i in (0..buf.len()).step_by(64) {
+        buf[i] = buf[i].wrapping_add(1);
+    }
+    black_box(buf);
+}
+
+/// Times `fs` cold (see the module documentation): `samples` calls each, the
+/// functions in alternating order, and prints the median and tenth
+/// percentile per call.
+fn cold<const NQ: usize, const NV: usize>(robot: &str, fs: [(&str, Timed<NQ, NV>); 7], samples: usize) {
+    fn empty<const NQ: usize, const NV: usize>(_: &State<NQ, NV>) -> f64 {
+        0.0
+    }
+    let st = states::<NQ, NV>(0x5eed);
+    let mut all: Vec<(&str, Timed<NQ, NV>)> = fs.to_vec();
+    all.push(("(empty: the timer)", empty::<NQ, NV>));
+    let n = all.len();
+    let mut buf = vec![0u8; SWEEP];
+    let mut times = vec![Vec::with_capacity(samples); n];
+    for r in 0..samples {
+        for j in 0..n {
+            let k = if r % 2 == 0 { j } else { n - 1 - j };
+            sweep(&mut buf);
+            let s = black_box(&st[r & 7]);
+            let t = Instant::now();
+            black_box((all[k].1)(s));
+            times[k].push(t.elapsed().as_nanos() as f64);
+        }
+    }
+    println!("dynagen generated, {robot} floating, cold: {samples} calls each, each after an 8 MiB sweep");
+    for ((name, _), t) in all.iter().zip(&mut times) {
+        t.sort_by(f64::total_cmp);
+        println!("dynagen   {name:<20} cold median {:8.1} ns  p10 {:8.1} ns", t[t.len() / 2], t[t.len() / 10]);
+    }
+}
+
 fn main() {
     let mut args = std::env::args().skip(1);
     let rounds: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(200);
-    let robot = args.next();
+    let robot = args.next().filter(|r| r != "all");
+    let samples: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(1000);
     let wants = |name: &str| robot.as_deref().is_none_or(|r| r == name);
     if wants("quadruped12") {
-        run(
-            "quadruped12",
-            timed!(dynagen_bench::quadruped12_floating, dynagen_bench::quadruped12_floating_unrolled),
-            rounds,
-        );
+        let fs = timed!(dynagen_bench::quadruped12_floating, dynagen_bench::quadruped12_floating_unrolled);
+        run("quadruped12", fs, rounds);
+        if samples > 0 {
+            cold("quadruped12", fs, samples);
+        }
     }
     if wants("humanoid32") {
-        run(
-            "humanoid32",
-            timed!(dynagen_bench::humanoid32_floating, dynagen_bench::humanoid32_floating_unrolled),
-            rounds,
-        );
+        let fs = timed!(dynagen_bench::humanoid32_floating, dynagen_bench::humanoid32_floating_unrolled);
+        run("humanoid32", fs, rounds);
+        if samples > 0 {
+            cold("humanoid32", fs, samples);
+        }
     }
 }

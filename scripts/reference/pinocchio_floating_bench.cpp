@@ -6,7 +6,15 @@
 // over rounds of the per-call time (interference only ever adds time); the
 // median over rounds is printed too.
 //
-// Usage: pinocchio_floating_bench ROBOT.urdf [ROUNDS]
+// Then the same functions called cold, as examples/floating.rs calls
+// dynagen's: before each call a sweep writes one byte in every line of an
+// 8 MiB buffer (evicting the code and data from the core's L1s and L2, not
+// from the shared L3), each call timed on its own, the median and tenth
+// percentile over the samples printed, with those of an empty function
+// (the timer's cost, not subtracted).
+//
+// Usage: pinocchio_floating_bench ROBOT.urdf [ROUNDS] [COLD]   (COLD: cold
+// samples a function, default 1000, 0 for none)
 //
 // States: base position in [-1, 1]^3, a uniformly random unit quaternion,
 // joints in [-pi, pi], velocities in [-2, 2], accelerations in [-5, 5],
@@ -49,6 +57,7 @@ int main(int argc, char** argv) {
   }
   const std::string path = argv[1];
   const int rounds = argc > 2 ? std::atoi(argv[2]) : 200;
+  const int samples = argc > 3 ? std::atoi(argv[3]) : 1000;
 
   const pinocchio::Model model = bench_common::load_model(path, true);
   pinocchio::Data data(model);
@@ -138,6 +147,32 @@ int main(int argc, char** argv) {
     const double best = *std::min_element(t.begin(), t.end());
     std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
     std::printf("pinocchio %-18s min %8.1f ns  median %8.1f ns\n", names[k], best, t[t.size() / 2]);
+  }
+  if (samples <= 0) return 0;
+
+  // Cold calls: the functions above and an empty one, in alternating order.
+  fs.push_back([&](int) { return 0.0; });
+  const int m = static_cast<int>(fs.size());
+  std::vector<unsigned char> buf(8u << 20);
+  std::vector<std::vector<double>> cold(m);
+  for (int r = 0; r < samples; ++r) {
+    for (int j = 0; j < m; ++j) {
+      const int k = r % 2 == 0 ? j : m - 1 - j;
+      for (size_t i = 0; i < buf.size(); i += 64) buf[i] = static_cast<unsigned char>(buf[i] + 1);
+      g_sink = g_sink + buf[static_cast<size_t>(r) * 64 % buf.size()];
+      const auto t0 = Clock::now();
+      const double x = fs[k](r & (kStates - 1));
+      const auto t1 = Clock::now();
+      g_sink = g_sink + x;
+      cold[k].push_back(std::chrono::duration<double, std::nano>(t1 - t0).count());
+    }
+  }
+  std::printf("Pinocchio %s, cold: %d calls each, each after an 8 MiB sweep\n", PINOCCHIO_VERSION, samples);
+  for (int k = 0; k < m; ++k) {
+    std::vector<double>& t = cold[k];
+    std::sort(t.begin(), t.end());
+    std::printf("pinocchio %-18s cold median %8.1f ns  p10 %8.1f ns\n", k < n ? names[k] : "(empty: the timer)",
+                t[t.size() / 2], t[t.size() / 10]);
   }
   return 0;
 }
