@@ -46,12 +46,19 @@ pub fn sub_friction<S: Scalar>(scene: &SceneModel, qd: &[S], tau: &mut [S]) {
     let o = joints_at(scene);
     for (i, t) in tau[o..].iter_mut().enumerate() {
         let (b, f) = (scene.viscous_friction[i], scene.coulomb_friction[i]);
-        if b != 0.0 {
-            *t -= S::from_f64(b) * qd[o + i];
-        }
-        if f != 0.0 {
-            *t -= S::from_f64(f) * smooth_sign(qd[o + i], scene.coulomb_velocity);
-        }
+        sub_joint_friction(t, qd[o + i], b, f, scene.coulomb_velocity);
+    }
+}
+
+/// Subtracts one joint's friction torque b·q̇ + f·σ(q̇) from `t` (each term
+/// only where its coefficient is not zero), as [`sub_friction`] does for
+/// every joint.
+pub(crate) fn sub_joint_friction<S: Scalar>(t: &mut S, qd: S, b: f64, f: f64, v_eps: f64) {
+    if b != 0.0 {
+        *t -= S::from_f64(b) * qd;
+    }
+    if f != 0.0 {
+        *t -= S::from_f64(f) * smooth_sign(qd, v_eps);
     }
 }
 

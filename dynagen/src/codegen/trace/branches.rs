@@ -302,13 +302,7 @@ impl JointTerms {
     fn sub_friction(&self, qd: &[Expr], tau: &[Expr]) -> Vec<Expr> {
         let mut out = tau.to_vec();
         for (i, t) in out.iter_mut().enumerate() {
-            let (b, f) = (self.viscous[i], self.coulomb[i]);
-            if b != 0.0 {
-                *t -= Expr::from_f64(b) * qd[i];
-            }
-            if f != 0.0 {
-                *t -= Expr::from_f64(f) * dynamics::smooth_sign(qd[i], self.coulomb_velocity);
-            }
+            dynamics::sub_joint_friction(t, qd[i], self.viscous[i], self.coulomb[i], self.coulomb_velocity);
         }
         out
     }
