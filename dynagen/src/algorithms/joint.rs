@@ -359,7 +359,7 @@ impl<S: Scalar, const K: usize, const I: usize, const J: usize> Rotation<S> for 
 
 /// A rotation whose entries are all 0 or ±1 (a quarter-turn placement):
 /// row `a` has `sign[a]` in column `col[a]`.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct SignedPermutation {
     col: [usize; 3],
     negative: [bool; 3],

@@ -187,6 +187,23 @@ pub fn result_index(branches: usize, l: usize, i: usize) -> usize {
     i * branches + l
 }
 
+/// Entries `range` of branch `l` among the results `r` of a group of
+/// `branches` ([`result_index`]).
+fn lane_entries<T: Copy>(r: &[T], branches: usize, l: usize, range: std::ops::Range<usize>) -> Vec<T> {
+    range.map(|i| r[result_index(branches, l, i)]).collect()
+}
+
+/// Each joint of `x`'s branches (its body's index) with its value: the
+/// first entries of each branch's results `r` (τ, or q̈).
+fn joint_results<'a>(x: &'a BranchBody, r: &'a [Expr]) -> impl Iterator<Item = (usize, Expr)> + 'a {
+    let branches = x.group.lanes.len();
+    x.group
+        .lanes
+        .iter()
+        .enumerate()
+        .flat_map(move |(l, lane)| lane.iter().enumerate().map(move |(j, &b)| (b, r[result_index(branches, l, j)])))
+}
+
 /// The groups of branches of `model`: for each parent (a floating base,
 /// then the bodies in order, none inside a branch already taken), its
 /// children whose subtrees have the same shape (joint kinds, children),
@@ -441,7 +458,7 @@ fn harmonise(models: &mut [Model]) {
     use crate::model::{AxisAlignment, Joint};
     let paths = |j: &Joint| {
         let sign = j.unit_axis.0.map(|a| a < 0.0);
-        let turn = SignedPermutation::of(&j.placement.rot).map(|p| format!("{p:?}"));
+        let turn = SignedPermutation::of(&j.placement.rot);
         (j.placement_rotation_is_identity, j.alignment, sign, turn)
     };
     for b in 0..models[0].bodies.len() {
@@ -640,9 +657,8 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
             let mut wrenches = Vec::new();
             for (x, r) in branches.iter().zip(&results) {
                 let (nb, len) = (x.group.lanes[0].len(), x.outputs());
-                let at = |l: usize, i: usize| r[result_index(x.group.lanes.len(), l, i)];
                 for l in 0..x.group.lanes.len() {
-                    let w: Vec<Expr> = (nb..len).map(|i| at(l, i)).collect();
+                    let w = lane_entries(r, x.group.lanes.len(), l, nb..len);
                     let wrench = Force::new(Vec3([w[0], w[1], w[2]]), Vec3([w[3], w[4], w[5]]));
                     wrenches.push(TipWrench { frame: wrenches.len(), wrench });
                 }
@@ -656,10 +672,8 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
                 out[vo + b] = tau[vo + k];
             }
             for (x, r) in branches.iter().zip(&results) {
-                for (l, lane) in x.group.lanes.iter().enumerate() {
-                    for (j, &b) in lane.iter().enumerate() {
-                        out[vo + b] = r[result_index(x.group.lanes.len(), l, j)];
-                    }
+                for (b, v) in joint_results(x, r) {
+                    out[vo + b] = v;
                 }
             }
             // The scene's armature and friction, on every joint, as the unbranched trace adds them.
@@ -685,8 +699,7 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
                 let (nb, len) = (x.group.lanes[0].len(), x.outputs());
                 let body = x.group.parent.and_then(kept).unwrap_or(BASE_BODY);
                 for l in 0..x.group.lanes.len() {
-                    let c: Vec<Expr> =
-                        (nb * nb + 6 * nb..len).map(|i| r[result_index(x.group.lanes.len(), l, i)]).collect();
+                    let c = lane_entries(r, x.group.lanes.len(), l, nb * nb + 6 * nb..len);
                     let inertia = Inertia {
                         mass: c[0],
                         h: Vec3([c[1], c[2], c[3]]),
@@ -708,7 +721,7 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
             for (x, r) in branches.iter().zip(&results) {
                 let (nb, len) = (x.group.lanes[0].len(), x.outputs());
                 for (l, lane) in x.group.lanes.iter().enumerate() {
-                    let r: Vec<Expr> = (0..len).map(|i| r[result_index(x.group.lanes.len(), l, i)]).collect();
+                    let r = lane_entries(r, x.group.lanes.len(), l, 0..len);
                     // The branch's own block.
                     for (a, &i) in lane.iter().enumerate() {
                         for (b, &j) in lane.iter().enumerate() {
@@ -751,7 +764,7 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
             for (x, r) in branches.iter().zip(&results).filter(|(x, _)| x.kind == Kind::AbaUp) {
                 let lanes = x.group.lanes.len();
                 for l in 0..lanes {
-                    let p: Vec<Expr> = (0..ABA_UP).map(|i| r[result_index(lanes, l, i)]).collect();
+                    let p = lane_entries(r, lanes, l, 0..ABA_UP);
                     let bias = Force::new(Vec3([p[21], p[22], p[23]]), Vec3([p[24], p[25], p[26]]));
                     let parent = x.group.parent.and_then(kept);
                     carried.push(Carried { parent, inertia: ArticulatedInertia::from_parts(&p[..21]), bias });
@@ -781,10 +794,8 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
                 out[vo + b] = qdd_rest[vo + k];
             }
             for (x, r) in branches.iter().zip(&results).filter(|(x, _)| x.kind == Kind::AbaDown) {
-                for (l, lane) in x.group.lanes.iter().enumerate() {
-                    for (j, &b) in lane.iter().enumerate() {
-                        out[vo + b] = r[result_index(x.group.lanes.len(), l, j)];
-                    }
+                for (b, v) in joint_results(x, r) {
+                    out[vo + b] = v;
                 }
             }
             // The parents' ω for the first calls, then their accelerations for the second.
@@ -877,7 +888,7 @@ impl Branched {
                     let carried: Vec<f64> = match x.up {
                         Some(u) => {
                             let from = &all.iter().find(|(n, _)| *n == results_name(u)).expect("pushed above").1;
-                            (0..x.carried()).map(|i| from[result_index(lanes, l, ABA_UP + i)]).collect()
+                            lane_entries(from, lanes, l, ABA_UP..ABA_UP + x.carried())
                         }
                         None => Vec::new(),
                     };
