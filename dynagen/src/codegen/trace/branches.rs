@@ -330,12 +330,15 @@ impl JointTerms {
 /// `gyro`: for each body, whether its gyroscopic moment takes the products
 /// of ω (`Workspace::gyro_products`, which the lanes must share).
 /// `terms`: its joints' armature and friction, which its forward dynamics reads.
+/// `compact`: the articulated-body algorithm in its compact arm (see
+/// [`branch_body`]), else the distributed one.
 fn trace_lane(
     model: &Model,
     gyro: &[bool],
     terms: &JointTerms,
     rewrites: Rewrites,
     kind: Kind,
+    compact: bool,
 ) -> Result<(Traced, Vec<f64>), CodegenError> {
     let tracer = Tracer::start_lanes(rewrites)?;
     // The constants' vector first, so that every lane names its inputs alike.
@@ -385,10 +388,10 @@ fn trace_lane(
             let w = Vec3([m[0], m[1], m[2]]);
             velocities(model, &mut ws, &q, Some(&qd), Some(&w), Loads::none());
             let mut root = RootArticulated { inertia: ArticulatedInertia::zero(), bias: Force::zero() };
-            inward(model, &mut ws, (&tau, true), terms.armature.as_deref(), Some(&mut root), true);
+            inward(model, &mut ws, (&tau, true), terms.armature.as_deref(), Some(&mut root), !compact);
             let mut qdd = vec![Expr::zero(); nb];
             let a = Motion::new(Vec3([ap[0], ap[1], ap[2]]), Vec3([ap[3], ap[4], ap[5]]));
-            outward(model, &mut ws, &a, &mut qdd, true);
+            outward(model, &mut ws, &a, &mut qdd, !compact);
             let mut out = root.inertia.to_parts().to_vec();
             out.extend(root.bias.to_array());
             out.extend(qdd);
@@ -477,16 +480,22 @@ fn harmonise(models: &mut [Model]) {
 /// The group's body (for the articulated-body algorithm its two parts, the
 /// second's `up` counted from `first`, the index of the first), if its
 /// lanes trace alike.
+///
+/// `compact`: the articulated-body algorithm in its compact arm, not the
+/// distributed one that traced code takes elsewhere (`aba_impl`). The
+/// distributed arm shortens the chain of dependent operations for a few
+/// more of them; in a body too long for the micro-op cache the operations
+/// (the bytes) set the time, and the compact arm has fewer on long chains
+/// (the humanoid's arms), more on short ones (`docs/performance.md`).
 fn branch_body(
     scene: &SceneModel,
     group: BranchGroup,
     rewrites: Rewrites,
     kind: Kind,
     first: usize,
+    compact: bool,
 ) -> Result<Vec<BranchBody>, CodegenError> {
     let model = &scene.model;
-    let mut traces = Vec::new();
-    let mut tables: Vec<Vec<f64>> = Vec::new();
     let mut models: Vec<Model> = group.lanes.iter().map(|lane| part(model, lane, &[], RootJoint::Fixed)).collect();
     harmonise(&mut models);
     // The gyroscopic moments by the products of ω where every lane's
@@ -494,8 +503,10 @@ fn branch_body(
     let gyro: Vec<bool> = (0..models[0].bodies.len())
         .map(|b| models.iter().all(|m| crate::algorithms::rnea::use_products_for_gyroscopic(&m.bodies[b].inertia.ibar)))
         .collect();
+    let mut traces: Vec<Traced> = Vec::new();
+    let mut tables: Vec<Vec<f64>> = Vec::new();
     for (lane, bodies) in models.iter().zip(&group.lanes) {
-        let (t, values) = trace_lane(lane, &gyro, &JointTerms::of(scene, bodies), rewrites, kind)?;
+        let (t, values) = trace_lane(lane, &gyro, &JointTerms::of(scene, bodies), rewrites, kind, compact)?;
         if traces.first().is_some_and(|first| *first != t) {
             return Ok(Vec::new());
         }
@@ -610,11 +621,48 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
     let mut branches = Vec::new();
     for group in groups(model, MIN_BODIES) {
         let first = branches.len();
-        branches.extend(branch_body(scene, group, rewrites, kind, first)?);
+        branches.extend(branch_body(scene, group, rewrites, kind, first, false)?);
     }
     if branches.is_empty() {
         return Ok(None);
     }
+    let distributed = with_rest(scene, f, rewrites, kind, branches)?;
+    if kind != Kind::AbaUp || distributed.fp_ops(true).1 <= FRONT_END_FP_OPS {
+        return Ok(Some(distributed));
+    }
+    // A long body: each group's algorithm in the arm with fewer operations.
+    let mut branches: Vec<BranchBody> = Vec::new();
+    for pair in distributed.branches.chunks(2) {
+        let first = branches.len();
+        let compact = branch_body(scene, pair[0].group.clone(), rewrites, kind, first, true)?;
+        let ops = |x: &[BranchBody]| -> usize {
+            x.iter().map(|b| crate::codegen::counted(&b.body.function, true).fp_ops()).sum()
+        };
+        let fewer = !compact.is_empty() && ops(&compact) < ops(pair);
+        branches.extend(if fewer { compact } else { pair.to_vec() });
+    }
+    with_rest(scene, f, rewrites, kind, branches).map(Some)
+}
+
+/// Above this many FP operations written (a fused multiply-add counted
+/// once), a function's body no longer fits the processor's micro-op cache
+/// (about 5,000 instructions, of which about two per FP operation of our
+/// long bodies, with their loads and stores) and runs at the decoders' rate
+/// of bytes: there the articulated-body algorithm's branches take the arm
+/// with fewer operations (see [`branch_body`]; `docs/performance.md`, "Long
+/// bodies: the front end").
+const FRONT_END_FP_OPS: usize = 2500;
+
+/// The function of `scene` with `branches` (traced for `kind`) and the rest
+/// of the robot traced around them.
+fn with_rest(
+    scene: &SceneModel,
+    f: &Function,
+    rewrites: Rewrites,
+    kind: Kind,
+    branches: Vec<BranchBody>,
+) -> Result<Branched, CodegenError> {
+    let model = &scene.model;
     let n = model.bodies.len();
     let in_branch = |b: usize| branches.iter().any(|x| x.group.lanes.iter().flatten().any(|&y| y == b));
     let keep: Vec<usize> = (0..n).filter(|&b| !in_branch(b)).collect();
@@ -826,7 +874,7 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
             }
         }
     }
-    Ok(Some(Branched { body, outputs, branches }))
+    Ok(Branched { body, outputs, branches })
 }
 
 impl Branched {
@@ -1117,6 +1165,40 @@ mod tests {
                     assert_relative_eq!(*a, *b, epsilon = 1e-11, max_relative = 1e-11);
                 }
             }
+        }
+    }
+
+    /// The forward dynamics' branches take the articulated-body algorithm's
+    /// compact arm only in a body too long for the micro-op cache, and
+    /// there group by group where it has fewer operations: the humanoid's
+    /// arms (eight joints) do, its legs and the quadruped's short legs keep
+    /// the distributed arm. (The values are the generic solver's either
+    /// way: `branches_trace_alike_and_give_the_generic_values`.)
+    #[test]
+    fn long_bodies_take_the_arm_with_fewer_operations() {
+        let opts = CodegenOptions::default().branch_loops(true);
+        let ops = |x: &[BranchBody]| -> usize {
+            x.iter().map(|b| crate::codegen::counted(&b.body.function, true).fp_ops()).sum()
+        };
+        for (name, compact_groups) in [("humanoid32", vec![false, true]), ("quadruped12", vec![false])] {
+            let (scene, _) = prepare::prepare(&Scene::default().apply(&robot(name, true)).unwrap(), &opts);
+            let b = branched(&scene, &Function::ForwardDynamics, opts.rewrites).unwrap().unwrap();
+            let long = b.fp_ops(true).1 > FRONT_END_FP_OPS;
+            assert_eq!(long, name == "humanoid32", "{name}: {} FP ops written", b.fp_ops(true).1);
+            let mut taken = Vec::new();
+            for (g, pair) in b.branches.chunks(2).enumerate() {
+                let arms = [false, true].map(|compact| {
+                    branch_body(&scene, pair[0].group.clone(), opts.rewrites, Kind::AbaUp, 2 * g, compact)
+                });
+                let [distributed, compact] = arms.map(|x| x.unwrap());
+                let is = |x: &[BranchBody]| x.iter().zip(pair).all(|(a, b)| a.body == b.body);
+                assert!(is(&distributed) != is(&compact), "{name} group {g}: one of the two arms");
+                if long {
+                    assert_eq!(ops(pair), ops(&distributed).min(ops(&compact)), "{name} group {g}");
+                }
+                taken.push(is(&compact));
+            }
+            assert_eq!(taken, compact_groups, "{name}: the groups that take the compact arm");
         }
     }
 }
