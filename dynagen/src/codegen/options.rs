@@ -154,7 +154,8 @@ pub struct CodegenOptions {
     pub runtime_dispatch: bool,
     /// Emit sibling subtrees of one shape (a humanoid's legs and arms, a
     /// quadruped's legs) as one body, reading its constants from a table,
-    /// in τ, h and M (on). In `f64` the body runs on two or four branches at
+    /// in τ, h, M and the forward dynamics by the articulated-body
+    /// algorithm (on). In `f64` the body runs on two or four branches at
     /// once, one to each lane of a vector register (four where the
     /// processor has AVX2), with the scalar code's bits in every lane; in
     /// `f32` it runs in a loop. It writes a third to a half of the unrolled

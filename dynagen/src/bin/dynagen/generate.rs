@@ -62,8 +62,8 @@ pub struct Args {
     #[arg(long)]
     pub no_dispatch: bool,
     /// Unroll every branch: without it, sibling subtrees of one shape
-    /// (legs, arms) in τ, h and M are one body run on all of them, in
-    /// vector lanes, over a table of their constants.
+    /// (legs, arms) in τ, h, M and the ABA forward dynamics are one body
+    /// run on all of them, in vector lanes, over a table of their constants.
     #[arg(long, conflicts_with = "branch_loops")]
     pub no_branch_loops: bool,
     /// Sibling subtrees of one shape as one body (the default).
