@@ -630,18 +630,21 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
     if kind != Kind::AbaUp || distributed.fp_ops(true).1 <= FRONT_END_FP_OPS {
         return Ok(Some(distributed));
     }
-    // A long body: each group's algorithm in the arm with fewer operations.
+    // A long body: each group's algorithm (its two parts) in the arm with
+    // fewer operations.
     let mut branches: Vec<BranchBody> = Vec::new();
     for pair in distributed.branches.chunks(2) {
         let first = branches.len();
         let compact = branch_body(scene, pair[0].group.clone(), rewrites, kind, first, true)?;
-        let ops = |x: &[BranchBody]| -> usize {
-            x.iter().map(|b| crate::codegen::counted(&b.body.function, true).fp_ops()).sum()
-        };
-        let fewer = !compact.is_empty() && ops(&compact) < ops(pair);
+        let fewer = !compact.is_empty() && fp_ops_written(&compact) < fp_ops_written(pair);
         branches.extend(if fewer { compact } else { pair.to_vec() });
     }
     with_rest(scene, f, rewrites, kind, branches).map(Some)
+}
+
+/// The FP operations of `bodies` as written (a fused multiply-add once).
+fn fp_ops_written(bodies: &[BranchBody]) -> usize {
+    bodies.iter().map(|b| crate::codegen::counted(&b.body.function, true).fp_ops()).sum()
 }
 
 /// Above this many FP operations written (a fused multiply-add counted
@@ -1177,9 +1180,7 @@ mod tests {
     #[test]
     fn long_bodies_take_the_arm_with_fewer_operations() {
         let opts = CodegenOptions::default().branch_loops(true);
-        let ops = |x: &[BranchBody]| -> usize {
-            x.iter().map(|b| crate::codegen::counted(&b.body.function, true).fp_ops()).sum()
-        };
+        let ops = fp_ops_written;
         for (name, compact_groups) in [("humanoid32", vec![false, true]), ("quadruped12", vec![false])] {
             let (scene, _) = prepare::prepare(&Scene::default().apply(&robot(name, true)).unwrap(), &opts);
             let b = branched(&scene, &Function::ForwardDynamics, opts.rewrites).unwrap().unwrap();
