@@ -12,7 +12,7 @@
 # Pinocchio is compiled with CXXFLAGS (default "-O3 -DNDEBUG -march=native",
 # pinocchio_build.sh); the dynagen side with the caller's RUSTFLAGS (e.g.
 # RUSTFLAGS="-C target-cpu=native").
-# Usage: floating_bench.sh [ROUNDS] [ROBOT ...]   (robots: both by default)
+# Usage: [LAYOUTS=K] floating_bench.sh [ROUNDS] [ROBOT ...]   (robots: both by default)
 # Not run in CI; see README.md in this folder.
 set -euo pipefail
 
@@ -27,10 +27,22 @@ out="${TMPDIR:-/tmp}/pinocchio_floating_bench"
 . "$here/pinocchio_build.sh"
 pinocchio_build "$here/pinocchio_floating_bench.cpp" "$out" \
   "$repo/dynagen/robots/quadruped12.urdf:floating" "$repo/dynagen/robots/humanoid32.urdf:floating"
-for robot in "${robots[@]}"; do
-  urdf="$repo/dynagen/robots/$robot.urdf"
-  echo "=== $robot"
-  alternate "$rounds" floating "200 $robot" "$out" "$urdf"
-  echo "== $robot last"
-  "$out" "$urdf"
+# LAYOUTS=K: the whole run once per code layout 0 … K-1 (the bench library
+# rebuilt with DYNAGEN_BENCH_LAYOUT, as layouts.sh does): the humanoid's M
+# and q̈ move by up to 2.8x between binaries of the same code
+# (docs/performance.md, "the same code, other times"), so read them over
+# layouts. Unset: one run, in the caller's DYNAGEN_BENCH_LAYOUT.
+layouts="${LAYOUTS:-}"
+for ((layout = 0; layout < ${layouts:-1}; layout++)); do
+  if [ -n "$layouts" ]; then
+    export DYNAGEN_BENCH_LAYOUT="$layout"
+    echo "##### code layout $layout"
+  fi
+  for robot in "${robots[@]}"; do
+    urdf="$repo/dynagen/robots/$robot.urdf"
+    echo "=== $robot"
+    alternate "$rounds" floating "200 $robot" "$out" "$urdf"
+    echo "== $robot last"
+    "$out" "$urdf"
+  done
 done
