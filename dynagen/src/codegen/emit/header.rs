@@ -170,13 +170,8 @@ pub(crate) fn header(facts: &HeaderFacts) -> String {
                 .branches
                 .iter()
                 .map(|x| {
-                    let f = &x.body.function;
-                    let path = path_of(f);
-                    format!(
-                        "{} × {} FP ops, {path}",
-                        x.group.lanes.len(),
-                        crate::codegen::counted(f, options.fma).fp_ops()
-                    )
+                    let path = path_of(&x.body.function);
+                    format!("{} × {} FP ops, {path}", x.group.lanes.len(), x.fp_ops(options.fma))
                 })
                 .collect();
             let _ = writeln!(

@@ -123,6 +123,11 @@ pub struct BranchBody {
 }
 
 impl BranchBody {
+    /// The FP operations of its body as written, once (a fused
+    /// multiply-add counted once with `fma`).
+    pub fn fp_ops(&self, fma: bool) -> usize {
+        crate::codegen::counted(&self.body.function, fma).fp_ops()
+    }
     /// The number of the branch's outputs.
     pub fn outputs(&self) -> usize {
         self.body.function.outputs().len()
@@ -644,7 +649,7 @@ pub(crate) fn branched(scene: &SceneModel, f: &Function, rewrites: Rewrites) -> 
 
 /// The FP operations of `bodies` as written (a fused multiply-add once).
 fn fp_ops_written(bodies: &[BranchBody]) -> usize {
-    bodies.iter().map(|b| crate::codegen::counted(&b.body.function, true).fp_ops()).sum()
+    bodies.iter().map(|b| b.fp_ops(true)).sum()
 }
 
 /// Above this many FP operations written (a fused multiply-add counted
@@ -887,7 +892,7 @@ impl Branched {
     pub fn fp_ops(&self, fma: bool) -> (usize, usize) {
         let rest = crate::codegen::counted(&self.body.function, fma).fp_ops();
         self.branches.iter().fold((rest, rest), |(run, written), x| {
-            let b = crate::codegen::counted(&x.body.function, fma).fp_ops();
+            let b = x.fp_ops(fma);
             (run + x.group.lanes.len() * b, written + b)
         })
     }
