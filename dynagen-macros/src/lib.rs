@@ -45,7 +45,7 @@
 //! | `split_lets` | a number of `let`s, or `none` | 2500 (longer bodies become `#[inline(never)]` parts) |
 //! | `fma` | `true`, `false`: `a*b + c` as `fma(a, b, c)`, one rounding where the target has a fused multiply-add | `true` |
 //! | `allow_nonphysical_inertia` | `true`, `false`: accept links whose rotational inertia is not positive semi-definite, with a warning (the mass matrix may be indefinite) | `false` (refused) |
-//! | `dispatch` | `true`, `false`: on x86-64 builds without the `avx2` and `fma` target features, also compile each function for AVX2 and FMA and run that copy where the processor has both (results differ in the last bits between machines) | `true` |
+//! | `dispatch` | `true`, `false`: on x86-64 builds without the `avx2` and `fma` target features, also compile each function for AVX2 and FMA, and for AVX-512 (F, VL, DQ), and run the copy the processor has (results differ in the last bits between machines with and without FMA) | `true` |
 //! | `branch_loops` | `true`, `false`: in τ, h, M and the ABA forward dynamics, sibling subtrees of one shape (legs, arms) as one body run on all of them (in vector lanes) over a table of their constants | `true` |
 //! | `floating_base` | `true`, `false`: the robot's root link moves freely (`NQ = DOF + 7`, `NV = DOF + 6`; every scene key, frame function and derivative too) | `false` (a URDF `floating` root joint: `true`) |
 //! | `mimic` | `follow`: a joint with a `<mimic>` (in `robot!`, a `mimic` field) follows its master, `q = multiplier·q_master + offset`, and is not in `DOF` and `JOINT_NAMES`; `independent`: it is a joint of its own | `follow` |

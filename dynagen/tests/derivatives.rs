@@ -156,7 +156,7 @@ fn random_tree(rng: &mut Rng, n: usize) -> String {
     let link = |k: usize| if k == 0 { "base".to_string() } else { format!("l{}", k - 1) };
     for k in 0..n {
         let parent = link((rng.bits() % (k as u64 + 1)) as usize);
-        let kind = if rng.bits() % 3 == 0 { "prismatic" } else { "revolute" };
+        let kind = if rng.bits().is_multiple_of(3) { "prismatic" } else { "revolute" };
         let (o, r, a) = (rng.vec(3, 0.4), rng.vec(3, 3.0), rng.vec(3, 1.5));
         let _ = write!(
             x,

@@ -101,7 +101,7 @@ impl Tree {
     /// The tip hangs from the base in one case in eight (its Jacobian and
     /// the torques of a wrench on it are then zero), else from a link.
     fn tip_parent(&self) -> Option<usize> {
-        (self.tip.0 % 8 != 0).then(|| self.tip.0 / 8 % self.bodies.len())
+        (!self.tip.0.is_multiple_of(8)).then(|| self.tip.0 / 8 % self.bodies.len())
     }
     fn has_child(&self, k: usize) -> bool {
         (k + 1..self.bodies.len()).any(|c| Self::parent(c, self.bodies[c].parent_pick) == Some(k))

@@ -477,16 +477,19 @@ with_source! { HARNESS_ANGLES:
     }
 }
 
-/// Where the target has AVX2, `sin_cos_array` (and `sin_cos_array_f32`) takes four angles to a register, and where it has
-/// FMA the polynomials are fused. CI builds for plain x86-64, so this compiles the kernel's text
-/// with `rustc -O` and `-C target-feature=` `+avx2`, `+fma` and `+avx2,+fma` (those this machine
-/// has; `RUNTIME_DISPATCH` off) and checks, in each binary, that the batches, whole and cut at lengths 1 to 11, give
-/// the bits of that binary's one-angle kernel; and that the `+avx2` binary gives the bits of
-/// this (SSE2, unfused) build. Then once more without target features and with
-/// `RUNTIME_DISPATCH` on, where the machine has AVX2 and FMA: the functions pick their AVX2 and
-/// FMA copies at run time, and must give the `+avx2,+fma` binary's bits (and, again, batches
-/// the one-angle kernel's). (That the fused kernel stays within 1 ulp is
-/// `tests/tests/generated_fma.rs`.)
+/// Where the target has AVX2, `sin_cos_array` (and `sin_cos_array_f32`) takes four angles to a register, eight where it
+/// has AVX-512, and where it has FMA the polynomials are fused. CI builds for plain x86-64, so
+/// this compiles the kernel's text with `rustc -O` and `-C target-feature=` `+avx2`, `+fma`,
+/// `+avx2,+fma` and `+avx512f,+avx512vl,+avx512dq` (those this machine has; `RUNTIME_DISPATCH`
+/// off) and checks, in each binary, that the batches, whole and cut at lengths 1 to 17, give
+/// the bits of that binary's one-angle kernel; that the `+avx2` binary gives the bits of this
+/// (SSE2, unfused) build; and that the AVX-512 binary gives the `+avx2,+fma` binary's. Then
+/// once more without target features and with `RUNTIME_DISPATCH` on, where the machine has
+/// AVX2 and FMA: the functions pick their AVX-512 copies at run time where it has AVX-512, else
+/// their AVX2 and FMA copies, and must give the `+avx2,+fma` binary's bits (and, again,
+/// batches the one-angle kernel's); and once more with the AVX-512 check answering no, so
+/// that the AVX2 and FMA copies run on an AVX-512 machine too. (That the fused kernel stays
+/// within 1 ulp is `tests/tests/generated_fma.rs`.)
 #[test]
 #[cfg(target_arch = "x86_64")]
 fn the_avx2_and_fma_batches_are_the_scalar_kernel_bit_for_bit() {
@@ -515,6 +518,8 @@ fn main() {
     batch::<8>(&xs);
     batch::<9>(&xs);
     batch::<11>(&xs);
+    batch::<16>(&xs);
+    batch::<17>(&xs);
     fn batch_f32<const N: usize>(xs: &[f64]) {
         for w in xs.chunks_exact(N) {
             let w: [f32; N] = core::array::from_fn(|i| w[i] as f32);
@@ -530,7 +535,12 @@ fn main() {
     batch_f32::<5>(&xs);
     batch_f32::<8>(&xs);
     batch_f32::<9>(&xs);
-    println!("avx2 {} fma {}", cfg!(target_feature = "avx2"), cfg!(target_feature = "fma"));
+    println!(
+        "avx2 {} fma {} avx512 {}",
+        cfg!(target_feature = "avx2"),
+        cfg!(target_feature = "fma"),
+        cfg!(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))
+    );
     for x in xs {
         let (s, c) = sin_cos_kernel(x);
         let (s32, c32) = sin_cos_kernel_f32(x as f32);
@@ -544,24 +554,44 @@ fn main() {
     let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
     let has = |f: &str| match f {
         "avx2" => std::is_x86_feature_detected!("avx2"),
+        "avx512" => {
+            std::is_x86_feature_detected!("avx512f")
+                && std::is_x86_feature_detected!("avx512vl")
+                && std::is_x86_feature_detected!("avx512dq")
+        }
         _ => std::is_x86_feature_detected!("fma"),
     };
     let mut ran = 0;
     let mut native_bits: Option<String> = None;
-    // (target features, run-time dispatch, whether the code runs with AVX2 and with FMA)
-    for (features, dispatch, avx2, fma) in [
-        ("+avx2", false, true, false),
-        ("+fma", false, false, true),
-        ("+avx2,+fma", false, true, true),
-        ("", true, true, true),
-    ] {
-        if (avx2 && !has("avx2")) || (fma && !has("fma")) {
-            eprintln!("skipped {features:?} (run-time dispatch {dispatch}): this machine lacks AVX2 or FMA");
+    // (target features, run-time dispatch, whether the code runs with AVX2, with FMA and with
+    // AVX-512 (where the build has them: else the copies pick what the machine has), whether
+    // the AVX-512 check answers no)
+    let builds = [
+        ("+avx2", false, true, false, false, false),
+        ("+fma", false, false, true, false, false),
+        ("+avx2,+fma", false, true, true, false, false),
+        ("+avx512f,+avx512vl,+avx512dq", false, true, true, true, false),
+        ("", true, true, true, false, false),
+        ("", true, true, true, false, true),
+    ];
+    for (features, dispatch, avx2, fma, avx512, no_avx512) in builds {
+        if (avx2 && !has("avx2")) || (fma && !has("fma")) || (avx512 && !has("avx512")) {
+            eprintln!("skipped {features:?} (run-time dispatch {dispatch}): this machine lacks its instructions");
             continue;
         }
-        let name = if dispatch { "dispatch".to_string() } else { features.replace([',', '+'], "_") };
+        let name = match (dispatch, no_avx512) {
+            (true, false) => "dispatch".to_string(),
+            (true, true) => "dispatch_no_avx512".to_string(),
+            _ => features.replace([',', '+'], "_"),
+        };
         let src = dir.join(format!("{name}.rs"));
-        std::fs::write(&src, harness.replace("DISPATCH;", &format!("{dispatch};"))).unwrap();
+        let check = "fn ask_cpu_for_avx512() -> bool {\n";
+        assert!(harness.contains(check));
+        let text = match no_avx512 {
+            true => harness.replace(check, &format!("{check}    if true {{\n        return false;\n    }}\n")),
+            false => harness.clone(),
+        };
+        std::fs::write(&src, text.replace("DISPATCH;", &format!("{dispatch};"))).unwrap();
         let exe = dir.join(&name);
         let built = std::process::Command::new(&rustc)
             .args(["--edition", "2021", "-O", "-C", &format!("target-feature={features}"), "-o"])
@@ -574,7 +604,7 @@ fn main() {
         assert!(out.status.success(), "{name}: {}", String::from_utf8_lossy(&out.stderr));
         let out = String::from_utf8(out.stdout).unwrap();
         let (first, bits) = out.split_once('\n').unwrap();
-        let built_for = format!("avx2 {} fma {}", avx2 && !dispatch, fma && !dispatch);
+        let built_for = format!("avx2 {} fma {} avx512 {}", avx2 && !dispatch, fma && !dispatch, avx512);
         assert_eq!(first, built_for, "{name}: not built as asked");
         if !fma {
             for (x, line) in harness_angles().into_iter().zip(bits.lines()) {
@@ -584,12 +614,16 @@ fn main() {
                 assert_eq!(line, want, "{features} at x = {x:e}");
             }
         }
-        if avx2 && fma && !dispatch {
+        if avx2 && fma && !dispatch && !avx512 {
             native_bits = Some(bits.to_string());
+        }
+        if avx512 {
+            let native = native_bits.as_deref().expect("the +avx2,+fma binary ran");
+            assert!(bits == native, "the AVX-512 build differs from the +avx2,+fma build");
         }
         if dispatch {
             let native = native_bits.as_deref().expect("the +avx2,+fma binary ran");
-            assert!(bits == native, "the run-time AVX2 and FMA copies differ from the +avx2,+fma build");
+            assert!(bits == native, "the run-time copies ({name}) differ from the +avx2,+fma build");
             assert!(bits.lines().count() == harness_angles().len());
             let baseline = harness_angles().into_iter().map(|x| {
                 let ((s, c), (s32, c32)) = (sin_cos_kernel(x), sin_cos_kernel_f32(x as f32));
@@ -597,11 +631,11 @@ fn main() {
             });
             let differ = bits.lines().zip(baseline).filter(|(a, b)| a != b).count();
             assert!(differ > 0, "the run-time copies give this (unfused) build's bits: not fused");
-            eprintln!("run-time AVX2 and FMA copies: {differ} of {} angles differ from unfused", bits.lines().count());
+            eprintln!("run-time copies ({name}): {differ} of {} angles differ from unfused", bits.lines().count());
         }
         ran += 1;
     }
-    eprintln!("{ran} of 4 builds checked");
+    eprintln!("{ran} of {} builds checked", builds.len());
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -13,7 +13,9 @@
 //   public function also has a copy compiled for AVX2 and FMA (NAME_avx2_fma, from the one generic body
 //   NAME_on) and runs it where the processor has both (cpuid, asked once): as fast as a native build, and
 //   with its bits, so results differ in the last bits between machines with and without FMA (within the
-//   accuracy the tests check). Off: runtime_dispatch(false), the same bits on every x86_64 machine.
+//   accuracy the tests check). Builds without AVX-512 (F, VL, DQ) have a third copy for processors that
+//   have it (NAME_avx512: the same operations and bits, 32 vector registers; needs Rust 1.89).
+//   Off: runtime_dispatch(false), the same bits on every x86_64 machine.
 // Forward dynamics: the articulated-body algorithm, chosen as the more accurate (estimated 751 cycles for CRBA + LTDL against 828 for the articulated-body algorithm; worst relative error on 16 states against double-double 2.3e-15 against 4.0e-16).
 // Every NAME_sc(s, c, ...) takes s[i] = sin(theta_i), c[i] = cos(theta_i) of joint i's angle theta_i = q[i]
 //   (times |axis| for a non-unit axis; prismatic entries unused), and q only if a joint is prismatic.
@@ -49,7 +51,7 @@ pub const JOINT_NAMES: [&str; DOF] = [
     "panda_finger_joint1",
     "panda_finger_joint2",
 ];
-/// The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target, or with run-time dispatch the processor, has AVX2).
+/// The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target, or with run-time dispatch the processor, has AVX2, eight where it has AVX-512).
 #[inline]
 #[allow(dead_code)]
 pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
@@ -69,12 +71,30 @@ pub fn inverse_dynamics_sc(
     qd: &[f64; DOF],
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+    if has_avx512() {
+        // SAFETY: this processor has AVX-512 F, VL and DQ (checked just above).
+        return unsafe { inverse_dynamics_sc_avx512(s, c, q, qd, qdd) };
+    }
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
         // SAFETY: this processor has AVX2 and FMA (checked just above).
         return unsafe { inverse_dynamics_sc_avx2_fma(s, c, q, qd, qdd) };
     }
     inverse_dynamics_sc_on::<Baseline>(s, c, q, qd, qdd)
+}
+/// [`inverse_dynamics_sc`] compiled for processors with AVX-512 F, VL and DQ.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+#[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
+#[allow(dead_code)]
+unsafe fn inverse_dynamics_sc_avx512(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+    qdd: &[f64; DOF],
+) -> [f64; DOF] {
+    inverse_dynamics_sc_on::<Avx512>(s, c, q, qd, qdd)
 }
 /// [`inverse_dynamics_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
@@ -600,6 +620,11 @@ pub fn inverse_dynamics(
     qd: &[f64; DOF],
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+    if has_avx512() {
+        // SAFETY: this processor has AVX-512 F, VL and DQ (checked just above).
+        return unsafe { inverse_dynamics_avx512(q, qd, qdd) };
+    }
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
         // SAFETY: this processor has AVX2 and FMA (checked just above).
@@ -607,6 +632,26 @@ pub fn inverse_dynamics(
     }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     inverse_dynamics_sc(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
+        q,
+        qd,
+        qdd,
+    )
+}
+/// [`inverse_dynamics`] compiled for processors with AVX-512 F, VL and DQ.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+#[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
+#[allow(dead_code)]
+unsafe fn inverse_dynamics_avx512(
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+    qdd: &[f64; DOF],
+) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx512, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    inverse_dynamics_sc_on::<
+        Avx512,
+    >(
         &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
         &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
         q,
@@ -646,12 +691,28 @@ pub fn mass_matrix_sc(
     c: &[f64; DOF],
     q: &[f64; DOF],
 ) -> [[f64; DOF]; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+    if has_avx512() {
+        // SAFETY: this processor has AVX-512 F, VL and DQ (checked just above).
+        return unsafe { mass_matrix_sc_avx512(s, c, q) };
+    }
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
         // SAFETY: this processor has AVX2 and FMA (checked just above).
         return unsafe { mass_matrix_sc_avx2_fma(s, c, q) };
     }
     mass_matrix_sc_on::<Baseline>(s, c, q)
+}
+/// [`mass_matrix_sc`] compiled for processors with AVX-512 F, VL and DQ.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+#[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
+#[allow(dead_code)]
+unsafe fn mass_matrix_sc_avx512(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    q: &[f64; DOF],
+) -> [[f64; DOF]; DOF] {
+    mass_matrix_sc_on::<Avx512>(s, c, q)
 }
 /// [`mass_matrix_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
@@ -1061,6 +1122,11 @@ fn mass_matrix_sc_on<I: Isa>(
 #[inline]
 #[allow(dead_code)]
 pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+    if has_avx512() {
+        // SAFETY: this processor has AVX-512 F, VL and DQ (checked just above).
+        return unsafe { mass_matrix_avx512(q) };
+    }
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
         // SAFETY: this processor has AVX2 and FMA (checked just above).
@@ -1068,6 +1134,20 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
     }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     mass_matrix_sc(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
+        q,
+    )
+}
+/// [`mass_matrix`] compiled for processors with AVX-512 F, VL and DQ.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+#[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
+#[allow(dead_code)]
+unsafe fn mass_matrix_avx512(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx512, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    mass_matrix_sc_on::<
+        Avx512,
+    >(
         &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
         &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
         q,
@@ -1100,12 +1180,29 @@ pub fn bias_forces_sc(
     q: &[f64; DOF],
     qd: &[f64; DOF],
 ) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+    if has_avx512() {
+        // SAFETY: this processor has AVX-512 F, VL and DQ (checked just above).
+        return unsafe { bias_forces_sc_avx512(s, c, q, qd) };
+    }
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
         // SAFETY: this processor has AVX2 and FMA (checked just above).
         return unsafe { bias_forces_sc_avx2_fma(s, c, q, qd) };
     }
     bias_forces_sc_on::<Baseline>(s, c, q, qd)
+}
+/// [`bias_forces_sc`] compiled for processors with AVX-512 F, VL and DQ.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+#[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
+#[allow(dead_code)]
+unsafe fn bias_forces_sc_avx512(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+) -> [f64; DOF] {
+    bias_forces_sc_on::<Avx512>(s, c, q, qd)
 }
 /// [`bias_forces_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
@@ -1605,6 +1702,11 @@ fn bias_forces_sc_on<I: Isa>(
 #[inline]
 #[allow(dead_code)]
 pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+    if has_avx512() {
+        // SAFETY: this processor has AVX-512 F, VL and DQ (checked just above).
+        return unsafe { bias_forces_avx512(q, qd) };
+    }
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
         // SAFETY: this processor has AVX2 and FMA (checked just above).
@@ -1612,6 +1714,21 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
     }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     bias_forces_sc(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
+        q,
+        qd,
+    )
+}
+/// [`bias_forces`] compiled for processors with AVX-512 F, VL and DQ.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+#[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
+#[allow(dead_code)]
+unsafe fn bias_forces_avx512(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx512, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    bias_forces_sc_on::<
+        Avx512,
+    >(
         &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
         &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
         q,
@@ -1641,12 +1758,28 @@ unsafe fn bias_forces_avx2_fma(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 /// Takes `s[i]` = sin θᵢ and `c[i]` = cos θᵢ of each revolute joint's angle θᵢ = `q[i]` (times `|axis|` for a non-unit axis, see the caller); the entries of prismatic joints are not read. `q` is read for the prismatic joints only.
 #[allow(dead_code)]
 pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF], q: &[f64; DOF]) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+    if has_avx512() {
+        // SAFETY: this processor has AVX-512 F, VL and DQ (checked just above).
+        return unsafe { gravity_torques_sc_avx512(s, c, q) };
+    }
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
         // SAFETY: this processor has AVX2 and FMA (checked just above).
         return unsafe { gravity_torques_sc_avx2_fma(s, c, q) };
     }
     gravity_torques_sc_on::<Baseline>(s, c, q)
+}
+/// [`gravity_torques_sc`] compiled for processors with AVX-512 F, VL and DQ.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+#[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
+#[allow(dead_code)]
+unsafe fn gravity_torques_sc_avx512(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    q: &[f64; DOF],
+) -> [f64; DOF] {
+    gravity_torques_sc_on::<Avx512>(s, c, q)
 }
 /// [`gravity_torques_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
@@ -1761,6 +1894,11 @@ fn gravity_torques_sc_on<I: Isa>(
 #[inline]
 #[allow(dead_code)]
 pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+    if has_avx512() {
+        // SAFETY: this processor has AVX-512 F, VL and DQ (checked just above).
+        return unsafe { gravity_torques_avx512(q) };
+    }
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
         // SAFETY: this processor has AVX2 and FMA (checked just above).
@@ -1768,6 +1906,20 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
     }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     gravity_torques_sc(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
+        q,
+    )
+}
+/// [`gravity_torques`] compiled for processors with AVX-512 F, VL and DQ.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+#[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
+#[allow(dead_code)]
+unsafe fn gravity_torques_avx512(q: &[f64; DOF]) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx512, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    gravity_torques_sc_on::<
+        Avx512,
+    >(
         &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
         &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
         q,
@@ -1801,12 +1953,30 @@ pub fn forward_dynamics_sc(
     qd: &[f64; DOF],
     tau: &[f64; DOF],
 ) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+    if has_avx512() {
+        // SAFETY: this processor has AVX-512 F, VL and DQ (checked just above).
+        return unsafe { forward_dynamics_sc_avx512(s, c, q, qd, tau) };
+    }
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
         // SAFETY: this processor has AVX2 and FMA (checked just above).
         return unsafe { forward_dynamics_sc_avx2_fma(s, c, q, qd, tau) };
     }
     forward_dynamics_sc_on::<Baseline>(s, c, q, qd, tau)
+}
+/// [`forward_dynamics_sc`] compiled for processors with AVX-512 F, VL and DQ.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+#[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
+#[allow(dead_code)]
+unsafe fn forward_dynamics_sc_avx512(
+    s: &[f64; DOF],
+    c: &[f64; DOF],
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+    tau: &[f64; DOF],
+) -> [f64; DOF] {
+    forward_dynamics_sc_on::<Avx512>(s, c, q, qd, tau)
 }
 /// [`forward_dynamics_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
@@ -2953,6 +3123,11 @@ pub fn forward_dynamics(
     qd: &[f64; DOF],
     tau: &[f64; DOF],
 ) -> [f64; DOF] {
+    #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+    if has_avx512() {
+        // SAFETY: this processor has AVX-512 F, VL and DQ (checked just above).
+        return unsafe { forward_dynamics_avx512(q, qd, tau) };
+    }
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if has_avx2_and_fma() {
         // SAFETY: this processor has AVX2 and FMA (checked just above).
@@ -2960,6 +3135,26 @@ pub fn forward_dynamics(
     }
     let (s, c) = sin_cos_array(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
     forward_dynamics_sc(
+        &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
+        &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
+        q,
+        qd,
+        tau,
+    )
+}
+/// [`forward_dynamics`] compiled for processors with AVX-512 F, VL and DQ.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))))]
+#[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
+#[allow(dead_code)]
+unsafe fn forward_dynamics_avx512(
+    q: &[f64; DOF],
+    qd: &[f64; DOF],
+    tau: &[f64; DOF],
+) -> [f64; DOF] {
+    let (s, c) = sin_cos_array_on::<Avx512, 6>(&[q[1], q[2], q[3], q[4], q[5], q[6]]);
+    forward_dynamics_sc_on::<
+        Avx512,
+    >(
         &[0.0, s[0], s[1], s[2], s[3], s[4], s[5], 0.0, 0.0],
         &[1.0, c[0], c[1], c[2], c[3], c[4], c[5], 1.0, 1.0],
         q,
@@ -2989,8 +3184,8 @@ unsafe fn forward_dynamics_avx2_fma(
 }
 
 /// Whether `sin_cos_array` and the other public functions of the kernel below pick, on x86-64
-/// builds without the `avx2` and `fma` target features, their copies compiled for AVX2 and FMA
-/// where the processor has both (`CodegenOptions::runtime_dispatch`).
+/// builds without the `avx2` and `fma` target features, their copies compiled for AVX-512 or
+/// for AVX2 and FMA where the processor has them (`CodegenOptions::runtime_dispatch`).
 #[allow(dead_code)]
 const RUNTIME_DISPATCH: bool = true;
 
@@ -3274,15 +3469,25 @@ fn sqrt_portable(x: f64) -> f64 {
 // target-feature=+avx2,+fma`: bit for bit those of a native build on such
 // a processor, and different in the last bits from the baseline's on
 // processors without FMA. Builds that already have both features, and other
-// targets, compile no dispatch: `Baseline` is all there is.
+// targets, compile no such copy: `Baseline` is all there is.
+//
+// Processors with AVX-512 (F, VL and DQ) get a third copy, for `Avx512`,
+// on x86-64 builds without those features (also `x86-64-v3` ones): the
+// same operations in the same order as `Avx2Fma` (so the same bits), with
+// 32 vector registers instead of 16, which long bodies need (fewer values
+// spilled to the stack), and eight angles to a register in the sines and
+// cosines. `has_avx512()` checks the processor and that the OS saves the
+// 512-bit state.
 
 /// The instructions a copy of a generic body is compiled for.
 #[allow(dead_code)]
 trait Isa {
     /// Whether `Lanes::mul_add` rounds once.
     const FUSED: bool;
-    /// Whether four angles go to a register (else two).
+    /// Whether four angles go to a register (else two), and four branches.
     const QUADS: bool;
+    /// Whether eight angles go to a register (AVX-512; then `QUADS` too).
+    const OCTETS: bool;
     /// `a·b + c` in `f64`.
     fn fma(a: f64, b: f64, c: f64) -> f64;
     /// `a·b + c` in `f32`.
@@ -3291,7 +3496,7 @@ trait Isa {
 
 /// What the build's target features give: fused multiply-adds where the
 /// target has them (`fma`, `fmaf`), four angles to a register where it has
-/// AVX2.
+/// AVX2, eight where it has AVX-512 (F, VL and DQ).
 #[allow(dead_code)]
 enum Baseline {}
 
@@ -3301,6 +3506,12 @@ impl Isa for Baseline {
         all(target_arch = "aarch64", target_feature = "neon")
     ));
     const QUADS: bool = cfg!(all(target_arch = "x86_64", target_feature = "avx2"));
+    const OCTETS: bool = cfg!(all(
+        target_arch = "x86_64",
+        target_feature = "avx512f",
+        target_feature = "avx512vl",
+        target_feature = "avx512dq"
+    ));
     #[inline(always)]
     fn fma(a: f64, b: f64, c: f64) -> f64 {
         fma(a, b, c)
@@ -3322,6 +3533,7 @@ enum Avx2Fma {}
 impl Isa for Avx2Fma {
     const FUSED: bool = true;
     const QUADS: bool = true;
+    const OCTETS: bool = false;
     #[inline(always)]
     fn fma(a: f64, b: f64, c: f64) -> f64 {
         // SAFETY: `Avx2Fma` code runs only on processors with FMA (see above).
@@ -3330,6 +3542,36 @@ impl Isa for Avx2Fma {
     #[inline(always)]
     fn fmaf(a: f32, b: f32, c: f32) -> f32 {
         // SAFETY: `Avx2Fma` code runs only on processors with FMA (see above).
+        unsafe { fmaf_x86(a, b, c) }
+    }
+}
+
+/// AVX-512 (F, VL and DQ, with AVX2 and FMA): named only in the bodies of
+/// `#[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]`
+/// functions, which are called only where `has_avx512()` holds.
+#[cfg(all(
+    target_arch = "x86_64",
+    not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))
+))]
+#[allow(dead_code)]
+enum Avx512 {}
+
+#[cfg(all(
+    target_arch = "x86_64",
+    not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))
+))]
+impl Isa for Avx512 {
+    const FUSED: bool = true;
+    const QUADS: bool = true;
+    const OCTETS: bool = true;
+    #[inline(always)]
+    fn fma(a: f64, b: f64, c: f64) -> f64 {
+        // SAFETY: `Avx512` code runs only on processors with FMA (see above).
+        unsafe { fma_x86(a, b, c) }
+    }
+    #[inline(always)]
+    fn fmaf(a: f32, b: f32, c: f32) -> f32 {
+        // SAFETY: `Avx512` code runs only on processors with FMA (see above).
         unsafe { fmaf_x86(a, b, c) }
     }
 }
@@ -3377,12 +3619,71 @@ fn ask_cpu_for_avx2_and_fma() -> bool {
     }
 }
 
+/// Whether this processor has AVX-512 F, VL and DQ (and AVX2 and FMA) and
+/// the operating system saves the 512-bit registers: asked once, then
+/// remembered.
+#[cfg(all(
+    target_arch = "x86_64",
+    not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))
+))]
+#[inline]
+#[allow(dead_code)]
+fn has_avx512() -> bool {
+    use core::sync::atomic::{AtomicU8, Ordering};
+    // 0: not asked yet, 1: no, 2: yes. Racing first calls store the same answer.
+    static ANSWER: AtomicU8 = AtomicU8::new(0);
+    match ANSWER.load(Ordering::Relaxed) {
+        0 => {
+            let yes = ask_cpu_for_avx512();
+            ANSWER.store(if yes { 2 } else { 1 }, Ordering::Relaxed);
+            yes
+        }
+        answer => answer == 2,
+    }
+}
+
+/// `cpuid` leaf 1: FMA (ECX bit 12), OSXSAVE (27), AVX (28); `xgetbv`: the
+/// OS saves the SSE, AVX and AVX-512 state (XCR0 bits 1, 2 and 5 to 7);
+/// leaf 7: AVX2 (EBX bit 5), AVX-512 F (16), DQ (17) and VL (31).
+#[cfg(all(
+    target_arch = "x86_64",
+    not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))
+))]
+#[cold]
+#[inline(never)]
+#[allow(dead_code, unused_unsafe)]
+fn ask_cpu_for_avx512() -> bool {
+    use core::arch::x86_64::{__cpuid, __cpuid_count, _xgetbv};
+    let bit = |word: u32, b: u32| word >> b & 1 == 1;
+    // SAFETY: every x86-64 processor has `cpuid`; `xgetbv` is run only where
+    // leaf 1 says the OS has enabled it (OSXSAVE).
+    unsafe {
+        if __cpuid(0).eax < 7 {
+            return false;
+        }
+        let ecx = __cpuid(1).ecx;
+        if !(bit(ecx, 12) && bit(ecx, 27) && bit(ecx, 28)) || _xgetbv(0) & 0b1110_0110 != 0b1110_0110 {
+            return false;
+        }
+        let ebx = __cpuid_count(7, 0).ebx;
+        bit(ebx, 5) && bit(ebx, 16) && bit(ebx, 17) && bit(ebx, 31)
+    }
+}
+
 /// The sines and cosines of `x`, entry by entry: within 1 ulp of the exact
-/// values for every finite angle (NaN and ±∞ give NaN); two or four angles
-/// at a time in vector instructions.
+/// values for every finite angle (NaN and ±∞ give NaN); two, four or eight
+/// angles at a time in vector instructions.
 #[inline]
 #[allow(dead_code)]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
+    #[cfg(all(
+        target_arch = "x86_64",
+        not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))
+    ))]
+    if RUNTIME_DISPATCH && has_avx512() {
+        // SAFETY: this processor has AVX-512 (checked just above).
+        return unsafe { sin_cos_array_avx512(x) };
+    }
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if RUNTIME_DISPATCH && has_avx2_and_fma() {
         // SAFETY: this processor has AVX2 and FMA (checked just above).
@@ -3397,6 +3698,17 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
 #[allow(dead_code)]
 unsafe fn sin_cos_array_avx2_fma<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     sin_cos_array_on::<Avx2Fma, N>(x)
+}
+
+/// `sin_cos_array` compiled for AVX-512.
+#[cfg(all(
+    target_arch = "x86_64",
+    not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))
+))]
+#[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
+#[allow(dead_code)]
+unsafe fn sin_cos_array_avx512<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
+    sin_cos_array_on::<Avx512, N>(x)
 }
 
 /// `sin_cos_array` in the instructions of `I`.
@@ -3456,7 +3768,13 @@ fn sin_cos_batches<I: Isa, K: FastPath, const N: usize>(x: &[f64; N], s: &mut [f
     let mut fast = true;
     let mut i = 0;
     while i < N {
-        if I::QUADS {
+        if I::OCTETS {
+            fast &= match N - i {
+                1..=8 => sin_cos_pass::<I, K, 8, 1, N>(i, [angles(x, i)], s, c),
+                _ => sin_cos_pass::<I, K, 8, 2, N>(i, [angles(x, i), angles(x, i + 8)], s, c),
+            };
+            i += 16;
+        } else if I::QUADS {
             fast &= match N - i {
                 1..=4 => sin_cos_pass::<I, K, 4, 1, N>(i, [angles(x, i)], s, c),
                 _ => sin_cos_pass::<I, K, 4, 2, N>(i, [angles(x, i), angles(x, i + 4)], s, c),
@@ -3513,8 +3831,9 @@ where
     fast
 }
 
-/// `W` angles as a register: `[f64; 1]` as `f64`, `[f64; 2]` and `[f64; 4]`
-/// on x86-64 as SSE2 and AVX2 registers, elsewhere lane by lane.
+/// `W` angles as a register: `[f64; 1]` as `f64`, `[f64; 2]`, `[f64; 4]`
+/// and `[f64; 8]` on x86-64 as SSE2, AVX2 and AVX-512 registers, elsewhere
+/// lane by lane.
 trait ToLanes {
     /// The register.
     type V: Lanes;
@@ -3645,10 +3964,10 @@ macro_rules! vector_lanes {
             fn to_lanes(self) -> Self::V {
                 // SAFETY (this and every block below): the processor has the
                 // instructions: SSE2 is part of every x86-64 target, and the
-                // AVX2 registers and `_fmadd_` are used only where the target
-                // has them (`Baseline::QUADS` and `FUSED` are their `cfg`) or
-                // in `Avx2Fma` code; loads and stores are of `$w` f64 from and
-                // to arrays of `$w` f64.
+                // AVX2 and AVX-512 registers and `_fmadd_` are used only where
+                // the target has them (`Baseline::QUADS`, `OCTETS` and `FUSED`
+                // are their `cfg`) or in `Avx2Fma` and `Avx512` code; loads and
+                // stores are of `$w` f64 from and to arrays of `$w` f64.
                 unsafe { core::arch::x86_64::$loadu(self.as_ptr()) }
             }
         }
@@ -3736,9 +4055,23 @@ vector_lanes!(4, __m256d, 15, _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm25
     _mm256_loadu_pd, _mm256_storeu_pd, _mm256_andnot_pd, _mm256_min_pd, _mm256_cmp_pd::<_CMP_GE_OQ>,
     _mm256_movemask_pd, _mm256_castpd_si256, _mm256_castsi256_pd, _mm256_and_si256, _mm256_or_si256,
     _mm256_xor_si256, _mm256_sub_epi64, _mm256_setzero_si256, _mm256_set1_epi64x, _mm256_slli_epi64);
+#[cfg(target_arch = "x86_64")]
+vector_lanes!(8, __m512d, 255, _mm512_add_pd, _mm512_sub_pd, _mm512_mul_pd, _mm512_div_pd, _mm512_sqrt_pd, _mm512_fmadd_pd, _mm512_xor_pd, _mm512_set1_pd,
+    _mm512_loadu_pd, _mm512_storeu_pd, _mm512_andnot_pd, _mm512_min_pd, _mm512_cmp_pd_mask::<_CMP_GE_OQ>,
+    mask_bits, _mm512_castpd_si512, _mm512_castsi512_pd, _mm512_and_si512, _mm512_or_si512,
+    _mm512_xor_si512, _mm512_sub_epi64, _mm512_setzero_si512, _mm512_set1_epi64, _mm512_slli_epi64);
+
+/// The lanes of an AVX-512 comparison's mask, bit l for lane l (what
+/// `_mm_movemask_pd` gives for two lanes).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn mask_bits(mask: u8) -> u8 {
+    mask
+}
 
 /// Other targets: two angles lane by lane (the compiler may vectorise);
-/// four only to compile `sin_cos_batches` (`Baseline::QUADS` is false).
+/// four and eight only to compile `sin_cos_batches` (`Baseline::QUADS` and
+/// `OCTETS` are false).
 #[cfg(not(target_arch = "x86_64"))]
 impl ToLanes for [f64; 2] {
     type V = [f64; 2];
@@ -3753,6 +4086,15 @@ impl ToLanes for [f64; 4] {
     type V = [f64; 4];
     #[inline(always)]
     fn to_lanes(self) -> [f64; 4] {
+        self
+    }
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+impl ToLanes for [f64; 8] {
+    type V = [f64; 8];
+    #[inline(always)]
+    fn to_lanes(self) -> [f64; 8] {
         self
     }
 }

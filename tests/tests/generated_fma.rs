@@ -21,8 +21,11 @@
 //!   and its vector path (AVX2 too, where the host has it) must give the
 //!   one-angle kernel's bits. Where the host has AVX2 and FMA, the same
 //!   program is also compiled by `rustc -O` without target features: its
-//!   functions then pick their AVX2 and FMA copies at run time and must
-//!   print the same bits as the `+fma,+avx2` build, every line.
+//!   functions then pick their AVX-512 copies at run time where the host
+//!   has AVX-512 (F, VL, DQ), else their AVX2 and FMA copies, and must
+//!   print the same bits as the `+fma,+avx2` build, every line; and once
+//!   more with the module's AVX-512 check answering no, so that the AVX2
+//!   and FMA copies run on an AVX-512 host too.
 
 use approx::abs_diff_eq;
 use dynagen::codegen::{generate, CodegenOptions, Function as Kind, GeneratedFunction, ScalarType};
@@ -186,14 +189,16 @@ fn host_has_fma() -> bool {
 }
 
 /// The functions of an x86-64 assembly listing whose names contain
-/// `_avx2_fma` (the copies of the run-time dispatch), with their code.
-fn avx2_fma_copies(asm: &str) -> Vec<(String, String)> {
+/// `suffix` (`_avx2_fma`, `_avx512`: the copies of the run-time dispatch),
+/// with their code.
+fn dispatch_copies(asm: &str, suffix: &str) -> Vec<(String, String)> {
     let mut copies: Vec<(String, String)> = Vec::new();
     let mut inside = false;
     for line in asm.lines() {
         let label = !line.starts_with(['.', ' ', '\t', '#']) && line.ends_with(':');
         if label {
-            inside = line.contains("_avx2_fma");
+            // Not the processor checks (`ask_cpu_for_avx512`, `has_avx512`).
+            inside = line.contains(suffix) && !line.contains("ask_cpu") && !line.contains("has_avx");
             if inside {
                 copies.push((line.trim_end_matches(':').to_string(), String::new()));
             }
@@ -317,47 +322,78 @@ fn the_fused_path_compiled_with_the_fma_feature_rounds_once_and_stays_accurate()
     assert!(run.status.success());
     let stdout = String::from_utf8(run.stdout).unwrap();
     if host_has_avx2_and_fma() {
-        // The same program without target features: every function runs its AVX2 and FMA copy.
-        let (exe, asm) = (dir.join("dispatched"), dir.join("dispatched.s"));
-        let mut rustc = std::process::Command::new(std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into()));
-        rustc.args(["--edition", "2021", "-O", "--emit"]).arg(format!("link={}", exe.display()));
-        rustc.arg("--emit").arg(format!("asm={}", asm.display())).arg(dir.join("main.rs"));
-        let built = rustc.output().expect("running rustc");
-        assert!(built.status.success(), "rustc failed:\n{}", String::from_utf8_lossy(&built.stderr));
-        let run = std::process::Command::new(&exe).output().expect("running the dispatched program");
-        assert!(run.status.success());
-        let dispatched = String::from_utf8(run.stdout).unwrap();
-        // All but the line that says whether the build has AVX2 (it has not).
-        let lines =
-            |out: &str| out.lines().filter(|l| !l.starts_with("0 avx2_one")).map(String::from).collect::<Vec<_>>();
-        let (native, dispatched) = (lines(&stdout), lines(&dispatched));
-        assert_eq!(native.len(), dispatched.len());
-        for (a, b) in native.iter().zip(&dispatched) {
-            assert!(a == b, "built with +fma,+avx2: {a}\ndispatched at run time: {b}");
-        }
-        println!("run-time dispatch: {} lines, the +fma,+avx2 build's bits", native.len());
-        let copies = avx2_fma_copies(&std::fs::read_to_string(&asm).unwrap());
-        println!("{} AVX2 and FMA copies in the release assembly", copies.len());
-        assert!(copies.len() >= 2 * f64_fns.len(), "{:?}", copies.iter().map(|c| &c.0).collect::<Vec<_>>());
-        for (name, code) in &copies {
-            // Everything inlined: a call left out of line would run outside the copy's target
-            // features (an intrinsic's wrapper, a closure passing vector registers through memory).
-            // Only the kernel's rare slow path is called, and libc's memcpy and memset (the test's
-            // batch of 2,000 angles is copied), also through a register loaded with their address.
-            let named = ["sin_cos_again", "sin_cos_slow", "memcpy", "memset"];
-            let registers: Vec<String> = code
-                .lines()
-                .filter(|l| l.contains("memcpy@GOTPCREL") || l.contains("memset@GOTPCREL"))
-                .filter_map(|l| l.rsplit(", ").next().map(|reg| format!("*{reg}")))
-                .collect();
-            let allowed = |l: &str| named.iter().any(|n| l.contains(n)) || registers.iter().any(|r| l.ends_with(r));
-            let calls: Vec<&str> =
-                code.lines().filter(|l| l.trim_start().starts_with("call") && !allowed(l.trim_end())).collect();
-            assert!(calls.is_empty(), "{name} calls out of line: {calls:?}");
-            let fused = code.lines().filter(|l| l.trim_start().starts_with("vf") && l.contains("madd")).count();
-            assert!(fused > 0, "{name}: no fused multiply-add");
-            if name.contains("sin_cos_array") {
-                assert!(code.contains("ymm"), "{name}: four angles to a register");
+        // The same program without target features: every function runs its AVX-512 copy where
+        // the host has it, else its AVX2 and FMA copy; then with the AVX-512 check answering no.
+        #[cfg(target_arch = "x86_64")]
+        let avx512 = ["avx512f", "avx512vl", "avx512dq"].iter().all(|f| match *f {
+            "avx512f" => std::is_x86_feature_detected!("avx512f"),
+            "avx512vl" => std::is_x86_feature_detected!("avx512vl"),
+            _ => std::is_x86_feature_detected!("avx512dq"),
+        });
+        #[cfg(not(target_arch = "x86_64"))]
+        let avx512 = false;
+        for (variant, no_avx512) in [("run_time_dispatch", false), ("run_time_dispatch_avx2", true)] {
+            let vdir = dir.join(variant);
+            std::fs::create_dir_all(&vdir).unwrap();
+            let answer_no = |src: &str| {
+                let check = "fn ask_cpu_for_avx512() -> bool {\n";
+                assert!(src.contains(check), "no AVX-512 check in the module");
+                if no_avx512 {
+                    src.replace(check, &format!("{check}    if true {{\n        return false;\n    }}\n"))
+                } else {
+                    src.to_string()
+                }
+            };
+            std::fs::write(vdir.join("ur5.rs"), answer_no(&f64_module.source)).unwrap();
+            std::fs::write(vdir.join("ur5_f32.rs"), answer_no(&f32_module.source)).unwrap();
+            std::fs::copy(dir.join("main.rs"), vdir.join("main.rs")).unwrap();
+            let (exe, asm) = (vdir.join("dispatched"), vdir.join("dispatched.s"));
+            let mut rustc = std::process::Command::new(std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into()));
+            rustc.args(["--edition", "2021", "-O", "--emit"]).arg(format!("link={}", exe.display()));
+            rustc.arg("--emit").arg(format!("asm={}", asm.display())).arg(vdir.join("main.rs"));
+            let built = rustc.output().expect("running rustc");
+            assert!(built.status.success(), "rustc failed:\n{}", String::from_utf8_lossy(&built.stderr));
+            let run = std::process::Command::new(&exe).output().expect("running the dispatched program");
+            assert!(run.status.success());
+            let dispatched = String::from_utf8(run.stdout).unwrap();
+            // All but the line that says whether the build has AVX2 (it has not).
+            let lines =
+                |out: &str| out.lines().filter(|l| !l.starts_with("0 avx2_one")).map(String::from).collect::<Vec<_>>();
+            let (native, dispatched) = (lines(&stdout), lines(&dispatched));
+            assert_eq!(native.len(), dispatched.len());
+            for (a, b) in native.iter().zip(&dispatched) {
+                assert!(a == b, "built with +fma,+avx2: {a}\n{variant} at run time: {b}");
+            }
+            let ran = if avx512 && !no_avx512 { "AVX-512" } else { "AVX2 and FMA" };
+            println!("run-time dispatch ({ran} copies): {} lines, the +fma,+avx2 build's bits", native.len());
+            let asm = std::fs::read_to_string(&asm).unwrap();
+            for (suffix, what, wide) in [("_avx2_fma", "four", "ymm"), ("_avx512", "eight", "zmm")] {
+                let copies = dispatch_copies(&asm, suffix);
+                println!("{} {suffix} copies in the release assembly", copies.len());
+                assert!(copies.len() >= 2 * f64_fns.len(), "{:?}", copies.iter().map(|c| &c.0).collect::<Vec<_>>());
+                for (name, code) in &copies {
+                    // Everything inlined: a call left out of line would run outside the copy's target
+                    // features (an intrinsic's wrapper, a closure passing vector registers through
+                    // memory). Only the kernel's rare slow path is called, and libc's memcpy and memset
+                    // (the test's batch of 2,000 angles is copied), also through a register loaded with
+                    // their address.
+                    let named = ["sin_cos_again", "sin_cos_slow", "memcpy", "memset"];
+                    let registers: Vec<String> = code
+                        .lines()
+                        .filter(|l| l.contains("memcpy@GOTPCREL") || l.contains("memset@GOTPCREL"))
+                        .filter_map(|l| l.rsplit(", ").next().map(|reg| format!("*{reg}")))
+                        .collect();
+                    let allowed =
+                        |l: &str| named.iter().any(|n| l.contains(n)) || registers.iter().any(|r| l.ends_with(r));
+                    let calls: Vec<&str> =
+                        code.lines().filter(|l| l.trim_start().starts_with("call") && !allowed(l.trim_end())).collect();
+                    assert!(calls.is_empty(), "{name} calls out of line: {calls:?}");
+                    let fused = code.lines().filter(|l| l.trim_start().starts_with("vf") && l.contains("madd")).count();
+                    assert!(fused > 0, "{name}: no fused multiply-add");
+                    if name.contains("sin_cos_array") {
+                        assert!(code.contains(wide), "{name}: {what} angles to a register");
+                    }
+                }
             }
         }
     } else {

@@ -420,8 +420,8 @@ impl Builder {
     pub fn fma(self, on: bool) -> Self {
         self.set(Setting::Fma(on))
     }
-    /// Compile the functions also for AVX2 and FMA, picked at run time
-    /// ([`CodegenOptions::runtime_dispatch`], on).
+    /// Compile the functions also for AVX-512 and for AVX2 and FMA, picked
+    /// at run time ([`CodegenOptions::runtime_dispatch`], on).
     pub fn runtime_dispatch(self, on: bool) -> Self {
         self.set(Setting::RuntimeDispatch(on))
     }

@@ -146,10 +146,14 @@ pub struct CodegenOptions {
     /// targets, get one copy, as without it. On by default, because most
     /// x86-64 processors in use have both and the bodies are bound by the
     /// floating-point ports: a default build then runs as fast as a native
-    /// one. The price: a default build's results differ in the last bits
-    /// between machines with and without FMA (on both they are within the
-    /// accuracy the tests check, 1e-12 of the generic solver), and the
-    /// bodies are compiled twice. Off, a build gives the same bits on every
+    /// one. x86-64 builds without AVX-512 (F, VL and DQ) get a third copy
+    /// for processors that have it: the AVX2 copy's operations and bits,
+    /// with 32 vector registers (long bodies spill less) and eight angles
+    /// to a register in the sines and cosines; it needs Rust 1.89. The
+    /// price: a default build's results differ in the last bits between
+    /// machines with and without FMA (on both they are within the accuracy
+    /// the tests check, 1e-12 of the generic solver), and the bodies are
+    /// compiled three times. Off, a build gives the same bits on every
     /// x86-64 machine.
     pub runtime_dispatch: bool,
     /// Emit sibling subtrees of one shape (a humanoid's legs and arms, a
@@ -260,7 +264,7 @@ impl CodegenOptions {
         self.branch_loops = on;
         self
     }
-    /// Turns the run-time choice of AVX2 and FMA copies on or off.
+    /// Turns the run-time choice of AVX-512 and AVX2 + FMA copies on or off.
     pub fn runtime_dispatch(mut self, on: bool) -> Self {
         self.runtime_dispatch = on;
         self

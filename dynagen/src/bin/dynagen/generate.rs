@@ -56,9 +56,9 @@ pub struct Args {
     #[arg(long)]
     pub no_fma: bool,
     /// Compile each function for the build's target only (default: x86_64
-    /// builds without the avx2 and fma target features also get a copy for
-    /// AVX2 and FMA, run where the processor has both; its results differ
-    /// in the last bits from the baseline's).
+    /// builds without the avx2 and fma target features also get copies for
+    /// AVX-512 and for AVX2 and FMA, run where the processor has them; their
+    /// results differ in the last bits from the baseline's).
     #[arg(long)]
     pub no_dispatch: bool,
     /// Unroll every branch: without it, sibling subtrees of one shape

@@ -44,7 +44,9 @@ fn fma_note(options: &CodegenOptions) -> String {
          //   public function also has a copy compiled for AVX2 and FMA (NAME_avx2_fma, from the one generic body\n\
          //   NAME_on) and runs it where the processor has both (cpuid, asked once): as fast as a native build, and\n\
          //   with its bits, so results differ in the last bits between machines with and without FMA (within the\n\
-         //   accuracy the tests check). Off: runtime_dispatch(false), the same bits on every x86_64 machine.\n"
+         //   accuracy the tests check). Builds without AVX-512 (F, VL, DQ) have a third copy for processors that\n\
+         //   have it (NAME_avx512: the same operations and bits, 32 vector registers; needs Rust 1.89).\n\
+         //   Off: runtime_dispatch(false), the same bits on every x86_64 machine.\n"
     } else {
         "// Run-time dispatch: off (the build's target features only: the same bits on every x86_64 machine).\n"
     };

@@ -15,7 +15,7 @@
 //! fuses; the traced products sum in the trace's order. The two differ in
 //! the last bits, both within the generic solver's 1e-12.
 
-use super::statements::{dispatch_cfg, scalar_type, Param};
+use super::statements::{scalar_type, Param, TIERS};
 use crate::codegen::{CodegenOptions, ScalarType, Trig};
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
@@ -78,23 +78,30 @@ pub(crate) fn helper(options: &CodegenOptions) -> TokenStream {
             #on
         };
     }
-    let cfg = dispatch_cfg();
+    let checks = TIERS.iter().map(|t| {
+        let fast = t.name("derivative_products");
+        t.check(quote!(#fast(minv, a, b)))
+    });
+    let copies = TIERS.iter().map(|t| {
+        let (fast, isa, cfg, features) = (t.name("derivative_products"), t.isa(), t.cfg(), t.target_feature());
+        let fast_doc = format!(" [`derivative_products`] compiled for processors with {}.", t.what);
+        quote! {
+            #[doc = #fast_doc]
+            #cfg
+            #features
+            unsafe fn #fast(minv: &#m, a: &#m, b: &#m) -> (#m, #m) {
+                derivative_products_on::<#isa>(minv, a, b)
+            }
+        }
+    });
     quote! {
         #[doc = #doc]
         #[inline]
         fn derivative_products(minv: &#m, a: &#m, b: &#m) -> (#m, #m) {
-            #cfg
-            if has_avx2_and_fma() {
-                return unsafe { derivative_products_avx2_fma(minv, a, b) };
-            }
+            #(#checks)*
             derivative_products_on::<Baseline>(minv, a, b)
         }
-        #[doc = " [`derivative_products`] compiled for processors with AVX2 and FMA."]
-        #cfg
-        #[target_feature(enable = "avx2,fma")]
-        unsafe fn derivative_products_avx2_fma(minv: &#m, a: &#m, b: &#m) -> (#m, #m) {
-            derivative_products_on::<Avx2Fma>(minv, a, b)
-        }
+        #(#copies)*
         #on
     }
 }

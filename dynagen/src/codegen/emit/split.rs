@@ -34,6 +34,7 @@
 //! Longer bodies keep `#[inline(never)]` parts: optimised with debug
 //! information, the inlined 30-joint chain took 40 s against 23 s.
 
+use super::statements::TIERS;
 use super::syntax::{assign, index, let_stmt, pat, path};
 use crate::codegen::CodegenError;
 use proc_macro2::{Ident, TokenStream};
@@ -84,11 +85,12 @@ pub(crate) struct Body {
 /// output expressions into the returned array.
 ///
 /// With `dispatch` (the body's sums written `I::fma`), each part is a
-/// generic `NAME_partK_on<I: Isa>` called by `NAME_partK` for `Baseline` and
-/// by `NAME_partK_avx2_fma` (`#[target_feature(enable = "avx2,fma")]`) for
-/// `Avx2Fma`, and the public function calls `NAME_avx2_fma`, the chain of
-/// the AVX2 and FMA parts, where the processor has both (see
-/// [`emit_function`](super::emit::emit_function)).
+/// generic `NAME_partK_on<I: Isa>` called by `NAME_partK` for `Baseline`,
+/// by `NAME_partK_avx512` for `Avx512` and by `NAME_partK_avx2_fma`
+/// (`#[target_feature(enable = "avx2,fma")]`) for `Avx2Fma`, and the public
+/// function calls `NAME_avx512` or `NAME_avx2_fma`, the chain of those
+/// parts, where the processor has the instructions (see
+/// [`emit_function`](super::emit::emit_function) and [`TIERS`]).
 pub(crate) fn assemble(
     mut shell: syn::ItemFn,
     body: Body,
@@ -106,7 +108,6 @@ pub(crate) fn assemble(
     let parse = |tokens: TokenStream| -> Result<syn::ItemFn, CodegenError> {
         syn::parse2(tokens).map_err(|e| CodegenError::Internal(e.to_string()))
     };
-    let cfg = quote!(#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]);
     let allow = quote!(#[allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal, clippy::too_many_lines, clippy::too_many_arguments)]);
     // Below 3, a statement reading two carried values would not fit.
     let max = max.max(3);
@@ -119,9 +120,9 @@ pub(crate) fn assemble(
     let mut items = Vec::with_capacity(3 * n_parts + 2);
     let mut lines = body.lines.into_iter();
     // The calls of the parts, in order: `NAME_partK(args, &mut carry);` (and
-    // `NAME_partK_avx2_fma(…)`).
+    // `NAME_partK_avx2_fma(…)`, … for each copy of `TIERS`).
     let mut chain: Vec<Stmt> = Vec::new();
-    let mut fast_chain: Vec<Stmt> = Vec::new();
+    let mut fast_chains: Vec<Vec<Stmt>> = vec![Vec::new(); TIERS.len()];
     for (p, part) in plan.parts.iter().enumerate() {
         let part_name = format_ident!("{name}_part{}", p + 1);
         let own = lines.by_ref().take(part.len);
@@ -145,8 +146,7 @@ pub(crate) fn assemble(
         }
         chain.push(syn::parse_quote!(#part_name(#(#args,)* &mut carry);));
         let mut f = if dispatch {
-            let (on, fast) = (format_ident!("{part_name}_on"), format_ident!("{part_name}_avx2_fma"));
-            let fast_doc = format!(" [`{part_name}`] compiled for processors with AVX2 and FMA.");
+            let on = format_ident!("{part_name}_on");
             let on_doc = format!(" The body of [`{part_name}`], in the instructions of `I`.");
             items.push(syn::Item::Fn(parse(quote! {
                 #[doc = #doc]
@@ -156,21 +156,26 @@ pub(crate) fn assemble(
                     #on::<Baseline>(#(#args,)* carry)
                 }
             })?));
-            if inline {
-                // Inlined into `NAME_sc_avx2_fma`, which has the features.
-                fast_chain.push(syn::parse_quote!(#on::<Avx2Fma>(#(#args,)* &mut carry);));
-            } else {
-                items.push(syn::Item::Fn(parse(quote! {
-                    #[doc = #fast_doc]
-                    #cfg
-                    #[target_feature(enable = "avx2,fma")]
-                    #[inline(never)]
-                    #[allow(clippy::too_many_arguments)]
-                    unsafe fn #fast(#(#typed,)* carry: &mut [#scalar; #k]) {
-                        #on::<Avx2Fma>(#(#args,)* carry)
-                    }
-                })?));
-                fast_chain.push(syn::parse_quote!(#fast(#(#args,)* &mut carry);));
+            for (t, fast_chain) in TIERS.iter().zip(&mut fast_chains) {
+                let (fast, isa) = (t.name(&part_name.to_string()), t.isa());
+                if inline {
+                    // Inlined into `NAME_sc_avx2_fma` (`_avx512`), which has the features.
+                    fast_chain.push(syn::parse_quote!(#on::<#isa>(#(#args,)* &mut carry);));
+                } else {
+                    let (cfg, features) = (t.cfg(), t.target_feature());
+                    let fast_doc = format!(" [`{part_name}`] compiled for processors with {}.", t.what);
+                    items.push(syn::Item::Fn(parse(quote! {
+                        #[doc = #fast_doc]
+                        #cfg
+                        #features
+                        #[inline(never)]
+                        #[allow(clippy::too_many_arguments)]
+                        unsafe fn #fast(#(#typed,)* carry: &mut [#scalar; #k]) {
+                            #on::<#isa>(#(#args,)* carry)
+                        }
+                    })?));
+                    fast_chain.push(syn::parse_quote!(#fast(#(#args,)* &mut carry);));
+                }
             }
             parse(quote! {
                 #[doc = #on_doc]
@@ -198,36 +203,43 @@ pub(crate) fn assemble(
         })
         .collect();
     if dispatch {
-        // `NAME_avx2_fma`: the same chain of the parts' AVX2 and FMA copies.
-        let fast = format_ident!("{name}_avx2_fma");
-        let args = shell.sig.inputs.iter().filter_map(|arg| match arg {
-            syn::FnArg::Typed(t) => Some(t.pat.clone()),
-            syn::FnArg::Receiver(_) => None,
-        });
-        let check: Stmt = syn::parse_quote! {
-            #cfg
-            if has_avx2_and_fma() {
-                return unsafe { #fast(#(#args),*) };
-            }
-        };
-        let (inputs, output, unused) = (&shell.sig.inputs, &shell.sig.output, &shell.block.stmts);
-        let doc = format!(" [`{name}`] compiled for processors with AVX2 and FMA: its parts' copies.");
-        let result = result(outputs.clone());
-        // The parts' copies are unsafe to call; the inlined generic bodies are not.
-        let chain = if inline { quote!(#(#fast_chain)*) } else { quote!(unsafe { #(#fast_chain)* }) };
-        let f = parse(quote! {
-            #[doc = #doc]
-            #cfg
-            #[target_feature(enable = "avx2,fma")]
-            unsafe fn #fast(#inputs) #output {
-                #(#unused)*
-                let mut carry = [0.0; #k];
-                #chain
-                #result
-            }
-        })?;
-        items.insert(0, syn::Item::Fn(f));
-        shell.block.stmts.insert(0, check);
+        // `NAME_avx2_fma` (`_avx512`): the same chain of the parts' copies.
+        let args: Vec<Box<syn::Pat>> = shell
+            .sig
+            .inputs
+            .iter()
+            .filter_map(|arg| match arg {
+                syn::FnArg::Typed(t) => Some(t.pat.clone()),
+                syn::FnArg::Receiver(_) => None,
+            })
+            .collect();
+        let mut checks: Vec<Stmt> = Vec::new();
+        for (t, fast_chain) in TIERS.iter().zip(&fast_chains).rev() {
+            let fast = t.name(&name);
+            checks.insert(
+                0,
+                syn::parse2(t.check(quote!(#fast(#(#args),*)))).map_err(|e| CodegenError::Internal(e.to_string()))?,
+            );
+            let (inputs, output, unused) = (&shell.sig.inputs, &shell.sig.output, &shell.block.stmts);
+            let doc = format!(" [`{name}`] compiled for processors with {}: its parts' copies.", t.what);
+            let result = result(outputs.clone());
+            // The parts' copies are unsafe to call; the inlined generic bodies are not.
+            let chain = if inline { quote!(#(#fast_chain)*) } else { quote!(unsafe { #(#fast_chain)* }) };
+            let (cfg, features) = (t.cfg(), t.target_feature());
+            let f = parse(quote! {
+                #[doc = #doc]
+                #cfg
+                #features
+                unsafe fn #fast(#inputs) #output {
+                    #(#unused)*
+                    let mut carry = [0.0; #k];
+                    #chain
+                    #result
+                }
+            })?;
+            items.insert(0, syn::Item::Fn(f));
+        }
+        shell.block.stmts.splice(0..0, checks);
     }
     shell.block.stmts.push(syn::parse_quote!(let mut carry = [0.0; #k];));
     shell.block.stmts.extend(chain);

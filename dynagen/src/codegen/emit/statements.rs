@@ -206,26 +206,94 @@ impl BodyStyle {
     }
 }
 
-/// The `cfg` of the run-time dispatch: x86-64 builds without AVX2 and FMA.
-pub(super) fn dispatch_cfg() -> TokenStream {
-    quote!(#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))])
+/// One copy of a body that the run-time dispatch picks where the processor
+/// has its instructions: the AVX-512 copy (checked first), then the AVX2
+/// and FMA one. Both are the generic body `NAME_on::<I>` compiled inside a
+/// `#[target_feature]` function; the kernel text (`sin_cos/kernel.rs`) has
+/// their `Isa`s and checks.
+pub(super) struct Tier {
+    /// The copy's name is `NAME_{suffix}`.
+    suffix: &'static str,
+    /// Its `#[target_feature(enable = …)]`.
+    features: &'static str,
+    /// The `Isa` its body is instantiated for.
+    isa: &'static str,
+    /// The kernel's function that says whether the processor has them.
+    check: &'static str,
+    /// The processors it is for, in its documentation.
+    pub what: &'static str,
+    /// The target features whose absence from the build the copy's `cfg`
+    /// asks for (a build that has them all compiles no copy).
+    cfg_features: &'static [&'static str],
 }
 
-/// The comment put above each call of a function's AVX2 and FMA copy.
-const SAFETY_COMMENT: &str = "// SAFETY: this processor has AVX2 and FMA (checked just above).";
+/// The copies of the run-time dispatch, in the order they are checked.
+pub(super) const TIERS: [Tier; 2] = [
+    Tier {
+        suffix: "avx512",
+        features: "avx2,fma,avx512f,avx512vl,avx512dq",
+        isa: "Avx512",
+        check: "has_avx512",
+        what: "AVX-512 F, VL and DQ",
+        cfg_features: &["avx512f", "avx512vl", "avx512dq"],
+    },
+    Tier {
+        suffix: "avx2_fma",
+        features: "avx2,fma",
+        isa: "Avx2Fma",
+        check: "has_avx2_and_fma",
+        what: "AVX2 and FMA",
+        cfg_features: &["avx2", "fma"],
+    },
+];
 
-/// The comment above the calls of AVX2 and FMA copies from another (a split
+impl Tier {
+    /// `NAME_{suffix}`.
+    pub fn name(&self, base: &str) -> Ident {
+        format_ident!("{base}_{}", self.suffix)
+    }
+    /// The `Isa` type.
+    pub fn isa(&self) -> Ident {
+        format_ident!("{}", self.isa)
+    }
+    /// `#[cfg(…)]`: x86-64 builds without the copy's features.
+    pub fn cfg(&self) -> TokenStream {
+        let features = self.cfg_features.iter().map(|f| quote!(target_feature = #f));
+        quote!(#[cfg(all(target_arch = "x86_64", not(all(#(#features),*))))])
+    }
+    /// `#[target_feature(enable = …)]`.
+    pub fn target_feature(&self) -> TokenStream {
+        let features = self.features;
+        quote!(#[target_feature(enable = #features)])
+    }
+    /// `cfg if check() { return unsafe { call }; }`, the dispatch to this copy.
+    pub fn check(&self, call: TokenStream) -> TokenStream {
+        let (cfg, check) = (self.cfg(), format_ident!("{}", self.check));
+        quote! {
+            #cfg
+            if #check() {
+                return unsafe { #call };
+            }
+        }
+    }
+}
+
+/// The comment put above each call of a function's dispatched copy, `{}`
+/// the instructions.
+const SAFETY_COMMENT: &str = "// SAFETY: this processor has {} (checked just above).";
+
+/// The comment above the calls of dispatched copies from another (a split
 /// body's parts, `NAME_sc_avx2_fma` from `NAME_avx2_fma`).
-const SAFETY_COMMENT_PARTS: &str = "// SAFETY: this processor has AVX2 and FMA (the caller checked).";
+const SAFETY_COMMENT_PARTS: &str = "// SAFETY: this processor has {} (the caller checked).";
 
 /// `source` as a person would write the dispatch: [`SAFETY_COMMENT`] above
 /// every `return unsafe {` and [`SAFETY_COMMENT_PARTS`] above every other
-/// `unsafe {` (the calls of the AVX2 and FMA copies; `syn` trees carry no
-/// comments), and each `#[cfg(…)]` on one line (prettyplease
-/// breaks them over six).
+/// `unsafe {` (the calls of the copies; `syn` trees carry no comments),
+/// naming the instructions of the copy called on that line or the next,
+/// and each `#[cfg(…)]` on one line (prettyplease breaks them over six).
 pub(crate) fn tidy_dispatch(source: &str) -> String {
     let mut out = String::with_capacity(source.len() + 1024);
-    let mut lines = source.lines();
+    let mut lines = source.lines().peekable();
     while let Some(line) = lines.next() {
         let code = line.trim_start();
         let indent = &line[..line.len() - code.len()];
@@ -251,8 +319,13 @@ pub(crate) fn tidy_dispatch(source: &str) -> String {
             _ => None,
         };
         if let Some(comment) = safety {
+            let next = lines.peek().copied().unwrap_or("");
+            let tier = TIERS.iter().find(|t| {
+                let called = format!("_{}(", t.suffix);
+                line.contains(&called) || next.contains(&called)
+            });
             out.push_str(indent);
-            out.push_str(comment);
+            out.push_str(&comment.replace("{}", tier.unwrap_or(&TIERS[1]).what));
             out.push('\n');
         }
         out.push_str(line);
@@ -516,9 +589,10 @@ fn unused_params(f: &Traced, signature: &Signature) -> Result<Vec<Stmt>, Codegen
 }
 
 /// A body that is not split, written for run-time dispatch: the public
-/// `NAME`, which calls `NAME_avx2_fma` where the processor has AVX2 and FMA
-/// and else runs `NAME_on::<Baseline>`; `NAME_avx2_fma`; and the generic
-/// body `NAME_on`.
+/// `NAME`, which calls `NAME_avx512` where the processor has AVX-512,
+/// `NAME_avx2_fma` where it has AVX2 and FMA, and else runs
+/// `NAME_on::<Baseline>`; those copies ([`TIERS`]); and the generic body
+/// `NAME_on`.
 fn dispatched(
     f: &Traced,
     signature: &Signature<'_>,
@@ -529,29 +603,35 @@ fn dispatched(
     early: Option<Expr>,
 ) -> Result<Vec<syn::Item>, CodegenError> {
     let name = ident(&signature.name);
-    let (on, fast) = (format_ident!("{}_on", signature.name), format_ident!("{}_avx2_fma", signature.name));
+    let on = format_ident!("{}_on", signature.name);
     let params: Vec<TokenStream> = signature.params.iter().map(|p| p.tokens(scalar)).collect();
     let args: Vec<Ident> = signature.params.iter().map(|p| ident(&p.name)).collect();
     let ret = signature.output.tokens(scalar);
-    let cfg = dispatch_cfg();
     let doc = doc.lines();
     let on_doc = format!(" The body of [`{name}`], in the instructions of `I`.");
-    let fast_doc = format!(" [`{name}`] compiled for processors with AVX2 and FMA.");
+    let checks = TIERS.iter().map(|t| {
+        let fast = t.name(&signature.name);
+        t.check(quote!(#fast(#(#args),*)))
+    });
+    let copies = TIERS.iter().map(|t| {
+        let (fast, isa, cfg, features) = (t.name(&signature.name), t.isa(), t.cfg(), t.target_feature());
+        let fast_doc = format!(" [`{name}`] compiled for processors with {}.", t.what);
+        quote! {
+            #[doc = #fast_doc]
+            #cfg
+            #features
+            unsafe fn #fast(#(#params),*) -> #ret {
+                #on::<#isa>(#(#args),*)
+            }
+        }
+    });
     let items = quote! {
         #(#[doc = #doc])*
         pub fn #name(#(#params),*) -> #ret {
-            #cfg
-            if has_avx2_and_fma() {
-                return unsafe { #fast(#(#args),*) };
-            }
+            #(#checks)*
             #on::<Baseline>(#(#args),*)
         }
-        #[doc = #fast_doc]
-        #cfg
-        #[target_feature(enable = "avx2,fma")]
-        unsafe fn #fast(#(#params),*) -> #ret {
-            #on::<Avx2Fma>(#(#args),*)
-        }
+        #(#copies)*
         #[doc = #on_doc]
         #[inline(always)]
         #[allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal, clippy::too_many_lines)]

@@ -1,7 +1,8 @@
 //! `NAME(q, …)`: the public function that computes the sines and cosines
-//! its body reads and calls `NAME_sc`, with the AVX2 and FMA copy of the
-//! run-time dispatch.
+//! its body reads and calls `NAME_sc`, with the AVX-512 and the AVX2 and
+//! FMA copies of the run-time dispatch.
 
+use super::statements::TIERS;
 use super::{literal, Param};
 use crate::codegen::sin_cos;
 use crate::codegen::trace::{Angle, SinCosTrace};
@@ -175,44 +176,50 @@ pub(super) fn wrapper(
             }
         };
     }
-    // With run-time dispatch, the batched sines and cosines and the body are inlined into an AVX2
-    // and FMA copy of `NAME`, as in a native build: no second check, no call of the kernel or of
-    // `NAME_sc_avx2_fma` with the sines and cosines through memory. (The body is compiled a second
-    // time for it; inlined it is faster, docs/performance.md.) A body split into parts is
-    // called as `NAME_sc_avx2_fma`, the chain of its parts.
-    let fast = quote::format_ident!("{}_avx2_fma", fn_name);
-    let sc_fast = quote::format_ident!("{}_sc_avx2_fma", fn_name);
+    // With run-time dispatch, the batched sines and cosines and the body are inlined into each
+    // copy of `NAME` (AVX-512, AVX2 and FMA), as in a native build: no second check, no call of
+    // the kernel or of `NAME_sc_avx2_fma` with the sines and cosines through memory. (The body is
+    // compiled once more for each; inlined it is faster, docs/performance.md.) A body split into
+    // parts is called as `NAME_sc_avx2_fma` (`_avx512`), the chain of its parts.
     let sc_on = quote::format_ident!("{}_sc_on", fn_name);
     let on = match options.scalar {
         ScalarType::F64 => quote!(sin_cos_array_on),
         ScalarType::F32 => quote!(sin_cos_array_f32_on),
     };
-    let fast_body = batched(
-        quote!(#on::<Avx2Fma, DOF>(q)),
-        &|n| {
-            let n = proc_macro2::Literal::usize_unsuffixed(n);
-            quote!(#on::<Avx2Fma, #n>)
-        },
-        &|args| if sc_split { quote!(unsafe { #sc_fast(#args) }) } else { quote!(#sc_on::<Avx2Fma>(#args)) },
-    );
-    let args = params.iter().map(|p| quote::format_ident!("{}", p.name));
-    let fast_doc = format!(" [`{fn_name}`] compiled for processors with AVX2 and FMA.");
+    let args: Vec<proc_macro2::Ident> = params.iter().map(|p| quote::format_ident!("{}", p.name)).collect();
+    let checks = TIERS.iter().map(|t| {
+        let fast = t.name(fn_name);
+        t.check(quote!(#fast(#(#args),*)))
+    });
+    let copies = TIERS.iter().map(|t| {
+        let (fast, sc_fast, isa) = (t.name(fn_name), t.name(&format!("{fn_name}_sc")), t.isa());
+        let fast_body = batched(
+            quote!(#on::<#isa, DOF>(q)),
+            &|n| {
+                let n = proc_macro2::Literal::usize_unsuffixed(n);
+                quote!(#on::<#isa, #n>)
+            },
+            &|args| if sc_split { quote!(unsafe { #sc_fast(#args) }) } else { quote!(#sc_on::<#isa>(#args)) },
+        );
+        let (cfg, features) = (t.cfg(), t.target_feature());
+        let fast_doc = format!(" [`{fn_name}`] compiled for processors with {}.", t.what);
+        quote! {
+            #[doc = #fast_doc]
+            #cfg
+            #features
+            unsafe fn #fast(#(#typed),*) -> #ret {
+                #fast_body
+            }
+        }
+    });
     quote! {
         #(#[doc = #doc])*
         #[inline]
         pub fn #name(#(#typed),*) -> #ret {
-            #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
-            if has_avx2_and_fma() {
-                return unsafe { #fast(#(#args),*) };
-            }
+            #(#checks)*
             #body
         }
-        #[doc = #fast_doc]
-        #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
-        #[target_feature(enable = "avx2,fma")]
-        unsafe fn #fast(#(#typed),*) -> #ret {
-            #fast_body
-        }
+        #(#copies)*
     }
 }
 

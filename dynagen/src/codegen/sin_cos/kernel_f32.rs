@@ -10,11 +10,19 @@
 // both). The slow path is the f64 kernel's.
 
 /// The sines and cosines of `x` (`f32`), entry by entry: within 1 ulp of
-/// `f32` for every finite angle (NaN and ±∞ give NaN); two or four angles
-/// at a time in vector instructions, like `sin_cos_array`.
+/// `f32` for every finite angle (NaN and ±∞ give NaN); two, four or eight
+/// angles at a time in vector instructions, like `sin_cos_array`.
 #[inline]
 #[allow(dead_code)]
 pub fn sin_cos_array_f32<const N: usize>(x: &[f32; N]) -> ([f32; N], [f32; N]) {
+    #[cfg(all(
+        target_arch = "x86_64",
+        not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))
+    ))]
+    if RUNTIME_DISPATCH && has_avx512() {
+        // SAFETY: this processor has AVX-512 (checked just above).
+        return unsafe { sin_cos_array_f32_avx512(x) };
+    }
     #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
     if RUNTIME_DISPATCH && has_avx2_and_fma() {
         // SAFETY: this processor has AVX2 and FMA (checked just above).
@@ -29,6 +37,17 @@ pub fn sin_cos_array_f32<const N: usize>(x: &[f32; N]) -> ([f32; N], [f32; N]) {
 #[allow(dead_code)]
 unsafe fn sin_cos_array_f32_avx2_fma<const N: usize>(x: &[f32; N]) -> ([f32; N], [f32; N]) {
     sin_cos_array_f32_on::<Avx2Fma, N>(x)
+}
+
+/// `sin_cos_array_f32` compiled for AVX-512.
+#[cfg(all(
+    target_arch = "x86_64",
+    not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))
+))]
+#[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
+#[allow(dead_code)]
+unsafe fn sin_cos_array_f32_avx512<const N: usize>(x: &[f32; N]) -> ([f32; N], [f32; N]) {
+    sin_cos_array_f32_on::<Avx512, N>(x)
 }
 
 /// `sin_cos_array_f32` in the instructions of `I`.
