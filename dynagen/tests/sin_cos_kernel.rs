@@ -477,8 +477,8 @@ with_source! { HARNESS_ANGLES:
     }
 }
 
-/// Where the target has AVX2, `sin_cos_array` (and `sin_cos_array_f32`) takes four angles to a register, eight where it
-/// has AVX-512, and where it has FMA the polynomials are fused. CI builds for plain x86-64, so
+/// Where the target has AVX2, `sin_cos_array` (and `sin_cos_array_f32`) takes four angles to a register, and where it
+/// has FMA the polynomials are fused. CI builds for plain x86-64, so
 /// this compiles the kernel's text with `rustc -O` and `-C target-feature=` `+avx2`, `+fma`,
 /// `+avx2,+fma` and `+avx512f,+avx512vl,+avx512dq` (those this machine has; `RUNTIME_DISPATCH`
 /// off) and checks, in each binary, that the batches, whole and cut at lengths 1 to 17, give

@@ -51,7 +51,7 @@ pub const JOINT_NAMES: [&str; DOF] = [
     "panda_finger_joint1",
     "panda_finger_joint2",
 ];
-/// The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target, or with run-time dispatch the processor, has AVX2, eight where it has AVX-512).
+/// The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target, or with run-time dispatch the processor, has AVX2).
 #[inline]
 #[allow(dead_code)]
 pub fn sin_cos_all(q: &[f64; DOF]) -> ([f64; DOF], [f64; DOF]) {
@@ -3473,11 +3473,12 @@ fn sqrt_portable(x: f64) -> f64 {
 //
 // Processors with AVX-512 (F, VL and DQ) get a third copy, for `Avx512`,
 // on x86-64 builds without those features (also `x86-64-v3` ones): the
-// same operations in the same order as `Avx2Fma` (so the same bits), with
-// 32 vector registers instead of 16, which long bodies need (fewer values
-// spilled to the stack), and eight angles to a register in the sines and
-// cosines. `has_avx512()` checks the processor and that the OS saves the
-// 512-bit state.
+// same operations in the same order as `Avx2Fma`, four angles or branches
+// to a register too (so the same bits), with 32 vector registers instead of
+// 16, which long bodies need (fewer values spilled to the stack).
+// `has_avx512()` checks the processor and that the OS saves the 512-bit
+// state. (Eight angles to a register were measured and left out:
+// `docs/performance.md`, "An AVX-512 copy of every function".)
 
 /// The instructions a copy of a generic body is compiled for.
 #[allow(dead_code)]
@@ -3486,8 +3487,6 @@ trait Isa {
     const FUSED: bool;
     /// Whether four angles go to a register (else two), and four branches.
     const QUADS: bool;
-    /// Whether eight angles go to a register (AVX-512; then `QUADS` too).
-    const OCTETS: bool;
     /// `a·b + c` in `f64`.
     fn fma(a: f64, b: f64, c: f64) -> f64;
     /// `a·b + c` in `f32`.
@@ -3496,7 +3495,7 @@ trait Isa {
 
 /// What the build's target features give: fused multiply-adds where the
 /// target has them (`fma`, `fmaf`), four angles to a register where it has
-/// AVX2, eight where it has AVX-512 (F, VL and DQ).
+/// AVX2.
 #[allow(dead_code)]
 enum Baseline {}
 
@@ -3506,12 +3505,6 @@ impl Isa for Baseline {
         all(target_arch = "aarch64", target_feature = "neon")
     ));
     const QUADS: bool = cfg!(all(target_arch = "x86_64", target_feature = "avx2"));
-    const OCTETS: bool = cfg!(all(
-        target_arch = "x86_64",
-        target_feature = "avx512f",
-        target_feature = "avx512vl",
-        target_feature = "avx512dq"
-    ));
     #[inline(always)]
     fn fma(a: f64, b: f64, c: f64) -> f64 {
         fma(a, b, c)
@@ -3533,7 +3526,6 @@ enum Avx2Fma {}
 impl Isa for Avx2Fma {
     const FUSED: bool = true;
     const QUADS: bool = true;
-    const OCTETS: bool = false;
     #[inline(always)]
     fn fma(a: f64, b: f64, c: f64) -> f64 {
         // SAFETY: `Avx2Fma` code runs only on processors with FMA (see above).
@@ -3563,7 +3555,6 @@ enum Avx512 {}
 impl Isa for Avx512 {
     const FUSED: bool = true;
     const QUADS: bool = true;
-    const OCTETS: bool = true;
     #[inline(always)]
     fn fma(a: f64, b: f64, c: f64) -> f64 {
         // SAFETY: `Avx512` code runs only on processors with FMA (see above).
@@ -3671,8 +3662,8 @@ fn ask_cpu_for_avx512() -> bool {
 }
 
 /// The sines and cosines of `x`, entry by entry: within 1 ulp of the exact
-/// values for every finite angle (NaN and ±∞ give NaN); two, four or eight
-/// angles at a time in vector instructions.
+/// values for every finite angle (NaN and ±∞ give NaN); two or four angles
+/// at a time in vector instructions.
 #[inline]
 #[allow(dead_code)]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
@@ -3768,13 +3759,7 @@ fn sin_cos_batches<I: Isa, K: FastPath, const N: usize>(x: &[f64; N], s: &mut [f
     let mut fast = true;
     let mut i = 0;
     while i < N {
-        if I::OCTETS {
-            fast &= match N - i {
-                1..=8 => sin_cos_pass::<I, K, 8, 1, N>(i, [angles(x, i)], s, c),
-                _ => sin_cos_pass::<I, K, 8, 2, N>(i, [angles(x, i), angles(x, i + 8)], s, c),
-            };
-            i += 16;
-        } else if I::QUADS {
+        if I::QUADS {
             fast &= match N - i {
                 1..=4 => sin_cos_pass::<I, K, 4, 1, N>(i, [angles(x, i)], s, c),
                 _ => sin_cos_pass::<I, K, 4, 2, N>(i, [angles(x, i), angles(x, i + 4)], s, c),
@@ -3831,9 +3816,8 @@ where
     fast
 }
 
-/// `W` angles as a register: `[f64; 1]` as `f64`, `[f64; 2]`, `[f64; 4]`
-/// and `[f64; 8]` on x86-64 as SSE2, AVX2 and AVX-512 registers, elsewhere
-/// lane by lane.
+/// `W` angles as a register: `[f64; 1]` as `f64`, `[f64; 2]` and `[f64; 4]`
+/// on x86-64 as SSE2 and AVX2 registers, elsewhere lane by lane.
 trait ToLanes {
     /// The register.
     type V: Lanes;
@@ -3964,10 +3948,10 @@ macro_rules! vector_lanes {
             fn to_lanes(self) -> Self::V {
                 // SAFETY (this and every block below): the processor has the
                 // instructions: SSE2 is part of every x86-64 target, and the
-                // AVX2 and AVX-512 registers and `_fmadd_` are used only where
-                // the target has them (`Baseline::QUADS`, `OCTETS` and `FUSED`
-                // are their `cfg`) or in `Avx2Fma` and `Avx512` code; loads and
-                // stores are of `$w` f64 from and to arrays of `$w` f64.
+                // AVX2 registers and `_fmadd_` are used only where the target
+                // has them (`Baseline::QUADS` and `FUSED` are their `cfg`) or
+                // in `Avx2Fma` and `Avx512` code; loads and stores are of `$w`
+                // f64 from and to arrays of `$w` f64.
                 unsafe { core::arch::x86_64::$loadu(self.as_ptr()) }
             }
         }
@@ -4055,23 +4039,9 @@ vector_lanes!(4, __m256d, 15, _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm25
     _mm256_loadu_pd, _mm256_storeu_pd, _mm256_andnot_pd, _mm256_min_pd, _mm256_cmp_pd::<_CMP_GE_OQ>,
     _mm256_movemask_pd, _mm256_castpd_si256, _mm256_castsi256_pd, _mm256_and_si256, _mm256_or_si256,
     _mm256_xor_si256, _mm256_sub_epi64, _mm256_setzero_si256, _mm256_set1_epi64x, _mm256_slli_epi64);
-#[cfg(target_arch = "x86_64")]
-vector_lanes!(8, __m512d, 255, _mm512_add_pd, _mm512_sub_pd, _mm512_mul_pd, _mm512_div_pd, _mm512_sqrt_pd, _mm512_fmadd_pd, _mm512_xor_pd, _mm512_set1_pd,
-    _mm512_loadu_pd, _mm512_storeu_pd, _mm512_andnot_pd, _mm512_min_pd, _mm512_cmp_pd_mask::<_CMP_GE_OQ>,
-    mask_bits, _mm512_castpd_si512, _mm512_castsi512_pd, _mm512_and_si512, _mm512_or_si512,
-    _mm512_xor_si512, _mm512_sub_epi64, _mm512_setzero_si512, _mm512_set1_epi64, _mm512_slli_epi64);
-
-/// The lanes of an AVX-512 comparison's mask, bit l for lane l (what
-/// `_mm_movemask_pd` gives for two lanes).
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-fn mask_bits(mask: u8) -> u8 {
-    mask
-}
 
 /// Other targets: two angles lane by lane (the compiler may vectorise);
-/// four and eight only to compile `sin_cos_batches` (`Baseline::QUADS` and
-/// `OCTETS` are false).
+/// four only to compile `sin_cos_batches` (`Baseline::QUADS` is false).
 #[cfg(not(target_arch = "x86_64"))]
 impl ToLanes for [f64; 2] {
     type V = [f64; 2];
@@ -4086,15 +4056,6 @@ impl ToLanes for [f64; 4] {
     type V = [f64; 4];
     #[inline(always)]
     fn to_lanes(self) -> [f64; 4] {
-        self
-    }
-}
-
-#[cfg(not(target_arch = "x86_64"))]
-impl ToLanes for [f64; 8] {
-    type V = [f64; 8];
-    #[inline(always)]
-    fn to_lanes(self) -> [f64; 8] {
         self
     }
 }

@@ -148,8 +148,8 @@ pub struct CodegenOptions {
     /// floating-point ports: a default build then runs as fast as a native
     /// one. x86-64 builds without AVX-512 (F, VL and DQ) get a third copy
     /// for processors that have it: the AVX2 copy's operations and bits,
-    /// with 32 vector registers (long bodies spill less) and eight angles
-    /// to a register in the sines and cosines; it needs Rust 1.89. The
+    /// with 32 vector registers (long bodies spill less); it needs Rust
+    /// 1.89. The
     /// price: a default build's results differ in the last bits between
     /// machines with and without FMA (on both they are within the accuracy
     /// the tests check, 1e-12 of the generic solver), and the bodies are

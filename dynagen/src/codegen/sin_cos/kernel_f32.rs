@@ -10,8 +10,8 @@
 // both). The slow path is the f64 kernel's.
 
 /// The sines and cosines of `x` (`f32`), entry by entry: within 1 ulp of
-/// `f32` for every finite angle (NaN and ±∞ give NaN); two, four or eight
-/// angles at a time in vector instructions, like `sin_cos_array`.
+/// `f32` for every finite angle (NaN and ±∞ give NaN); two or four angles
+/// at a time in vector instructions, like `sin_cos_array`.
 #[inline]
 #[allow(dead_code)]
 pub fn sin_cos_array_f32<const N: usize>(x: &[f32; N]) -> ([f32; N], [f32; N]) {

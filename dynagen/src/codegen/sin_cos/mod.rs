@@ -16,14 +16,14 @@
 //! angles at a time go through the same branch-free code: on x86-64 written
 //! out in SSE2 intrinsics (part of the default target; LLVM's own
 //! vectoriser took the scalar code for some lengths only), four at a time
-//! in AVX2 where the target has it, eight in AVX-512, elsewhere the scalar code; the
+//! in AVX2 where the target has it, elsewhere the scalar code; the
 //! polynomials use fused multiply-adds where the target has them (see
 //! [`CodegenOptions::fma`](super::CodegenOptions::fma)). With run-time
 //! dispatch ([`CodegenOptions::runtime_dispatch`](super::CodegenOptions::runtime_dispatch)),
 //! an x86-64 build without AVX2 and FMA also has a copy of each public
 //! function compiled for them, run where the processor has both: four
 //! angles at a time, fused, the bits of a build with those features; and
-//! one for AVX-512, eight angles at a time, the same bits. A rare slow path (angles within ~1e-17·|q| of a multiple of
+//! one for AVX-512, the same bits with more registers. A rare slow path (angles within ~1e-17·|q| of a multiple of
 //! π/2, |q| > 1.5e6 rad, NaN, ±∞) redoes the batch one angle at a time with
 //! an exact (Payne–Hanek) reduction. Accuracy: within
 //! 1 ulp of the exact sine and cosine for every finite angle (measured by
@@ -103,7 +103,7 @@ pub(crate) fn sin_cos_all_item(scalar: ScalarType) -> TokenStream {
     let batch = batch_function(scalar);
     let doc = match scalar {
         ScalarType::F64 => {
-            " The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target, or with run-time dispatch the processor, has AVX2, eight where it has AVX-512)."
+            " The sines and cosines of `q`, joint by joint: within 1 ulp for every finite angle, no std, two at a time (four where the target, or with run-time dispatch the processor, has AVX2)."
         }
         ScalarType::F32 => {
             " The sines and cosines of `q`, joint by joint: within 1 ulp of `f32` for every finite angle (computed in `f64`), no std, two at a time."
