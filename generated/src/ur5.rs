@@ -1783,29 +1783,43 @@ impl Isa for Avx512 {
     }
 }
 
-/// Whether this processor has AVX2 and FMA and the operating system saves
-/// the 256-bit registers: asked once (`cpuid`, `xgetbv`), then remembered.
-#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+/// `ask()`'s answer, asked once and then kept in `answer` (0: not asked
+/// yet, 1: no, 2: yes; racing first calls store the same answer).
+#[cfg(all(
+    target_arch = "x86_64",
+    not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))
+))]
 #[inline]
 #[allow(dead_code)]
-fn has_avx2_and_fma() -> bool {
-    use core::sync::atomic::{AtomicU8, Ordering};
-    // 0: not asked yet, 1: no, 2: yes. Racing first calls store the same answer.
-    static ANSWER: AtomicU8 = AtomicU8::new(0);
-    match ANSWER.load(Ordering::Relaxed) {
+fn remembered(answer: &core::sync::atomic::AtomicU8, ask: fn() -> bool) -> bool {
+    use core::sync::atomic::Ordering;
+    match answer.load(Ordering::Relaxed) {
         0 => {
-            let yes = ask_cpu_for_avx2_and_fma();
-            ANSWER.store(if yes { 2 } else { 1 }, Ordering::Relaxed);
+            let yes = ask();
+            answer.store(if yes { 2 } else { 1 }, Ordering::Relaxed);
             yes
         }
         answer => answer == 2,
     }
 }
 
+/// Whether this processor has AVX2 and FMA and the operating system saves
+/// the 256-bit registers: asked once (`cpuid`, `xgetbv`), then remembered.
+#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[inline]
+#[allow(dead_code)]
+fn has_avx2_and_fma() -> bool {
+    static ANSWER: core::sync::atomic::AtomicU8 = core::sync::atomic::AtomicU8::new(0);
+    remembered(&ANSWER, ask_cpu_for_avx2_and_fma)
+}
+
 /// `cpuid` leaf 1: FMA (ECX bit 12), OSXSAVE (27), AVX (28); `xgetbv`: the
 /// OS saves the SSE and AVX state (XCR0 bits 1 and 2); leaf 7: AVX2 (EBX
 /// bit 5).
-#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[cfg(all(
+    target_arch = "x86_64",
+    not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))
+))]
 #[cold]
 #[inline(never)]
 #[allow(dead_code, unused_unsafe)]
@@ -1836,22 +1850,13 @@ fn ask_cpu_for_avx2_and_fma() -> bool {
 #[inline]
 #[allow(dead_code)]
 fn has_avx512() -> bool {
-    use core::sync::atomic::{AtomicU8, Ordering};
-    // 0: not asked yet, 1: no, 2: yes. Racing first calls store the same answer.
-    static ANSWER: AtomicU8 = AtomicU8::new(0);
-    match ANSWER.load(Ordering::Relaxed) {
-        0 => {
-            let yes = ask_cpu_for_avx512();
-            ANSWER.store(if yes { 2 } else { 1 }, Ordering::Relaxed);
-            yes
-        }
-        answer => answer == 2,
-    }
+    static ANSWER: core::sync::atomic::AtomicU8 = core::sync::atomic::AtomicU8::new(0);
+    remembered(&ANSWER, ask_cpu_for_avx512)
 }
 
-/// `cpuid` leaf 1: FMA (ECX bit 12), OSXSAVE (27), AVX (28); `xgetbv`: the
-/// OS saves the SSE, AVX and AVX-512 state (XCR0 bits 1, 2 and 5 to 7);
-/// leaf 7: AVX2 (EBX bit 5), AVX-512 F (16), DQ (17) and VL (31).
+/// AVX2 and FMA (`ask_cpu_for_avx2_and_fma`), then `xgetbv`: the OS saves
+/// the AVX-512 state too (XCR0 bits 5 to 7); `cpuid` leaf 7: AVX-512 F
+/// (EBX bit 16), DQ (17) and VL (31).
 #[cfg(all(
     target_arch = "x86_64",
     not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))
@@ -1860,20 +1865,16 @@ fn has_avx512() -> bool {
 #[inline(never)]
 #[allow(dead_code, unused_unsafe)]
 fn ask_cpu_for_avx512() -> bool {
-    use core::arch::x86_64::{__cpuid, __cpuid_count, _xgetbv};
+    use core::arch::x86_64::{__cpuid_count, _xgetbv};
+    if !ask_cpu_for_avx2_and_fma() {
+        return false;
+    }
     let bit = |word: u32, b: u32| word >> b & 1 == 1;
-    // SAFETY: every x86-64 processor has `cpuid`; `xgetbv` is run only where
-    // leaf 1 says the OS has enabled it (OSXSAVE).
+    // SAFETY: the processor has `cpuid` leaf 7 and the OS has enabled
+    // `xgetbv` (OSXSAVE), as `ask_cpu_for_avx2_and_fma` found.
     unsafe {
-        if __cpuid(0).eax < 7 {
-            return false;
-        }
-        let ecx = __cpuid(1).ecx;
-        if !(bit(ecx, 12) && bit(ecx, 27) && bit(ecx, 28)) || _xgetbv(0) & 0b1110_0110 != 0b1110_0110 {
-            return false;
-        }
         let ebx = __cpuid_count(7, 0).ebx;
-        bit(ebx, 5) && bit(ebx, 16) && bit(ebx, 17) && bit(ebx, 31)
+        _xgetbv(0) & 0b1110_0000 == 0b1110_0000 && bit(ebx, 16) && bit(ebx, 17) && bit(ebx, 31)
     }
 }
 

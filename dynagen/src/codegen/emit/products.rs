@@ -83,16 +83,9 @@ pub(crate) fn helper(options: &CodegenOptions) -> TokenStream {
         t.check(quote!(#fast(minv, a, b)))
     });
     let copies = TIERS.iter().map(|t| {
-        let (fast, isa, cfg, features) = (t.name("derivative_products"), t.isa(), t.cfg(), t.target_feature());
-        let fast_doc = format!(" [`derivative_products`] compiled for processors with {}.", t.what);
-        quote! {
-            #[doc = #fast_doc]
-            #cfg
-            #features
-            unsafe fn #fast(minv: &#m, a: &#m, b: &#m) -> (#m, #m) {
-                derivative_products_on::<#isa>(minv, a, b)
-            }
-        }
+        let isa = t.isa();
+        let signature = quote!((minv: &#m, a: &#m, b: &#m) -> (#m, #m));
+        t.copy("derivative_products", signature, quote!(derivative_products_on::<#isa>(minv, a, b)))
     });
     quote! {
         #[doc = #doc]

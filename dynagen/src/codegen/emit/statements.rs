@@ -266,6 +266,20 @@ impl Tier {
         let features = self.features;
         quote!(#[target_feature(enable = #features)])
     }
+    /// The copy `unsafe fn NAME_{suffix}signature { body }` of the function
+    /// `of` (`signature`: its parameters and return type), documented.
+    pub fn copy(&self, of: &str, signature: TokenStream, body: TokenStream) -> TokenStream {
+        let (fast, cfg, features) = (self.name(of), self.cfg(), self.target_feature());
+        let doc = format!(" [`{of}`] compiled for processors with {}.", self.what);
+        quote! {
+            #[doc = #doc]
+            #cfg
+            #features
+            unsafe fn #fast #signature {
+                #body
+            }
+        }
+    }
     /// `cfg if check() { return unsafe { call }; }`, the dispatch to this copy.
     pub fn check(&self, call: TokenStream) -> TokenStream {
         let (cfg, check) = (self.cfg(), format_ident!("{}", self.check));
@@ -614,16 +628,8 @@ fn dispatched(
         t.check(quote!(#fast(#(#args),*)))
     });
     let copies = TIERS.iter().map(|t| {
-        let (fast, isa, cfg, features) = (t.name(&signature.name), t.isa(), t.cfg(), t.target_feature());
-        let fast_doc = format!(" [`{name}`] compiled for processors with {}.", t.what);
-        quote! {
-            #[doc = #fast_doc]
-            #cfg
-            #features
-            unsafe fn #fast(#(#params),*) -> #ret {
-                #on::<#isa>(#(#args),*)
-            }
-        }
+        let isa = t.isa();
+        t.copy(&signature.name, quote!((#(#params),*) -> #ret), quote!(#on::<#isa>(#(#args),*)))
     });
     let items = quote! {
         #(#[doc = #doc])*

@@ -192,7 +192,7 @@ pub(super) fn wrapper(
         t.check(quote!(#fast(#(#args),*)))
     });
     let copies = TIERS.iter().map(|t| {
-        let (fast, sc_fast, isa) = (t.name(fn_name), t.name(&format!("{fn_name}_sc")), t.isa());
+        let (sc_fast, isa) = (t.name(&format!("{fn_name}_sc")), t.isa());
         let fast_body = batched(
             quote!(#on::<#isa, DOF>(q)),
             &|n| {
@@ -201,16 +201,7 @@ pub(super) fn wrapper(
             },
             &|args| if sc_split { quote!(unsafe { #sc_fast(#args) }) } else { quote!(#sc_on::<#isa>(#args)) },
         );
-        let (cfg, features) = (t.cfg(), t.target_feature());
-        let fast_doc = format!(" [`{fn_name}`] compiled for processors with {}.", t.what);
-        quote! {
-            #[doc = #fast_doc]
-            #cfg
-            #features
-            unsafe fn #fast(#(#typed),*) -> #ret {
-                #fast_body
-            }
-        }
+        t.copy(fn_name, quote!((#(#typed),*) -> #ret), fast_body)
     });
     quote! {
         #(#[doc = #doc])*
