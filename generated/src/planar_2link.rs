@@ -82,7 +82,7 @@ unsafe fn inverse_dynamics_sc_avx512(
     qd: &[f64; DOF],
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
-    inverse_dynamics_sc_on::<Avx512>(s, c, qd, qdd)
+    inverse_dynamics_sc_on::<Avx2Fma>(s, c, qd, qdd)
 }
 /// [`inverse_dynamics_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
@@ -165,8 +165,8 @@ unsafe fn inverse_dynamics_avx512(
     qd: &[f64; DOF],
     qdd: &[f64; DOF],
 ) -> [f64; DOF] {
-    let (s, c) = sin_cos_array_on::<Avx512, DOF>(q);
-    inverse_dynamics_sc_on::<Avx512>(&s, &c, qd, qdd)
+    let (s, c) = sin_cos_array_on::<Avx2Fma, DOF>(q);
+    inverse_dynamics_sc_on::<Avx2Fma>(&s, &c, qd, qdd)
 }
 /// [`inverse_dynamics`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
@@ -205,7 +205,7 @@ pub fn mass_matrix_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 #[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
 #[allow(dead_code)]
 unsafe fn mass_matrix_sc_avx512(s: &[f64; DOF], c: &[f64; DOF]) -> [[f64; DOF]; DOF] {
-    mass_matrix_sc_on::<Avx512>(s, c)
+    mass_matrix_sc_on::<Avx2Fma>(s, c)
 }
 /// [`mass_matrix_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
@@ -256,8 +256,8 @@ pub fn mass_matrix(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
 #[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
 #[allow(dead_code)]
 unsafe fn mass_matrix_avx512(q: &[f64; DOF]) -> [[f64; DOF]; DOF] {
-    let (s, c) = sin_cos_array_on::<Avx512, 1>(&[q[1]]);
-    mass_matrix_sc_on::<Avx512>(&[0.0, s[0]], &[1.0, c[0]])
+    let (s, c) = sin_cos_array_on::<Avx2Fma, 1>(&[q[1]]);
+    mass_matrix_sc_on::<Avx2Fma>(&[0.0, s[0]], &[1.0, c[0]])
 }
 /// [`mass_matrix`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
@@ -296,7 +296,7 @@ unsafe fn bias_forces_sc_avx512(
     c: &[f64; DOF],
     qd: &[f64; DOF],
 ) -> [f64; DOF] {
-    bias_forces_sc_on::<Avx512>(s, c, qd)
+    bias_forces_sc_on::<Avx2Fma>(s, c, qd)
 }
 /// [`bias_forces_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
@@ -365,8 +365,8 @@ pub fn bias_forces(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
 #[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
 #[allow(dead_code)]
 unsafe fn bias_forces_avx512(q: &[f64; DOF], qd: &[f64; DOF]) -> [f64; DOF] {
-    let (s, c) = sin_cos_array_on::<Avx512, DOF>(q);
-    bias_forces_sc_on::<Avx512>(&s, &c, qd)
+    let (s, c) = sin_cos_array_on::<Avx2Fma, DOF>(q);
+    bias_forces_sc_on::<Avx2Fma>(&s, &c, qd)
 }
 /// [`bias_forces`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
@@ -401,7 +401,7 @@ pub fn gravity_torques_sc(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
 #[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
 #[allow(dead_code)]
 unsafe fn gravity_torques_sc_avx512(s: &[f64; DOF], c: &[f64; DOF]) -> [f64; DOF] {
-    gravity_torques_sc_on::<Avx512>(s, c)
+    gravity_torques_sc_on::<Avx2Fma>(s, c)
 }
 /// [`gravity_torques_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
@@ -458,8 +458,8 @@ pub fn gravity_torques(q: &[f64; DOF]) -> [f64; DOF] {
 #[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
 #[allow(dead_code)]
 unsafe fn gravity_torques_avx512(q: &[f64; DOF]) -> [f64; DOF] {
-    let (s, c) = sin_cos_array_on::<Avx512, DOF>(q);
-    gravity_torques_sc_on::<Avx512>(&s, &c)
+    let (s, c) = sin_cos_array_on::<Avx2Fma, DOF>(q);
+    gravity_torques_sc_on::<Avx2Fma>(&s, &c)
 }
 /// [`gravity_torques`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
@@ -504,7 +504,7 @@ unsafe fn forward_dynamics_sc_avx512(
     qd: &[f64; DOF],
     tau: &[f64; DOF],
 ) -> [f64; DOF] {
-    forward_dynamics_sc_on::<Avx512>(s, c, qd, tau)
+    forward_dynamics_sc_on::<Avx2Fma>(s, c, qd, tau)
 }
 /// [`forward_dynamics_sc`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
@@ -600,8 +600,8 @@ unsafe fn forward_dynamics_avx512(
     qd: &[f64; DOF],
     tau: &[f64; DOF],
 ) -> [f64; DOF] {
-    let (s, c) = sin_cos_array_on::<Avx512, DOF>(q);
-    forward_dynamics_sc_on::<Avx512>(&s, &c, qd, tau)
+    let (s, c) = sin_cos_array_on::<Avx2Fma, DOF>(q);
+    forward_dynamics_sc_on::<Avx2Fma>(&s, &c, qd, tau)
 }
 /// [`forward_dynamics`] compiled for processors with AVX2 and FMA.
 #[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
@@ -904,11 +904,11 @@ fn sqrt_portable(x: f64) -> f64 {
 // processors without FMA. Builds that already have both features, and other
 // targets, compile no such copy: `Baseline` is all there is.
 //
-// Processors with AVX-512 (F, VL and DQ) get a third copy, for `Avx512`,
-// on x86-64 builds without those features (also `x86-64-v3` ones): the
-// same operations in the same order as `Avx2Fma`, four angles or branches
-// to a register too (so the same bits), with 32 vector registers instead of
-// 16, which long bodies need (fewer values spilled to the stack).
+// Processors with AVX-512 (F, VL and DQ) get a third copy on x86-64 builds
+// without those features (also `x86-64-v3` ones): the body for `Avx2Fma`
+// again (the same operations in the same order, four angles or branches to
+// a register, so the same bits), compiled with 32 vector registers instead
+// of 16, which long bodies need (fewer values spilled to the stack).
 // `has_avx512()` checks the processor and that the OS saves the 512-bit
 // state. (Eight angles to a register were measured and left out:
 // `docs/performance.md`, "An AVX-512 copy of every function".)
@@ -950,12 +950,21 @@ impl Isa for Baseline {
 
 /// AVX2 and FMA: named only in the bodies of `#[target_feature(enable =
 /// "avx2,fma")]` functions, which are called only where
-/// `has_avx2_and_fma()` holds.
-#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+/// `has_avx2_and_fma()` holds, and of the AVX-512 copies
+/// (`#[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]`,
+/// called only where `has_avx512()` holds): their operations are the same,
+/// their target features (and so their registers) not.
+#[cfg(all(
+    target_arch = "x86_64",
+    not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))
+))]
 #[allow(dead_code)]
 enum Avx2Fma {}
 
-#[cfg(all(target_arch = "x86_64", not(all(target_feature = "avx2", target_feature = "fma"))))]
+#[cfg(all(
+    target_arch = "x86_64",
+    not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))
+))]
 impl Isa for Avx2Fma {
     const FUSED: bool = true;
     const QUADS: bool = true;
@@ -967,35 +976,6 @@ impl Isa for Avx2Fma {
     #[inline(always)]
     fn fmaf(a: f32, b: f32, c: f32) -> f32 {
         // SAFETY: `Avx2Fma` code runs only on processors with FMA (see above).
-        unsafe { fmaf_x86(a, b, c) }
-    }
-}
-
-/// AVX-512 (F, VL and DQ, with AVX2 and FMA): named only in the bodies of
-/// `#[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]`
-/// functions, which are called only where `has_avx512()` holds.
-#[cfg(all(
-    target_arch = "x86_64",
-    not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))
-))]
-#[allow(dead_code)]
-enum Avx512 {}
-
-#[cfg(all(
-    target_arch = "x86_64",
-    not(all(target_feature = "avx512f", target_feature = "avx512vl", target_feature = "avx512dq"))
-))]
-impl Isa for Avx512 {
-    const FUSED: bool = true;
-    const QUADS: bool = true;
-    #[inline(always)]
-    fn fma(a: f64, b: f64, c: f64) -> f64 {
-        // SAFETY: `Avx512` code runs only on processors with FMA (see above).
-        unsafe { fma_x86(a, b, c) }
-    }
-    #[inline(always)]
-    fn fmaf(a: f32, b: f32, c: f32) -> f32 {
-        // SAFETY: `Avx512` code runs only on processors with FMA (see above).
         unsafe { fmaf_x86(a, b, c) }
     }
 }
@@ -1133,7 +1113,7 @@ unsafe fn sin_cos_array_avx2_fma<const N: usize>(x: &[f64; N]) -> ([f64; N], [f6
 #[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
 #[allow(dead_code)]
 unsafe fn sin_cos_array_avx512<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
-    sin_cos_array_on::<Avx512, N>(x)
+    sin_cos_array_on::<Avx2Fma, N>(x)
 }
 
 /// `sin_cos_array` in the instructions of `I`.
@@ -1384,7 +1364,7 @@ macro_rules! vector_lanes {
                 // instructions: SSE2 is part of every x86-64 target, and the
                 // AVX2 registers and `_fmadd_` are used only where the target
                 // has them (`Baseline::QUADS` and `FUSED` are their `cfg`) or
-                // in `Avx2Fma` and `Avx512` code; loads and stores are of `$w`
+                // in `Avx2Fma` code; loads and stores are of `$w`
                 // f64 from and to arrays of `$w` f64.
                 unsafe { core::arch::x86_64::$loadu(self.as_ptr()) }
             }

@@ -86,7 +86,7 @@ pub(crate) struct Body {
 ///
 /// With `dispatch` (the body's sums written `I::fma`), each part is a
 /// generic `NAME_partK_on<I: Isa>` called by `NAME_partK` for `Baseline`,
-/// by `NAME_partK_avx512` for `Avx512` and by `NAME_partK_avx2_fma`
+/// and by `NAME_partK_avx512` and `NAME_partK_avx2_fma`
 /// (`#[target_feature(enable = "avx2,fma")]`) for `Avx2Fma`, and the public
 /// function calls `NAME_avx512` or `NAME_avx2_fma`, the chain of those
 /// parts, where the processor has the instructions (see

@@ -232,7 +232,8 @@ pub(super) const TIERS: [Tier; 2] = [
     Tier {
         suffix: "avx512",
         features: "avx2,fma,avx512f,avx512vl,avx512dq",
-        isa: "Avx512",
+        // The same operations as the AVX2 copy's (see the kernel text).
+        isa: "Avx2Fma",
         check: "has_avx512",
         what: "AVX-512 F, VL and DQ",
         cfg_features: &["avx512f", "avx512vl", "avx512dq"],

@@ -47,7 +47,7 @@ unsafe fn sin_cos_array_f32_avx2_fma<const N: usize>(x: &[f32; N]) -> ([f32; N],
 #[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq")]
 #[allow(dead_code)]
 unsafe fn sin_cos_array_f32_avx512<const N: usize>(x: &[f32; N]) -> ([f32; N], [f32; N]) {
-    sin_cos_array_f32_on::<Avx512, N>(x)
+    sin_cos_array_f32_on::<Avx2Fma, N>(x)
 }
 
 /// `sin_cos_array_f32` in the instructions of `I`.
