@@ -325,11 +325,9 @@ fn the_fused_path_compiled_with_the_fma_feature_rounds_once_and_stays_accurate()
         // The same program without target features: every function runs its AVX-512 copy where
         // the host has it, else its AVX2 and FMA copy; then with the AVX-512 check answering no.
         #[cfg(target_arch = "x86_64")]
-        let avx512 = ["avx512f", "avx512vl", "avx512dq"].iter().all(|f| match *f {
-            "avx512f" => std::is_x86_feature_detected!("avx512f"),
-            "avx512vl" => std::is_x86_feature_detected!("avx512vl"),
-            _ => std::is_x86_feature_detected!("avx512dq"),
-        });
+        let avx512 = std::is_x86_feature_detected!("avx512f")
+            && std::is_x86_feature_detected!("avx512vl")
+            && std::is_x86_feature_detected!("avx512dq");
         #[cfg(not(target_arch = "x86_64"))]
         let avx512 = false;
         for (variant, no_avx512) in [("run_time_dispatch", false), ("run_time_dispatch_avx2", true)] {

@@ -221,23 +221,16 @@ pub(crate) fn assemble(
                 syn::parse2(t.check(quote!(#fast(#(#args),*)))).map_err(|e| CodegenError::Internal(e.to_string()))?,
             );
             let (inputs, output, unused) = (&shell.sig.inputs, &shell.sig.output, &shell.block.stmts);
-            let doc = format!(" [`{name}`] compiled for processors with {}: its parts' copies.", t.what);
             let result = result(outputs.clone());
             // The parts' copies are unsafe to call; the inlined generic bodies are not.
             let chain = if inline { quote!(#(#fast_chain)*) } else { quote!(unsafe { #(#fast_chain)* }) };
-            let (cfg, features) = (t.cfg(), t.target_feature());
-            let f = parse(quote! {
-                #[doc = #doc]
-                #cfg
-                #features
-                unsafe fn #fast(#inputs) #output {
-                    #(#unused)*
-                    let mut carry = [0.0; #k];
-                    #chain
-                    #result
-                }
-            })?;
-            items.insert(0, syn::Item::Fn(f));
+            let body = quote! {
+                #(#unused)*
+                let mut carry = [0.0; #k];
+                #chain
+                #result
+            };
+            items.insert(0, syn::Item::Fn(parse(t.copy(&name, quote!((#inputs) #output), body))?));
         }
         shell.block.stmts.splice(0..0, checks);
     }

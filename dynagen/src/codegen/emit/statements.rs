@@ -208,16 +208,15 @@ impl BodyStyle {
 
 /// One copy of a body that the run-time dispatch picks where the processor
 /// has its instructions: the AVX-512 copy (checked first), then the AVX2
-/// and FMA one. Both are the generic body `NAME_on::<I>` compiled inside a
-/// `#[target_feature]` function; the kernel text (`sin_cos/kernel.rs`) has
-/// their `Isa`s and checks.
+/// and FMA one. Both are the generic body `NAME_on::<Avx2Fma>` compiled
+/// inside a `#[target_feature]` function: the same operations, other
+/// registers. The kernel text (`sin_cos/kernel.rs`) has `Avx2Fma` and the
+/// checks.
 pub(super) struct Tier {
     /// The copy's name is `NAME_{suffix}`.
     suffix: &'static str,
     /// Its `#[target_feature(enable = …)]`.
     features: &'static str,
-    /// The `Isa` its body is instantiated for.
-    isa: &'static str,
     /// The kernel's function that says whether the processor has them.
     check: &'static str,
     /// The processors it is for, in its documentation.
@@ -232,8 +231,6 @@ pub(super) const TIERS: [Tier; 2] = [
     Tier {
         suffix: "avx512",
         features: "avx2,fma,avx512f,avx512vl,avx512dq",
-        // The same operations as the AVX2 copy's (see the kernel text).
-        isa: "Avx2Fma",
         check: "has_avx512",
         what: "AVX-512 F, VL and DQ",
         cfg_features: &["avx512f", "avx512vl", "avx512dq"],
@@ -241,7 +238,6 @@ pub(super) const TIERS: [Tier; 2] = [
     Tier {
         suffix: "avx2_fma",
         features: "avx2,fma",
-        isa: "Avx2Fma",
         check: "has_avx2_and_fma",
         what: "AVX2 and FMA",
         cfg_features: &["avx2", "fma"],
@@ -253,9 +249,11 @@ impl Tier {
     pub fn name(&self, base: &str) -> Ident {
         format_ident!("{base}_{}", self.suffix)
     }
-    /// The `Isa` type.
+    /// The `Isa` the copy's body is instantiated for: `Avx2Fma` for every
+    /// copy (their operations are the same; only their target features
+    /// differ).
     pub fn isa(&self) -> Ident {
-        format_ident!("{}", self.isa)
+        format_ident!("Avx2Fma")
     }
     /// `#[cfg(…)]`: x86-64 builds without the copy's features.
     pub fn cfg(&self) -> TokenStream {
