@@ -22,6 +22,11 @@
 //! percentile over the samples printed, with those of an empty function
 //! (the timer's cost, not subtracted).
 //!
+//! `DYNAGEN_BENCH_STACK=BYTES` makes every timed call that many bytes deeper
+//! in the stack (a multiple of 16 below 4096): a function's time depends on
+//! where the caller's stack puts its frame (`docs/performance.md`, "Where
+//! the frame lies"), which `floating_bench.sh` covers with `STACKS`.
+//!
 //! `cargo run --release -p dynagen-bench --example floating [ROUNDS] [ROBOT] [COLD]`
 //! (ROBOT: quadruped12 or humanoid32; both without it or with `all`; COLD:
 //! cold samples a function, default 1000, 0 for none)
@@ -125,35 +130,66 @@ macro_rules! timed {
 
 /// Times `fs` on `robot`'s states in alternating rounds and prints the
 /// minimum and median per call.
-fn run<const NQ: usize, const NV: usize>(robot: &str, fs: [(&str, Timed<NQ, NV>); 7], rounds: usize) {
+/// `stack`: the offset of [`at_stack_offset`].
+fn run<const NQ: usize, const NV: usize>(robot: &str, fs: [(&str, Timed<NQ, NV>); 7], rounds: usize, stack: usize) {
     let st = states::<NQ, NV>(0x5eed);
     let n = fs.len();
     let mut times = vec![Vec::with_capacity(rounds); n];
-    for (_, f) in fs {
-        for i in 0..20 * CALLS {
-            black_box(f(black_box(&st[i & 7])));
-        }
-    }
-    for r in 0..rounds {
-        // Alternate the order too, so that no function always follows another.
-        for j in 0..n {
-            let k = if r % 2 == 0 { j } else { n - 1 - j };
-            let f = fs[k].1;
-            let t = Instant::now();
-            for i in 0..CALLS {
+    at_stack_offset(stack, &mut || {
+        for (_, f) in fs {
+            for i in 0..20 * CALLS {
                 black_box(f(black_box(&st[i & 7])));
             }
-            times[k].push(t.elapsed().as_nanos() as f64 / CALLS as f64);
         }
-    }
+        for r in 0..rounds {
+            // Alternate the order too, so that no function always follows another.
+            for j in 0..n {
+                let k = if r % 2 == 0 { j } else { n - 1 - j };
+                let f = fs[k].1;
+                let t = Instant::now();
+                for i in 0..CALLS {
+                    black_box(f(black_box(&st[i & 7])));
+                }
+                times[k].push(t.elapsed().as_nanos() as f64 / CALLS as f64);
+            }
+        }
+    });
     let layout = dynagen_bench::layout();
     println!(
-        "dynagen generated, {robot} floating (NQ = {NQ}, NV = {NV}), {rounds} rounds of {CALLS} calls, code layout {layout}"
+        "dynagen generated, {robot} floating (NQ = {NQ}, NV = {NV}), {rounds} rounds of {CALLS} calls, code layout \
+         {layout}, stack offset {stack}"
     );
     for ((name, _), t) in fs.iter().zip(&mut times) {
         t.sort_by(f64::total_cmp);
         println!("dynagen   {name:<20} min {:8.1} ns  median {:8.1} ns", t[0], t[t.len() / 2]);
     }
+}
+
+/// Runs `f` with `B` bytes of this function's frame between it and the
+/// caller's.
+#[inline(never)]
+fn deeper<const B: usize>(f: &mut dyn FnMut()) {
+    let mut pad = core::mem::MaybeUninit::<[u8; B]>::uninit();
+    black_box(&mut pad);
+    f();
+    black_box(&mut pad);
+}
+
+/// Runs `f` `bytes` deeper in the stack (a multiple of 16 below 4096; a
+/// whole page more repeats the offsets within one, `docs/performance.md`).
+fn at_stack_offset(bytes: usize, f: &mut dyn FnMut()) {
+    assert!(bytes < 4096 && bytes.is_multiple_of(16), "DYNAGEN_BENCH_STACK={bytes}: a multiple of 16 below 4096");
+    // The page's 256-byte blocks, then 16-byte steps within one.
+    macro_rules! offsets {
+        ($x:expr, $unit:literal, $inner:expr; $($k:literal)*) => {
+            match $x {
+                $($k => deeper::<{ $k * $unit }>($inner),)*
+                _ => unreachable!("checked above"),
+            }
+        };
+    }
+    let fine = |f: &mut dyn FnMut()| offsets!((bytes % 256) / 16, 16, f; 0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15);
+    offsets!(bytes / 256, 256, &mut || fine(f); 0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15)
 }
 
 /// The cold sweep's buffer: 8 MiB, more than any core's L2.
@@ -172,7 +208,8 @@ fn sweep(buf: &mut [u8]) {
 /// Times `fs` cold (see the module documentation): `samples` calls each, the
 /// functions in alternating order, and prints the median and tenth
 /// percentile per call.
-fn cold<const NQ: usize, const NV: usize>(robot: &str, fs: [(&str, Timed<NQ, NV>); 7], samples: usize) {
+/// `stack`: the offset of [`at_stack_offset`].
+fn cold<const NQ: usize, const NV: usize>(robot: &str, fs: [(&str, Timed<NQ, NV>); 7], samples: usize, stack: usize) {
     fn empty<const NQ: usize, const NV: usize>(_: &State<NQ, NV>) -> f64 {
         0.0
     }
@@ -182,16 +219,18 @@ fn cold<const NQ: usize, const NV: usize>(robot: &str, fs: [(&str, Timed<NQ, NV>
     let n = all.len();
     let mut buf = vec![0u8; SWEEP];
     let mut times = vec![Vec::with_capacity(samples); n];
-    for r in 0..samples {
-        for j in 0..n {
-            let k = if r % 2 == 0 { j } else { n - 1 - j };
-            sweep(&mut buf);
-            let s = black_box(&st[r & 7]);
-            let t = Instant::now();
-            black_box((all[k].1)(s));
-            times[k].push(t.elapsed().as_nanos() as f64);
+    at_stack_offset(stack, &mut || {
+        for r in 0..samples {
+            for j in 0..n {
+                let k = if r % 2 == 0 { j } else { n - 1 - j };
+                sweep(&mut buf);
+                let s = black_box(&st[r & 7]);
+                let t = Instant::now();
+                black_box((all[k].1)(s));
+                times[k].push(t.elapsed().as_nanos() as f64);
+            }
         }
-    }
+    });
     println!("dynagen generated, {robot} floating, cold: {samples} calls each, each after an 8 MiB sweep");
     for ((name, _), t) in all.iter().zip(&mut times) {
         t.sort_by(f64::total_cmp);
@@ -205,18 +244,20 @@ fn main() {
     let robot = args.next().filter(|r| r != "all");
     let samples: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(1000);
     let wants = |name: &str| robot.as_deref().is_none_or(|r| r == name);
+    let stack = std::env::var("DYNAGEN_BENCH_STACK")
+        .map_or(0, |v| v.parse().unwrap_or_else(|_| panic!("DYNAGEN_BENCH_STACK={v}: a number of bytes")));
     if wants("quadruped12") {
         let fs = timed!(dynagen_bench::quadruped12_floating, dynagen_bench::quadruped12_floating_unrolled);
-        run("quadruped12", fs, rounds);
+        run("quadruped12", fs, rounds, stack);
         if samples > 0 {
-            cold("quadruped12", fs, samples);
+            cold("quadruped12", fs, samples, stack);
         }
     }
     if wants("humanoid32") {
         let fs = timed!(dynagen_bench::humanoid32_floating, dynagen_bench::humanoid32_floating_unrolled);
-        run("humanoid32", fs, rounds);
+        run("humanoid32", fs, rounds, stack);
         if samples > 0 {
-            cold("humanoid32", fs, samples);
+            cold("humanoid32", fs, samples, stack);
         }
     }
 }

@@ -12,7 +12,8 @@
 # Pinocchio is compiled with CXXFLAGS (default "-O3 -DNDEBUG -march=native",
 # pinocchio_build.sh); the dynagen side with the caller's RUSTFLAGS (e.g.
 # RUSTFLAGS="-C target-cpu=native").
-# Usage: [LAYOUTS=K] floating_bench.sh [ROUNDS] [ROBOT ...]   (robots: both by default)
+# Usage: [LAYOUTS=K] [STACKS="B ..."] floating_bench.sh [ROUNDS] [ROBOT ...]
+# (robots: both by default)
 # Not run in CI; see README.md in this folder.
 set -euo pipefail
 
@@ -32,17 +33,26 @@ pinocchio_build "$here/pinocchio_floating_bench.cpp" "$out" \
 # and q̈ move by up to 2.8x between binaries of the same code
 # (docs/performance.md, "the same code, other times"), so read them over
 # layouts. Unset: one run, in the caller's DYNAGEN_BENCH_LAYOUT.
+# STACKS="B ...": each layout's run once per stack offset B (bytes, a
+# multiple of 16 below 4096; DYNAGEN_BENCH_STACK, both programs): the
+# generated functions' times move by up to a third with where the caller's
+# stack puts their frames (docs/performance.md, "Where the frame lies").
 layouts="${LAYOUTS:-}"
+stacks="${STACKS:-${DYNAGEN_BENCH_STACK:-0}}"
 for ((layout = 0; layout < ${layouts:-1}; layout++)); do
   if [ -n "$layouts" ]; then
     export DYNAGEN_BENCH_LAYOUT="$layout"
     echo "##### code layout $layout"
   fi
-  for robot in "${robots[@]}"; do
-    urdf="$repo/dynagen/robots/$robot.urdf"
-    echo "=== $robot"
-    alternate "$rounds" floating "200 $robot" "$out" "$urdf"
-    echo "== $robot last"
-    "$out" "$urdf"
+  for stack in $stacks; do
+    export DYNAGEN_BENCH_STACK="$stack"
+    echo "#### stack offset $stack"
+    for robot in "${robots[@]}"; do
+      urdf="$repo/dynagen/robots/$robot.urdf"
+      echo "=== $robot"
+      alternate "$rounds" floating "200 $robot" "$out" "$urdf"
+      echo "== $robot last"
+      "$out" "$urdf"
+    done
   done
 done

@@ -16,12 +16,18 @@
 // Usage: pinocchio_floating_bench ROBOT.urdf [ROUNDS] [COLD]   (COLD: cold
 // samples a function, default 1000, 0 for none)
 //
+// DYNAGEN_BENCH_STACK=BYTES makes every call that many bytes deeper in the
+// stack, as examples/floating.rs does for dynagen's (floating_bench.sh,
+// STACKS).
+//
 // States: base position in [-1, 1]^3, a uniformly random unit quaternion,
 // joints in [-pi, pi], velocities in [-2, 2], accelerations in [-5, 5],
 // torques in [-20, 20].  aba and crba are timed with both of Pinocchio's
 // conventions (LOCAL, their default, and WORLD).  The algorithm templates are compiled
 // into this file, with the flags of floating_bench.sh.  Not run in CI; see
 // README.md in this folder.
+
+#include <alloca.h>
 
 #include <algorithm>
 #include <chrono>
@@ -58,6 +64,11 @@ int main(int argc, char** argv) {
   const std::string path = argv[1];
   const int rounds = argc > 2 ? std::atoi(argv[2]) : 200;
   const int samples = argc > 3 ? std::atoi(argv[3]) : 1000;
+  // The rest of main, and so every call, `stack` bytes deeper.
+  const char* stack_env = std::getenv("DYNAGEN_BENCH_STACK");
+  const unsigned long stack = stack_env ? std::strtoul(stack_env, nullptr, 10) : 0;
+  volatile char* pad = static_cast<volatile char*>(alloca(stack + 1));
+  pad[0] = 0;
 
   const pinocchio::Model model = bench_common::load_model(path, true);
   pinocchio::Data data(model);
@@ -140,8 +151,8 @@ int main(int argc, char** argv) {
     }
   }
 
-  std::printf("Pinocchio %s C++, %s with JointModelFreeFlyer (nq=%d, nv=%d), %d rounds of %d calls\n",
-              PINOCCHIO_VERSION, path.substr(path.find_last_of('/') + 1).c_str(), nq, nv, rounds, kCalls);
+  std::printf("Pinocchio %s C++, %s with JointModelFreeFlyer (nq=%d, nv=%d), %d rounds of %d calls, stack offset %lu\n",
+              PINOCCHIO_VERSION, path.substr(path.find_last_of('/') + 1).c_str(), nq, nv, rounds, kCalls, stack);
   for (int k = 0; k < n; ++k) {
     std::vector<double>& t = per_call[k];
     const double best = *std::min_element(t.begin(), t.end());
