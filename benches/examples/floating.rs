@@ -175,8 +175,8 @@ fn deeper<const B: usize>(f: &mut dyn FnMut()) {
     black_box(&mut pad);
 }
 
-/// Runs `f` `bytes` deeper in the stack (a multiple of 16 below 4096; a
-/// whole page more repeats the offsets within one, `docs/performance.md`).
+/// Runs `f` `bytes` deeper in the stack (a multiple of 16 below 4096: the
+/// positions within a page).
 fn at_stack_offset(bytes: usize, f: &mut dyn FnMut()) {
     assert!(bytes < 4096 && bytes.is_multiple_of(16), "DYNAGEN_BENCH_STACK={bytes}: a multiple of 16 below 4096");
     // The page's 256-byte blocks, then 16-byte steps within one.
