@@ -24,8 +24,10 @@
 //!
 //! `DYNAGEN_BENCH_STACK=BYTES` makes every timed call that many bytes deeper
 //! in the stack (a multiple of 16 below 4096): a function's time depends on
-//! where the caller's stack puts its frame (`docs/performance.md`, "Where
-//! the frame lies"), which `floating_bench.sh` covers with `STACKS`.
+//! where the stack puts its frame (`docs/performance.md`, "Where the frame
+//! lies"). Linux starts each process's stack at a random place within a
+//! page, so an offset names the same place in every run only without that
+//! randomisation (`setarch -R`), as `floating_bench.sh` runs with `STACKS`.
 //!
 //! `cargo run --release -p dynagen-bench --example floating [ROUNDS] [ROBOT] [COLD]`
 //! (ROBOT: quadruped12 or humanoid32; both without it or with `all`; COLD:

@@ -34,11 +34,17 @@ pinocchio_build "$here/pinocchio_floating_bench.cpp" "$out" \
 # (docs/performance.md, "the same code, other times"), so read them over
 # layouts. Unset: one run, in the caller's DYNAGEN_BENCH_LAYOUT.
 # STACKS="B ...": each layout's run once per stack offset B (bytes, a
-# multiple of 16 below 4096; DYNAGEN_BENCH_STACK, both programs): the
-# generated functions' times move by up to a third with where the caller's
+# multiple of 16 below 4096; DYNAGEN_BENCH_STACK, both programs), every
+# program run without address-space randomisation (NO_ASLR, `fixed` in
+# pinocchio_build.sh), so that an offset is the same place in every run:
+# the generated functions' times move by up to a third with where the
 # stack puts their frames (docs/performance.md, "Where the frame lies").
+# Unset: one run per layout, at the random place Linux gives each process.
 layouts="${LAYOUTS:-}"
 stacks="${STACKS:-${DYNAGEN_BENCH_STACK:-0}}"
+if [ -n "${STACKS:-}" ]; then
+  export NO_ASLR=1
+fi
 for ((layout = 0; layout < ${layouts:-1}; layout++)); do
   if [ -n "$layouts" ]; then
     export DYNAGEN_BENCH_LAYOUT="$layout"
@@ -52,7 +58,7 @@ for ((layout = 0; layout < ${layouts:-1}; layout++)); do
       echo "=== $robot"
       alternate "$rounds" floating "200 $robot" "$out" "$urdf"
       echo "== $robot last"
-      "$out" "$urdf"
+      fixed "$out" "$urdf"
     done
   done
 done

@@ -42,6 +42,8 @@ pinocchio_build() {
 # RUSTFLAGS and CARGO_TARGET_DIR) and runs PROGRAM ARGS (a Pinocchio program
 # pinocchio_build compiled) and the example with EXAMPLE ARGS (split on
 # spaces) in alternation, ROUNDS times, each round headed "== round R".
+# With NO_ASLR set, both run without address-space randomisation
+# (`fixed`, below).
 alternate() {
   local rounds="$1" example="$2" example_args="$3" repo target r
   shift 3
@@ -50,8 +52,21 @@ alternate() {
   target="${CARGO_TARGET_DIR:-$repo/target}"
   for r in $(seq "$rounds"); do
     echo "== round $r"
-    "$@"
+    fixed "$@"
     # shellcheck disable=SC2086
-    "$target/release/examples/$example" $example_args
+    fixed "$target/release/examples/$example" $example_args
   done
+}
+
+# fixed PROGRAM [ARGS ...]: runs PROGRAM, and with NO_ASLR set runs it
+# without address-space randomisation (`setarch -R`): Linux otherwise puts
+# each process's stack at a random place within a page, and the generated
+# floating-base functions' times depend on that place (docs/performance.md,
+# "Where the frame lies").
+fixed() {
+  if [ -n "${NO_ASLR:-}" ]; then
+    setarch "$(uname -m)" -R "$@"
+  else
+    "$@"
+  fi
 }
