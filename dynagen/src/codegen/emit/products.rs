@@ -15,7 +15,7 @@
 //! fuses; the traced products sum in the trace's order. The two differ in
 //! the last bits, both within the generic solver's 1e-12.
 
-use super::statements::{scalar_type, Param, TIERS};
+use super::statements::{checks, scalar_type, Param, TIERS};
 use crate::codegen::{CodegenOptions, ScalarType, Trig};
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
@@ -78,10 +78,7 @@ pub(crate) fn helper(options: &CodegenOptions) -> TokenStream {
             #on
         };
     }
-    let checks = TIERS.iter().map(|t| {
-        let fast = t.name("derivative_products");
-        t.check(quote!(#fast(minv, a, b)))
-    });
+    let checks = checks("derivative_products", &[quote!(minv), quote!(a), quote!(b)]);
     let copies = TIERS.iter().map(|t| {
         let isa = t.isa();
         let signature = quote!((minv: &#m, a: &#m, b: &#m) -> (#m, #m));
@@ -91,7 +88,7 @@ pub(crate) fn helper(options: &CodegenOptions) -> TokenStream {
         #[doc = #doc]
         #[inline]
         fn derivative_products(minv: &#m, a: &#m, b: &#m) -> (#m, #m) {
-            #(#checks)*
+            #checks
             derivative_products_on::<Baseline>(minv, a, b)
         }
         #(#copies)*

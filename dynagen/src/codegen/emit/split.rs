@@ -34,7 +34,7 @@
 //! Longer bodies keep `#[inline(never)]` parts: optimised with debug
 //! information, the inlined 30-joint chain took 40 s against 23 s.
 
-use super::statements::TIERS;
+use super::statements::{checks, TIERS};
 use super::syntax::{assign, index, let_stmt, pat, path};
 use crate::codegen::CodegenError;
 use proc_macro2::{Ident, TokenStream};
@@ -213,13 +213,7 @@ pub(crate) fn assemble(
                 syn::FnArg::Receiver(_) => None,
             })
             .collect();
-        let mut checks: Vec<Stmt> = Vec::new();
         for (t, fast_chain) in TIERS.iter().zip(&fast_chains).rev() {
-            let fast = t.name(&name);
-            checks.insert(
-                0,
-                syn::parse2(t.check(quote!(#fast(#(#args),*)))).map_err(|e| CodegenError::Internal(e.to_string()))?,
-            );
             let (inputs, output, unused) = (&shell.sig.inputs, &shell.sig.output, &shell.block.stmts);
             let result = result(outputs.clone());
             // The parts' copies are unsafe to call; the inlined generic bodies are not.
@@ -232,7 +226,9 @@ pub(crate) fn assemble(
             };
             items.insert(0, syn::Item::Fn(parse(t.copy(&name, quote!((#inputs) #output), body))?));
         }
-        shell.block.stmts.splice(0..0, checks);
+        let checks = checks(&name, &args);
+        let checks: syn::Block = syn::parse2(quote!({ #checks })).map_err(|e| CodegenError::Internal(e.to_string()))?;
+        shell.block.stmts.splice(0..0, checks.stmts);
     }
     shell.block.stmts.push(syn::parse_quote!(let mut carry = [0.0; #k];));
     shell.block.stmts.extend(chain);

@@ -280,7 +280,7 @@ impl Tier {
         }
     }
     /// `cfg if check() { return unsafe { call }; }`, the dispatch to this copy.
-    pub fn check(&self, call: TokenStream) -> TokenStream {
+    fn check(&self, call: TokenStream) -> TokenStream {
         let (cfg, check) = (self.cfg(), format_ident!("{}", self.check));
         quote! {
             #cfg
@@ -289,6 +289,18 @@ impl Tier {
             }
         }
     }
+}
+
+/// The dispatch of `of` to its copies, in the order of [`TIERS`]: for each,
+/// `cfg if check() { return unsafe { of_suffix(args) }; }`.
+pub(super) fn checks<T: quote::ToTokens>(of: &str, args: &[T]) -> TokenStream {
+    TIERS
+        .iter()
+        .map(|t| {
+            let fast = t.name(of);
+            t.check(quote!(#fast(#(#args),*)))
+        })
+        .collect()
 }
 
 /// The comment put above each call of a function's dispatched copy, `{}`
@@ -622,10 +634,7 @@ fn dispatched(
     let ret = signature.output.tokens(scalar);
     let doc = doc.lines();
     let on_doc = format!(" The body of [`{name}`], in the instructions of `I`.");
-    let checks = TIERS.iter().map(|t| {
-        let fast = t.name(&signature.name);
-        t.check(quote!(#fast(#(#args),*)))
-    });
+    let checks = checks(&signature.name, &args);
     let copies = TIERS.iter().map(|t| {
         let isa = t.isa();
         t.copy(&signature.name, quote!((#(#params),*) -> #ret), quote!(#on::<#isa>(#(#args),*)))
@@ -633,7 +642,7 @@ fn dispatched(
     let items = quote! {
         #(#[doc = #doc])*
         pub fn #name(#(#params),*) -> #ret {
-            #(#checks)*
+            #checks
             #on::<Baseline>(#(#args),*)
         }
         #(#copies)*

@@ -2,7 +2,7 @@
 //! its body reads and calls `NAME_sc`, with the AVX-512 and the AVX2 and
 //! FMA copies of the run-time dispatch.
 
-use super::statements::TIERS;
+use super::statements::{checks, TIERS};
 use super::{literal, Param};
 use crate::codegen::sin_cos;
 use crate::codegen::trace::{Angle, SinCosTrace};
@@ -179,18 +179,16 @@ pub(super) fn wrapper(
     // With run-time dispatch, the batched sines and cosines and the body are inlined into each
     // copy of `NAME` (AVX-512, AVX2 and FMA), as in a native build: no second check, no call of
     // the kernel or of `NAME_sc_avx2_fma` with the sines and cosines through memory. (The body is
-    // compiled once more for each; inlined it is faster, docs/performance.md.) A body split into
-    // parts is called as `NAME_sc_avx2_fma` (`_avx512`), the chain of its parts.
+    // compiled once more for each; inlined it is faster: docs/performance.md, "Compile time, a
+    // body called instead of inlined".) A body split into parts is called as `NAME_sc_avx2_fma`
+    // (`_avx512`), the chain of its parts.
     let sc_on = quote::format_ident!("{}_sc_on", fn_name);
     let on = match options.scalar {
         ScalarType::F64 => quote!(sin_cos_array_on),
         ScalarType::F32 => quote!(sin_cos_array_f32_on),
     };
     let args: Vec<proc_macro2::Ident> = params.iter().map(|p| quote::format_ident!("{}", p.name)).collect();
-    let checks = TIERS.iter().map(|t| {
-        let fast = t.name(fn_name);
-        t.check(quote!(#fast(#(#args),*)))
-    });
+    let checks = checks(fn_name, &args);
     let copies = TIERS.iter().map(|t| {
         let (sc_fast, isa) = (t.name(&format!("{fn_name}_sc")), t.isa());
         let fast_body = batched(
@@ -207,7 +205,7 @@ pub(super) fn wrapper(
         #(#[doc = #doc])*
         #[inline]
         pub fn #name(#(#typed),*) -> #ret {
-            #(#checks)*
+            #checks
             #body
         }
         #(#copies)*
