@@ -3931,8 +3931,8 @@ macro_rules! vector_lanes {
                 // instructions: SSE2 is part of every x86-64 target, and the
                 // AVX2 registers and `_fmadd_` are used only where the target
                 // has them (`Baseline::QUADS` and `FUSED` are their `cfg`) or
-                // in `Avx2Fma` code; loads and stores are of `$w`
-                // f64 from and to arrays of `$w` f64.
+                // in `Avx2Fma` code; loads and stores are of `$w` f64 from and
+                // to arrays of `$w` f64.
                 unsafe { core::arch::x86_64::$loadu(self.as_ptr()) }
             }
         }
